@@ -1,0 +1,6 @@
+//! One module per CLI subcommand.
+
+pub mod accuracy;
+pub mod render;
+pub mod rtl;
+pub mod sweep;

@@ -1,0 +1,3 @@
+//! shadecore library glue: scene set-up, the render driver, image output, and CLI commands.
+
+pub mod cmd;

@@ -1,0 +1,44 @@
+//! `shadecore` command-line interface.
+
+use clap::{Parser, Subcommand};
+use shadecore::cmd;
+
+#[derive(Parser)]
+#[command(name = "shadecore", version, about = "Accelerated shading hardware (VNTU patents) as rust-hdl RTL with an f64 golden model")]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Render a scene with the reference and the accelerated methods; write PNGs, diffs, NMSE report.
+    Render(cmd::render::Args),
+    /// Measure each approximation's maximum error over its domain beside the sources' claims.
+    Accuracy(cmd::accuracy::Args),
+    /// NMSE of every method over a grid of tessellations, exponents and light angles.
+    Sweep(cmd::sweep::Args),
+    /// Write synthesizable Verilog of RTL blocks.
+    ExportVerilog(cmd::rtl::ExportArgs),
+    /// Simulate an RTL block on random vectors and write a VCD.
+    Sim(cmd::rtl::SimArgs),
+    /// Synthesize a block with Yosys and print cell counts.
+    Synth(cmd::rtl::SynthArgs),
+}
+
+fn main() {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Render(a) => cmd::render::run(a),
+        Command::Accuracy(a) => cmd::accuracy::run(a),
+        Command::Sweep(a) => cmd::sweep::run(a),
+        Command::ExportVerilog(a) => cmd::rtl::export(a),
+        Command::Sim(a) => cmd::rtl::sim(a),
+        Command::Synth(a) => cmd::rtl::synth(a),
+    };
+    if let Err(e) = result {
+        // One line, no backtrace: the chain of causes joined by ": ".
+        eprintln!("error: {e:#}");
+        std::process::exit(1);
+    }
+}
