@@ -24,6 +24,8 @@ enum Command {
     Sim(cmd::rtl::SimArgs),
     /// Synthesize a block with Yosys and print cell counts.
     Synth(cmd::rtl::SynthArgs),
+    /// Walk one triangle through the address block (RTL or golden) and dump one row per clock.
+    Raster(cmd::raster::Args),
 }
 
 fn main() {
@@ -35,6 +37,7 @@ fn main() {
         Command::ExportVerilog(a) => cmd::rtl::export(a),
         Command::Sim(a) => cmd::rtl::sim(a),
         Command::Synth(a) => cmd::rtl::synth(a),
+        Command::Raster(a) => cmd::raster::run(a),
     };
     if let Err(e) = result {
         // One line, no backtrace: the chain of causes joined by ": ".

@@ -1,6 +1,7 @@
 //! One module per CLI subcommand.
 
 pub mod accuracy;
+pub mod raster;
 pub mod render;
 pub mod rtl;
 pub mod sweep;
