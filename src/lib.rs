@@ -1,3 +1,4 @@
 //! shadecore library glue: scene set-up, the render driver, image output, and CLI commands.
 
 pub mod cmd;
+pub mod output;
