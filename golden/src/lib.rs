@@ -3,6 +3,7 @@
 //! Shaped like the hardware: per-triangle / per-span set-up ("software side") is separate from
 //! the per-pixel kernels ("hardware side"), so the RTL pipeline is driven by the same set-up.
 
+pub mod address_block;
 pub mod nmse;
 pub mod normalizer;
 pub mod testing;
