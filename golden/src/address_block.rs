@@ -94,7 +94,13 @@ impl EdgeSetup {
         let f = dx.div_euclid(dy);
         let r = 2 * dx - f * d;
         debug_assert!((0..d).contains(&e0) && (0..d).contains(&r));
-        EdgeSetup { b0: b0 as u32, e0: e0 as u32, f: f as i32, r: r as u32, d: d as u32 }
+        EdgeSetup {
+            b0: b0 as u32,
+            e0: e0 as u32,
+            f: f as i32,
+            r: r as u32,
+            d: d as u32,
+        }
     }
 
     /// `f` as the 12-bit two's-complement word the hardware loads.
@@ -131,7 +137,10 @@ impl AddressSetup {
         let area2 = tri.area2();
         if area2 == 0 {
             // No rows; the rest is irrelevant but kept deterministic.
-            return AddressSetup { y_top: top.1 as u32, ..AddressSetup::default() };
+            return AddressSetup {
+                y_top: top.1 as u32,
+                ..AddressSetup::default()
+            };
         }
         // Side of the middle vertex relative to top→bottom (y down): cross < 0 ⇔ to the right,
         // i.e. the working edge is the left edge.
@@ -139,7 +148,11 @@ impl AddressSetup {
             - (bot.1 - top.1) as i64 * (mid.0 - top.0) as i64;
         let w = EdgeSetup::new(top, bot);
         let t = EdgeSetup::new(mid, bot);
-        let a = if mid.1 > top.1 { EdgeSetup::new(top, mid) } else { t };
+        let a = if mid.1 > top.1 {
+            EdgeSetup::new(top, mid)
+        } else {
+            t
+        };
         AddressSetup {
             w,
             a,
@@ -187,14 +200,30 @@ struct Dda {
 
 impl Dda {
     fn load(s: &EdgeSetup) -> Dda {
-        Dda { b: s.b0, e: s.e0, f: s.f_word(), r: s.r, d: s.d, step: StepType::Start.code(), carry: false }
+        Dda {
+            b: s.b0,
+            e: s.e0,
+            f: s.f_word(),
+            r: s.r,
+            d: s.d,
+            step: StepType::Start.code(),
+            carry: false,
+        }
     }
     fn advance(&mut self) {
         let carry = self.e < self.r;
         let mv = (self.f + carry as u32) & 0xFFF;
         self.b = (self.b + mv) & 0xFFF;
-        self.e = (self.e.wrapping_sub(self.r).wrapping_add(if carry { self.d } else { 0 })) & 0x1FFF;
-        self.step = if mv == 0 { StepType::Vertical.code() } else { StepType::Diagonal.code() };
+        self.e = (self
+            .e
+            .wrapping_sub(self.r)
+            .wrapping_add(if carry { self.d } else { 0 }))
+            & 0x1FFF;
+        self.step = if mv == 0 {
+            StepType::Vertical.code()
+        } else {
+            StepType::Diagonal.code()
+        };
         self.carry = carry;
     }
 }
@@ -289,7 +318,11 @@ impl AddressBlockModel {
         // Row counter stage (reads the buffer before E overwrites it).
         let nb = self.nb;
         if p_more {
-            self.p_x = if self.p_dir_neg { self.p_x.wrapping_sub(1) } else { self.p_x + 1 } & 0xFFF;
+            self.p_x = if self.p_dir_neg {
+                self.p_x.wrapping_sub(1)
+            } else {
+                self.p_x + 1
+            } & 0xFFF;
             self.p_ctr -= 1;
             self.p_step = StepType::Horizontal.code();
             self.p_line_start = false;
@@ -317,10 +350,19 @@ impl AddressBlockModel {
         if e_fire {
             let rec = if self.e_rows_left == 0 {
                 self.e_busy = false;
-                RowRecord { is_row: false, first: true, last: true, dir_neg: self.e_dir_neg, ..RowRecord::default() }
+                RowRecord {
+                    is_row: false,
+                    first: true,
+                    last: true,
+                    dir_neg: self.e_dir_neg,
+                    ..RowRecord::default()
+                }
             } else {
                 let (x, len) = if self.e_dir_neg {
-                    ((self.w.b.wrapping_sub(1)) & 0xFFF, self.w.b.wrapping_sub(self.o.b) & 0xFFF)
+                    (
+                        (self.w.b.wrapping_sub(1)) & 0xFFF,
+                        self.w.b.wrapping_sub(self.o.b) & 0xFFF,
+                    )
                 } else {
                     (self.w.b, self.o.b.wrapping_sub(self.w.b) & 0xFFF)
                 };
@@ -425,7 +467,14 @@ mod tests {
     use glam::DVec3;
 
     fn tri(p: [(i32, i32); 3]) -> ScreenTriangle {
-        ScreenTriangle { v: p.map(|(x, y)| ScreenVertex { x, y, z: 0.0, normal: DVec3::Z }) }
+        ScreenTriangle {
+            v: p.map(|(x, y)| ScreenVertex {
+                x,
+                y,
+                z: 0.0,
+                normal: DVec3::Z,
+            }),
+        }
     }
 
     fn check(p: [(i32, i32); 3]) {
@@ -438,7 +487,11 @@ mod tests {
         assert!(out.last().unwrap().done);
         // One event per row (at least), no bubble after the load latency.
         let rows = walk(&t).rows;
-        let events: usize = rows.iter().map(|r| r.len.max(1) as usize).sum::<usize>().max(1);
+        let events: usize = rows
+            .iter()
+            .map(|r| r.len.max(1) as usize)
+            .sum::<usize>()
+            .max(1);
         assert_eq!(out.len(), 3 + events, "{p:?}");
         // Row-start events carry the working edge's move; check V/D against the walk.
         let starts: Vec<_> = out.iter().filter(|o| o.row_start).collect();
@@ -467,11 +520,17 @@ mod tests {
     #[test]
     fn back_to_back_triangles_have_no_gap_when_long_enough() {
         // The first triangle ends with long rows, so the second's load latency is hidden.
-        let ts = [tri([(0, 0), (0, 50), (50, 50)]), tri([(50, 0), (50, 50), (0, 0)])];
+        let ts = [
+            tri([(0, 0), (0, 50), (50, 50)]),
+            tri([(50, 0), (50, 50), (0, 0)]),
+        ];
         let setups: Vec<_> = ts.iter().map(AddressSetup::new).collect();
         let (out, _) = run(&setups);
-        let events: usize =
-            ts.iter().flat_map(|t| walk(t).rows).map(|r| r.len.max(1) as usize).sum();
+        let events: usize = ts
+            .iter()
+            .flat_map(|t| walk(t).rows)
+            .map(|r| r.len.max(1) as usize)
+            .sum();
         assert_eq!(out.len(), 3 + events);
         let mut expect: Vec<_> = walk(&ts[0]).pixels();
         expect.extend(walk(&ts[1]).pixels());

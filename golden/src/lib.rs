@@ -4,6 +4,7 @@
 //! the per-pixel kernels ("hardware side"), so the RTL pipeline is driven by the same set-up.
 
 pub mod address_block;
+pub mod intensity_interpolator;
 pub mod nmse;
 pub mod normalizer;
 pub mod testing;

@@ -1,1 +1,4 @@
 
+pub mod address_block;
+pub mod intensity_interpolator;
+pub mod line_interpolator;

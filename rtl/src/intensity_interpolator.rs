@@ -1,0 +1,224 @@
+//! Intensity interpolator BVI (SPEC §6, fig. 3.8): Gouraud intensities along the address
+//! block's walk, one adder per colour channel (golden: `golden::intensity_interpolator`).
+//!
+//! # Formula
+//!
+//! A channel's intensity is a screen-space plane I(x, y) = a·x + b·y + c (centre sampling). The
+//! address block reports, per event, whether it starts a raster line and how far the working
+//! edge moved into it (f or f + 1 pixels, see `line_interpolator`), and steps along the line
+//! by `dir`. So, with per-triangle constants from the set-up software
+//!
+//! ```text
+//!   RG1 = f·a + b          (line start after a short move)
+//!   RG2 = (f + 1)·a + b    (line start after a long move)
+//!   RG3 = dir·a            (next pixel on the line)
+//!   RG5 = I at the first line start (+½ LSB, so truncation rounds to nearest)
+//! ```
+//!
+//! each event needs exactly one addition `Sm = A + B`:
+//!
+//! | event                       | A     | B                  | writes            |
+//! |-----------------------------|-------|--------------------|-------------------|
+//! | first line start (step 0)   | SH5   | 0                  | RG5, RG4; RG1–3 ← SH1–3 |
+//! | other line start            | RG5   | carry ? RG2 : RG1  | RG5, RG4 (if pixel) |
+//! | pixel along the line        | RG4   | RG3                | RG4               |
+//!
+//! RG1–RG5 are the five registers of fig. 3.8 (RG4 the running intensity, RG5 the intensity
+//! at the line start kept while the line is interpolated; RG1/RG2 take the place of the
+//! working-edge increment because the edge moves a whole line per clock). SH1, SH2, SH3, SH5
+//! are a set-up shadow bank: `load` writes them while the previous triangle is still being
+//! shaded, and the first event of the next triangle copies them in, so triangles follow each
+//! other without a gap.
+//!
+//! # Formats
+//!
+//! Every register, the adder and the set-up ports are 32-bit two's complement **signed Q16.16**
+//! (`crate::fixed` notation, the sign counted in the 16 integer bits): value =
+//! word / 2^16 in 8-bit LSB units, i.e. the 0..255 scale. Additions wrap modulo
+//! 2^32 on purpose: each pixel's word is the sum of the quantized start value and increments,
+//! and a sum modulo 2^32 is exact modulo 2^32, so a giant increment of a sliver triangle (the
+//! plane's gradient can reach millions of LSB per pixel) wraps and unwraps without loss; only
+//! the pixel values themselves must be in range, and they are (convex combinations of the vertex
+//! intensities, |I| < 2^15). Output: `red`, `green`, `blue` 8 bits, saturating:
+//! word < 0 → 0, word ≥ 256·2^16 → 255, otherwise bits 23..16 (truncation; the +½ in RG5 makes
+//! it round to nearest).
+//!
+//! # Latency, throughput, handshake
+//!
+//! Inputs `in_valid`, `in_row_start`, `in_step`, `in_carry` are the address block's outputs of
+//! the same name. Outputs are registers: the colour of the pixel presented in clock t appears
+//! in clock t + 1 with `valid_out`. One pixel per clock. `load` is accepted at any clock; give
+//! it the set-up of the triangle loaded into the address block in the same clock.
+//!
+//! # Error budget
+//!
+//! The start value and each increment are rounded to the nearest 2^-16 (error ≤ 2^-17 each,
+//! for |value·2^16| < 2^52 where f64 still holds the rounding exactly). A pixel k lines below
+//! the first line start and i pixels along its line is reached by 1 + k + i ≤ 8189 additions,
+//! so its word differs from (I + ½)·2^16 by at most (1 + k + i)·2^-17 ≤ 0.0625 LSB, and the
+//! 8-bit output differs from round(I) (clamped) by at most 1 LSB — by exactly 0 unless I lies
+//! within that bound of a half-integer.
+
+use rust_hdl::prelude::*;
+
+/// One colour channel: five registers, a shadow bank, one adder, the saturating output.
+#[derive(LogicBlock, Default)]
+pub struct IntensityChannel {
+    pub clock: Signal<In, Clock>,
+    /// Write the shadow bank from the set-up ports.
+    pub load: Signal<In, Bit>,
+    pub set_start: Signal<In, Bits<32>>,
+    pub set_short: Signal<In, Bits<32>>,
+    pub set_long: Signal<In, Bits<32>>,
+    pub set_line: Signal<In, Bits<32>>,
+    /// First event of a triangle (row_start with step Start).
+    pub ev_first: Signal<In, Bit>,
+    pub ev_row_start: Signal<In, Bit>,
+    pub ev_carry: Signal<In, Bit>,
+    pub ev_valid: Signal<In, Bit>,
+    /// The saturated 8-bit intensity of RG4.
+    pub level: Signal<Out, Bits<8>>,
+    /// RG1: increment of a line start after a short edge move.
+    pub rg1: DFF<Bits<32>>,
+    /// RG2: increment of a line start after a long edge move.
+    pub rg2: DFF<Bits<32>>,
+    /// RG3: increment along the raster line.
+    pub rg3: DFF<Bits<32>>,
+    /// RG4: the running intensity (the output).
+    pub rg4: DFF<Bits<32>>,
+    /// RG5: the intensity at the current line start.
+    pub rg5: DFF<Bits<32>>,
+    sh1: DFF<Bits<32>>,
+    sh2: DFF<Bits<32>>,
+    sh3: DFF<Bits<32>>,
+    sh5: DFF<Bits<32>>,
+    /// Adder operands and sum (signed Q16.16, modulo 2^32).
+    add_a: Signal<Local, Bits<32>>,
+    add_b: Signal<Local, Bits<32>>,
+    sum: Signal<Local, Bits<32>>,
+}
+
+impl Logic for IntensityChannel {
+    #[hdl_gen]
+    fn update(&mut self) {
+        dff_setup!(self, clock, rg1, rg2, rg3, rg4, rg5, sh1, sh2, sh3, sh5);
+        // Operand multiplexers in front of the single adder Sm.
+        self.add_a.next = self.rg4.q.val();
+        self.add_b.next = self.rg3.q.val();
+        if self.ev_first.val() {
+            self.add_a.next = self.sh5.q.val();
+            self.add_b.next = 0.into();
+        } else if self.ev_row_start.val() {
+            self.add_a.next = self.rg5.q.val();
+            self.add_b.next = self.rg1.q.val();
+            if self.ev_carry.val() {
+                self.add_b.next = self.rg2.q.val();
+            }
+        }
+        self.sum.next = self.add_a.val() + self.add_b.val();
+        if self.ev_first.val() {
+            self.rg1.d.next = self.sh1.q.val();
+            self.rg2.d.next = self.sh2.q.val();
+            self.rg3.d.next = self.sh3.q.val();
+        }
+        if self.ev_row_start.val() {
+            self.rg5.d.next = self.sum.val();
+        }
+        if self.ev_valid.val() {
+            self.rg4.d.next = self.sum.val();
+        }
+        if self.load.val() {
+            self.sh1.d.next = self.set_short.val();
+            self.sh2.d.next = self.set_long.val();
+            self.sh3.d.next = self.set_line.val();
+            self.sh5.d.next = self.set_start.val();
+        }
+        // Saturation: negative → 0, ≥ 256 → 255, else the integer part.
+        self.level.next = self.rg4.q.val().get_bits::<8>(16);
+        if self.rg4.q.val().get_bits::<7>(24).any() {
+            self.level.next = 255.into();
+        }
+        if self.rg4.q.val().get_bit(31) {
+            self.level.next = 0.into();
+        }
+    }
+}
+
+/// BVI: three channels sharing the address block's step information.
+#[derive(LogicBlock, Default)]
+pub struct IntensityInterpolator {
+    pub clock: Signal<In, Clock>,
+    pub load: Signal<In, Bit>,
+    pub r_start: Signal<In, Bits<32>>,
+    pub r_short: Signal<In, Bits<32>>,
+    pub r_long: Signal<In, Bits<32>>,
+    pub r_line: Signal<In, Bits<32>>,
+    pub g_start: Signal<In, Bits<32>>,
+    pub g_short: Signal<In, Bits<32>>,
+    pub g_long: Signal<In, Bits<32>>,
+    pub g_line: Signal<In, Bits<32>>,
+    pub b_start: Signal<In, Bits<32>>,
+    pub b_short: Signal<In, Bits<32>>,
+    pub b_long: Signal<In, Bits<32>>,
+    pub b_line: Signal<In, Bits<32>>,
+    pub in_valid: Signal<In, Bit>,
+    pub in_row_start: Signal<In, Bit>,
+    pub in_step: Signal<In, Bits<2>>,
+    pub in_carry: Signal<In, Bit>,
+    pub valid_out: Signal<Out, Bit>,
+    pub red: Signal<Out, Bits<8>>,
+    pub green: Signal<Out, Bits<8>>,
+    pub blue: Signal<Out, Bits<8>>,
+    pub chan_r: IntensityChannel,
+    pub chan_g: IntensityChannel,
+    pub chan_b: IntensityChannel,
+    valid_p1: DFF<Bit>,
+    first: Signal<Local, Bit>,
+}
+
+impl Logic for IntensityInterpolator {
+    #[hdl_gen]
+    fn update(&mut self) {
+        dff_setup!(self, clock, valid_p1);
+        self.first.next = self.in_row_start.val() & (self.in_step.val() == 0);
+        self.valid_p1.d.next = self.in_valid.val();
+
+        self.chan_r.clock.next = self.clock.val();
+        self.chan_r.load.next = self.load.val();
+        self.chan_r.set_start.next = self.r_start.val();
+        self.chan_r.set_short.next = self.r_short.val();
+        self.chan_r.set_long.next = self.r_long.val();
+        self.chan_r.set_line.next = self.r_line.val();
+        self.chan_r.ev_first.next = self.first.val();
+        self.chan_r.ev_row_start.next = self.in_row_start.val();
+        self.chan_r.ev_carry.next = self.in_carry.val();
+        self.chan_r.ev_valid.next = self.in_valid.val();
+
+        self.chan_g.clock.next = self.clock.val();
+        self.chan_g.load.next = self.load.val();
+        self.chan_g.set_start.next = self.g_start.val();
+        self.chan_g.set_short.next = self.g_short.val();
+        self.chan_g.set_long.next = self.g_long.val();
+        self.chan_g.set_line.next = self.g_line.val();
+        self.chan_g.ev_first.next = self.first.val();
+        self.chan_g.ev_row_start.next = self.in_row_start.val();
+        self.chan_g.ev_carry.next = self.in_carry.val();
+        self.chan_g.ev_valid.next = self.in_valid.val();
+
+        self.chan_b.clock.next = self.clock.val();
+        self.chan_b.load.next = self.load.val();
+        self.chan_b.set_start.next = self.b_start.val();
+        self.chan_b.set_short.next = self.b_short.val();
+        self.chan_b.set_long.next = self.b_long.val();
+        self.chan_b.set_line.next = self.b_line.val();
+        self.chan_b.ev_first.next = self.first.val();
+        self.chan_b.ev_row_start.next = self.in_row_start.val();
+        self.chan_b.ev_carry.next = self.in_carry.val();
+        self.chan_b.ev_valid.next = self.in_valid.val();
+
+        self.valid_out.next = self.valid_p1.q.val();
+        self.red.next = self.chan_r.level.val();
+        self.green.next = self.chan_g.level.val();
+        self.blue.next = self.chan_b.level.val();
+    }
+}

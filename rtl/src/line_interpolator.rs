@@ -1,0 +1,115 @@
+//! Line interpolator: a Bresenham-style DDA tracking one triangle edge, one raster line per
+//! clock (SPEC §5, fig. 3.7; golden: `golden::address_block`, `golden::raster::EdgeDda`).
+//!
+//! # Formula
+//!
+//! The edge's boundary on raster line y — the smallest x whose pixel centre is on or right of
+//! the edge — is `B = ⌈N/D⌉`, `D = 2Δy`, and N grows by `2Δx = f·D + r` per line. With the
+//! error term `e = B·D − N ∈ [0, D)` one line down is
+//!
+//! ```text
+//!   carry = e < r
+//!   B    ← B + f + carry                    (the move: f or f + 1 pixels)
+//!   e    ← e − r + (carry ? D : 0)
+//!   step ← V if f + carry = 0, else D       (StepType code 2 / 3)
+//! ```
+//!
+//! A classic Bresenham interpolator would spend one clock per horizontal step; here the run of
+//! |move| − 1 horizontal steps and the closing diagonal step are one clock, because the set-up
+//! software did the division (`f`, `r`). So the address block never waits for an edge, whatever
+//! its slope, and the step information the interpolators need is (step, carry): the move into
+//! the line is `f` pixels when carry = 0 and `f + 1` when carry = 1.
+//!
+//! # Ports and formats (all unsigned integers unless noted)
+//!
+//! | port        | bits | meaning                                                        |
+//! |-------------|------|----------------------------------------------------------------|
+//! | `load`      | 1    | load the set-up below (has priority over `advance`)             |
+//! | `load_b`    | 12   | B on the first line, 0..=4095                                   |
+//! | `load_e`    | 13   | e on the first line, 0..D                                       |
+//! | `load_f`    | 12   | f = ⌊Δx/Δy⌋ as 12-bit two's complement (used modulo 4096)       |
+//! | `load_r`    | 13   | r = 2Δx − f·D, 0..D                                             |
+//! | `load_d`    | 13   | D = 2Δy, 0..=8190 (0: unused edge, never advanced)              |
+//! | `advance`   | 1    | move to the next raster line                                     |
+//! | `bound`     | 12   | current B                                                        |
+//! | `last_step` | 2    | StepType code of the last move: 0 Start (after load), 2 V, 3 D  |
+//! | `last_carry`| 1    | the last move was the long one (f + 1)                           |
+//!
+//! Intermediates: `e − r` is 13 bits modulo 2^13 (it is in (−D, D); adding D when it is
+//! negative brings it back to [0, D), so the modulo arithmetic is exact); `f + carry` and
+//! `B + move` are 12 bits modulo 2^12 (exact, since every boundary used is in 0..=4095).
+//!
+//! Latency: outputs are registers; a load or advance in clock t shows in clock t + 1.
+//! Throughput: one line per clock. Overflow: none for in-range set-up (argued above).
+//! Error budget: exact (integer).
+
+use rust_hdl::prelude::*;
+
+#[derive(LogicBlock, Default)]
+pub struct LineInterpolator {
+    pub clock: Signal<In, Clock>,
+    pub load: Signal<In, Bit>,
+    pub load_b: Signal<In, Bits<12>>,
+    pub load_e: Signal<In, Bits<13>>,
+    pub load_f: Signal<In, Bits<12>>,
+    pub load_r: Signal<In, Bits<13>>,
+    pub load_d: Signal<In, Bits<13>>,
+    pub advance: Signal<In, Bit>,
+    pub bound: Signal<Out, Bits<12>>,
+    pub last_step: Signal<Out, Bits<2>>,
+    pub last_carry: Signal<Out, Bit>,
+    /// B, the boundary.
+    bound_q: DFF<Bits<12>>,
+    /// e, the error term.
+    err_q: DFF<Bits<13>>,
+    /// f, the whole move per line (two's complement).
+    quot_q: DFF<Bits<12>>,
+    /// r, the remainder added to the error per line.
+    rem_q: DFF<Bits<13>>,
+    /// D = 2Δy, the error's modulus.
+    den_q: DFF<Bits<13>>,
+    step_q: DFF<Bits<2>>,
+    carry_q: DFF<Bit>,
+    /// carry of the next move: e < r.
+    carry_next: Signal<Local, Bit>,
+    /// f + carry, 12 bits.
+    move_next: Signal<Local, Bits<12>>,
+    /// e − r, 13 bits modulo 2^13.
+    err_diff: Signal<Local, Bits<13>>,
+}
+
+impl Logic for LineInterpolator {
+    #[hdl_gen]
+    fn update(&mut self) {
+        dff_setup!(self, clock, bound_q, err_q, quot_q, rem_q, den_q, step_q, carry_q);
+        self.carry_next.next = self.err_q.q.val() < self.rem_q.q.val();
+        self.move_next.next = self.quot_q.q.val();
+        if self.carry_next.val() {
+            self.move_next.next = self.quot_q.q.val() + 1;
+        }
+        self.err_diff.next = self.err_q.q.val() - self.rem_q.q.val();
+        if self.load.val() {
+            self.bound_q.d.next = self.load_b.val();
+            self.err_q.d.next = self.load_e.val();
+            self.quot_q.d.next = self.load_f.val();
+            self.rem_q.d.next = self.load_r.val();
+            self.den_q.d.next = self.load_d.val();
+            self.step_q.d.next = 0.into();
+            self.carry_q.d.next = false;
+        } else if self.advance.val() {
+            self.bound_q.d.next = self.bound_q.q.val() + self.move_next.val();
+            self.err_q.d.next = self.err_diff.val();
+            if self.carry_next.val() {
+                self.err_q.d.next = self.err_diff.val() + self.den_q.q.val();
+            }
+            self.step_q.d.next = 3.into();
+            if self.move_next.val() == 0 {
+                self.step_q.d.next = 2.into();
+            }
+            self.carry_q.d.next = self.carry_next.val();
+        }
+        self.bound.next = self.bound_q.q.val();
+        self.last_step.next = self.step_q.q.val();
+        self.last_carry.next = self.carry_q.q.val();
+    }
+}
