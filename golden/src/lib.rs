@@ -3,10 +3,21 @@
 //! Shaped like the hardware: per-triangle / per-span set-up ("software side") is separate from
 //! the per-pixel kernels ("hardware side"), so the RTL pipeline is driven by the same set-up.
 
+pub mod accuracy;
 pub mod address_block;
+pub mod angular;
+pub mod brdf;
+pub mod bump;
+pub mod cubic;
+pub mod fast;
+pub mod gouraud;
 pub mod intensity_interpolator;
+pub mod methods;
 pub mod nmse;
 pub mod normalizer;
+pub mod phong;
+pub mod quadric;
+pub mod shade;
 pub mod testing;
 pub mod types;
 

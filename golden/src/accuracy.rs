@@ -1,0 +1,509 @@
+//! Accuracy of every approximation over its stated domain, measured by dense sampling with
+//! golden-section refinement of the extremum, beside the sources' claims.
+//!
+//! Error definitions:
+//! - normalizer f(K) ≈ 1/√K: relative error of the normalized length, √K·f(K) − 1, K ∈ [0.499, 1];
+//! - 1/√(M+1) forms: relative error √(M+1)·f(M) − 1, M ∈ [−0.5, 0];
+//! - constants (1/3, 1/(k+1) by shifts): relative error (approx − exact)/exact;
+//! - W(n, γ) and Schlick vs cos^n γ: absolute error, i.e. relative to the highlight's peak
+//!   value 1 (relative errors diverge in the tail, where cos^n γ → 0). The **centre** is where
+//!   cos^n γ ≥ 1/2 (the highlight inside its half-maximum), the **fall-off** ("blooming") is
+//!   where cos^n γ < 1/2, γ ∈ [0, 90°]. The error grows with n, so n = 1000 is the worst case;
+//!   n = 50 is the default scene.
+//!
+//! Also here: the derivation of the fitted coefficients ([`derive_tangent_fit`]).
+
+use crate::normalizer::{self, Coeffs};
+use crate::{brdf, cubic, fast};
+use serde::Serialize;
+
+/// Samples of the dense scan (endpoints included).
+pub const SAMPLES: usize = 100_001;
+
+/// A located extremum of an error function.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Extremum {
+    /// The signed error value where |error| is largest.
+    pub value: f64,
+    /// Where it occurs.
+    pub at: f64,
+}
+
+/// Largest |f| on [lo, hi]: dense scan of `samples` points, then golden-section refinement of
+/// |f| between the neighbours of the best sample.
+pub fn max_abs_with(f: impl Fn(f64) -> f64, lo: f64, hi: f64, samples: usize) -> Extremum {
+    let n = samples.max(3);
+    let x_of = |i: usize| lo + (hi - lo) * i as f64 / (n - 1) as f64;
+    let mut best = (0usize, f(lo).abs());
+    for i in 1..n {
+        let v = f(x_of(i)).abs();
+        if v > best.1 {
+            best = (i, v);
+        }
+    }
+    let (mut a, mut b) = (
+        x_of(best.0.saturating_sub(1)),
+        x_of((best.0 + 1).min(n - 1)),
+    );
+    let g = (5f64.sqrt() - 1.0) / 2.0;
+    for _ in 0..100 {
+        let (c, d) = (b - g * (b - a), a + g * (b - a));
+        if f(c).abs() > f(d).abs() {
+            b = d;
+        } else {
+            a = c;
+        }
+    }
+    let mid = (a + b) / 2.0;
+    let at = if f(mid).abs() > best.1 {
+        mid
+    } else {
+        x_of(best.0)
+    };
+    Extremum { value: f(at), at }
+}
+
+/// [`max_abs_with`] at [`SAMPLES`] points.
+pub fn max_abs(f: impl Fn(f64) -> f64, lo: f64, hi: f64) -> Extremum {
+    max_abs_with(f, lo, hi, SAMPLES)
+}
+
+/// Relative error of the normalizer: √K·f(K) − 1.
+pub fn normalizer_error(c: Coeffs, k: f64) -> f64 {
+    k.sqrt() * normalizer::scale(k, c) - 1.0
+}
+
+/// Relative error of a 1/√(M+1) form (c2, c1, c0 in M): √(M+1)·f(M) − 1.
+pub fn inv_sqrt_error(c: Coeffs, m: f64) -> f64 {
+    (m + 1.0).sqrt() * normalizer::scale(m, c) - 1.0
+}
+
+/// Max relative error of the normalizer on its domain.
+pub fn normalizer_max(c: Coeffs) -> Extremum {
+    let (lo, hi) = normalizer::K_DOMAIN;
+    max_abs(|k| normalizer_error(c, k), lo, hi)
+}
+
+/// Max relative error of a 1/√(M+1) form on M ∈ [−0.5, 0].
+pub fn inv_sqrt_max(c: Coeffs) -> Extremum {
+    let (lo, hi) = fast::M_DOMAIN;
+    max_abs(|m| inv_sqrt_error(c, m), lo, hi)
+}
+
+/// Derivation of the fitted forms: g(u) = 1 − u/2 + c·u² ≈ 1/√(1+u) is exact in value and
+/// slope at u = 0; c is chosen to minimize max |√(1+u)·g(u) − 1| over u ∈ [lo, 0]. That max is
+/// convex in c (a maximum of functions affine in c), so a golden-section search in c is exact
+/// up to its tolerance. Returns the unrounded c. Normalizer: u = K − 1, lo = −0.501;
+/// fast: u = M, lo = −0.5.
+pub fn derive_tangent_fit(lo: f64) -> f64 {
+    let err = |c: f64| {
+        max_abs_with(
+            |u| (1.0 + u).sqrt() * (1.0 - u / 2.0 + c * u * u) - 1.0,
+            lo,
+            0.0,
+            4001,
+        )
+        .value
+        .abs()
+    };
+    let (mut a, mut b) = (0.375, 1.0);
+    let g = (5f64.sqrt() - 1.0) / 2.0;
+    for _ in 0..80 {
+        let (c1, c2) = (b - g * (b - a), a + g * (b - a));
+        if err(c1) < err(c2) {
+            b = c2;
+        } else {
+            a = c1;
+        }
+    }
+    (a + b) / 2.0
+}
+
+/// Round to 14 fractional bits (how the fitted constants are stored).
+pub fn round_q14(c: f64) -> f64 {
+    (c * 16384.0).round() / 16384.0
+}
+
+/// Max absolute error of `approx` against cos^n γ in the centre (cos^n γ ≥ 1/2) and the
+/// fall-off (cos^n γ < 1/2, γ ≤ 90°). Returns (centre, fall-off) with γ in radians.
+pub fn highlight_errors(n: u32, approx: impl Fn(f64) -> f64) -> (Extremum, Extremum) {
+    let gamma_half = 0.5f64.powf(1.0 / n as f64).acos();
+    let err = |g: f64| approx(g.cos()) - brdf::cos_pow(n, g.cos());
+    let centre = max_abs(err, 0.0, gamma_half);
+    let falloff = max_abs(err, gamma_half, std::f64::consts::FRAC_PI_2);
+    (centre, falloff)
+}
+
+/// Kind of figure in an [`Entry`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Metric {
+    /// Max |relative error| over the domain (a fraction: 0.0035 = 0.35%).
+    MaxRelative,
+    /// Max |absolute error| (relative to a peak value of 1).
+    MaxAbsolute,
+    /// A constant's relative error.
+    Relative,
+    /// A ratio of two errors (how many times smaller).
+    Ratio,
+    /// A plain value (e.g. f(1) − 1).
+    Value,
+}
+
+/// One line of the accuracy report.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Entry {
+    /// Stable identifier, e.g. `normalizer-published`.
+    pub id: String,
+    /// What is approximated, by what.
+    pub what: String,
+    /// The domain the figure is measured on.
+    pub domain: String,
+    pub metric: Metric,
+    /// The measured figure (signed where the sign means something; compare |measured|).
+    pub measured: f64,
+    /// Where the extremum lies (domain variable), if the figure is an extremum.
+    pub at: Option<f64>,
+    /// The sources' figure, same units, if they state one.
+    pub claim: Option<f64>,
+    /// Where the claim comes from.
+    pub source: Option<String>,
+}
+
+/// The full report.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Report {
+    pub entries: Vec<Entry>,
+}
+
+impl Report {
+    pub fn get(&self, id: &str) -> Option<&Entry> {
+        self.entries.iter().find(|e| e.id == id)
+    }
+}
+
+fn entry(id: &str, what: &str, domain: &str, metric: Metric, measured: f64) -> Entry {
+    Entry {
+        id: id.into(),
+        what: what.into(),
+        domain: domain.into(),
+        metric,
+        measured,
+        at: None,
+        claim: None,
+        source: None,
+    }
+}
+
+impl Entry {
+    fn at(mut self, x: f64) -> Entry {
+        self.at = Some(x);
+        self
+    }
+    fn claim(mut self, c: f64, source: &str) -> Entry {
+        self.claim = Some(c);
+        self.source = Some(source.into());
+        self
+    }
+    fn ext(id: &str, what: &str, domain: &str, metric: Metric, e: Extremum) -> Entry {
+        entry(id, what, domain, metric, e.value).at(e.at)
+    }
+}
+
+/// The W variants reported: (id suffix, label, k, shift-add division).
+fn w_variants() -> Vec<(String, String, u32, bool)> {
+    let mut v = Vec::new();
+    for k in brdf::KS {
+        v.push((
+            format!("w-k{k}"),
+            format!("W(n,γ) k={k}, shift-add 1/{}", k + 1),
+            k,
+            true,
+        ));
+        v.push((
+            format!("w-k{k}-exact"),
+            format!("W(n,γ) k={k}, exact 1/{}", k + 1),
+            k,
+            false,
+        ));
+    }
+    v
+}
+
+/// Measure everything. Takes about a second in release builds.
+pub fn report() -> Report {
+    use Metric::*;
+    let mut e = Vec::new();
+    let kd = "K ∈ [0.499, 1]";
+    let md = "M ∈ [−0.5, 0]";
+
+    e.push(
+        Entry::ext(
+            "normalizer-published",
+            "normalizer f(K) = 0.822K² − 2.046K + 2.227 ≈ 1/√K",
+            kd,
+            MaxRelative,
+            normalizer_max(normalizer::PUBLISHED),
+        )
+        .claim(0.0036, "seed 000, formula (1): 0.36%"),
+    );
+    e.push(Entry::ext(
+        "normalizer-fit",
+        &format!(
+            "normalizer-fit f(K) = 1 − (K−1)/2 + c(K−1)², c = {:.6}",
+            normalizer::FIT_C
+        ),
+        kd,
+        MaxRelative,
+        normalizer_max(normalizer::FIT),
+    ));
+    e.push(entry(
+        "normalizer-published-bias",
+        "normalizer published f(1) − 1 (bias where fine meshes live)",
+        "K = 1",
+        Value,
+        normalizer::scale(1.0, normalizer::PUBLISHED) - 1.0,
+    ));
+    e.push(entry(
+        "normalizer-fit-bias",
+        "normalizer-fit f(1) − 1",
+        "K = 1",
+        Value,
+        normalizer::scale(1.0, normalizer::FIT) - 1.0,
+    ));
+    e.push(
+        Entry::ext(
+            "inv-sqrt-chebyshev",
+            "1/√(M+1) ≈ 1.003 − 0.403M + 0.82M² (Chebyshev)",
+            md,
+            MaxRelative,
+            inv_sqrt_max(fast::CHEBYSHEV),
+        )
+        .claim(0.00357, "seed 001 §3.1: 0.357%"),
+    );
+    e.push(
+        Entry::ext(
+            "inv-sqrt-shift-add",
+            "1/√(M+1) ≈ 1 − lM + 2lM², l = 1/4+1/8+1/32",
+            md,
+            MaxRelative,
+            inv_sqrt_max(fast::SHIFT_ADD),
+        )
+        .claim(0.0051, "seed 001 §3.1: 0.51%"),
+    );
+    e.push(
+        Entry::ext(
+            "inv-sqrt-taylor",
+            "1/√(M+1) ≈ 1 − M/2 + 3M²/8 (Taylor)",
+            md,
+            MaxRelative,
+            inv_sqrt_max(fast::TAYLOR),
+        )
+        .claim(0.0498, "seed 001 §3.1: 4.98%"),
+    );
+    e.push(Entry::ext(
+        "inv-sqrt-fit",
+        &format!(
+            "1/√(M+1) ≈ 1 − M/2 + cM², c = {:.6} (fast-fit)",
+            fast::FIT_C
+        ),
+        md,
+        MaxRelative,
+        inv_sqrt_max(fast::FIT),
+    ));
+    e.push(entry(
+        "inv-sqrt-chebyshev-bias",
+        "Chebyshev f(0) − 1 (bias where fine meshes live)",
+        "M = 0",
+        Value,
+        normalizer::scale(0.0, fast::CHEBYSHEV) - 1.0,
+    ));
+    e.push(
+        entry(
+            "one-third",
+            "1/3 ≈ 1/2 − 1/8 − 1/32 − 1/128",
+            "constant",
+            Relative,
+            (cubic::THIRD - 1.0 / 3.0) * 3.0,
+        )
+        .claim(0.0079, "seed 001 §2.2: does not exceed 0.79%"),
+    );
+    for k in brdf::KS {
+        let exact = 1.0 / (k as f64 + 1.0);
+        let approx = brdf::recip_shift_add(k).expect("k in KS");
+        e.push(entry(
+            &format!("div-k{k}"),
+            &format!("(n+1)/{} by shifts and adds", k + 1),
+            "constant",
+            Relative,
+            (approx - exact) / exact,
+        ));
+    }
+    // W(n, γ) and Schlick against cos^n γ.
+    for n in [50u32, 1000] {
+        let dom_c = format!("n = {n}, cos^n γ ≥ 1/2 (centre)");
+        let dom_f = format!("n = {n}, cos^n γ < 1/2 (fall-off)");
+        let (sc, sf) = highlight_errors(n, |c| brdf::schlick(n, c));
+        for (id, label, k, shift) in w_variants() {
+            let a = brdf::slope(n, k, shift);
+            let (c, f) = highlight_errors(n, |x| brdf::w_kernel(a, k, x));
+            e.push(Entry::ext(
+                &format!("{id}-n{n}-centre"),
+                &label,
+                &dom_c,
+                MaxAbsolute,
+                c,
+            ));
+            e.push(Entry::ext(
+                &format!("{id}-n{n}-falloff"),
+                &label,
+                &dom_f,
+                MaxAbsolute,
+                f,
+            ));
+            if k == 16 && shift {
+                e.push(
+                    entry(
+                        &format!("schlick-over-w-k16-n{n}-centre"),
+                        "Schlick error ÷ W k=16 error, centre",
+                        &dom_c,
+                        Ratio,
+                        sc.value.abs() / c.value.abs(),
+                    )
+                    .claim(7.0, "seed 000: 7× lower max error at the highlight centre"),
+                );
+                e.push(
+                    entry(
+                        &format!("schlick-over-w-k16-n{n}-falloff"),
+                        "Schlick error ÷ W k=16 error, fall-off",
+                        &dom_f,
+                        Ratio,
+                        sf.value.abs() / f.value.abs(),
+                    )
+                    .claim(13.0, "seed 000: 13× lower in the fall-off (blooming)"),
+                );
+            }
+        }
+        e.push(Entry::ext(
+            &format!("schlick-n{n}-centre"),
+            "Schlick c/(n − nc + c)",
+            &dom_c,
+            MaxAbsolute,
+            sc,
+        ));
+        e.push(Entry::ext(
+            &format!("schlick-n{n}-falloff"),
+            "Schlick c/(n − nc + c)",
+            &dom_f,
+            MaxAbsolute,
+            sf,
+        ));
+    }
+    Report { entries: e }
+}
+
+/// One plotted error curve.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Series {
+    pub name: String,
+    pub points: Vec<(f64, f64)>,
+}
+
+/// One plot: several curves over a common x axis.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Plot {
+    /// File stem, e.g. `normalizer`.
+    pub id: String,
+    pub title: String,
+    pub x_label: String,
+    pub y_label: String,
+    pub series: Vec<Series>,
+}
+
+fn sampled(name: &str, lo: f64, hi: f64, n: usize, f: impl Fn(f64) -> f64) -> Series {
+    let points = (0..n)
+        .map(|i| {
+            let x = lo + (hi - lo) * i as f64 / (n - 1) as f64;
+            (x, f(x))
+        })
+        .collect();
+    Series {
+        name: name.into(),
+        points,
+    }
+}
+
+/// The error curves behind the report, for plotting (errors in percent).
+pub fn plots() -> Vec<Plot> {
+    let (klo, khi) = normalizer::K_DOMAIN;
+    let (mlo, mhi) = fast::M_DOMAIN;
+    let pct = 100.0;
+    let mut out = vec![
+        Plot {
+            id: "normalizer".into(),
+            title: "Normalizer: relative error of |N·f(K)|".into(),
+            x_label: "K".into(),
+            y_label: "error, %".into(),
+            series: vec![
+                sampled("published", klo, khi, 501, |k| {
+                    pct * normalizer_error(normalizer::PUBLISHED, k)
+                }),
+                sampled("fit", klo, khi, 501, |k| {
+                    pct * normalizer_error(normalizer::FIT, k)
+                }),
+            ],
+        },
+        Plot {
+            id: "inv-sqrt".into(),
+            title: "1/sqrt(M+1): relative error".into(),
+            x_label: "M".into(),
+            y_label: "error, %".into(),
+            series: vec![
+                sampled("Chebyshev", mlo, mhi, 501, |m| {
+                    pct * inv_sqrt_error(fast::CHEBYSHEV, m)
+                }),
+                sampled("shift-add", mlo, mhi, 501, |m| {
+                    pct * inv_sqrt_error(fast::SHIFT_ADD, m)
+                }),
+                sampled("fit", mlo, mhi, 501, |m| pct * inv_sqrt_error(fast::FIT, m)),
+            ],
+        },
+        Plot {
+            id: "inv-sqrt-taylor".into(),
+            title: "1/sqrt(M+1): Taylor vs Chebyshev".into(),
+            x_label: "M".into(),
+            y_label: "error, %".into(),
+            series: vec![
+                sampled("Taylor", mlo, mhi, 501, |m| {
+                    pct * inv_sqrt_error(fast::TAYLOR, m)
+                }),
+                sampled("Chebyshev", mlo, mhi, 501, |m| {
+                    pct * inv_sqrt_error(fast::CHEBYSHEV, m)
+                }),
+            ],
+        },
+    ];
+    for n in [50u32, 1000] {
+        let hi = (0.01f64).powf(1.0 / n as f64).acos().to_degrees() * 1.3;
+        let mut series = Vec::new();
+        for k in brdf::KS {
+            let a = brdf::slope(n, k, true);
+            series.push(sampled(&format!("W k={k}"), 0.0, hi, 801, |g| {
+                let c = g.to_radians().cos();
+                brdf::w_kernel(a, k, c) - brdf::cos_pow(n, c)
+            }));
+        }
+        series.push(sampled("Schlick", 0.0, hi, 801, |g| {
+            let c = g.to_radians().cos();
+            brdf::schlick(n, c) - brdf::cos_pow(n, c)
+        }));
+        out.push(Plot {
+            id: format!("brdf-n{n}"),
+            title: format!("Specular approximations minus cos^n, n = {n}"),
+            x_label: "angle, degrees".into(),
+            y_label: "absolute error".into(),
+            series,
+        });
+    }
+    out
+}

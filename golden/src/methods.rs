@@ -1,0 +1,186 @@
+//! The shading methods by name, and the single entry point the renderer calls.
+//!
+//! Each method lives in the file named after its SPEC block and is split the way the hardware
+//! is: a set-up function per triangle or per span (the "software side": divisions, square
+//! roots, arccos, solving for coefficients) and a per-pixel kernel (the "hardware side": adds,
+//! shifts, small multipliers, ROM look-ups). Interpolated normals are screen-space linear
+//! ([`ScreenTriangle::normal_plane`]), as the hardware's vector interpolator produces them.
+//!
+//! | method | file | per pixel |
+//! |---|---|---|
+//! | reference, flat | [`crate::phong`] | exact normalization / one normal per face |
+//! | gouraud | [`crate::gouraud`] | plane per colour channel |
+//! | normalizer, normalizer-fit | [`crate::normalizer`] (§1) | N·f(K), K by recurrence |
+//! | fast, fast-fit | [`crate::fast`] (§3) | p/√q, two points per step |
+//! | angular | [`crate::angular`] (§4) | cos β·cos(ψ − tΔφ) |
+//! | quadric | [`crate::quadric`] (§8) | forward differences |
+//! | cubic | [`crate::cubic`] (§9) | Horner per span |
+//! | brdf-k4/8/16 | [`crate::brdf`] (§2) | W(n, γ) |
+//! | bump | [`crate::bump`] (§2) | cos(γ ± dγ) |
+
+use crate::shade::ShadeContext;
+use crate::types::{Row, ScreenTriangle, VecPlane, Walk};
+use glam::DVec3;
+use std::fmt;
+use std::str::FromStr;
+
+/// Every shading method of the golden model.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Method {
+    /// Phong shading: per-pixel interpolated normal, exactly normalized (the thesis' etalon).
+    Reference,
+    Flat,
+    Gouraud,
+    /// SPEC §1 with the published f(K) = 0.822K² − 2.046K + 2.227.
+    Normalizer,
+    /// SPEC §1 with [`crate::normalizer::FIT`] (same hardware, exact at K = 1).
+    NormalizerFit,
+    /// SPEC §3 with the published Chebyshev 1/√(M+1) ≈ 1.003 − 0.403M + 0.82M².
+    Fast,
+    /// SPEC §3 with [`crate::fast::FIT`] (same hardware, exact at M = 0).
+    FastFit,
+    Angular,
+    Quadric,
+    Cubic,
+    BrdfK4,
+    BrdfK8,
+    BrdfK16,
+    Bump,
+}
+
+impl Method {
+    /// Every method except the reference, in the order reports list them.
+    pub const ALL_NON_REFERENCE: [Method; 13] = [
+        Method::Flat,
+        Method::Gouraud,
+        Method::Normalizer,
+        Method::NormalizerFit,
+        Method::Fast,
+        Method::FastFit,
+        Method::Angular,
+        Method::Quadric,
+        Method::Cubic,
+        Method::BrdfK4,
+        Method::BrdfK8,
+        Method::BrdfK16,
+        Method::Bump,
+    ];
+
+    /// Every method, the reference first.
+    pub fn all() -> impl Iterator<Item = Method> {
+        std::iter::once(Method::Reference).chain(Method::ALL_NON_REFERENCE)
+    }
+
+    /// The name used on the command line and in file names.
+    pub fn name(self) -> &'static str {
+        match self {
+            Method::Reference => "reference",
+            Method::Flat => "flat",
+            Method::Gouraud => "gouraud",
+            Method::Normalizer => "normalizer",
+            Method::NormalizerFit => "normalizer-fit",
+            Method::Fast => "fast",
+            Method::FastFit => "fast-fit",
+            Method::Angular => "angular",
+            Method::Quadric => "quadric",
+            Method::Cubic => "cubic",
+            Method::BrdfK4 => "brdf-k4",
+            Method::BrdfK8 => "brdf-k8",
+            Method::BrdfK16 => "brdf-k16",
+            Method::Bump => "bump",
+        }
+    }
+}
+
+impl fmt::Display for Method {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// An unknown method name; the message lists the valid ones.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("unknown method {name:?} (valid: {})", valid_names())]
+pub struct UnknownMethod {
+    pub name: String,
+}
+
+fn valid_names() -> String {
+    Method::all()
+        .map(Method::name)
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+impl FromStr for Method {
+    type Err = UnknownMethod;
+    fn from_str(s: &str) -> Result<Method, UnknownMethod> {
+        Method::all()
+            .find(|m| m.name() == s)
+            .ok_or_else(|| UnknownMethod {
+                name: s.to_string(),
+            })
+    }
+}
+
+/// Where a method sends its pixels: (x, y, colour).
+pub type Emit<'a> = &'a mut dyn FnMut(i32, i32, [u8; 3]);
+
+/// Shade one triangle: emits exactly one colour for every pixel of `walk.pixels()`, in walk
+/// order. `walk` must be the golden walk of `tri` (SPEC §5 contract in [`crate::types::Row`]).
+/// A zero-area triangle has no pixels and emits nothing.
+pub fn shade_triangle(
+    method: Method,
+    tri: &ScreenTriangle,
+    walk: &Walk,
+    ctx: &ShadeContext,
+    emit: &mut dyn FnMut(i32, i32, [u8; 3]),
+) {
+    use crate::*;
+    if walk.pixel_count() == 0 {
+        return;
+    }
+    match method {
+        Method::Reference => phong::shade(tri, walk, ctx, emit),
+        Method::Flat => phong::shade_flat(tri, walk, ctx, emit),
+        Method::Gouraud => gouraud::shade(tri, walk, ctx, emit),
+        Method::Normalizer => normalizer::shade(tri, walk, ctx, normalizer::PUBLISHED, emit),
+        Method::NormalizerFit => normalizer::shade(tri, walk, ctx, normalizer::FIT, emit),
+        Method::Fast => fast::shade(tri, walk, ctx, fast::CHEBYSHEV, emit),
+        Method::FastFit => fast::shade(tri, walk, ctx, fast::FIT, emit),
+        Method::Angular => angular::shade(tri, walk, ctx, emit),
+        Method::Quadric => quadric::shade(tri, walk, ctx, emit),
+        Method::Cubic => cubic::shade(tri, walk, ctx, emit),
+        Method::BrdfK4 => brdf::shade(tri, walk, ctx, 4, emit),
+        Method::BrdfK8 => brdf::shade(tri, walk, ctx, 8, emit),
+        Method::BrdfK16 => brdf::shade(tri, walk, ctx, 16, emit),
+        Method::Bump => bump::shade(tri, walk, ctx, emit),
+    }
+}
+
+/// The pixels of one raster line in walk order: `x_start + i·dir`, i in 0..len.
+pub fn row_xs(row: &Row) -> impl Iterator<Item = i32> + '_ {
+    (0..row.len as i32).map(move |i| row.x_start + i * row.dir as i32)
+}
+
+/// x of the last pixel of a non-empty raster line.
+pub fn row_end(row: &Row) -> i32 {
+    row.x_start + (row.len as i32 - 1) * row.dir as i32
+}
+
+/// Span set-up shared by the span methods (fast, angular, cubic): the exactly normalized
+/// interpolated normals at the first and last pixel of the line (software side). `None` when
+/// either is zero (only possible with opposite vertex normals).
+pub fn span_end_normals(plane: &VecPlane, row: &Row) -> Option<(DVec3, DVec3)> {
+    let a = crate::shade::unit(plane.at_pixel(row.x_start, row.y))?;
+    let b = crate::shade::unit(plane.at_pixel(row_end(row), row.y))?;
+    Some((a, b))
+}
+
+/// Emit the ambient-only colour for every pixel of a row (used when a set-up degenerates).
+pub(crate) fn emit_row_ambient(row: &Row, ctx: &ShadeContext, emit: Emit) {
+    let rgb = ctx.combine(0.0, 0.0);
+    for x in row_xs(row) {
+        emit(x, row.y, rgb);
+    }
+}
