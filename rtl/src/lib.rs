@@ -2,3 +2,7 @@
 pub mod address_block;
 pub mod intensity_interpolator;
 pub mod line_interpolator;
+pub mod export;
+pub mod fixed;
+pub mod k_recurrence;
+pub mod normalizer;

@@ -1,2 +1,4 @@
 
 pub mod address_block;
+pub mod harness;
+pub mod normalizer;

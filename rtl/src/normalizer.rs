@@ -1,0 +1,736 @@
+//! Normalizer without division or square root (SPEC §1, Ukrainian patent 63343).
+//!
+//! ```text
+//! N' = N · f(K),   f(K) = (c2·K + c1)·K + c0,   K = x² + y² + z²
+//! published: c2 = 0.822, c1 = −2.046, c0 = 2.227;  valid for K ∈ [0.499, 1]
+//! ```
+//! Two tops share one back end:
+//! - [`Normalizer`]: N in, N' out. Three squarers (Mul1–Mul3) and the three-operand adder Sm1
+//!   form K, then [`NormalizerK`] does the rest. **Latency 9 clocks.**
+//! - [`NormalizerK`]: N and K in (K from the K recurrence, `crate::k_recurrence`), N' out.
+//!   Horner f = (c2·K + c1)·K + c0 on Mul4, Sm2, Mul5, Sm3; output scaling on Mul6–Mul8.
+//!   **Latency 7 clocks.**
+//!
+//! 8 multipliers, 3 datapath adders (Sm1 three-operand), as in the patent's device; the only
+//! other adders are the fixed-point bookkeeping of `crate::fixed` (sign corrections of the
+//! unsigned multiplies, rounding, saturation).
+//!
+//! # Ports (formats from [`crate::fixed`])
+//! | port                   | dir | format                    |
+//! |------------------------|-----|---------------------------|
+//! | `clock`                | in  | clock, rising edge        |
+//! | `valid_in`             | in  | 1 = x, y, z (and k) hold a vector this clock |
+//! | `x`, `y`, `z`          | in  | signed Q2.14              |
+//! | `k` (NormalizerK only) | in  | unsigned Q4.28, exact x²+y²+z² |
+//! | `valid_out`            | out | `valid_in` delayed by the latency |
+//! | `nx`, `ny`, `nz`       | out | signed Q2.14 (registered) |
+//!
+//! Throughput: one vector per clock, no stalls; `valid` travels with the data, data words move
+//! every clock whatever `valid_in` says (outputs are meaningful only with `valid_out`).
+//!
+//! # Pipeline (registers named after the quantity; `_pk` = delayed k clocks)
+//! ```text
+//! Normalizer only:
+//!  S1  sq_x = x·x (Mul1-3)       Q2.14² → Q4.28 unsigned, exact; signed-square correction
+//!  S2  k_full = sq_x+sq_y+sq_z   Sm1, Q4.28 unsigned, exact (≤ 3·2³⁰, cannot overflow)
+//! NormalizerK (its stage 1 follows Normalizer's S2):
+//!  B1  k_narrow = K              Q4.28 → Q1.15 unsigned: round (drop 13 LSBs), saturate at
+//!                                2 − 2⁻¹⁵ when K ≥ 2 − 2⁻¹⁶
+//!  B2  c2k = |c2|·k_narrow       Mul4, Q1.15 × Q1.15 → Q2.30 unsigned, exact
+//!  B3  t1 = c1 ± c2k             Sm2 in Q3.29 (c2k halved: drops 1 LSB = 2⁻³⁰; cannot
+//!                                overflow, checked by NormalizerCoeffs::new), then
+//!                                Q3.29 → Q2.14: round (drop 15 LSBs), saturate to [−2, 2)
+//!  B4  t1k = t1·k_narrow_p2      Mul5, signed Q2.14 × unsigned Q1.15 → signed Q3.29, exact
+//!  B5  f = c0 + t1k              Sm3 in Q4.28 (t1k halved: drops 2⁻²⁹; range [−8, 8), cannot
+//!                                overflow), then Q4.28 → Q1.15: round (drop 13 LSBs),
+//!                                saturate to [0, 2 − 2⁻¹⁵]
+//!  B6  xf = x_p5·f  (Mul6-8)     signed Q2.14 × unsigned Q1.15 → signed Q3.29, exact
+//!  B7  nx = xf                   Q3.29 → Q2.14: round (drop 15 LSBs), saturate to [−2, 2)
+//! ```
+//! ```text
+//! clock      : 0    1    2    3    4    5    6    7    8    9
+//! valid_in   : v0   v1   v2 ...
+//! Normalizer : S1   S2   B1   B2   B3   B4   B5   B6   B7
+//! valid_out  :                                            v0   v1 ...   (sampled after edge 9)
+//! ```
+//!
+//! # Overflow
+//! Nothing wraps. K cannot overflow; K ≥ 2 saturates k_narrow (out of the formula's domain);
+//! t1 and f saturate; outputs saturate to the Q2.14 range. In the domain K ∈ [0.499, 1] with
+//! the published or fitted coefficients no saturation happens (checked by
+//! [`NormalizerCoeffs::new`], which rejects coefficient sets that would saturate t1 or f there
+//! or overflow an adder anywhere).
+//!
+//! # Error budget (vs the f64 golden N·f(K) on the same quantized N, requested coefficients)
+//! [`error_budget`] derives it from the formats above: per output component
+//! `|err| ≤ |x|max·Δf + 2⁻¹⁵` with
+//! `Δf = max|f'(K)|·2⁻¹⁶ (K rounding) + Δc2·K² (c2 quantization, ≤ 2⁻¹⁶·K²)
+//!      + 2⁻¹⁵·K (t1 rounding) + 2⁻¹⁶ (f rounding) + ~2⁻²⁸ (c0, c1, halvings)`.
+//! Published coefficients on the domain: Δf ≤ 8.0·10⁻⁵, component error ≤ 1.10·10⁻⁴ (1.8 LSB),
+//! RMS bound 3.8·10⁻⁵. End-to-end against exact normalization N/|N| of the same quantized N:
+//! max|f(K)·√K − 1| (0.351 % for the published set) + √K·Δf + √3·2⁻¹⁵ ≈ 0.351 % + 0.013 %.
+
+use golden::normalizer::{Coeffs, K_DOMAIN};
+use rust_hdl::prelude::*;
+
+use crate::fixed::{QFormat, COEF_C0, COEF_C1, COEF_C2, HORNER_T1, K_NARROW, NORMAL, SCALE};
+
+/// Why a coefficient set cannot be built.
+#[derive(Debug, thiserror::Error, PartialEq)]
+pub enum CoeffError {
+    #[error("coefficient {name} = {value} is outside {format} (range [{min}, {max}])")]
+    OutOfRange {
+        name: &'static str,
+        value: f64,
+        format: QFormat,
+        min: f64,
+        max: f64,
+    },
+    #[error("{what} would overflow the 32-bit adder for these coefficients")]
+    AdderOverflow { what: &'static str },
+    #[error("{what} leaves its format at K = {k} inside the domain (value {value})")]
+    SaturatesInDomain {
+        what: &'static str,
+        k: f64,
+        value: f64,
+    },
+}
+
+/// The three coefficients as the hardware holds them (see the module header for formats).
+#[derive(Clone, Debug, PartialEq)]
+pub struct NormalizerCoeffs {
+    /// The coefficients asked for (c2, c1, c0).
+    pub requested: Coeffs,
+    /// |c2| in unsigned Q1.15.
+    pub c2_mag: u64,
+    /// Sign of c2.
+    pub c2_neg: bool,
+    /// c1 as a signed Q3.29 integer.
+    pub c1: i64,
+    /// c0 as a signed Q4.28 integer.
+    pub c0: i64,
+}
+
+/// Extra margin on the K domain for the saturation check: quantizing a vector of the domain
+/// to Q2.14 moves K by less than 2·√3·2⁻¹⁵ ≈ 1.1·10⁻⁴.
+const DOMAIN_MARGIN: f64 = 0.01;
+
+impl NormalizerCoeffs {
+    /// Quantize `c` = (c2, c1, c0) and check that the datapath cannot overflow with it.
+    pub fn new(c: Coeffs) -> Result<Self, CoeffError> {
+        let check = |name, value: f64, fmt: QFormat| {
+            if fmt.contains(value) {
+                Ok(())
+            } else {
+                Err(CoeffError::OutOfRange {
+                    name,
+                    value,
+                    format: fmt,
+                    min: fmt.min(),
+                    max: fmt.max(),
+                })
+            }
+        };
+        check("c2", c[0].abs(), COEF_C2)?;
+        check("c1", c[1], COEF_C1)?;
+        check("c0", c[2], COEF_C0)?;
+        let coeffs = Self {
+            requested: c,
+            c2_mag: COEF_C2.quantize(c[0].abs()),
+            c2_neg: c[0] < 0.0,
+            c1: COEF_C1.quantize_int(c[1]),
+            c0: COEF_C0.quantize_int(c[2]),
+        };
+        // Sm2: c1 + 2^14 ± (c2k >> 1) over every k_narrow in [0, 0xFFFF].
+        let c2k_half_max = ((coeffs.c2_mag * 0xFFFF) >> 1) as i64;
+        let base = coeffs.c1 + (1 << 14);
+        let (lo, hi) = if coeffs.c2_neg {
+            (base - c2k_half_max, base)
+        } else {
+            (base, base + c2k_half_max)
+        };
+        if lo < i32::MIN as i64 || hi > i32::MAX as i64 {
+            return Err(CoeffError::AdderOverflow {
+                what: "Sm2 (c1 + c2·K)",
+            });
+        }
+        // Sm3: c0 + 2^12 + (t1k >> 1), t1k in [-2^15·0xFFFF, 0x7FFF·0xFFFF].
+        let base = coeffs.c0 + (1 << 12);
+        let (lo, hi) = (
+            base + ((-(1i64 << 15) * 0xFFFF) >> 1),
+            base + ((0x7FFFi64 * 0xFFFF) >> 1),
+        );
+        if lo < i32::MIN as i64 || hi > i32::MAX as i64 {
+            return Err(CoeffError::AdderOverflow {
+                what: "Sm3 (t1·K + c0)",
+            });
+        }
+        // No saturation of t1 or f on the domain (with margin).
+        let q = coeffs.quantized();
+        let (k_lo, k_hi) = (K_DOMAIN.0 - DOMAIN_MARGIN, K_DOMAIN.1 + DOMAIN_MARGIN);
+        for i in 0..=1000 {
+            let k = k_lo + (k_hi - k_lo) * i as f64 / 1000.0;
+            let t1 = q[0] * k + q[1];
+            if !HORNER_T1.contains(t1) {
+                return Err(CoeffError::SaturatesInDomain {
+                    what: "t1 = c2·K + c1",
+                    k,
+                    value: t1,
+                });
+            }
+            let f = t1 * k + q[2];
+            if !SCALE.contains(f) {
+                return Err(CoeffError::SaturatesInDomain {
+                    what: "f(K)",
+                    k,
+                    value: f,
+                });
+            }
+        }
+        Ok(coeffs)
+    }
+
+    /// The published set (0.822, −2.046, 2.227).
+    pub fn published() -> Self {
+        Self::new(golden::normalizer::PUBLISHED).expect("published coefficients fit the formats")
+    }
+
+    /// The coefficients the hardware actually multiplies and adds, as f64 (c2, c1, c0).
+    pub fn quantized(&self) -> Coeffs {
+        let c2 = COEF_C2.to_f64(self.c2_mag);
+        [
+            if self.c2_neg { -c2 } else { c2 },
+            self.c1 as f64 * COEF_C1.lsb(),
+            self.c0 as f64 * COEF_C0.lsb(),
+        ]
+    }
+}
+
+/// Error budget of the normalizer datapath, derived from the formats (see the module header).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ErrorBudget {
+    /// Bound on |f_hw − f(K)| (f with the requested coefficients, K exact).
+    pub scale_max: f64,
+    /// Bound on the absolute error of one output component vs x·f(K).
+    pub component_max: f64,
+    /// Bound on the RMS error of the output components: quantization noise (σ² = step²/12 for
+    /// each rounding, times its largest sensitivity) plus the deterministic bias terms.
+    pub component_rms: f64,
+    /// Bound on the extra Euclidean error of N' vs N·f(K) from the datapath, for |N| ≤ √k_hi:
+    /// √k_hi·Δf + √3·2⁻¹⁵. Add the formula's own error to get the end-to-end bound.
+    pub vector_max: f64,
+}
+
+/// The error budget of [`Normalizer`]/[`NormalizerK`] for inputs with K ∈ [k_lo, k_hi] and
+/// |component| ≤ x_max (K and x as quantized, i.e. as the hardware sees them).
+pub fn error_budget(c: &NormalizerCoeffs, k_lo: f64, k_hi: f64, x_max: f64) -> ErrorBudget {
+    let r = c.requested;
+    let q = c.quantized();
+    // K after rounding to Q1.15 may exceed k_hi by half an LSB.
+    let k_n = (k_hi + K_NARROW.lsb() / 2.0).min(K_NARROW.max());
+    let dk = K_NARROW.lsb() / 2.0;
+    // f'(K) = 2·c2·K + c1 is linear: its extremes are at the interval's ends.
+    let fprime = |k: f64| (2.0 * r[0] * k + r[1]).abs();
+    let fprime_max = fprime(k_lo - dk).max(fprime(k_n));
+    let dc2 = (q[0] - r[0]).abs();
+    let dc1 = (q[1] - r[1]).abs() + COEF_C1.lsb(); // + halving of c2k (Q2.30 → Q3.29)
+    let dc0 = (q[2] - r[2]).abs() + COEF_C0.lsb(); // + halving of t1k (Q3.29 → Q4.28)
+    let t1_round = HORNER_T1.lsb() / 2.0;
+    let f_round = SCALE.lsb() / 2.0;
+    let out_round = NORMAL.lsb() / 2.0;
+    let scale_max = fprime_max * dk
+        + r[0].abs() * dk * dk
+        + dc2 * k_n * k_n
+        + dc1 * k_n
+        + t1_round * k_n
+        + dc0
+        + f_round;
+    let component_max = x_max * scale_max + out_round;
+    let var = |step: f64| step * step / 12.0;
+    let noise = var(NORMAL.lsb())
+        + x_max
+            * x_max
+            * (var(SCALE.lsb())
+                + k_n * k_n * var(HORNER_T1.lsb())
+                + fprime_max.powi(2) * var(K_NARROW.lsb()));
+    let bias = x_max * (dc2 * k_n * k_n + dc1 * k_n + dc0);
+    ErrorBudget {
+        scale_max,
+        component_max,
+        component_rms: noise.sqrt() + bias,
+        vector_max: k_hi.sqrt() * scale_max + 3f64.sqrt() * out_round,
+    }
+}
+
+/// Back end of the normalizer: K in, N·f(K) out. Latency [`NormalizerK::LATENCY`].
+#[derive(LogicBlock)]
+pub struct NormalizerK {
+    pub clock: Signal<In, Clock>,
+    pub valid_in: Signal<In, Bit>,
+    pub x: Signal<In, Bits<16>>,
+    pub y: Signal<In, Bits<16>>,
+    pub z: Signal<In, Bits<16>>,
+    pub k: Signal<In, Bits<32>>,
+    pub valid_out: Signal<Out, Bit>,
+    pub nx: Signal<Out, Bits<16>>,
+    pub ny: Signal<Out, Bits<16>>,
+    pub nz: Signal<Out, Bits<16>>,
+    // Coefficients and format constants.
+    c2_mag: Constant<Bits<16>>,
+    c2_neg: Constant<Bit>,
+    c1_rnd: Constant<Bits<32>>,
+    c0_rnd: Constant<Bits<32>>,
+    k_half_lsb: Constant<Bits<32>>,
+    k_sat: Constant<Bits<32>>,
+    out_half_lsb: Constant<Bits<32>>,
+    sign32: Constant<Bits<32>>,
+    u16_max: Constant<Bits<16>>,
+    q214_max: Constant<Bits<16>>,
+    q214_min: Constant<Bits<16>>,
+    // B1
+    k_narrow: DFF<Bits<16>>,
+    // B2
+    c2k: DFF<Bits<32>>,
+    k_narrow_p1: DFF<Bits<16>>,
+    // B3
+    t1: DFF<Bits<16>>,
+    k_narrow_p2: DFF<Bits<16>>,
+    // B4
+    t1k: DFF<Bits<32>>,
+    // B5
+    f: DFF<Bits<16>>,
+    // B6
+    xf: DFF<Bits<32>>,
+    yf: DFF<Bits<32>>,
+    zf: DFF<Bits<32>>,
+    // B7
+    nx_q: DFF<Bits<16>>,
+    ny_q: DFF<Bits<16>>,
+    nz_q: DFF<Bits<16>>,
+    // valid and vector delay lines
+    valid_p1: DFF<Bit>,
+    valid_p2: DFF<Bit>,
+    valid_p3: DFF<Bit>,
+    valid_p4: DFF<Bit>,
+    valid_p5: DFF<Bit>,
+    valid_p6: DFF<Bit>,
+    valid_p7: DFF<Bit>,
+    x_p1: DFF<Bits<16>>,
+    x_p2: DFF<Bits<16>>,
+    x_p3: DFF<Bits<16>>,
+    x_p4: DFF<Bits<16>>,
+    x_p5: DFF<Bits<16>>,
+    y_p1: DFF<Bits<16>>,
+    y_p2: DFF<Bits<16>>,
+    y_p3: DFF<Bits<16>>,
+    y_p4: DFF<Bits<16>>,
+    y_p5: DFF<Bits<16>>,
+    z_p1: DFF<Bits<16>>,
+    z_p2: DFF<Bits<16>>,
+    z_p3: DFF<Bits<16>>,
+    z_p4: DFF<Bits<16>>,
+    z_p5: DFF<Bits<16>>,
+    // Combinational intermediates, each exactly sized (rust-hdl wraps per op, Verilog per context).
+    k_rnd: Signal<Local, Bits<32>>,
+    c2k_half: Signal<Local, Bits<32>>,
+    t1_wide: Signal<Local, Bits<32>>,
+    t1k_raw: Signal<Local, Bits<32>>,
+    t1k_corr: Signal<Local, Bits<32>>,
+    t1k_half: Signal<Local, Bits<32>>,
+    f_wide: Signal<Local, Bits<32>>,
+    xf_raw: Signal<Local, Bits<32>>,
+    yf_raw: Signal<Local, Bits<32>>,
+    zf_raw: Signal<Local, Bits<32>>,
+    xf_corr: Signal<Local, Bits<32>>,
+    yf_corr: Signal<Local, Bits<32>>,
+    zf_corr: Signal<Local, Bits<32>>,
+    nx_rnd: Signal<Local, Bits<32>>,
+    ny_rnd: Signal<Local, Bits<32>>,
+    nz_rnd: Signal<Local, Bits<32>>,
+}
+
+impl NormalizerK {
+    /// Clocks from `valid_in` to `valid_out`.
+    pub const LATENCY: usize = 7;
+
+    pub fn new(c: &NormalizerCoeffs) -> Self {
+        let b32 =
+            |v: i64| -> Constant<Bits<32>> { Constant::new(((v as u64) & 0xFFFF_FFFF).into()) };
+        Self {
+            clock: Default::default(),
+            valid_in: Default::default(),
+            x: Default::default(),
+            y: Default::default(),
+            z: Default::default(),
+            k: Default::default(),
+            valid_out: Default::default(),
+            nx: Default::default(),
+            ny: Default::default(),
+            nz: Default::default(),
+            c2_mag: Constant::new(c.c2_mag.into()),
+            c2_neg: Constant::new(c.c2_neg),
+            // Half an output LSB folded in: t1 drops 15 LSBs, f drops 13.
+            c1_rnd: b32(c.c1 + (1 << 14)),
+            c0_rnd: b32(c.c0 + (1 << 12)),
+            k_half_lsb: b32(1 << 12),
+            // K ≥ 2 − 2⁻¹⁶ rounds to 2.0, which Q1.15 cannot hold.
+            k_sat: b32((1 << 29) - (1 << 12)),
+            out_half_lsb: b32(1 << 14),
+            sign32: b32(1 << 31),
+            u16_max: Constant::new(0xFFFF.into()),
+            q214_max: Constant::new(0x7FFF.into()),
+            q214_min: Constant::new(0x8000.into()),
+            k_narrow: Default::default(),
+            c2k: Default::default(),
+            k_narrow_p1: Default::default(),
+            t1: Default::default(),
+            k_narrow_p2: Default::default(),
+            t1k: Default::default(),
+            f: Default::default(),
+            xf: Default::default(),
+            yf: Default::default(),
+            zf: Default::default(),
+            nx_q: Default::default(),
+            ny_q: Default::default(),
+            nz_q: Default::default(),
+            valid_p1: Default::default(),
+            valid_p2: Default::default(),
+            valid_p3: Default::default(),
+            valid_p4: Default::default(),
+            valid_p5: Default::default(),
+            valid_p6: Default::default(),
+            valid_p7: Default::default(),
+            x_p1: Default::default(),
+            x_p2: Default::default(),
+            x_p3: Default::default(),
+            x_p4: Default::default(),
+            x_p5: Default::default(),
+            y_p1: Default::default(),
+            y_p2: Default::default(),
+            y_p3: Default::default(),
+            y_p4: Default::default(),
+            y_p5: Default::default(),
+            z_p1: Default::default(),
+            z_p2: Default::default(),
+            z_p3: Default::default(),
+            z_p4: Default::default(),
+            z_p5: Default::default(),
+            k_rnd: Default::default(),
+            c2k_half: Default::default(),
+            t1_wide: Default::default(),
+            t1k_raw: Default::default(),
+            t1k_corr: Default::default(),
+            t1k_half: Default::default(),
+            f_wide: Default::default(),
+            xf_raw: Default::default(),
+            yf_raw: Default::default(),
+            zf_raw: Default::default(),
+            xf_corr: Default::default(),
+            yf_corr: Default::default(),
+            zf_corr: Default::default(),
+            nx_rnd: Default::default(),
+            ny_rnd: Default::default(),
+            nz_rnd: Default::default(),
+        }
+    }
+}
+
+impl Logic for NormalizerK {
+    #[hdl_gen]
+    fn update(&mut self) {
+        clock!(
+            self,
+            clock,
+            k_narrow,
+            c2k,
+            k_narrow_p1,
+            t1,
+            k_narrow_p2,
+            t1k,
+            f,
+            xf,
+            yf,
+            zf,
+            nx_q,
+            ny_q,
+            nz_q,
+            valid_p1,
+            valid_p2,
+            valid_p3,
+            valid_p4,
+            valid_p5,
+            valid_p6,
+            valid_p7,
+            x_p1,
+            x_p2,
+            x_p3,
+            x_p4,
+            x_p5,
+            y_p1,
+            y_p2,
+            y_p3,
+            y_p4,
+            y_p5,
+            z_p1,
+            z_p2,
+            z_p3,
+            z_p4,
+            z_p5
+        );
+        // Delay lines.
+        self.valid_p1.d.next = self.valid_in.val();
+        self.valid_p2.d.next = self.valid_p1.q.val();
+        self.valid_p3.d.next = self.valid_p2.q.val();
+        self.valid_p4.d.next = self.valid_p3.q.val();
+        self.valid_p5.d.next = self.valid_p4.q.val();
+        self.valid_p6.d.next = self.valid_p5.q.val();
+        self.valid_p7.d.next = self.valid_p6.q.val();
+        self.x_p1.d.next = self.x.val();
+        self.x_p2.d.next = self.x_p1.q.val();
+        self.x_p3.d.next = self.x_p2.q.val();
+        self.x_p4.d.next = self.x_p3.q.val();
+        self.x_p5.d.next = self.x_p4.q.val();
+        self.y_p1.d.next = self.y.val();
+        self.y_p2.d.next = self.y_p1.q.val();
+        self.y_p3.d.next = self.y_p2.q.val();
+        self.y_p4.d.next = self.y_p3.q.val();
+        self.y_p5.d.next = self.y_p4.q.val();
+        self.z_p1.d.next = self.z.val();
+        self.z_p2.d.next = self.z_p1.q.val();
+        self.z_p3.d.next = self.z_p2.q.val();
+        self.z_p4.d.next = self.z_p3.q.val();
+        self.z_p5.d.next = self.z_p4.q.val();
+
+        // B1: K (Q4.28) → Q1.15, round to nearest, saturate.
+        self.k_rnd.next = self.k.val() + self.k_half_lsb.val();
+        if self.k.val() >= self.k_sat.val() {
+            self.k_narrow.d.next = self.u16_max.val();
+        } else {
+            self.k_narrow.d.next = self.k_rnd.val().get_bits::<16>(13);
+        }
+
+        // B2 (Mul4): |c2|·K, Q1.15 × Q1.15 → Q2.30.
+        self.c2k.d.next = self.c2_mag.val() * self.k_narrow.q.val();
+        self.k_narrow_p1.d.next = self.k_narrow.q.val();
+
+        // B3 (Sm2): t1 = c1 ± c2·K in Q3.29 (+ half LSB of Q2.14), then round/saturate to Q2.14.
+        self.c2k_half.next = self.c2k.q.val() >> 1;
+        if self.c2_neg.val() {
+            self.t1_wide.next = self.c1_rnd.val() - self.c2k_half.val();
+        } else {
+            self.t1_wide.next = self.c1_rnd.val() + self.c2k_half.val();
+        }
+        if self.t1_wide.val().get_bit(31) == self.t1_wide.val().get_bit(30) {
+            self.t1.d.next = self.t1_wide.val().get_bits::<16>(15);
+        } else if self.t1_wide.val().get_bit(31) {
+            self.t1.d.next = self.q214_min.val();
+        } else {
+            self.t1.d.next = self.q214_max.val();
+        }
+        self.k_narrow_p2.d.next = self.k_narrow_p1.q.val();
+
+        // B4 (Mul5): t1·K, signed Q2.14 × unsigned Q1.15 → signed Q3.29.
+        self.t1k_raw.next = self.t1.q.val() * self.k_narrow_p2.q.val();
+        if self.t1.q.val().get_bit(15) {
+            self.t1k_corr.next = bit_cast::<32, 16>(self.k_narrow_p2.q.val()) << 16;
+        } else {
+            self.t1k_corr.next = 0.into();
+        }
+        self.t1k.d.next = self.t1k_raw.val() - self.t1k_corr.val();
+
+        // B5 (Sm3): f = c0 + t1·K in Q4.28 (+ half LSB of Q1.15), then round/saturate to Q1.15.
+        self.t1k_half.next = self.t1k.q.val() >> 1;
+        if self.t1k.q.val().get_bit(31) {
+            self.t1k_half.next = self.t1k_half.val() | self.sign32.val();
+        }
+        self.f_wide.next = self.c0_rnd.val() + self.t1k_half.val();
+        if self.f_wide.val().get_bit(31) {
+            self.f.d.next = 0.into();
+        } else if self.f_wide.val().get_bit(30) | self.f_wide.val().get_bit(29) {
+            self.f.d.next = self.u16_max.val();
+        } else {
+            self.f.d.next = self.f_wide.val().get_bits::<16>(13);
+        }
+
+        // B6 (Mul6-8): components × f, signed Q2.14 × unsigned Q1.15 → signed Q3.29.
+        self.xf_raw.next = self.x_p5.q.val() * self.f.q.val();
+        self.yf_raw.next = self.y_p5.q.val() * self.f.q.val();
+        self.zf_raw.next = self.z_p5.q.val() * self.f.q.val();
+        if self.x_p5.q.val().get_bit(15) {
+            self.xf_corr.next = bit_cast::<32, 16>(self.f.q.val()) << 16;
+        } else {
+            self.xf_corr.next = 0.into();
+        }
+        if self.y_p5.q.val().get_bit(15) {
+            self.yf_corr.next = bit_cast::<32, 16>(self.f.q.val()) << 16;
+        } else {
+            self.yf_corr.next = 0.into();
+        }
+        if self.z_p5.q.val().get_bit(15) {
+            self.zf_corr.next = bit_cast::<32, 16>(self.f.q.val()) << 16;
+        } else {
+            self.zf_corr.next = 0.into();
+        }
+        self.xf.d.next = self.xf_raw.val() - self.xf_corr.val();
+        self.yf.d.next = self.yf_raw.val() - self.yf_corr.val();
+        self.zf.d.next = self.zf_raw.val() - self.zf_corr.val();
+
+        // B7: Q3.29 → Q2.14, round to nearest, saturate (|xf| < 4 - 2^-13: the rounding add
+        // cannot overflow).
+        self.nx_rnd.next = self.xf.q.val() + self.out_half_lsb.val();
+        self.ny_rnd.next = self.yf.q.val() + self.out_half_lsb.val();
+        self.nz_rnd.next = self.zf.q.val() + self.out_half_lsb.val();
+        if self.nx_rnd.val().get_bit(31) == self.nx_rnd.val().get_bit(30) {
+            self.nx_q.d.next = self.nx_rnd.val().get_bits::<16>(15);
+        } else if self.nx_rnd.val().get_bit(31) {
+            self.nx_q.d.next = self.q214_min.val();
+        } else {
+            self.nx_q.d.next = self.q214_max.val();
+        }
+        if self.ny_rnd.val().get_bit(31) == self.ny_rnd.val().get_bit(30) {
+            self.ny_q.d.next = self.ny_rnd.val().get_bits::<16>(15);
+        } else if self.ny_rnd.val().get_bit(31) {
+            self.ny_q.d.next = self.q214_min.val();
+        } else {
+            self.ny_q.d.next = self.q214_max.val();
+        }
+        if self.nz_rnd.val().get_bit(31) == self.nz_rnd.val().get_bit(30) {
+            self.nz_q.d.next = self.nz_rnd.val().get_bits::<16>(15);
+        } else if self.nz_rnd.val().get_bit(31) {
+            self.nz_q.d.next = self.q214_min.val();
+        } else {
+            self.nz_q.d.next = self.q214_max.val();
+        }
+
+        self.valid_out.next = self.valid_p7.q.val();
+        self.nx.next = self.nx_q.q.val();
+        self.ny.next = self.ny_q.q.val();
+        self.nz.next = self.nz_q.q.val();
+    }
+}
+
+/// The full normalizer: N in, N' = N·f(|N|²) out. Latency [`Normalizer::LATENCY`].
+#[derive(LogicBlock)]
+pub struct Normalizer {
+    pub clock: Signal<In, Clock>,
+    pub valid_in: Signal<In, Bit>,
+    pub x: Signal<In, Bits<16>>,
+    pub y: Signal<In, Bits<16>>,
+    pub z: Signal<In, Bits<16>>,
+    pub valid_out: Signal<Out, Bit>,
+    pub nx: Signal<Out, Bits<16>>,
+    pub ny: Signal<Out, Bits<16>>,
+    pub nz: Signal<Out, Bits<16>>,
+    // S1
+    sq_x: DFF<Bits<32>>,
+    sq_y: DFF<Bits<32>>,
+    sq_z: DFF<Bits<32>>,
+    valid_p1: DFF<Bit>,
+    x_p1: DFF<Bits<16>>,
+    y_p1: DFF<Bits<16>>,
+    z_p1: DFF<Bits<16>>,
+    // S2
+    k_full: DFF<Bits<32>>,
+    valid_p2: DFF<Bit>,
+    x_p2: DFF<Bits<16>>,
+    y_p2: DFF<Bits<16>>,
+    z_p2: DFF<Bits<16>>,
+    // B1..B7
+    scale: NormalizerK,
+    sq_x_raw: Signal<Local, Bits<32>>,
+    sq_y_raw: Signal<Local, Bits<32>>,
+    sq_z_raw: Signal<Local, Bits<32>>,
+    sq_x_corr: Signal<Local, Bits<32>>,
+    sq_y_corr: Signal<Local, Bits<32>>,
+    sq_z_corr: Signal<Local, Bits<32>>,
+}
+
+impl Normalizer {
+    /// Clocks from `valid_in` to `valid_out`.
+    pub const LATENCY: usize = 2 + NormalizerK::LATENCY;
+
+    pub fn new(c: &NormalizerCoeffs) -> Self {
+        Self {
+            clock: Default::default(),
+            valid_in: Default::default(),
+            x: Default::default(),
+            y: Default::default(),
+            z: Default::default(),
+            valid_out: Default::default(),
+            nx: Default::default(),
+            ny: Default::default(),
+            nz: Default::default(),
+            sq_x: Default::default(),
+            sq_y: Default::default(),
+            sq_z: Default::default(),
+            valid_p1: Default::default(),
+            x_p1: Default::default(),
+            y_p1: Default::default(),
+            z_p1: Default::default(),
+            k_full: Default::default(),
+            valid_p2: Default::default(),
+            x_p2: Default::default(),
+            y_p2: Default::default(),
+            z_p2: Default::default(),
+            scale: NormalizerK::new(c),
+            sq_x_raw: Default::default(),
+            sq_y_raw: Default::default(),
+            sq_z_raw: Default::default(),
+            sq_x_corr: Default::default(),
+            sq_y_corr: Default::default(),
+            sq_z_corr: Default::default(),
+        }
+    }
+}
+
+impl Logic for Normalizer {
+    #[hdl_gen]
+    fn update(&mut self) {
+        clock!(
+            self, clock, sq_x, sq_y, sq_z, valid_p1, x_p1, y_p1, z_p1, k_full, valid_p2, x_p2,
+            y_p2, z_p2, scale
+        );
+        // S1 (Mul1-3): x² = ux² − [x<0]·(ux ≪ 17) mod 2³², Q4.28, exact.
+        self.sq_x_raw.next = self.x.val() * self.x.val();
+        self.sq_y_raw.next = self.y.val() * self.y.val();
+        self.sq_z_raw.next = self.z.val() * self.z.val();
+        if self.x.val().get_bit(15) {
+            self.sq_x_corr.next = bit_cast::<32, 16>(self.x.val()) << 17;
+        } else {
+            self.sq_x_corr.next = 0.into();
+        }
+        if self.y.val().get_bit(15) {
+            self.sq_y_corr.next = bit_cast::<32, 16>(self.y.val()) << 17;
+        } else {
+            self.sq_y_corr.next = 0.into();
+        }
+        if self.z.val().get_bit(15) {
+            self.sq_z_corr.next = bit_cast::<32, 16>(self.z.val()) << 17;
+        } else {
+            self.sq_z_corr.next = 0.into();
+        }
+        self.sq_x.d.next = self.sq_x_raw.val() - self.sq_x_corr.val();
+        self.sq_y.d.next = self.sq_y_raw.val() - self.sq_y_corr.val();
+        self.sq_z.d.next = self.sq_z_raw.val() - self.sq_z_corr.val();
+        self.valid_p1.d.next = self.valid_in.val();
+        self.x_p1.d.next = self.x.val();
+        self.y_p1.d.next = self.y.val();
+        self.z_p1.d.next = self.z.val();
+        // S2 (Sm1): K = x² + y² + z² ≤ 3·2³⁰ < 2³², exact.
+        self.k_full.d.next = self.sq_x.q.val() + self.sq_y.q.val() + self.sq_z.q.val();
+        self.valid_p2.d.next = self.valid_p1.q.val();
+        self.x_p2.d.next = self.x_p1.q.val();
+        self.y_p2.d.next = self.y_p1.q.val();
+        self.z_p2.d.next = self.z_p1.q.val();
+        // B1..B7
+        self.scale.valid_in.next = self.valid_p2.q.val();
+        self.scale.x.next = self.x_p2.q.val();
+        self.scale.y.next = self.y_p2.q.val();
+        self.scale.z.next = self.z_p2.q.val();
+        self.scale.k.next = self.k_full.q.val();
+        self.valid_out.next = self.scale.valid_out.val();
+        self.nx.next = self.scale.nx.val();
+        self.ny.next = self.scale.ny.val();
+        self.nz.next = self.scale.nz.val();
+    }
+}
