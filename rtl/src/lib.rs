@@ -1,5 +1,6 @@
 
 pub mod address_block;
+pub mod gouraud_raster;
 pub mod intensity_interpolator;
 pub mod line_interpolator;
 pub mod export;

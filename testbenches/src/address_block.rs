@@ -6,6 +6,7 @@
 //! it; every output is compared every clock.
 
 use golden::address_block::{AddressBlockModel, AddressOutputs, AddressSetup};
+use proptest::prelude::*;
 use rtl::address_block::AddressBlock;
 use rust_hdl::prelude::*;
 use std::io::Write;
@@ -217,4 +218,33 @@ pub fn check_against_model(
             ))
         }
     }
+}
+
+/// Random triangles from several families: general small ones, axis-aligned edges, one-pixel
+/// ones, degenerate ones, long slivers up to the full 4095 extent.
+pub fn triangle_strategy() -> impl Strategy<Value = [(i32, i32); 3]> {
+    let pt = |max: i32| (0..=max, 0..=max);
+    prop_oneof![
+        // General, small box.
+        4 => [pt(40), pt(40), pt(40)],
+        // General, medium box.
+        2 => [pt(200), pt(200), pt(200)],
+        // Horizontal and vertical edges.
+        1 => (pt(100), 1..60i32, 1..60i32, any::<bool>()).prop_map(|((x, y), w, h, flip)| {
+            if flip { [(x, y), (x + w, y), (x, y + h)] } else { [(x + w, y), (x + w, y + h), (x, y + h)] }
+        }),
+        // Tiny: one pixel or nothing.
+        1 => (pt(4093), 0..3usize).prop_map(|((x, y), k)| {
+            [[(x, y), (x + 1, y), (x, y + 1)], [(x, y), (x + 1, y + 1), (x, y + 1)], [(x + 1, y), (x + 1, y + 1), (x, y + 1)]][k]
+        }),
+        // Degenerate: collinear.
+        1 => (pt(2000), -40..40i32, -40..40i32, 0..4i32, 0..4i32).prop_map(|((x, y), dx, dy, k, m)| {
+            let p = |t: i32| ((x + 2000 + t * dx).clamp(0, 4095), (y + t * dy).clamp(0, 4095));
+            [p(0), p(k), p(k + m)]
+        }),
+        // Long slivers spanning up to the full address range.
+        1 => (pt(4095), pt(4095), -3..=3i32, -3..=3i32).prop_map(|(a, b, ox, oy)| {
+            [a, b, ((b.0 + ox).clamp(0, 4095), (b.1 + oy).clamp(0, 4095))]
+        }),
+    ]
 }

@@ -10,7 +10,7 @@ use golden::types::{ScreenTriangle, ScreenVertex};
 use proptest::prelude::*;
 use proptest::test_runner::TestCaseError;
 use std::collections::HashSet;
-use testbenches::address_block::check_against_model;
+use testbenches::address_block::{check_against_model, triangle_strategy};
 
 type Tri = [(i32, i32); 3];
 
@@ -124,42 +124,13 @@ fn named_edge_cases() {
     }
 }
 
-/// Random triangles from several families: general small ones, axis-aligned edges, one-pixel
-/// ones, degenerate ones, long slivers up to the full 4095 extent.
-fn triangle() -> impl Strategy<Value = Tri> {
-    let pt = |max: i32| (0..=max, 0..=max);
-    prop_oneof![
-        // General, small box.
-        4 => [pt(40), pt(40), pt(40)],
-        // General, medium box.
-        2 => [pt(200), pt(200), pt(200)],
-        // Horizontal and vertical edges.
-        1 => (pt(100), 1..60i32, 1..60i32, any::<bool>()).prop_map(|((x, y), w, h, flip)| {
-            if flip { [(x, y), (x + w, y), (x, y + h)] } else { [(x + w, y), (x + w, y + h), (x, y + h)] }
-        }),
-        // Tiny: one pixel or nothing.
-        1 => (pt(4093), 0..3usize).prop_map(|((x, y), k)| {
-            [[(x, y), (x + 1, y), (x, y + 1)], [(x, y), (x + 1, y + 1), (x, y + 1)], [(x + 1, y), (x + 1, y + 1), (x, y + 1)]][k]
-        }),
-        // Degenerate: collinear.
-        1 => (pt(2000), -40..40i32, -40..40i32, 0..4i32, 0..4i32).prop_map(|((x, y), dx, dy, k, m)| {
-            let p = |t: i32| ((x + 2000 + t * dx).clamp(0, 4095), (y + t * dy).clamp(0, 4095));
-            [p(0), p(k), p(k + m)]
-        }),
-        // Long slivers spanning up to the full address range.
-        1 => (pt(4095), pt(4095), -3..=3i32, -3..=3i32).prop_map(|(a, b, ox, oy)| {
-            [a, b, ((b.0 + ox).clamp(0, 4095), (b.1 + oy).clamp(0, 4095))]
-        }),
-    ]
-}
-
 #[test]
 fn random_triangles_match_model_and_walk() {
     let name = "address_block_random";
     let mut r = runner(name, 300);
     let seed = golden::testing::seed_for(name);
     let clocks = std::cell::Cell::new(0usize);
-    r.run(&prop::collection::vec(triangle(), 1..4), |tris| {
+    r.run(&prop::collection::vec(triangle_strategy(), 1..4), |tris| {
         clocks.set(clocks.get() + check(name, Some(seed), &tris).map_err(TestCaseError::fail)?);
         Ok(())
     })
