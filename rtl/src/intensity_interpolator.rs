@@ -47,7 +47,7 @@
 //!
 //! Inputs `in_valid`, `in_row_start`, `in_step`, `in_carry` are the address block's outputs of
 //! the same name. Outputs are registers: the colour of the pixel presented in clock t appears
-//! in clock t + 1 with `valid_out`. One pixel per clock. `load` is accepted at any clock; give
+//! in clock t + 1 with `valid_out` (and the unsaturated words `red_word` … `blue_word`). One pixel per clock. `load` is accepted at any clock; give
 //! it the set-up of the triangle loaded into the address block in the same clock.
 //!
 //! # Error budget
@@ -78,16 +78,18 @@ pub struct IntensityChannel {
     pub ev_valid: Signal<In, Bit>,
     /// The saturated 8-bit intensity of RG4.
     pub level: Signal<Out, Bits<8>>,
+    /// RG4 itself, signed Q16.16 with the +½ bias (for blocks that need more than 8 bits).
+    pub word: Signal<Out, Bits<32>>,
     /// RG1: increment of a line start after a short edge move.
-    pub rg1: DFF<Bits<32>>,
+    rg1: DFF<Bits<32>>,
     /// RG2: increment of a line start after a long edge move.
-    pub rg2: DFF<Bits<32>>,
+    rg2: DFF<Bits<32>>,
     /// RG3: increment along the raster line.
-    pub rg3: DFF<Bits<32>>,
+    rg3: DFF<Bits<32>>,
     /// RG4: the running intensity (the output).
-    pub rg4: DFF<Bits<32>>,
+    rg4: DFF<Bits<32>>,
     /// RG5: the intensity at the current line start.
-    pub rg5: DFF<Bits<32>>,
+    rg5: DFF<Bits<32>>,
     sh1: DFF<Bits<32>>,
     sh2: DFF<Bits<32>>,
     sh3: DFF<Bits<32>>,
@@ -133,6 +135,7 @@ impl Logic for IntensityChannel {
             self.sh3.d.next = self.set_line.val();
             self.sh5.d.next = self.set_start.val();
         }
+        self.word.next = self.rg4.q.val();
         // Saturation: negative → 0, ≥ 256 → 255, else the integer part.
         self.level.next = self.rg4.q.val().get_bits::<8>(16);
         if self.rg4.q.val().get_bits::<7>(24).any() {
@@ -169,6 +172,11 @@ pub struct IntensityInterpolator {
     pub red: Signal<Out, Bits<8>>,
     pub green: Signal<Out, Bits<8>>,
     pub blue: Signal<Out, Bits<8>>,
+    /// The running words RG4 (signed Q16.16, +½ LSB bias, wrapping): the value before
+    /// saturation, exposed for the bench's format check and for wider consumers.
+    pub red_word: Signal<Out, Bits<32>>,
+    pub green_word: Signal<Out, Bits<32>>,
+    pub blue_word: Signal<Out, Bits<32>>,
     pub chan_r: IntensityChannel,
     pub chan_g: IntensityChannel,
     pub chan_b: IntensityChannel,
@@ -220,5 +228,8 @@ impl Logic for IntensityInterpolator {
         self.red.next = self.chan_r.level.val();
         self.green.next = self.chan_g.level.val();
         self.blue.next = self.chan_b.level.val();
+        self.red_word.next = self.chan_r.word.val();
+        self.green_word.next = self.chan_g.word.val();
+        self.blue_word.next = self.chan_b.word.val();
     }
 }

@@ -1,223 +1,171 @@
 //! Cycle-by-cycle bench of the address block (`rtl::address_block`) against its cycle-accurate
-//! golden model (`golden::address_block`) and the golden walk (`golden::raster`).
+//! golden model (`golden::address_block`), on the shared harness (`crate::harness`).
 //!
-//! Both sides are driven the same way: a list of triangles, each loaded in the first clock
-//! where the block's own `ready` output is high. The RTL decides its timing; the model predicts
-//! it; every output is compared every clock.
+//! Stimulus: a list of triangles. The golden model decides in which clock each set-up is
+//! loaded (the first clock where its `ready` is high); those loads become the input rows, and
+//! the model's outputs the exact expectation of every output port (including `ready`, so an RTL
+//! that is not ready when the model is fails at that clock). [`run_reactive`] instead lets the
+//! RTL's own `ready` pace the loads (what the `raster` command and the renderer do).
 
-use golden::address_block::{AddressBlockModel, AddressOutputs, AddressSetup};
+use crate::harness::{CheckSpec, Compare, Expected, Failure, Report, Stepper};
+use crate::impl_dut;
+use golden::address_block::{AddressBlockModel, AddressOutputs, AddressSetup, EdgeSetup};
 use proptest::prelude::*;
 use rtl::address_block::AddressBlock;
-use rust_hdl::prelude::*;
 use std::io::Write;
-use std::path::{Path, PathBuf};
 
-/// Settle combinational logic (panics on a combinational loop, which is a design bug).
-pub fn settle<B: Block>(uut: &mut B) {
-    assert!(simulate(uut, 100), "circuit did not settle");
+impl_dut!(AddressBlock, clock: clock,
+    inputs: [load, w_b0, w_e0, w_f, w_r, w_d, a_b0, a_e0, a_f, a_r, a_d,
+             t_b0, t_e0, t_f, t_r, t_d, y_top, rows, y_switch, dir_neg],
+    outputs: [ready, valid, x, y, step, line_start, row_start, carry, done]);
+
+fn edge_words(e: &EdgeSetup) -> [u64; 5] {
+    [
+        e.b0 as u64,
+        e.e0 as u64,
+        e.f_word() as u64,
+        e.r as u64,
+        e.d as u64,
+    ]
 }
 
-/// A freshly connected and settled address block.
-pub fn new_address_block() -> AddressBlock {
-    let mut uut = AddressBlock::default();
-    uut.connect_all();
-    settle(&mut uut);
-    uut
-}
-
-/// Drive the load port with `s` (or deassert it).
-pub fn apply_load(uut: &mut AddressBlock, s: Option<&AddressSetup>) {
-    uut.load.next = s.is_some();
+/// The input row of one clock: `load` and the set-up words (all zero without a load).
+pub fn setup_row(s: Option<&AddressSetup>) -> Vec<u64> {
     let z = AddressSetup::default();
-    let s = s.unwrap_or(&z);
-    let edge = |e: &golden::address_block::EdgeSetup| {
-        (
-            Bits::<12>::from(e.b0 as u64),
-            Bits::<13>::from(e.e0 as u64),
-            Bits::<12>::from(e.f_word() as u64),
-            Bits::<13>::from(e.r as u64),
-            Bits::<13>::from(e.d as u64),
-        )
-    };
-    (
-        uut.w_b0.next,
-        uut.w_e0.next,
-        uut.w_f.next,
-        uut.w_r.next,
-        uut.w_d.next,
-    ) = edge(&s.w);
-    (
-        uut.a_b0.next,
-        uut.a_e0.next,
-        uut.a_f.next,
-        uut.a_r.next,
-        uut.a_d.next,
-    ) = edge(&s.a);
-    (
-        uut.t_b0.next,
-        uut.t_e0.next,
-        uut.t_f.next,
-        uut.t_r.next,
-        uut.t_d.next,
-    ) = edge(&s.t);
-    uut.y_top.next = (s.y_top as u64).into();
-    uut.rows.next = (s.rows as u64).into();
-    uut.y_switch.next = (s.y_switch as u64).into();
-    uut.dir_neg.next = s.dir_neg;
+    let (load, s) = (s.is_some() as u64, s.unwrap_or(&z));
+    let mut row = vec![load];
+    for e in [&s.w, &s.a, &s.t] {
+        row.extend(edge_words(e));
+    }
+    row.extend([
+        s.y_top as u64,
+        s.rows as u64,
+        s.y_switch as u64,
+        s.dir_neg as u64,
+    ]);
+    row
 }
 
-/// The block's outputs in the current clock.
-pub fn read_outputs(uut: &AddressBlock) -> AddressOutputs {
+/// The output row the model predicts (port order of the `impl_dut!` above).
+pub fn outputs_row(o: &AddressOutputs) -> Vec<u64> {
+    vec![
+        o.ready as u64,
+        o.valid as u64,
+        o.x as u64,
+        o.y as u64,
+        o.step as u64,
+        o.line_start as u64,
+        o.row_start as u64,
+        o.carry as u64,
+        o.done as u64,
+    ]
+}
+
+/// An output row read back as the model's struct.
+pub fn row_outputs(r: &[u64]) -> AddressOutputs {
     AddressOutputs {
-        ready: uut.ready.val(),
-        valid: uut.valid.val(),
-        x: uut.x.val().index() as u32,
-        y: uut.y.val().index() as u32,
-        step: uut.step.val().index() as u8,
-        line_start: uut.line_start.val(),
-        row_start: uut.row_start.val(),
-        carry: uut.carry.val(),
-        done: uut.done.val(),
+        ready: r[0] != 0,
+        valid: r[1] != 0,
+        x: r[2] as u32,
+        y: r[3] as u32,
+        step: r[4] as u8,
+        line_start: r[5] != 0,
+        row_start: r[6] != 0,
+        carry: r[7] != 0,
+        done: r[8] != 0,
     }
 }
 
-/// One full clock period: rising edge, then falling edge, settling after each.
-pub fn clock_address_block(uut: &mut AddressBlock) {
-    uut.clock.next = true.into();
-    settle(uut);
-    uut.clock.next = false.into();
-    settle(uut);
+/// Input rows and predicted outputs of walking `setups` back to back.
+pub struct Stimulus {
+    pub rows: Vec<Vec<u64>>,
+    pub expected: Vec<AddressOutputs>,
+    /// Clock in which each triangle is loaded.
+    pub loads: Vec<usize>,
 }
 
-/// Walk `setups` through the RTL, loading each as soon as `ready` is high; stop after the last
-/// triangle's `done` or after `max_clocks`. With `vcd`, every half clock is traced (10 time
-/// units per half period; rising edges at 20·cycle + 10).
-pub fn run_rtl(
-    setups: &[AddressSetup],
-    max_clocks: usize,
-    vcd: Option<&mut dyn Write>,
-) -> Vec<AddressOutputs> {
-    let mut uut = new_address_block();
-    let mut probe = vcd.map(|w| {
-        let p = write_vcd_header(w, &uut);
-        write_vcd_dump(p, &uut)
-    });
-    let mut out = Vec::new();
-    let (mut next, mut dones) = (0, 0);
-    while dones < setups.len() && out.len() < max_clocks {
-        let load = (uut.ready.val() && next < setups.len()).then(|| &setups[next]);
-        next += load.is_some() as usize;
-        apply_load(&mut uut, load);
-        settle(&mut uut);
-        let o = read_outputs(&uut);
-        dones += o.done as usize;
-        out.push(o);
-        if dones == setups.len() {
-            break;
-        }
-        let t = 20 * (out.len() as u64 - 1);
-        uut.clock.next = true.into();
-        settle(&mut uut);
-        probe = probe.map(|mut p| {
-            p.timestamp(t + 10).ok();
-            write_vcd_change(p, &uut)
-        });
-        uut.clock.next = false.into();
-        settle(&mut uut);
-        probe = probe.map(|mut p| {
-            p.timestamp(t + 20).ok();
-            write_vcd_change(p, &uut)
-        });
-    }
-    out
-}
-
-/// The golden model's prediction for the same stimulus (see [`run_rtl`]).
-pub fn run_model(setups: &[AddressSetup], max_clocks: usize) -> Vec<AddressOutputs> {
+/// The model's run of `setups`, each loaded in the first clock its `ready` is high, up to and
+/// including the clock showing the last triangle's `done`.
+pub fn stimulus(setups: &[AddressSetup]) -> Stimulus {
     let mut m = AddressBlockModel::new();
-    let mut out = Vec::new();
+    let mut st = Stimulus {
+        rows: Vec::new(),
+        expected: Vec::new(),
+        loads: Vec::new(),
+    };
     let (mut next, mut dones) = (0, 0);
-    while dones < setups.len() && out.len() < max_clocks {
+    while dones < setups.len() {
         let o = m.outputs();
         let load = (o.ready && next < setups.len()).then(|| &setups[next]);
-        next += load.is_some() as usize;
-        dones += o.done as usize;
-        out.push(o);
-        if dones == setups.len() {
-            break;
+        if load.is_some() {
+            st.loads.push(st.rows.len());
+            next += 1;
         }
+        dones += o.done as usize;
+        st.rows.push(setup_row(load));
+        st.expected.push(o);
         m.clock(load);
     }
-    out
+    st
 }
 
-/// Path of a waveform written for a failing run: `target/sims/<name>.vcd` in the workspace.
-pub fn sims_path(name: &str) -> PathBuf {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .parent()
-        .unwrap()
-        .to_path_buf();
-    let dir = root.join("target").join("sims");
-    std::fs::create_dir_all(&dir).ok();
-    dir.join(format!("{name}.vcd"))
+/// The model's outputs only (see [`stimulus`]).
+pub fn run_model(setups: &[AddressSetup]) -> Vec<AddressOutputs> {
+    stimulus(setups).expected
 }
 
-/// First clock where `got` differs from `expected`: (cycle, field, expected, actual).
-pub fn first_mismatch(
-    expected: &[AddressOutputs],
-    got: &[AddressOutputs],
-) -> Option<(usize, &'static str, String, String)> {
-    for (c, (e, g)) in expected.iter().zip(got).enumerate() {
-        let fields: [(&str, u64, u64); 9] = [
-            ("ready", e.ready as u64, g.ready as u64),
-            ("valid", e.valid as u64, g.valid as u64),
-            ("x", e.x as u64, g.x as u64),
-            ("y", e.y as u64, g.y as u64),
-            ("step", e.step as u64, g.step as u64),
-            ("line_start", e.line_start as u64, g.line_start as u64),
-            ("row_start", e.row_start as u64, g.row_start as u64),
-            ("carry", e.carry as u64, g.carry as u64),
-            ("done", e.done as u64, g.done as u64),
-        ];
-        if let Some((n, a, b)) = fields.iter().find(|(_, a, b)| a != b) {
-            return Some((c, n, a.to_string(), b.to_string()));
-        }
-    }
-    if expected.len() != got.len() {
-        let c = expected.len().min(got.len());
-        return Some((
-            c,
-            "length",
-            expected.len().to_string(),
-            got.len().to_string(),
-        ));
-    }
-    None
-}
-
-/// Run RTL and model on `setups` and compare every clock. On a mismatch, re-run the RTL with
-/// a VCD under `target/sims/<name>.vcd` and return a one-paragraph report.
-pub fn check_against_model(
+/// Run the RTL on the model's stimulus and compare every output port every clock, exactly.
+/// Returns the harness report and the RTL's outputs per clock.
+pub fn check(
     name: &str,
-    seed: Option<u64>,
+    seed: u64,
     setups: &[AddressSetup],
+) -> Result<(Report, Vec<AddressOutputs>), Failure> {
+    let st = stimulus(setups);
+    let spec = CheckSpec {
+        name: name.into(),
+        seed,
+        compare: vec![Compare::Exact; 9],
+    };
+    let expected: Vec<Vec<Expected>> = st
+        .expected
+        .iter()
+        .map(|o| outputs_row(o).into_iter().map(Expected::Word).collect())
+        .collect();
+    let report = crate::harness::run_rows(AddressBlock::default, &spec, &st.rows, &expected)?;
+    let outs = report.outputs.iter().map(|r| row_outputs(r)).collect();
+    Ok((report, outs))
+}
+
+/// Walk `setups` through the RTL with its own `ready` pacing the loads (no model involved);
+/// stops after the last triangle's `done` (inclusive) or with an error after `max_clocks`.
+/// With `vcd`, every clock is traced.
+pub fn run_reactive(
+    setups: &[AddressSetup],
+    max_clocks: usize,
+    vcd: Option<Box<dyn Write>>,
 ) -> Result<Vec<AddressOutputs>, String> {
-    let expected = run_model(setups, 1 << 28);
-    let max = expected.len() + 16;
-    let got = run_rtl(setups, max, None);
-    match first_mismatch(&expected, &got) {
-        None => Ok(got),
-        Some((cycle, field, e, g)) => {
-            let path = sims_path(name);
-            let mut f = std::fs::File::create(&path).map_err(|e| e.to_string())?;
-            run_rtl(setups, cycle + 4, Some(&mut f));
-            Err(format!(
-                "{name}: cycle {cycle}: {field} expected {e}, got {g} (seed {seed:?}); \
-                 triangles {setups:?}; waveform {}",
-                path.display()
-            ))
-        }
+    let mut s = Stepper::new(AddressBlock::default())?;
+    if let Some(w) = vcd {
+        s.start_vcd(w);
     }
+    let mut out = Vec::new();
+    let mut row = vec![0u64; 9];
+    let (mut next, mut dones) = (0, 0);
+    while dones < setups.len() {
+        if out.len() >= max_clocks {
+            return Err(format!("no `done` after {max_clocks} clocks"));
+        }
+        // `ready` is a register output: its value for this clock is already settled.
+        let load = (s.dut().ready.val() && next < setups.len()).then(|| &setups[next]);
+        next += load.is_some() as usize;
+        s.step(&setup_row(load), &mut row)?;
+        let o = row_outputs(&row);
+        dones += o.done as usize;
+        out.push(o);
+    }
+    s.stop_vcd();
+    Ok(out)
 }
 
 /// Random triangles from several families: general small ones, axis-aligned edges, one-pixel
