@@ -17,6 +17,8 @@ pub mod nmse;
 pub mod normalizer;
 pub mod phong;
 pub mod quadric;
+pub mod raster;
+pub mod scene;
 pub mod shade;
 pub mod testing;
 pub mod types;

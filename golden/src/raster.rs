@@ -1,0 +1,254 @@
+//! The golden address generator (SPEC §5): the edge walk the address block reproduces, and a
+//! plain bounding-box edge-function rasterizer beside it as the reference.
+//!
+//! # Fill convention
+//!
+//! - Vertices have integer screen coordinates (x right, y down, 0..=4095). Pixel (x, y) is
+//!   sampled at its centre (x + ½, y + ½).
+//! - A pixel belongs to a triangle when its centre is strictly inside, or exactly on a *left*
+//!   edge (an edge with the interior on its +x side). Centres on a *right* edge are outside.
+//!   This is the top-left rule; its "top" half never applies, because a horizontal edge lies on
+//!   an integer y and centres lie on half-integers. Centres never coincide with a vertex either.
+//! - Consequences: two triangles sharing an edge never both own a pixel and never both miss one
+//!   (watertight tiling); a zero-area triangle owns no pixel; the last column and row of a
+//!   triangle's bounding box (x = max vertex x, y = max vertex y) are never covered, so a
+//!   triangle with vertices in 0..=4095 only writes pixels in 0..=4094.
+//!
+//! # Arithmetic
+//!
+//! Integer only. Coordinates are doubled so pixel centres (2x + 1, 2y + 1) are integers; an
+//! edge A→B (doubled, B below A) has the edge function
+//! `F(P) = (P.x − A.x)·(B.y − A.y) − (P.y − A.y)·(B.x − A.x)`, which is ≥ 0 exactly when P is on
+//! or right of the edge. Its magnitude stays below 2·8190² < 2³¹ for 12-bit vertices; it is kept
+//! in `i64` anyway so intermediate sums never need a width argument.
+//!
+//! Each edge is tracked by a Bresenham-style DDA ([`EdgeDda`]): `c` is the smallest x whose
+//! centre is on or right of the edge on the current row, `e = F(c)` its error term, kept in
+//! `0..2·ΔY` (ΔY doubled). One row down subtracts `2·ΔX` from `e`; each correction of `e` by
+//! `±2·ΔY` moves `c` by one pixel, which is one horizontal step of the edge.
+
+use crate::types::{EdgeStep, Row, ScreenTriangle, StepType, Walk};
+
+/// Integer point in doubled coordinates.
+type P2 = (i64, i64);
+
+fn doubled(x: i32, y: i32) -> P2 {
+    (2 * x as i64, 2 * y as i64)
+}
+
+/// Edge function of the directed edge a→b at point p (all doubled). Positive on the right of
+/// a→b when a→b points down the screen (y grows), i.e. on the +x side.
+fn edge_fn(a: P2, b: P2, p: P2) -> i64 {
+    (p.0 - a.0) * (b.1 - a.1) - (p.1 - a.1) * (b.0 - a.0)
+}
+
+/// Ceiling of n / d for d > 0.
+fn div_ceil(n: i64, d: i64) -> i64 {
+    debug_assert!(d > 0);
+    -((-n).div_euclid(d))
+}
+
+/// Bresenham-style tracker of one non-horizontal edge, one raster line at a time.
+#[derive(Clone, Copy, Debug)]
+pub struct EdgeDda {
+    /// Top end of the edge (doubled coordinates).
+    a: P2,
+    /// ΔX, ΔY of the edge (doubled), ΔY > 0.
+    dx: i64,
+    dy: i64,
+    /// Current raster line.
+    y: i64,
+    /// Smallest x whose centre is on or right of the edge on line `y`.
+    c: i64,
+    /// Error term: F at the centre of pixel (c, y); always in `0..2·dy`.
+    e: i64,
+}
+
+impl EdgeDda {
+    /// Edge from `top` to `bottom` (integer screen coordinates, `top.y < bottom.y`), placed on
+    /// raster line `y` (the set-up the software does once per edge).
+    pub fn new(top: (i32, i32), bottom: (i32, i32), y: i32) -> EdgeDda {
+        let a = doubled(top.0, top.1);
+        let b = doubled(bottom.0, bottom.1);
+        let (dx, dy) = (b.0 - a.0, b.1 - a.1);
+        assert!(dy > 0, "EdgeDda needs a downward edge");
+        let yc = 2 * y as i64 + 1;
+        // F(x) = (2x + 1 − a.x)·dy − (yc − a.y)·dx ≥ 0  ⇔  x ≥ (dy·(a.x − 1) + (yc − a.y)·dx) / 2dy
+        let c = div_ceil(dy * (a.0 - 1) + (yc - a.1) * dx, 2 * dy);
+        let e = edge_fn(a, b, (2 * c + 1, yc));
+        debug_assert!((0..2 * dy).contains(&e));
+        EdgeDda {
+            a,
+            dx,
+            dy,
+            y: y as i64,
+            c,
+            e,
+        }
+    }
+
+    /// Smallest x whose centre is on or right of the edge on the current line.
+    pub fn boundary(&self) -> i32 {
+        self.c as i32
+    }
+
+    /// Current raster line.
+    pub fn line(&self) -> i32 {
+        self.y as i32
+    }
+
+    /// Moves to the next raster line; returns the signed number of horizontal pixel moves of
+    /// the boundary (`c_new − c_old`), made one pixel at a time as the hardware does.
+    pub fn next_line(&mut self) -> i64 {
+        self.y += 1;
+        self.e -= 2 * self.dx;
+        let mut moved = 0;
+        while self.e < 0 {
+            self.c += 1;
+            self.e += 2 * self.dy;
+            moved += 1;
+        }
+        while self.e >= 2 * self.dy {
+            self.c -= 1;
+            self.e -= 2 * self.dy;
+            moved -= 1;
+        }
+        debug_assert_eq!(
+            self.e,
+            edge_fn(
+                self.a,
+                (self.a.0 + self.dx, self.a.1 + self.dy),
+                (2 * self.c + 1, 2 * self.y + 1)
+            )
+        );
+        moved
+    }
+}
+
+/// Edge steps of a working-edge move by `dx` pixels: `[V]` for 0, otherwise `|dx| − 1`
+/// horizontal steps and one diagonal, all in the direction of `dx`.
+fn edge_steps(dx: i64) -> Vec<EdgeStep> {
+    if dx == 0 {
+        return vec![EdgeStep {
+            step: StepType::Vertical,
+            dx: 0,
+        }];
+    }
+    let s = dx.signum() as i8;
+    let mut v = vec![
+        EdgeStep {
+            step: StepType::Horizontal,
+            dx: s
+        };
+        (dx.unsigned_abs() - 1) as usize
+    ];
+    v.push(EdgeStep {
+        step: StepType::Diagonal,
+        dx: s,
+    });
+    v
+}
+
+/// The SPEC §5 walk of one triangle, following the walk contract in the doc of [`Row`].
+///
+/// The working edge (top→bottom) and the other side's current edge (top→middle, then
+/// middle→bottom) are each tracked by an [`EdgeDda`]; a row's length is the distance between
+/// the two boundaries. Zero-area triangles give an empty walk.
+pub fn walk(tri: &ScreenTriangle) -> Walk {
+    if tri.area2() == 0 {
+        return Walk::default();
+    }
+    let mut v: Vec<(i32, i32)> = tri.v.iter().map(|p| (p.x, p.y)).collect();
+    v.sort_by_key(|&(x, y)| (y, x));
+    let (top, mid, bot) = (v[0], v[1], v[2]);
+    // Working edge top→bottom is the left edge when the middle vertex is on its +x side.
+    let side = edge_fn(
+        doubled(top.0, top.1),
+        doubled(bot.0, bot.1),
+        doubled(mid.0, mid.1),
+    );
+    debug_assert!(side != 0);
+    let left = side > 0;
+    let dir: i8 = if left { 1 } else { -1 };
+
+    let mut working = EdgeDda::new(top, bot, top.1);
+    let mut other = if mid.1 > top.1 {
+        EdgeDda::new(top, mid, top.1)
+    } else {
+        EdgeDda::new(mid, bot, top.1)
+    };
+    let mut rows = Vec::with_capacity((bot.1 - top.1) as usize);
+    for y in top.1..bot.1 {
+        let mut steps = Vec::new();
+        if y > top.1 {
+            steps = edge_steps(working.next_line());
+            if y == mid.1 {
+                // The adjacent edge is done: load the third edge.
+                other = EdgeDda::new(mid, bot, y);
+            } else {
+                other.next_line();
+            }
+        }
+        debug_assert_eq!((working.line(), other.line()), (y, y));
+        let (x_start, len) = if left {
+            // Pixels x_start..other.boundary() (right edge: strictly left of it).
+            (working.boundary(), other.boundary() - working.boundary())
+        } else {
+            // Pixels other.boundary()..=x_start (left edge: on or right of it).
+            (
+                working.boundary() - 1,
+                working.boundary() - other.boundary(),
+            )
+        };
+        rows.push(Row {
+            y,
+            edge_steps: steps,
+            x_start,
+            len: len.max(0) as u32,
+            dir,
+        });
+    }
+    Walk { rows }
+}
+
+/// Reference rasterizer: every pixel of the bounding box whose centre passes the three edge
+/// functions under the fill convention of this module, in row-major order (y, then x).
+pub fn edge_function_pixels(tri: &ScreenTriangle) -> Vec<(i32, i32)> {
+    let mut p: [P2; 3] = tri.v.map(|v| doubled(v.x, v.y));
+    let area = tri.area2();
+    if area == 0 {
+        return Vec::new();
+    }
+    if area > 0 {
+        p.swap(1, 2);
+    }
+    // Now the vertices run counter-clockwise on screen (y down): the interior is on the +x side
+    // of every downward edge, i.e. edge_fn > 0 inside. On the edge itself (edge_fn == 0) the
+    // pixel is inside only for a left edge (interior on +x: the edge points down, b.y > a.y) or
+    // a top edge (horizontal with the interior below: the edge points to −x).
+    let edges: Vec<(P2, P2, bool)> = (0..3)
+        .map(|i| {
+            let (a, b) = (p[i], p[(i + 1) % 3]);
+            let owns_ties = b.1 > a.1 || (b.1 == a.1 && b.0 < a.0);
+            (a, b, owns_ties)
+        })
+        .collect();
+    let xs = tri.v.map(|v| v.x);
+    let ys = tri.v.map(|v| v.y);
+    let (x0, x1) = (*xs.iter().min().unwrap(), *xs.iter().max().unwrap());
+    let (y0, y1) = (*ys.iter().min().unwrap(), *ys.iter().max().unwrap());
+    let mut out = Vec::new();
+    for y in y0..y1 {
+        for x in x0..x1 {
+            let c = (2 * x as i64 + 1, 2 * y as i64 + 1);
+            let inside = edges.iter().all(|&(a, b, ties)| {
+                let f = edge_fn(a, b, c);
+                f > 0 || (f == 0 && ties)
+            });
+            if inside {
+                out.push((x, y));
+            }
+        }
+    }
+    out
+}

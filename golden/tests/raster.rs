@@ -1,0 +1,850 @@
+//! The golden address generator (SPEC §5) against the plain edge-function rasterizer, the walk
+//! contract of `types::Row`, and watertightness on tiled rectangles and culled spheres.
+
+use std::cell::Cell;
+use std::collections::HashSet;
+
+use glam::{DQuat, DVec3};
+use golden::raster::{edge_function_pixels, walk};
+use golden::scene::{project, uv_sphere, Camera};
+use golden::testing::runner;
+use golden::{EdgeStep, Row, ScreenTriangle, ScreenVertex, StepType, Walk};
+use proptest::prelude::*;
+
+type V = (i32, i32);
+
+fn tri(v: [V; 3]) -> ScreenTriangle {
+    ScreenTriangle {
+        v: v.map(|(x, y)| ScreenVertex {
+            x,
+            y,
+            z: 0.0,
+            normal: DVec3::Z,
+        }),
+    }
+}
+
+fn sorted_pixels(w: &Walk) -> Vec<(i32, i32)> {
+    let mut p: Vec<_> = w.pixels().iter().map(|p| (p.x, p.y)).collect();
+    p.sort_by_key(|&(x, y)| (y, x));
+    p
+}
+
+/// Sign of (centre of pixel (x, y)) relative to the line top→bot (top.y < bot.y), computed
+/// directly from the definition: (x + ½) − x_edge(y + ½), scaled by 2·(bot.y − top.y) > 0.
+fn centre_vs_edge(top: V, bot: V, x: i32, y: i32) -> i64 {
+    let (dx, dy) = ((bot.0 - top.0) as i64, (bot.1 - top.1) as i64);
+    let lhs = (2 * x as i64 + 1) * dy;
+    let rhs = 2 * top.0 as i64 * dy + dx * (2 * (y - top.1) as i64 + 1);
+    (lhs - rhs).signum()
+}
+
+/// Checks one triangle's walk against the reference and every clause of the walk contract.
+/// Returns Err with a description of the first violation.
+fn check_walk(v: [V; 3]) -> Result<(), String> {
+    let t = tri(v);
+    let w = walk(&t);
+    let reference = edge_function_pixels(&t);
+    let got = sorted_pixels(&w);
+    if got != reference {
+        let g: HashSet<_> = got.iter().collect();
+        let r: HashSet<_> = reference.iter().collect();
+        let extra: Vec<_> = g.difference(&r).take(5).collect();
+        let missing: Vec<_> = r.difference(&g).take(5).collect();
+        return Err(format!(
+            "{v:?}: walk has {} pixels, reference {}; extra {extra:?}, missing {missing:?}",
+            got.len(),
+            reference.len()
+        ));
+    }
+    let unique: HashSet<_> = got.iter().collect();
+    if unique.len() != got.len() {
+        return Err(format!("{v:?}: duplicate pixels in the walk"));
+    }
+    if w.pixel_count() != got.len() {
+        return Err(format!("{v:?}: pixel_count disagrees with pixels()"));
+    }
+
+    let mut s = v;
+    s.sort_by_key(|&(x, y)| (y, x));
+    let (top, mid, bot) = (s[0], s[1], s[2]);
+    if t.area2() == 0 {
+        return if w.rows.is_empty() {
+            Ok(())
+        } else {
+            Err(format!("{v:?}: zero area, rows"))
+        };
+    }
+    let ys: Vec<i32> = w.rows.iter().map(|r| r.y).collect();
+    if ys != (top.1..bot.1).collect::<Vec<_>>() {
+        return Err(format!("{v:?}: rows {ys:?}, want {}..{}", top.1, bot.1));
+    }
+    // The middle vertex is on the +x side of the working edge → working edge is the left edge.
+    let cross = (mid.0 - top.0) as i64 * (bot.1 - top.1) as i64
+        - (bot.0 - top.0) as i64 * (mid.1 - top.1) as i64;
+    let want_dir: i8 = if cross > 0 { 1 } else { -1 };
+    let mut prev: Option<&Row> = None;
+    for r in &w.rows {
+        if r.dir != want_dir {
+            return Err(format!("{v:?}: row {} dir {} want {want_dir}", r.y, r.dir));
+        }
+        // x_start from the working edge alone.
+        let ok = if r.dir == 1 {
+            centre_vs_edge(top, bot, r.x_start, r.y) >= 0
+                && centre_vs_edge(top, bot, r.x_start - 1, r.y) < 0
+        } else {
+            centre_vs_edge(top, bot, r.x_start, r.y) < 0
+                && centre_vs_edge(top, bot, r.x_start + 1, r.y) >= 0
+        };
+        if !ok {
+            return Err(format!(
+                "{v:?}: row {} x_start {} not at the working edge",
+                r.y, r.x_start
+            ));
+        }
+        match prev {
+            None => {
+                if !r.edge_steps.is_empty() {
+                    return Err(format!("{v:?}: first row has edge steps"));
+                }
+            }
+            Some(p) => {
+                let dx = r.x_start - p.x_start;
+                check_steps(&r.edge_steps, dx).map_err(|e| format!("{v:?}: row {}: {e}", r.y))?;
+            }
+        }
+        prev = Some(r);
+    }
+    // Line starts carry the step that reached them.
+    for p in w.pixels().iter().filter(|p| p.line_start) {
+        let r = w.rows.iter().position(|r| r.y == p.y).unwrap();
+        let want = if r == 0 {
+            StepType::Start
+        } else {
+            w.rows[r].edge_steps.last().unwrap().step
+        };
+        if p.step != want {
+            return Err(format!(
+                "{v:?}: line start at row {} has step {:?}",
+                p.y, p.step
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// `dx == 0` → `[V]`; otherwise `|dx| − 1` × H(sign) then D(sign).
+fn check_steps(steps: &[EdgeStep], dx: i32) -> Result<(), String> {
+    if dx == 0 {
+        return if steps
+            == [EdgeStep {
+                step: StepType::Vertical,
+                dx: 0,
+            }] {
+            Ok(())
+        } else {
+            Err(format!("x_start unchanged but steps {steps:?}"))
+        };
+    }
+    let s = dx.signum() as i8;
+    if steps.len() != dx.unsigned_abs() as usize {
+        return Err(format!("x_start moved by {dx} in {} steps", steps.len()));
+    }
+    let (last, body) = steps.split_last().unwrap();
+    if *last
+        != (EdgeStep {
+            step: StepType::Diagonal,
+            dx: s,
+        })
+    {
+        return Err(format!("last step {last:?}, want D({s})"));
+    }
+    if let Some(b) = body.iter().find(|b| {
+        **b != (EdgeStep {
+            step: StepType::Horizontal,
+            dx: s,
+        })
+    }) {
+        return Err(format!("step {b:?} before the diagonal, want H({s})"));
+    }
+    Ok(())
+}
+
+// ---------------------------------------------------------------------------------------------
+// Generators.
+
+const MAX: i32 = 4095;
+
+/// A point within `size` of a random origin, all inside 0..=4095.
+fn cluster(size: i32) -> impl Strategy<Value = [V; 3]> {
+    (
+        0..=MAX - size,
+        0..=MAX - size,
+        prop::array::uniform3((0..=size, 0..=size)),
+    )
+        .prop_map(|(ox, oy, d)| d.map(|(x, y)| (ox + x, oy + y)))
+}
+
+fn point() -> impl Strategy<Value = V> {
+    (0..=MAX, 0..=MAX)
+}
+
+fn triangles() -> impl Strategy<Value = [V; 3]> {
+    prop_oneof![
+        // Tiny: mostly one-pixel, empty and degenerate triangles.
+        4 => cluster(2),
+        4 => cluster(6),
+        4 => cluster(40),
+        3 => cluster(400),
+        // Repeated vertices.
+        1 => (point(), point(), 0..3usize).prop_map(|(a, b, k)| [a, b, [a, b, a][k]]),
+        1 => (cluster(30), 0..3usize).prop_map(|(t, k)| { let mut t = t; t[k] = t[(k + 1) % 3]; t }),
+        // Collinear: a, a + i·d, a + j·d.
+        2 => (0..=MAX, 0..=MAX, -300..=300i32, -300..=300i32, -13..=13i32, -13..=13i32)
+            .prop_filter_map("collinear points off the screen", |(x, y, dx, dy, i, j)| {
+                let p = |k: i32| (x + k * dx, y + k * dy);
+                let t = [p(0), p(i), p(j)];
+                t.iter().all(|&(x, y)| (0..=MAX).contains(&x) && (0..=MAX).contains(&y)).then_some(t)
+            }),
+        // A horizontal edge (flat top or flat bottom), a vertical edge, both.
+        2 => (cluster(200), 0..3usize).prop_map(|(mut t, k)| { t[(k + 1) % 3].1 = t[k].1; t }),
+        2 => (cluster(200), 0..3usize).prop_map(|(mut t, k)| { t[(k + 1) % 3].0 = t[k].0; t }),
+        1 => (cluster(200), 0..3usize).prop_map(|(mut t, k)| {
+            t[(k + 1) % 3].1 = t[k].1;
+            t[(k + 2) % 3].0 = t[k].0;
+            t
+        }),
+        // One-pixel right triangles in every orientation: (x, y), (x ± 1, y), (x, y ± 1).
+        2 => (1..MAX, 1..MAX, prop::sample::select(vec![-1, 1]), prop::sample::select(vec![-1, 1]), any::<bool>())
+            .prop_map(|(x, y, sx, sy, swap)| {
+                if swap { [(x, y), (x, y + sy), (x + sx, y)] } else { [(x, y), (x + sx, y), (x, y + sy)] }
+            }),
+        // Long slivers: a far edge and a third vertex within a few pixels of it.
+        3 => (point(), point(), 0..=1000i32, -3..=3i32, -3..=3i32).prop_map(|(a, b, t, ox, oy)| {
+            let c = (
+                (a.0 + (b.0 - a.0) * t / 1000 + ox).clamp(0, MAX),
+                (a.1 + (b.1 - a.1) * t / 1000 + oy).clamp(0, MAX),
+            );
+            [a, b, c]
+        }),
+        // 4095 wide (short) and 4095 tall (narrow); the reference scans the bounding box.
+        2 => (0..=64i32, 0..=MAX - 64, 0..=MAX, 0..=64i32, 0..=64i32).prop_map(|(h, y0, xc, ya, yb)| {
+            [(0, y0 + ya.min(h)), (MAX, y0 + yb.min(h)), (xc, y0 + h)]
+        }),
+        2 => (0..=64i32, 0..=MAX - 64, 0..=MAX, 0..=64i32, 0..=64i32).prop_map(|(w, x0, yc, xa, xb)| {
+            [(x0 + xa.min(w), 0), (x0 + xb.min(w), MAX), (x0 + w, yc)]
+        }),
+    ]
+}
+
+/// Every vertex order: the walk must not depend on it.
+fn any_order(t: [V; 3]) -> impl Strategy<Value = [V; 3]> {
+    (0..6usize).prop_map(move |k| {
+        const P: [[usize; 3]; 6] = [
+            [0, 1, 2],
+            [1, 2, 0],
+            [2, 0, 1],
+            [0, 2, 1],
+            [2, 1, 0],
+            [1, 0, 2],
+        ];
+        P[k].map(|i| t[i])
+    })
+}
+
+#[test]
+fn walk_equals_edge_function_rasterizer_and_obeys_contract() {
+    let mut r = runner(
+        "walk_equals_edge_function_rasterizer_and_obeys_contract",
+        4000,
+    );
+    let degenerate = Cell::new(0);
+    let empty_nondegenerate = Cell::new(0);
+    let horizontal = Cell::new(0);
+    let vertical = Cell::new(0);
+    let one_pixel = Cell::new(0);
+    let wide = Cell::new(0);
+    let long_rows = Cell::new(0);
+    let both_dirs = Cell::new([0, 0]);
+    let result = r.run(&triangles().prop_flat_map(any_order), |v| {
+        let t = tri(v);
+        let n = edge_function_pixels(&t).len();
+        let bump = |c: &Cell<i32>| c.set(c.get() + 1);
+        match (t.area2() == 0, n) {
+            (true, _) => bump(&degenerate),
+            (false, 0) => bump(&empty_nondegenerate),
+            (false, 1) => bump(&one_pixel),
+            _ => {}
+        }
+        for k in 0..3 {
+            let (a, b) = (v[k], v[(k + 1) % 3]);
+            if a != b && a.1 == b.1 {
+                bump(&horizontal);
+            }
+            if a != b && a.0 == b.0 {
+                bump(&vertical);
+            }
+        }
+        let xs = v.map(|p| p.0);
+        if xs.iter().max().unwrap() - xs.iter().min().unwrap() == MAX {
+            bump(&wide);
+        }
+        let w = walk(&t);
+        if let Some(r) = w.rows.first() {
+            let mut d = both_dirs.get();
+            d[(r.dir == 1) as usize] += 1;
+            both_dirs.set(d);
+        }
+        if w.rows.iter().any(|r| r.edge_steps.len() > 20) {
+            bump(&long_rows);
+        }
+        check_walk(v).map_err(TestCaseError::fail)
+    });
+    if let Err(e) = result {
+        panic!("{e}");
+    }
+    println!(
+        "degenerate {}, empty {}, one-pixel {}, horizontal {}, vertical {}, 4095-wide {}, \
+         rows with > 20 edge steps {}, dir −1/+1 {:?}",
+        degenerate.get(),
+        empty_nondegenerate.get(),
+        one_pixel.get(),
+        horizontal.get(),
+        vertical.get(),
+        wide.get(),
+        long_rows.get(),
+        both_dirs.get()
+    );
+    // The generator must keep producing the cases it exists for.
+    for (name, c) in [
+        ("degenerate", &degenerate),
+        ("empty non-degenerate", &empty_nondegenerate),
+        ("one-pixel", &one_pixel),
+        ("horizontal edge", &horizontal),
+        ("vertical edge", &vertical),
+        ("4095-wide", &wide),
+        ("x-major working edge", &long_rows),
+    ] {
+        assert!(c.get() >= 40, "only {} {name} cases", c.get());
+    }
+    assert!(
+        both_dirs.get().iter().all(|&n| n >= 500),
+        "{:?}",
+        both_dirs.get()
+    );
+}
+
+// ---------------------------------------------------------------------------------------------
+// Named edge cases, expected walks derived by hand from the fill convention.
+
+fn row(y: i32, steps: &[(StepType, i8)], x_start: i32, len: u32, dir: i8) -> Row {
+    Row {
+        y,
+        edge_steps: steps
+            .iter()
+            .map(|&(step, dx)| EdgeStep { step, dx })
+            .collect(),
+        x_start,
+        len,
+        dir,
+    }
+}
+
+use StepType::{Diagonal as D, Horizontal as H, Vertical as Vt};
+
+#[test]
+fn degenerate_triangles_have_no_rows() {
+    for v in [
+        [(5, 5), (5, 5), (5, 5)],
+        [(0, 0), (0, 0), (9, 3)],
+        [(0, 0), (3, 3), (9, 9)],
+        [(0, 0), (4095, 0), (17, 0)],
+        [(7, 0), (7, 4095), (7, 100)],
+        [(0, 0), (4095, 4095), (2, 2)],
+    ] {
+        assert_eq!(walk(&tri(v)), Walk::default(), "{v:?}");
+        assert!(edge_function_pixels(&tri(v)).is_empty(), "{v:?}");
+    }
+}
+
+#[test]
+fn unit_square_halves_share_the_diagonal_pixel_exactly_once() {
+    // The centre (½, ½) lies on the diagonal (0,0)–(1,1). In the lower-left half the diagonal is
+    // a right edge (pixel outside); in the upper-right half it is a left edge (inside).
+    let lower_left = [(0, 0), (1, 1), (0, 1)];
+    let upper_right = [(0, 0), (1, 0), (1, 1)];
+    assert_eq!(sorted_pixels(&walk(&tri(lower_left))), vec![]);
+    assert_eq!(sorted_pixels(&walk(&tri(upper_right))), vec![(0, 0)]);
+    // Lower-left: top (0,0), middle (0,1), bottom (1,1): working edge is the diagonal, the
+    // middle vertex is left of it → right working edge; x_start = largest x with centre strictly
+    // left of x_edge(½) = ½ → −1; other edge x = 0 → len 0.
+    assert_eq!(walk(&tri(lower_left)).rows, vec![row(0, &[], -1, 0, -1)]);
+    // Upper-right: top (0,0), middle (1,0), bottom (1,1): left working edge; x_start 0, len 1.
+    assert_eq!(walk(&tri(upper_right)).rows, vec![row(0, &[], 0, 1, 1)]);
+}
+
+#[test]
+fn right_triangle_left_vertical_working_edge() {
+    // (0,0),(4,0),(0,4): hypotenuse x + y = 4 is a right edge: x + ½ < 4 − (y + ½) → x < 3 − y.
+    let w = walk(&tri([(0, 0), (4, 0), (0, 4)]));
+    assert_eq!(
+        w.rows,
+        vec![
+            row(0, &[], 0, 3, 1),
+            row(1, &[(Vt, 0)], 0, 2, 1),
+            row(2, &[(Vt, 0)], 0, 1, 1),
+            row(3, &[(Vt, 0)], 0, 0, 1),
+        ]
+    );
+}
+
+#[test]
+fn flat_top_diagonal_working_edge_steps_diagonally() {
+    // (0,0),(4,0),(4,4): working edge (0,0)→(4,4) is left (x_start = y), third edge x = 4 is
+    // right (x ≤ 3).
+    let w = walk(&tri([(4, 4), (0, 0), (4, 0)]));
+    assert_eq!(
+        w.rows,
+        vec![
+            row(0, &[], 0, 4, 1),
+            row(1, &[(D, 1)], 1, 3, 1),
+            row(2, &[(D, 1)], 2, 2, 1),
+            row(3, &[(D, 1)], 3, 1, 1),
+        ]
+    );
+}
+
+#[test]
+fn flat_bottom_right_vertical_working_edge() {
+    // (4,0),(4,4),(0,4): working edge x = 4 is the right edge (x_start 3, dir −1); the adjacent
+    // edge (4,0)→(0,4) is left: x + ½ ≥ 3½ − y → x ≥ 3 − y.
+    let w = walk(&tri([(0, 4), (4, 4), (4, 0)]));
+    assert_eq!(
+        w.rows,
+        vec![
+            row(0, &[], 3, 1, -1),
+            row(1, &[(Vt, 0)], 3, 2, -1),
+            row(2, &[(Vt, 0)], 3, 3, -1),
+            row(3, &[(Vt, 0)], 3, 4, -1),
+        ]
+    );
+}
+
+#[test]
+fn x_major_working_edge_takes_horizontal_steps_then_a_diagonal() {
+    // (0,0),(10,2),(0,2): working edge (0,0)→(10,2), x_edge = 5·(y + ½); middle (0,2) is left
+    // of it → right working edge. Row 0: x_edge 2.5 → x_start 1, pixels 1, 0. Row 1: x_edge 7.5
+    // → x_start 6 (centre 7.5 is on the edge: outside), pixels 6..=0.
+    let w = walk(&tri([(0, 0), (10, 2), (0, 2)]));
+    assert_eq!(
+        w.rows,
+        vec![
+            row(0, &[], 1, 2, -1),
+            row(1, &[(H, 1), (H, 1), (H, 1), (H, 1), (D, 1)], 6, 7, -1),
+        ]
+    );
+}
+
+#[test]
+fn full_width_one_row_triangle() {
+    // (0,0),(4095,0),(0,1): one row, hypotenuse at x_edge = 4095·½ = 2047.5 is a right edge, so
+    // centres x + ½ < 2047.5 → x ≤ 2046: 2047 pixels.
+    let w = walk(&tri([(4095, 0), (0, 1), (0, 0)]));
+    assert_eq!(w.rows, vec![row(0, &[], 0, 2047, 1)]);
+}
+
+#[test]
+fn full_height_one_column_triangle() {
+    // (0,0),(1,4095),(0,4095): the working edge (0,0)→(1,4095) has x_edge = (y + ½)/4095 < 1,
+    // middle (0,4095) is left → right working edge. The pixel x = 0 is inside where
+    // ½ < x_edge, i.e. y + ½ > 2047.5 → y ≥ 2048: 2047 pixels, x_start 0 there, −1 above.
+    let w = walk(&tri([(0, 0), (1, 4095), (0, 4095)]));
+    assert_eq!(w.rows.len(), 4095);
+    for r in &w.rows {
+        let want = if r.y >= 2048 { (0, 1) } else { (-1, 0) };
+        assert_eq!((r.x_start, r.len), want, "row {}", r.y);
+        let want_steps: &[(StepType, i8)] = match r.y {
+            0 => &[],
+            2048 => &[(D, 1)],
+            _ => &[(Vt, 0)],
+        };
+        assert_eq!(r, &row(r.y, want_steps, want.0, want.1, -1));
+    }
+    assert_eq!(w.pixel_count(), 2047);
+}
+
+#[test]
+fn max_extent_square_splits_into_two_triangles_without_overlap_or_hole() {
+    // Both diagonals of the full 12-bit square: 4095 × 4095 pixels, each written once.
+    for diag in [false, true] {
+        let (a, b, c, d) = ((0, 0), (4095, 0), (4095, 4095), (0, 4095));
+        let tris = if diag {
+            [[a, b, c], [a, c, d]]
+        } else {
+            [[a, b, d], [b, c, d]]
+        };
+        let mut count = vec![0u8; 4096 * 4096];
+        for t in tris {
+            for p in walk(&tri(t)).pixels() {
+                count[p.y as usize * 4096 + p.x as usize] += 1;
+            }
+        }
+        for y in 0..4096 {
+            for x in 0..4096 {
+                let want = (x < 4095 && y < 4095) as u8;
+                assert_eq!(
+                    count[y * 4096 + x],
+                    want,
+                    "pixel ({x}, {y}), diagonal {diag}"
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn corner_vertices_at_address_limits() {
+    for v in [
+        [(0, 0), (4095, 4095), (0, 4095)],
+        [(0, 0), (4095, 4095), (4095, 0)],
+        [(4095, 0), (0, 4095), (4095, 4095)],
+        [(2047, 0), (4095, 4095), (0, 4095)],
+        [(0, 2048), (4095, 0), (4095, 4095)],
+        [(0, 0), (4095, 1), (4094, 1)],
+        [(0, 4094), (4095, 4095), (1, 4095)],
+    ] {
+        check_walk(v).unwrap();
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Tiling: random triangulations of a rectangle.
+
+/// A grid of `nx`×`ny` cells of `sx`×`sy` pixels at (x0, y0); interior vertices jittered by
+/// less than a quarter cell (so every cell stays strictly convex and either diagonal splits it
+/// into two properly oriented triangles), boundary vertices jittered along the boundary only.
+#[derive(Clone, Debug)]
+struct Grid {
+    x0: i32,
+    y0: i32,
+    nx: usize,
+    ny: usize,
+    sx: i32,
+    sy: i32,
+    jitter: Vec<(i32, i32)>,
+    diagonals: Vec<bool>,
+    rotations: Vec<usize>,
+}
+
+fn grid() -> impl Strategy<Value = Grid> {
+    let spacing = prop_oneof![1..=3i32, 4..=24i32, 24..=200i32];
+    (1..=8usize, 1..=8usize, spacing.clone(), spacing)
+        .prop_flat_map(|(nx, ny, sx, sy)| {
+            let n = (nx + 1) * (ny + 1);
+            let (jx, jy) = ((sx - 1) / 4, (sy - 1) / 4);
+            let (w, h) = (nx as i32 * sx, ny as i32 * sy);
+            (
+                0..=MAX - w,
+                0..=MAX - h,
+                Just((nx, ny, sx, sy)),
+                prop::collection::vec((-jx..=jx, -jy..=jy), n),
+                prop::collection::vec(any::<bool>(), nx * ny * 2),
+                prop::collection::vec(0..3usize, nx * ny * 2),
+            )
+        })
+        .prop_map(|(x0, y0, (nx, ny, sx, sy), jitter, d, r)| Grid {
+            x0,
+            y0,
+            nx,
+            ny,
+            sx,
+            sy,
+            jitter,
+            diagonals: d,
+            rotations: r,
+        })
+}
+
+impl Grid {
+    fn vertex(&self, i: usize, j: usize) -> V {
+        let (mut jx, mut jy) = self.jitter[j * (self.nx + 1) + i];
+        if i == 0 || i == self.nx {
+            jx = 0;
+        }
+        if j == 0 || j == self.ny {
+            jy = 0;
+        }
+        (
+            self.x0 + i as i32 * self.sx + jx,
+            self.y0 + j as i32 * self.sy + jy,
+        )
+    }
+
+    /// Triangles as the renderer sees them after culling: clockwise on screen (area2 > 0),
+    /// starting at a random vertex.
+    fn triangles(&self) -> Vec<[V; 3]> {
+        let mut out = Vec::new();
+        for j in 0..self.ny {
+            for i in 0..self.nx {
+                let k = j * self.nx + i;
+                let (a, b) = (self.vertex(i, j), self.vertex(i + 1, j));
+                let (c, d) = (self.vertex(i + 1, j + 1), self.vertex(i, j + 1));
+                let pair = if self.diagonals[k] {
+                    [[a, b, c], [a, c, d]]
+                } else {
+                    [[a, b, d], [b, c, d]]
+                };
+                for (h, t) in pair.into_iter().enumerate() {
+                    let area = tri(t).area2();
+                    assert!(area > 0, "generator made a non-convex cell: {t:?}");
+                    let r = self.rotations[2 * k + h];
+                    out.push([t[r], t[(r + 1) % 3], t[(r + 2) % 3]]);
+                }
+            }
+        }
+        out
+    }
+}
+
+#[test]
+fn tiled_rectangles_are_covered_exactly_once() {
+    let mut r = runner("tiled_rectangles_are_covered_exactly_once", 400);
+    let result = r.run(&grid(), |g| {
+        let (w, h) = (g.nx as i32 * g.sx, g.ny as i32 * g.sy);
+        // Count over the rectangle plus a 2-pixel border, to catch pixels written outside.
+        let (bx, by) = (g.x0 - 2, g.y0 - 2);
+        let (cw, ch) = ((w + 4) as usize, (h + 4) as usize);
+        let mut count = vec![0u8; cw * ch];
+        for t in g.triangles() {
+            for p in walk(&tri(t)).pixels() {
+                let (x, y) = ((p.x - bx) as usize, (p.y - by) as usize);
+                prop_assert!(
+                    x < cw && y < ch,
+                    "pixel ({}, {}) far outside the rectangle",
+                    p.x,
+                    p.y
+                );
+                count[y * cw + x] += 1;
+            }
+        }
+        for y in 0..ch {
+            for x in 0..cw {
+                let (px, py) = (bx + x as i32, by + y as i32);
+                let inside = (g.x0..g.x0 + w).contains(&px) && (g.y0..g.y0 + h).contains(&py);
+                let n = count[y * cw + x];
+                prop_assert_eq!(
+                    n,
+                    inside as u8,
+                    "pixel ({}, {}) written {} times",
+                    px,
+                    py,
+                    n
+                );
+            }
+        }
+        Ok(())
+    });
+    if let Err(e) = result {
+        panic!("{e}");
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Back-face-culled spheres.
+
+/// Convex hull (counter-clockwise on screen, y down, collinear points dropped) by the monotone
+/// chain.
+fn hull(mut p: Vec<V>) -> Vec<V> {
+    p.sort();
+    p.dedup();
+    let cross = |o: V, a: V, b: V| {
+        (a.0 - o.0) as i64 * (b.1 - o.1) as i64 - (a.1 - o.1) as i64 * (b.0 - o.0) as i64
+    };
+    let mut lower: Vec<V> = Vec::new();
+    for &q in &p {
+        while lower.len() >= 2 && cross(lower[lower.len() - 2], lower[lower.len() - 1], q) <= 0 {
+            lower.pop();
+        }
+        lower.push(q);
+    }
+    let mut upper: Vec<V> = Vec::new();
+    for &q in p.iter().rev() {
+        while upper.len() >= 2 && cross(upper[upper.len() - 2], upper[upper.len() - 1], q) <= 0 {
+            upper.pop();
+        }
+        upper.push(q);
+    }
+    lower.pop();
+    upper.pop();
+    lower.extend(upper);
+    lower
+}
+
+/// Signed distance in pixels from the centre of pixel (x, y) to the boundary of the convex
+/// polygon `poly` (positive inside).
+fn inset_distance(poly: &[V], x: i32, y: i32) -> f64 {
+    let n = poly.len();
+    let area: i64 = (0..n)
+        .map(|k| {
+            let (a, b) = (poly[k], poly[(k + 1) % n]);
+            a.0 as i64 * b.1 as i64 - b.0 as i64 * a.1 as i64
+        })
+        .sum();
+    let (cx, cy) = (x as f64 + 0.5, y as f64 + 0.5);
+    (0..n)
+        .map(|k| {
+            let (a, b) = (poly[k], poly[(k + 1) % n]);
+            let (ex, ey) = ((b.0 - a.0) as f64, (b.1 - a.1) as f64);
+            let cross = ex * (cy - a.1 as f64) - ey * (cx - a.0 as f64);
+            cross * area.signum() as f64 / ex.hypot(ey)
+        })
+        .fold(f64::INFINITY, f64::min)
+}
+
+fn quaternion() -> impl Strategy<Value = DQuat> {
+    // Uniform random rotation from four normal-ish components (Box–Muller free: a uniform cube
+    // sample rejected outside the unit ball is uniform on directions).
+    prop::array::uniform4(-1.0f64..1.0)
+        .prop_filter("outside the unit ball or too short", |q| {
+            let l = q.iter().map(|c| c * c).sum::<f64>();
+            (1e-6..=1.0).contains(&l)
+        })
+        .prop_map(|q| DQuat::from_xyzw(q[0], q[1], q[2], q[3]).normalize())
+}
+
+/// Back-face-culled UV spheres at random rotations, rez and canvas sizes.
+///
+/// What the expected coverage is, and why. The rounded projection of the closed sphere is a
+/// closed surface mapped piecewise-linearly to the plane, so at any point the number of
+/// front-facing (positive-area) triangles covering it equals the number of back-facing ones
+/// (degree 0). The fill convention is the same as sampling at a point nudged by an
+/// infinitesimal (+x, +y²) from the pixel centre, so the identity holds pixel by pixel. Hence:
+/// - front coverage (the walk of the kept faces) must equal back coverage (the edge-function
+///   reference on the culled faces) at every pixel: a hole or a double write on a shared edge
+///   breaks it, whatever the projection did;
+/// - when rounding the vertices to integer addresses reversed no triangle's orientation, the
+///   front faces are an unfolded image of the front half: every pixel is written at most once.
+///   When it did (sub-pixel-thin triangles near the rim, or at the poles' slivers), the surface
+///   folds over itself on screen and front faces overlap there, exactly as much as back faces
+///   do: no rasterizer can avoid that, the depth test resolves it; the counts are printed;
+/// - holes: the silhouette is not simply the convex hull of the rounded vertices (rounding
+///   notches the rim by up to ~1.4 px), but every pixel more than 1.5 px inside that hull must
+///   be covered, and none outside it may be.
+#[test]
+fn culled_spheres_have_no_hole_and_overlap_only_where_rounding_folds() {
+    let mut r = runner(
+        "culled_spheres_have_no_hole_and_overlap_only_where_rounding_folds",
+        240,
+    );
+    let rez = prop::sample::select(vec![3u32, 4, 5, 8, 13, 25, 50, 100]);
+    let size = prop_oneof![8..=40u32, 40..=400u32];
+    let unfolded_cases = Cell::new(0);
+    let folded_cases = Cell::new(0);
+    let double_writes = Cell::new(0usize);
+    let result = r.run(
+        &(rez, quaternion(), size.clone(), size),
+        |(rez, q, w, h)| {
+            let mesh = uv_sphere(rez).unwrap();
+            let cam = Camera::fit(&mesh, w, h, q);
+            let front = project(&mesh, &cam, w, h).unwrap();
+            prop_assert!(!front.is_empty());
+            let idx = |x: i32, y: i32| (y as u32 * w + x as u32) as usize;
+            let mut count = vec![0u8; (w * h) as usize];
+            for t in &front {
+                prop_assert!(t.area2() > 0);
+                for p in walk(t).pixels() {
+                    prop_assert!(p.x >= 0 && p.y >= 0 && (p.x as u32) < w && (p.y as u32) < h);
+                    count[idx(p.x, p.y)] += 1;
+                }
+            }
+            let exact: Vec<_> = mesh.positions.iter().map(|&p| cam.screen(p)).collect();
+            let verts: Vec<V> = exact
+                .iter()
+                .map(|s| (s.x.round() as i32, s.y.round() as i32))
+                .collect();
+            let mut back = vec![0u8; (w * h) as usize];
+            let (mut n_back, mut flipped) = (0, 0);
+            for t in &mesh.triangles {
+                let st = tri(t.map(|i| verts[i as usize]));
+                let [a, b, c] = t.map(|i| exact[i as usize]);
+                let exact_area = (b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y);
+                if (st.area2() as f64) * exact_area < 0.0 {
+                    flipped += 1;
+                }
+                if st.area2() < 0 {
+                    n_back += 1;
+                    for (x, y) in edge_function_pixels(&st) {
+                        back[idx(x, y)] += 1;
+                    }
+                }
+            }
+            prop_assert!(n_back > 0);
+            let outline = hull(verts);
+            let mut doubles = 0;
+            for y in 0..h as i32 {
+                for x in 0..w as i32 {
+                    let (n, b) = (count[idx(x, y)], back[idx(x, y)]);
+                    prop_assert_eq!(
+                        n,
+                        b,
+                        "pixel ({}, {}): front {} back {}, rez {}, {}x{}",
+                        x,
+                        y,
+                        n,
+                        b,
+                        rez,
+                        w,
+                        h
+                    );
+                    prop_assert!(
+                        n <= 1 || flipped > 0,
+                        "pixel ({}, {}) written {} times without a fold, rez {}, {}x{}",
+                        x,
+                        y,
+                        n,
+                        rez,
+                        w,
+                        h
+                    );
+                    doubles += (n > 1) as usize;
+                    let d = inset_distance(&outline, x, y);
+                    prop_assert!(
+                        d < 1.5 || n >= 1,
+                        "hole at ({}, {}), {} px inside the outline",
+                        x,
+                        y,
+                        d
+                    );
+                    prop_assert!(
+                        d >= 0.0 || n == 0,
+                        "pixel ({}, {}) outside the outline written",
+                        x,
+                        y
+                    );
+                }
+            }
+            if flipped == 0 {
+                unfolded_cases.set(unfolded_cases.get() + 1);
+            } else {
+                folded_cases.set(folded_cases.get() + 1);
+                double_writes.set(double_writes.get() + doubles);
+            }
+            Ok(())
+        },
+    );
+    if let Err(e) = result {
+        panic!("{e}");
+    }
+    println!(
+        "{} cases without a fold (each pixel written at most once); {} with rounding folds, \
+         {} double-written pixels in them",
+        unfolded_cases.get(),
+        folded_cases.get(),
+        double_writes.get()
+    );
+    assert!(
+        unfolded_cases.get() >= 40,
+        "too few fold-free cases: {}",
+        unfolded_cases.get()
+    );
+}
