@@ -1,0 +1,146 @@
+//! External EDA tools (yosys, iverilog/vvp, verilator, nextpnr-ice40): detection, the
+//! skip-or-fail policy every tool test uses, unique work directories, and running a command
+//! with a readable error.
+//!
+//! Policy ([`require`]): a test that needs a missing tool prints a `SKIPPED` notice and returns
+//! early — unless the environment variable `CI` is set, in which case it fails.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::OnceLock;
+
+/// A tool some test or command needs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Tool {
+    Yosys,
+    Iverilog,
+    Vvp,
+    Verilator,
+    NextpnrIce40,
+}
+
+impl Tool {
+    /// Executable name.
+    pub fn program(self) -> &'static str {
+        match self {
+            Tool::Yosys => "yosys",
+            Tool::Iverilog => "iverilog",
+            Tool::Vvp => "vvp",
+            Tool::Verilator => "verilator",
+            Tool::NextpnrIce40 => "nextpnr-ice40",
+        }
+    }
+
+    fn probe_args(self) -> &'static [&'static str] {
+        match self {
+            Tool::Yosys => &["-V"],
+            Tool::Iverilog => &["-V"],
+            Tool::Vvp => &["-V"],
+            Tool::Verilator => &["--version"],
+            Tool::NextpnrIce40 => &["--version"],
+        }
+    }
+
+    fn index(self) -> usize {
+        self as usize
+    }
+}
+
+static AVAILABLE: [OnceLock<bool>; 5] = [
+    OnceLock::new(),
+    OnceLock::new(),
+    OnceLock::new(),
+    OnceLock::new(),
+    OnceLock::new(),
+];
+
+/// Whether `tool` runs here (probed once per process).
+pub fn available(tool: Tool) -> bool {
+    *AVAILABLE[tool.index()].get_or_init(|| {
+        Command::new(tool.program())
+            .args(tool.probe_args())
+            .output()
+            .map(|o| o.status.success() || !o.stdout.is_empty())
+            .unwrap_or(false)
+    })
+}
+
+/// Whether `CI` is set (then missing tools are failures).
+pub fn in_ci() -> bool {
+    std::env::var_os("CI").is_some_and(|v| !v.is_empty())
+}
+
+/// The skip-or-fail policy for a test named `what` that needs `tools`: returns `true` when all
+/// are installed; otherwise prints a notice and returns `false` (skip), or panics when `CI` is
+/// set.
+pub fn require(tools: &[Tool], what: &str) -> bool {
+    let missing: Vec<&str> = tools
+        .iter()
+        .filter(|t| !available(**t))
+        .map(|t| t.program())
+        .collect();
+    if missing.is_empty() {
+        return true;
+    }
+    let list = missing.join(", ");
+    if in_ci() {
+        panic!("{what}: required tool(s) not installed: {list} (CI is set, so this is a failure)");
+    }
+    eprintln!("SKIPPED {what}: tool(s) not installed: {list} (set CI=1 to make this a failure)");
+    false
+}
+
+static DIR_COUNTER: AtomicU64 = AtomicU64::new(0);
+
+/// A fresh directory `target/tool-runs/<tag>-<pid>-<n>` (unique per process and call, so
+/// parallel tests never share files).
+pub fn unique_dir(tag: &str) -> Result<PathBuf, String> {
+    let n = DIR_COUNTER.fetch_add(1, Ordering::SeqCst);
+    let safe: String = tag
+        .chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || c == '-' || c == '_' {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect();
+    let dir = crate::harness::target_dir()
+        .join("tool-runs")
+        .join(format!("{safe}-{}-{n}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
+    Ok(dir)
+}
+
+fn tail(s: &[u8], lines: usize) -> String {
+    let text = String::from_utf8_lossy(s);
+    let v: Vec<&str> = text.lines().collect();
+    v[v.len().saturating_sub(lines)..].join("\n")
+}
+
+/// Run `program args…` in `dir`; an error (missing program, non-zero exit) becomes a message
+/// with the command and the last lines of its output. Full output goes to `dir/<log>.log`.
+pub fn run_in(dir: &Path, program: &str, args: &[&str], log: &str) -> Result<Output, String> {
+    let out = Command::new(program)
+        .args(args)
+        .current_dir(dir)
+        .output()
+        .map_err(|e| format!("cannot run {program}: {e}"))?;
+    let mut text = out.stdout.clone();
+    text.extend_from_slice(&out.stderr);
+    let _ = std::fs::write(dir.join(format!("{log}.log")), &text);
+    if !out.status.success() {
+        return Err(format!(
+            "{program} {} failed ({}) in {}:\n{}\n{}",
+            args.join(" "),
+            out.status,
+            dir.display(),
+            tail(&out.stdout, 15),
+            tail(&out.stderr, 15)
+        ));
+    }
+    Ok(out)
+}
