@@ -230,14 +230,15 @@ impl Pipe {
         self.stepper.start_vcd(w);
     }
 
-    /// Run `jobs` through the pipe, each loaded as soon as `ready` is high; `pixel(x, y, rgb)`
-    /// for every valid output, `progress(done_triangles)` after each triangle's `done`. Stops
+    /// Run `jobs` through the pipe, each loaded as soon as `ready` is high;
+    /// `pixel(job_index, x, y, rgb)` for every valid output (the pipe keeps the jobs' order,
+    /// so the index counts the `done` markers seen before the pixel), `progress(done_triangles)` after each triangle's `done`. Stops
     /// after the last `done`, or with an error after `max_clocks`.
     pub fn run(
         &mut self,
         jobs: &[TriangleJob],
         max_clocks: u64,
-        mut pixel: impl FnMut(u32, u32, [u8; 3]),
+        mut pixel: impl FnMut(usize, u32, u32, [u8; 3]),
         mut progress: impl FnMut(u64),
     ) -> Result<PipeStats, String> {
         let mut st = PipeStats::default();
@@ -263,6 +264,7 @@ impl Pipe {
             if out[1] != 0 {
                 st.pixels += 1;
                 pixel(
+                    st.triangles as usize,
                     out[2] as u32,
                     out[3] as u32,
                     [out[4] as u8, out[5] as u8, out[6] as u8],

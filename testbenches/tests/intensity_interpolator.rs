@@ -216,7 +216,7 @@ fn pipe_render(tris: &[ScreenTriangle], ctx: &ShadeContext) -> HashMap<(u32, u32
         .run(
             &jobs,
             clock_budget(&jobs),
-            |x, y, rgb| px.entry((x, y)).or_default().push(rgb),
+            |_, x, y, rgb| px.entry((x, y)).or_default().push(rgb),
             |_| {},
         )
         .expect("pipe finished within its clock budget");

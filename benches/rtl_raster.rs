@@ -1,0 +1,132 @@
+//! Throughput of the Gouraud raster pipe (address block + BVI, `rtl::gouraud_raster`):
+//!
+//! - printed once (clock counts of the simulated hardware, not timings): pixels per clock over
+//!   the default scene (sphere rez 50, 400×400, light 90°) and over large triangles
+//!   (≥ 1000 pixels), and the clocks each raster line costs beyond its pixels;
+//! - measured by criterion: simulated clocks per second of the hand-stepped rust-hdl model of
+//!   the two blocks together (throughput in elements = clocks).
+
+use criterion::{criterion_group, criterion_main, Criterion, Throughput};
+use glam::DQuat;
+use golden::raster::walk;
+use golden::shade::ShadeContext;
+use golden::types::{ScreenTriangle, ScreenVertex};
+use testbenches::intensity_interpolator::{clock_budget, Pipe, PipeStats, TriangleJob};
+
+fn default_scene() -> (Vec<ScreenTriangle>, ShadeContext) {
+    let mesh = golden::scene::uv_sphere(50).unwrap();
+    let cam = golden::scene::Camera::fit(&mesh, 400, 400, DQuat::IDENTITY);
+    let tris = golden::scene::project(&mesh, &cam, 400, 400).unwrap();
+    let ctx = ShadeContext {
+        light: golden::scene::light_direction(90.0).unwrap(),
+        ..ShadeContext::default()
+    };
+    (tris, ctx)
+}
+
+/// Seeded random triangles with at least 1000 pixels, extents up to 400.
+fn large_triangles(n: usize) -> Vec<ScreenTriangle> {
+    let mut state = 0x9E37_79B9_7F4A_7C15u64;
+    let mut rnd = |m: i32| {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        (state % m as u64) as i32
+    };
+    let mut out = Vec::new();
+    while out.len() < n {
+        let v = [0; 3].map(|_| ScreenVertex {
+            x: 100 + rnd(400),
+            y: 100 + rnd(400),
+            z: 0.0,
+            normal: glam::DVec3::new(rnd(100) as f64 - 50.0, rnd(100) as f64 - 50.0, 100.0)
+                .normalize(),
+        });
+        let t = ScreenTriangle { v };
+        if walk(&t).pixel_count() >= 1000 {
+            out.push(t);
+        }
+    }
+    out
+}
+
+fn jobs(tris: &[ScreenTriangle], ctx: &ShadeContext) -> Vec<TriangleJob> {
+    tris.iter()
+        .filter_map(|t| TriangleJob::gouraud(t, ctx))
+        .collect()
+}
+
+fn run(jobs: &[TriangleJob]) -> PipeStats {
+    Pipe::new()
+        .unwrap()
+        .run(jobs, clock_budget(jobs), |_, _, _, _| {}, |_| {})
+        .unwrap()
+}
+
+fn rows(tris: &[ScreenTriangle]) -> u64 {
+    tris.iter().map(|t| walk(t).rows.len() as u64).sum()
+}
+
+fn figures() {
+    let (tris, ctx) = default_scene();
+    let scene_jobs = jobs(&tris, &ctx);
+    let s = run(&scene_jobs);
+    let r = rows(&tris);
+    println!(
+        "default scene: {} triangles, {} rows, {} pixels in {} clocks: {:.3} pixels/clock; \
+         {:.3} clocks per raster line beyond its pixels (latency, empty lines, gaps)",
+        s.triangles,
+        r,
+        s.pixels,
+        s.clocks,
+        s.pixels_per_clock(),
+        (s.clocks - s.pixels) as f64 / r as f64
+    );
+    let large = large_triangles(40);
+    let lj = jobs(&large, &ShadeContext::default());
+    let (mut px, mut clk, mut lat, mut min_ppc) = (0, 0, 0, f64::INFINITY);
+    let mut empty_rows = 0;
+    for (t, j) in large.iter().zip(&lj) {
+        let s = run(std::slice::from_ref(j));
+        px += s.pixels;
+        clk += s.clocks;
+        lat += 4; // load → first pixel of the pipe
+        min_ppc = min_ppc.min(s.pixels_per_clock());
+        empty_rows += walk(t).rows.iter().filter(|r| r.len == 0).count() as u64;
+    }
+    let lr = rows(&large);
+    println!(
+        "large triangles (≥ 1000 px), one at a time: {px} pixels in {clk} clocks: {:.4} pixels/clock \
+         (worst triangle {min_ppc:.4}); per raster line {:.4} clocks beyond its pixels after the \
+         4-clock load latency ({empty_rows} of {lr} lines empty, 1 clock each)",
+        px as f64 / clk as f64,
+        (clk - px - lat) as f64 / lr as f64,
+    );
+    let s = run(&lj);
+    println!(
+        "large triangles back to back: {} pixels in {} clocks: {:.4} pixels/clock",
+        s.pixels,
+        s.clocks,
+        s.pixels_per_clock()
+    );
+}
+
+fn bench(c: &mut Criterion) {
+    figures();
+    let (tris, ctx) = default_scene();
+    let scene_jobs = jobs(&tris, &ctx);
+    let clocks = run(&scene_jobs).clocks;
+    let mut g = c.benchmark_group("rtl_raster");
+    g.sample_size(10);
+    g.throughput(Throughput::Elements(clocks));
+    g.bench_function("default_scene_clocks", |b| b.iter(|| run(&scene_jobs)));
+    g.finish();
+}
+
+criterion_group! {
+    name = benches;
+    // No plots: the plotters backend needs fonts the CI image may lack.
+    config = Criterion::default().without_plots();
+    targets = bench
+}
+criterion_main!(benches);
