@@ -12,7 +12,7 @@
 //! (cos λ − cos α·cos φ)/sin φ, negative when E lies beyond N_A (outside the arc).
 //!
 //! Kernel (hardware, fig. 3.6): the accumulating adder PSm in subtract mode holds ψ − t·Δφ and
-//! addresses a PROM of cos x; one multiplier forms cos β·PROM[arg]. It stops when the argument
+//! addresses a PROM of cos x; one multiplier forms cos β·PROM(arg). It stops when the argument
 //! goes negative (borrow out); the adder is then reloaded with φ − ψ and the rest of the span
 //! is produced from the N_B end (cos is even, so the arguments there are |ψ − t·Δφ|). The two
 //! parts can run side by side (two pixels per clock). The golden PROM is exact cos.
