@@ -465,11 +465,13 @@ impl Camera {
 /// Projects the mesh through the camera onto a `width`×`height` canvas.
 ///
 /// - Vertex addresses are the continuous screen positions rounded to the nearest integer.
-/// - Back-face culling by the sign of the screen-space area of the rounded vertices: a
-///   triangle is kept when [`ScreenTriangle::area2`] > 0 (clockwise on screen with y down, i.e.
-///   counter-clockwise in view space: the outside faces the viewer). Zero-area triangles (edge-on
-///   or collapsed by rounding) cover no pixel centre and are dropped too. Kept triangles keep
-///   the mesh's vertex order.
+/// - Back-face culling by the sign of the screen-space area of the rounded vertices: a face
+///   whose outside faces the viewer winds counter-clockwise as seen, which in y-down screen
+///   coordinates is a *negative* [`ScreenTriangle::area2`] in the mesh's vertex order. Those are
+///   kept; positive ones (back faces) and zero-area ones (edge-on, or collapsed by rounding: they
+///   cover no pixel centre) are dropped.
+/// - Kept triangles are emitted as (v0, v2, v1), so every returned triangle has `area2() > 0`
+///   (clockwise on screen, y down), whatever the mesh. The walk does not depend on the order.
 /// - Normals are rotated into view space (unit, viewer looking down −z).
 /// - Every vertex of a kept triangle must lie in 0..=4095 in x and y (12-bit addresses);
 ///   vertices off the canvas but inside that range are fine (the renderer discards off-canvas
@@ -494,7 +496,7 @@ pub fn project(
         let [a, b, c] = tri.map(|i| rounded[i as usize]);
         // Exact for in-range integers; for wild values only the range error below matters.
         let area2 = (b.0 - a.0) * (c.1 - a.1) - (c.0 - a.0) * (b.1 - a.1);
-        if area2 <= 0.0 {
+        if area2 >= 0.0 {
             continue; // back-facing or zero area (a NaN area falls through to the range check)
         }
         let mut v = [ScreenVertex {
@@ -503,7 +505,7 @@ pub fn project(
             z: 0.0,
             normal: DVec3::Z,
         }; 3];
-        for (k, &i) in tri.iter().enumerate() {
+        for (k, &i) in [tri[0], tri[2], tri[1]].iter().enumerate() {
             let s = screen[i as usize];
             for (axis, value, r) in [
                 ('x', s.x, rounded[i as usize].0),

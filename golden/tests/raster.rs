@@ -771,7 +771,8 @@ fn culled_spheres_have_no_hole_and_overlap_only_where_rounding_folds() {
                 if (st.area2() as f64) * exact_area < 0.0 {
                     flipped += 1;
                 }
-                if st.area2() < 0 {
+                // Back faces wind clockwise as seen: area2 > 0 in the mesh\'s order.
+                if st.area2() > 0 {
                     n_back += 1;
                     for (x, y) in edge_function_pixels(&st) {
                         back[idx(x, y)] += 1;
