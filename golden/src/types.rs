@@ -160,6 +160,8 @@ pub struct EdgeStep {
 ///   smallest x whose centre is on/right of it (left edge), or the largest x whose centre is
 ///   strictly left of it (right edge). `len` counts pixels from `x_start` in direction `dir`
 ///   whose centres are also inside the other side's edge for that row (0 if none).
+///   Hence `x_start` spans −1..=4095 (13 bits signed), while emitted pixels lie in 0..=4094:
+///   −1 occurs for a right working edge and 4095 for a left one, both only with `len` 0.
 /// - `edge_steps` from the previous row's `x_start` to this one's, `dx = x_start − prev`:
 ///   `dx == 0` → `[V]`; otherwise `|dx| − 1` × `H(sign dx)` followed by one `D(sign dx)`.
 ///

@@ -88,6 +88,12 @@ fn check_walk(v: [V; 3]) -> Result<(), String> {
         if r.dir != want_dir {
             return Err(format!("{v:?}: row {} dir {} want {want_dir}", r.y, r.dir));
         }
+        if !(-1..=4095).contains(&r.x_start) || (r.len > 0 && !(0..=4094).contains(&r.x_start)) {
+            return Err(format!(
+                "{v:?}: row {} x_start {} len {}",
+                r.y, r.x_start, r.len
+            ));
+        }
         // x_start from the working edge alone.
         let ok = if r.dir == 1 {
             centre_vs_edge(top, bot, r.x_start, r.y) >= 0
@@ -471,6 +477,31 @@ fn full_height_one_column_triangle() {
         assert_eq!(r, &row(r.y, want_steps, want.0, want.1, -1));
     }
     assert_eq!(w.pixel_count(), 2047);
+}
+
+#[test]
+fn x_start_reaches_4095_on_a_left_working_edge() {
+    // (4094,0),(4095,10),(4095,4095): working edge (4094,0)→(4095,4095) with x_edge =
+    // 4094 + (y + ½)/4095; the middle vertex is right of it → left working edge, x_start =
+    // ceil(x_edge − ½): 4094 for y ≤ 2047, 4095 from y = 2048. The other side is x = 4095 (right
+    // edge, centre 4094.5 inside) below y = 10 and the adjacent edge x = 4094 + (y + ½)/10 above,
+    // which holds 4094.5 from y = 5.
+    let w = walk(&tri([(4095, 4095), (4094, 0), (4095, 10)]));
+    assert_eq!(w.rows.len(), 4095);
+    for r in &w.rows {
+        let (x_start, len) = match r.y {
+            0..=4 => (4094, 0),
+            5..=2047 => (4094, 1),
+            _ => (4095, 0),
+        };
+        let steps: &[(StepType, i8)] = match r.y {
+            0 => &[],
+            2048 => &[(D, 1)],
+            _ => &[(Vt, 0)],
+        };
+        assert_eq!(r, &row(r.y, steps, x_start, len, 1), "row {}", r.y);
+    }
+    assert_eq!(w.pixel_count(), 2043);
 }
 
 #[test]
