@@ -18,6 +18,7 @@ pub mod normalizer;
 pub mod phong;
 pub mod quadric;
 pub mod raster;
+pub mod render;
 pub mod scene;
 pub mod shade;
 pub mod testing;

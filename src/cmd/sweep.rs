@@ -1,8 +1,94 @@
-//! (stub)
+//! `shadecore sweep`: NMSE of every method over rez × shininess × light angle, as CSV and
+//! Markdown.
+
+use std::fmt::Write as _;
+use std::path::PathBuf;
+
+use anyhow::{Context, Result};
+use golden::methods::Method;
+use indicatif::{ProgressBar, ProgressStyle};
+use rayon::prelude::*;
+
+use crate::cmd::render::{compare, render_golden};
+use crate::setup::{build, Lighting, SceneArgs};
 
 #[derive(clap::Args, Debug)]
-pub struct Args {}
+pub struct Args {
+    /// Tessellations to sweep.
+    #[arg(long, value_delimiter = ',', default_value = "10,20,50,100")]
+    pub rez: Vec<u32>,
+    /// Specular exponents to sweep.
+    #[arg(long, value_delimiter = ',', default_value = "10,50,255")]
+    pub shininess: Vec<u32>,
+    /// Light angles (degrees) to sweep.
+    #[arg(long = "light-deg", value_delimiter = ',', default_value = "30,90,150")]
+    pub light_deg: Vec<f64>,
+    /// `sphere`, `torus` or an .obj path.
+    #[arg(long, default_value = "sphere")]
+    pub scene: String,
+    /// Canvas size WxH.
+    #[arg(long, default_value = "400x400", value_parser = crate::setup::parse_size)]
+    pub size: (u32, u32),
+    #[arg(long, value_enum, default_value = "blinn")]
+    pub lighting: Lighting,
+    /// Output directory for sweep.csv and sweep.md.
+    #[arg(long, default_value = "out")]
+    pub out: PathBuf,
+}
 
-pub fn run(_a: Args) -> anyhow::Result<()> {
-    anyhow::bail!("not implemented yet")
+pub fn run(args: Args) -> Result<()> {
+    let mut configs = Vec::new();
+    for &rez in &args.rez {
+        for &shininess in &args.shininess {
+            for &light_deg in &args.light_deg {
+                configs.push(SceneArgs {
+                    scene: args.scene.clone(),
+                    rez,
+                    shininess,
+                    light_deg,
+                    size: args.size,
+                    lighting: args.lighting,
+                });
+            }
+        }
+    }
+    // Validate every configuration up front: a bad value fails before any work is done.
+    let setups = configs.iter().map(build).collect::<Result<Vec<_>>>()?;
+    let methods = &Method::ALL_NON_REFERENCE[..];
+    let bar = ProgressBar::new((configs.len() * (methods.len() + 1)) as u64).with_style(
+        ProgressStyle::with_template("sweep [{bar:40}] {pos}/{len} images {elapsed}")
+            .expect("static template")
+            .progress_chars("=> "),
+    );
+    let rows: Vec<Vec<f64>> = setups
+        .par_iter()
+        .map(|setup| {
+            let (reference, frames) = render_golden(setup, methods, &bar);
+            frames.iter().map(|f| compare(&reference, f).nmse).collect()
+        })
+        .collect();
+    bar.finish_and_clear();
+
+    let mut csv = String::from("scene,rez,shininess,light_deg,method,nmse,band\n");
+    let mut md = String::from("| rez | n | light | ");
+    md += &methods.iter().map(|m| m.name()).collect::<Vec<_>>().join(" | ");
+    md += " |\n|---|---|---|";
+    md += &"---:|".repeat(methods.len());
+    md += "\n";
+    for (c, row) in configs.iter().zip(&rows) {
+        write!(md, "| {} | {} | {}° |", c.rez, c.shininess, c.light_deg).unwrap();
+        for (m, v) in methods.iter().zip(row) {
+            let band = golden::nmse::Band::of(*v);
+            writeln!(csv, "{},{},{},{},{},{:.8},{}", c.scene, c.rez, c.shininess, c.light_deg, m.name(), v, band.label()).unwrap();
+            write!(md, " {v:.6} |").unwrap();
+        }
+        md += "\n";
+    }
+    std::fs::create_dir_all(&args.out)
+        .with_context(|| format!("creating output directory {}", args.out.display()))?;
+    std::fs::write(args.out.join("sweep.csv"), &csv).context("writing sweep.csv")?;
+    std::fs::write(args.out.join("sweep.md"), &md).context("writing sweep.md")?;
+    print!("{md}");
+    println!("wrote {} and {}", args.out.join("sweep.csv").display(), args.out.join("sweep.md").display());
+    Ok(())
 }

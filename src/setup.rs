@@ -1,0 +1,116 @@
+//! Scene set-up shared by every command: mesh, camera, projection to 12-bit screen addresses,
+//! light, viewer and material. This is the "software side" that also drives the RTL engine.
+
+use std::path::Path;
+
+use anyhow::{bail, Context, Result};
+use glam::{DQuat, DVec3};
+use golden::scene::{self, Camera};
+use golden::shade::{LightingModel, Material, ShadeContext};
+use golden::ScreenTriangle;
+
+/// Lighting model for every method (`--lighting`).
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Lighting {
+    Blinn,
+    Phong,
+    Lambert,
+}
+
+impl From<Lighting> for LightingModel {
+    fn from(l: Lighting) -> LightingModel {
+        match l {
+            Lighting::Blinn => LightingModel::Blinn,
+            Lighting::Phong => LightingModel::Phong,
+            Lighting::Lambert => LightingModel::Lambert,
+        }
+    }
+}
+
+/// Scene options shared by `render`, `sweep` and the RTL commands. Defaults are the thesis
+/// prototype's: sphere, tessellation 50, shininess 50, light at 90°.
+#[derive(clap::Args, Debug, Clone, serde::Serialize)]
+pub struct SceneArgs {
+    /// `sphere`, `torus`, or the path of a Wavefront .obj mesh.
+    #[arg(long, default_value = "sphere")]
+    pub scene: String,
+    /// Tessellation of the procedural sphere / torus (the prototype's "Sphere Rez").
+    #[arg(long, default_value_t = 50, value_parser = clap::value_parser!(u32).range(3..=100))]
+    pub rez: u32,
+    /// Specular exponent n.
+    #[arg(long, default_value_t = 50, value_parser = clap::value_parser!(u32).range(1..=1000))]
+    pub shininess: u32,
+    /// Light direction in degrees, 0..=360 (90 = from the front).
+    #[arg(long = "light-deg", default_value_t = 90.0, allow_negative_numbers = true)]
+    pub light_deg: f64,
+    /// Canvas size WxH, each 1..=4096 (screen addresses are 12 bits).
+    #[arg(long, default_value = "400x400", value_parser = parse_size)]
+    pub size: (u32, u32),
+    /// Lighting model used by the reference and every method.
+    #[arg(long, value_enum, default_value = "blinn")]
+    pub lighting: Lighting,
+}
+
+impl Default for SceneArgs {
+    fn default() -> Self {
+        SceneArgs {
+            scene: "sphere".into(),
+            rez: 50,
+            shininess: 50,
+            light_deg: 90.0,
+            size: (400, 400),
+            lighting: Lighting::Blinn,
+        }
+    }
+}
+
+/// Parse `WxH`.
+pub fn parse_size(s: &str) -> Result<(u32, u32), String> {
+    let (w, h) = s
+        .split_once(['x', 'X'])
+        .ok_or_else(|| format!("size {s:?} is not WxH (e.g. 400x400)"))?;
+    let dim = |v: &str| -> Result<u32, String> {
+        let n: u32 = v.trim().parse().map_err(|_| format!("size {s:?}: {v:?} is not a whole number"))?;
+        if !(1..=4096).contains(&n) {
+            return Err(format!(
+                "size {s:?}: {n} is outside 1..=4096 (screen addresses are 12 bits)"
+            ));
+        }
+        Ok(n)
+    };
+    Ok((dim(w)?, dim(h)?))
+}
+
+/// Everything a renderer needs.
+pub struct Setup {
+    pub tris: Vec<ScreenTriangle>,
+    pub ctx: ShadeContext,
+    pub width: u32,
+    pub height: u32,
+}
+
+/// Build the scene described by `args`.
+pub fn build(args: &SceneArgs) -> Result<Setup> {
+    let (width, height) = args.size;
+    let (mesh, rotation) = match args.scene.as_str() {
+        "sphere" => (scene::uv_sphere(args.rez)?, DQuat::IDENTITY),
+        "torus" => (scene::torus(args.rez)?, DQuat::from_rotation_x(55f64.to_radians())),
+        path if path.to_ascii_lowercase().ends_with(".obj") => (
+            scene::load_obj(Path::new(path))?,
+            DQuat::IDENTITY,
+        ),
+        other => bail!("unknown scene {other:?}: expected `sphere`, `torus` or the path of a .obj file"),
+    };
+    let camera = Camera::fit(&mesh, width, height, rotation);
+    let tris = scene::project(&mesh, &camera, width, height)
+        .with_context(|| format!("projecting scene {:?}", args.scene))?;
+    let light = scene::light_direction(args.light_deg)?;
+    let ctx = ShadeContext::new(
+        Material { shininess: args.shininess, ..Material::default() },
+        args.lighting.into(),
+        light,
+        DVec3::Z,
+    )?;
+    Ok(Setup { tris, ctx, width, height })
+}

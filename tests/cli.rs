@@ -1,0 +1,154 @@
+//! End-to-end tests of the `shadecore` binary: the default render and its quality bounds, and
+//! bad input (one-line error, non-zero exit, never a panic).
+
+use std::path::Path;
+use std::process::{Command, Output};
+
+fn shadecore(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_shadecore"))
+        .args(args)
+        .output()
+        .expect("run shadecore")
+}
+
+fn render_default(dir: &Path) -> serde_json::Value {
+    let out = shadecore(&["render", "--out", dir.to_str().unwrap()]);
+    assert!(
+        out.status.success(),
+        "render failed: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = std::fs::read_to_string(dir.join("report.json")).expect("report.json written");
+    serde_json::from_str(&text).expect("report.json is JSON")
+}
+
+const METHODS: [&str; 13] = [
+    "flat", "gouraud", "normalizer", "normalizer-fit", "fast", "fast-fit", "angular", "quadric",
+    "cubic", "brdf-k4", "brdf-k8", "brdf-k16", "bump",
+];
+
+#[test]
+fn render_writes_every_file_of_the_default_scene() {
+    let dir = tempfile::tempdir().unwrap();
+    let report = render_default(dir.path());
+    let reference = image::open(dir.path().join("reference.png")).expect("reference.png").to_rgb8();
+    assert_eq!(reference.dimensions(), (400, 400));
+    // The sphere must be there and lit: a black or empty reference would make every NMSE
+    // meaningless.
+    let lit = reference.pixels().filter(|p| p.0.iter().any(|&c| c > 0)).count();
+    assert!(lit > 400 * 400 / 3, "only {lit} lit pixels in the reference");
+    for m in METHODS {
+        for file in [format!("{m}.png"), format!("{m}-diff.png")] {
+            let img = image::open(dir.path().join(&file)).unwrap_or_else(|e| panic!("{file}: {e}"));
+            assert_eq!(img.width(), 400, "{file}");
+        }
+        let entry = &report["methods"][m];
+        let nmse = entry["nmse"].as_f64().unwrap_or_else(|| panic!("no nmse for {m}"));
+        assert!(nmse.is_finite() && nmse >= 0.0, "{m}: nmse {nmse}");
+        assert!(entry["band"].is_string(), "{m}: no band");
+    }
+    assert!(dir.path().join("sheet.png").exists());
+    // The metric must discriminate: flat shading is far from Phong.
+    let flat = report["methods"]["flat"]["nmse"].as_f64().unwrap();
+    assert!(flat > 0.001, "flat shading NMSE {flat} should be in the 'entirely different' band");
+}
+
+/// Issue 2's bounds at the default scene (the sources report 0.00011–0.00019).
+#[test]
+fn default_scene_methods_meet_the_thesis_bounds() {
+    let dir = tempfile::tempdir().unwrap();
+    let report = render_default(dir.path());
+    let nmse = |m: &str| report["methods"][m]["nmse"].as_f64().unwrap();
+    let mut failures = Vec::new();
+    for (m, bound) in [
+        ("normalizer-fit", 0.0001),
+        ("fast-fit", 0.00025),
+        ("angular", 0.00025),
+        ("quadric", 0.00025),
+        ("cubic", 0.00025),
+        ("brdf-k16", 0.00025),
+    ] {
+        if !(nmse(m) <= bound) {
+            failures.push(format!("{m}: NMSE {:.6} > {bound}", nmse(m)));
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("; "));
+}
+
+fn assert_clean_error(args: &[&str], needle: &str) {
+    let out = shadecore(args);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success(), "{args:?} succeeded");
+    assert!(!stderr.contains("panicked"), "{args:?} panicked: {stderr}");
+    let lines: Vec<&str> = stderr.lines().filter(|l| !l.trim().is_empty()).collect();
+    assert_eq!(lines.len(), 1, "{args:?}: expected one line, got {stderr:?}");
+    assert!(lines[0].starts_with("error"), "{args:?}: {stderr:?}");
+    assert!(
+        lines[0].to_lowercase().contains(&needle.to_lowercase()),
+        "{args:?}: {:?} does not mention {needle:?}",
+        lines[0]
+    );
+}
+
+#[test]
+fn bad_cli_arguments_are_one_line_errors() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().to_str().unwrap();
+    assert_clean_error(&["render", "--out", out, "--shininess", "0"], "1..=1000");
+    assert_clean_error(&["render", "--out", out, "--shininess", "1001"], "1..=1000");
+    assert_clean_error(&["render", "--out", out, "--method", "phongish"], "phongish");
+    assert_clean_error(&["render", "--out", out, "--rez", "2"], "3..=100");
+    assert_clean_error(&["render", "--out", out, "--size", "5000x100"], "4096");
+    assert_clean_error(&["render", "--out", out, "--size", "big"], "WxH");
+    assert_clean_error(&["render", "--out", out, "--light-deg", "400"], "360");
+    assert_clean_error(&["render", "--out", out, "--light-deg", "nan"], "light");
+    assert_clean_error(&["render", "--out", out, "--scene", "cube"], "cube");
+    assert_clean_error(&["render", "--out", out, "--lighting", "toon"], "toon");
+    assert_clean_error(&["frobnicate"], "frobnicate");
+}
+
+#[test]
+fn bad_meshes_are_one_line_errors() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("out");
+    let out = out.to_str().unwrap();
+    let write = |name: &str, text: &str| {
+        let p = tmp.path().join(name);
+        std::fs::write(&p, text).unwrap();
+        p.to_str().unwrap().to_string()
+    };
+    let missing = tmp.path().join("nope.obj");
+    assert_clean_error(&["render", "--out", out, "--scene", missing.to_str().unwrap()], "nope.obj");
+    let garbage = write("garbage.obj", "v 1 2\nf 1 2 x\nthis is not obj\n");
+    assert_clean_error(&["render", "--out", out, "--scene", &garbage], "garbage.obj");
+    let tri = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+    let nan = write("nan.obj", &format!("{tri}vn nan 0 1\nvn 0 0 1\nvn 0 0 1\nf 1//1 2//2 3//3\n"));
+    assert_clean_error(&["render", "--out", out, "--scene", &nan], "normal");
+    let zero = write("zero.obj", &format!("{tri}vn 0 0 0\nvn 0 0 1\nvn 0 0 1\nf 1//1 2//2 3//3\n"));
+    assert_clean_error(&["render", "--out", out, "--scene", &zero], "normal");
+    let bad_index = write("index.obj", &format!("{tri}f 1 2 9\n"));
+    assert_clean_error(&["render", "--out", out, "--scene", &bad_index], "index.obj");
+    let empty = write("empty.obj", "# nothing here\n");
+    assert_clean_error(&["render", "--out", out, "--scene", &empty], "empty.obj");
+}
+
+#[test]
+fn obj_scene_renders() {
+    // A small tetrahedron-like mesh without normals: smooth normals are computed.
+    let tmp = tempfile::tempdir().unwrap();
+    let obj = tmp.path().join("tet.obj");
+    std::fs::write(
+        &obj,
+        "v 0 0 1\nv 0.94 0 -0.33\nv -0.47 0.82 -0.33\nv -0.47 -0.82 -0.33\nf 1 2 3\nf 1 3 4\nf 1 4 2\nf 2 4 3\n",
+    )
+    .unwrap();
+    let out = tmp.path().join("out");
+    let o = shadecore(&[
+        "render", "--scene", obj.to_str().unwrap(), "--out", out.to_str().unwrap(),
+        "--method", "gouraud,normalizer-fit", "--size", "64x48",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let img = image::open(out.join("gouraud.png")).unwrap().to_rgb8();
+    assert_eq!(img.dimensions(), (64, 48));
+    assert!(img.pixels().any(|p| p.0 != [0, 0, 0]), "the mesh is not visible");
+}
