@@ -80,7 +80,7 @@ pub fn run(args: Args) -> Result<()> {
         for (m, v) in methods.iter().zip(row) {
             let band = golden::nmse::Band::of(*v);
             writeln!(csv, "{},{},{},{},{},{:.8},{}", c.scene, c.rez, c.shininess, c.light_deg, m.name(), v, band.label()).unwrap();
-            write!(md, " {v:.6} |").unwrap();
+            write!(md, " {v:.2e} |").unwrap();
         }
         md += "\n";
     }
