@@ -639,9 +639,12 @@ impl Grid {
 
 #[test]
 fn tiled_rectangles_are_covered_exactly_once() {
-    let mut r = runner("tiled_rectangles_are_covered_exactly_once", 400);
+    let mut r = runner("tiled_rectangles_are_covered_exactly_once", 600);
+    let (pixels, triangles) = (Cell::new(0usize), Cell::new(0usize));
     let result = r.run(&grid(), |g| {
         let (w, h) = (g.nx as i32 * g.sx, g.ny as i32 * g.sy);
+        pixels.set(pixels.get() + (w * h) as usize);
+        triangles.set(triangles.get() + 2 * g.nx * g.ny);
         // Count over the rectangle plus a 2-pixel border, to catch pixels written outside.
         let (bx, by) = (g.x0 - 2, g.y0 - 2);
         let (cw, ch) = ((w + 4) as usize, (h + 4) as usize);
@@ -678,6 +681,11 @@ fn tiled_rectangles_are_covered_exactly_once() {
     if let Err(e) = result {
         panic!("{e}");
     }
+    println!(
+        "{} triangles tiling {} pixels",
+        triangles.get(),
+        pixels.get()
+    );
 }
 
 // ---------------------------------------------------------------------------------------------
