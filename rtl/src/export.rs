@@ -81,12 +81,7 @@ impl FromStr for BlockKind {
             .iter()
             .copied()
             .find(|b| b.name() == s)
-            .ok_or_else(|| {
-                format!(
-                    "unknown block {s:?} (expected one of: {}, all)",
-                    Self::names()
-                )
-            })
+            .ok_or_else(|| format!("unknown block {s:?} (expected one of: {})", Self::names()))
     }
 }
 

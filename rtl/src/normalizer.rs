@@ -281,7 +281,6 @@ pub struct NormalizerK {
     c1_rnd: Constant<Bits<32>>,
     c0_rnd: Constant<Bits<32>>,
     k_half_lsb: Constant<Bits<32>>,
-    k_sat: Constant<Bits<32>>,
     out_half_lsb: Constant<Bits<32>>,
     sign32: Constant<Bits<32>>,
     u16_max: Constant<Bits<16>>,
@@ -373,8 +372,6 @@ impl NormalizerK {
             c1_rnd: b32(c.c1 + (1 << 14)),
             c0_rnd: b32(c.c0 + (1 << 12)),
             k_half_lsb: b32(1 << 12),
-            // K ≥ 2 − 2⁻¹⁶ rounds to 2.0, which Q1.15 cannot hold.
-            k_sat: b32((1 << 29) - (1 << 12)),
             out_half_lsb: b32(1 << 14),
             sign32: b32(1 << 31),
             u16_max: Constant::new(0xFFFF.into()),
@@ -503,7 +500,9 @@ impl Logic for NormalizerK {
 
         // B1: K (Q4.28) → Q1.15, round to nearest, saturate.
         self.k_rnd.next = self.k.val() + self.k_half_lsb.val();
-        if self.k.val() >= self.k_sat.val() {
+        // K ≥ 2 − 2⁻¹⁶ (it would round to 2.0, which Q1.15 cannot hold) ⟺ K ≥ 2 or
+        // K[28:12] all ones: bit tests instead of a 32-bit comparator (the critical path).
+        if self.k.val().get_bits::<3>(29).any() | self.k.val().get_bits::<17>(12).all() {
             self.k_narrow.d.next = self.u16_max.val();
         } else {
             self.k_narrow.d.next = self.k_rnd.val().get_bits::<16>(13);

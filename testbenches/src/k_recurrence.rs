@@ -301,3 +301,16 @@ pub fn golden_k(span: &Span) -> Vec<f64> {
         .map(|k| k / K_FULL.lsb())
         .collect()
 }
+
+/// Random spans (≤ 64 steps, `n_spans` of them) after the named edge spans, and a schedule
+/// with random gaps, drawn with the runner named `name` (seed printed).
+pub fn spans_and_schedule(name: &str, n_spans: usize) -> (Vec<Span>, Vec<Clock>) {
+    let mut r = golden::testing::runner(name, 1);
+    let st = span_strategy(64);
+    let mut spans: Vec<Span> = edge_spans().into_iter().map(|(_, s)| s).collect();
+    spans.extend((0..n_spans).map(|_| st.new_tree(&mut r).expect("no rejection").current()));
+    let pixels: usize = spans.iter().map(|s| s.len).sum();
+    let gaps = random_gaps(&mut r, pixels);
+    let sched = schedule(&spans, &gaps);
+    (spans, sched)
+}

@@ -7,3 +7,5 @@ pub mod synth;
 pub mod tools;
 pub mod verilog;
 pub mod k_recurrence;
+pub mod blocks;
+pub mod vcd_check;

@@ -59,6 +59,21 @@ pub fn domain_vector() -> impl Strategy<Value = [f64; 3]> {
         })
 }
 
+/// Name (hence seed) of the 100 000-vector domain run shared by the cycle-by-cycle test and
+/// the differential Verilog test, so both see the same vectors.
+pub const DOMAIN_RUN: &str = "normalizer_domain";
+/// Vectors in the domain run.
+pub const DOMAIN_VECTORS: usize = 100_000;
+
+/// The domain run's seed and vectors (prints the seed; `SHADECORE_SEED` overrides it).
+pub fn domain_run_vectors() -> (u64, Vec<[f64; 3]>) {
+    let mut r = golden::testing::runner(DOMAIN_RUN, 1);
+    (
+        golden::testing::seed_for(DOMAIN_RUN),
+        domain_vectors(&mut r, DOMAIN_VECTORS),
+    )
+}
+
 /// `n` domain vectors drawn with `runner`.
 pub fn domain_vectors(runner: &mut TestRunner, n: usize) -> Vec<[f64; 3]> {
     let s = domain_vector();
@@ -121,6 +136,11 @@ pub fn extreme_cases() -> Vec<(&'static str, [u64; 3])> {
         ("K=0.25 (f = 1.77, below the domain)", [0x2000, 0, 0]),
         ("K=0.0625 (f saturates at 2)", [0x1000, 0, 0]),
         ("K=1.5", [0x4000, 0x2D41, 0]),
+        // K saturates but the outputs do not: the only way to see the K saturation alone.
+        (
+            "K=2.5 (K saturates, outputs in range)",
+            [0x4000, 0x4000, 0x2D41],
+        ),
         ("mixed extremes", [0x8000, 0x7FFF, 0x0001]),
     ]
 }

@@ -1,24 +1,11 @@
 //! The K recurrence (`rtl::k_recurrence`): exact K along spans, and the span normalizer.
 
-use golden::testing::{runner, seed_for};
-use proptest::strategy::{Strategy, ValueTree};
+use golden::testing::seed_for;
 use rtl::k_recurrence::{KRecurrence, SpanNormalizer};
 use rtl::normalizer::{Normalizer, NormalizerCoeffs};
 use testbenches::harness::{self, simulate_rows, CheckSpec, Compare};
 use testbenches::k_recurrence::*;
 use testbenches::normalizer::check_spec;
-
-/// Random spans (≤ 64 pixels) plus the named edge spans, and a schedule with random gaps.
-fn spans_and_schedule(name: &str, n_spans: usize) -> (Vec<Span>, Vec<Clock>) {
-    let mut r = runner(name, 1);
-    let st = span_strategy(64);
-    let mut spans: Vec<Span> = edge_spans().into_iter().map(|(_, s)| s).collect();
-    spans.extend((0..n_spans).map(|_| st.new_tree(&mut r).unwrap().current()));
-    let pixels: usize = spans.iter().map(|s| s.len).sum();
-    let gaps = random_gaps(&mut r, pixels);
-    let sched = schedule(&spans, &gaps);
-    (spans, sched)
-}
 
 #[test]
 fn span_vectors_stay_in_the_formula_domain() {

@@ -8,16 +8,11 @@ use rtl::normalizer::{CoeffError, Normalizer, NormalizerCoeffs, NormalizerK};
 use testbenches::harness::{self, Expected};
 use testbenches::normalizer::*;
 
-/// The 100 000 domain vectors shared with the differential Verilog test (same name → same seed).
-pub const DOMAIN_RUN: &str = "normalizer_domain";
-pub const DOMAIN_VECTORS: usize = 100_000;
-
 /// Runs the 100k domain vectors through the normalizer; returns (measured end-to-end max vs
 /// the quantized vector, vs the f64 vector, datapath bound).
 fn domain_run(coeffs: &NormalizerCoeffs, name: &str) -> (f64, f64, f64) {
-    let mut r = runner(DOMAIN_RUN, 1);
-    let seed = seed_for(DOMAIN_RUN);
-    let vectors = domain_vectors(&mut r, DOMAIN_VECTORS);
+    // The same vectors as the differential Verilog test (tests/verilog_export.rs).
+    let (seed, vectors) = domain_run_vectors();
     let b = domain_budget(coeffs);
     let slots: Vec<Slot> = vectors.iter().map(|v| Slot::Vector(quantize(*v))).collect();
     let report = check_normalizer(name, seed, &slots, coeffs, &b).unwrap_or_else(|f| panic!("{f}"));
