@@ -84,6 +84,39 @@ pub fn bvi_row(w: Option<&[ChannelWords; 3]>, o: &AddressOutputs) -> Vec<u64> {
     row
 }
 
+/// The BVI's input rows for `jobs`: the golden address block's stream (plus one idle clock to
+/// see the last colour), each triangle's words loaded in the clock the address block accepts
+/// its set-up. Returns the rows and the address stream they carry.
+pub fn bvi_rows(jobs: &[TriangleJob]) -> (Vec<Vec<u64>>, Vec<AddressOutputs>) {
+    let setups: Vec<AddressSetup> = jobs.iter().map(|j| j.addr).collect();
+    let st = stimulus(&setups);
+    let mut stream = st.expected;
+    stream.push(AddressOutputs::default());
+    let mut rows = Vec::with_capacity(stream.len());
+    let mut next = 0;
+    for (c, o) in stream.iter().enumerate() {
+        let load = (st.loads.get(next) == Some(&c)).then(|| &jobs[next].words);
+        next += load.is_some() as usize;
+        rows.push(bvi_row(load, o));
+    }
+    (rows, stream)
+}
+
+/// The pipe's input rows for `jobs`, loads in the clocks the golden address block accepts
+/// them (the pipe's `ready` is the address block's), plus two idle clocks to flush.
+pub fn pipe_rows(jobs: &[TriangleJob]) -> Vec<Vec<u64>> {
+    let setups: Vec<AddressSetup> = jobs.iter().map(|j| j.addr).collect();
+    let st = stimulus(&setups);
+    let mut rows = Vec::with_capacity(st.rows.len() + 2);
+    let mut next = 0;
+    for c in 0..st.rows.len() + 2 {
+        let load = (st.loads.get(next) == Some(&c)).then(|| &jobs[next]);
+        next += load.is_some() as usize;
+        rows.push(pipe_row(load));
+    }
+    rows
+}
+
 /// The golden value of every pixel of `jobs`' walks, in stream order: per channel f64
 /// intensity (no bias) and the number of additions that reach it.
 pub type GoldenPixel = ([f64; 3], u32);
@@ -97,17 +130,7 @@ pub fn check_bvi(
     jobs: &[TriangleJob],
     golden: &[GoldenPixel],
 ) -> Result<Report, Failure> {
-    let setups: Vec<AddressSetup> = jobs.iter().map(|j| j.addr).collect();
-    let st = stimulus(&setups);
-    let mut stream = st.expected.clone();
-    stream.push(AddressOutputs::default()); // one more clock to see the last colour
-    let mut rows = Vec::with_capacity(stream.len());
-    let mut next = 0;
-    for (c, o) in stream.iter().enumerate() {
-        let load = (st.loads.get(next) == Some(&c)).then(|| &jobs[next].words);
-        next += load.is_some() as usize;
-        rows.push(bvi_row(load, o));
-    }
+    let (rows, stream) = bvi_rows(jobs);
     let bounds: Vec<f64> = golden.iter().map(|g| error_bound(g.1) + 1e-6).collect();
     let max_bound = bounds.iter().copied().fold(0.0, f64::max).max(1e-6);
     let rms_bound = (bounds.iter().map(|b| b * b).sum::<f64>() / bounds.len().max(1) as f64)

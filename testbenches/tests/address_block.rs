@@ -140,3 +140,148 @@ fn random_triangles_match_model_and_walk() {
     .unwrap();
     println!("[{name}] {} clocks simulated", clocks.get());
 }
+
+// ---------------------------------------------------------------------------------------------
+// Exported Verilog: Yosys, Icarus/Verilator differential (bit-exact every clock), mutants.
+
+use proptest::strategy::ValueTree;
+use rtl::address_block::AddressBlock;
+use testbenches::address_block::stimulus;
+use testbenches::synth::check_and_synth;
+use testbenches::tools::{self, Tool};
+use testbenches::verilog::{differential, DiffError, Simulator};
+
+fn address_block_verilog() -> String {
+    let raw = rtl::export::raw_verilog(AddressBlock::default()).expect("rust-hdl check");
+    rtl::export::rename_top(&raw, "address_block")
+}
+
+/// The differential stimulus: the named cases and `n` seeded random triangle streams, walked
+/// back to back in one run (so triangle overlap and every handshake path are exercised).
+fn differential_setups(n: usize) -> Vec<AddressSetup> {
+    let name = "address_block_differential";
+    let mut r = runner(name, 1);
+    let s = prop::collection::vec(triangle_strategy(), 1..4);
+    let mut tris: Vec<Tri> = vec![
+        [(0, 0), (10, 0), (0, 10)],
+        [(2, 3), (30, 3), (17, 20)],
+        [(17, 3), (2, 20), (30, 20)],
+        [(40, 1), (3, 7), (11, 30)],
+        [(0, 0), (1, 1), (2, 2)],
+        [(0, 0), (1, 0), (0, 1)],
+        [(0, 0), (1, 3), (1, 4)],
+        [(0, 0), (4095, 1), (0, 2)],
+        [(4095, 0), (0, 3), (3000, 7)],
+        [(0, 0), (4095, 4095), (4095, 4094)],
+    ];
+    for _ in 0..n {
+        tris.extend(s.new_tree(&mut r).unwrap().current());
+    }
+    tris.iter().map(|&p| AddressSetup::new(&tri(p))).collect()
+}
+
+#[test]
+fn yosys_synthesizes_address_block_cleanly() {
+    if !tools::require(&[Tool::Yosys], "yosys_synthesizes_address_block_cleanly") {
+        return;
+    }
+    let rep = check_and_synth(
+        &address_block_verilog(),
+        "address_block",
+        "yosys-address-block",
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    print!("{rep}");
+    assert_eq!(rep.mac16(), 0, "the address block has no multiplier");
+    assert!(rep.luts() > 0 && rep.ffs() > 0, "empty netlist?");
+}
+
+fn differential_run(sim: Simulator, n: usize, tag: &str) {
+    if !tools::require(sim.tools(), tag) {
+        return;
+    }
+    let rows = stimulus(&differential_setups(n)).rows;
+    let rep = differential(
+        AddressBlock::default,
+        &address_block_verilog(),
+        "address_block",
+        &rows,
+        sim,
+        tag,
+    )
+    .unwrap_or_else(|e| panic!("{e} (seed {})", seed_for("address_block_differential")));
+    println!(
+        "{sim:?}: bit-exact over {} clocks × {} ports; ran {:?}",
+        rep.cycles, rep.ports, rep.verilog_sim_time
+    );
+    assert_eq!(rep.cycles, rows.len());
+}
+
+#[test]
+fn address_block_differential_icarus() {
+    differential_run(Simulator::Icarus, 40, "diff-address-block-icarus");
+}
+
+/// Verilator 5.006 does not wake combinational logic on variables written by `$fscanf`, so the
+/// shared testbench (`testbenches::verilog::testbench`) applies every input one clock late
+/// under Verilator; copying the `$fscanf` targets into the driving regs fixes it (verified by
+/// hand: bit-exact with Icarus over 277 668 clocks). Enable once the generator does that.
+#[test]
+#[ignore = "shared Verilog testbench: $fscanf targets need copying for Verilator (see doc)"]
+fn address_block_differential_verilator() {
+    differential_run(Simulator::Verilator, 40, "diff-address-block-verilator");
+}
+
+#[test]
+fn broken_address_block_export_is_caught() {
+    if !tools::require(
+        Simulator::Icarus.tools(),
+        "broken_address_block_export_is_caught",
+    ) {
+        return;
+    }
+    let good = address_block_verilog();
+    let rows = stimulus(&differential_setups(20)).rows;
+    let mutants = [
+        (
+            "CTx step: +1 → +2",
+            "p_x$d = p_x$q + 32'h1",
+            "p_x$d = p_x$q + 32'h2",
+        ),
+        (
+            "row length: B_o − B_w → B_w − B_o",
+            "rec_len = other$bound - working$bound",
+            "rec_len = working$bound - other$bound",
+        ),
+        (
+            "third-edge switch: == → !=",
+            "switch_now = e_y_next == e_y_switch$q",
+            "switch_now = e_y_next != e_y_switch$q",
+        ),
+        (
+            "ready: & → |",
+            "ready_now = ~e_busy$q & ~wait_first$q",
+            "ready_now = ~e_busy$q | ~wait_first$q",
+        ),
+    ];
+    for (what, from, to) in mutants {
+        assert_eq!(
+            good.matches(from).count(),
+            1,
+            "mutation site {from:?} must occur once"
+        );
+        let bad = good.replacen(from, to, 1);
+        match differential(
+            AddressBlock::default,
+            &bad,
+            "address_block",
+            &rows,
+            Simulator::Icarus,
+            "mutant-address-block",
+        ) {
+            Err(DiffError::Mismatch(m)) => println!("caught mutant [{what}]: {m}"),
+            Err(DiffError::Tool(e)) => panic!("mutant [{what}] did not run: {e}"),
+            Ok(_) => panic!("mutant [{what}] was NOT caught by the differential test"),
+        }
+    }
+}
