@@ -3,3 +3,4 @@
 pub mod cmd;
 pub mod output;
 pub mod setup;
+pub mod rtl_engine;
