@@ -120,7 +120,7 @@ pub fn check(
     name: &str,
     seed: u64,
     setups: &[AddressSetup],
-) -> Result<(Report, Vec<AddressOutputs>), Failure> {
+) -> Result<(Report, Vec<AddressOutputs>), Box<Failure>> {
     let st = stimulus(setups);
     let spec = CheckSpec {
         name: name.into(),
@@ -132,7 +132,8 @@ pub fn check(
         .iter()
         .map(|o| outputs_row(o).into_iter().map(Expected::Word).collect())
         .collect();
-    let report = crate::harness::run_rows(AddressBlock::default, &spec, &st.rows, &expected)?;
+    let report = crate::harness::run_rows(AddressBlock::default, &spec, &st.rows, &expected)
+        .map_err(Box::new)?;
     let outs = report.outputs.iter().map(|r| row_outputs(r)).collect();
     Ok((report, outs))
 }

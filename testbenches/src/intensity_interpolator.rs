@@ -129,7 +129,7 @@ pub fn check_bvi(
     seed: u64,
     jobs: &[TriangleJob],
     golden: &[GoldenPixel],
-) -> Result<Report, Failure> {
+) -> Result<Report, Box<Failure>> {
     let (rows, stream) = bvi_rows(jobs);
     let bounds: Vec<f64> = golden.iter().map(|g| error_bound(g.1) + 1e-6).collect();
     let max_bound = bounds.iter().copied().fold(0.0, f64::max).max(1e-6);
@@ -172,6 +172,7 @@ pub fn check_bvi(
     }
     assert_eq!(k, golden.len(), "golden pixels and address stream disagree");
     crate::harness::run_rows(IntensityInterpolator::default, &spec, &rows, &expected)
+        .map_err(Box::new)
 }
 
 /// Per-pixel checks on a passed [`check_bvi`] report: each word within its own bound, and the

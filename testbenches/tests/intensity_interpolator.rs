@@ -105,7 +105,8 @@ fn report(name: &str, st: &Stats) {
 fn named_edge_cases() {
     let mut st = Stats::default();
     let ramp = [[0.0; 3], [255.0; 3], [100.0, 50.0, 200.0]];
-    let cases: Vec<(&str, Vec<Tri>, Vec<[[f64; 3]; 3]>)> = vec![
+    type Case = (&'static str, Vec<Tri>, Vec<[[f64; 3]; 3]>);
+    let cases: Vec<Case> = vec![
         (
             "flat_colour",
             vec![[(3, 1), (40, 7), (11, 30)]],
