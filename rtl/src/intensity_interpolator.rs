@@ -47,8 +47,12 @@
 //!
 //! Inputs `in_valid`, `in_row_start`, `in_step`, `in_carry` are the address block's outputs of
 //! the same name. Outputs are registers: the colour of the pixel presented in clock t appears
-//! in clock t + 1 with `valid_out` (and the unsaturated words `red_word` … `blue_word`). One pixel per clock. `load` is accepted at any clock; give
-//! it the set-up of the triangle loaded into the address block in the same clock.
+//! in clock t + 1 with `valid_out` (and the unsaturated words `red_word` … `blue_word`).
+//! One pixel per clock. `load` writes the shadow bank in any clock: assert it together with
+//! the address block's accepted load (`load & ready`). That is always safe, because the
+//! address block raises `ready` only after the previous triangle's first event has been shown,
+//! i.e. after the clock in which this block copied the shadow bank into RG1–RG3/RG5 (a copy and
+//! a new write in the same clock are fine: the copy reads the old values).
 //!
 //! # Error budget
 //!
