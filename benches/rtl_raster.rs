@@ -97,10 +97,13 @@ fn figures() {
     let lr = rows(&large);
     println!(
         "large triangles (≥ 1000 px), one at a time: {px} pixels in {clk} clocks: {:.4} pixels/clock \
-         (worst triangle {min_ppc:.4}); per raster line {:.4} clocks beyond its pixels after the \
-         4-clock load latency ({empty_rows} of {lr} lines empty, 1 clock each)",
+         (worst triangle {min_ppc:.4})",
         px as f64 / clk as f64,
-        (clk - px - lat) as f64 / lr as f64,
+    );
+    println!(
+        "line-start cost: {:.4} extra clocks per line with pixels; {empty_rows} of {lr} lines are \
+         empty and cost 1 clock each; plus the 4-clock load latency per triangle",
+        (clk - px - lat - empty_rows) as f64 / (lr - empty_rows) as f64,
     );
     let s = run(&lj);
     println!(
