@@ -23,34 +23,58 @@ fn render_default(dir: &Path) -> serde_json::Value {
 }
 
 const METHODS: [&str; 13] = [
-    "flat", "gouraud", "normalizer", "normalizer-fit", "fast", "fast-fit", "angular", "quadric",
-    "cubic", "brdf-k4", "brdf-k8", "brdf-k16", "bump",
+    "flat",
+    "gouraud",
+    "normalizer",
+    "normalizer-fit",
+    "fast",
+    "fast-fit",
+    "angular",
+    "quadric",
+    "cubic",
+    "brdf-k4",
+    "brdf-k8",
+    "brdf-k16",
+    "bump",
 ];
 
 #[test]
 fn render_writes_every_file_of_the_default_scene() {
     let dir = tempfile::tempdir().unwrap();
     let report = render_default(dir.path());
-    let reference = image::open(dir.path().join("reference.png")).expect("reference.png").to_rgb8();
+    let reference = image::open(dir.path().join("reference.png"))
+        .expect("reference.png")
+        .to_rgb8();
     assert_eq!(reference.dimensions(), (400, 400));
     // The sphere must be there and lit: a black or empty reference would make every NMSE
     // meaningless.
-    let lit = reference.pixels().filter(|p| p.0.iter().any(|&c| c > 0)).count();
-    assert!(lit > 400 * 400 / 3, "only {lit} lit pixels in the reference");
+    let lit = reference
+        .pixels()
+        .filter(|p| p.0.iter().any(|&c| c > 0))
+        .count();
+    assert!(
+        lit > 400 * 400 / 3,
+        "only {lit} lit pixels in the reference"
+    );
     for m in METHODS {
         for file in [format!("{m}.png"), format!("{m}-diff.png")] {
             let img = image::open(dir.path().join(&file)).unwrap_or_else(|e| panic!("{file}: {e}"));
             assert_eq!(img.width(), 400, "{file}");
         }
         let entry = &report["methods"][m];
-        let nmse = entry["nmse"].as_f64().unwrap_or_else(|| panic!("no nmse for {m}"));
+        let nmse = entry["nmse"]
+            .as_f64()
+            .unwrap_or_else(|| panic!("no nmse for {m}"));
         assert!(nmse.is_finite() && nmse >= 0.0, "{m}: nmse {nmse}");
         assert!(entry["band"].is_string(), "{m}: no band");
     }
     assert!(dir.path().join("sheet.png").exists());
     // The metric must discriminate: flat shading is far from Phong.
     let flat = report["methods"]["flat"]["nmse"].as_f64().unwrap();
-    assert!(flat > 0.001, "flat shading NMSE {flat} should be in the 'entirely different' band");
+    assert!(
+        flat > 0.001,
+        "flat shading NMSE {flat} should be in the 'entirely different' band"
+    );
 }
 
 /// Issue 2's bounds at the default scene (the sources report 0.00011–0.00019).
@@ -81,7 +105,11 @@ fn assert_clean_error(args: &[&str], needle: &str) {
     assert!(!out.status.success(), "{args:?} succeeded");
     assert!(!stderr.contains("panicked"), "{args:?} panicked: {stderr}");
     let lines: Vec<&str> = stderr.lines().filter(|l| !l.trim().is_empty()).collect();
-    assert_eq!(lines.len(), 1, "{args:?}: expected one line, got {stderr:?}");
+    assert_eq!(
+        lines.len(),
+        1,
+        "{args:?}: expected one line, got {stderr:?}"
+    );
     assert!(lines[0].starts_with("error"), "{args:?}: {stderr:?}");
     assert!(
         lines[0].to_lowercase().contains(&needle.to_lowercase()),
@@ -96,7 +124,10 @@ fn bad_cli_arguments_are_one_line_errors() {
     let out = tmp.path().to_str().unwrap();
     assert_clean_error(&["render", "--out", out, "--shininess", "0"], "1..=1000");
     assert_clean_error(&["render", "--out", out, "--shininess", "1001"], "1..=1000");
-    assert_clean_error(&["render", "--out", out, "--method", "phongish"], "phongish");
+    assert_clean_error(
+        &["render", "--out", out, "--method", "phongish"],
+        "phongish",
+    );
     assert_clean_error(&["render", "--out", out, "--rez", "2"], "3..=100");
     assert_clean_error(&["render", "--out", out, "--size", "5000x100"], "4096");
     assert_clean_error(&["render", "--out", out, "--size", "big"], "WxH");
@@ -118,16 +149,31 @@ fn bad_meshes_are_one_line_errors() {
         p.to_str().unwrap().to_string()
     };
     let missing = tmp.path().join("nope.obj");
-    assert_clean_error(&["render", "--out", out, "--scene", missing.to_str().unwrap()], "nope.obj");
+    assert_clean_error(
+        &["render", "--out", out, "--scene", missing.to_str().unwrap()],
+        "nope.obj",
+    );
     let garbage = write("garbage.obj", "v 1 2\nf 1 2 x\nthis is not obj\n");
-    assert_clean_error(&["render", "--out", out, "--scene", &garbage], "garbage.obj");
+    assert_clean_error(
+        &["render", "--out", out, "--scene", &garbage],
+        "garbage.obj",
+    );
     let tri = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
-    let nan = write("nan.obj", &format!("{tri}vn nan 0 1\nvn 0 0 1\nvn 0 0 1\nf 1//1 2//2 3//3\n"));
+    let nan = write(
+        "nan.obj",
+        &format!("{tri}vn nan 0 1\nvn 0 0 1\nvn 0 0 1\nf 1//1 2//2 3//3\n"),
+    );
     assert_clean_error(&["render", "--out", out, "--scene", &nan], "normal");
-    let zero = write("zero.obj", &format!("{tri}vn 0 0 0\nvn 0 0 1\nvn 0 0 1\nf 1//1 2//2 3//3\n"));
+    let zero = write(
+        "zero.obj",
+        &format!("{tri}vn 0 0 0\nvn 0 0 1\nvn 0 0 1\nf 1//1 2//2 3//3\n"),
+    );
     assert_clean_error(&["render", "--out", out, "--scene", &zero], "normal");
     let bad_index = write("index.obj", &format!("{tri}f 1 2 9\n"));
-    assert_clean_error(&["render", "--out", out, "--scene", &bad_index], "index.obj");
+    assert_clean_error(
+        &["render", "--out", out, "--scene", &bad_index],
+        "index.obj",
+    );
     let empty = write("empty.obj", "# nothing here\n");
     assert_clean_error(&["render", "--out", out, "--scene", &empty], "empty.obj");
 }
@@ -144,11 +190,21 @@ fn obj_scene_renders() {
     .unwrap();
     let out = tmp.path().join("out");
     let o = shadecore(&[
-        "render", "--scene", obj.to_str().unwrap(), "--out", out.to_str().unwrap(),
-        "--method", "gouraud,normalizer-fit", "--size", "64x48",
+        "render",
+        "--scene",
+        obj.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--method",
+        "gouraud,normalizer-fit",
+        "--size",
+        "64x48",
     ]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let img = image::open(out.join("gouraud.png")).unwrap().to_rgb8();
     assert_eq!(img.dimensions(), (64, 48));
-    assert!(img.pixels().any(|p| p.0 != [0, 0, 0]), "the mesh is not visible");
+    assert!(
+        img.pixels().any(|p| p.0 != [0, 0, 0]),
+        "the mesh is not visible"
+    );
 }

@@ -44,9 +44,24 @@ pub struct Args {
 /// Per-method result in `report.json`.
 #[derive(Serialize, Debug, Clone)]
 pub struct MethodReport {
+    /// Against the reference (Phong shading, exact normalization).
     pub nmse: f64,
     pub band: Band,
     pub max_abs_diff: u8,
+    /// With `--engine rtl`: the RTL image against the golden image of the same method.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub rtl_vs_golden: Option<RtlComparison>,
+}
+
+/// The RTL image of a method against its golden image.
+#[derive(Serialize, Debug, Clone)]
+pub struct RtlComparison {
+    pub nmse: f64,
+    pub max_abs_diff: u8,
+    pub pixels_differing: usize,
+    pub clocks: u64,
+    pub pixels: u64,
+    pub pixels_per_clock: f64,
 }
 
 #[derive(Serialize, Debug)]
@@ -64,13 +79,23 @@ pub fn parse_methods(names: &[String]) -> Result<Vec<Method>> {
     }
     names
         .iter()
-        .map(|n| n.trim().parse::<Method>().map_err(|e| anyhow::anyhow!("{e}")))
+        .map(|n| {
+            n.trim()
+                .parse::<Method>()
+                .map_err(|e| anyhow::anyhow!("{e}"))
+        })
         .collect()
 }
 
 /// Render the reference and `methods` with the golden engine, in parallel.
 pub fn render_golden(setup: &Setup, methods: &[Method], bar: &ProgressBar) -> (Frame, Vec<Frame>) {
-    let reference = render(&setup.tris, Method::Reference, &setup.ctx, setup.width, setup.height);
+    let reference = render(
+        &setup.tris,
+        Method::Reference,
+        &setup.ctx,
+        setup.width,
+        setup.height,
+    );
     bar.inc(1);
     let frames = methods
         .par_iter()
@@ -86,7 +111,12 @@ pub fn render_golden(setup: &Setup, methods: &[Method], bar: &ProgressBar) -> (F
 /// Compare a method's frame with the reference.
 pub fn compare(reference: &Frame, frame: &Frame) -> MethodReport {
     let nmse = nmse::nmse(&reference.rgb, &frame.rgb);
-    MethodReport { nmse, band: Band::of(nmse), max_abs_diff: nmse::max_abs_diff(&reference.rgb, &frame.rgb) }
+    MethodReport {
+        nmse,
+        band: Band::of(nmse),
+        max_abs_diff: nmse::max_abs_diff(&reference.rgb, &frame.rgb),
+        rtl_vs_golden: None,
+    }
 }
 
 pub fn run(args: Args) -> Result<()> {
@@ -100,33 +130,92 @@ pub fn run(args: Args) -> Result<()> {
             .progress_chars("=> "),
     );
     bar.set_message(format!("{:?}", args.engine).to_lowercase());
+    let (w, h) = (setup.width, setup.height);
+    let mut rtl_stats = None;
     let (reference, frames) = match args.engine {
         Engine::Golden => render_golden(&setup, &methods, &bar),
         Engine::Rtl => {
             if methods != [Method::Gouraud] {
-                bail!("the rtl engine implements `--method gouraud` only so far (got {})",
-                    methods.iter().map(|m| m.name()).collect::<Vec<_>>().join(","));
+                bail!(
+                    "the rtl engine implements `--method gouraud` only so far (got {})",
+                    methods
+                        .iter()
+                        .map(|m| m.name())
+                        .collect::<Vec<_>>()
+                        .join(",")
+                );
             }
-            bail!("the rtl engine is not wired in yet")
+            let reference = render(&setup.tris, Method::Reference, &setup.ctx, w, h);
+            bar.set_style(
+                ProgressStyle::with_template(
+                    "rtl sim [{bar:40}] {pos}/{len} triangles {elapsed} (eta {eta})",
+                )
+                .expect("static template")
+                .progress_chars("=> "),
+            );
+            let rtl = crate::rtl_engine::render_gouraud_rtl(&setup.tris, &setup.ctx, w, h, &bar)?;
+            rtl_stats = Some(rtl.stats);
+            (reference, vec![rtl.frame])
         }
     };
     bar.finish_and_clear();
 
-    let (w, h) = (setup.width, setup.height);
     save_png(&args.out.join("reference.png"), w, h, &reference.rgb)?;
     let mut reports = BTreeMap::new();
     let mut tiles: Vec<(String, &[[u8; 3]])> = vec![("reference".into(), &reference.rgb[..])];
     for (m, f) in methods.iter().zip(&frames) {
-        let r = compare(&reference, f);
+        let mut r = compare(&reference, f);
+        if let Some(stats) = &rtl_stats {
+            // The golden image of the same method, and how far the hardware is from it.
+            let golden = render(&setup.tris, *m, &setup.ctx, w, h);
+            save_png(
+                &args.out.join(format!("{}-golden.png", m.name())),
+                w,
+                h,
+                &golden.rgb,
+            )?;
+            let heat = nmse::diff_heatmap(&golden.rgb, &f.rgb, 4);
+            save_png(
+                &args
+                    .out
+                    .join(format!("{}-rtl-vs-golden-diff.png", m.name())),
+                w,
+                h,
+                &heat,
+            )?;
+            r.rtl_vs_golden = Some(RtlComparison {
+                nmse: nmse::nmse(&golden.rgb, &f.rgb),
+                max_abs_diff: nmse::max_abs_diff(&golden.rgb, &f.rgb),
+                pixels_differing: golden
+                    .rgb
+                    .iter()
+                    .zip(&f.rgb)
+                    .filter(|(a, b)| a != b)
+                    .count(),
+                clocks: stats.clocks,
+                pixels: stats.pixels,
+                pixels_per_clock: stats.pixels_per_clock(),
+            });
+        }
         save_png(&args.out.join(format!("{}.png", m.name())), w, h, &f.rgb)?;
         let heat = nmse::diff_heatmap(&reference.rgb, &f.rgb, 32);
-        save_png(&args.out.join(format!("{}-diff.png", m.name())), w, h, &heat)?;
+        save_png(
+            &args.out.join(format!("{}-diff.png", m.name())),
+            w,
+            h,
+            &heat,
+        )?;
         tiles.push((format!("{} {:.2e}", m.name(), r.nmse), &f.rgb[..]));
         reports.insert(m.name().to_string(), r);
     }
     let s = sheet(&tiles, w, h, 5);
     save_png(&args.out.join("sheet.png"), s.width, s.height, &s.rgb)?;
-    let report = Report { scene: &args.scene, engine: args.engine, triangles: setup.tris.len(), methods: reports };
+    let report = Report {
+        scene: &args.scene,
+        engine: args.engine,
+        triangles: setup.tris.len(),
+        methods: reports,
+    };
     let json = serde_json::to_string_pretty(&report).expect("report serializes");
     std::fs::write(args.out.join("report.json"), json + "\n")
         .with_context(|| format!("writing {}", args.out.join("report.json").display()))?;
@@ -139,7 +228,19 @@ pub fn run(args: Args) -> Result<()> {
     println!("{:<16} {:>12} {:>6}  band", "method", "NMSE", "max Δ");
     for m in &methods {
         let r = &report.methods[m.name()];
-        println!("{:<16} {:>12.3e} {:>6}  {}", m.name(), r.nmse, r.max_abs_diff, r.band.label());
+        println!(
+            "{:<16} {:>12.3e} {:>6}  {}",
+            m.name(),
+            r.nmse,
+            r.max_abs_diff,
+            r.band.label()
+        );
+        if let Some(c) = &r.rtl_vs_golden {
+            println!(
+                "  rtl vs golden {}: NMSE {:.3e}, max {} LSB, {} pixels differ; {} pixels in {} clocks ({:.3} pixels/clock)",
+                m.name(), c.nmse, c.max_abs_diff, c.pixels_differing, c.pixels, c.clocks, c.pixels_per_clock
+            );
+        }
     }
     println!("wrote {}", args.out.display());
     Ok(())
