@@ -18,7 +18,9 @@ fn bench(c: &mut Criterion) {
     g.throughput(Throughput::Elements(fragments));
     g.sample_size(20);
     for m in std::iter::once(Method::Reference).chain(Method::ALL_NON_REFERENCE.iter().copied()) {
-        g.bench_function(m.name(), |b| b.iter(|| render(&setup.tris, m, &setup.ctx, w, h)));
+        g.bench_function(m.name(), |b| {
+            b.iter(|| render(&setup.tris, m, &setup.ctx, w, h))
+        });
     }
     g.finish();
 }

@@ -2,5 +2,5 @@
 
 pub mod cmd;
 pub mod output;
-pub mod setup;
 pub mod rtl_engine;
+pub mod setup;

@@ -4,7 +4,11 @@ use clap::{Parser, Subcommand};
 use shadecore::cmd;
 
 #[derive(Parser)]
-#[command(name = "shadecore", version, about = "Accelerated shading hardware (VNTU patents) as rust-hdl RTL with an f64 golden model")]
+#[command(
+    name = "shadecore",
+    version,
+    about = "Accelerated shading hardware (VNTU patents) as rust-hdl RTL with an f64 golden model"
+)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -34,7 +38,10 @@ fn main() {
         Err(e) => {
             use clap::error::ErrorKind;
             if matches!(e.kind(), ErrorKind::DisplayHelp | ErrorKind::DisplayVersion)
-                || matches!(e.kind(), ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand)
+                || matches!(
+                    e.kind(),
+                    ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand
+                )
             {
                 e.exit();
             }

@@ -30,7 +30,11 @@ pub fn sheet(tiles: &[(String, &[[u8; 3]])], w: u32, h: u32, cols: u32) -> Pictu
     let cell_h = h + LABEL_H + GAP;
     let width = cols * cell_w + GAP;
     let height = rows * cell_h + GAP;
-    let mut pic = Picture { width, height, rgb: vec![[24, 24, 24]; (width * height) as usize] };
+    let mut pic = Picture {
+        width,
+        height,
+        rgb: vec![[24, 24, 24]; (width * height) as usize],
+    };
     for (i, (label, img)) in tiles.iter().enumerate() {
         let ox = GAP + (i as u32 % cols) * cell_w;
         let oy = GAP + (i as u32 / cols) * cell_h;
@@ -47,7 +51,9 @@ pub fn sheet(tiles: &[(String, &[[u8; 3]])], w: u32, h: u32, cols: u32) -> Pictu
 fn draw_text(pic: &mut Picture, x0: u32, y0: u32, text: &str, colour: [u8; 3]) {
     use font8x8::UnicodeFonts;
     for (k, ch) in text.chars().enumerate() {
-        let Some(glyph) = font8x8::BASIC_FONTS.get(ch) else { continue };
+        let Some(glyph) = font8x8::BASIC_FONTS.get(ch) else {
+            continue;
+        };
         for (gy, bits) in glyph.iter().enumerate() {
             for gx in 0..8u32 {
                 if bits & (1 << gx) != 0 {

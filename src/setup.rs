@@ -42,7 +42,11 @@ pub struct SceneArgs {
     #[arg(long, default_value_t = 50, value_parser = clap::value_parser!(u32).range(1..=1000))]
     pub shininess: u32,
     /// Light direction in degrees, 0..=360 (90 = from the front).
-    #[arg(long = "light-deg", default_value_t = 90.0, allow_negative_numbers = true)]
+    #[arg(
+        long = "light-deg",
+        default_value_t = 90.0,
+        allow_negative_numbers = true
+    )]
     pub light_deg: f64,
     /// Canvas size WxH, each 1..=4096 (screen addresses are 12 bits).
     #[arg(long, default_value = "400x400", value_parser = parse_size)]
@@ -71,7 +75,10 @@ pub fn parse_size(s: &str) -> Result<(u32, u32), String> {
         .split_once(['x', 'X'])
         .ok_or_else(|| format!("size {s:?} is not WxH (e.g. 400x400)"))?;
     let dim = |v: &str| -> Result<u32, String> {
-        let n: u32 = v.trim().parse().map_err(|_| format!("size {s:?}: {v:?} is not a whole number"))?;
+        let n: u32 = v
+            .trim()
+            .parse()
+            .map_err(|_| format!("size {s:?}: {v:?} is not a whole number"))?;
         if !(1..=4096).contains(&n) {
             return Err(format!(
                 "size {s:?}: {n} is outside 1..=4096 (screen addresses are 12 bits)"
@@ -95,22 +102,34 @@ pub fn build(args: &SceneArgs) -> Result<Setup> {
     let (width, height) = args.size;
     let (mesh, rotation) = match args.scene.as_str() {
         "sphere" => (scene::uv_sphere(args.rez)?, DQuat::IDENTITY),
-        "torus" => (scene::torus(args.rez)?, DQuat::from_rotation_x(55f64.to_radians())),
-        path if path.to_ascii_lowercase().ends_with(".obj") => (
-            scene::load_obj(Path::new(path))?,
-            DQuat::IDENTITY,
+        "torus" => (
+            scene::torus(args.rez)?,
+            DQuat::from_rotation_x(55f64.to_radians()),
         ),
-        other => bail!("unknown scene {other:?}: expected `sphere`, `torus` or the path of a .obj file"),
+        path if path.to_ascii_lowercase().ends_with(".obj") => {
+            (scene::load_obj(Path::new(path))?, DQuat::IDENTITY)
+        }
+        other => {
+            bail!("unknown scene {other:?}: expected `sphere`, `torus` or the path of a .obj file")
+        }
     };
     let camera = Camera::fit(&mesh, width, height, rotation);
     let tris = scene::project(&mesh, &camera, width, height)
         .with_context(|| format!("projecting scene {:?}", args.scene))?;
     let light = scene::light_direction(args.light_deg)?;
     let ctx = ShadeContext::new(
-        Material { shininess: args.shininess, ..Material::default() },
+        Material {
+            shininess: args.shininess,
+            ..Material::default()
+        },
         args.lighting.into(),
         light,
         DVec3::Z,
     )?;
-    Ok(Setup { tris, ctx, width, height })
+    Ok(Setup {
+        tris,
+        ctx,
+        width,
+        height,
+    })
 }

@@ -43,7 +43,11 @@ impl Band {
 /// NMSE of `test` against `reference` (same length). An all-black reference gives `NaN` unless
 /// the test image is also all black (then 0).
 pub fn nmse(reference: &[[u8; 3]], test: &[[u8; 3]]) -> f64 {
-    assert_eq!(reference.len(), test.len(), "NMSE of images of different sizes");
+    assert_eq!(
+        reference.len(),
+        test.len(),
+        "NMSE of images of different sizes"
+    );
     let (mut num, mut den) = (0u64, 0u64);
     for (r, t) in reference.iter().zip(test) {
         for c in 0..3 {

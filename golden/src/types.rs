@@ -51,7 +51,11 @@ impl Plane {
         }
         let a = ((v1 - v0) * (y2 - y0) - (v2 - v0) * (y1 - y0)) / det;
         let b = ((x1 - x0) * (v2 - v0) - (x2 - x0) * (v1 - v0)) / det;
-        Some(Plane { a, b, c: v0 - a * x0 - b * y0 })
+        Some(Plane {
+            a,
+            b,
+            c: v0 - a * x0 - b * y0,
+        })
     }
     /// Value at the centre of pixel (x, y).
     pub fn at_pixel(&self, x: i32, y: i32) -> f64 {
@@ -69,7 +73,11 @@ pub struct VecPlane {
 
 impl VecPlane {
     pub fn at_pixel(&self, x: i32, y: i32) -> DVec3 {
-        DVec3::new(self.x.at_pixel(x, y), self.y.at_pixel(x, y), self.z.at_pixel(x, y))
+        DVec3::new(
+            self.x.at_pixel(x, y),
+            self.y.at_pixel(x, y),
+            self.z.at_pixel(x, y),
+        )
     }
     /// Increment per horizontal step (+1 in x): ΔN_H of SPEC §1.
     pub fn delta_h(&self) -> DVec3 {
@@ -204,13 +212,20 @@ impl Walk {
             let start_step = if r == 0 {
                 StepType::Start
             } else {
-                row.edge_steps.last().map(|s| s.step).unwrap_or(StepType::Vertical)
+                row.edge_steps
+                    .last()
+                    .map(|s| s.step)
+                    .unwrap_or(StepType::Vertical)
             };
             for i in 0..row.len as i32 {
                 out.push(WalkPixel {
                     x: row.x_start + i * row.dir as i32,
                     y: row.y,
-                    step: if i == 0 { start_step } else { StepType::Horizontal },
+                    step: if i == 0 {
+                        start_step
+                    } else {
+                        StepType::Horizontal
+                    },
                     line_start: i == 0,
                 });
             }

@@ -1,9 +1,8 @@
-
 pub mod address_block;
-pub mod gouraud_raster;
-pub mod intensity_interpolator;
-pub mod line_interpolator;
 pub mod export;
 pub mod fixed;
+pub mod gouraud_raster;
+pub mod intensity_interpolator;
 pub mod k_recurrence;
+pub mod line_interpolator;
 pub mod normalizer;

@@ -71,7 +71,11 @@ pub fn run(args: Args) -> Result<()> {
 
     let mut csv = String::from("scene,rez,shininess,light_deg,method,nmse,band\n");
     let mut md = String::from("| rez | n | light | ");
-    md += &methods.iter().map(|m| m.name()).collect::<Vec<_>>().join(" | ");
+    md += &methods
+        .iter()
+        .map(|m| m.name())
+        .collect::<Vec<_>>()
+        .join(" | ");
     md += " |\n|---|---|---|";
     md += &"---:|".repeat(methods.len());
     md += "\n";
@@ -79,7 +83,18 @@ pub fn run(args: Args) -> Result<()> {
         write!(md, "| {} | {} | {}° |", c.rez, c.shininess, c.light_deg).unwrap();
         for (m, v) in methods.iter().zip(row) {
             let band = golden::nmse::Band::of(*v);
-            writeln!(csv, "{},{},{},{},{},{:.8},{}", c.scene, c.rez, c.shininess, c.light_deg, m.name(), v, band.label()).unwrap();
+            writeln!(
+                csv,
+                "{},{},{},{},{},{:.8},{}",
+                c.scene,
+                c.rez,
+                c.shininess,
+                c.light_deg,
+                m.name(),
+                v,
+                band.label()
+            )
+            .unwrap();
             write!(md, " {v:.2e} |").unwrap();
         }
         md += "\n";
@@ -89,6 +104,10 @@ pub fn run(args: Args) -> Result<()> {
     std::fs::write(args.out.join("sweep.csv"), &csv).context("writing sweep.csv")?;
     std::fs::write(args.out.join("sweep.md"), &md).context("writing sweep.md")?;
     print!("{md}");
-    println!("wrote {} and {}", args.out.join("sweep.csv").display(), args.out.join("sweep.md").display());
+    println!(
+        "wrote {} and {}",
+        args.out.join("sweep.csv").display(),
+        args.out.join("sweep.md").display()
+    );
     Ok(())
 }
