@@ -112,6 +112,7 @@ pub fn stimulus(block: BlockKind, c: &NormalizerCoeffs, n: usize, seed: u64) -> 
 }
 
 /// Run `stim` through `block`, checking every clock against the golden model.
+#[allow(clippy::result_large_err)] // harness::Failure, returned once per run
 pub fn run_checked(
     block: BlockKind,
     c: &NormalizerCoeffs,

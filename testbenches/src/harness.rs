@@ -319,6 +319,9 @@ impl std::fmt::Display for Report {
 }
 
 /// Why a run failed. `Display` gives the one-paragraph message tests panic with.
+///
+/// It is returned by value (once per run, so its size does not matter); `run`/`run_rows`
+/// therefore allow clippy's `result_large_err`, and callers may box it.
 #[derive(Clone, Debug)]
 pub struct Failure {
     pub name: String,
@@ -423,6 +426,7 @@ fn describe(compare: &Compare, raw: u64) -> String {
 /// Drive `dut` (built by `make`, which is called again to replay a failure into a VCD) one row
 /// per clock from `drive(cycle, previous_outputs)` until it returns `None`; after each clock
 /// compare the outputs with `expect(cycle, inputs_of_this_clock)`.
+#[allow(clippy::result_large_err)]
 pub fn run<D, M, Drv, Exp>(
     make: M,
     spec: &CheckSpec,
@@ -565,6 +569,7 @@ where
 }
 
 /// [`run`] over a fixed list: clock `c` drives `rows[c]` and checks `expected[c]`.
+#[allow(clippy::result_large_err)]
 pub fn run_rows<D: Dut, M: Fn() -> D>(
     make: M,
     spec: &CheckSpec,
@@ -605,5 +610,5 @@ pub fn delay_expectations(
 
 /// Append `n` copies of `idle` so the last real input's result leaves the pipeline.
 pub fn pad_rows(rows: &mut Vec<Vec<u64>>, idle: &[u64], n: usize) {
-    rows.extend(std::iter::repeat(idle.to_vec()).take(n));
+    rows.extend(std::iter::repeat_n(idle.to_vec(), n));
 }

@@ -207,7 +207,10 @@ pub fn krec_rows(spans: &[Span], sched: &[Clock]) -> (Vec<Vec<u64>>, Vec<Vec<Exp
     }
     let lat = KRecurrence::LATENCY;
     harness::pad_rows(&mut rows, &[0, 0, 0, 0, 0], lat);
-    per_input.extend(std::iter::repeat(vec![Expected::Word(0), Expected::Word(last_k)]).take(lat));
+    per_input.extend(std::iter::repeat_n(
+        vec![Expected::Word(0), Expected::Word(last_k)],
+        lat,
+    ));
     let idle = [Expected::Word(0), Expected::Word(0)];
     (
         rows.clone(),
@@ -271,7 +274,7 @@ pub fn span_rows(
         Expected::DontCare,
         Expected::DontCare,
     ];
-    per_input.extend(std::iter::repeat(idle.clone()).take(lat));
+    per_input.extend(std::iter::repeat_n(idle.clone(), lat));
     (rows, harness::delay_expectations(&per_input, lat, &idle))
 }
 

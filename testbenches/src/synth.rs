@@ -263,8 +263,7 @@ pub fn fmax_ice40_up5k(
     // "Max frequency for clock 'clock$SB_IO_IN_$glb_clk': 23.45 MHz (PASS at 12.00 MHz)"; the
     // last occurrence is after routing.
     text.lines()
-        .filter(|l| l.contains("Max frequency for clock"))
-        .last()
+        .rfind(|l| l.contains("Max frequency for clock"))
         .and_then(|l| l.split("': ").nth(1))
         .and_then(|r| r.split_whitespace().next())
         .and_then(|n| n.parse().ok())

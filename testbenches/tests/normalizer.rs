@@ -221,7 +221,7 @@ fn normalizer_k_takes_exact_k() {
         Expected::DontCare,
     ];
     let mut per_input = per_input;
-    per_input.extend(std::iter::repeat(idle.clone()).take(NormalizerK::LATENCY));
+    per_input.extend(std::iter::repeat_n(idle.clone(), NormalizerK::LATENCY));
     let exp = harness::delay_expectations(&per_input, NormalizerK::LATENCY, &idle);
     let report = harness::run_rows(
         || NormalizerK::new(&c),
