@@ -348,6 +348,7 @@ pub struct DiffReport {
     pub cycles: usize,
     pub ports: usize,
     pub verilog_sim_time: Duration,
+    /// Work directory; removed after a passing run unless `SHADECORE_KEEP_TOOL_RUNS` is set.
     pub dir: PathBuf,
 }
 
@@ -385,6 +386,11 @@ pub fn differential<D: Dut>(
     let run =
         run_verilog(sim, verilog, module, &inputs, &outputs, rows, tag).map_err(DiffError::Tool)?;
     compare_rows(&outputs, &rust_rows, &run).map_err(DiffError::Mismatch)?;
+    // A passing run's files (stimulus, outputs, Verilator objects: megabytes) are removed;
+    // failures keep theirs for inspection. SHADECORE_KEEP_TOOL_RUNS keeps everything.
+    if std::env::var_os("SHADECORE_KEEP_TOOL_RUNS").is_none() {
+        let _ = std::fs::remove_dir_all(&run.dir);
+    }
     Ok(DiffReport {
         cycles: rows.len(),
         ports: outputs.len(),
