@@ -87,7 +87,13 @@ pub fn require(tools: &[Tool], what: &str) -> bool {
     if in_ci() {
         panic!("{what}: required tool(s) not installed: {list} (CI is set, so this is a failure)");
     }
-    eprintln!("SKIPPED {what}: tool(s) not installed: {list} (set CI=1 to make this a failure)");
+    // Written to the process's stderr directly: libtest captures `eprintln!` of passing tests,
+    // and a skip must stay visible.
+    use std::io::Write;
+    let _ = writeln!(
+        std::io::stderr(),
+        "SKIPPED {what}: tool(s) not installed: {list} (set CI=1 to make this a failure)"
+    );
     false
 }
 
