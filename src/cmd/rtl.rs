@@ -30,7 +30,8 @@ fn blocks_arg(name: &str) -> anyhow::Result<Vec<BlockKind>> {
 
 #[derive(clap::Args, Debug)]
 pub struct ExportArgs {
-    /// Block: normalizer, normalizer-k, k-recurrence, span-normalizer, or all.
+    /// Block: normalizer, normalizer-k, k-recurrence, span-normalizer, address-block,
+    /// intensity-interpolator, gouraud-raster, or all.
     #[arg(long, default_value = "all")]
     pub block: String,
     /// Output directory (one `<module>.v` per block).
@@ -43,12 +44,15 @@ pub struct ExportArgs {
 
 #[derive(clap::Args, Debug)]
 pub struct SimArgs {
-    /// Block: normalizer, normalizer-k, k-recurrence or span-normalizer.
+    /// Block: normalizer, normalizer-k, k-recurrence, span-normalizer, address-block,
+    /// intensity-interpolator or gouraud-raster.
     #[arg(long, default_value = "normalizer")]
     pub block: String,
-    /// Random inputs to simulate (vectors; pixels for the span blocks).
-    #[arg(long, default_value_t = 1000)]
-    pub vectors: usize,
+    /// Random inputs to simulate: vectors (default 1000); pixels for the span blocks (1000);
+    /// triangles for address-block, intensity-interpolator, gouraud-raster (default 20, 1000–2000
+    /// clocks each on average).
+    #[arg(long)]
+    pub vectors: Option<usize>,
     /// Seed of the stimulus (default: the test runner's seed for "shadecore-sim";
     /// SHADECORE_SEED overrides that default).
     #[arg(long)]
@@ -63,7 +67,8 @@ pub struct SimArgs {
 
 #[derive(clap::Args, Debug)]
 pub struct SynthArgs {
-    /// Block: normalizer, normalizer-k, k-recurrence, span-normalizer, or all.
+    /// Block: normalizer, normalizer-k, k-recurrence, span-normalizer, address-block,
+    /// intensity-interpolator, gouraud-raster, or all.
     #[arg(long, default_value = "normalizer")]
     pub block: String,
     /// Normalizer coefficients: published or fit.
@@ -91,7 +96,8 @@ pub fn export(a: ExportArgs) -> anyhow::Result<()> {
 pub fn sim(a: SimArgs) -> anyhow::Result<()> {
     let c = coeffs(&a.coeffs)?;
     let block: BlockKind = a.block.parse().map_err(|e: String| anyhow!(e))?;
-    if a.vectors == 0 {
+    let n = a.vectors.unwrap_or(blocks::default_items(block));
+    if n == 0 {
         bail!("--vectors must be at least 1");
     }
     let seed = a
@@ -106,7 +112,7 @@ pub fn sim(a: SimArgs) -> anyhow::Result<()> {
         std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
     }
     let t = std::time::Instant::now();
-    let out = blocks::sim_to_vcd(block, &c, a.vectors, seed, &vcd).map_err(|e| anyhow!(e))?;
+    let out = blocks::sim_to_vcd(block, &c, n, seed, &vcd).map_err(|e| anyhow!(e))?;
     print!("{}", out.report);
     println!(
         "{block}: {} {} checked against the golden model every clock (latency {}), seed {seed}, {:.2?}",
