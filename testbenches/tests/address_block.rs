@@ -222,12 +222,9 @@ fn address_block_differential_icarus() {
     differential_run(Simulator::Icarus, 40, "diff-address-block-icarus");
 }
 
-/// Verilator 5.006 does not wake combinational logic on variables written by `$fscanf`, so the
-/// shared testbench (`testbenches::verilog::testbench`) applies every input one clock late
-/// under Verilator; copying the `$fscanf` targets into the driving regs fixes it (verified by
-/// hand: bit-exact with Icarus over 277 668 clocks). Enable once the generator does that.
+/// The same differential check under Verilator (the shared testbench reads `$fscanf` into
+/// temporaries, which Verilator 5.006 needs to re-evaluate the design's inputs).
 #[test]
-#[ignore = "shared Verilog testbench: $fscanf targets need copying for Verilator (see doc)"]
 fn address_block_differential_verilator() {
     differential_run(Simulator::Verilator, 40, "diff-address-block-verilator");
 }
