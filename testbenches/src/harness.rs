@@ -81,7 +81,7 @@ pub fn width_of<D: Direction, T: Synth>(_: &Signal<D, T>) -> usize {
 }
 
 /// Implement [`Dut`] for a block from its field names:
-/// ```ignore
+/// ```text
 /// impl_dut!(rtl::normalizer::Normalizer, clock: clock,
 ///           inputs: [valid_in, x, y, z], outputs: [valid_out, nx, ny, nz]);
 /// ```
