@@ -211,7 +211,9 @@ fn sample_vcd(path: &std::path::Path, names: &[&str]) -> Vec<Vec<u64>> {
             }
             Command::ChangeVector(id, bits) => {
                 if let Some(k) = codes.iter().position(|c| *c == id) {
-                    now[k] = bits.iter().fold(0, |acc, b| acc << 1 | (b == Value::V1) as u64);
+                    now[k] = bits
+                        .iter()
+                        .fold(0, |acc, b| acc << 1 | (b == Value::V1) as u64);
                 }
             }
             _ => {}
