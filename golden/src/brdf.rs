@@ -14,8 +14,8 @@
 //! formula is still applied ((n+1)/(k+1) < 1, so the bracket stays positive); it is exact only
 //! at k = n.
 
-use crate::methods::{row_xs, Emit};
-use crate::shade::{unit, ShadeContext};
+use crate::methods::Emit;
+use crate::shade::ShadeContext;
 use crate::types::{ScreenTriangle, Walk};
 
 /// The k values with shift-add divisions.
@@ -77,22 +77,8 @@ pub fn cos_pow(n: u32, cos_gamma: f64) -> f64 {
 
 /// Shade one triangle with W for k (reference normal, shift-add division).
 pub fn shade(tri: &ScreenTriangle, walk: &Walk, ctx: &ShadeContext, k: u32, emit: Emit) {
-    let Some(plane) = tri.normal_plane() else {
-        return;
-    };
     let a = slope(ctx.n(), k, true);
-    let spec_vec = ctx.specular_vector();
-    for row in &walk.rows {
-        for x in row_xs(row) {
-            let rgb = match unit(plane.at_pixel(x, row.y)) {
-                Some(n) => {
-                    let cos_s = spec_vec.map_or(0.0, |v| n.dot(v));
-                    let (d, s) = ctx.cosines(n.dot(ctx.light), cos_s);
-                    ctx.combine(d, w_kernel(a, k, s))
-                }
-                None => ctx.combine(0.0, 0.0),
-            };
-            emit(x, row.y, rgb);
-        }
-    }
+    crate::phong::shade_exact_front_end(tri, walk, ctx, emit, |_, _, d, s| {
+        ctx.combine(d, w_kernel(a, k, s))
+    });
 }

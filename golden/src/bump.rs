@@ -17,8 +17,8 @@
 //! dγ(x, y) = D·sin(2πx/P)·sin(2πy/P) with amplitude D = [`BumpMap::default`]'s 0.12 rad and
 //! period P = 16 pixels. The base normal is the reference one (exact normalization).
 
-use crate::methods::{row_xs, Emit};
-use crate::shade::{unit, ShadeContext};
+use crate::methods::Emit;
+use crate::shade::ShadeContext;
 use crate::types::{ScreenTriangle, Walk};
 use std::f64::consts::TAU;
 
@@ -139,24 +139,10 @@ pub fn shade_with(
     prom: &SinProm,
     emit: Emit,
 ) {
-    let Some(plane) = tri.normal_plane() else {
-        return;
-    };
-    let spec_vec = ctx.specular_vector();
-    for row in &walk.rows {
-        for x in row_xs(row) {
-            let rgb = match unit(plane.at_pixel(x, row.y)) {
-                Some(n) => {
-                    let cos_s = spec_vec.map_or(0.0, |v| n.dot(v));
-                    let (d, s) = ctx.cosines(n.dot(ctx.light), cos_s);
-                    let code = map.code(x, row.y);
-                    let d = perturb(d, code, map, prom);
-                    let s = perturb(s, code, map, prom);
-                    ctx.combine(d, ctx.specular_power(s))
-                }
-                None => ctx.combine(0.0, 0.0),
-            };
-            emit(x, row.y, rgb);
-        }
-    }
+    crate::phong::shade_exact_front_end(tri, walk, ctx, emit, |x, y, d, s| {
+        let code = map.code(x, y);
+        let d = perturb(d, code, map, prom);
+        let s = perturb(s, code, map, prom);
+        ctx.combine(d, ctx.specular_power(s))
+    });
 }

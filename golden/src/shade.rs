@@ -232,9 +232,14 @@ impl ShadeContext {
 
     /// Exact per-pixel lighting of a unit normal: (cos ψ, specular value).
     pub fn exact_terms(&self, unit_normal: DVec3) -> (f64, f64) {
-        let cos_s = self.specular_vector().map_or(0.0, |x| unit_normal.dot(x));
-        let (d, s) = self.cosines(unit_normal.dot(self.light), cos_s);
+        let (d, s) = self.exact_cosines(unit_normal);
         (d, self.specular_power(s))
+    }
+
+    /// The exact (cos ψ, cos λ) of a unit normal, before the specular power.
+    pub fn exact_cosines(&self, unit_normal: DVec3) -> (f64, f64) {
+        let cos_s = self.specular_vector().map_or(0.0, |x| unit_normal.dot(x));
+        self.cosines(unit_normal.dot(self.light), cos_s)
     }
 
     /// Channel intensities on the 0..255 scale, unclamped:
