@@ -1,5 +1,9 @@
 //! Fixed-point conventions shared by every shadecore RTL block.
 //!
+//! Not a block: formats, rounding/saturation rules and f64 ↔ word conversions only, so it has
+//! no ports, no latency (0 clocks) and no throughput of its own; every block's header states
+//! its own latency using the formats named here.
+//!
 //! # Notation
 //! `Qm.n` is a word of `m + n` bits with `n` fractional bits. For a **signed** format `m`
 //! counts the sign bit: signed Q2.14 is a 16-bit two's-complement word covering
