@@ -131,21 +131,15 @@ pub struct AddressSetup {
 impl AddressSetup {
     /// The set-up of `tri` (vertex coordinates must be in 0..=4095).
     pub fn new(tri: &ScreenTriangle) -> AddressSetup {
-        let mut v: Vec<(i32, i32)> = tri.v.iter().map(|p| (p.x, p.y)).collect();
-        v.sort_by_key(|&(x, y)| (y, x));
-        let (top, mid, bot) = (v[0], v[1], v[2]);
-        let area2 = tri.area2();
-        if area2 == 0 {
+        let Some(o) = crate::raster::orientation(tri) else {
             // No rows; the rest is irrelevant but kept deterministic.
+            let y_top = tri.v.iter().map(|p| p.y).min().unwrap_or(0);
             return AddressSetup {
-                y_top: top.1 as u32,
+                y_top: y_top as u32,
                 ..AddressSetup::default()
             };
-        }
-        // Side of the middle vertex relative to top→bottom (y down): cross < 0 ⇔ to the right,
-        // i.e. the working edge is the left edge.
-        let cross = (bot.0 - top.0) as i64 * (mid.1 - top.1) as i64
-            - (bot.1 - top.1) as i64 * (mid.0 - top.0) as i64;
+        };
+        let (top, mid, bot) = (o.top, o.mid, o.bot);
         let w = EdgeSetup::new(top, bot);
         let t = EdgeSetup::new(mid, bot);
         let a = if mid.1 > top.1 {
@@ -160,7 +154,7 @@ impl AddressSetup {
             y_top: top.1 as u32,
             rows: (bot.1 - top.1) as u32,
             y_switch: mid.1 as u32,
-            dir_neg: cross > 0,
+            dir_neg: !o.left,
         }
     }
 

@@ -149,14 +149,21 @@ fn edge_steps(dx: i64) -> Vec<EdgeStep> {
     v
 }
 
-/// The SPEC §5 walk of one triangle, following the walk contract in the doc of [`Row`].
-///
-/// The working edge (top→bottom) and the other side's current edge (top→middle, then
-/// middle→bottom) are each tracked by an [`EdgeDda`]; a row's length is the distance between
-/// the two boundaries. Zero-area triangles give an empty walk.
-pub fn walk(tri: &ScreenTriangle) -> Walk {
+/// A triangle's vertices in walk order and the side of its working edge (walk contract in
+/// `types.rs`): the single place both the walk and the address block's set-up take them from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Orientation {
+    pub top: (i32, i32),
+    pub mid: (i32, i32),
+    pub bot: (i32, i32),
+    /// The working edge top→bottom is the left edge (lines run towards +x).
+    pub left: bool,
+}
+
+/// Sort by (y, x) and find the working edge's side; `None` for a zero-area triangle.
+pub fn orientation(tri: &ScreenTriangle) -> Option<Orientation> {
     if tri.area2() == 0 {
-        return Walk::default();
+        return None;
     }
     let mut v: Vec<(i32, i32)> = tri.v.iter().map(|p| (p.x, p.y)).collect();
     v.sort_by_key(|&(x, y)| (y, x));
@@ -168,7 +175,29 @@ pub fn walk(tri: &ScreenTriangle) -> Walk {
         doubled(mid.0, mid.1),
     );
     debug_assert!(side != 0);
-    let left = side > 0;
+    Some(Orientation {
+        top,
+        mid,
+        bot,
+        left: side > 0,
+    })
+}
+
+/// The SPEC §5 walk of one triangle, following the walk contract in the doc of [`Row`].
+///
+/// The working edge (top→bottom) and the other side's current edge (top→middle, then
+/// middle→bottom) are each tracked by an [`EdgeDda`]; a row's length is the distance between
+/// the two boundaries. Zero-area triangles give an empty walk.
+pub fn walk(tri: &ScreenTriangle) -> Walk {
+    let Some(Orientation {
+        top,
+        mid,
+        bot,
+        left,
+    }) = orientation(tri)
+    else {
+        return Walk::default();
+    };
     let dir: i8 = if left { 1 } else { -1 };
 
     let mut working = EdgeDda::new(top, bot, top.1);
