@@ -462,9 +462,318 @@ impl Camera {
     }
 }
 
+/// Integer screen addresses of every mesh vertex: the continuous screen positions rounded to the
+/// nearest integer, then *repaired* so that rounding folds nothing.
+///
+/// Why. Rounding moves each vertex by up to half a pixel. That can reverse the orientation of a
+/// sub-pixel-thin triangle (at the silhouette, where faces are seen edge-on, and in the slivers
+/// around a sphere's poles), or tangle the silhouette. The projected surface then folds over
+/// itself: two front faces cover the same pixels, and a back-face-culled convex mesh is no longer
+/// written exactly once.
+///
+/// What makes coverage exact. The front faces (negative area in mesh order, see [`project`])
+/// form a 2-chain whose boundary is the *silhouette*: the directed edges of front faces whose
+/// twin is not on a front face. At any sample point, the signed count of front faces covering it
+/// equals the winding number of the silhouette around it, whatever the vertex positions, and the
+/// fill convention makes that hold pixel by pixel. So if (a) no continuous front face is rounded
+/// to a back face and no continuous back face to a front face (zero area is harmless: it covers
+/// no pixel), every drawn face counts +1, and the number of writes of each pixel *is* the
+/// winding number; (b) a winding number of 0 or 1 everywhere then means each pixel is written at
+/// most once.
+///
+/// Repair. While (a) fails for some triangle:
+/// 1. *re-snap*: one of its vertices rounds the other way in x, in y or both (a corner of the
+///    unit cell holding its continuous position): the corner nearest that position that mends
+///    the triangle and breaks no other triangle around that vertex (among its three vertices,
+///    the smallest move wins); each re-snap lowers the number of broken triangles;
+/// 2. if no such move exists, *collapse* its shortest edge: both end vertices (with every vertex
+///    already merged with them) take one address, the rounded mean of their continuous positions;
+///    each collapse lowers the number of vertex groups.
+///
+/// Then, if the continuous silhouette winds 0 or 1 times around every pixel-centre row point
+/// (true for any convex mesh; a non-convex mesh that overlaps itself keeps its overlaps and is
+/// resolved by the depth buffer), (b) is enforced: where the rounded silhouette winds otherwise,
+/// the shorter of the two silhouette edges bounding the offending span is collapsed, and (a) is
+/// checked again. Every step lowers (vertex groups, broken triangles) lexicographically, so the
+/// loop ends.
+///
+/// Vertices with bit-identical model positions (OBJ seams) start in one group, so the repair
+/// never opens a crack between them. On meshes whose rounding folds nothing (e.g. the default
+/// scene) the result is exactly the rounded positions. Addresses stay in 0..=4095 when the
+/// rounded ones are; [`project`] checks the 12-bit range.
+pub fn screen_addresses(mesh: &Mesh, camera: &Camera) -> Vec<DVec2> {
+    let exact: Vec<DVec2> = mesh
+        .positions
+        .iter()
+        .map(|&p| camera.screen(p).truncate())
+        .collect();
+    Snapper::new(mesh, exact).run()
+}
+
+/// Working state of [`screen_addresses`]: a union-find over vertices with, per group (root), the
+/// sum and count of the continuous positions, the current address and the incident triangles.
+struct Snapper<'m> {
+    tris: &'m [[u32; 3]],
+    /// Whether each triangle is a front face in the continuous projection.
+    front: Vec<bool>,
+    /// Directed silhouette edges (vertex indices) of the continuous front faces.
+    silhouette: Vec<[u32; 2]>,
+    /// Whether the continuous silhouette winds 0 or 1 times everywhere (then (b) is enforced).
+    single_layer: bool,
+    parent: Vec<usize>,
+    sum: Vec<DVec2>,
+    count: Vec<f64>,
+    addr: Vec<DVec2>,
+    incident: Vec<Vec<usize>>,
+}
+
+fn area2(a: DVec2, b: DVec2, c: DVec2) -> f64 {
+    (b - a).perp_dot(c - a)
+}
+
+/// The first span of a pixel-centre row (y = r + 0.5) where the closed chain of directed
+/// `edges` winds other than 0 or 1 times, as the indices of the two edges bounding it. Winding
+/// counts +1 for each edge crossed going down the screen (y increasing), −1 going up, sweeping
+/// from the left; a front face (negative area) alone winds +1. Spans of zero length are ignored.
+fn first_overlap(edges: &[[DVec2; 2]]) -> Option<[usize; 2]> {
+    // Rows r with r + 0.5 inside the 12-bit range (and one beyond); edges bucketed per row.
+    let row = |y: f64| (y - 0.5).clamp(-2.0, MAX_ADDRESS as f64 + 2.0);
+    let (r0, r1) = (-1i64, MAX_ADDRESS as i64 + 1);
+    let mut rows: Vec<Vec<usize>> = vec![Vec::new(); (r1 - r0 + 1) as usize];
+    for (k, &[a, b]) in edges.iter().enumerate() {
+        if a.y == b.y || !(a.y.is_finite() && b.y.is_finite()) {
+            continue;
+        }
+        let (lo, hi) = (
+            row(a.y.min(b.y)).ceil() as i64,
+            row(a.y.max(b.y)).floor() as i64,
+        );
+        for r in lo.max(r0)..=hi.min(r1) {
+            rows[(r - r0) as usize].push(k);
+        }
+    }
+    let mut xs: Vec<(f64, i32, usize)> = Vec::new();
+    for (i, ks) in rows.iter().enumerate() {
+        let y = (r0 + i as i64) as f64 + 0.5;
+        xs.clear();
+        for &k in ks {
+            let [a, b] = edges[k];
+            if (a.y <= y) != (b.y <= y) {
+                let x = a.x + (y - a.y) * (b.x - a.x) / (b.y - a.y);
+                xs.push((x, if a.y < b.y { 1 } else { -1 }, k));
+            }
+        }
+        xs.sort_by(|p, q| p.0.total_cmp(&q.0));
+        let mut w = 0;
+        for j in 0..xs.len() {
+            w += xs[j].1;
+            if j + 1 < xs.len() && xs[j + 1].0 > xs[j].0 && !(0..=1).contains(&w) {
+                return Some([xs[j].2, xs[j + 1].2]);
+            }
+        }
+    }
+    None
+}
+
+impl<'m> Snapper<'m> {
+    fn new(mesh: &'m Mesh, exact: Vec<DVec2>) -> Self {
+        let n = exact.len();
+        let front: Vec<bool> = mesh
+            .triangles
+            .iter()
+            .map(|t| {
+                let [a, b, c] = t.map(|i| exact[i as usize]);
+                area2(a, b, c) < 0.0
+            })
+            .collect();
+        let mut front_edges = std::collections::HashSet::new();
+        for (t, tri) in mesh.triangles.iter().enumerate() {
+            if front[t] {
+                for k in 0..3 {
+                    front_edges.insert([tri[k], tri[(k + 1) % 3]]);
+                }
+            }
+        }
+        let silhouette: Vec<[u32; 2]> = mesh
+            .triangles
+            .iter()
+            .enumerate()
+            .filter(|&(t, _)| front[t])
+            .flat_map(|(_, tri)| (0..3).map(move |k| [tri[k], tri[(k + 1) % 3]]))
+            .filter(|&[u, v]| !front_edges.contains(&[v, u]))
+            .collect();
+        let single_layer = first_overlap(
+            &silhouette
+                .iter()
+                .map(|e| e.map(|i| exact[i as usize]))
+                .collect::<Vec<_>>(),
+        )
+        .is_none();
+        let mut incident = vec![Vec::new(); n];
+        for (k, t) in mesh.triangles.iter().enumerate() {
+            for &i in t {
+                incident[i as usize].push(k);
+            }
+        }
+        let mut s = Snapper {
+            tris: &mesh.triangles,
+            front,
+            silhouette,
+            single_layer,
+            parent: (0..n).collect(),
+            addr: exact.iter().map(|p| p.round()).collect(),
+            sum: exact,
+            count: vec![1.0; n],
+            incident,
+        };
+        let mut seen: HashMap<[u64; 3], usize> = HashMap::new();
+        for (i, p) in mesh.positions.iter().enumerate() {
+            match seen.entry(p.to_array().map(f64::to_bits)) {
+                std::collections::hash_map::Entry::Occupied(e) => s.union(*e.get(), i),
+                std::collections::hash_map::Entry::Vacant(e) => {
+                    e.insert(i);
+                }
+            }
+        }
+        s
+    }
+
+    fn find(&mut self, mut i: usize) -> usize {
+        while self.parent[i] != i {
+            self.parent[i] = self.parent[self.parent[i]];
+            i = self.parent[i];
+        }
+        i
+    }
+
+    fn union(&mut self, a: usize, b: usize) {
+        let (ra, rb) = (self.find(a), self.find(b));
+        if ra == rb {
+            return;
+        }
+        self.parent[rb] = ra;
+        let (s, c) = (self.sum[rb], self.count[rb]);
+        self.sum[ra] += s;
+        self.count[ra] += c;
+        self.addr[ra] = (self.sum[ra] / self.count[ra]).round();
+        let moved = std::mem::take(&mut self.incident[rb]);
+        self.incident[ra].extend(moved);
+    }
+
+    fn at(&mut self, i: u32) -> DVec2 {
+        let r = self.find(i as usize);
+        self.addr[r]
+    }
+
+    /// Whether triangle `t` breaks (a) with group `g` placed at `at` (the others where they are):
+    /// a continuous front face rounded to a back face, or the reverse.
+    fn broken_with(&mut self, t: usize, g: usize, at: DVec2) -> bool {
+        let p = self.tris[t].map(|i| {
+            let r = self.find(i as usize);
+            if r == g {
+                at
+            } else {
+                self.addr[r]
+            }
+        });
+        let a = area2(p[0], p[1], p[2]);
+        if self.front[t] {
+            a > 0.0
+        } else {
+            a < 0.0
+        }
+    }
+
+    fn broken(&mut self, t: usize) -> bool {
+        let g = self.find(self.tris[t][0] as usize);
+        let at = self.addr[g];
+        self.broken_with(t, g, at)
+    }
+
+    /// The nearest address to the group's continuous position, among the four corners of the
+    /// unit cell holding it (so no coordinate moves by a pixel or more), that mends `t` and
+    /// breaks no other triangle of the group, with its distance.
+    fn resnap(&mut self, t: usize, g: usize) -> Option<(f64, DVec2)> {
+        let here = self.addr[g];
+        let centre = self.sum[g] / self.count[g];
+        let in_range = |p: DVec2| {
+            (0.0..=MAX_ADDRESS as f64).contains(&p.x) && (0.0..=MAX_ADDRESS as f64).contains(&p.y)
+        };
+        let (lo, hi) = (centre.floor(), centre.ceil());
+        let mut candidates: Vec<DVec2> = [(lo.x, lo.y), (hi.x, lo.y), (lo.x, hi.y), (hi.x, hi.y)]
+            .into_iter()
+            .map(|(x, y)| DVec2::new(x, y))
+            .filter(|&p| p != here && (in_range(p) || !in_range(here)))
+            .collect();
+        candidates.dedup();
+        candidates.sort_by(|a, b| a.distance(centre).total_cmp(&b.distance(centre)));
+        let around = self.incident[g].clone();
+        candidates.into_iter().find_map(|at| {
+            let ok =
+                !self.broken_with(t, g, at) && around.iter().all(|&u| !self.broken_with(u, g, at));
+            ok.then(|| (at.distance(centre), at))
+        })
+    }
+
+    /// One repair step for (a); false when no triangle is broken.
+    fn mend_orientation(&mut self) -> bool {
+        let mut changed = false;
+        for t in 0..self.tris.len() {
+            if !self.broken(t) {
+                continue;
+            }
+            changed = true;
+            let groups = self.tris[t].map(|i| self.find(i as usize));
+            let best = groups
+                .iter()
+                .filter_map(|&g| self.resnap(t, g).map(|(d, at)| (d, g, at)))
+                .min_by(|a, b| a.0.total_cmp(&b.0));
+            if let Some((_, g, at)) = best {
+                self.addr[g] = at;
+                continue;
+            }
+            let p = groups.map(|g| self.addr[g]);
+            let (a, b) = [(0, 1), (1, 2), (2, 0)]
+                .into_iter()
+                .min_by(|&(a, b), &(c, d)| {
+                    p[a].distance_squared(p[b])
+                        .total_cmp(&p[c].distance_squared(p[d]))
+                })
+                .expect("three edges");
+            self.union(groups[a], groups[b]);
+        }
+        changed
+    }
+
+    /// One repair step for (b); false when the rounded silhouette winds 0 or 1 times everywhere.
+    fn mend_silhouette(&mut self) -> bool {
+        let sil = self.silhouette.clone();
+        let edges: Vec<[DVec2; 2]> = sil.iter().map(|e| e.map(|i| self.at(i))).collect();
+        let Some(pair) = first_overlap(&edges) else {
+            return false;
+        };
+        let k = if edges[pair[0]][0].distance(edges[pair[0]][1])
+            <= edges[pair[1]][0].distance(edges[pair[1]][1])
+        {
+            pair[0]
+        } else {
+            pair[1]
+        };
+        // A crossing edge has distinct end addresses, so they are in distinct groups.
+        self.union(sil[k][0] as usize, sil[k][1] as usize);
+        true
+    }
+
+    fn run(mut self) -> Vec<DVec2> {
+        while self.mend_orientation() || (self.single_layer && self.mend_silhouette()) {}
+        (0..self.parent.len() as u32).map(|i| self.at(i)).collect()
+    }
+}
+
 /// Projects the mesh through the camera onto a `width`×`height` canvas.
 ///
-/// - Vertex addresses are the continuous screen positions rounded to the nearest integer.
+/// - Vertex addresses are the continuous screen positions rounded to the nearest integer and
+///   repaired where rounding would fold a triangle ([`screen_addresses`]).
 /// - Back-face culling by the sign of the screen-space area of the rounded vertices: a face
 ///   whose outside faces the viewer winds counter-clockwise as seen, which in y-down screen
 ///   coordinates is a *negative* [`ScreenTriangle::area2`] in the mesh's vertex order. Those are
@@ -490,7 +799,10 @@ pub fn project(
     }
     mesh.validate()?;
     let screen: Vec<DVec3> = mesh.positions.iter().map(|&p| camera.screen(p)).collect();
-    let rounded: Vec<(f64, f64)> = screen.iter().map(|s| (s.x.round(), s.y.round())).collect();
+    let rounded: Vec<(f64, f64)> = screen_addresses(mesh, camera)
+        .iter()
+        .map(|a| (a.x, a.y))
+        .collect();
     let mut out = Vec::new();
     for (t, tri) in mesh.triangles.iter().enumerate() {
         let [a, b, c] = tri.map(|i| rounded[i as usize]);

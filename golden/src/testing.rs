@@ -32,3 +32,19 @@ pub fn runner(name: &str, cases: u32) -> TestRunner {
     };
     TestRunner::new_with_rng(config, TestRng::from_seed(RngAlgorithm::ChaCha, &bytes))
 }
+
+/// The same mesh with every triangle given its own three vertices (bit-identical positions and
+/// normals), as an OBJ exporter that splits every vertex writes it: the scene code must treat
+/// it exactly like the shared mesh (no crack between the copies).
+pub fn split_vertices(m: &crate::scene::Mesh) -> crate::scene::Mesh {
+    let mut out = crate::scene::Mesh::default();
+    for t in &m.triangles {
+        let base = out.positions.len() as u32;
+        for &i in t {
+            out.positions.push(m.positions[i as usize]);
+            out.normals.push(m.normals[i as usize]);
+        }
+        out.triangles.push([base, base + 1, base + 2]);
+    }
+    out
+}

@@ -5,10 +5,10 @@ use std::path::PathBuf;
 
 use glam::{DQuat, DVec3};
 use golden::scene::{
-    light_direction, load_obj, project, torus, uv_sphere, Camera, Mesh, SceneError,
-    LIGHT_ELEVATION_DEG,
+    light_direction, load_obj, project, screen_addresses, torus, uv_sphere, Camera, Mesh,
+    SceneError, LIGHT_ELEVATION_DEG,
 };
-use golden::testing::runner;
+use golden::testing::{runner, split_vertices};
 use proptest::prelude::*;
 
 fn tmp(name: &str) -> PathBuf {
@@ -54,6 +54,7 @@ fn projection_frames_the_mesh_and_culls_by_orientation() {
     let rez = prop::sample::select(vec![3u32, 7, 20, 50]);
     let size = 8..=1200u32;
     let totals = std::cell::Cell::new((0usize, 0usize));
+    let collapsed_front = std::cell::Cell::new(0usize);
     let result = r.run(
         &(shape, rez, quaternion(), size.clone(), size),
         |(shape, rez, q, w, h)| {
@@ -84,8 +85,11 @@ fn projection_frames_the_mesh_and_culls_by_orientation() {
             for t in &tris {
                 for v in &t.v {
                     let d = (v.x as f64 - cx).hypot(v.y as f64 - cy);
+                    // Rounding moves a vertex by at most √½ px; the fold repair may round a
+                    // coordinate the other way (within the unit cell: √2) or merge vertices at
+                    // the rounded mean of their positions (inside their hull, then √½).
                     prop_assert!(
-                        d <= r_px + 0.71,
+                        d <= r_px + std::f64::consts::SQRT_2,
                         "vertex ({}, {}) {} px from the centre",
                         v.x,
                         v.y,
@@ -96,7 +100,8 @@ fn projection_frames_the_mesh_and_culls_by_orientation() {
                     prop_assert!(v.z.abs() <= 1.5);
                 }
             }
-            // Culling against the exact screen area: rounding moves each vertex by at most √½ px,
+            // Culling against the exact screen area: rounding moves each vertex by at most √½ px
+            // (the fold repair of `screen_addresses` more, but never turns a front face back),
             // which changes twice the area by at most √2·(|b − a| + |c − a|) + 2.
             // Oriented key: a back face and a front face can project onto the same three
             // addresses (mirror-symmetric meshes seen edge-on), but never with the same winding.
@@ -107,6 +112,7 @@ fn projection_frames_the_mesh_and_culls_by_orientation() {
             };
             let kept: std::collections::HashSet<_> =
                 tris.iter().map(|t| key(t.v.map(|v| (v.x, v.y)))).collect();
+            let addr = screen_addresses(&mesh, &cam);
             let mut decided = 0;
             for t in &mesh.triangles {
                 let [a, b, c] = t.map(|i| cam.screen(mesh.positions[i as usize]));
@@ -115,10 +121,14 @@ fn projection_frames_the_mesh_and_culls_by_orientation() {
                 let slack = std::f64::consts::SQRT_2
                     * ((b - a).truncate().length() + (c - a).truncate().length())
                     + 2.0;
-                // `project` emits (v0, v2, v1).
-                let k = key([a, c, b].map(|s| (s.x.round() as i32, s.y.round() as i32)));
+                // `project` emits (v0, v2, v1), at the repaired addresses.
+                let [aa, ab, ac] = t.map(|i| addr[i as usize]);
+                let k = key([aa, ac, ab].map(|s| (s.x as i32, s.y as i32)));
                 if area2 < -slack {
-                    prop_assert!(kept.contains(&k), "front face {:?} culled", t);
+                    // Kept, unless the fold repair collapsed it (zero area: it covers nothing).
+                    let collapsed = (ab - aa).perp_dot(ac - aa) == 0.0;
+                    prop_assert!(kept.contains(&k) || collapsed, "front face {:?} culled", t);
+                    collapsed_front.set(collapsed_front.get() + collapsed as usize);
                     decided += 1;
                 } else if area2 > slack {
                     prop_assert!(!kept.contains(&k), "back face {:?} kept", t);
@@ -142,7 +152,11 @@ fn projection_frames_the_mesh_and_culls_by_orientation() {
     }
     // The slack must leave most faces decided, or the culling check says little.
     let (decided, all) = totals.get();
-    println!("culling decided beyond rounding for {decided} of {all} faces");
+    println!(
+        "culling decided beyond rounding for {decided} of {all} faces; {} decided front faces \
+         collapsed by the fold repair",
+        collapsed_front.get()
+    );
     assert!(decided * 3 >= all, "{decided} of {all}");
 }
 
@@ -333,4 +347,106 @@ fn hand_built_bad_meshes_are_rejected_by_project() {
     shifted.screen_centre.x += 60.0;
     let tris = project(&good, &shifted, 64, 64).unwrap();
     assert!(tris.iter().flat_map(|t| t.v).any(|v| v.x > 64));
+}
+
+/// `screen_addresses` (the fold repair behind `project`), on spheres and tori at random
+/// rotations and sizes, shared or split vertices:
+/// - no continuous front face is rounded to a back face, nor the reverse (zero area is allowed);
+/// - vertices with identical model positions get identical addresses (no crack opens);
+/// - every address is an integer, and a vertex is moved off its rounded position only where
+///   plain rounding broke something: when plain rounding breaks no triangle, the addresses are
+///   exactly the rounded positions unless the silhouette had to be untangled (counted, printed).
+#[test]
+fn fold_repair_mends_orientation_keeps_seams_and_moves_nothing_needlessly() {
+    let mut r = runner(
+        "fold_repair_mends_orientation_keeps_seams_and_moves_nothing_needlessly",
+        200,
+    );
+    let shape = prop::sample::select(vec!["sphere", "torus"]);
+    let rez = prop::sample::select(vec![3u32, 8, 20, 50, 100]);
+    let size = prop_oneof![8..=60u32, 60..=600u32];
+    let stats = std::cell::Cell::new((0usize, 0usize, 0usize));
+    let result = r.run(
+        &(shape, rez, quaternion(), size.clone(), size, any::<bool>()),
+        |(shape, rez, q, w, h, split_it)| {
+            let mesh = if shape == "sphere" {
+                uv_sphere(rez)
+            } else {
+                torus(rez)
+            }
+            .unwrap();
+            let mesh = if split_it {
+                split_vertices(&mesh)
+            } else {
+                mesh
+            };
+            let cam = Camera::fit(&mesh, w, h, q);
+            let addr = screen_addresses(&mesh, &cam);
+            let exact: Vec<_> = mesh
+                .positions
+                .iter()
+                .map(|&p| cam.screen(p).truncate())
+                .collect();
+            let area2 = |p: [glam::DVec2; 3]| (p[1] - p[0]).perp_dot(p[2] - p[0]);
+            let broken = |pos: &[glam::DVec2], t: &[u32; 3]| {
+                let (e, a) = (
+                    area2(t.map(|i| exact[i as usize])),
+                    area2(t.map(|i| pos[i as usize])),
+                );
+                if e < 0.0 {
+                    a > 0.0
+                } else {
+                    a < 0.0
+                }
+            };
+            for (k, t) in mesh.triangles.iter().enumerate() {
+                prop_assert!(!broken(&addr, t), "triangle {} broken after repair", k);
+            }
+            let mut by_position = std::collections::HashMap::new();
+            for (i, p) in mesh.positions.iter().enumerate() {
+                prop_assert!(addr[i].x.fract() == 0.0 && addr[i].y.fract() == 0.0);
+                let first = *by_position
+                    .entry(p.to_array().map(f64::to_bits))
+                    .or_insert(addr[i]);
+                prop_assert_eq!(first, addr[i], "vertex {} split from its twin", i);
+            }
+            let rounded: Vec<_> = exact.iter().map(|p| p.round()).collect();
+            let plain_ok = mesh.triangles.iter().all(|t| !broken(&rounded, t));
+            let moved = addr.iter().zip(&rounded).filter(|(a, r)| a != r).count();
+            let (mut clean, mut clean_moved, mut total_moved) = stats.get();
+            total_moved += moved;
+            if plain_ok {
+                clean += 1;
+                clean_moved += (moved > 0) as usize;
+            }
+            stats.set((clean, clean_moved, total_moved));
+            Ok(())
+        },
+    );
+    if let Err(e) = result {
+        panic!("{e}");
+    }
+    let (clean, clean_moved, total_moved) = stats.get();
+    println!(
+        "{clean} of 200 cases had no triangle broken by plain rounding; the repair moved vertices \
+         in {clean_moved} of them (silhouette untangling); {total_moved} vertices moved in all"
+    );
+    assert!(clean >= 20, "too few clean cases ({clean}) to say anything");
+    // Untangling a silhouette without any broken triangle is the exception, not the rule.
+    assert!(
+        clean_moved * 4 <= clean,
+        "{clean_moved} of {clean} clean cases moved"
+    );
+}
+
+/// The thesis scene (sphere, rez 50, 400×400, identity rotation) has no fold: its addresses are
+/// the plain rounded positions, so the repair does not change the default images.
+#[test]
+fn default_scene_addresses_are_plain_rounding() {
+    let mesh = uv_sphere(50).unwrap();
+    let cam = Camera::fit(&mesh, 400, 400, DQuat::IDENTITY);
+    let addr = screen_addresses(&mesh, &cam);
+    for (i, p) in mesh.positions.iter().enumerate() {
+        assert_eq!(addr[i], cam.screen(*p).truncate().round(), "vertex {i}");
+    }
 }
