@@ -463,44 +463,45 @@ impl Camera {
 }
 
 /// Integer screen addresses of every mesh vertex: the continuous screen positions rounded to the
-/// nearest integer, then *repaired* so that rounding folds nothing.
+/// nearest integer, then *repaired* where rounding folds the projected surface over itself.
 ///
 /// Why. Rounding moves each vertex by up to half a pixel. That can reverse the orientation of a
 /// sub-pixel-thin triangle (at the silhouette, where faces are seen edge-on, and in the slivers
-/// around a sphere's poles), or tangle the silhouette. The projected surface then folds over
-/// itself: two front faces cover the same pixels, and a back-face-culled convex mesh is no longer
-/// written exactly once.
+/// around a sphere's poles). The projected surface then folds: two front faces cover the same
+/// pixels, and a back-face-culled convex mesh is no longer written exactly once.
 ///
-/// What makes coverage exact. The front faces (negative area in mesh order, see [`project`])
-/// form a 2-chain whose boundary is the *silhouette*: the directed edges of front faces whose
-/// twin is not on a front face. At any sample point, the signed count of front faces covering it
-/// equals the winding number of the silhouette around it, whatever the vertex positions, and the
-/// fill convention makes that hold pixel by pixel. So if (a) no continuous front face is rounded
-/// to a back face and no continuous back face to a front face (zero area is harmless: it covers
-/// no pixel), every drawn face counts +1, and the number of writes of each pixel *is* the
-/// winding number; (b) a winding number of 0 or 1 everywhere then means each pixel is written at
-/// most once.
+/// What makes coverage exact. Let D be the faces drawn (negative area in mesh order, see
+/// [`project`]), plus the zero-area faces that are front faces before rounding (they cover no
+/// pixel). At any sample point, the number of faces of D covering it equals the winding number
+/// of the boundary of D (its directed edges whose reverse is not in D) around it, whatever the
+/// vertex positions; the fill convention makes that hold pixel by pixel. So each pixel is
+/// written at most once exactly when that boundary winds 0 or 1 times around every pixel centre,
+/// and the repair below runs exactly when plain rounding would write some pixel twice.
 ///
-/// Repair. While (a) fails for some triangle:
+/// Repair. Only for views whose continuous projection is single-layer (the boundary of the
+/// continuous front faces winds 0 or 1 times around every pixel centre: any convex mesh, e.g.
+/// the sphere; a non-convex mesh that overlaps itself keeps plain rounding, and the depth buffer
+/// resolves its overlaps). In passes, while the rounded boundary winds otherwise around some
+/// pixel centre ([`overlaps`] finds the row spans and the two boundary edges bounding each),
+/// every *broken* face (rounded to the other orientation than before rounding) on either side
+/// of those edges is mended:
 /// 1. *re-snap*: one of its vertices rounds the other way in x, in y or both (a corner of the
 ///    unit cell holding its continuous position): the corner nearest that position that mends
-///    the triangle and breaks no other triangle around that vertex (among its three vertices,
-///    the smallest move wins); each re-snap lowers the number of broken triangles;
-/// 2. if no such move exists, *collapse* its shortest edge: both end vertices (with every vertex
-///    already merged with them) take one address, the rounded mean of their continuous positions;
-///    each collapse lowers the number of vertex groups.
+///    the face and breaks no other face around that vertex (among its three vertices, the
+///    smallest move wins); each re-snap lowers the number of broken faces;
+/// 2. if no such move exists, its shortest edge *collapses*: both end vertices (with every
+///    vertex already merged with them) take one address, that of whichever end is nearer the
+///    mean of their continuous positions; each collapse lowers the number of vertex groups.
 ///
-/// Then, if the continuous silhouette winds 0 or 1 times around every pixel-centre row point
-/// (true for any convex mesh; a non-convex mesh that overlaps itself keeps its overlaps and is
-/// resolved by the depth buffer), (b) is enforced: where the rounded silhouette winds otherwise,
-/// the shorter of the two silhouette edges bounding the offending span is collapsed, and (a) is
-/// checked again. Every step lowers (vertex groups, broken triangles) lexicographically, so the
+/// A pass that finds no broken face collapses the shorter of its first span's two boundary
+/// edges instead. Every step lowers (vertex groups, broken faces) lexicographically, so the
 /// loop ends.
 ///
 /// Vertices with bit-identical model positions (OBJ seams) start in one group, so the repair
-/// never opens a crack between them. On meshes whose rounding folds nothing (e.g. the default
-/// scene) the result is exactly the rounded positions. Addresses stay in 0..=4095 when the
-/// rounded ones are; [`project`] checks the 12-bit range.
+/// never opens a crack between them. Where rounding folds nothing (e.g. the default scene) the
+/// result is exactly the rounded positions; otherwise a vertex only ever moves to a corner of its
+/// own unit cell or to the address of a vertex it is merged with. Addresses stay in 0..=4095 when the rounded
+/// ones are; [`project`] checks the 12-bit range.
 pub fn screen_addresses(mesh: &Mesh, camera: &Camera) -> Vec<DVec2> {
     let exact: Vec<DVec2> = mesh
         .positions
@@ -511,15 +512,12 @@ pub fn screen_addresses(mesh: &Mesh, camera: &Camera) -> Vec<DVec2> {
 }
 
 /// Working state of [`screen_addresses`]: a union-find over vertices with, per group (root), the
-/// sum and count of the continuous positions, the current address and the incident triangles.
+/// sum and count of the continuous positions, the current address and the incident faces.
 struct Snapper<'m> {
     tris: &'m [[u32; 3]],
-    /// Whether each triangle is a front face in the continuous projection.
+    exact: Vec<DVec2>,
+    /// Whether each face is a front face before rounding.
     front: Vec<bool>,
-    /// Directed silhouette edges (vertex indices) of the continuous front faces.
-    silhouette: Vec<[u32; 2]>,
-    /// Whether the continuous silhouette winds 0 or 1 times everywhere (then (b) is enforced).
-    single_layer: bool,
     parent: Vec<usize>,
     sum: Vec<DVec2>,
     count: Vec<f64>,
@@ -527,15 +525,23 @@ struct Snapper<'m> {
     incident: Vec<Vec<usize>>,
 }
 
+/// A directed boundary edge between two vertex groups, and the face of D it belongs to.
+struct BoundaryEdge {
+    ends: [usize; 2],
+    face: usize,
+}
+
 fn area2(a: DVec2, b: DVec2, c: DVec2) -> f64 {
     (b - a).perp_dot(c - a)
 }
 
-/// The first span of a pixel-centre row (y = r + 0.5) where the closed chain of directed
-/// `edges` winds other than 0 or 1 times, as the indices of the two edges bounding it. Winding
-/// counts +1 for each edge crossed going down the screen (y increasing), −1 going up, sweeping
-/// from the left; a front face (negative area) alone winds +1. Spans of zero length are ignored.
-fn first_overlap(edges: &[[DVec2; 2]]) -> Option<[usize; 2]> {
+/// Every span of a pixel-centre row (y = r + 0.5) that holds a pixel centre around which the
+/// closed chain of directed `edges` winds other than 0 or 1 times, as the indices of the two
+/// edges bounding it. Winding counts +1 for each edge crossed going down the screen (y
+/// increasing), −1 going up, sweeping from the left; a front face (negative area) alone winds
+/// +1. For integer end points the crossings, and so the tie with a centre lying exactly on an
+/// edge, are computed exactly.
+fn overlaps(edges: &[[DVec2; 2]]) -> Vec<[usize; 2]> {
     // Rows r with r + 0.5 inside the 12-bit range (and one beyond); edges bucketed per row.
     let row = |y: f64| (y - 0.5).clamp(-2.0, MAX_ADDRESS as f64 + 2.0);
     let (r0, r1) = (-1i64, MAX_ADDRESS as i64 + 1);
@@ -553,13 +559,16 @@ fn first_overlap(edges: &[[DVec2; 2]]) -> Option<[usize; 2]> {
         }
     }
     let mut xs: Vec<(f64, i32, usize)> = Vec::new();
+    let mut found = Vec::new();
     for (i, ks) in rows.iter().enumerate() {
         let y = (r0 + i as i64) as f64 + 0.5;
         xs.clear();
         for &k in ks {
             let [a, b] = edges[k];
             if (a.y <= y) != (b.y <= y) {
-                let x = a.x + (y - a.y) * (b.x - a.x) / (b.y - a.y);
+                // From the upper end, so that a segment and its reverse cross at the same x.
+                let (p, q) = if a.y < b.y { (a, b) } else { (b, a) };
+                let x = p.x + (y - p.y) * (q.x - p.x) / (q.y - p.y);
                 xs.push((x, if a.y < b.y { 1 } else { -1 }, k));
             }
         }
@@ -567,18 +576,21 @@ fn first_overlap(edges: &[[DVec2; 2]]) -> Option<[usize; 2]> {
         let mut w = 0;
         for j in 0..xs.len() {
             w += xs[j].1;
-            if j + 1 < xs.len() && xs[j + 1].0 > xs[j].0 && !(0..=1).contains(&w) {
-                return Some([xs[j].2, xs[j + 1].2]);
+            // The span [x_j, x_j+1) holds a pixel centre c + 0.5 (a centre exactly on a
+            // crossing belongs to the span on its right, as the fill convention has it).
+            let holds_centre = j + 1 < xs.len() && (xs[j].0 - 0.5).ceil() + 0.5 < xs[j + 1].0;
+            if holds_centre && !(0..=1).contains(&w) {
+                found.push([xs[j].2, xs[j + 1].2]);
             }
         }
     }
-    None
+    found
 }
 
 impl<'m> Snapper<'m> {
     fn new(mesh: &'m Mesh, exact: Vec<DVec2>) -> Self {
         let n = exact.len();
-        let front: Vec<bool> = mesh
+        let front = mesh
             .triangles
             .iter()
             .map(|t| {
@@ -586,29 +598,6 @@ impl<'m> Snapper<'m> {
                 area2(a, b, c) < 0.0
             })
             .collect();
-        let mut front_edges = std::collections::HashSet::new();
-        for (t, tri) in mesh.triangles.iter().enumerate() {
-            if front[t] {
-                for k in 0..3 {
-                    front_edges.insert([tri[k], tri[(k + 1) % 3]]);
-                }
-            }
-        }
-        let silhouette: Vec<[u32; 2]> = mesh
-            .triangles
-            .iter()
-            .enumerate()
-            .filter(|&(t, _)| front[t])
-            .flat_map(|(_, tri)| (0..3).map(move |k| [tri[k], tri[(k + 1) % 3]]))
-            .filter(|&[u, v]| !front_edges.contains(&[v, u]))
-            .collect();
-        let single_layer = first_overlap(
-            &silhouette
-                .iter()
-                .map(|e| e.map(|i| exact[i as usize]))
-                .collect::<Vec<_>>(),
-        )
-        .is_none();
         let mut incident = vec![Vec::new(); n];
         for (k, t) in mesh.triangles.iter().enumerate() {
             for &i in t {
@@ -618,11 +607,10 @@ impl<'m> Snapper<'m> {
         let mut s = Snapper {
             tris: &mesh.triangles,
             front,
-            silhouette,
-            single_layer,
             parent: (0..n).collect(),
             addr: exact.iter().map(|p| p.round()).collect(),
-            sum: exact,
+            sum: exact.clone(),
+            exact,
             count: vec![1.0; n],
             incident,
         };
@@ -655,27 +643,24 @@ impl<'m> Snapper<'m> {
         let (s, c) = (self.sum[rb], self.count[rb]);
         self.sum[ra] += s;
         self.count[ra] += c;
-        self.addr[ra] = (self.sum[ra] / self.count[ra]).round();
+        let mean = self.sum[ra] / self.count[ra];
+        if self.addr[rb].distance_squared(mean) < self.addr[ra].distance_squared(mean) {
+            self.addr[ra] = self.addr[rb];
+        }
         let moved = std::mem::take(&mut self.incident[rb]);
         self.incident[ra].extend(moved);
     }
 
-    fn at(&mut self, i: u32) -> DVec2 {
-        let r = self.find(i as usize);
-        self.addr[r]
+    fn groups(&mut self, t: usize) -> [usize; 3] {
+        self.tris[t].map(|i| self.find(i as usize))
     }
 
-    /// Whether triangle `t` breaks (a) with group `g` placed at `at` (the others where they are):
-    /// a continuous front face rounded to a back face, or the reverse.
+    /// Whether face `t` is broken with group `g` placed at `at` (the others where they are): a
+    /// front face rounded to a back face, or the reverse.
     fn broken_with(&mut self, t: usize, g: usize, at: DVec2) -> bool {
-        let p = self.tris[t].map(|i| {
-            let r = self.find(i as usize);
-            if r == g {
-                at
-            } else {
-                self.addr[r]
-            }
-        });
+        let p = self
+            .groups(t)
+            .map(|r| if r == g { at } else { self.addr[r] });
         let a = area2(p[0], p[1], p[2]);
         if self.front[t] {
             a > 0.0
@@ -690,9 +675,50 @@ impl<'m> Snapper<'m> {
         self.broken_with(t, g, at)
     }
 
+    /// Whether face `t` belongs to D: drawn, or of zero area and a front face before rounding.
+    fn in_chain(&mut self, t: usize, rounded: bool) -> bool {
+        if !rounded {
+            return self.front[t];
+        }
+        let p = self.groups(t).map(|g| self.addr[g]);
+        let a = area2(p[0], p[1], p[2]);
+        a < 0.0 || (a == 0.0 && self.front[t])
+    }
+
+    /// The boundary of D (rounded addresses, or the continuous positions), in a fixed order.
+    fn boundary(&mut self, rounded: bool) -> Vec<BoundaryEdge> {
+        let mut count: HashMap<[usize; 2], (i32, usize)> = HashMap::new();
+        for t in 0..self.tris.len() {
+            if !self.in_chain(t, rounded) {
+                continue;
+            }
+            let r = self.groups(t);
+            for k in 0..3 {
+                let e = [r[k], r[(k + 1) % 3]];
+                if e[0] != e[1] {
+                    count.entry(e).or_insert((0, t)).0 += 1;
+                }
+            }
+        }
+        let mut out = Vec::new();
+        for (&[u, v], &(n, face)) in &count {
+            let m = n - count.get(&[v, u]).map_or(0, |c| c.0);
+            for _ in 0..m.max(0) {
+                out.push(BoundaryEdge { ends: [u, v], face });
+            }
+        }
+        out.sort_by_key(|e| (e.ends, e.face));
+        out
+    }
+
+    fn segments(&self, edges: &[BoundaryEdge], rounded: bool) -> Vec<[DVec2; 2]> {
+        let pos = if rounded { &self.addr } else { &self.exact };
+        edges.iter().map(|e| e.ends.map(|g| pos[g])).collect()
+    }
+
     /// The nearest address to the group's continuous position, among the four corners of the
     /// unit cell holding it (so no coordinate moves by a pixel or more), that mends `t` and
-    /// breaks no other triangle of the group, with its distance.
+    /// breaks no other face of the group, with its distance.
     fn resnap(&mut self, t: usize, g: usize) -> Option<(f64, DVec2)> {
         let here = self.addr[g];
         let centre = self.sum[g] / self.count[g];
@@ -705,8 +731,8 @@ impl<'m> Snapper<'m> {
             .map(|(x, y)| DVec2::new(x, y))
             .filter(|&p| p != here && (in_range(p) || !in_range(here)))
             .collect();
-        candidates.dedup();
         candidates.sort_by(|a, b| a.distance(centre).total_cmp(&b.distance(centre)));
+        candidates.dedup();
         let around = self.incident[g].clone();
         candidates.into_iter().find_map(|at| {
             let ok =
@@ -715,58 +741,88 @@ impl<'m> Snapper<'m> {
         })
     }
 
-    /// One repair step for (a); false when no triangle is broken.
-    fn mend_orientation(&mut self) -> bool {
-        let mut changed = false;
-        for t in 0..self.tris.len() {
-            if !self.broken(t) {
-                continue;
-            }
-            changed = true;
-            let groups = self.tris[t].map(|i| self.find(i as usize));
-            let best = groups
-                .iter()
-                .filter_map(|&g| self.resnap(t, g).map(|(d, at)| (d, g, at)))
-                .min_by(|a, b| a.0.total_cmp(&b.0));
-            if let Some((_, g, at)) = best {
-                self.addr[g] = at;
-                continue;
-            }
-            let p = groups.map(|g| self.addr[g]);
-            let (a, b) = [(0, 1), (1, 2), (2, 0)]
-                .into_iter()
-                .min_by(|&(a, b), &(c, d)| {
-                    p[a].distance_squared(p[b])
-                        .total_cmp(&p[c].distance_squared(p[d]))
-                })
-                .expect("three edges");
-            self.union(groups[a], groups[b]);
+    /// Mends broken face `t`: a re-snap if one exists, else the collapse of its shortest edge.
+    fn mend(&mut self, t: usize) {
+        let groups = self.groups(t);
+        let best = groups
+            .iter()
+            .filter_map(|&g| self.resnap(t, g).map(|(d, at)| (d, g, at)))
+            .min_by(|a, b| a.0.total_cmp(&b.0));
+        if let Some((_, g, at)) = best {
+            self.addr[g] = at;
+            return;
         }
-        changed
+        let p = groups.map(|g| self.addr[g]);
+        let (a, b) = [(0, 1), (1, 2), (2, 0)]
+            .into_iter()
+            .min_by(|&(a, b), &(c, d)| {
+                p[a].distance_squared(p[b])
+                    .total_cmp(&p[c].distance_squared(p[d]))
+            })
+            .expect("three edges");
+        self.union(groups[a], groups[b]);
     }
 
-    /// One repair step for (b); false when the rounded silhouette winds 0 or 1 times everywhere.
-    fn mend_silhouette(&mut self) -> bool {
-        let sil = self.silhouette.clone();
-        let edges: Vec<[DVec2; 2]> = sil.iter().map(|e| e.map(|i| self.at(i))).collect();
-        let Some(pair) = first_overlap(&edges) else {
+    /// One repair pass; false when the rounded boundary of D winds 0 or 1 times everywhere.
+    /// Every broken face beside an offending span is mended (state is re-read face by face);
+    /// only if none was broken does the first span's shorter boundary edge collapse.
+    fn mend_folds(&mut self) -> bool {
+        let edges = self.boundary(true);
+        let segments = self.segments(&edges, true);
+        let spans = overlaps(&segments);
+        if spans.is_empty() {
             return false;
-        };
-        let k = if edges[pair[0]][0].distance(edges[pair[0]][1])
-            <= edges[pair[1]][0].distance(edges[pair[1]][1])
-        {
-            pair[0]
-        } else {
-            pair[1]
-        };
-        // A crossing edge has distinct end addresses, so they are in distinct groups.
-        self.union(sil[k][0] as usize, sil[k][1] as usize);
+        }
+        let mut mended = false;
+        let mut seen = std::collections::HashSet::new();
+        for pair in &spans {
+            // The faces on both sides of the two edges: the face of D, and the faces across.
+            for &k in pair {
+                if !seen.insert(k) {
+                    continue;
+                }
+                // Earlier mends of this pass may have merged groups.
+                let [u, v] = edges[k].ends.map(|g| self.find(g));
+                let mut suspects = vec![edges[k].face];
+                for t in self.incident[v].clone() {
+                    let r = self.groups(t);
+                    if (0..3).any(|i| r[i] == v && r[(i + 1) % 3] == u) {
+                        suspects.push(t);
+                    }
+                }
+                for t in suspects {
+                    if self.broken(t) {
+                        self.mend(t);
+                        mended = true;
+                    }
+                }
+            }
+        }
+        if !mended {
+            let pair = spans[0];
+            let length = |k: usize| segments[k][0].distance(segments[k][1]);
+            let k = if length(pair[0]) <= length(pair[1]) {
+                pair[0]
+            } else {
+                pair[1]
+            };
+            // A crossing edge has distinct end addresses, so its ends are in distinct groups.
+            self.union(edges[k].ends[0], edges[k].ends[1]);
+        }
         true
     }
 
     fn run(mut self) -> Vec<DVec2> {
-        while self.mend_orientation() || (self.single_layer && self.mend_silhouette()) {}
-        (0..self.parent.len() as u32).map(|i| self.at(i)).collect()
+        let continuous = self.boundary(false);
+        if overlaps(&self.segments(&continuous, false)).is_empty() {
+            while self.mend_folds() {}
+        }
+        (0..self.parent.len())
+            .map(|i| {
+                let r = self.find(i);
+                self.addr[r]
+            })
+            .collect()
     }
 }
 
