@@ -830,7 +830,7 @@ impl<'m> Snapper<'m> {
 ///
 /// - Vertex addresses are the continuous screen positions rounded to the nearest integer and
 ///   repaired where rounding would fold a triangle ([`screen_addresses`]).
-/// - Back-face culling by the sign of the screen-space area of the rounded vertices: a face
+/// - Back-face culling by the sign of the screen-space area of the vertex addresses: a face
 ///   whose outside faces the viewer winds counter-clockwise as seen, which in y-down screen
 ///   coordinates is a *negative* [`ScreenTriangle::area2`] in the mesh's vertex order. Those are
 ///   kept; positive ones (back faces) and zero-area ones (edge-on, or collapsed by rounding: they
