@@ -501,7 +501,8 @@ impl Camera {
 /// never opens a crack between them. Where rounding folds nothing (e.g. the default scene) the
 /// result is exactly the rounded positions; otherwise a vertex only ever moves to a corner of its
 /// own unit cell or to the address of a vertex it is merged with. Addresses stay in 0..=4095 when the rounded
-/// ones are; [`project`] checks the 12-bit range.
+/// ones are; [`project`] checks the 12-bit range. The mesh must be valid ([`Mesh::validate`]:
+/// indices in range, finite positions), as [`project`] ensures before calling this.
 pub fn screen_addresses(mesh: &Mesh, camera: &Camera) -> Vec<DVec2> {
     let exact: Vec<DVec2> = mesh
         .positions
