@@ -482,7 +482,7 @@ impl Camera {
 /// continuous front faces winds 0 or 1 times around every pixel centre: any convex mesh, e.g.
 /// the sphere; a non-convex mesh that overlaps itself keeps plain rounding, and the depth buffer
 /// resolves its overlaps). In passes, while the rounded boundary winds otherwise around some
-/// pixel centre ([`overlaps`] finds the row spans and the two boundary edges bounding each),
+/// pixel centre (`overlaps` finds the row spans and the two boundary edges bounding each),
 /// every *broken* face (rounded to the other orientation than before rounding) on either side
 /// of those edges is mended:
 /// 1. *re-snap*: one of its vertices rounds the other way in x, in y or both (a corner of the
