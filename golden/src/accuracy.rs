@@ -205,6 +205,13 @@ impl Entry {
         self.source = Some(source.into());
         self
     }
+    /// [`Entry::claim`] where the sources state one.
+    fn claimed(self, claim: Option<(f64, &str)>) -> Entry {
+        match claim {
+            Some((c, source)) => self.claim(c, source),
+            None => self,
+        }
+    }
     fn ext(id: &str, what: &str, domain: &str, metric: Metric, e: Extremum) -> Entry {
         entry(id, what, domain, metric, e.value).at(e.at)
     }
@@ -230,6 +237,63 @@ fn w_variants() -> Vec<(String, String, u32, bool)> {
     v
 }
 
+/// A quadratic form reported: (id, what, coefficients, the sources' claim if any).
+type Form = (&'static str, String, Coeffs, Option<(f64, &'static str)>);
+
+/// The normalizer's f(K) forms.
+fn normalizer_forms() -> [Form; 2] {
+    [
+        (
+            "normalizer-published",
+            "normalizer f(K) = 0.822K² − 2.046K + 2.227 ≈ 1/√K".into(),
+            normalizer::PUBLISHED,
+            Some((0.0036, "seed 000, formula (1): 0.36%")),
+        ),
+        (
+            "normalizer-fit",
+            format!(
+                "normalizer-fit f(K) = 1 − (K−1)/2 + c(K−1)², c = {:.6}",
+                normalizer::FIT_C
+            ),
+            normalizer::FIT,
+            None,
+        ),
+    ]
+}
+
+/// The fast method's 1/√(M+1) forms.
+fn inv_sqrt_forms() -> [Form; 4] {
+    [
+        (
+            "inv-sqrt-chebyshev",
+            "1/√(M+1) ≈ 1.003 − 0.403M + 0.82M² (Chebyshev)".into(),
+            fast::CHEBYSHEV,
+            Some((0.00357, "seed 001 §3.1: 0.357%")),
+        ),
+        (
+            "inv-sqrt-shift-add",
+            "1/√(M+1) ≈ 1 − lM + 2lM², l = 1/4+1/8+1/32".into(),
+            fast::SHIFT_ADD,
+            Some((0.0051, "seed 001 §3.1: 0.51%")),
+        ),
+        (
+            "inv-sqrt-taylor",
+            "1/√(M+1) ≈ 1 − M/2 + 3M²/8 (Taylor)".into(),
+            fast::TAYLOR,
+            Some((0.0498, "seed 001 §3.1: 4.98%")),
+        ),
+        (
+            "inv-sqrt-fit",
+            format!(
+                "1/√(M+1) ≈ 1 − M/2 + cM², c = {:.6} (fast-fit)",
+                fast::FIT_C
+            ),
+            fast::FIT,
+            None,
+        ),
+    ]
+}
+
 /// Measure everything. Takes about a second in release builds.
 pub fn report() -> Report {
     use Metric::*;
@@ -237,80 +301,32 @@ pub fn report() -> Report {
     let kd = "K ∈ [0.499, 1]";
     let md = "M ∈ [−0.5, 0]";
 
-    e.push(
-        Entry::ext(
-            "normalizer-published",
-            "normalizer f(K) = 0.822K² − 2.046K + 2.227 ≈ 1/√K",
-            kd,
-            MaxRelative,
-            normalizer_max(normalizer::PUBLISHED),
-        )
-        .claim(0.0036, "seed 000, formula (1): 0.36%"),
-    );
-    e.push(Entry::ext(
-        "normalizer-fit",
-        &format!(
-            "normalizer-fit f(K) = 1 − (K−1)/2 + c(K−1)², c = {:.6}",
-            normalizer::FIT_C
+    for (id, what, c, claim) in normalizer_forms() {
+        e.push(Entry::ext(id, &what, kd, MaxRelative, normalizer_max(c)).claimed(claim));
+    }
+    for (id, what, c) in [
+        (
+            "normalizer-published-bias",
+            "normalizer published f(1) − 1 (bias where fine meshes live)",
+            normalizer::PUBLISHED,
         ),
-        kd,
-        MaxRelative,
-        normalizer_max(normalizer::FIT),
-    ));
-    e.push(entry(
-        "normalizer-published-bias",
-        "normalizer published f(1) − 1 (bias where fine meshes live)",
-        "K = 1",
-        Value,
-        normalizer::scale(1.0, normalizer::PUBLISHED) - 1.0,
-    ));
-    e.push(entry(
-        "normalizer-fit-bias",
-        "normalizer-fit f(1) − 1",
-        "K = 1",
-        Value,
-        normalizer::scale(1.0, normalizer::FIT) - 1.0,
-    ));
-    e.push(
-        Entry::ext(
-            "inv-sqrt-chebyshev",
-            "1/√(M+1) ≈ 1.003 − 0.403M + 0.82M² (Chebyshev)",
-            md,
-            MaxRelative,
-            inv_sqrt_max(fast::CHEBYSHEV),
-        )
-        .claim(0.00357, "seed 001 §3.1: 0.357%"),
-    );
-    e.push(
-        Entry::ext(
-            "inv-sqrt-shift-add",
-            "1/√(M+1) ≈ 1 − lM + 2lM², l = 1/4+1/8+1/32",
-            md,
-            MaxRelative,
-            inv_sqrt_max(fast::SHIFT_ADD),
-        )
-        .claim(0.0051, "seed 001 §3.1: 0.51%"),
-    );
-    e.push(
-        Entry::ext(
-            "inv-sqrt-taylor",
-            "1/√(M+1) ≈ 1 − M/2 + 3M²/8 (Taylor)",
-            md,
-            MaxRelative,
-            inv_sqrt_max(fast::TAYLOR),
-        )
-        .claim(0.0498, "seed 001 §3.1: 4.98%"),
-    );
-    e.push(Entry::ext(
-        "inv-sqrt-fit",
-        &format!(
-            "1/√(M+1) ≈ 1 − M/2 + cM², c = {:.6} (fast-fit)",
-            fast::FIT_C
+        (
+            "normalizer-fit-bias",
+            "normalizer-fit f(1) − 1",
+            normalizer::FIT,
         ),
-        md,
-        MaxRelative,
-        inv_sqrt_max(fast::FIT),
-    ));
+    ] {
+        e.push(entry(
+            id,
+            what,
+            "K = 1",
+            Value,
+            normalizer::scale(1.0, c) - 1.0,
+        ));
+    }
+    for (id, what, c, claim) in inv_sqrt_forms() {
+        e.push(Entry::ext(id, &what, md, MaxRelative, inv_sqrt_max(c)).claimed(claim));
+    }
     e.push(entry(
         "inv-sqrt-chebyshev-bias",
         "Chebyshev f(0) − 1 (bias where fine meshes live)",
@@ -339,69 +355,58 @@ pub fn report() -> Report {
             (approx - exact) / exact,
         ));
     }
-    // W(n, γ) and Schlick against cos^n γ.
+    // W(n, γ) and Schlick against cos^n γ, in the centre and the fall-off.
     for n in [50u32, 1000] {
-        let dom_c = format!("n = {n}, cos^n γ ≥ 1/2 (centre)");
-        let dom_f = format!("n = {n}, cos^n γ < 1/2 (fall-off)");
+        let domains = [
+            ("centre", format!("n = {n}, cos^n γ ≥ 1/2 (centre)")),
+            ("falloff", format!("n = {n}, cos^n γ < 1/2 (fall-off)")),
+        ];
+        let mut push_pair = |id: &str, label: &str, errors: [Extremum; 2]| {
+            for ((part, domain), err) in domains.iter().zip(errors) {
+                let id = format!("{id}-n{n}-{part}");
+                e.push(Entry::ext(&id, label, domain, MaxAbsolute, err));
+            }
+        };
         let mut w16 = None;
         for (id, label, k, shift) in w_variants() {
             let a = brdf::slope(n, k, shift);
             let (c, f) = highlight_errors(n, |x| brdf::w_kernel(a, k, x));
-            e.push(Entry::ext(
-                &format!("{id}-n{n}-centre"),
-                &label,
-                &dom_c,
-                MaxAbsolute,
-                c,
-            ));
-            e.push(Entry::ext(
-                &format!("{id}-n{n}-falloff"),
-                &label,
-                &dom_f,
-                MaxAbsolute,
-                f,
-            ));
+            push_pair(&id, &label, [c, f]);
             if k == 16 && shift {
-                w16 = Some((c, f));
+                w16 = Some([c, f]);
             }
         }
         let (sc, sf) = highlight_errors(n, |c| brdf::schlick(n, c));
-        let schlick = "Schlick c/(n − nc + c)";
-        e.push(Entry::ext(
-            &format!("schlick-n{n}-centre"),
-            schlick,
-            &dom_c,
-            MaxAbsolute,
-            sc,
-        ));
-        e.push(Entry::ext(
-            &format!("schlick-n{n}-falloff"),
-            schlick,
-            &dom_f,
-            MaxAbsolute,
-            sf,
-        ));
-        let (c, f) = w16.expect("k = 16 is among the variants");
-        e.push(
-            entry(
-                &format!("schlick-over-w-k16-n{n}-centre"),
-                "Schlick error ÷ W k=16 (shift-add) error, centre",
-                &dom_c,
-                Ratio,
-                sc.value.abs() / c.value.abs(),
-            )
-            .claim(7.0, "seed 000: 7× lower max error at the highlight centre"),
-        );
-        e.push(
-            entry(
-                &format!("schlick-over-w-k16-n{n}-falloff"),
-                "Schlick error ÷ W k=16 (shift-add) error, fall-off",
-                &dom_f,
-                Ratio,
-                sf.value.abs() / f.value.abs(),
-            )
-            .claim(13.0, "seed 000: 13× lower in the fall-off (blooming)"),
-        );
+        push_pair("schlick", "Schlick c/(n − nc + c)", [sc, sf]);
+        let w16 = w16.expect("k = 16 is among the variants");
+        let ratios = [
+            (
+                "centre",
+                sc,
+                7.0,
+                "seed 000: 7× lower max error at the highlight centre",
+            ),
+            (
+                "fall-off",
+                sf,
+                13.0,
+                "seed 000: 13× lower in the fall-off (blooming)",
+            ),
+        ];
+        for (((part, domain), (what, schlick, claim, source)), w) in
+            domains.iter().zip(ratios).zip(w16)
+        {
+            e.push(
+                entry(
+                    &format!("schlick-over-w-k16-n{n}-{part}"),
+                    &format!("Schlick error ÷ W k=16 (shift-add) error, {what}"),
+                    domain,
+                    Ratio,
+                    schlick.value.abs() / w.value.abs(),
+                )
+                .claim(claim, source),
+            );
+        }
     }
     Report { entries: e }
 }
@@ -437,77 +442,84 @@ fn sampled(name: &str, lo: f64, hi: f64, n: usize, f: impl Fn(f64) -> f64) -> Se
     }
 }
 
+/// A plot of the relative error in percent of each named form over `domain`, at 501 points.
+fn percent_plot(
+    (id, title, x_label): (&str, &str, &str),
+    (lo, hi): (f64, f64),
+    forms: &[(&str, Coeffs)],
+    error: fn(Coeffs, f64) -> f64,
+) -> Plot {
+    let series = forms
+        .iter()
+        .map(|&(name, c)| sampled(name, lo, hi, 501, |x| 100.0 * error(c, x)))
+        .collect();
+    plot(id.into(), title.into(), x_label, "error, %", series)
+}
+
+fn plot(id: String, title: String, x_label: &str, y_label: &str, series: Vec<Series>) -> Plot {
+    Plot {
+        id,
+        title,
+        x_label: x_label.into(),
+        y_label: y_label.into(),
+        series,
+    }
+}
+
 /// The error curves behind the report, for plotting (errors in percent).
 pub fn plots() -> Vec<Plot> {
-    let (klo, khi) = normalizer::K_DOMAIN;
-    let (mlo, mhi) = fast::M_DOMAIN;
-    let pct = 100.0;
+    use fast::{CHEBYSHEV, FIT, SHIFT_ADD, TAYLOR};
+    let inv_sqrt = |labels, forms: &[(&str, Coeffs)]| {
+        percent_plot(labels, fast::M_DOMAIN, forms, inv_sqrt_error)
+    };
+    let normalizer_labels = ("normalizer", "Normalizer: relative error of |N·f(K)|", "K");
+    let normalizer_forms = [
+        ("published", normalizer::PUBLISHED),
+        ("fit", normalizer::FIT),
+    ];
     let mut out = vec![
-        Plot {
-            id: "normalizer".into(),
-            title: "Normalizer: relative error of |N·f(K)|".into(),
-            x_label: "K".into(),
-            y_label: "error, %".into(),
-            series: vec![
-                sampled("published", klo, khi, 501, |k| {
-                    pct * normalizer_error(normalizer::PUBLISHED, k)
-                }),
-                sampled("fit", klo, khi, 501, |k| {
-                    pct * normalizer_error(normalizer::FIT, k)
-                }),
+        percent_plot(
+            normalizer_labels,
+            normalizer::K_DOMAIN,
+            &normalizer_forms,
+            normalizer_error,
+        ),
+        inv_sqrt(
+            ("inv-sqrt", "1/sqrt(M+1): relative error", "M"),
+            &[
+                ("Chebyshev", CHEBYSHEV),
+                ("shift-add", SHIFT_ADD),
+                ("fit", FIT),
             ],
-        },
-        Plot {
-            id: "inv-sqrt".into(),
-            title: "1/sqrt(M+1): relative error".into(),
-            x_label: "M".into(),
-            y_label: "error, %".into(),
-            series: vec![
-                sampled("Chebyshev", mlo, mhi, 501, |m| {
-                    pct * inv_sqrt_error(fast::CHEBYSHEV, m)
-                }),
-                sampled("shift-add", mlo, mhi, 501, |m| {
-                    pct * inv_sqrt_error(fast::SHIFT_ADD, m)
-                }),
-                sampled("fit", mlo, mhi, 501, |m| pct * inv_sqrt_error(fast::FIT, m)),
-            ],
-        },
-        Plot {
-            id: "inv-sqrt-taylor".into(),
-            title: "1/sqrt(M+1): Taylor vs Chebyshev".into(),
-            x_label: "M".into(),
-            y_label: "error, %".into(),
-            series: vec![
-                sampled("Taylor", mlo, mhi, 501, |m| {
-                    pct * inv_sqrt_error(fast::TAYLOR, m)
-                }),
-                sampled("Chebyshev", mlo, mhi, 501, |m| {
-                    pct * inv_sqrt_error(fast::CHEBYSHEV, m)
-                }),
-            ],
-        },
+        ),
+        inv_sqrt(
+            ("inv-sqrt-taylor", "1/sqrt(M+1): Taylor vs Chebyshev", "M"),
+            &[("Taylor", TAYLOR), ("Chebyshev", CHEBYSHEV)],
+        ),
     ];
     for n in [50u32, 1000] {
         let hi = (0.01f64).powf(1.0 / n as f64).acos().to_degrees() * 1.3;
+        let minus_cos_pow = |name: &str, approx: &dyn Fn(f64) -> f64| {
+            sampled(name, 0.0, hi, 801, |g| {
+                let c = g.to_radians().cos();
+                approx(c) - brdf::cos_pow(n, c)
+            })
+        };
         let mut series = Vec::new();
         for k in brdf::KS {
             let a = brdf::slope(n, k, true);
-            series.push(sampled(&format!("W k={k}"), 0.0, hi, 801, |g| {
-                let c = g.to_radians().cos();
-                brdf::w_kernel(a, k, c) - brdf::cos_pow(n, c)
+            series.push(minus_cos_pow(&format!("W k={k}"), &|c| {
+                brdf::w_kernel(a, k, c)
             }));
         }
-        series.push(sampled("Schlick", 0.0, hi, 801, |g| {
-            let c = g.to_radians().cos();
-            brdf::schlick(n, c) - brdf::cos_pow(n, c)
-        }));
-        out.push(Plot {
-            id: format!("brdf-n{n}"),
-            title: format!("Specular approximations minus cos^n, n = {n}"),
-            x_label: "angle, degrees".into(),
-            y_label: "absolute error".into(),
+        series.push(minus_cos_pow("Schlick", &|c| brdf::schlick(n, c)));
+        out.push(plot(
+            format!("brdf-n{n}"),
+            format!("Specular approximations minus cos^n, n = {n}"),
+            "angle, degrees",
+            "absolute error",
             series,
-        });
+        ));
     }
     out
 }

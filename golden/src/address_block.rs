@@ -457,18 +457,10 @@ pub fn stream_pixels(out: &[AddressOutputs]) -> Vec<crate::types::WalkPixel> {
 mod tests {
     use super::*;
     use crate::raster::walk;
-    use crate::types::{ScreenVertex, StepType};
-    use glam::DVec3;
+    use crate::types::StepType;
 
     fn tri(p: [(i32, i32); 3]) -> ScreenTriangle {
-        ScreenTriangle {
-            v: p.map(|(x, y)| ScreenVertex {
-                x,
-                y,
-                z: 0.0,
-                normal: DVec3::Z,
-            }),
-        }
+        ScreenTriangle::from_points(p)
     }
 
     fn check(p: [(i32, i32); 3]) {

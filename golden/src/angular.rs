@@ -23,7 +23,7 @@
 //! another software route to the same end normals (angle-linear along the edges) and is not
 //! needed by the per-pixel hardware.
 
-use crate::methods::{emit_row_ambient, row_xs, span_end_normals, Emit};
+use crate::methods::Emit;
 use crate::shade::ShadeContext;
 use crate::types::{ScreenTriangle, Walk};
 use glam::DVec3;
@@ -116,22 +116,7 @@ pub fn span_kernel(sp: &AngularSpan) -> Vec<f64> {
 
 /// Angular interpolation (SPEC §4) of one triangle.
 pub fn shade(tri: &ScreenTriangle, walk: &Walk, ctx: &ShadeContext, emit: Emit) {
-    let Some(plane) = tri.normal_plane() else {
-        return;
-    };
-    let spec_vec = ctx.specular_vector();
-    for row in walk.rows.iter().filter(|r| r.len > 0) {
-        let Some((na, nb)) = span_end_normals(&plane, row) else {
-            emit_row_ambient(row, ctx, emit);
-            continue;
-        };
-        let m = row.len - 1;
-        let diffuse = span_kernel(&span_setup(na, nb, ctx.light, m));
-        let spec = spec_vec.map(|x| span_kernel(&span_setup(na, nb, x, m)));
-        for (i, x) in row_xs(row).enumerate() {
-            let cos_s = spec.as_ref().map_or(0.0, |v| v[i]);
-            let (d, s) = ctx.cosines(diffuse[i], cos_s);
-            emit(x, row.y, ctx.combine(d, ctx.specular_power(s)));
-        }
-    }
+    crate::fast::shade_spans(tri, walk, ctx, emit, |na, nb, x, m| {
+        span_kernel(&span_setup(na, nb, x, m))
+    });
 }

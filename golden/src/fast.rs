@@ -108,6 +108,22 @@ pub fn span_kernel(sp: &FastSpan, inv_sqrt: Coeffs) -> Vec<f64> {
 
 /// The fast method (SPEC §3) with 1/√(M+1) ≈ `inv_sqrt` ([`CHEBYSHEV`] or [`FIT`]).
 pub fn shade(tri: &ScreenTriangle, walk: &Walk, ctx: &ShadeContext, inv_sqrt: Coeffs, emit: Emit) {
+    shade_spans(tri, walk, ctx, emit, |na, nb, x, m| {
+        span_kernel(&span_setup(na, nb, x, m), inv_sqrt)
+    });
+}
+
+/// Shades a triangle span by span, as the span methods with a cosine kernel do (this one and
+/// [`crate::angular`]): per raster line the exactly normalized end normals N_a, N_b (software
+/// set-up), then `kernel(N_a, N_b, X, m)`, the approximate N̂·X at the line's m + 1 pixels, for
+/// X = L and for the specular vector; a line whose end normals vanish gets the ambient colour.
+pub(crate) fn shade_spans(
+    tri: &ScreenTriangle,
+    walk: &Walk,
+    ctx: &ShadeContext,
+    emit: Emit,
+    kernel: impl Fn(DVec3, DVec3, DVec3, u32) -> Vec<f64>,
+) {
     let Some(plane) = tri.normal_plane() else {
         return;
     };
@@ -118,8 +134,8 @@ pub fn shade(tri: &ScreenTriangle, walk: &Walk, ctx: &ShadeContext, inv_sqrt: Co
             continue;
         };
         let m = row.len - 1;
-        let diffuse = span_kernel(&span_setup(na, nb, ctx.light, m), inv_sqrt);
-        let spec = spec_vec.map(|x| span_kernel(&span_setup(na, nb, x, m), inv_sqrt));
+        let diffuse = kernel(na, nb, ctx.light, m);
+        let spec = spec_vec.map(|x| kernel(na, nb, x, m));
         for (i, x) in row_xs(row).enumerate() {
             let cos_s = spec.as_ref().map_or(0.0, |v| v[i]);
             let (d, s) = ctx.cosines(diffuse[i], cos_s);

@@ -143,18 +143,10 @@ pub fn additions(walk: &Walk) -> Vec<u32> {
 mod tests {
     use super::*;
     use crate::raster::walk;
-    use crate::types::{ScreenTriangle, ScreenVertex};
-    use glam::DVec3;
+    use crate::types::ScreenTriangle;
 
     fn tri(p: [(i32, i32); 3]) -> ScreenTriangle {
-        ScreenTriangle {
-            v: p.map(|(x, y)| ScreenVertex {
-                x,
-                y,
-                z: 0.0,
-                normal: DVec3::Z,
-            }),
-        }
+        ScreenTriangle::from_points(p)
     }
 
     #[test]
@@ -186,5 +178,87 @@ mod tests {
         assert_eq!(saturate(quantize(-0.1)), 0);
         assert_eq!(saturate(quantize(300.0)), 255);
         assert_eq!(saturate(quantize(254.99)), 254);
+    }
+}
+
+/// Bit-exact twin of one BVI channel (`rtl/src/intensity_interpolator.rs`), written from the
+/// SPEC §6 register transfers: RG1–RG5, the shadow bank SH1–SH3, SH5, one wrap-around adder.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct ChannelTwin {
+    rg: [u32; 5],
+    sh: ChannelWords,
+}
+
+impl ChannelTwin {
+    /// RG4, the running word.
+    pub fn word(&self) -> u32 {
+        self.rg[3]
+    }
+
+    /// One rising edge for the event (`first`, `row_start`, `carry`, `valid`), writing the
+    /// shadow bank from `load` if present.
+    pub fn clock(
+        &mut self,
+        load: Option<&ChannelWords>,
+        first: bool,
+        row_start: bool,
+        carry: bool,
+        valid: bool,
+    ) {
+        let [rg1, rg2, rg3, rg4, rg5] = self.rg;
+        let sum = if first {
+            self.sh.start
+        } else if row_start {
+            rg5.wrapping_add(if carry { rg2 } else { rg1 })
+        } else {
+            rg4.wrapping_add(rg3)
+        };
+        if first {
+            self.rg[0] = self.sh.short;
+            self.rg[1] = self.sh.long;
+            self.rg[2] = self.sh.line;
+        }
+        if row_start {
+            self.rg[4] = sum;
+        }
+        if valid {
+            self.rg[3] = sum;
+        }
+        if let Some(w) = load {
+            self.sh = *w;
+        }
+    }
+}
+
+/// Bit-exact twin of the whole BVI: three [`ChannelTwin`]s sharing the address block's event,
+/// and `valid` delayed one clock (latency 1).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct BviTwin {
+    pub channels: [ChannelTwin; 3],
+    valid_p1: bool,
+}
+
+impl BviTwin {
+    /// (valid_out, saturated levels, running words) shown this clock.
+    pub fn outputs(&self) -> (bool, [u8; 3], [u32; 3]) {
+        let w = self.channels.map(|c| c.word());
+        (self.valid_p1, w.map(saturate), w)
+    }
+
+    /// One rising edge: the address block's event (`valid`, `row_start`, `step` code,
+    /// `carry`) and, with `load`, the next triangle's words.
+    pub fn clock(
+        &mut self,
+        load: Option<&[ChannelWords; 3]>,
+        valid: bool,
+        row_start: bool,
+        step: u32,
+        carry: bool,
+    ) {
+        let first = row_start && step == 0;
+        for (k, ch) in self.channels.iter_mut().enumerate() {
+            ch.clock(load.map(|w| &w[k]), first, row_start, carry, valid);
+        }
+        self.valid_p1 = valid;
     }
 }

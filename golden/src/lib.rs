@@ -20,7 +20,9 @@ pub mod quadric;
 pub mod raster;
 pub mod render;
 pub mod scene;
+pub mod seed;
 pub mod shade;
+#[cfg(feature = "testing")]
 pub mod testing;
 pub mod types;
 

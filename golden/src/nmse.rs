@@ -122,6 +122,25 @@ mod tests {
         assert_eq!(nmse(&r, &r), 0.0);
     }
 
+    /// Coloured pixels, so that a mix-up of channels or of the two images changes the value.
+    #[test]
+    fn nmse_by_hand_on_coloured_pixels() {
+        let r = [[200, 100, 50], [10, 40, 160]];
+        let t = [[190, 103, 50], [10, 40, 168]];
+        // error: (200−190)² + (100−103)² + (50−50)² + (10−10)² + (40−40)² + (160−168)²
+        //      = 100 + 9 + 0 + 0 + 0 + 64 = 173
+        // reference energy: 200² + 100² + 50² + 10² + 40² + 160²
+        //      = 40 000 + 10 000 + 2 500 + 100 + 1 600 + 25 600 = 79 800
+        // NMSE = 173/79 800 (both sums exact in u64, one rounding in the division).
+        assert_eq!(nmse(&r, &t), 173.0 / 79_800.0);
+        // Against the test image's energy instead: 190² + 103² + 50² + 10² + 40² + 168²
+        //      = 36 100 + 10 609 + 2 500 + 100 + 1 600 + 28 224 = 79 133.
+        assert_eq!(nmse(&t, &r), 173.0 / 79_133.0);
+        // Channel c compared with channel c + 1 would give, for the first pixel alone,
+        // (200−103)² + (100−50)² + (50−190)² = 9 409 + 2 500 + 19 600 = 31 509 > 173.
+        assert_eq!(max_abs_diff(&r, &t), 10);
+    }
+
     #[test]
     fn bands_at_their_edges() {
         assert_eq!(Band::of(0.0001), Band::Identical);

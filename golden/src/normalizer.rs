@@ -155,3 +155,265 @@ pub fn shade(tri: &ScreenTriangle, walk: &Walk, ctx: &ShadeContext, c: Coeffs, e
         emit(p.x, p.y, pixel(&p, ctx, c));
     }
 }
+
+/// Bit-exact integer twins of the SPEC §1 blocks in `rtl/src/normalizer.rs` and
+/// `rtl/src/k_recurrence.rs`, written from their headers' formats (not from the RTL): every
+/// register, every rounding (add half an LSB, drop, ties toward +∞) and every saturation, in
+/// plain `i64` arithmetic. The benches compare them with the RTL exactly, every port, every
+/// clock; the f64 functions above are the second check. Words are raw integers (signed Q2.14
+/// components as `i64` in −2¹⁵..2¹⁵, K in Q4.28 units).
+pub mod twin {
+    use super::Coeffs;
+
+    /// `v·2^frac` rounded to nearest, ties toward +∞ (the quantization of a constant).
+    fn quantize(v: f64, frac: u32) -> i64 {
+        (v * (frac as f64).exp2() + 0.5).floor() as i64
+    }
+
+    /// Drop `bits` LSBs of `v` rounding to nearest (ties toward +∞), then clamp to [lo, hi].
+    fn round_sat(v: i64, bits: u32, lo: i64, hi: i64) -> i64 {
+        ((v + (1 << (bits - 1))) >> bits).clamp(lo, hi)
+    }
+
+    const Q214_MIN: i64 = -(1 << 15);
+    const Q214_MAX: i64 = (1 << 15) - 1;
+    const U16_MAX: i64 = 0xFFFF;
+
+    /// The normalizer back end (`NormalizerK`): N and K in, N·f(K) out, latency 7.
+    ///
+    /// ```text
+    /// B1 k_narrow = sat(round(K: Q4.28 → Q1.15))         B2 c2k = |c2|·k_narrow (Q2.30)
+    /// B3 t1 = sat(round(c1 ± c2k/2: Q3.29 → Q2.14))      B4 t1k = t1·k_narrow   (Q3.29)
+    /// B5 f = sat(round(c0 + t1k/2: Q4.28 → Q1.15))       B6 xf = x·f            (Q3.29)
+    /// B7 nx = sat(round(xf: Q3.29 → Q2.14))
+    /// ```
+    /// The halvings (c2k/2, t1k/2) floor, as an arithmetic shift does.
+    #[derive(Clone, Debug)]
+    pub struct NormalizerKTwin {
+        c2_mag: i64,
+        c2_neg: bool,
+        c1: i64,
+        c0: i64,
+        k_narrow: i64,
+        c2k: i64,
+        k_narrow_p1: i64,
+        t1: i64,
+        k_narrow_p2: i64,
+        t1k: i64,
+        f: i64,
+        xf: [i64; 3],
+        n: [i64; 3],
+        valid: [bool; 7],
+        vec: [[i64; 3]; 5],
+    }
+
+    impl NormalizerKTwin {
+        /// The back end built with coefficients `c` = (c2, c1, c0): |c2| in Q1.15, c1 in
+        /// Q3.29, c0 in Q4.28, each rounded to nearest.
+        pub fn new(c: Coeffs) -> Self {
+            Self {
+                c2_mag: quantize(c[0].abs(), 15),
+                c2_neg: c[0] < 0.0,
+                c1: quantize(c[1], 29),
+                c0: quantize(c[2], 28),
+                k_narrow: 0,
+                c2k: 0,
+                k_narrow_p1: 0,
+                t1: 0,
+                k_narrow_p2: 0,
+                t1k: 0,
+                f: 0,
+                xf: [0; 3],
+                n: [0; 3],
+                valid: [false; 7],
+                vec: [[0; 3]; 5],
+            }
+        }
+
+        /// What the outputs show this clock: (valid_out, [nx, ny, nz]).
+        pub fn outputs(&self) -> (bool, [i64; 3]) {
+            (self.valid[6], self.n)
+        }
+
+        /// The coefficient words this twin computes with: (|c2| in Q1.15, c2 < 0, c1 in
+        /// Q3.29, c0 in Q4.28).
+        pub fn coefficient_words(&self) -> (i64, bool, i64, i64) {
+            (self.c2_mag, self.c2_neg, self.c1, self.c0)
+        }
+
+        /// One rising edge with inputs `valid_in`, N = `v` (signed Q2.14 integers) and
+        /// `k` (Q4.28 units).
+        pub fn clock(&mut self, valid_in: bool, v: [i64; 3], k: i64) {
+            let s = self.clone();
+            self.k_narrow = ((k + (1 << 12)) >> 13).min(U16_MAX);
+            self.c2k = s.c2_mag * s.k_narrow;
+            self.k_narrow_p1 = s.k_narrow;
+            let half = s.c2k >> 1;
+            let t1_wide = s.c1 + if s.c2_neg { -half } else { half };
+            self.t1 = round_sat(t1_wide, 15, Q214_MIN, Q214_MAX);
+            self.k_narrow_p2 = s.k_narrow_p1;
+            self.t1k = s.t1 * s.k_narrow_p2;
+            self.f = round_sat(s.c0 + (s.t1k >> 1), 13, 0, U16_MAX);
+            self.xf = s.vec[4].map(|x| x * s.f);
+            self.n = s.xf.map(|p| round_sat(p, 15, Q214_MIN, Q214_MAX));
+            self.valid = [
+                valid_in, s.valid[0], s.valid[1], s.valid[2], s.valid[3], s.valid[4], s.valid[5],
+            ];
+            self.vec = [v, s.vec[0], s.vec[1], s.vec[2], s.vec[3]];
+        }
+    }
+
+    /// The full normalizer: three squarers and Sm1 (K exact, two stages) in front of
+    /// [`NormalizerKTwin`]; latency 9.
+    #[derive(Clone, Debug)]
+    pub struct NormalizerTwin {
+        sq: [i64; 3],
+        k_full: i64,
+        valid: [bool; 2],
+        vec: [[i64; 3]; 2],
+        back: NormalizerKTwin,
+    }
+
+    impl NormalizerTwin {
+        pub fn new(c: Coeffs) -> Self {
+            Self {
+                sq: [0; 3],
+                k_full: 0,
+                valid: [false; 2],
+                vec: [[0; 3]; 2],
+                back: NormalizerKTwin::new(c),
+            }
+        }
+        pub fn outputs(&self) -> (bool, [i64; 3]) {
+            self.back.outputs()
+        }
+        pub fn clock(&mut self, valid_in: bool, v: [i64; 3]) {
+            self.back.clock(self.valid[1], self.vec[1], self.k_full);
+            self.k_full = self.sq.iter().sum();
+            self.sq = v.map(|x| x * x);
+            self.valid = [valid_in, self.valid[0]];
+            self.vec = [v, self.vec[0]];
+        }
+    }
+
+    /// K along a span (SPEC §1): K_{i+1} = K_i + 2α + β_i, β_{i+1} = β_i + 2β, modulo 2³²;
+    /// an input register stage, then the recurrence (which freezes while `valid` is low) with
+    /// its output register; latency 2.
+    #[derive(Clone, Debug, Default)]
+    pub struct KRecurrenceTwin {
+        valid_p1: bool,
+        load_p1: bool,
+        k0_p1: u32,
+        alpha_p1: u32,
+        beta_p1: u32,
+        k_next: u32,
+        beta_i: u32,
+        alpha2: u32,
+        beta2: u32,
+        k_out: u32,
+        valid_p2: bool,
+    }
+
+    impl KRecurrenceTwin {
+        pub fn new() -> Self {
+            Self::default()
+        }
+        /// (valid_out, k) shown this clock.
+        pub fn outputs(&self) -> (bool, u32) {
+            (self.valid_p2, self.k_out)
+        }
+        /// One rising edge; `load` starts a new line (with `valid_in`) from K_0 = `k0`, α, β.
+        pub fn clock(&mut self, valid_in: bool, load: bool, k0: u32, alpha: u32, beta: u32) {
+            let s = self.clone();
+            if s.valid_p1 {
+                let (k, b, a2, b2) = if s.load_p1 {
+                    let a2 = s.alpha_p1.wrapping_mul(2);
+                    (s.k0_p1, s.beta_p1, a2, s.beta_p1.wrapping_mul(2))
+                } else {
+                    (s.k_next, s.beta_i, s.alpha2, s.beta2)
+                };
+                self.k_out = k;
+                self.k_next = k.wrapping_add(a2).wrapping_add(b);
+                self.beta_i = b.wrapping_add(b2);
+                self.alpha2 = a2;
+                self.beta2 = b2;
+            }
+            self.valid_p2 = s.valid_p1;
+            self.valid_p1 = valid_in;
+            self.load_p1 = load && valid_in;
+            self.k0_p1 = k0;
+            self.alpha_p1 = alpha;
+            self.beta_p1 = beta;
+        }
+    }
+
+    /// The span normalizer: [`KRecurrenceTwin`] beside the vector interpolator
+    /// N_{i+1} = N_i + Δ (16-bit wrap-around, as the caller keeps N_i representable), both
+    /// feeding [`NormalizerKTwin`]; latency 9.
+    #[derive(Clone, Debug)]
+    pub struct SpanNormalizerTwin {
+        krec: KRecurrenceTwin,
+        valid_p1: bool,
+        load_p1: bool,
+        n0_p1: [i64; 3],
+        d_p1: [i64; 3],
+        n_next: [i64; 3],
+        d_hold: [i64; 3],
+        n_out: [i64; 3],
+        back: NormalizerKTwin,
+    }
+
+    /// Wrap to a signed 16-bit value.
+    fn wrap16(v: i64) -> i64 {
+        ((v + (1 << 15)).rem_euclid(1 << 16)) - (1 << 15)
+    }
+
+    impl SpanNormalizerTwin {
+        pub fn new(c: Coeffs) -> Self {
+            Self {
+                krec: KRecurrenceTwin::new(),
+                valid_p1: false,
+                load_p1: false,
+                n0_p1: [0; 3],
+                d_p1: [0; 3],
+                n_next: [0; 3],
+                d_hold: [0; 3],
+                n_out: [0; 3],
+                back: NormalizerKTwin::new(c),
+            }
+        }
+        pub fn outputs(&self) -> (bool, [i64; 3]) {
+            self.back.outputs()
+        }
+        /// One rising edge: N₀ = `n0`, Δ = `d` (signed Q2.14) and K_0, α, β taken with `load`.
+        #[allow(clippy::too_many_arguments)]
+        pub fn clock(
+            &mut self,
+            valid_in: bool,
+            load: bool,
+            n0: [i64; 3],
+            d: [i64; 3],
+            k0: u32,
+            alpha: u32,
+            beta: u32,
+        ) {
+            let (kv, k) = self.krec.outputs();
+            self.back.clock(kv, self.n_out, k as i64);
+            self.krec.clock(valid_in, load, k0, alpha, beta);
+            if self.valid_p1 {
+                let (n, dd) = if self.load_p1 {
+                    (self.n0_p1, self.d_p1)
+                } else {
+                    (self.n_next, self.d_hold)
+                };
+                self.n_out = n;
+                self.n_next = [0, 1, 2].map(|i| wrap16(n[i] + dd[i]));
+                self.d_hold = dd;
+            }
+            self.valid_p1 = valid_in;
+            self.load_p1 = load && valid_in;
+            self.n0_p1 = n0;
+            self.d_p1 = d;
+        }
+    }
+}

@@ -1,23 +1,19 @@
-//! Seeded, reproducible property-test runners shared by every test in the workspace.
+//! Test helpers shared by every test in the workspace (feature `testing`, which brings in
+//! `proptest`; enable it from `[dev-dependencies]`, never from a crate's normal dependencies).
 //!
-//! Each runner prints its seed; set `SHADECORE_SEED=<u64>` to replay a run (or to explore with
-//! other seeds). Without it the seed is derived from the test's name, so CI is deterministic.
+//! Seeded, reproducible property-test runners: each prints its seed; set `SHADECORE_SEED=<u64>`
+//! to replay a run (or to explore with other seeds). Without it the seed is derived from the
+//! test's name ([`seed_for`]), so CI is deterministic. Also: random rotations and
+//! [`split_vertices`] for the scene and raster tests.
 
+use glam::DQuat;
+use proptest::prelude::{prop, Strategy};
 use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
 
-/// The seed for `name`: `SHADECORE_SEED` if set, otherwise a stable hash of the name.
-pub fn seed_for(name: &str) -> u64 {
-    if let Ok(s) = std::env::var("SHADECORE_SEED") {
-        if let Ok(v) = s.trim().parse::<u64>() {
-            return v;
-        }
-        eprintln!("SHADECORE_SEED={s:?} is not a u64; using the default seed");
-    }
-    // FNV-1a: stable across Rust versions, unlike DefaultHasher.
-    name.bytes().fold(0xcbf2_9ce4_8422_2325u64, |h, b| {
-        (h ^ b as u64).wrapping_mul(0x0000_0100_0000_01b3)
-    })
-}
+use crate::scene::Mesh;
+
+/// Re-exported from [`crate::seed`] (always compiled) so tests find it beside [`runner`].
+pub use crate::seed::seed_for;
 
 /// A proptest runner with `cases` cases, seeded by [`seed_for`]; prints the seed.
 pub fn runner(name: &str, cases: u32) -> TestRunner {
@@ -33,11 +29,21 @@ pub fn runner(name: &str, cases: u32) -> TestRunner {
     TestRunner::new_with_rng(config, TestRng::from_seed(RngAlgorithm::ChaCha, &bytes))
 }
 
+/// Uniformly random rotations: four components uniform in the cube, rejected outside the unit
+/// ball (uniform on directions, no Box–Muller needed) or too short to normalize.
+pub fn quaternion() -> impl Strategy<Value = DQuat> {
+    prop::array::uniform4(-1.0f64..1.0)
+        .prop_filter("outside the unit ball or too short", |q| {
+            (1e-6..=1.0).contains(&q.iter().map(|c| c * c).sum::<f64>())
+        })
+        .prop_map(|q| DQuat::from_xyzw(q[0], q[1], q[2], q[3]).normalize())
+}
+
 /// The same mesh with every triangle given its own three vertices (bit-identical positions and
 /// normals), as an OBJ exporter that splits every vertex writes it: the scene code must treat
 /// it exactly like the shared mesh (no crack between the copies).
-pub fn split_vertices(m: &crate::scene::Mesh) -> crate::scene::Mesh {
-    let mut out = crate::scene::Mesh::default();
+pub fn split_vertices(m: &Mesh) -> Mesh {
+    let mut out = Mesh::default();
     for t in &m.triangles {
         let base = out.positions.len() as u32;
         for &i in t {

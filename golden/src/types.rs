@@ -90,6 +90,19 @@ impl VecPlane {
 }
 
 impl ScreenTriangle {
+    /// A triangle of addresses only (depth 0, normals +z): what the address block and the
+    /// intensity interpolator see, for tests and benches.
+    pub fn from_points(p: [(i32, i32); 3]) -> ScreenTriangle {
+        ScreenTriangle {
+            v: p.map(|(x, y)| ScreenVertex {
+                x,
+                y,
+                z: 0.0,
+                normal: glam::DVec3::Z,
+            }),
+        }
+    }
+
     fn samples(&self, f: impl Fn(&ScreenVertex) -> f64) -> [(f64, f64, f64); 3] {
         self.v.map(|v| (v.x as f64, v.y as f64, f(&v)))
     }

@@ -4,6 +4,7 @@
 //! another variable) to three significant digits.
 
 use golden::accuracy::{self, Report};
+use golden::normalizer::Coeffs;
 use golden::testing::runner;
 use golden::{brdf, cubic, fast, normalizer};
 use proptest::prelude::*;
@@ -41,29 +42,51 @@ fn assert_3sd(what: &str, a: f64, b: f64) {
     );
 }
 
+/// The report's id of W with `k`, shift-add or exact division.
+fn w_id(k: u32, shift: bool) -> String {
+    if shift {
+        format!("w-k{k}")
+    } else {
+        format!("w-k{k}-exact")
+    }
+}
+
 // ---------------------------------------------------------------- within the measured bound
 
-#[test]
-fn normalizer_within_measured_bound() {
-    let (lo, hi) = normalizer::K_DOMAIN;
-    let cases = [
-        ("normalizer-published", normalizer::PUBLISHED),
-        ("normalizer-fit", normalizer::FIT),
-    ];
-    for (id, c) in cases {
+/// The normalizer's f(K) forms, by report id.
+const NORMALIZER_FORMS: [(&str, Coeffs); 2] = [
+    ("normalizer-published", normalizer::PUBLISHED),
+    ("normalizer-fit", normalizer::FIT),
+];
+
+/// The fast method's 1/√(M+1) forms, by report id.
+const INV_SQRT_FORMS: [(&str, Coeffs); 4] = [
+    ("inv-sqrt-chebyshev", fast::CHEBYSHEV),
+    ("inv-sqrt-shift-add", fast::SHIFT_ADD),
+    ("inv-sqrt-taylor", fast::TAYLOR),
+    ("inv-sqrt-fit", fast::FIT),
+];
+
+/// Each form's `error` stays within its measured bound on `domain` (variable `var`): at the
+/// named edge cases (both ends of the domain and the reported extremum) and at 2000 random
+/// points (runner `{test}_{id}`).
+fn assert_within_measured_bound(
+    test: &str,
+    var: &str,
+    (lo, hi): (f64, f64),
+    forms: &[(&str, Coeffs)],
+    error: fn(Coeffs, f64) -> f64,
+) {
+    for &(id, c) in forms {
         let b = bound(id);
-        // Named edge cases: both ends of the domain and the reported extremum.
         let at = report().get(id).unwrap().at.unwrap();
-        for k in [lo, hi, at] {
-            assert!(
-                accuracy::normalizer_error(c, k).abs() <= b,
-                "{id} at K = {k}"
-            );
+        for x in [lo, hi, at] {
+            assert!(error(c, x).abs() <= b, "{id} at {var} = {x}");
         }
-        runner(&format!("normalizer_within_bound_{id}"), 2000)
-            .run(&(lo..=hi), |k| {
-                let e = accuracy::normalizer_error(c, k);
-                prop_assert!(e.abs() <= b, "{} at K = {}: {} > {}", id, k, e, b);
+        runner(&format!("{test}_{id}"), 2000)
+            .run(&(lo..=hi), |x| {
+                let e = error(c, x);
+                prop_assert!(e.abs() <= b, "{} at {} = {}: {} > {}", id, var, x, e, b);
                 Ok(())
             })
             .unwrap();
@@ -71,27 +94,25 @@ fn normalizer_within_measured_bound() {
 }
 
 #[test]
+fn normalizer_within_measured_bound() {
+    assert_within_measured_bound(
+        "normalizer_within_bound",
+        "K",
+        normalizer::K_DOMAIN,
+        &NORMALIZER_FORMS,
+        accuracy::normalizer_error,
+    );
+}
+
+#[test]
 fn inv_sqrt_within_measured_bound() {
-    let (lo, hi) = fast::M_DOMAIN;
-    let cases = [
-        ("inv-sqrt-chebyshev", fast::CHEBYSHEV),
-        ("inv-sqrt-shift-add", fast::SHIFT_ADD),
-        ("inv-sqrt-taylor", fast::TAYLOR),
-        ("inv-sqrt-fit", fast::FIT),
-    ];
-    for (id, c) in cases {
-        let b = bound(id);
-        for m in [lo, hi, report().get(id).unwrap().at.unwrap()] {
-            assert!(accuracy::inv_sqrt_error(c, m).abs() <= b, "{id} at M = {m}");
-        }
-        runner(&format!("inv_sqrt_within_bound_{id}"), 2000)
-            .run(&(lo..=hi), |m| {
-                let e = accuracy::inv_sqrt_error(c, m);
-                prop_assert!(e.abs() <= b, "{} at M = {}: {} > {}", id, m, e, b);
-                Ok(())
-            })
-            .unwrap();
-    }
+    assert_within_measured_bound(
+        "inv_sqrt_within_bound",
+        "M",
+        fast::M_DOMAIN,
+        &INV_SQRT_FORMS,
+        accuracy::inv_sqrt_error,
+    );
 }
 
 /// The fast method's M really stays in [−0.5, 0] when N_a·N_b ≥ 0 (the domain the bound is
@@ -132,11 +153,7 @@ fn w_within_measured_bound() {
     // n = 1000 bound holds (the error grows with n).
     for k in brdf::KS {
         for shift in [true, false] {
-            let id = if shift {
-                format!("w-k{k}")
-            } else {
-                format!("w-k{k}-exact")
-            };
+            let id = w_id(k, shift);
             let b = |n: u32| {
                 bound(&format!("{id}-n{n}-centre")).max(bound(&format!("{id}-n{n}-falloff")))
             };
@@ -187,68 +204,68 @@ fn quadratic_roots(a: f64, b: f64, c: f64) -> Vec<f64> {
     vec![q / a, c / q]
 }
 
+/// Max |e| over the ends of [lo, hi] and the `roots` of e' inside it.
+fn max_abs_at_candidates(e: impl Fn(f64) -> f64, roots: Vec<f64>, lo: f64, hi: f64) -> f64 {
+    let inside = roots.into_iter().filter(|x| (lo..=hi).contains(x));
+    [lo, hi]
+        .into_iter()
+        .chain(inside)
+        .map(|x| e(x).abs())
+        .fold(0.0, f64::max)
+}
+
 /// Max |√K·f(K) − 1| on [lo, hi] from the closed form: d/dK (√K·f) = 0 ⇔ 5c2K² + 3c1K + c0 = 0.
-fn normalizer_max_closed_form(c: [f64; 3], lo: f64, hi: f64) -> f64 {
+fn normalizer_max_closed_form(c: Coeffs, lo: f64, hi: f64) -> f64 {
     let e = |k: f64| k.sqrt() * ((c[0] * k + c[1]) * k + c[2]) - 1.0;
-    let mut cand = vec![lo, hi];
-    cand.extend(
-        quadratic_roots(5.0 * c[0], 3.0 * c[1], c[2])
-            .into_iter()
-            .filter(|k| (lo..=hi).contains(k)),
-    );
-    cand.into_iter().map(|k| e(k).abs()).fold(0.0, f64::max)
+    max_abs_at_candidates(e, quadratic_roots(5.0 * c[0], 3.0 * c[1], c[2]), lo, hi)
 }
 
 /// Max |√(1+M)·f(M) − 1| on [lo, hi], f = a + bM + cM²: the derivative vanishes where
 /// 5cM² + (3b + 4c)M + (a + 2b) = 0.
-fn inv_sqrt_max_closed_form(co: [f64; 3], lo: f64, hi: f64) -> f64 {
+fn inv_sqrt_max_closed_form(co: Coeffs, lo: f64, hi: f64) -> f64 {
     let (c, b, a) = (co[0], co[1], co[2]);
     let e = |m: f64| (1.0 + m).sqrt() * (a + b * m + c * m * m) - 1.0;
-    let mut cand = vec![lo, hi];
-    cand.extend(
-        quadratic_roots(5.0 * c, 3.0 * b + 4.0 * c, a + 2.0 * b)
-            .into_iter()
-            .filter(|m| (lo..=hi).contains(m)),
-    );
-    cand.into_iter().map(|m| e(m).abs()).fold(0.0, f64::max)
+    max_abs_at_candidates(
+        e,
+        quadratic_roots(5.0 * c, 3.0 * b + 4.0 * c, a + 2.0 * b),
+        lo,
+        hi,
+    )
+}
+
+/// The report's figure of `id`, in percent, to `decimals` places.
+fn percent(id: &str, decimals: usize) -> String {
+    format!("{:.*}", decimals, 100.0 * measured(id).abs())
+}
+
+/// Each form's reported maximum equals its closed-form maximum over `domain`.
+fn assert_figures_match(
+    (lo, hi): (f64, f64),
+    forms: &[(&str, Coeffs)],
+    closed_form: fn(Coeffs, f64, f64) -> f64,
+) {
+    for &(id, c) in forms {
+        assert_3sd(id, measured(id), closed_form(c, lo, hi));
+    }
 }
 
 #[test]
 fn normalizer_figures_match_closed_form() {
-    let (lo, hi) = normalizer::K_DOMAIN;
-    for (id, c) in [
-        ("normalizer-published", normalizer::PUBLISHED),
-        ("normalizer-fit", normalizer::FIT),
-    ] {
-        assert_3sd(id, measured(id), normalizer_max_closed_form(c, lo, hi));
-    }
-    // The SPEC's own check of the published polynomial: 0.351%.
-    assert_eq!(
-        format!("{:.3}", 100.0 * measured("normalizer-published").abs()),
-        "0.351"
+    assert_figures_match(
+        normalizer::K_DOMAIN,
+        &NORMALIZER_FORMS,
+        normalizer_max_closed_form,
     );
+    // The SPEC's own check of the published polynomial: 0.351%.
+    assert_eq!(percent("normalizer-published", 3), "0.351");
 }
 
 #[test]
 fn inv_sqrt_figures_match_closed_form() {
-    let (lo, hi) = fast::M_DOMAIN;
-    for (id, c) in [
-        ("inv-sqrt-chebyshev", fast::CHEBYSHEV),
-        ("inv-sqrt-shift-add", fast::SHIFT_ADD),
-        ("inv-sqrt-taylor", fast::TAYLOR),
-        ("inv-sqrt-fit", fast::FIT),
-    ] {
-        assert_3sd(id, measured(id), inv_sqrt_max_closed_form(c, lo, hi));
-    }
+    assert_figures_match(fast::M_DOMAIN, &INV_SQRT_FORMS, inv_sqrt_max_closed_form);
     // Figures stated independently in the issue/SPEC: shift-add ≈ 0.56%, Taylor 4.98%.
-    assert_eq!(
-        format!("{:.2}", 100.0 * measured("inv-sqrt-shift-add").abs()),
-        "0.56"
-    );
-    assert_eq!(
-        format!("{:.2}", 100.0 * measured("inv-sqrt-taylor").abs()),
-        "4.98"
-    );
+    assert_eq!(percent("inv-sqrt-shift-add", 2), "0.56");
+    assert_eq!(percent("inv-sqrt-taylor", 2), "4.98");
 }
 
 #[test]
@@ -317,11 +334,7 @@ fn w_and_schlick_figures_match_derivative_roots() {
                     }
                 };
                 let kink = [1.0 - 1.0 / a];
-                let id = if shift {
-                    format!("w-k{k}")
-                } else {
-                    format!("w-k{k}-exact")
-                };
+                let id = w_id(k, shift);
                 let centre = max_err_in_c(&w, &dw, n, c_half, 1.0, &kink);
                 let falloff = max_err_in_c(&w, &dw, n, 0.0, c_half, &kink);
                 assert_3sd(&id, measured(&format!("{id}-n{n}-centre")), centre);

@@ -4,10 +4,10 @@
 use std::cell::Cell;
 use std::collections::HashSet;
 
-use glam::{DQuat, DVec3};
+use glam::DVec3;
 use golden::raster::{edge_function_pixels, walk};
 use golden::scene::{project, screen_addresses, uv_sphere, Camera};
-use golden::testing::{runner, split_vertices};
+use golden::testing::{quaternion, runner, split_vertices};
 use golden::{EdgeStep, Row, ScreenTriangle, ScreenVertex, StepType, Walk};
 use proptest::prelude::*;
 
@@ -243,18 +243,12 @@ fn triangles() -> impl Strategy<Value = [V; 3]> {
     ]
 }
 
-/// Every vertex order: the walk must not depend on it.
+/// Every vertex order: the walk must not depend on it. k < 3: rotation by k, (k, k+1, k+2);
+/// k ≥ 3: the reversed orders (−k, −k−1, −k−2), all mod 3.
 fn any_order(t: [V; 3]) -> impl Strategy<Value = [V; 3]> {
     (0..6usize).prop_map(move |k| {
-        const P: [[usize; 3]; 6] = [
-            [0, 1, 2],
-            [1, 2, 0],
-            [2, 0, 1],
-            [0, 2, 1],
-            [2, 1, 0],
-            [1, 0, 2],
-        ];
-        P[k].map(|i| t[i])
+        let (k, sign) = (k as i32, if k < 3 { 1 } else { -1 });
+        [0, 1, 2].map(|i| t[(sign * (k + i)).rem_euclid(3) as usize])
     })
 }
 
@@ -358,6 +352,44 @@ fn row(y: i32, steps: &[(StepType, i8)], x_start: i32, len: u32, dir: i8) -> Row
 
 use StepType::{Diagonal as D, Horizontal as H, Vertical as Vt};
 
+/// Rows 0..n as a hand derivation gives them: row y starts at `x_start(y)` with `len(y)` pixels
+/// in direction `dir`; the working edge takes no step on row 0 and `step(y)` on every later row.
+fn expected_rows(
+    n: i32,
+    dir: i8,
+    step: impl Fn(i32) -> (StepType, i8),
+    x_start: impl Fn(i32) -> i32,
+    len: impl Fn(i32) -> u32,
+) -> Vec<Row> {
+    (0..n)
+        .map(|y| {
+            let later = [step(y)];
+            let steps: &[(StepType, i8)] = if y == 0 { &[] } else { &later };
+            row(y, steps, x_start(y), len(y), dir)
+        })
+        .collect()
+}
+
+/// The walk of `v` has exactly the rows `want`, compared row by row (a failure names the row).
+fn assert_walk_rows(v: [V; 3], want: &[Row]) -> Walk {
+    let w = walk(&tri(v));
+    assert_eq!(w.rows.len(), want.len(), "{v:?}: number of rows");
+    for (got, want) in w.rows.iter().zip(want) {
+        assert_eq!(got, want, "{v:?}: row {}", want.y);
+    }
+    w
+}
+
+/// The steps of a steep working edge one pixel wide that crosses a pixel column at row 2048:
+/// vertical, and one diagonal step there.
+fn turn_at_2048(y: i32) -> (StepType, i8) {
+    if y == 2048 {
+        (D, 1)
+    } else {
+        (Vt, 0)
+    }
+}
+
 #[test]
 fn degenerate_triangles_have_no_rows() {
     for v in [
@@ -392,48 +424,24 @@ fn unit_square_halves_share_the_diagonal_pixel_exactly_once() {
 #[test]
 fn right_triangle_left_vertical_working_edge() {
     // (0,0),(4,0),(0,4): hypotenuse x + y = 4 is a right edge: x + ½ < 4 − (y + ½) → x < 3 − y.
-    let w = walk(&tri([(0, 0), (4, 0), (0, 4)]));
-    assert_eq!(
-        w.rows,
-        vec![
-            row(0, &[], 0, 3, 1),
-            row(1, &[(Vt, 0)], 0, 2, 1),
-            row(2, &[(Vt, 0)], 0, 1, 1),
-            row(3, &[(Vt, 0)], 0, 0, 1),
-        ]
-    );
+    let want = expected_rows(4, 1, |_| (Vt, 0), |_| 0, |y| (3 - y) as u32);
+    assert_walk_rows([(0, 0), (4, 0), (0, 4)], &want);
 }
 
 #[test]
 fn flat_top_diagonal_working_edge_steps_diagonally() {
     // (0,0),(4,0),(4,4): working edge (0,0)→(4,4) is left (x_start = y), third edge x = 4 is
-    // right (x ≤ 3).
-    let w = walk(&tri([(4, 4), (0, 0), (4, 0)]));
-    assert_eq!(
-        w.rows,
-        vec![
-            row(0, &[], 0, 4, 1),
-            row(1, &[(D, 1)], 1, 3, 1),
-            row(2, &[(D, 1)], 2, 2, 1),
-            row(3, &[(D, 1)], 3, 1, 1),
-        ]
-    );
+    // right (x ≤ 3): pixels y..=3.
+    let want = expected_rows(4, 1, |_| (D, 1), |y| y, |y| (4 - y) as u32);
+    assert_walk_rows([(4, 4), (0, 0), (4, 0)], &want);
 }
 
 #[test]
 fn flat_bottom_right_vertical_working_edge() {
     // (4,0),(4,4),(0,4): working edge x = 4 is the right edge (x_start 3, dir −1); the adjacent
-    // edge (4,0)→(0,4) is left: x + ½ ≥ 3½ − y → x ≥ 3 − y.
-    let w = walk(&tri([(0, 4), (4, 4), (4, 0)]));
-    assert_eq!(
-        w.rows,
-        vec![
-            row(0, &[], 3, 1, -1),
-            row(1, &[(Vt, 0)], 3, 2, -1),
-            row(2, &[(Vt, 0)], 3, 3, -1),
-            row(3, &[(Vt, 0)], 3, 4, -1),
-        ]
-    );
+    // edge (4,0)→(0,4) is left: x + ½ ≥ 3½ − y → x ≥ 3 − y: pixels 3 down to 3 − y.
+    let want = expected_rows(4, -1, |_| (Vt, 0), |_| 3, |y| (y + 1) as u32);
+    assert_walk_rows([(0, 4), (4, 4), (4, 0)], &want);
 }
 
 #[test]
@@ -464,18 +472,15 @@ fn full_height_one_column_triangle() {
     // (0,0),(1,4095),(0,4095): the working edge (0,0)→(1,4095) has x_edge = (y + ½)/4095 < 1,
     // middle (0,4095) is left → right working edge. The pixel x = 0 is inside where
     // ½ < x_edge, i.e. y + ½ > 2047.5 → y ≥ 2048: 2047 pixels, x_start 0 there, −1 above.
-    let w = walk(&tri([(0, 0), (1, 4095), (0, 4095)]));
-    assert_eq!(w.rows.len(), 4095);
-    for r in &w.rows {
-        let want = if r.y >= 2048 { (0, 1) } else { (-1, 0) };
-        assert_eq!((r.x_start, r.len), want, "row {}", r.y);
-        let want_steps: &[(StepType, i8)] = match r.y {
-            0 => &[],
-            2048 => &[(D, 1)],
-            _ => &[(Vt, 0)],
-        };
-        assert_eq!(r, &row(r.y, want_steps, want.0, want.1, -1));
-    }
+    let inside = |y: i32| y >= 2048;
+    let want = expected_rows(
+        4095,
+        -1,
+        turn_at_2048,
+        |y| if inside(y) { 0 } else { -1 },
+        |y| inside(y) as u32,
+    );
+    let w = assert_walk_rows([(0, 0), (1, 4095), (0, 4095)], &want);
     assert_eq!(w.pixel_count(), 2047);
 }
 
@@ -486,21 +491,14 @@ fn x_start_reaches_4095_on_a_left_working_edge() {
     // ceil(x_edge − ½): 4094 for y ≤ 2047, 4095 from y = 2048. The other side is x = 4095 (right
     // edge, centre 4094.5 inside) below y = 10 and the adjacent edge x = 4094 + (y + ½)/10 above,
     // which holds 4094.5 from y = 5.
-    let w = walk(&tri([(4095, 4095), (4094, 0), (4095, 10)]));
-    assert_eq!(w.rows.len(), 4095);
-    for r in &w.rows {
-        let (x_start, len) = match r.y {
-            0..=4 => (4094, 0),
-            5..=2047 => (4094, 1),
-            _ => (4095, 0),
-        };
-        let steps: &[(StepType, i8)] = match r.y {
-            0 => &[],
-            2048 => &[(D, 1)],
-            _ => &[(Vt, 0)],
-        };
-        assert_eq!(r, &row(r.y, steps, x_start, len, 1), "row {}", r.y);
-    }
+    let want = expected_rows(
+        4095,
+        1,
+        turn_at_2048,
+        |y| if y <= 2047 { 4094 } else { 4095 },
+        |y| (5..=2047).contains(&y) as u32,
+    );
+    let w = assert_walk_rows([(4095, 4095), (4094, 0), (4095, 10)], &want);
     assert_eq!(w.pixel_count(), 2043);
 }
 
@@ -738,17 +736,6 @@ fn inset_distance(poly: &[V], x: i32, y: i32) -> f64 {
             cross * area.signum() as f64 / ex.hypot(ey)
         })
         .fold(f64::INFINITY, f64::min)
-}
-
-fn quaternion() -> impl Strategy<Value = DQuat> {
-    // Uniform random rotation from four normal-ish components (Box–Muller free: a uniform cube
-    // sample rejected outside the unit ball is uniform on directions).
-    prop::array::uniform4(-1.0f64..1.0)
-        .prop_filter("outside the unit ball or too short", |q| {
-            let l = q.iter().map(|c| c * c).sum::<f64>();
-            (1e-6..=1.0).contains(&l)
-        })
-        .prop_map(|q| DQuat::from_xyzw(q[0], q[1], q[2], q[3]).normalize())
 }
 
 /// Back-face-culled UV spheres at random rotations, rez and canvas sizes, with shared vertices or

@@ -8,19 +8,18 @@ use golden::scene::{
     light_direction, load_obj, project, screen_addresses, torus, uv_sphere, Camera, Mesh,
     SceneError, LIGHT_ELEVATION_DEG,
 };
-use golden::testing::{runner, split_vertices};
+use golden::testing::{quaternion, runner, split_vertices};
 use proptest::prelude::*;
 
 fn tmp(name: &str) -> PathBuf {
     PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!("scene-{name}.obj"))
 }
 
-fn quaternion() -> impl Strategy<Value = DQuat> {
-    prop::array::uniform4(-1.0f64..1.0)
-        .prop_filter("outside the unit ball or too short", |q| {
-            (1e-6..=1.0).contains(&q.iter().map(|c| c * c).sum::<f64>())
-        })
-        .prop_map(|q| DQuat::from_xyzw(q[0], q[1], q[2], q[3]).normalize())
+/// Writes `text` to the file `tmp(name)` and loads it.
+fn load_text(name: &str, text: &str) -> Result<Mesh, SceneError> {
+    let path = tmp(name);
+    std::fs::write(&path, text).unwrap();
+    load_obj(&path)
 }
 
 /// OBJ text of a mesh, optionally with its normals.
@@ -239,9 +238,7 @@ fn light_direction_is_unit_with_constant_elevation() {
 #[test]
 fn obj_round_trip_of_a_sphere_with_normals() {
     let m = uv_sphere(12).unwrap();
-    let path = tmp("sphere-with-normals");
-    std::fs::write(&path, to_obj(&m, true)).unwrap();
-    let l = load_obj(&path).unwrap();
+    let l = load_text("sphere-with-normals", &to_obj(&m, true)).unwrap();
     assert_eq!(l.triangles.len(), m.triangles.len());
     assert_eq!(l.positions.len(), m.positions.len());
     // Same triangles (through positions, which tobj keeps in f32), same unit normals.
@@ -258,9 +255,7 @@ fn obj_round_trip_of_a_sphere_with_normals() {
 #[test]
 fn obj_sphere_without_normals_gets_smooth_outward_normals() {
     let m = uv_sphere(16).unwrap();
-    let path = tmp("sphere-without-normals");
-    std::fs::write(&path, to_obj(&m, false)).unwrap();
-    let l = load_obj(&path).unwrap();
+    let l = load_text("sphere-without-normals", &to_obj(&m, false)).unwrap();
     let mut worst = 0.0f64;
     for (p, n) in l.positions.iter().zip(&l.normals) {
         worst = worst.max(p.normalize().angle_between(*n));
@@ -277,9 +272,7 @@ fn obj_smooth_normals_are_shared_across_texture_seams() {
     // coordinates on each side: tobj duplicates those vertices, the normals must still agree.
     let text = "v 0 0 0\nv 1 0 0\nv 0 1 1\nv 0 -1 1\nvt 0 0\nvt 1 0\nvt 0 1\nvt 1 1\n\
                 f 1/1 2/2 3/3\nf 2/4 1/3 4/1\n";
-    let path = tmp("seam");
-    std::fs::write(&path, text).unwrap();
-    let l = load_obj(&path).unwrap();
+    let l = load_text("seam", text).unwrap();
     assert_eq!(l.positions.len(), 6, "tobj should split the seam vertices");
     for (i, p) in l.positions.iter().enumerate() {
         for (j, q) in l.positions.iter().enumerate() {
@@ -313,9 +306,9 @@ fn obj_errors_are_one_line_and_name_the_path() {
     let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR"));
     let e = load_obj(&dir).unwrap_err().to_string();
     assert!(e.contains("directory") && !e.contains('\n'), "{e}");
-    let path = tmp("inf");
-    std::fs::write(&path, "v 0 0 0\nv inf 0 0\nv 0 1 0\nf 1 2 3\n").unwrap();
-    let e = load_obj(&path).unwrap_err().to_string();
+    let e = load_text("inf", "v 0 0 0\nv inf 0 0\nv 0 1 0\nf 1 2 3\n")
+        .unwrap_err()
+        .to_string();
     assert!(
         e.contains("non-finite coordinate inf") && e.contains("scene-inf.obj"),
         "{e}"

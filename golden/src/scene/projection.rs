@@ -1,0 +1,254 @@
+//! The camera and projection: an orthographic [`Camera`] fitted to a mesh, [`project`] to
+//! integer 12-bit screen addresses (through the fold repair of [`screen_addresses`]) with
+//! back-face culling, and the directional light.
+//!
+//! **Camera model: orthographic.** The shading model puts the viewer at infinity (V = +z in view
+//! space, constant over the frame, see `types.rs`); an orthographic projection is the projection
+//! that matches it, so the faces kept by screen-space culling are exactly those whose geometric
+//! normal faces V (up to the rounding of vertex addresses), and the depth is affine in screen
+//! space, so a depth plane per triangle is exact. The thesis prototype used a 45° perspective
+//! with the eye about 4 radii away; at that distance the difference in silhouette is a few
+//! percent and the shading methods compared here do not depend on it.
+
+use glam::{DQuat, DVec2, DVec3};
+
+use super::mesh::Mesh;
+use super::snap::screen_addresses;
+use super::SceneError;
+use crate::types::{ScreenTriangle, ScreenVertex, MAX_ADDRESS};
+
+/// Largest canvas side: every pixel address must fit 12 bits.
+pub const MAX_CANVAS: u32 = MAX_ADDRESS as u32 + 1;
+
+/// Elevation of the light above the view-space xz plane, in degrees (see [`light_direction`]).
+pub const LIGHT_ELEVATION_DEG: f64 = 45.0;
+
+/// Orthographic camera. A model point p goes to view space as `rotation · (p − centre)`
+/// (viewer looking down −z, y up), then to the continuous screen position
+/// `(screen_centre.x + scale·v.x, screen_centre.y − scale·v.y)` (screen y down) with depth
+/// `−v.z` (smaller is nearer; 0 at `centre`, in model units).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Camera {
+    pub rotation: DQuat,
+    /// Model-space point that lands on `screen_centre`.
+    pub centre: DVec3,
+    /// Pixels per model unit.
+    pub scale: f64,
+    /// Continuous screen position of `centre`.
+    pub screen_centre: DVec2,
+}
+
+impl Camera {
+    /// Fraction of the shorter canvas side left free around the bounding sphere (half on each
+    /// side): the sphere's diameter spans 95 % of it.
+    pub const MARGIN: f64 = 0.05;
+
+    /// Frames the mesh's bounding sphere (centre of the bounding box, radius to the farthest
+    /// vertex) in the middle of a `width`×`height` canvas, its diameter `1 − MARGIN` of the
+    /// shorter side, after rotating the mesh by `rotation` about that centre. The rotation is
+    /// normalized; a mesh of zero extent gets scale 1.
+    pub fn fit(mesh: &Mesh, width: u32, height: u32, rotation: DQuat) -> Camera {
+        let (lo, hi) = mesh.positions.iter().fold(
+            (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
+            |(lo, hi), &p| (lo.min(p), hi.max(p)),
+        );
+        let centre = if mesh.positions.is_empty() {
+            DVec3::ZERO
+        } else {
+            (lo + hi) * 0.5
+        };
+        let radius = mesh
+            .positions
+            .iter()
+            .map(|&p| (p - centre).length())
+            .fold(0.0, f64::max);
+        let half = width.min(height) as f64 * 0.5 * (1.0 - Self::MARGIN);
+        let scale = if radius > 0.0 && radius.is_finite() {
+            half / radius
+        } else {
+            1.0
+        };
+        Camera {
+            rotation: rotation.normalize(),
+            centre,
+            scale,
+            screen_centre: DVec2::new(width as f64 * 0.5, height as f64 * 0.5),
+        }
+    }
+
+    /// View-space position of a model point.
+    pub fn view(&self, p: DVec3) -> DVec3 {
+        self.rotation * (p - self.centre)
+    }
+
+    /// Continuous screen position (x, y) and depth (z) of a model point, before rounding.
+    pub fn screen(&self, p: DVec3) -> DVec3 {
+        let v = self.view(p);
+        DVec3::new(
+            self.screen_centre.x + self.scale * v.x,
+            self.screen_centre.y - self.scale * v.y,
+            -v.z,
+        )
+    }
+}
+
+/// Projects the mesh through the camera onto a `width`×`height` canvas.
+///
+/// - Vertex addresses are the continuous screen positions rounded to the nearest integer and
+///   repaired where rounding would fold a triangle ([`screen_addresses`]).
+/// - Back-face culling by the sign of the screen-space area of the vertex addresses: a face
+///   whose outside faces the viewer winds counter-clockwise as seen, which in y-down screen
+///   coordinates is a *negative* [`ScreenTriangle::area2`] in the mesh's vertex order. Those are
+///   kept; positive ones (back faces) and zero-area ones (edge-on, or collapsed by rounding: they
+///   cover no pixel centre) are dropped.
+/// - Kept triangles are emitted as (v0, v2, v1), so every returned triangle has `area2() > 0`
+///   (clockwise on screen, y down), whatever the mesh. The walk does not depend on the order.
+/// - Normals are rotated into view space (unit, viewer looking down −z).
+/// - Every vertex of a kept triangle must lie in 0..=4095 in x and y (12-bit addresses);
+///   vertices off the canvas but inside that range are fine (the renderer discards off-canvas
+///   pixels). The canvas itself must be at most 4096×4096.
+pub fn project(
+    mesh: &Mesh,
+    camera: &Camera,
+    width: u32,
+    height: u32,
+) -> Result<Vec<ScreenTriangle>, SceneError> {
+    if width == 0 || height == 0 {
+        return Err(SceneError::CanvasEmpty { width, height });
+    }
+    if width > MAX_CANVAS || height > MAX_CANVAS {
+        return Err(SceneError::CanvasTooLarge { width, height });
+    }
+    mesh.validate()?;
+    let screen: Vec<DVec3> = mesh.positions.iter().map(|&p| camera.screen(p)).collect();
+    let rounded: Vec<(f64, f64)> = screen_addresses(mesh, camera)
+        .iter()
+        .map(|a| (a.x, a.y))
+        .collect();
+    let mut out = Vec::new();
+    for (t, tri) in mesh.triangles.iter().enumerate() {
+        let [a, b, c] = tri.map(|i| rounded[i as usize]);
+        // Exact for in-range integers; for wild values only the range error below matters.
+        let area2 = (b.0 - a.0) * (c.1 - a.1) - (c.0 - a.0) * (b.1 - a.1);
+        if area2 >= 0.0 {
+            continue; // back-facing or zero area (a NaN area falls through to the range check)
+        }
+        let mut v = [ScreenVertex {
+            x: 0,
+            y: 0,
+            z: 0.0,
+            normal: DVec3::Z,
+        }; 3];
+        for (k, &i) in [tri[0], tri[2], tri[1]].iter().enumerate() {
+            let s = screen[i as usize];
+            for (axis, value, r) in [
+                ('x', s.x, rounded[i as usize].0),
+                ('y', s.y, rounded[i as usize].1),
+            ] {
+                if !(0.0..=MAX_ADDRESS as f64).contains(&r) {
+                    return Err(SceneError::AddressRange {
+                        triangle: t,
+                        vertex: i,
+                        axis,
+                        value,
+                    });
+                }
+            }
+            v[k] = ScreenVertex {
+                x: rounded[i as usize].0 as i32,
+                y: rounded[i as usize].1 as i32,
+                z: s.z,
+                normal: (camera.rotation * mesh.normals[i as usize]).normalize(),
+            };
+        }
+        let st = ScreenTriangle { v };
+        debug_assert!(st.area2() > 0);
+        out.push(st);
+    }
+    Ok(out)
+}
+
+/// Unit view-space vector towards the light for the prototype's light angle `deg` in 0..=360:
+/// `(cos θ·cos ε, sin ε, sin θ·cos ε)` with elevation ε = [`LIGHT_ELEVATION_DEG`] = 45°.
+/// At the default 90° the light comes from the front-top, at 0° from the right, at 180° from the
+/// left. The 45° matches the prototype, which rotates the vector (1, 1, 0) about y by the
+/// angle: `rotateY(θ)·(1, 1, 0, 0) = (cos θ, 1, sin θ, 0)`.
+pub fn light_direction(deg: f64) -> Result<DVec3, SceneError> {
+    if !(0.0..=360.0).contains(&deg) {
+        return Err(SceneError::LightAngle(deg));
+    }
+    let (t, e) = (deg.to_radians(), LIGHT_ELEVATION_DEG.to_radians());
+    Ok(DVec3::new(t.cos() * e.cos(), e.sin(), t.sin() * e.cos()).normalize())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::uv_sphere;
+
+    #[test]
+    fn out_of_range_coordinates_are_an_error() {
+        let m = uv_sphere(8).unwrap();
+        let mut cam = Camera::fit(&m, 100, 100, DQuat::IDENTITY);
+        assert!(project(&m, &cam, 100, 100).is_ok());
+        // Blow the sphere up so it spans ~ ±5000 pixels around the centre.
+        cam.scale = 5000.0;
+        let e = project(&m, &cam, 100, 100).unwrap_err();
+        let s = e.to_string();
+        assert!(s.contains("0..=4095") && s.contains("12-bit"), "{s}");
+        match e {
+            SceneError::AddressRange { value, .. } => {
+                assert!(value.round() < 0.0 || value.round() > 4095.0, "{value}")
+            }
+            e => panic!("unexpected {e}"),
+        }
+        // Canvas limits.
+        assert_eq!(
+            project(&m, &cam, 4097, 10).unwrap_err(),
+            SceneError::CanvasTooLarge {
+                width: 4097,
+                height: 10
+            }
+        );
+        assert!(project(&m, &cam, 0, 10).is_err());
+        // A 4096×4096 canvas is fine, and the fitted sphere stays inside it.
+        let cam = Camera::fit(&m, 4096, 4096, DQuat::IDENTITY);
+        assert!(!project(&m, &cam, 4096, 4096).unwrap().is_empty());
+    }
+
+    #[test]
+    fn light_direction_matches_the_prototype_angles() {
+        let s = std::f64::consts::FRAC_1_SQRT_2;
+        let l = light_direction(90.0).unwrap();
+        assert!((l - DVec3::new(0.0, s, s)).length() < 1e-15, "{l}");
+        assert!((light_direction(0.0).unwrap() - DVec3::new(s, s, 0.0)).length() < 1e-15);
+        assert!((light_direction(180.0).unwrap() - DVec3::new(-s, s, 0.0)).length() < 1e-15);
+        assert!((light_direction(360.0).unwrap() - DVec3::new(s, s, 0.0)).length() < 1e-15);
+        for bad in [-0.5, 360.5, f64::NAN, f64::INFINITY] {
+            let e = light_direction(bad).unwrap_err().to_string();
+            assert!(e.contains("0..=360"), "{e}");
+        }
+    }
+
+    #[test]
+    fn project_rejects_bad_normals_naming_the_vertex() {
+        let mut m = uv_sphere(3).unwrap();
+        m.normals[5] = DVec3::new(f64::NAN, 0.0, 1.0);
+        let e = project(&m, &Camera::fit(&m, 64, 64, DQuat::IDENTITY), 64, 64).unwrap_err();
+        assert_eq!(
+            e,
+            SceneError::BadNormal {
+                origin: "mesh".into(),
+                vertex: 5,
+                problem: "NaN"
+            }
+        );
+        m.normals[5] = DVec3::ZERO;
+        assert!(
+            project(&m, &Camera::fit(&m, 64, 64, DQuat::IDENTITY), 64, 64)
+                .unwrap_err()
+                .to_string()
+                .contains("vertex 5 has a zero-length normal")
+        );
+    }
+}
