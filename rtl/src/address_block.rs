@@ -70,6 +70,7 @@
 //! Error budget: exact (integer).
 
 use crate::line_interpolator::LineInterpolator;
+use crate::registry::{NoParams, RtlBlock};
 use rust_hdl::prelude::*;
 
 #[derive(LogicBlock, Default)]
@@ -168,6 +169,29 @@ pub struct AddressBlock {
     rec_len: Signal<Local, Bits<12>>,
     /// nb_len ≠ 0.
     nb_nonempty: Signal<Local, Bit>,
+}
+
+crate::impl_dut!(AddressBlock, clock: clock,
+    inputs: [load, w_b0, w_e0, w_f, w_r, w_d, a_b0, a_e0, a_f, a_r, a_d,
+             t_b0, t_e0, t_f, t_r, t_d, y_top, rows, y_switch, dir_neg],
+    outputs: [ready, valid, x, y, step, line_start, row_start, carry, done]);
+
+impl AddressBlock {
+    /// Clocks from the accepted `load` to the triangle's first event.
+    pub const LATENCY: usize = 3;
+}
+
+impl RtlBlock for AddressBlock {
+    type Params = NoParams;
+    const NAME: &'static str = "address-block";
+    const SUMMARY: &'static str =
+        "one triangle's set-up in, its pixel addresses and step types out (SPEC §5)";
+    const LATENCY: usize = AddressBlock::LATENCY;
+    const LATENCY_MEANING: &'static str = "load to the first event, one address per clock";
+    const MULTIPLIERS: usize = 0;
+    fn build(_: &NoParams) -> Self {
+        AddressBlock::default()
+    }
 }
 
 impl Logic for AddressBlock {

@@ -28,6 +28,12 @@
 //! | [`SCALE`]      | unsigned Q1.15   | 16   | f(K), multiplier operand                       |
 //! | [`PRODUCT`]    | signed Q3.29     | 32   | Q2.14 × Q1.15 products                         |
 //!
+//! # Formats of the Gouraud intensity datapath (BVI, `crate::intensity_interpolator`)
+//! | name (const)   | format           | bits | meaning                                        |
+//! |----------------|------------------|------|------------------------------------------------|
+//! | [`INTENSITY`]  | signed Q16.16    | 32   | set-up words and running intensities, in 8-bit LSB units (0..255 scale); wrapping adds |
+//! | [`LEVEL`]      | unsigned Q8.0    | 8    | `red`, `green`, `blue`: the intensity's integer part, saturated to 0..=255 |
+//!
 //! # Arithmetic rules
 //! - **Multiplies** are rust-hdl's 16×16→32 unsigned multiply (one FPGA DSP slice). A signed
 //!   operand `a` (two's complement) times an unsigned `b` is formed from the unsigned product
@@ -40,7 +46,14 @@
 //!   wrapping (a wrapped normal would flip a pixel's shading). Additions that provably cannot
 //!   overflow (stated at each one) are plain modular adds.
 //! - **Modular exactness**: the K recurrence runs in 32-bit wrap-around arithmetic; since every
-//!   true K_i is in [0, 2³²), the wrapped sums equal the exact integers.
+//!   true K_i is in [0, 2³²), the wrapped sums equal the exact integers. The BVI's [`INTENSITY`]
+//!   sums wrap the same way: only the pixel values need to be in range, not the increments.
+//!
+//! The multiplies and narrowings above are built once, in [`crate::primitives`]
+//! ([`MulSignedUnsigned`](crate::primitives::MulSignedUnsigned),
+//! [`SquareSigned`](crate::primitives::SquareSigned), [`SatToQ2_14`](crate::primitives::SatToQ2_14),
+//! [`RoundToQ2_14`](crate::primitives::RoundToQ2_14), [`SatToUQ1_15`](crate::primitives::SatToUQ1_15),
+//! [`RoundToUQ1_15`](crate::primitives::RoundToUQ1_15)), and the blocks use those.
 //!
 //! Every block header restates the formats of its ports and width-changing intermediates.
 
@@ -73,6 +86,13 @@ pub const HORNER_T1: QFormat = QFormat::signed(2, 14);
 pub const SCALE: QFormat = QFormat::unsigned(1, 15);
 /// Product of a Q2.14 and a Q1.15 word.
 pub const PRODUCT: QFormat = QFormat::signed(3, 29);
+/// The BVI's words (`crate::intensity_interpolator`): set-up words `r_start` … `b_line` and the
+/// running intensities RG1–RG5 (`red_word` … `blue_word`), in units of the 8-bit output's LSB
+/// (value 0..255 is the colour scale). Sums wrap modulo 2³² on purpose.
+pub const INTENSITY: QFormat = QFormat::signed(16, 16);
+/// The BVI's 8-bit outputs `red`, `green`, `blue`, read as integers 0..=255: the integer part
+/// of an [`INTENSITY`] word, saturated (negative → 0, ≥ 256 → 255).
+pub const LEVEL: QFormat = QFormat::unsigned(8, 0);
 
 impl QFormat {
     pub const fn signed(int_bits: u32, frac_bits: u32) -> Self {
@@ -189,6 +209,16 @@ mod tests {
         assert_eq!(NORMAL.quantize(-3.0 * half), NORMAL.from_int(-1));
         assert_eq!(NORMAL.to_f64(0xC000), -1.0);
         assert_eq!(NORMAL.to_f64(0x8000), -2.0);
+    }
+
+    #[test]
+    fn intensity_formats() {
+        assert_eq!(INTENSITY.width(), 32);
+        assert_eq!(INTENSITY.to_f64(0x0001_8000), 1.5);
+        assert_eq!(INTENSITY.to_f64(0xFFFF_0000), -1.0);
+        assert_eq!(LEVEL.width(), 8);
+        assert_eq!(LEVEL.quantize(300.0), 255);
+        assert_eq!(LEVEL.quantize(-3.0), 0);
     }
 
     #[test]

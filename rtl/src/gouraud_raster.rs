@@ -12,7 +12,11 @@
 //! twelve signed Q16.16 set-up words (`r_start` … `b_line`, see `intensity_interpolator`), all
 //! sampled on the one `load` strobe, which is accepted when `ready` is high. Outputs:
 //! `valid`, `x`, `y` (12 bits), `red`, `green`, `blue` (8 bits, saturated), `done` (last event
-//! of a triangle), `ready`. Every output is a register or a function of registers.
+//! of a triangle), `ready`. Every output is a register or a function of registers. The set-up
+//! ports are declared again here, not bundled, because rust-hdl exports a top's ports only from
+//! its own signal fields and would name an interface's members `bundle$field`; the forwarding
+//! assignments are type-checked against the children's ports, so the widths cannot drift.
+//! `x`, `y`, `done` wait `IntensityInterpolator::LATENCY` clocks (`Delay`) to meet their colour.
 //!
 //! Latency: load → first pixel 4 clocks (3 in the address block, 1 in the BVI). Throughput:
 //! one pixel per clock along a line, no extra clock per line start, one clock per raster line
@@ -21,6 +25,8 @@
 
 use crate::address_block::AddressBlock;
 use crate::intensity_interpolator::IntensityInterpolator;
+use crate::primitives::Delay;
+use crate::registry::{NoParams, RtlBlock};
 use rust_hdl::prelude::*;
 
 #[derive(LogicBlock, Default)]
@@ -70,15 +76,40 @@ pub struct GouraudRaster {
 
     pub addr: AddressBlock,
     pub bvi: IntensityInterpolator,
-    x_p1: DFF<Bits<12>>,
-    y_p1: DFF<Bits<12>>,
-    done_p1: DFF<Bit>,
+    // The address block's x, y, done, delayed to meet the BVI's colour of the same pixel.
+    x_p1: Delay<Bits<12>, { IntensityInterpolator::LATENCY }>,
+    y_p1: Delay<Bits<12>, { IntensityInterpolator::LATENCY }>,
+    done_p1: Delay<Bit, { IntensityInterpolator::LATENCY }>,
+}
+
+crate::impl_dut!(GouraudRaster, clock: clock,
+    inputs: [load, w_b0, w_e0, w_f, w_r, w_d, a_b0, a_e0, a_f, a_r, a_d,
+             t_b0, t_e0, t_f, t_r, t_d, y_top, rows, y_switch, dir_neg,
+             r_start, r_short, r_long, r_line, g_start, g_short, g_long, g_line,
+             b_start, b_short, b_long, b_line],
+    outputs: [ready, valid, x, y, red, green, blue, done]);
+
+impl GouraudRaster {
+    /// Clocks from the accepted `load` to the first pixel (address block + BVI).
+    pub const LATENCY: usize = AddressBlock::LATENCY + IntensityInterpolator::LATENCY;
+}
+
+impl RtlBlock for GouraudRaster {
+    type Params = NoParams;
+    const NAME: &'static str = "gouraud-raster";
+    const SUMMARY: &'static str = "Gouraud raster pipe: address block feeding the BVI (SPEC §5–6)";
+    const LATENCY: usize = GouraudRaster::LATENCY;
+    const LATENCY_MEANING: &'static str = "load to the first pixel, one pixel per clock";
+    const MULTIPLIERS: usize = 0;
+    fn build(_: &NoParams) -> Self {
+        GouraudRaster::default()
+    }
 }
 
 impl Logic for GouraudRaster {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, x_p1, y_p1, done_p1);
+        clock!(self, clock, x_p1, y_p1, done_p1);
         self.addr.clock.next = self.clock.val();
         self.addr.load.next = self.load.val();
         self.addr.w_b0.next = self.w_b0.val();

@@ -28,18 +28,20 @@
 //! working-edge increment because the edge moves a whole line per clock). SH1, SH2, SH3, SH5
 //! are a set-up shadow bank: `load` writes them while the previous triangle is still being
 //! shaded, and the first event of the next triangle copies them in, so triangles follow each
-//! other without a gap.
+//! other without a gap. Each colour has its own [`IntensityChannel`] (`chan[0]` red, `chan[1]`
+//! green, `chan[2]` blue); the address block's step information drives all three alike.
 //!
 //! # Formats
 //!
 //! Every register, the adder and the set-up ports are 32-bit two's complement **signed Q16.16**
-//! (`crate::fixed` notation, the sign counted in the 16 integer bits): value =
+//! ([`crate::fixed::INTENSITY`], the sign counted in the 16 integer bits): value =
 //! word / 2^16 in 8-bit LSB units, i.e. the 0..255 scale. Additions wrap modulo
 //! 2^32 on purpose: each pixel's word is the sum of the quantized start value and increments,
 //! and a sum modulo 2^32 is exact modulo 2^32, so a giant increment of a sliver triangle (the
 //! plane's gradient can reach millions of LSB per pixel) wraps and unwraps without loss; only
 //! the pixel values themselves must be in range, and they are (convex combinations of the vertex
-//! intensities, |I| < 2^15). Output: `red`, `green`, `blue` 8 bits, saturating:
+//! intensities, |I| < 2^15). Output: `red`, `green`, `blue` 8 bits ([`crate::fixed::LEVEL`],
+//! unsigned Q8.0), saturating:
 //! word < 0 → 0, word ≥ 256·2^16 → 255, otherwise bits 23..16 (truncation; the +½ in RG5 makes
 //! it round to nearest).
 //!
@@ -63,6 +65,7 @@
 //! 8-bit output differs from round(I) (clamped) by at most 1 LSB — by exactly 0 unless I lies
 //! within that bound of a half-integer.
 
+use crate::registry::{NoParams, RtlBlock};
 use rust_hdl::prelude::*;
 
 /// One colour channel: five registers, a shadow bank, one adder, the saturating output.
@@ -181,11 +184,33 @@ pub struct IntensityInterpolator {
     pub red_word: Signal<Out, Bits<32>>,
     pub green_word: Signal<Out, Bits<32>>,
     pub blue_word: Signal<Out, Bits<32>>,
-    pub chan_r: IntensityChannel,
-    pub chan_g: IntensityChannel,
-    pub chan_b: IntensityChannel,
+    /// The three colour channels: 0 red, 1 green, 2 blue.
+    pub chan: [IntensityChannel; 3],
     valid_p1: DFF<Bit>,
     first: Signal<Local, Bit>,
+}
+
+crate::impl_dut!(IntensityInterpolator, clock: clock,
+    inputs: [load, r_start, r_short, r_long, r_line, g_start, g_short, g_long, g_line,
+             b_start, b_short, b_long, b_line, in_valid, in_row_start, in_step, in_carry],
+    outputs: [valid_out, red, green, blue, red_word, green_word, blue_word]);
+
+impl IntensityInterpolator {
+    /// Clocks from an event (`in_valid`) to its colour (`valid_out`).
+    pub const LATENCY: usize = 1;
+}
+
+impl RtlBlock for IntensityInterpolator {
+    type Params = NoParams;
+    const NAME: &'static str = "intensity-interpolator";
+    const SUMMARY: &'static str =
+        "BVI: the address block's step information in, 8-bit R, G, B per pixel out (SPEC §6)";
+    const LATENCY: usize = IntensityInterpolator::LATENCY;
+    const LATENCY_MEANING: &'static str = "in_valid to valid_out, one pixel per clock";
+    const MULTIPLIERS: usize = 0;
+    fn build(_: &NoParams) -> Self {
+        IntensityInterpolator::default()
+    }
 }
 
 impl Logic for IntensityInterpolator {
@@ -195,45 +220,34 @@ impl Logic for IntensityInterpolator {
         self.first.next = self.in_row_start.val() & (self.in_step.val() == 0);
         self.valid_p1.d.next = self.in_valid.val();
 
-        self.chan_r.clock.next = self.clock.val();
-        self.chan_r.load.next = self.load.val();
-        self.chan_r.set_start.next = self.r_start.val();
-        self.chan_r.set_short.next = self.r_short.val();
-        self.chan_r.set_long.next = self.r_long.val();
-        self.chan_r.set_line.next = self.r_line.val();
-        self.chan_r.ev_first.next = self.first.val();
-        self.chan_r.ev_row_start.next = self.in_row_start.val();
-        self.chan_r.ev_carry.next = self.in_carry.val();
-        self.chan_r.ev_valid.next = self.in_valid.val();
-
-        self.chan_g.clock.next = self.clock.val();
-        self.chan_g.load.next = self.load.val();
-        self.chan_g.set_start.next = self.g_start.val();
-        self.chan_g.set_short.next = self.g_short.val();
-        self.chan_g.set_long.next = self.g_long.val();
-        self.chan_g.set_line.next = self.g_line.val();
-        self.chan_g.ev_first.next = self.first.val();
-        self.chan_g.ev_row_start.next = self.in_row_start.val();
-        self.chan_g.ev_carry.next = self.in_carry.val();
-        self.chan_g.ev_valid.next = self.in_valid.val();
-
-        self.chan_b.clock.next = self.clock.val();
-        self.chan_b.load.next = self.load.val();
-        self.chan_b.set_start.next = self.b_start.val();
-        self.chan_b.set_short.next = self.b_short.val();
-        self.chan_b.set_long.next = self.b_long.val();
-        self.chan_b.set_line.next = self.b_line.val();
-        self.chan_b.ev_first.next = self.first.val();
-        self.chan_b.ev_row_start.next = self.in_row_start.val();
-        self.chan_b.ev_carry.next = self.in_carry.val();
-        self.chan_b.ev_valid.next = self.in_valid.val();
+        // The address block's step information drives all three channels alike.
+        for i in 0..3 {
+            self.chan[i].clock.next = self.clock.val();
+            self.chan[i].load.next = self.load.val();
+            self.chan[i].ev_first.next = self.first.val();
+            self.chan[i].ev_row_start.next = self.in_row_start.val();
+            self.chan[i].ev_carry.next = self.in_carry.val();
+            self.chan[i].ev_valid.next = self.in_valid.val();
+        }
+        self.chan[0].set_start.next = self.r_start.val();
+        self.chan[0].set_short.next = self.r_short.val();
+        self.chan[0].set_long.next = self.r_long.val();
+        self.chan[0].set_line.next = self.r_line.val();
+        self.chan[1].set_start.next = self.g_start.val();
+        self.chan[1].set_short.next = self.g_short.val();
+        self.chan[1].set_long.next = self.g_long.val();
+        self.chan[1].set_line.next = self.g_line.val();
+        self.chan[2].set_start.next = self.b_start.val();
+        self.chan[2].set_short.next = self.b_short.val();
+        self.chan[2].set_long.next = self.b_long.val();
+        self.chan[2].set_line.next = self.b_line.val();
 
         self.valid_out.next = self.valid_p1.q.val();
-        self.red.next = self.chan_r.level.val();
-        self.green.next = self.chan_g.level.val();
-        self.blue.next = self.chan_b.level.val();
-        self.red_word.next = self.chan_r.word.val();
-        self.green_word.next = self.chan_g.word.val();
-        self.blue_word.next = self.chan_b.word.val();
+        self.red.next = self.chan[0].level.val();
+        self.green.next = self.chan[1].level.val();
+        self.blue.next = self.chan[2].level.val();
+        self.red_word.next = self.chan[0].word.val();
+        self.green_word.next = self.chan[1].word.val();
+        self.blue_word.next = self.chan[2].word.val();
     }
 }

@@ -42,11 +42,15 @@
 //! Overflow: none possible for a line whose vectors stay representable (the caller's
 //! guarantee; true for interpolation between unit normals). Error: none (exact).
 //!
-//! [`SpanNormalizer`] ports: `valid_in`, `load`, `k0`, `alpha`, `beta` as above, plus
-//! `x0`, `y0`, `z0` (signed Q2.14, N₀, taken with `load`) and `dx`, `dy`, `dz` (signed Q2.14,
-//! Δ, taken with `load`); outputs `valid_out`, `nx`, `ny`, `nz` (signed Q2.14) as the
-//! normalizer's. Error budget: the normalizer's (`crate::normalizer::error_budget`).
+//! [`SpanNormalizer`] runs one two-stage interpolator per component (`ComponentStep`, built
+//! like [`KRecurrence`]: input registers, then state and output register) so that N_i and K_i
+//! reach [`NormalizerK`] in the same clock. Its ports: `valid_in`, `load`, `k0`, `alpha`,
+//! `beta` as above, plus `x0`, `y0`, `z0` (signed Q2.14, N₀, taken with `load`) and `dx`,
+//! `dy`, `dz` (signed Q2.14, Δ, taken with `load`); outputs `valid_out`, `nx`, `ny`, `nz`
+//! (signed Q2.14) as the normalizer's. Error budget: the normalizer's
+//! (`crate::normalizer::error_budget`).
 
+use crate::registry::{NoParams, RtlBlock};
 use rust_hdl::prelude::*;
 
 use crate::fixed::{K_ALPHA, K_FULL};
@@ -144,10 +148,24 @@ impl Default for KRecurrence {
     }
 }
 
+crate::impl_dut!(KRecurrence, clock: clock, inputs: [valid_in, load, k0, alpha, beta], outputs: [valid_out, k]);
+
+impl RtlBlock for KRecurrence {
+    type Params = NoParams;
+    const NAME: &'static str = "k-recurrence";
+    const SUMMARY: &'static str = "K along a span by additions: K_0, α, β in, K_i out (SPEC §1)";
+    const LATENCY: usize = KRecurrence::LATENCY;
+    const LATENCY_MEANING: &'static str = "valid_in to valid_out, one input per clock";
+    const MULTIPLIERS: usize = 0;
+    fn build(_: &NoParams) -> Self {
+        KRecurrence::new()
+    }
+}
+
 impl Logic for KRecurrence {
     #[hdl_gen]
     fn update(&mut self) {
-        clock!(
+        dff_setup!(
             self, clock, valid_p1, load_p1, k0_p1, alpha2_p1, beta_p1, k_next, beta_i, alpha2,
             beta2, k_out, valid_p2
         );
@@ -168,12 +186,7 @@ impl Logic for KRecurrence {
             self.alpha2_cur.next = self.alpha2.q.val();
             self.beta2_cur.next = self.beta2.q.val();
         }
-        // Hold while no pixel is requested.
-        self.k_next.d.next = self.k_next.q.val();
-        self.beta_i.d.next = self.beta_i.q.val();
-        self.alpha2.d.next = self.alpha2.q.val();
-        self.beta2.d.next = self.beta2.q.val();
-        self.k_out.d.next = self.k_out.q.val();
+        // dff_setup! holds every register while no pixel is requested.
         if self.valid_p1.q.val() {
             self.k_out.d.next = self.k_cur.val();
             // K_{i+1} = K_i + 2α + β_i ; β_{i+1} = β_i + 2β  (mod 2³², exact, see header)
@@ -209,31 +222,11 @@ pub struct SpanNormalizer {
     pub ny: Signal<Out, Bits<16>>,
     pub nz: Signal<Out, Bits<16>>,
     krec: KRecurrence,
+    // Vector interpolation N_{i+1} = N_i + Δ, one component each, aligned with `krec`.
+    step_x: ComponentStep,
+    step_y: ComponentStep,
+    step_z: ComponentStep,
     scale: NormalizerK,
-    // Vector interpolation, aligned with KRecurrence's two stages.
-    valid_p1: DFF<Bit>,
-    load_p1: DFF<Bit>,
-    x0_p1: DFF<Bits<16>>,
-    y0_p1: DFF<Bits<16>>,
-    z0_p1: DFF<Bits<16>>,
-    dx_p1: DFF<Bits<16>>,
-    dy_p1: DFF<Bits<16>>,
-    dz_p1: DFF<Bits<16>>,
-    x_next: DFF<Bits<16>>,
-    y_next: DFF<Bits<16>>,
-    z_next: DFF<Bits<16>>,
-    dx_hold: DFF<Bits<16>>,
-    dy_hold: DFF<Bits<16>>,
-    dz_hold: DFF<Bits<16>>,
-    x_out: DFF<Bits<16>>,
-    y_out: DFF<Bits<16>>,
-    z_out: DFF<Bits<16>>,
-    x_cur: Signal<Local, Bits<16>>,
-    y_cur: Signal<Local, Bits<16>>,
-    z_cur: Signal<Local, Bits<16>>,
-    dx_cur: Signal<Local, Bits<16>>,
-    dy_cur: Signal<Local, Bits<16>>,
-    dz_cur: Signal<Local, Bits<16>>,
 }
 
 impl SpanNormalizer {
@@ -259,100 +252,117 @@ impl SpanNormalizer {
             ny: Default::default(),
             nz: Default::default(),
             krec: KRecurrence::new(),
+            step_x: Default::default(),
+            step_y: Default::default(),
+            step_z: Default::default(),
             scale: NormalizerK::new(c),
-            valid_p1: Default::default(),
-            load_p1: Default::default(),
-            x0_p1: Default::default(),
-            y0_p1: Default::default(),
-            z0_p1: Default::default(),
-            dx_p1: Default::default(),
-            dy_p1: Default::default(),
-            dz_p1: Default::default(),
-            x_next: Default::default(),
-            y_next: Default::default(),
-            z_next: Default::default(),
-            dx_hold: Default::default(),
-            dy_hold: Default::default(),
-            dz_hold: Default::default(),
-            x_out: Default::default(),
-            y_out: Default::default(),
-            z_out: Default::default(),
-            x_cur: Default::default(),
-            y_cur: Default::default(),
-            z_cur: Default::default(),
-            dx_cur: Default::default(),
-            dy_cur: Default::default(),
-            dz_cur: Default::default(),
         }
+    }
+}
+
+crate::impl_dut!(
+    SpanNormalizer,
+    clock: clock,
+    inputs: [valid_in, load, x0, y0, z0, dx, dy, dz, k0, alpha, beta],
+    outputs: [valid_out, nx, ny, nz]
+);
+
+impl RtlBlock for SpanNormalizer {
+    type Params = NormalizerCoeffs;
+    const NAME: &'static str = "span-normalizer";
+    const SUMMARY: &'static str =
+        "K recurrence + vector interpolator feeding the normalizer back end (SPEC §1)";
+    const LATENCY: usize = SpanNormalizer::LATENCY;
+    const LATENCY_MEANING: &'static str = "valid_in to valid_out, one input per clock";
+    const MULTIPLIERS: usize = 5;
+    fn build(p: &NormalizerCoeffs) -> Self {
+        SpanNormalizer::new(p)
     }
 }
 
 impl Logic for SpanNormalizer {
     #[hdl_gen]
     fn update(&mut self) {
-        clock!(
-            self, clock, krec, scale, valid_p1, load_p1, x0_p1, y0_p1, z0_p1, dx_p1, dy_p1, dz_p1,
-            x_next, y_next, z_next, dx_hold, dy_hold, dz_hold, x_out, y_out, z_out
-        );
+        clock!(self, clock, krec, step_x, step_y, step_z, scale);
         self.krec.valid_in.next = self.valid_in.val();
         self.krec.load.next = self.load.val();
         self.krec.k0.next = self.k0.val();
         self.krec.alpha.next = self.alpha.val();
         self.krec.beta.next = self.beta.val();
 
-        self.valid_p1.d.next = self.valid_in.val();
-        self.load_p1.d.next = self.load.val() & self.valid_in.val();
-        self.x0_p1.d.next = self.x0.val();
-        self.y0_p1.d.next = self.y0.val();
-        self.z0_p1.d.next = self.z0.val();
-        self.dx_p1.d.next = self.dx.val();
-        self.dy_p1.d.next = self.dy.val();
-        self.dz_p1.d.next = self.dz.val();
-        if self.load_p1.q.val() {
-            self.x_cur.next = self.x0_p1.q.val();
-            self.y_cur.next = self.y0_p1.q.val();
-            self.z_cur.next = self.z0_p1.q.val();
-            self.dx_cur.next = self.dx_p1.q.val();
-            self.dy_cur.next = self.dy_p1.q.val();
-            self.dz_cur.next = self.dz_p1.q.val();
-        } else {
-            self.x_cur.next = self.x_next.q.val();
-            self.y_cur.next = self.y_next.q.val();
-            self.z_cur.next = self.z_next.q.val();
-            self.dx_cur.next = self.dx_hold.q.val();
-            self.dy_cur.next = self.dy_hold.q.val();
-            self.dz_cur.next = self.dz_hold.q.val();
-        }
-        self.x_next.d.next = self.x_next.q.val();
-        self.y_next.d.next = self.y_next.q.val();
-        self.z_next.d.next = self.z_next.q.val();
-        self.dx_hold.d.next = self.dx_hold.q.val();
-        self.dy_hold.d.next = self.dy_hold.q.val();
-        self.dz_hold.d.next = self.dz_hold.q.val();
-        self.x_out.d.next = self.x_out.q.val();
-        self.y_out.d.next = self.y_out.q.val();
-        self.z_out.d.next = self.z_out.q.val();
-        if self.valid_p1.q.val() {
-            // N_{i+1} = N_i + Δ (Q2.14, the caller keeps N_i representable).
-            self.x_out.d.next = self.x_cur.val();
-            self.y_out.d.next = self.y_cur.val();
-            self.z_out.d.next = self.z_cur.val();
-            self.x_next.d.next = self.x_cur.val() + self.dx_cur.val();
-            self.y_next.d.next = self.y_cur.val() + self.dy_cur.val();
-            self.z_next.d.next = self.z_cur.val() + self.dz_cur.val();
-            self.dx_hold.d.next = self.dx_cur.val();
-            self.dy_hold.d.next = self.dy_cur.val();
-            self.dz_hold.d.next = self.dz_cur.val();
-        }
+        self.step_x.valid_in.next = self.valid_in.val();
+        self.step_y.valid_in.next = self.valid_in.val();
+        self.step_z.valid_in.next = self.valid_in.val();
+        self.step_x.load.next = self.load.val();
+        self.step_y.load.next = self.load.val();
+        self.step_z.load.next = self.load.val();
+        self.step_x.n0.next = self.x0.val();
+        self.step_y.n0.next = self.y0.val();
+        self.step_z.n0.next = self.z0.val();
+        self.step_x.delta.next = self.dx.val();
+        self.step_y.delta.next = self.dy.val();
+        self.step_z.delta.next = self.dz.val();
 
         self.scale.valid_in.next = self.krec.valid_out.val();
         self.scale.k.next = self.krec.k.val();
-        self.scale.x.next = self.x_out.q.val();
-        self.scale.y.next = self.y_out.q.val();
-        self.scale.z.next = self.z_out.q.val();
+        self.scale.x.next = self.step_x.n.val();
+        self.scale.y.next = self.step_y.n.val();
+        self.scale.z.next = self.step_z.n.val();
         self.valid_out.next = self.scale.valid_out.val();
         self.nx.next = self.scale.nx.val();
         self.ny.next = self.scale.ny.val();
         self.nz.next = self.scale.nz.val();
+    }
+}
+
+/// One component of [`SpanNormalizer`]'s vector interpolation, `N_{i+1} = N_i + Δ` (signed
+/// Q2.14, modulo 2¹⁶; the caller keeps N_i representable), in [`KRecurrence`]'s two stages:
+/// input registers, then the recurrence state and the output register. `load` (with
+/// `valid_in`) takes `n0` and `delta`; clocks with `valid_in` low freeze it. `n` is N_i,
+/// [`KRecurrence::LATENCY`] clocks after its `valid_in`, beside K_i.
+#[derive(LogicBlock, Default)]
+struct ComponentStep {
+    pub clock: Signal<In, Clock>,
+    pub valid_in: Signal<In, Bit>,
+    pub load: Signal<In, Bit>,
+    pub n0: Signal<In, Bits<16>>,
+    pub delta: Signal<In, Bits<16>>,
+    pub n: Signal<Out, Bits<16>>,
+    // Stage 1: input registers.
+    valid_p1: DFF<Bit>,
+    load_p1: DFF<Bit>,
+    n0_p1: DFF<Bits<16>>,
+    delta_p1: DFF<Bits<16>>,
+    // Stage 2: recurrence state (value for the next pixel) and the output register.
+    n_next: DFF<Bits<16>>,
+    delta_hold: DFF<Bits<16>>,
+    n_out: DFF<Bits<16>>,
+    // This pixel's N and Δ: the loaded values on a load, else the state.
+    n_cur: Signal<Local, Bits<16>>,
+    delta_cur: Signal<Local, Bits<16>>,
+}
+
+impl Logic for ComponentStep {
+    #[hdl_gen]
+    fn update(&mut self) {
+        dff_setup!(self, clock, valid_p1, load_p1, n0_p1, delta_p1, n_next, delta_hold, n_out);
+        self.valid_p1.d.next = self.valid_in.val();
+        self.load_p1.d.next = self.load.val() & self.valid_in.val();
+        self.n0_p1.d.next = self.n0.val();
+        self.delta_p1.d.next = self.delta.val();
+        if self.load_p1.q.val() {
+            self.n_cur.next = self.n0_p1.q.val();
+            self.delta_cur.next = self.delta_p1.q.val();
+        } else {
+            self.n_cur.next = self.n_next.q.val();
+            self.delta_cur.next = self.delta_hold.q.val();
+        }
+        // dff_setup! holds every register while no pixel is requested.
+        if self.valid_p1.q.val() {
+            self.n_out.d.next = self.n_cur.val();
+            self.n_next.d.next = self.n_cur.val() + self.delta_cur.val();
+            self.delta_hold.d.next = self.delta_cur.val();
+        }
+        self.n.next = self.n_out.q.val();
     }
 }

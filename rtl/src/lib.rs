@@ -6,3 +6,6 @@ pub mod intensity_interpolator;
 pub mod k_recurrence;
 pub mod line_interpolator;
 pub mod normalizer;
+pub mod primitives;
+pub mod registry;
+pub mod sim;

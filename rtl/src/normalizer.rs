@@ -29,23 +29,31 @@
 //! every clock whatever `valid_in` says (outputs are meaningful only with `valid_out`).
 //!
 //! # Pipeline (registers named after the quantity; `_pk` = delayed k clocks)
+//! The multipliers, narrowings and delay lines are the shared blocks of `crate::primitives`
+//! (named in brackets); B6–B7 form one `ScaleLane` per component (`lane_x`, `lane_y`,
+//! `lane_z`), which also delays its component by 5 clocks (`x_p5`) to meet f.
 //! ```text
 //! Normalizer only:
-//!  S1  sq_x = x·x (Mul1-3)       Q2.14² → Q4.28 unsigned, exact; signed-square correction
-//!  S2  k_full = sq_x+sq_y+sq_z   Sm1, Q4.28 unsigned, exact (≤ 3·2³⁰, cannot overflow)
+//!  S1  sq_x = x·x (Mul1-3)       Q2.14² → Q4.28 unsigned, exact [SquareSigned]
+//!  S2  k_full = sq_x+sq_y+sq_z   Sm1, Q4.28 unsigned, exact (≤ 3·2³⁰, cannot overflow);
+//!                                valid_p2, x_p2 … carry the vector alongside [Delay]
 //! NormalizerK (its stage 1 follows Normalizer's S2):
 //!  B1  k_narrow = K              Q4.28 → Q1.15 unsigned: round (drop 13 LSBs), saturate at
-//!                                2 − 2⁻¹⁵ when K ≥ 2 − 2⁻¹⁶
+//!                                2 − 2⁻¹⁵ when K ≥ 2 − 2⁻¹⁶ [RoundToUQ1_15]
 //!  B2  c2k = |c2|·k_narrow       Mul4, Q1.15 × Q1.15 → Q2.30 unsigned, exact
 //!  B3  t1 = c1 ± c2k             Sm2 in Q3.29 (c2k halved: drops 1 LSB = 2⁻³⁰; cannot
 //!                                overflow, checked by NormalizerCoeffs::new), then
-//!                                Q3.29 → Q2.14: round (drop 15 LSBs), saturate to [−2, 2)
+//!                                Q3.29 → Q2.14: round (drop 15 LSBs; the half LSB is in the
+//!                                constant c1_rnd), saturate to [−2, 2) [SatToQ2_14]
 //!  B4  t1k = t1·k_narrow_p2      Mul5, signed Q2.14 × unsigned Q1.15 → signed Q3.29, exact
+//!                                [MulSignedUnsigned]
 //!  B5  f = c0 + t1k              Sm3 in Q4.28 (t1k halved: drops 2⁻²⁹; range [−8, 8), cannot
-//!                                overflow), then Q4.28 → Q1.15: round (drop 13 LSBs),
-//!                                saturate to [0, 2 − 2⁻¹⁵]
+//!                                overflow), then Q4.28 → Q1.15: round (drop 13 LSBs; half LSB
+//!                                in c0_rnd), saturate to [0, 2 − 2⁻¹⁵] [SatToUQ1_15]
 //!  B6  xf = x_p5·f  (Mul6-8)     signed Q2.14 × unsigned Q1.15 → signed Q3.29, exact
+//!                                [MulSignedUnsigned]
 //!  B7  nx = xf                   Q3.29 → Q2.14: round (drop 15 LSBs), saturate to [−2, 2)
+//!                                [RoundToQ2_14]; valid_p7 carries valid_in [Delay]
 //! ```
 //! ```text
 //! clock      : 0    1    2    3    4    5    6    7    8    9
@@ -77,6 +85,10 @@ use golden::normalizer::{Coeffs, K_DOMAIN};
 use rust_hdl::prelude::*;
 
 use crate::fixed::{QFormat, COEF_C0, COEF_C1, COEF_C2, HORNER_T1, K_NARROW, NORMAL, SCALE};
+use crate::primitives::{
+    Delay, MulSignedUnsigned, RoundToQ2_14, RoundToUQ1_15, SatToQ2_14, SatToUQ1_15, SquareSigned,
+};
+use crate::registry::{BlockParams, Options, RtlBlock};
 
 /// Why a coefficient set cannot be built.
 #[derive(Debug, thiserror::Error, PartialEq)]
@@ -209,6 +221,34 @@ impl NormalizerCoeffs {
     }
 }
 
+impl BlockParams for NormalizerCoeffs {
+    const KEYS: &'static [&'static str] = &["coeffs"];
+    /// `coeffs=published` (default, SPEC §1: 0.822, −2.046, 2.227) or `coeffs=fit` (exact in
+    /// value and slope at K = 1, `golden::normalizer::FIT`).
+    fn from_options(o: &Options) -> Result<Self, String> {
+        let c = match o.get("coeffs").unwrap_or("published") {
+            "published" => golden::normalizer::PUBLISHED,
+            "fit" => golden::normalizer::FIT,
+            other => {
+                return Err(format!(
+                    "unknown coefficient set {other:?} (expected published or fit)"
+                ))
+            }
+        };
+        NormalizerCoeffs::new(c).map_err(|e| e.to_string())
+    }
+    fn describe(&self) -> Option<String> {
+        let c = self.requested;
+        Some(format!(
+            "Coefficients (c2, c1, c0) = ({}, {}, {}); as quantized: {:?}",
+            c[0],
+            c[1],
+            c[2],
+            self.quantized()
+        ))
+    }
+}
+
 /// Error budget of the normalizer datapath, derived from the formats (see the module header).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ErrorBudget {
@@ -278,82 +318,42 @@ pub struct NormalizerK {
     pub nx: Signal<Out, Bits<16>>,
     pub ny: Signal<Out, Bits<16>>,
     pub nz: Signal<Out, Bits<16>>,
-    // Coefficients and format constants.
+    // Coefficients, with half an output LSB folded into the constants that are added anyway.
     c2_mag: Constant<Bits<16>>,
     c2_neg: Constant<Bit>,
     c1_rnd: Constant<Bits<32>>,
     c0_rnd: Constant<Bits<32>>,
-    k_half_lsb: Constant<Bits<32>>,
-    out_half_lsb: Constant<Bits<32>>,
     sign32: Constant<Bits<32>>,
-    u16_max: Constant<Bits<16>>,
-    q214_max: Constant<Bits<16>>,
-    q214_min: Constant<Bits<16>>,
     // B1
+    k_round: RoundToUQ1_15,
     k_narrow: DFF<Bits<16>>,
-    // B2
+    // B2 (Mul4 is the plain unsigned multiply: both operands are unsigned)
     c2k: DFF<Bits<32>>,
-    k_narrow_p1: DFF<Bits<16>>,
+    k_narrow_p2: Delay<Bits<16>, 2>,
     // B3
+    t1_sat: SatToQ2_14,
     t1: DFF<Bits<16>>,
-    k_narrow_p2: DFF<Bits<16>>,
     // B4
+    mul5: MulSignedUnsigned,
     t1k: DFF<Bits<32>>,
     // B5
+    f_sat: SatToUQ1_15,
     f: DFF<Bits<16>>,
-    // B6
-    xf: DFF<Bits<32>>,
-    yf: DFF<Bits<32>>,
-    zf: DFF<Bits<32>>,
-    // B7
-    nx_q: DFF<Bits<16>>,
-    ny_q: DFF<Bits<16>>,
-    nz_q: DFF<Bits<16>>,
-    // valid and vector delay lines
-    valid_p1: DFF<Bit>,
-    valid_p2: DFF<Bit>,
-    valid_p3: DFF<Bit>,
-    valid_p4: DFF<Bit>,
-    valid_p5: DFF<Bit>,
-    valid_p6: DFF<Bit>,
-    valid_p7: DFF<Bit>,
-    x_p1: DFF<Bits<16>>,
-    x_p2: DFF<Bits<16>>,
-    x_p3: DFF<Bits<16>>,
-    x_p4: DFF<Bits<16>>,
-    x_p5: DFF<Bits<16>>,
-    y_p1: DFF<Bits<16>>,
-    y_p2: DFF<Bits<16>>,
-    y_p3: DFF<Bits<16>>,
-    y_p4: DFF<Bits<16>>,
-    y_p5: DFF<Bits<16>>,
-    z_p1: DFF<Bits<16>>,
-    z_p2: DFF<Bits<16>>,
-    z_p3: DFF<Bits<16>>,
-    z_p4: DFF<Bits<16>>,
-    z_p5: DFF<Bits<16>>,
+    // B6, B7: one lane per component.
+    lane_x: ScaleLane,
+    lane_y: ScaleLane,
+    lane_z: ScaleLane,
+    valid_p7: Delay<Bit, { NormalizerK::LATENCY }>,
     // Combinational intermediates, each exactly sized (rust-hdl wraps per op, Verilog per context).
-    k_rnd: Signal<Local, Bits<32>>,
     c2k_half: Signal<Local, Bits<32>>,
     t1_wide: Signal<Local, Bits<32>>,
-    t1k_raw: Signal<Local, Bits<32>>,
-    t1k_corr: Signal<Local, Bits<32>>,
     t1k_half: Signal<Local, Bits<32>>,
     f_wide: Signal<Local, Bits<32>>,
-    xf_raw: Signal<Local, Bits<32>>,
-    yf_raw: Signal<Local, Bits<32>>,
-    zf_raw: Signal<Local, Bits<32>>,
-    xf_corr: Signal<Local, Bits<32>>,
-    yf_corr: Signal<Local, Bits<32>>,
-    zf_corr: Signal<Local, Bits<32>>,
-    nx_rnd: Signal<Local, Bits<32>>,
-    ny_rnd: Signal<Local, Bits<32>>,
-    nz_rnd: Signal<Local, Bits<32>>,
 }
 
 impl NormalizerK {
     /// Clocks from `valid_in` to `valid_out`.
-    pub const LATENCY: usize = 7;
+    pub const LATENCY: usize = F_LATENCY + ScaleLane::LATENCY_FROM_F;
 
     pub fn new(c: &NormalizerCoeffs) -> Self {
         let b32 =
@@ -374,64 +374,41 @@ impl NormalizerK {
             // Half an output LSB folded in: t1 drops 15 LSBs, f drops 13.
             c1_rnd: b32(c.c1 + (1 << 14)),
             c0_rnd: b32(c.c0 + (1 << 12)),
-            k_half_lsb: b32(1 << 12),
-            out_half_lsb: b32(1 << 14),
             sign32: b32(1 << 31),
-            u16_max: Constant::new(0xFFFF.into()),
-            q214_max: Constant::new(0x7FFF.into()),
-            q214_min: Constant::new(0x8000.into()),
+            k_round: Default::default(),
             k_narrow: Default::default(),
             c2k: Default::default(),
-            k_narrow_p1: Default::default(),
-            t1: Default::default(),
             k_narrow_p2: Default::default(),
+            t1_sat: Default::default(),
+            t1: Default::default(),
+            mul5: Default::default(),
             t1k: Default::default(),
+            f_sat: Default::default(),
             f: Default::default(),
-            xf: Default::default(),
-            yf: Default::default(),
-            zf: Default::default(),
-            nx_q: Default::default(),
-            ny_q: Default::default(),
-            nz_q: Default::default(),
-            valid_p1: Default::default(),
-            valid_p2: Default::default(),
-            valid_p3: Default::default(),
-            valid_p4: Default::default(),
-            valid_p5: Default::default(),
-            valid_p6: Default::default(),
+            lane_x: Default::default(),
+            lane_y: Default::default(),
+            lane_z: Default::default(),
             valid_p7: Default::default(),
-            x_p1: Default::default(),
-            x_p2: Default::default(),
-            x_p3: Default::default(),
-            x_p4: Default::default(),
-            x_p5: Default::default(),
-            y_p1: Default::default(),
-            y_p2: Default::default(),
-            y_p3: Default::default(),
-            y_p4: Default::default(),
-            y_p5: Default::default(),
-            z_p1: Default::default(),
-            z_p2: Default::default(),
-            z_p3: Default::default(),
-            z_p4: Default::default(),
-            z_p5: Default::default(),
-            k_rnd: Default::default(),
             c2k_half: Default::default(),
             t1_wide: Default::default(),
-            t1k_raw: Default::default(),
-            t1k_corr: Default::default(),
             t1k_half: Default::default(),
             f_wide: Default::default(),
-            xf_raw: Default::default(),
-            yf_raw: Default::default(),
-            zf_raw: Default::default(),
-            xf_corr: Default::default(),
-            yf_corr: Default::default(),
-            zf_corr: Default::default(),
-            nx_rnd: Default::default(),
-            ny_rnd: Default::default(),
-            nz_rnd: Default::default(),
         }
+    }
+}
+
+crate::impl_dut!(NormalizerK, clock: clock, inputs: [valid_in, x, y, z, k], outputs: [valid_out, nx, ny, nz]);
+
+impl RtlBlock for NormalizerK {
+    type Params = NormalizerCoeffs;
+    const NAME: &'static str = "normalizer-k";
+    const SUMMARY: &'static str =
+        "N and K in, N·f(K) out: the normalizer without its squarers (SPEC §1)";
+    const LATENCY: usize = NormalizerK::LATENCY;
+    const LATENCY_MEANING: &'static str = "valid_in to valid_out, one input per clock";
+    const MULTIPLIERS: usize = 5;
+    fn build(p: &NormalizerCoeffs) -> Self {
+        NormalizerK::new(p)
     }
 }
 
@@ -443,77 +420,22 @@ impl Logic for NormalizerK {
             clock,
             k_narrow,
             c2k,
-            k_narrow_p1,
-            t1,
             k_narrow_p2,
+            t1,
             t1k,
             f,
-            xf,
-            yf,
-            zf,
-            nx_q,
-            ny_q,
-            nz_q,
-            valid_p1,
-            valid_p2,
-            valid_p3,
-            valid_p4,
-            valid_p5,
-            valid_p6,
-            valid_p7,
-            x_p1,
-            x_p2,
-            x_p3,
-            x_p4,
-            x_p5,
-            y_p1,
-            y_p2,
-            y_p3,
-            y_p4,
-            y_p5,
-            z_p1,
-            z_p2,
-            z_p3,
-            z_p4,
-            z_p5
+            lane_x,
+            lane_y,
+            lane_z,
+            valid_p7
         );
-        // Delay lines.
-        self.valid_p1.d.next = self.valid_in.val();
-        self.valid_p2.d.next = self.valid_p1.q.val();
-        self.valid_p3.d.next = self.valid_p2.q.val();
-        self.valid_p4.d.next = self.valid_p3.q.val();
-        self.valid_p5.d.next = self.valid_p4.q.val();
-        self.valid_p6.d.next = self.valid_p5.q.val();
-        self.valid_p7.d.next = self.valid_p6.q.val();
-        self.x_p1.d.next = self.x.val();
-        self.x_p2.d.next = self.x_p1.q.val();
-        self.x_p3.d.next = self.x_p2.q.val();
-        self.x_p4.d.next = self.x_p3.q.val();
-        self.x_p5.d.next = self.x_p4.q.val();
-        self.y_p1.d.next = self.y.val();
-        self.y_p2.d.next = self.y_p1.q.val();
-        self.y_p3.d.next = self.y_p2.q.val();
-        self.y_p4.d.next = self.y_p3.q.val();
-        self.y_p5.d.next = self.y_p4.q.val();
-        self.z_p1.d.next = self.z.val();
-        self.z_p2.d.next = self.z_p1.q.val();
-        self.z_p3.d.next = self.z_p2.q.val();
-        self.z_p4.d.next = self.z_p3.q.val();
-        self.z_p5.d.next = self.z_p4.q.val();
-
         // B1: K (Q4.28) → Q1.15, round to nearest, saturate.
-        self.k_rnd.next = self.k.val() + self.k_half_lsb.val();
-        // K ≥ 2 − 2⁻¹⁶ (it would round to 2.0, which Q1.15 cannot hold) ⟺ K ≥ 2 or
-        // K[28:12] all ones: bit tests instead of a 32-bit comparator (the critical path).
-        if self.k.val().get_bits::<3>(29).any() | self.k.val().get_bits::<17>(12).all() {
-            self.k_narrow.d.next = self.u16_max.val();
-        } else {
-            self.k_narrow.d.next = self.k_rnd.val().get_bits::<16>(13);
-        }
+        self.k_round.wide.next = self.k.val();
+        self.k_narrow.d.next = self.k_round.narrow.val();
 
         // B2 (Mul4): |c2|·K, Q1.15 × Q1.15 → Q2.30.
         self.c2k.d.next = self.c2_mag.val() * self.k_narrow.q.val();
-        self.k_narrow_p1.d.next = self.k_narrow.q.val();
+        self.k_narrow_p2.d.next = self.k_narrow.q.val();
 
         // B3 (Sm2): t1 = c1 ± c2·K in Q3.29 (+ half LSB of Q2.14), then round/saturate to Q2.14.
         self.c2k_half.next = self.c2k.q.val() >> 1;
@@ -522,23 +444,13 @@ impl Logic for NormalizerK {
         } else {
             self.t1_wide.next = self.c1_rnd.val() + self.c2k_half.val();
         }
-        if self.t1_wide.val().get_bit(31) == self.t1_wide.val().get_bit(30) {
-            self.t1.d.next = self.t1_wide.val().get_bits::<16>(15);
-        } else if self.t1_wide.val().get_bit(31) {
-            self.t1.d.next = self.q214_min.val();
-        } else {
-            self.t1.d.next = self.q214_max.val();
-        }
-        self.k_narrow_p2.d.next = self.k_narrow_p1.q.val();
+        self.t1_sat.wide.next = self.t1_wide.val();
+        self.t1.d.next = self.t1_sat.narrow.val();
 
         // B4 (Mul5): t1·K, signed Q2.14 × unsigned Q1.15 → signed Q3.29.
-        self.t1k_raw.next = self.t1.q.val() * self.k_narrow_p2.q.val();
-        if self.t1.q.val().get_bit(15) {
-            self.t1k_corr.next = bit_cast::<32, 16>(self.k_narrow_p2.q.val()) << 16;
-        } else {
-            self.t1k_corr.next = 0.into();
-        }
-        self.t1k.d.next = self.t1k_raw.val() - self.t1k_corr.val();
+        self.mul5.a.next = self.t1.q.val();
+        self.mul5.b.next = self.k_narrow_p2.q.val();
+        self.t1k.d.next = self.mul5.p.val();
 
         // B5 (Sm3): f = c0 + t1·K in Q4.28 (+ half LSB of Q1.15), then round/saturate to Q1.15.
         self.t1k_half.next = self.t1k.q.val() >> 1;
@@ -546,68 +458,64 @@ impl Logic for NormalizerK {
             self.t1k_half.next = self.t1k_half.val() | self.sign32.val();
         }
         self.f_wide.next = self.c0_rnd.val() + self.t1k_half.val();
-        if self.f_wide.val().get_bit(31) {
-            self.f.d.next = 0.into();
-        } else if self.f_wide.val().get_bit(30) | self.f_wide.val().get_bit(29) {
-            self.f.d.next = self.u16_max.val();
-        } else {
-            self.f.d.next = self.f_wide.val().get_bits::<16>(13);
-        }
+        self.f_sat.wide.next = self.f_wide.val();
+        self.f.d.next = self.f_sat.narrow.val();
 
-        // B6 (Mul6-8): components × f, signed Q2.14 × unsigned Q1.15 → signed Q3.29.
-        self.xf_raw.next = self.x_p5.q.val() * self.f.q.val();
-        self.yf_raw.next = self.y_p5.q.val() * self.f.q.val();
-        self.zf_raw.next = self.z_p5.q.val() * self.f.q.val();
-        if self.x_p5.q.val().get_bit(15) {
-            self.xf_corr.next = bit_cast::<32, 16>(self.f.q.val()) << 16;
-        } else {
-            self.xf_corr.next = 0.into();
-        }
-        if self.y_p5.q.val().get_bit(15) {
-            self.yf_corr.next = bit_cast::<32, 16>(self.f.q.val()) << 16;
-        } else {
-            self.yf_corr.next = 0.into();
-        }
-        if self.z_p5.q.val().get_bit(15) {
-            self.zf_corr.next = bit_cast::<32, 16>(self.f.q.val()) << 16;
-        } else {
-            self.zf_corr.next = 0.into();
-        }
-        self.xf.d.next = self.xf_raw.val() - self.xf_corr.val();
-        self.yf.d.next = self.yf_raw.val() - self.yf_corr.val();
-        self.zf.d.next = self.zf_raw.val() - self.zf_corr.val();
+        // B6, B7 (Mul6-8): each component, delayed to meet f, times f, rounded to Q2.14.
+        self.lane_x.x.next = self.x.val();
+        self.lane_y.x.next = self.y.val();
+        self.lane_z.x.next = self.z.val();
+        self.lane_x.f.next = self.f.q.val();
+        self.lane_y.f.next = self.f.q.val();
+        self.lane_z.f.next = self.f.q.val();
+        self.nx.next = self.lane_x.n.val();
+        self.ny.next = self.lane_y.n.val();
+        self.nz.next = self.lane_z.n.val();
 
-        // B7: Q3.29 → Q2.14, round to nearest, saturate (|xf| < 4 - 2^-13: the rounding add
-        // cannot overflow).
-        self.nx_rnd.next = self.xf.q.val() + self.out_half_lsb.val();
-        self.ny_rnd.next = self.yf.q.val() + self.out_half_lsb.val();
-        self.nz_rnd.next = self.zf.q.val() + self.out_half_lsb.val();
-        if self.nx_rnd.val().get_bit(31) == self.nx_rnd.val().get_bit(30) {
-            self.nx_q.d.next = self.nx_rnd.val().get_bits::<16>(15);
-        } else if self.nx_rnd.val().get_bit(31) {
-            self.nx_q.d.next = self.q214_min.val();
-        } else {
-            self.nx_q.d.next = self.q214_max.val();
-        }
-        if self.ny_rnd.val().get_bit(31) == self.ny_rnd.val().get_bit(30) {
-            self.ny_q.d.next = self.ny_rnd.val().get_bits::<16>(15);
-        } else if self.ny_rnd.val().get_bit(31) {
-            self.ny_q.d.next = self.q214_min.val();
-        } else {
-            self.ny_q.d.next = self.q214_max.val();
-        }
-        if self.nz_rnd.val().get_bit(31) == self.nz_rnd.val().get_bit(30) {
-            self.nz_q.d.next = self.nz_rnd.val().get_bits::<16>(15);
-        } else if self.nz_rnd.val().get_bit(31) {
-            self.nz_q.d.next = self.q214_min.val();
-        } else {
-            self.nz_q.d.next = self.q214_max.val();
-        }
-
+        self.valid_p7.d.next = self.valid_in.val();
         self.valid_out.next = self.valid_p7.q.val();
-        self.nx.next = self.nx_q.q.val();
-        self.ny.next = self.ny_q.q.val();
-        self.nz.next = self.nz_q.q.val();
+    }
+}
+
+/// Clocks from K (B1's input) to f (B5's register): the delay a component needs to meet f.
+const F_LATENCY: usize = 5;
+
+/// One output component of [`NormalizerK`], stages B6 and B7: `n = x·f` (Mul6, Mul7 or Mul8),
+/// signed Q2.14 × unsigned Q1.15 → signed Q3.29 (exact), rounded and saturated to Q2.14.
+/// `x` enters with the vector's `valid_in` and waits [`F_LATENCY`] clocks for `f`; `n` is
+/// registered, [`ScaleLane::LATENCY_FROM_F`] clocks after `f`.
+#[derive(LogicBlock, Default)]
+struct ScaleLane {
+    pub clock: Signal<In, Clock>,
+    pub x: Signal<In, Bits<16>>,
+    pub f: Signal<In, Bits<16>>,
+    pub n: Signal<Out, Bits<16>>,
+    x_p5: Delay<Bits<16>, F_LATENCY>,
+    mul: MulSignedUnsigned,
+    xf: DFF<Bits<32>>,
+    round: RoundToQ2_14,
+    n_q: DFF<Bits<16>>,
+}
+
+impl ScaleLane {
+    /// Clocks from `f` to `n`: the product register (B6) and the output register (B7).
+    const LATENCY_FROM_F: usize = 2;
+}
+
+impl Logic for ScaleLane {
+    #[hdl_gen]
+    fn update(&mut self) {
+        clock!(self, clock, x_p5, xf, n_q);
+        self.x_p5.d.next = self.x.val();
+        // B6: x·f, signed Q2.14 × unsigned Q1.15 → signed Q3.29.
+        self.mul.a.next = self.x_p5.q.val();
+        self.mul.b.next = self.f.val();
+        self.xf.d.next = self.mul.p.val();
+        // B7: Q3.29 → Q2.14, round to nearest, saturate (|xf| < 2³¹ − 2¹⁴: the rounding add
+        // cannot overflow).
+        self.round.wide.next = self.xf.q.val();
+        self.n_q.d.next = self.round.narrow.val();
+        self.n.next = self.n_q.q.val();
     }
 }
 
@@ -624,27 +532,21 @@ pub struct Normalizer {
     pub ny: Signal<Out, Bits<16>>,
     pub nz: Signal<Out, Bits<16>>,
     // S1
+    mul1: SquareSigned,
+    mul2: SquareSigned,
+    mul3: SquareSigned,
     sq_x: DFF<Bits<32>>,
     sq_y: DFF<Bits<32>>,
     sq_z: DFF<Bits<32>>,
-    valid_p1: DFF<Bit>,
-    x_p1: DFF<Bits<16>>,
-    y_p1: DFF<Bits<16>>,
-    z_p1: DFF<Bits<16>>,
     // S2
     k_full: DFF<Bits<32>>,
-    valid_p2: DFF<Bit>,
-    x_p2: DFF<Bits<16>>,
-    y_p2: DFF<Bits<16>>,
-    z_p2: DFF<Bits<16>>,
+    // The vector and its valid wait for K (S1, S2).
+    valid_p2: Delay<Bit, 2>,
+    x_p2: Delay<Bits<16>, 2>,
+    y_p2: Delay<Bits<16>, 2>,
+    z_p2: Delay<Bits<16>, 2>,
     // B1..B7
     scale: NormalizerK,
-    sq_x_raw: Signal<Local, Bits<32>>,
-    sq_y_raw: Signal<Local, Bits<32>>,
-    sq_z_raw: Signal<Local, Bits<32>>,
-    sq_x_corr: Signal<Local, Bits<32>>,
-    sq_y_corr: Signal<Local, Bits<32>>,
-    sq_z_corr: Signal<Local, Bits<32>>,
 }
 
 impl Normalizer {
@@ -662,68 +564,54 @@ impl Normalizer {
             nx: Default::default(),
             ny: Default::default(),
             nz: Default::default(),
+            mul1: Default::default(),
+            mul2: Default::default(),
+            mul3: Default::default(),
             sq_x: Default::default(),
             sq_y: Default::default(),
             sq_z: Default::default(),
-            valid_p1: Default::default(),
-            x_p1: Default::default(),
-            y_p1: Default::default(),
-            z_p1: Default::default(),
             k_full: Default::default(),
             valid_p2: Default::default(),
             x_p2: Default::default(),
             y_p2: Default::default(),
             z_p2: Default::default(),
             scale: NormalizerK::new(c),
-            sq_x_raw: Default::default(),
-            sq_y_raw: Default::default(),
-            sq_z_raw: Default::default(),
-            sq_x_corr: Default::default(),
-            sq_y_corr: Default::default(),
-            sq_z_corr: Default::default(),
         }
+    }
+}
+
+crate::impl_dut!(Normalizer, clock: clock, inputs: [valid_in, x, y, z], outputs: [valid_out, nx, ny, nz]);
+
+impl RtlBlock for Normalizer {
+    type Params = NormalizerCoeffs;
+    const NAME: &'static str = "normalizer";
+    const SUMMARY: &'static str =
+        "N in, N·f(|N|²) out: squarers, Horner f(K), scaling; no division or root (SPEC §1)";
+    const LATENCY: usize = Normalizer::LATENCY;
+    const LATENCY_MEANING: &'static str = "valid_in to valid_out, one input per clock";
+    const MULTIPLIERS: usize = 8;
+    fn build(p: &NormalizerCoeffs) -> Self {
+        Normalizer::new(p)
     }
 }
 
 impl Logic for Normalizer {
     #[hdl_gen]
     fn update(&mut self) {
-        clock!(
-            self, clock, sq_x, sq_y, sq_z, valid_p1, x_p1, y_p1, z_p1, k_full, valid_p2, x_p2,
-            y_p2, z_p2, scale
-        );
-        // S1 (Mul1-3): x² = ux² − [x<0]·(ux ≪ 17) mod 2³², Q4.28, exact.
-        self.sq_x_raw.next = self.x.val() * self.x.val();
-        self.sq_y_raw.next = self.y.val() * self.y.val();
-        self.sq_z_raw.next = self.z.val() * self.z.val();
-        if self.x.val().get_bit(15) {
-            self.sq_x_corr.next = bit_cast::<32, 16>(self.x.val()) << 17;
-        } else {
-            self.sq_x_corr.next = 0.into();
-        }
-        if self.y.val().get_bit(15) {
-            self.sq_y_corr.next = bit_cast::<32, 16>(self.y.val()) << 17;
-        } else {
-            self.sq_y_corr.next = 0.into();
-        }
-        if self.z.val().get_bit(15) {
-            self.sq_z_corr.next = bit_cast::<32, 16>(self.z.val()) << 17;
-        } else {
-            self.sq_z_corr.next = 0.into();
-        }
-        self.sq_x.d.next = self.sq_x_raw.val() - self.sq_x_corr.val();
-        self.sq_y.d.next = self.sq_y_raw.val() - self.sq_y_corr.val();
-        self.sq_z.d.next = self.sq_z_raw.val() - self.sq_z_corr.val();
-        self.valid_p1.d.next = self.valid_in.val();
-        self.x_p1.d.next = self.x.val();
-        self.y_p1.d.next = self.y.val();
-        self.z_p1.d.next = self.z.val();
+        clock!(self, clock, sq_x, sq_y, sq_z, k_full, valid_p2, x_p2, y_p2, z_p2, scale);
+        // S1 (Mul1-3): signed squares, Q2.14² → Q4.28, exact.
+        self.mul1.a.next = self.x.val();
+        self.mul2.a.next = self.y.val();
+        self.mul3.a.next = self.z.val();
+        self.sq_x.d.next = self.mul1.p.val();
+        self.sq_y.d.next = self.mul2.p.val();
+        self.sq_z.d.next = self.mul3.p.val();
         // S2 (Sm1): K = x² + y² + z² ≤ 3·2³⁰ < 2³², exact.
         self.k_full.d.next = self.sq_x.q.val() + self.sq_y.q.val() + self.sq_z.q.val();
-        self.valid_p2.d.next = self.valid_p1.q.val();
-        self.x_p2.d.next = self.x_p1.q.val();
-        self.y_p2.d.next = self.y_p1.q.val();
-        self.z_p2.d.next = self.z_p1.q.val();
+        self.valid_p2.d.next = self.valid_in.val();
+        self.x_p2.d.next = self.x.val();
+        self.y_p2.d.next = self.y.val();
+        self.z_p2.d.next = self.z.val();
         // B1..B7
         self.scale.valid_in.next = self.valid_p2.q.val();
         self.scale.x.next = self.x_p2.q.val();

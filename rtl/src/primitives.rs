@@ -1,0 +1,409 @@
+//! Building blocks shared by the RTL blocks: a delay line, the fixed-point narrowings of
+//! [`crate::fixed`] (round to nearest, saturate) and the signed multiplies built on rust-hdl's
+//! unsigned 16×16→32 multiply.
+//!
+//! Not a block of its own (nothing here is exported alone). Each primitive states its formula,
+//! the formats of its ports, its latency and its overflow behaviour:
+//!
+//! | primitive              | ports (in → out)         | formula / formats                                  | latency |
+//! |------------------------|--------------------------|----------------------------------------------------|---------|
+//! | [`Delay<T, N>`]        | `d` → `q`                | q = d delayed N clocks (N registers, reset 0)      | N       |
+//! | [`SatToQ2_14`]         | `wide` (32) → `narrow` (16) | signed Q3.29 + ½ LSB → signed Q2.14: drop 15 LSBs, saturate | 0 |
+//! | [`RoundToQ2_14`]       | `wide` (32) → `narrow` (16) | signed Q3.29 → signed Q2.14: add ½ LSB (2¹⁴), then [`SatToQ2_14`] | 0 |
+//! | [`SatToUQ1_15`]        | `wide` (32) → `narrow` (16) | signed Q4.28 + ½ LSB → unsigned Q1.15: drop 13 LSBs, clamp to [0, 2 − 2⁻¹⁵] | 0 |
+//! | [`RoundToUQ1_15`]      | `wide` (32) → `narrow` (16) | unsigned Q4.28 → unsigned Q1.15: add ½ LSB (2¹²), drop 13 LSBs, saturate | 0 |
+//! | [`MulSignedUnsigned`]  | `a` (16), `b` (16) → `p` (32) | `a·b = ua·ub − [a<0]·(ub ≪ 16)` mod 2³² (one multiplier) | 0 |
+//! | [`SquareSigned`]       | `a` (16) → `p` (32)      | `a² = ua² − [a<0]·(ua ≪ 17)` mod 2³² (one multiplier) | 0 |
+//!
+//! Rounding is to nearest with ties toward +∞ (add half an output LSB, then drop the LSBs), the
+//! rule of [`crate::fixed`]. The `Sat…` narrowings take a word that already carries the half LSB
+//! (folded into a constant the caller adds anyway); the `Round…` ones add it themselves. Error
+//! of a narrowing: at most half an output LSB when it does not saturate. The multiplies are
+//! exact (the true product fits 32 bits).
+//!
+//! Every intermediate is its own exactly sized signal: rust-hdl's simulator wraps each operation
+//! at its operands' width, Verilog sizes an expression by its context, and only one-operation
+//! assignments mean the same in both.
+
+use rust_hdl::prelude::*;
+
+/// `q` is `d` delayed by `N` clocks (`N` ≥ 1 registers in a chain, reset to 0). Latency `N`,
+/// one value per clock. Replaces hand-unrolled `_p1 … _pN` chains; name the field after the
+/// tap it gives (`x_p5: Delay<Bits<16>, 5>`).
+#[derive(LogicBlock)]
+pub struct Delay<T: Synth, const N: usize> {
+    pub clock: Signal<In, Clock>,
+    pub d: Signal<In, T>,
+    pub q: Signal<Out, T>,
+    /// `stage[i]` holds `d` of i + 1 clocks ago.
+    stage: [DFF<T>; N],
+}
+
+impl<T: Synth, const N: usize> Default for Delay<T, N> {
+    fn default() -> Self {
+        assert!(N >= 1, "a delay line needs at least one register");
+        Self {
+            clock: Default::default(),
+            d: Default::default(),
+            q: Default::default(),
+            stage: std::array::from_fn(|_| Default::default()),
+        }
+    }
+}
+
+impl<T: Synth, const N: usize> Logic for Delay<T, N> {
+    #[hdl_gen]
+    fn update(&mut self) {
+        for i in 0..N {
+            self.stage[i].clock.next = self.clock.val();
+        }
+        self.stage[0].d.next = self.d.val();
+        for i in 1..N {
+            self.stage[i].d.next = self.stage[i - 1].q.val();
+        }
+        // rust-hdl resolves an array index in Verilog only from a loop variable, so the last
+        // register is addressed by a one-step loop.
+        for i in (N - 1)..N {
+            self.q.next = self.stage[i].q.val();
+        }
+    }
+}
+
+/// Signed Q3.29 → signed Q2.14, for a word that already carries the half output LSB (2¹⁴):
+/// `narrow` = bits 30..15 of `wide` when bits 31 and 30 agree (the value fits [−2, 2)), else
+/// the bound on `wide`'s side: 0x8000 (−2) or 0x7FFF (2 − 2⁻¹⁴). Combinational.
+#[derive(LogicBlock)]
+pub struct SatToQ2_14 {
+    pub wide: Signal<In, Bits<32>>,
+    pub narrow: Signal<Out, Bits<16>>,
+    q2_14_min: Constant<Bits<16>>,
+    q2_14_max: Constant<Bits<16>>,
+}
+
+impl Default for SatToQ2_14 {
+    fn default() -> Self {
+        Self {
+            wide: Default::default(),
+            narrow: Default::default(),
+            q2_14_min: Constant::new(0x8000.into()),
+            q2_14_max: Constant::new(0x7FFF.into()),
+        }
+    }
+}
+
+impl Logic for SatToQ2_14 {
+    #[hdl_gen]
+    fn update(&mut self) {
+        if self.wide.val().get_bit(31) == self.wide.val().get_bit(30) {
+            self.narrow.next = self.wide.val().get_bits::<16>(15);
+        } else if self.wide.val().get_bit(31) {
+            self.narrow.next = self.q2_14_min.val();
+        } else {
+            self.narrow.next = self.q2_14_max.val();
+        }
+    }
+}
+
+/// Signed Q3.29 → signed Q2.14, rounded to nearest (ties toward +∞) and saturated:
+/// `rounded = wide + 2¹⁴` (32-bit; wraps only for `wide` ≥ 2³¹ − 2¹⁴, which no 16×16 product
+/// reaches), then [`SatToQ2_14`]. Combinational.
+#[derive(LogicBlock)]
+pub struct RoundToQ2_14 {
+    pub wide: Signal<In, Bits<32>>,
+    pub narrow: Signal<Out, Bits<16>>,
+    half_lsb: Constant<Bits<32>>,
+    rounded: Signal<Local, Bits<32>>,
+    sat: SatToQ2_14,
+}
+
+impl Default for RoundToQ2_14 {
+    fn default() -> Self {
+        Self {
+            wide: Default::default(),
+            narrow: Default::default(),
+            half_lsb: Constant::new((1u64 << 14).into()),
+            rounded: Default::default(),
+            sat: Default::default(),
+        }
+    }
+}
+
+impl Logic for RoundToQ2_14 {
+    #[hdl_gen]
+    fn update(&mut self) {
+        self.rounded.next = self.wide.val() + self.half_lsb.val();
+        self.sat.wide.next = self.rounded.val();
+        self.narrow.next = self.sat.narrow.val();
+    }
+}
+
+/// Signed Q4.28 → unsigned Q1.15, for a word that already carries the half output LSB (2¹²):
+/// negative → 0; ≥ 2 (bit 30 or 29 set) → 0xFFFF (2 − 2⁻¹⁵); else bits 28..13. Combinational.
+#[derive(LogicBlock)]
+pub struct SatToUQ1_15 {
+    pub wide: Signal<In, Bits<32>>,
+    pub narrow: Signal<Out, Bits<16>>,
+    uq1_15_max: Constant<Bits<16>>,
+}
+
+impl Default for SatToUQ1_15 {
+    fn default() -> Self {
+        Self {
+            wide: Default::default(),
+            narrow: Default::default(),
+            uq1_15_max: Constant::new(0xFFFF.into()),
+        }
+    }
+}
+
+impl Logic for SatToUQ1_15 {
+    #[hdl_gen]
+    fn update(&mut self) {
+        if self.wide.val().get_bit(31) {
+            self.narrow.next = 0.into();
+        } else if self.wide.val().get_bit(30) | self.wide.val().get_bit(29) {
+            self.narrow.next = self.uq1_15_max.val();
+        } else {
+            self.narrow.next = self.wide.val().get_bits::<16>(13);
+        }
+    }
+}
+
+/// Unsigned Q4.28 → unsigned Q1.15, rounded to nearest (ties toward +∞) and saturated:
+/// bits 28..13 of `wide + 2¹²`, or 0xFFFF (2 − 2⁻¹⁵) when `wide` ≥ 2 − 2⁻¹⁶ (it would round
+/// to 2.0). That test is `wide` ≥ 2 (bits 31..29) or bits 28..12 all ones — bit tests instead
+/// of a 32-bit comparator, which would sit on the normalizer's critical path. Combinational.
+#[derive(LogicBlock)]
+pub struct RoundToUQ1_15 {
+    pub wide: Signal<In, Bits<32>>,
+    pub narrow: Signal<Out, Bits<16>>,
+    half_lsb: Constant<Bits<32>>,
+    uq1_15_max: Constant<Bits<16>>,
+    rounded: Signal<Local, Bits<32>>,
+}
+
+impl Default for RoundToUQ1_15 {
+    fn default() -> Self {
+        Self {
+            wide: Default::default(),
+            narrow: Default::default(),
+            half_lsb: Constant::new((1u64 << 12).into()),
+            uq1_15_max: Constant::new(0xFFFF.into()),
+            rounded: Default::default(),
+        }
+    }
+}
+
+impl Logic for RoundToUQ1_15 {
+    #[hdl_gen]
+    fn update(&mut self) {
+        self.rounded.next = self.wide.val() + self.half_lsb.val();
+        if self.wide.val().get_bits::<3>(29).any() | self.wide.val().get_bits::<17>(12).all() {
+            self.narrow.next = self.uq1_15_max.val();
+        } else {
+            self.narrow.next = self.rounded.val().get_bits::<16>(13);
+        }
+    }
+}
+
+/// Signed × unsigned 16×16 → signed 32 on one unsigned multiplier (one DSP slice):
+/// `p = ua·ub − [a<0]·(ub ≪ 16)  (mod 2³²)`, exact since the true product fits 32 bits.
+/// Formats: `a` signed Qm.n, `b` unsigned Qk.l → `p` signed Q(m+k).(n+l). Combinational.
+#[derive(LogicBlock, Default)]
+pub struct MulSignedUnsigned {
+    pub a: Signal<In, Bits<16>>,
+    pub b: Signal<In, Bits<16>>,
+    pub p: Signal<Out, Bits<32>>,
+    /// ua·ub, the unsigned product.
+    raw: Signal<Local, Bits<32>>,
+    /// [a<0]·(ub ≪ 16), the sign correction.
+    corr: Signal<Local, Bits<32>>,
+}
+
+impl Logic for MulSignedUnsigned {
+    #[hdl_gen]
+    fn update(&mut self) {
+        self.raw.next = self.a.val() * self.b.val();
+        if self.a.val().get_bit(15) {
+            self.corr.next = bit_cast::<32, 16>(self.b.val()) << 16;
+        } else {
+            self.corr.next = 0.into();
+        }
+        self.p.next = self.raw.val() - self.corr.val();
+    }
+}
+
+/// Signed square 16 → 32 on one unsigned multiplier (one DSP slice):
+/// `p = ua² − [a<0]·(ua ≪ 17)  (mod 2³²)`, exact (a² ≤ 2³⁰). Formats: `a` signed Qm.n →
+/// `p` unsigned Q2m.2n (signed Q2.14 → unsigned Q4.28). Combinational.
+#[derive(LogicBlock, Default)]
+pub struct SquareSigned {
+    pub a: Signal<In, Bits<16>>,
+    pub p: Signal<Out, Bits<32>>,
+    /// ua², the unsigned square.
+    raw: Signal<Local, Bits<32>>,
+    /// [a<0]·(ua ≪ 17), the sign correction.
+    corr: Signal<Local, Bits<32>>,
+}
+
+impl Logic for SquareSigned {
+    #[hdl_gen]
+    fn update(&mut self) {
+        self.raw.next = self.a.val() * self.a.val();
+        if self.a.val().get_bit(15) {
+            self.corr.next = bit_cast::<32, 16>(self.a.val()) << 17;
+        } else {
+            self.corr.next = 0.into();
+        }
+        self.p.next = self.raw.val() - self.corr.val();
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::fixed::{QFormat, HORNER_T1, K_FULL, K_NARROW, NORMAL, PRODUCT, SCALE};
+
+    /// Settle a block's combinational logic after its inputs changed.
+    fn settle<B: Block>(uut: &mut B) {
+        for _ in 0..100 {
+            uut.update_all();
+            if !uut.has_changed() {
+                return;
+            }
+        }
+        panic!("did not settle");
+    }
+
+    /// Words covering every bit pattern class: a stride over the range plus the edges.
+    fn words32() -> Vec<u32> {
+        let mut w: Vec<u32> = (0..=u32::MAX).step_by(65_521).collect();
+        for e in [
+            0u32,
+            1,
+            0x7FFF_FFFF,
+            0x8000_0000,
+            0xFFFF_FFFF,
+            0x3FFF_BFFF,
+            0x3FFF_C000,
+        ] {
+            for d in 0..4u32 {
+                w.push(e.wrapping_add(d));
+                w.push(e.wrapping_sub(d));
+            }
+        }
+        for k in 0..32 {
+            w.push(1 << k);
+            w.push((1u32 << k).wrapping_sub(1));
+            w.push(!(1u32 << k));
+        }
+        w
+    }
+
+    /// f64 rounding of a raw word of `from` into `to` (ties toward +∞, saturated).
+    fn reference(from: QFormat, to: QFormat, w: u32) -> u64 {
+        to.quantize(from.to_f64(w as u64))
+    }
+
+    #[test]
+    fn narrowings_match_the_fixed_rules() {
+        let mut sat_s = SatToQ2_14::default();
+        let mut round_s = RoundToQ2_14::default();
+        let mut sat_u = SatToUQ1_15::default();
+        let mut round_u = RoundToUQ1_15::default();
+        sat_s.connect_all();
+        round_s.connect_all();
+        sat_u.connect_all();
+        round_u.connect_all();
+        // Signed Q4.28 (f's wide format).
+        let f_wide = QFormat::signed(4, 28);
+        for w in words32() {
+            round_s.wide.next = (w as u64).into();
+            settle(&mut round_s);
+            if !(0x7FFF_C000..=0x7FFF_FFFF).contains(&w) {
+                assert_eq!(
+                    round_s.narrow.val().to_u64(),
+                    reference(PRODUCT, HORNER_T1, w),
+                    "RoundToQ2_14 {w:#x}"
+                );
+            }
+            // The Sat… forms see the word with the half LSB already added.
+            sat_s.wide.next = (w.wrapping_add(1 << 14) as u64).into();
+            settle(&mut sat_s);
+            assert_eq!(
+                sat_s.narrow.val(),
+                round_s.narrow.val(),
+                "SatToQ2_14 {w:#x}"
+            );
+            if (w as i32) < i32::MAX - (1 << 12) {
+                sat_u.wide.next = (w.wrapping_add(1 << 12) as u64).into();
+                settle(&mut sat_u);
+                assert_eq!(
+                    sat_u.narrow.val().to_u64(),
+                    reference(f_wide, SCALE, w),
+                    "SatToUQ1_15 {w:#x}"
+                );
+            }
+            round_u.wide.next = (w as u64).into();
+            settle(&mut round_u);
+            assert_eq!(
+                round_u.narrow.val().to_u64(),
+                reference(K_FULL, K_NARROW, w),
+                "RoundToUQ1_15 {w:#x}"
+            );
+        }
+    }
+
+    #[test]
+    fn multiplies_are_exact() {
+        let mut mul = MulSignedUnsigned::default();
+        let mut sq = SquareSigned::default();
+        mul.connect_all();
+        sq.connect_all();
+        let edges = [
+            0u32, 1, 2, 0x3FFF, 0x4000, 0x7FFE, 0x7FFF, 0x8000, 0x8001, 0xC000, 0xFFFF,
+        ];
+        let mut words: Vec<u32> = (0..=0xFFFF).step_by(251).collect();
+        words.extend(edges);
+        for &a in &words {
+            sq.a.next = (a as u64).into();
+            settle(&mut sq);
+            let sa = NORMAL.to_int(a as u64);
+            assert_eq!(sq.p.val().to_u64(), (sa * sa) as u64, "square {a:#x}");
+            for &b in &words {
+                mul.a.next = (a as u64).into();
+                mul.b.next = (b as u64).into();
+                settle(&mut mul);
+                assert_eq!(
+                    mul.p.val().to_u64(),
+                    PRODUCT.from_int(sa * b as i64),
+                    "{a:#x}·{b:#x}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn delay_line_delays_by_n() {
+        let mut line = Delay::<Bits<16>, 3>::default();
+        line.connect_all();
+        let mut seen = vec![];
+        for c in 0..10u32 {
+            line.clock.next = Clock { clk: false };
+            line.d.next = (c as u64 + 100).into();
+            settle(&mut line);
+            seen.push(line.q.val().to_u64());
+            line.clock.next = Clock { clk: true };
+            settle(&mut line);
+        }
+        assert_eq!(seen, [0, 0, 0, 100, 101, 102, 103, 104, 105, 106]);
+    }
+
+    #[test]
+    fn primitives_export_valid_verilog() {
+        let v = crate::export::raw_verilog(Delay::<Bit, 2>::default()).unwrap();
+        assert!(v.contains("stage$1$q"), "{v}");
+        assert!(crate::export::raw_verilog(RoundToQ2_14::default()).is_ok());
+        assert!(crate::export::raw_verilog(MulSignedUnsigned::default()).is_ok());
+    }
+}

@@ -1,0 +1,231 @@
+//! Hand-stepped simulation of the RTL blocks: the [`Dut`] view of a block (its clock, input
+//! ports and output ports as raw words), the [`Stepper`] that runs it one clock at a time, and
+//! VCD output. Every block file implements [`Dut`] beside its struct with [`impl_dut!`], so a
+//! block's port order is stated once, next to its ports.
+//!
+//! Timing of clock `c` (what [`Stepper::step`] does): at t = 10c the clock falls and the inputs
+//! change; the design settles and the outputs are sampled (what a downstream register would
+//! capture at the coming edge); at t = 10c + 5 the clock rises and the design settles. So a
+//! block with L register stages shows the result of input row c in output row c + L
+//! (latency L), and a combinational output shows row c in row c. The generated Verilog
+//! testbenches and the VCD use the same timing.
+//!
+//! Why not `simple_sim!`: it hands the circuit between threads on every event; stepping by hand
+//! calls `update_all()` until `has_changed()` is false, exactly like rust-hdl's own
+//! `Simulation::dispatch`, without the thread hand-offs. This module is the product's
+//! simulation engine (the render driver uses it); the checking harness is in `testbenches`.
+
+use std::fs::File;
+use std::io::{BufWriter, Write};
+
+use rust_hdl::prelude::*;
+
+/// One port of a [`Dut`]: its rust-hdl field name (= its name in the exported Verilog) and width.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Port {
+    pub name: &'static str,
+    pub width: usize,
+}
+
+/// A rust-hdl block the harness can drive. Implement it with [`impl_dut!`].
+pub trait Dut: Block {
+    /// Input ports, in the order of a stimulus row (the clock is not one of them).
+    fn inputs(&self) -> Vec<Port>;
+    /// Output ports, in the order of an output row.
+    fn outputs(&self) -> Vec<Port>;
+    /// The clock input.
+    fn clock_mut(&mut self) -> &mut Signal<In, Clock>;
+    /// Set the inputs' `next` values from a row (one raw word per input port).
+    fn drive(&mut self, row: &[u64]);
+    /// Read the outputs into `row` (one raw word per output port).
+    fn sample(&self, row: &mut [u64]);
+}
+
+/// A port value as a raw word. Implemented for `bool` and `Bits<N>` (N ≤ 64).
+pub trait Word: Synth {
+    fn from_word(v: u64) -> Self;
+    fn to_word(&self) -> u64;
+}
+
+impl Word for bool {
+    fn from_word(v: u64) -> Self {
+        v & 1 != 0
+    }
+    fn to_word(&self) -> u64 {
+        *self as u64
+    }
+}
+
+impl<const N: usize> Word for Bits<N> {
+    fn from_word(v: u64) -> Self {
+        let mask = if N >= 64 { u64::MAX } else { (1u64 << N) - 1 };
+        (v & mask).into()
+    }
+    fn to_word(&self) -> u64 {
+        self.to_u64()
+    }
+}
+
+/// Width of a signal's type (helper for [`impl_dut!`]).
+pub fn width_of<D: Direction, T: Synth>(_: &Signal<D, T>) -> usize {
+    T::BITS
+}
+
+/// Implement [`Dut`] for a block from its field names:
+/// ```text
+/// impl_dut!(crate::normalizer::Normalizer, clock: clock,
+///           inputs: [valid_in, x, y, z], outputs: [valid_out, nx, ny, nz]);
+/// ```
+#[macro_export]
+macro_rules! impl_dut {
+    ($ty:ty, clock: $clock:ident, inputs: [$($i:ident),* $(,)?], outputs: [$($o:ident),* $(,)?]) => {
+        impl $crate::sim::Dut for $ty {
+            fn inputs(&self) -> Vec<$crate::sim::Port> {
+                vec![$($crate::sim::Port { name: stringify!($i), width: $crate::sim::width_of(&self.$i) }),*]
+            }
+            fn outputs(&self) -> Vec<$crate::sim::Port> {
+                vec![$($crate::sim::Port { name: stringify!($o), width: $crate::sim::width_of(&self.$o) }),*]
+            }
+            fn clock_mut(&mut self) -> &mut rust_hdl::prelude::Signal<rust_hdl::prelude::In, rust_hdl::prelude::Clock> {
+                &mut self.$clock
+            }
+            #[allow(unused_assignments)]
+            fn drive(&mut self, row: &[u64]) {
+                let mut k = 0;
+                $( self.$i.next = $crate::sim::Word::from_word(row[k]); k += 1; )*
+            }
+            #[allow(unused_assignments)]
+            fn sample(&self, row: &mut [u64]) {
+                let mut k = 0;
+                $( row[k] = $crate::sim::Word::to_word(&self.$o.val()); k += 1; )*
+            }
+        }
+    };
+}
+
+/// Settle the combinational logic: `update_all()` until nothing changes.
+fn settle<B: Block>(uut: &mut B) -> Result<(), String> {
+    for _ in 0..1000 {
+        uut.update_all();
+        if !uut.has_changed() {
+            return Ok(());
+        }
+    }
+    Err("the design did not settle in 1000 iterations (combinational loop?)".into())
+}
+
+/// Simulated time per clock in the VCD (picoseconds, as rust-hdl's VCD timescale).
+pub const CLOCK_PERIOD_PS: u64 = 10;
+
+/// Hand-stepped simulation of a [`Dut`], optionally writing a VCD.
+pub struct Stepper<D: Dut> {
+    dut: D,
+    cycle: u64,
+    vcd: Option<VCDProbe<Box<dyn Write>>>,
+}
+
+/// `write_vcd_*` take the writer by value; a boxed writer lets the probe live in the stepper.
+type VCDProbe<W> = rust_hdl::core::vcd_probe::VCDProbe<W>;
+
+impl<D: Dut> Stepper<D> {
+    /// Connect, check (open signals, loops) and settle `dut` with the clock low.
+    pub fn new(mut dut: D) -> Result<Self, String> {
+        dut.connect_all();
+        check_all(&dut).map_err(|e| format!("rust-hdl check failed: {e:?}"))?;
+        dut.clock_mut().next = Clock { clk: false };
+        settle(&mut dut)?;
+        Ok(Self {
+            dut,
+            cycle: 0,
+            vcd: None,
+        })
+    }
+
+    /// Start writing a VCD of every signal from the current cycle on.
+    pub fn start_vcd(&mut self, w: Box<dyn Write>) {
+        let probe = write_vcd_header(w, &self.dut);
+        let mut probe = write_vcd_dump(probe, &self.dut);
+        let _ = probe.timestamp(self.cycle * CLOCK_PERIOD_PS);
+        self.vcd = Some(probe);
+    }
+
+    /// Stop tracing (flushes and drops the writer).
+    pub fn stop_vcd(&mut self) {
+        self.vcd = None;
+    }
+
+    fn trace(&mut self, t: u64) {
+        if let Some(probe) = self.vcd.take() {
+            let mut probe = probe;
+            let _ = probe.timestamp(t);
+            self.vcd = Some(write_vcd_change(probe, &self.dut));
+        }
+    }
+
+    /// One clock: apply `inputs` (clock low), settle, sample into `outputs`, raise the clock, settle.
+    pub fn step(&mut self, inputs: &[u64], outputs: &mut [u64]) -> Result<(), String> {
+        let t0 = self.cycle * CLOCK_PERIOD_PS;
+        self.dut.drive(inputs);
+        self.dut.clock_mut().next = Clock { clk: false };
+        settle(&mut self.dut)?;
+        self.trace(t0);
+        self.dut.sample(outputs);
+        self.dut.clock_mut().next = Clock { clk: true };
+        settle(&mut self.dut)?;
+        self.trace(t0 + CLOCK_PERIOD_PS / 2);
+        self.cycle += 1;
+        Ok(())
+    }
+
+    /// Clocks stepped so far.
+    pub fn cycle(&self) -> u64 {
+        self.cycle
+    }
+    pub fn dut(&self) -> &D {
+        &self.dut
+    }
+    pub fn dut_mut(&mut self) -> &mut D {
+        &mut self.dut
+    }
+}
+
+/// Run `rows` through a fresh `dut`, returning one output row per input row.
+pub fn simulate_rows<D: Dut>(dut: D, rows: &[Vec<u64>]) -> Result<Vec<Vec<u64>>, String> {
+    let mut s = Stepper::new(dut)?;
+    let n_out = s.dut().outputs().len();
+    let mut out = Vec::with_capacity(rows.len());
+    for r in rows {
+        let mut o = vec![0; n_out];
+        s.step(r, &mut o)?;
+        out.push(o);
+    }
+    Ok(out)
+}
+
+/// Replay `rows` on a fresh `dut` and write a VCD of cycles [from, to) to `path`.
+pub fn write_vcd_window<D: Dut>(
+    dut: D,
+    rows: &[Vec<u64>],
+    from: u64,
+    to: u64,
+    path: &std::path::Path,
+) -> Result<(), String> {
+    if let Some(dir) = path.parent() {
+        std::fs::create_dir_all(dir)
+            .map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
+    }
+    let mut file =
+        Some(File::create(path).map_err(|e| format!("cannot create {}: {e}", path.display()))?);
+    let mut s = Stepper::new(dut)?;
+    let mut out = vec![0; s.dut().outputs().len()];
+    for (c, r) in rows.iter().enumerate().take(to as usize) {
+        if c as u64 == from {
+            if let Some(f) = file.take() {
+                s.start_vcd(Box::new(BufWriter::new(f)));
+            }
+        }
+        s.step(r, &mut out)?;
+    }
+    s.stop_vcd();
+    Ok(())
+}
