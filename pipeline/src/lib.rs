@@ -1,0 +1,9 @@
+//! Render drivers: the software side that feeds triangles through the simulated hardware
+//! (`rtl`, stepped by `rtl::sim::Stepper`) into a frame, and the input-row layouts of the
+//! blocks' set-up ports, shared by the drivers, the benches and the CLI.
+//!
+//! - [`gouraud`]: the Gouraud raster pipe (address block + BVI): per-triangle set-up words
+//!   ([`gouraud::TriangleJob`]), the row layouts, and [`gouraud::Pipe`], which runs a list of
+//!   jobs to fragments.
+
+pub mod gouraud;
