@@ -11,7 +11,7 @@ use glam::DQuat;
 use golden::raster::walk;
 use golden::shade::ShadeContext;
 use golden::types::{ScreenTriangle, ScreenVertex};
-use testbenches::intensity_interpolator::{clock_budget, Pipe, PipeStats, TriangleJob};
+use pipeline::gouraud::{clock_budget, Pipe, PipeStats, TriangleJob};
 
 fn default_scene() -> (Vec<ScreenTriangle>, ShadeContext) {
     let mesh = golden::scene::uv_sphere(50).unwrap();

@@ -1,5 +1,5 @@
 //! Simulated clock cycles per second of the normalizer: the hand-stepped rust-hdl harness
-//! (`testbenches::harness::Stepper`) versus the exported Verilog under Verilator and Icarus
+//! (`rtl::sim::Stepper`) versus the exported Verilog under Verilator and Icarus
 //! (compiled once, outside the timed loop; each timed run is the whole testbench process:
 //! reading the stimulus file and writing one output line per clock, like the differential
 //! test). Run with `cargo bench --bench rtl_sim`; criterion reports "elements/s" = clocks/s.
@@ -7,18 +7,18 @@
 use std::time::Duration;
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
-use rtl::export::{self, BlockKind};
+use rtl::export;
 use rtl::normalizer::{Normalizer, NormalizerCoeffs};
-use testbenches::blocks;
-use testbenches::harness::{simulate_rows, Dut, Stepper};
+use rtl::sim::{simulate_rows, Dut, Stepper};
+use testbenches::registry::Bench;
 use testbenches::tools::{self, Tool};
 use testbenches::verilog::{compare_rows, compile, Simulator, VerilogRun};
 
 const CYCLES: usize = 20_000;
 
 fn stimulus(c: &NormalizerCoeffs) -> Vec<Vec<u64>> {
-    let seed = golden::testing::seed_for("bench_rtl_sim");
-    blocks::stimulus(BlockKind::Normalizer, c, CYCLES, seed).rows
+    let seed = golden::seed::seed_for("bench_rtl_sim");
+    Normalizer::stimulus(c, CYCLES, seed).rows
 }
 
 fn hand_stepped(cr: &mut Criterion) {
@@ -42,7 +42,7 @@ fn hand_stepped(cr: &mut Criterion) {
 fn verilog(cr: &mut Criterion) {
     let c = NormalizerCoeffs::published();
     let rows = stimulus(&c);
-    let v = export::verilog(BlockKind::Normalizer, &c).unwrap();
+    let v = export::verilog::<Normalizer>(&c).unwrap();
     let dut = Normalizer::new(&c);
     let (inputs, outputs) = (dut.inputs(), dut.outputs());
     let reference = simulate_rows(Normalizer::new(&c), &rows).unwrap();

@@ -30,6 +30,8 @@ enum Command {
     Synth(cmd::rtl::SynthArgs),
     /// Walk one triangle through the address block (RTL or golden) and dump one row per clock.
     Raster(cmd::raster::Args),
+    /// List the registered RTL blocks (the table in the README) as Markdown.
+    Blocks,
 }
 
 fn main() {
@@ -59,6 +61,7 @@ fn main() {
         Command::Sim(a) => cmd::rtl::sim(a),
         Command::Synth(a) => cmd::rtl::synth(a),
         Command::Raster(a) => cmd::raster::run(a),
+        Command::Blocks => cmd::rtl::blocks(),
     };
     if let Err(e) = result {
         // One line, no backtrace: the chain of causes joined by ": ".

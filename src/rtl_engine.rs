@@ -18,7 +18,7 @@ use golden::render::Frame;
 use golden::shade::ShadeContext;
 use golden::types::{ScreenTriangle, MAX_ADDRESS};
 use indicatif::ProgressBar;
-use testbenches::intensity_interpolator::{clock_budget, Pipe, PipeStats, TriangleJob};
+use pipeline::gouraud::{clock_budget, Pipe, PipeStats, TriangleJob};
 
 /// An RTL render: the frame and the hardware's clock counts.
 #[derive(Clone, Debug)]

@@ -4,6 +4,8 @@
 use std::path::Path;
 use std::process::{Command, Output};
 
+use golden::methods::Method;
+
 fn shadecore(args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_shadecore"))
         .args(args)
@@ -21,22 +23,6 @@ fn render_default(dir: &Path) -> serde_json::Value {
     let text = std::fs::read_to_string(dir.join("report.json")).expect("report.json written");
     serde_json::from_str(&text).expect("report.json is JSON")
 }
-
-const METHODS: [&str; 13] = [
-    "flat",
-    "gouraud",
-    "normalizer",
-    "normalizer-fit",
-    "fast",
-    "fast-fit",
-    "angular",
-    "quadric",
-    "cubic",
-    "brdf-k4",
-    "brdf-k8",
-    "brdf-k16",
-    "bump",
-];
 
 #[test]
 fn render_writes_every_file_of_the_default_scene() {
@@ -56,7 +42,8 @@ fn render_writes_every_file_of_the_default_scene() {
         lit > 400 * 400 / 3,
         "only {lit} lit pixels in the reference"
     );
-    for m in METHODS {
+    // Every method compared with the reference (the names are pinned in golden/tests/methods.rs).
+    for m in Method::ALL_NON_REFERENCE.map(Method::name) {
         for file in [format!("{m}.png"), format!("{m}-diff.png")] {
             let img = image::open(dir.path().join(&file)).unwrap_or_else(|e| panic!("{file}: {e}"));
             assert_eq!(img.width(), 400, "{file}");

@@ -11,12 +11,23 @@ fn shadecore(args: &[&str]) -> Output {
         .expect("run shadecore")
 }
 
+/// Run `shadecore args`, which must succeed (its stderr is the failure message).
+fn shadecore_ok(args: &[&str]) -> Output {
+    let out = shadecore(args);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    out
+}
+
 /// Issue 4: the RTL Gouraud image of the default scene is within 1 LSB per channel of the
 /// golden Gouraud image, with identical coverage. Checked on the PNGs the command writes.
 #[test]
 fn rtl_gouraud_render_within_one_lsb_of_golden() {
     let dir = tempfile::tempdir().unwrap();
-    let out = shadecore(&[
+    shadecore_ok(&[
         "render",
         "--engine",
         "rtl",
@@ -25,11 +36,6 @@ fn rtl_gouraud_render_within_one_lsb_of_golden() {
         "--out",
         dir.path().to_str().unwrap(),
     ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
     let rtl = image::open(dir.path().join("gouraud.png"))
         .unwrap()
         .to_rgb8();
@@ -88,7 +94,7 @@ fn rtl_engine_rejects_methods_it_does_not_implement() {
 fn dump(engine: &str, tri: &str) -> Vec<Vec<i64>> {
     let dir = tempfile::tempdir().unwrap();
     let csv = dir.path().join("clocks.csv");
-    let out = shadecore(&[
+    shadecore_ok(&[
         "raster",
         "--tri",
         tri,
@@ -97,11 +103,6 @@ fn dump(engine: &str, tri: &str) -> Vec<Vec<i64>> {
         "--dump",
         csv.to_str().unwrap(),
     ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
     let text = std::fs::read_to_string(csv).unwrap();
     let mut lines = text.lines();
     assert_eq!(lines.next(), Some("cycle,valid,x,y,step,line_start,done"));
@@ -229,7 +230,7 @@ fn sample_vcd(path: &std::path::Path, names: &[&str]) -> Vec<Vec<u64>> {
 fn sim_writes_a_readable_normalizer_vcd() {
     let dir = tempfile::tempdir().unwrap();
     let vcd_path = dir.path().join("n.vcd");
-    let out = shadecore(&[
+    shadecore_ok(&[
         "sim",
         "--block",
         "normalizer",
@@ -240,11 +241,6 @@ fn sim_writes_a_readable_normalizer_vcd() {
         "--vcd",
         vcd_path.to_str().unwrap(),
     ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
     let s = sample_vcd(&vcd_path, &["valid_in", "valid_out", "x", "nx", "ny", "nz"]);
     let first_in = s
         .iter()
@@ -273,18 +269,13 @@ fn sim_writes_a_readable_normalizer_vcd() {
 #[test]
 fn export_verilog_writes_modules() {
     let dir = tempfile::tempdir().unwrap();
-    let out = shadecore(&[
+    shadecore_ok(&[
         "export-verilog",
         "--block",
         "all",
         "--out",
         dir.path().to_str().unwrap(),
     ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
     let text = std::fs::read_to_string(dir.path().join("normalizer.v")).expect("normalizer.v");
     assert!(text.contains("module normalizer("));
     assert!(text.contains("endmodule"));
@@ -299,5 +290,31 @@ fn export_verilog_writes_modules() {
     assert!(
         !bad.status.success() && err.lines().count() == 1 && err.contains("nonsense"),
         "{err}"
+    );
+}
+
+/// The README's block table is the registry's (`shadecore blocks`): adding a block without
+/// updating the README fails here.
+#[test]
+fn readme_block_table_is_the_registry() {
+    let out = shadecore(&["blocks"]);
+    assert!(out.status.success());
+    let table = String::from_utf8(out.stdout).unwrap();
+    assert_eq!(
+        table.lines().count(),
+        2 + testbenches::registry::BLOCKS.len(),
+        "{table}"
+    );
+    let readme =
+        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/README.md")).unwrap();
+    let begin = readme
+        .find("<!-- blocks:begin -->\n")
+        .expect("README marker")
+        + 22;
+    let end = readme.find("<!-- blocks:end -->").expect("README marker");
+    assert_eq!(
+        &readme[begin..end],
+        table,
+        "README block table differs from `shadecore blocks`: paste its output between the markers"
     );
 }

@@ -119,21 +119,41 @@ pub fn compare(reference: &Frame, frame: &Frame) -> MethodReport {
     }
 }
 
-pub fn run(args: Args) -> Result<()> {
-    let methods = parse_methods(&args.method)?;
-    let setup = build(&args.scene)?;
-    std::fs::create_dir_all(&args.out)
-        .with_context(|| format!("creating output directory {}", args.out.display()))?;
-    let bar = ProgressBar::new(methods.len() as u64 + 1).with_style(
+/// The progress bar of a render: one step per method plus the reference.
+fn progress_bar(methods: usize, engine: Engine) -> ProgressBar {
+    let bar = ProgressBar::new(methods as u64 + 1).with_style(
         ProgressStyle::with_template("{msg:>10} [{bar:40}] {pos}/{len} {elapsed}")
             .expect("static template")
             .progress_chars("=> "),
     );
-    bar.set_message(format!("{:?}", args.engine).to_lowercase());
-    let (w, h) = (setup.width, setup.height);
-    let mut rtl_stats = None;
-    let (reference, frames) = match args.engine {
-        Engine::Golden => render_golden(&setup, &methods, &bar),
+    bar.set_message(format!("{engine:?}").to_lowercase());
+    bar
+}
+
+/// The frames of one render: the reference, one per method, and the hardware's clock counts
+/// when the RTL engine made them.
+struct Frames {
+    reference: Frame,
+    methods: Vec<Frame>,
+    rtl_stats: Option<pipeline::gouraud::PipeStats>,
+}
+
+/// Render the reference (always golden) and `methods` with `engine`.
+fn render_frames(
+    setup: &Setup,
+    methods: &[Method],
+    engine: Engine,
+    bar: &ProgressBar,
+) -> Result<Frames> {
+    match engine {
+        Engine::Golden => {
+            let (reference, frames) = render_golden(setup, methods, bar);
+            Ok(Frames {
+                reference,
+                methods: frames,
+                rtl_stats: None,
+            })
+        }
         Engine::Rtl => {
             if methods != [Method::Gouraud] {
                 bail!(
@@ -145,6 +165,7 @@ pub fn run(args: Args) -> Result<()> {
                         .join(",")
                 );
             }
+            let (w, h) = (setup.width, setup.height);
             let reference = render(&setup.tris, Method::Reference, &setup.ctx, w, h);
             bar.set_style(
                 ProgressStyle::with_template(
@@ -153,80 +174,93 @@ pub fn run(args: Args) -> Result<()> {
                 .expect("static template")
                 .progress_chars("=> "),
             );
-            let rtl = crate::rtl_engine::render_gouraud_rtl(&setup.tris, &setup.ctx, w, h, &bar)?;
-            rtl_stats = Some(rtl.stats);
-            (reference, vec![rtl.frame])
+            let rtl = crate::rtl_engine::render_gouraud_rtl(&setup.tris, &setup.ctx, w, h, bar)?;
+            Ok(Frames {
+                reference,
+                methods: vec![rtl.frame],
+                rtl_stats: Some(rtl.stats),
+            })
         }
-    };
-    bar.finish_and_clear();
+    }
+}
 
-    save_png(&args.out.join("reference.png"), w, h, &reference.rgb)?;
+/// For an RTL frame of method `m`: write the golden image of the same method and the
+/// RTL-vs-golden heat map, and measure how far the hardware is from the golden model.
+fn compare_with_golden(
+    setup: &Setup,
+    m: Method,
+    frame: &Frame,
+    stats: &pipeline::gouraud::PipeStats,
+    out: &std::path::Path,
+) -> Result<RtlComparison> {
+    let (w, h) = (setup.width, setup.height);
+    let golden = render(&setup.tris, m, &setup.ctx, w, h);
+    save_png(
+        &out.join(format!("{}-golden.png", m.name())),
+        w,
+        h,
+        &golden.rgb,
+    )?;
+    let heat = nmse::diff_heatmap(&golden.rgb, &frame.rgb, 4);
+    save_png(
+        &out.join(format!("{}-rtl-vs-golden-diff.png", m.name())),
+        w,
+        h,
+        &heat,
+    )?;
+    Ok(RtlComparison {
+        nmse: nmse::nmse(&golden.rgb, &frame.rgb),
+        max_abs_diff: nmse::max_abs_diff(&golden.rgb, &frame.rgb),
+        pixels_differing: golden
+            .rgb
+            .iter()
+            .zip(&frame.rgb)
+            .filter(|(a, b)| a != b)
+            .count(),
+        clocks: stats.clocks,
+        pixels: stats.pixels,
+        pixels_per_clock: stats.pixels_per_clock(),
+    })
+}
+
+/// Write every image (reference, each method with its diff against the reference, the RTL
+/// comparisons, the sheet) and return the per-method reports.
+fn write_images(
+    setup: &Setup,
+    methods: &[Method],
+    frames: &Frames,
+    out: &std::path::Path,
+) -> Result<BTreeMap<String, MethodReport>> {
+    let (w, h) = (setup.width, setup.height);
+    let reference = &frames.reference;
+    save_png(&out.join("reference.png"), w, h, &reference.rgb)?;
     let mut reports = BTreeMap::new();
     let mut tiles: Vec<(String, &[[u8; 3]])> = vec![("reference".into(), &reference.rgb[..])];
-    for (m, f) in methods.iter().zip(&frames) {
-        let mut r = compare(&reference, f);
-        if let Some(stats) = &rtl_stats {
-            // The golden image of the same method, and how far the hardware is from it.
-            let golden = render(&setup.tris, *m, &setup.ctx, w, h);
-            save_png(
-                &args.out.join(format!("{}-golden.png", m.name())),
-                w,
-                h,
-                &golden.rgb,
-            )?;
-            let heat = nmse::diff_heatmap(&golden.rgb, &f.rgb, 4);
-            save_png(
-                &args
-                    .out
-                    .join(format!("{}-rtl-vs-golden-diff.png", m.name())),
-                w,
-                h,
-                &heat,
-            )?;
-            r.rtl_vs_golden = Some(RtlComparison {
-                nmse: nmse::nmse(&golden.rgb, &f.rgb),
-                max_abs_diff: nmse::max_abs_diff(&golden.rgb, &f.rgb),
-                pixels_differing: golden
-                    .rgb
-                    .iter()
-                    .zip(&f.rgb)
-                    .filter(|(a, b)| a != b)
-                    .count(),
-                clocks: stats.clocks,
-                pixels: stats.pixels,
-                pixels_per_clock: stats.pixels_per_clock(),
-            });
+    for (m, f) in methods.iter().zip(&frames.methods) {
+        let mut r = compare(reference, f);
+        if let Some(stats) = &frames.rtl_stats {
+            r.rtl_vs_golden = Some(compare_with_golden(setup, *m, f, stats, out)?);
         }
-        save_png(&args.out.join(format!("{}.png", m.name())), w, h, &f.rgb)?;
+        save_png(&out.join(format!("{}.png", m.name())), w, h, &f.rgb)?;
         let heat = nmse::diff_heatmap(&reference.rgb, &f.rgb, 32);
-        save_png(
-            &args.out.join(format!("{}-diff.png", m.name())),
-            w,
-            h,
-            &heat,
-        )?;
+        save_png(&out.join(format!("{}-diff.png", m.name())), w, h, &heat)?;
         tiles.push((format!("{} {:.2e}", m.name(), r.nmse), &f.rgb[..]));
         reports.insert(m.name().to_string(), r);
     }
     let s = sheet(&tiles, w, h, 5);
-    save_png(&args.out.join("sheet.png"), s.width, s.height, &s.rgb)?;
-    let report = Report {
-        scene: &args.scene,
-        engine: args.engine,
-        triangles: setup.tris.len(),
-        methods: reports,
-    };
-    let json = serde_json::to_string_pretty(&report).expect("report serializes");
-    std::fs::write(args.out.join("report.json"), json + "\n")
-        .with_context(|| format!("writing {}", args.out.join("report.json").display()))?;
+    save_png(&out.join("sheet.png"), s.width, s.height, &s.rgb)?;
+    Ok(reports)
+}
 
+/// Print the NMSE table (and the RTL comparisons) of `report`.
+fn print_table(args: &Args, setup: &Setup, methods: &[Method], report: &Report) {
     println!(
         "scene {} rez {} n {} light {}° {}x{} {:?} lighting, {} front-facing triangles, engine {:?}",
-        args.scene.scene, args.scene.rez, args.scene.shininess, args.scene.light_deg, w, h,
-        args.scene.lighting, setup.tris.len(), args.engine
+        args.scene.scene, args.scene.rez, args.scene.shininess, args.scene.light_deg,
+        setup.width, setup.height, args.scene.lighting, setup.tris.len(), args.engine
     );
     println!("{:<16} {:>12} {:>6}  band", "method", "NMSE", "max Δ");
-    for m in &methods {
+    for m in methods {
         let r = &report.methods[m.name()];
         println!(
             "{:<16} {:>12.3e} {:>6}  {}",
@@ -242,6 +276,27 @@ pub fn run(args: Args) -> Result<()> {
             );
         }
     }
+}
+
+pub fn run(args: Args) -> Result<()> {
+    let methods = parse_methods(&args.method)?;
+    let setup = build(&args.scene)?;
+    std::fs::create_dir_all(&args.out)
+        .with_context(|| format!("creating output directory {}", args.out.display()))?;
+    let bar = progress_bar(methods.len(), args.engine);
+    let frames = render_frames(&setup, &methods, args.engine, &bar)?;
+    bar.finish_and_clear();
+    let reports = write_images(&setup, &methods, &frames, &args.out)?;
+    let report = Report {
+        scene: &args.scene,
+        engine: args.engine,
+        triangles: setup.tris.len(),
+        methods: reports,
+    };
+    let json = serde_json::to_string_pretty(&report).expect("report serializes");
+    std::fs::write(args.out.join("report.json"), json + "\n")
+        .with_context(|| format!("writing {}", args.out.join("report.json").display()))?;
+    print_table(&args, &setup, &methods, &report);
     println!("wrote {}", args.out.display());
     Ok(())
 }

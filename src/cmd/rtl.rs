@@ -3,35 +3,26 @@
 use std::path::PathBuf;
 
 use anyhow::{anyhow, bail, Context};
-use rtl::export::{self, BlockKind};
-use rtl::normalizer::NormalizerCoeffs;
-use testbenches::blocks;
+use rtl::registry::Options;
+use testbenches::registry::{self, Entry};
 
-/// Coefficient sets of the normalizer.
-fn coeffs(name: &str) -> anyhow::Result<NormalizerCoeffs> {
-    let c = match name {
-        "published" => golden::normalizer::PUBLISHED,
-        "fit" => golden::normalizer::FIT,
-        other => bail!("unknown coefficient set {other:?} (expected published or fit)"),
-    };
-    NormalizerCoeffs::new(c).map_err(|e| anyhow!("{e}"))
-}
-
-/// `NAME` or `all`.
-fn blocks_arg(name: &str) -> anyhow::Result<Vec<BlockKind>> {
-    if name == "all" {
-        Ok(BlockKind::ALL.to_vec())
-    } else {
-        Ok(vec![name
-            .parse::<BlockKind>()
-            .map_err(|e| anyhow!("{e}, or all"))?])
+/// The blocks named by `--block` (`NAME` or `all`) and the build options of the command line
+/// (`--coeffs` is `coeffs=…`, read by the normalizer blocks), checked against each other.
+fn selection(block: &str, coeffs: &str) -> anyhow::Result<(Vec<&'static dyn Entry>, Options)> {
+    let blocks = registry::select(block).map_err(|e| anyhow!(e))?;
+    let o = Options::new().with("coeffs", coeffs);
+    // Blocks without coefficients ignore --coeffs (its default applies to every command).
+    for b in &blocks {
+        if b.param_keys().contains(&"coeffs") {
+            b.check_options(&o).map_err(|e| anyhow!(e))?;
+        }
     }
+    Ok((blocks, o))
 }
 
 #[derive(clap::Args, Debug)]
 pub struct ExportArgs {
-    /// Block: normalizer, normalizer-k, k-recurrence, span-normalizer, address-block,
-    /// intensity-interpolator, gouraud-raster, or all.
+    /// Block name (`shadecore blocks` lists them), or all.
     #[arg(long, default_value = "all")]
     pub block: String,
     /// Output directory (one `<module>.v` per block).
@@ -44,13 +35,11 @@ pub struct ExportArgs {
 
 #[derive(clap::Args, Debug)]
 pub struct SimArgs {
-    /// Block: normalizer, normalizer-k, k-recurrence, span-normalizer, address-block,
-    /// intensity-interpolator or gouraud-raster.
+    /// Block name (`shadecore blocks` lists them).
     #[arg(long, default_value = "normalizer")]
     pub block: String,
-    /// Random inputs to simulate: vectors (default 1000); pixels for the span blocks (1000);
-    /// triangles for address-block, intensity-interpolator, gouraud-raster (default 20, 1000–2000
-    /// clocks each on average).
+    /// Random items to simulate, in the block's unit (`shadecore blocks`): vectors or pixels
+    /// (default 1000), triangles (default 20, 1000–2000 clocks each on average).
     #[arg(long)]
     pub vectors: Option<usize>,
     /// Seed of the stimulus (default: the test runner's seed for "shadecore-sim";
@@ -67,8 +56,7 @@ pub struct SimArgs {
 
 #[derive(clap::Args, Debug)]
 pub struct SynthArgs {
-    /// Block: normalizer, normalizer-k, k-recurrence, span-normalizer, address-block,
-    /// intensity-interpolator, gouraud-raster, or all.
+    /// Block name (`shadecore blocks` lists them), or all.
     #[arg(long, default_value = "normalizer")]
     pub block: String,
     /// Normalizer coefficients: published or fit.
@@ -80,11 +68,13 @@ pub struct SynthArgs {
 }
 
 pub fn export(a: ExportArgs) -> anyhow::Result<()> {
-    let c = coeffs(&a.coeffs)?;
-    for b in blocks_arg(&a.block)? {
-        let path = export::write(b, &c, &a.out).map_err(|e| anyhow!(e))?;
+    let (blocks, o) = selection(&a.block, &a.coeffs)?;
+    for b in blocks {
+        let text = b.verilog(&o).map_err(|e| anyhow!(e))?;
+        let path = rtl::export::write(b.name(), &text, &a.out).map_err(|e| anyhow!(e))?;
         println!(
-            "{b}: module {} (latency {} clocks) -> {}",
+            "{}: module {} (latency {} clocks) -> {}",
+            b.name(),
             b.module_name(),
             b.latency(),
             path.display()
@@ -94,30 +84,30 @@ pub fn export(a: ExportArgs) -> anyhow::Result<()> {
 }
 
 pub fn sim(a: SimArgs) -> anyhow::Result<()> {
-    let c = coeffs(&a.coeffs)?;
-    let block: BlockKind = a.block.parse().map_err(|e: String| anyhow!(e))?;
-    let n = a.vectors.unwrap_or(blocks::default_items(block));
+    let block = registry::find(&a.block).map_err(|e| anyhow!(e))?;
+    let (_, o) = selection(block.name(), &a.coeffs)?;
+    let n = a.vectors.unwrap_or(block.default_items());
     if n == 0 {
         bail!("--vectors must be at least 1");
     }
     let seed = a
         .seed
-        .unwrap_or_else(|| golden::testing::seed_for("shadecore-sim"));
+        .unwrap_or_else(|| golden::seed::seed_for("shadecore-sim"));
     let vcd = a.vcd.unwrap_or_else(|| {
         testbenches::harness::target_dir()
             .join("sims")
-            .join(format!("{block}.vcd"))
+            .join(format!("{}.vcd", block.name()))
     });
     if let Some(dir) = vcd.parent().filter(|d| !d.as_os_str().is_empty()) {
         std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
     }
     let t = std::time::Instant::now();
-    let out = blocks::sim_to_vcd(block, &c, n, seed, &vcd).map_err(|e| anyhow!(e))?;
+    let out = registry::sim_to_vcd(block, &o, n, seed, &vcd).map_err(|e| anyhow!(e))?;
     print!("{}", out.report);
     println!(
-        "{block}: {} {} checked against the golden model every clock (latency {}), seed {seed}, {:.2?}",
-        out.count,
-        out.items,
+        "{}: {n} {} checked every clock against the bit-exact twin and the golden model (latency {}), seed {seed}, {:.2?}",
+        block.name(),
+        block.items(),
         block.latency(),
         t.elapsed()
     );
@@ -126,9 +116,9 @@ pub fn sim(a: SimArgs) -> anyhow::Result<()> {
 }
 
 pub fn synth(a: SynthArgs) -> anyhow::Result<()> {
-    let c = coeffs(&a.coeffs)?;
-    for b in blocks_arg(&a.block)? {
-        let (rep, fmax) = blocks::synth_block(b, &c, !a.no_pnr).map_err(|e| anyhow!(e))?;
+    let (blocks, o) = selection(&a.block, &a.coeffs)?;
+    for b in blocks {
+        let (rep, fmax) = registry::synth_block(b, &o, !a.no_pnr).map_err(|e| anyhow!(e))?;
         print!("{rep}");
         match fmax {
             Some(f) => println!(
@@ -139,5 +129,11 @@ pub fn synth(a: SynthArgs) -> anyhow::Result<()> {
             None => println!("{}: nextpnr-ice40 not installed: no Fmax estimate", rep.top),
         }
     }
+    Ok(())
+}
+
+/// `shadecore blocks`: the registry as the README's Markdown table.
+pub fn blocks() -> anyhow::Result<()> {
+    print!("{}", registry::markdown_table());
     Ok(())
 }

@@ -8,43 +8,20 @@
 //! RTL's own `ready` pace the loads (what the `raster` command and the renderer do).
 
 use crate::harness::{CheckSpec, Compare, Expected, Failure, Report, Stepper};
-use crate::impl_dut;
-use golden::address_block::{AddressBlockModel, AddressOutputs, AddressSetup, EdgeSetup};
+use crate::normalizer::seeded_runner;
+use crate::registry::{self, Bench, Twin};
+use golden::address_block::{AddressBlockModel, AddressOutputs, AddressSetup};
+use golden::intensity_interpolator::{additions, interpolate};
+use golden::raster::walk;
+use golden::types::{Plane, ScreenTriangle};
+use pipeline::gouraud::{row_setup, TriangleJob};
 use proptest::prelude::*;
+use proptest::strategy::ValueTree;
 use rtl::address_block::AddressBlock;
+use rtl::registry::NoParams;
 use std::io::Write;
 
-impl_dut!(AddressBlock, clock: clock,
-    inputs: [load, w_b0, w_e0, w_f, w_r, w_d, a_b0, a_e0, a_f, a_r, a_d,
-             t_b0, t_e0, t_f, t_r, t_d, y_top, rows, y_switch, dir_neg],
-    outputs: [ready, valid, x, y, step, line_start, row_start, carry, done]);
-
-fn edge_words(e: &EdgeSetup) -> [u64; 5] {
-    [
-        e.b0 as u64,
-        e.e0 as u64,
-        e.f_word() as u64,
-        e.r as u64,
-        e.d as u64,
-    ]
-}
-
-/// The input row of one clock: `load` and the set-up words (all zero without a load).
-pub fn setup_row(s: Option<&AddressSetup>) -> Vec<u64> {
-    let z = AddressSetup::default();
-    let (load, s) = (s.is_some() as u64, s.unwrap_or(&z));
-    let mut row = vec![load];
-    for e in [&s.w, &s.a, &s.t] {
-        row.extend(edge_words(e));
-    }
-    row.extend([
-        s.y_top as u64,
-        s.rows as u64,
-        s.y_switch as u64,
-        s.dir_neg as u64,
-    ]);
-    row
-}
+pub use pipeline::gouraud::setup_row;
 
 /// The output row the model predicts (port order of the `impl_dut!` above).
 pub fn outputs_row(o: &AddressOutputs) -> Vec<u64> {
@@ -77,7 +54,7 @@ pub fn row_outputs(r: &[u64]) -> AddressOutputs {
 }
 
 /// Input rows and predicted outputs of walking `setups` back to back.
-pub struct Stimulus {
+pub struct ModelRun {
     pub rows: Vec<Vec<u64>>,
     pub expected: Vec<AddressOutputs>,
     /// Clock in which each triangle is loaded.
@@ -86,9 +63,9 @@ pub struct Stimulus {
 
 /// The model's run of `setups`, each loaded in the first clock its `ready` is high, up to and
 /// including the clock showing the last triangle's `done`.
-pub fn stimulus(setups: &[AddressSetup]) -> Stimulus {
+pub fn stimulus(setups: &[AddressSetup]) -> ModelRun {
     let mut m = AddressBlockModel::new();
-    let mut st = Stimulus {
+    let mut st = ModelRun {
         rows: Vec::new(),
         expected: Vec::new(),
         loads: Vec::new(),
@@ -196,4 +173,90 @@ pub fn triangle_strategy() -> impl Strategy<Value = [(i32, i32); 3]> {
             [a, b, ((b.0 + ox).clamp(0, 4095), (b.1 + oy).clamp(0, 4095))]
         }),
     ]
+}
+
+/// The golden value of every pixel of a triangle list's walks, in stream order: per channel
+/// f64 intensity (no bias) and the number of additions that reach it.
+pub type GoldenPixel = ([f64; 3], u32);
+
+/// `n` seeded random triangles ([`triangle_strategy`]) with random vertex intensities
+/// (−40..320 per channel, so both saturation ends are reached): the raster jobs, and the golden
+/// f64 value and addition count of every pixel in stream order. The same seed gives the same
+/// triangles for the address block, the BVI and the pipe.
+pub fn triangle_jobs(seed: u64, n: usize) -> (Vec<TriangleJob>, Vec<GoldenPixel>) {
+    let mut r = seeded_runner(seed);
+    let st = (
+        triangle_strategy(),
+        prop::array::uniform3(prop::array::uniform3(-40.0..320.0f64)),
+    );
+    let mut jobs = Vec::with_capacity(n);
+    let mut golden = Vec::new();
+    for _ in 0..n {
+        let (p, v) = st.new_tree(&mut r).expect("no rejection").current();
+        let t = ScreenTriangle::from_points(p);
+        // A zero-area triangle has no plane; the hardware still walks it (no pixel).
+        let planes: [Plane; 3] = std::array::from_fn(|c| {
+            t.scalar_plane([v[0][c], v[1][c], v[2][c]])
+                .unwrap_or(Plane {
+                    a: 0.0,
+                    b: 0.0,
+                    c: 0.0,
+                })
+        });
+        let w = walk(&t);
+        let per: [Vec<f64>; 3] = std::array::from_fn(|c| interpolate(&w, &planes[c]));
+        for (k, adds) in additions(&w).into_iter().enumerate() {
+            golden.push(([per[0][k], per[1][k], per[2][k]], adds));
+        }
+        jobs.push(TriangleJob::new(&t, &planes));
+    }
+    (jobs, golden)
+}
+
+/// Rows, expectations and comparisons of a triangle block's run.
+pub type TriangleRun = (Vec<Vec<u64>>, Vec<Vec<Expected>>, Vec<Compare>);
+
+/// A [`TriangleRun`] as a registry [`Stimulus`].
+pub fn triangle_run((rows, expected, compare): TriangleRun) -> registry::Stimulus {
+    registry::Stimulus {
+        rows,
+        expected,
+        compare,
+    }
+}
+
+/// Address block: the cycle model paces the loads and predicts every port exactly.
+pub fn address_run(jobs: &[TriangleJob]) -> TriangleRun {
+    let setups: Vec<AddressSetup> = jobs.iter().map(|j| j.addr).collect();
+    let st = stimulus(&setups);
+    let expected = st
+        .expected
+        .iter()
+        .map(|o| outputs_row(o).into_iter().map(Expected::Word).collect())
+        .collect();
+    (st.rows, expected, vec![Compare::Exact; 9])
+}
+
+/// Row adapter of the cycle model [`AddressBlockModel`] (written independently of the RTL:
+/// golden/src/address_block.rs).
+struct AddressRows(AddressBlockModel);
+
+impl Twin for AddressRows {
+    fn step(&mut self, r: &[u64]) -> Vec<u64> {
+        let o = outputs_row(&self.0.outputs());
+        self.0.clock(row_setup(r).as_ref());
+        o
+    }
+}
+
+impl Bench for AddressBlock {
+    const ITEMS: &'static str = "triangles";
+    const DEFAULT_ITEMS: usize = 20;
+    fn stimulus(_: &NoParams, n: usize, seed: u64) -> registry::Stimulus {
+        let (jobs, _) = triangle_jobs(seed, n);
+        triangle_run(address_run(&jobs))
+    }
+    fn twin(_: &NoParams) -> Box<dyn Twin> {
+        Box::new(AddressRows(AddressBlockModel::new()))
+    }
 }

@@ -1,7 +1,7 @@
 //! Bench of the intensity interpolator BVI (`rtl::intensity_interpolator`) against the golden
-//! f64 BVI (`golden::intensity_interpolator`) on the shared harness, and the driver of the whole
-//! Gouraud raster pipe (`rtl::gouraud_raster`: address block + BVI) that renders triangles
-//! through the RTL.
+//! f64 BVI (`golden::intensity_interpolator`) and its bit-exact twin on the shared harness, and
+//! of the Gouraud raster pipe (`rtl::gouraud_raster`: address block + BVI; its render driver is
+//! `pipeline::gouraud`).
 //!
 //! # Tolerances (derived from the formats, see the RTL header)
 //!
@@ -14,62 +14,18 @@
 //!   error is < ½ LSB, so rounding can differ by at most one step); and [`check_words`] requires
 //!   them to equal the saturated word exactly.
 
-use crate::address_block::{setup_row, stimulus};
-use crate::harness::{CheckSpec, Compare, Expected, Failure, QFormat, Report, Stepper, Tolerance};
-use crate::impl_dut;
-use golden::address_block::{AddressOutputs, AddressSetup};
-use golden::intensity_interpolator::{self as gbvi, error_bound, saturate, ChannelWords};
-use golden::shade::{to_u8, ShadeContext};
-use golden::types::{Plane, ScreenTriangle};
+use crate::address_block::{stimulus, triangle_jobs, triangle_run, GoldenPixel, TriangleRun};
+use crate::harness::{CheckSpec, Compare, Expected, Failure, Report, Tolerance};
+use crate::registry::{Bench, Stimulus, Twin};
+use golden::address_block::{AddressBlockModel, AddressOutputs, AddressSetup};
+use golden::intensity_interpolator::{error_bound, saturate, BviTwin, ChannelWords};
+use golden::shade::to_u8;
+use pipeline::gouraud::{pipe_row, row_setup, row_words, words_row, TriangleJob};
 use rtl::gouraud_raster::GouraudRaster;
 use rtl::intensity_interpolator::IntensityInterpolator;
-use std::io::Write;
+use rtl::registry::NoParams;
 
-impl_dut!(IntensityInterpolator, clock: clock,
-    inputs: [load, r_start, r_short, r_long, r_line, g_start, g_short, g_long, g_line,
-             b_start, b_short, b_long, b_line, in_valid, in_row_start, in_step, in_carry],
-    outputs: [valid_out, red, green, blue, red_word, green_word, blue_word]);
-
-impl_dut!(GouraudRaster, clock: clock,
-    inputs: [load, w_b0, w_e0, w_f, w_r, w_d, a_b0, a_e0, a_f, a_r, a_d,
-             t_b0, t_e0, t_f, t_r, t_d, y_top, rows, y_switch, dir_neg,
-             r_start, r_short, r_long, r_line, g_start, g_short, g_long, g_line,
-             b_start, b_short, b_long, b_line],
-    outputs: [ready, valid, x, y, red, green, blue, done]);
-
-/// Format of the BVI's words (`rtl::intensity_interpolator` header).
-pub const INTENSITY: QFormat = QFormat::signed(16, 16);
-/// The 8-bit outputs read as integers.
-pub const LEVEL: QFormat = QFormat::unsigned(8, 0);
-
-/// One triangle's complete set-up for the raster pipe.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct TriangleJob {
-    pub addr: AddressSetup,
-    pub words: [ChannelWords; 3],
-}
-
-impl TriangleJob {
-    /// Set-up of `tri` with the channel planes `planes` (LSB units).
-    pub fn new(tri: &ScreenTriangle, planes: &[Plane; 3]) -> TriangleJob {
-        let addr = AddressSetup::new(tri);
-        let words = gbvi::setup(planes, &addr).map(|c| c.words());
-        TriangleJob { addr, words }
-    }
-
-    /// Gouraud set-up of `tri` under `ctx` (`golden::gouraud`); `None` for zero area.
-    pub fn gouraud(tri: &ScreenTriangle, ctx: &ShadeContext) -> Option<TriangleJob> {
-        golden::gouraud::setup(tri, ctx).map(|g| TriangleJob::new(tri, &g.planes))
-    }
-}
-
-fn words_row(w: Option<&[ChannelWords; 3]>) -> Vec<u64> {
-    let z = [ChannelWords::default(); 3];
-    w.unwrap_or(&z)
-        .iter()
-        .flat_map(|c| [c.start, c.short, c.long, c.line].map(u64::from))
-        .collect()
-}
+pub use rtl::fixed::{INTENSITY, LEVEL};
 
 /// The BVI's input row of one clock: `load` + words, then the address block's event.
 pub fn bvi_row(w: Option<&[ChannelWords; 3]>, o: &AddressOutputs) -> Vec<u64> {
@@ -117,10 +73,6 @@ pub fn pipe_rows(jobs: &[TriangleJob]) -> Vec<Vec<u64>> {
     rows
 }
 
-/// The golden value of every pixel of `jobs`' walks, in stream order: per channel f64
-/// intensity (no bias) and the number of additions that reach it.
-pub type GoldenPixel = ([f64; 3], u32);
-
 /// The BVI alone, driven by the golden address block's stream for `jobs` (each triangle's
 /// BVI set-up loaded in the clock the address block accepts it), compared every clock with
 /// `golden` (one entry per pixel, in stream order; see the module doc for the tolerances).
@@ -130,47 +82,12 @@ pub fn check_bvi(
     jobs: &[TriangleJob],
     golden: &[GoldenPixel],
 ) -> Result<Report, Box<Failure>> {
-    let (rows, stream) = bvi_rows(jobs);
-    let bounds: Vec<f64> = golden.iter().map(|g| error_bound(g.1) + 1e-6).collect();
-    let max_bound = bounds.iter().copied().fold(0.0, f64::max).max(1e-6);
-    let rms_bound = (bounds.iter().map(|b| b * b).sum::<f64>() / bounds.len().max(1) as f64)
-        .sqrt()
-        .max(1e-6);
-    let word = Compare::Fixed {
-        format: INTENSITY,
-        tol: Tolerance {
-            max_abs: max_bound,
-            rms: rms_bound,
-        },
-    };
-    let level = Compare::Fixed {
-        format: LEVEL,
-        tol: Tolerance {
-            max_abs: 1.0,
-            rms: 1.0,
-        },
-    };
+    let (rows, expected, compare) = bvi_run(jobs, golden);
     let spec = CheckSpec {
         name: name.into(),
         seed,
-        compare: vec![Compare::Exact, level, level, level, word, word, word],
+        compare,
     };
-    let mut expected = Vec::with_capacity(rows.len());
-    let mut k = 0;
-    for c in 0..rows.len() {
-        let valid = c > 0 && stream[c - 1].valid;
-        let mut e = vec![Expected::Word(valid as u64)];
-        if valid {
-            let (v, _) = golden[k];
-            k += 1;
-            e.extend(v.map(|x| Expected::Real(to_u8(x) as f64)));
-            e.extend(v.map(|x| Expected::Real(x + 0.5)));
-        } else {
-            e.extend([Expected::DontCare; 6]);
-        }
-        expected.push(e);
-    }
-    assert_eq!(k, golden.len(), "golden pixels and address stream disagree");
     crate::harness::run_rows(IntensityInterpolator::default, &spec, &rows, &expected)
         .map_err(Box::new)
 }
@@ -215,97 +132,197 @@ pub fn check_words(report: &Report, golden: &[GoldenPixel]) -> Result<(f64, f64,
     Ok((max, (sum_sq / n.max(1) as f64).sqrt(), ratio))
 }
 
-/// The pipe's input row: `load`, the address set-up, the twelve BVI words.
-pub fn pipe_row(job: Option<&TriangleJob>) -> Vec<u64> {
-    let mut row = setup_row(job.map(|j| &j.addr));
-    row.extend(words_row(job.map(|j| &j.words)));
-    row
-}
-
-/// Counters of one pipe run.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct PipeStats {
-    /// Clocks from the first load to the clock showing the last triangle's `done`, inclusive.
-    pub clocks: u64,
-    pub pixels: u64,
-    pub triangles: u64,
-}
-
-impl PipeStats {
-    pub fn pixels_per_clock(&self) -> f64 {
-        self.pixels as f64 / self.clocks.max(1) as f64
+/// The BVI's word tolerance for `golden` (module doc): the run's largest per-pixel bound, and
+/// its RMS.
+fn word_tolerance(golden: &[GoldenPixel]) -> Tolerance {
+    let bounds: Vec<f64> = golden.iter().map(|g| error_bound(g.1) + 1e-6).collect();
+    Tolerance {
+        max_abs: bounds.iter().copied().fold(0.0, f64::max).max(1e-6),
+        rms: (bounds.iter().map(|b| b * b).sum::<f64>() / bounds.len().max(1) as f64)
+            .sqrt()
+            .max(1e-6),
     }
 }
 
-/// The raster pipe, stepped by hand through the harness's [`Stepper`].
-pub struct Pipe {
-    stepper: Stepper<GouraudRaster>,
+/// 8-bit outputs: within 1 LSB of the rounded, clamped golden value.
+const LEVEL_1LSB: Compare = Compare::Fixed {
+    format: LEVEL,
+    tol: Tolerance {
+        max_abs: 1.0,
+        rms: 1.0,
+    },
+};
+
+/// Expected colours of one output clock: the next golden pixel when `valid`, else don't care.
+fn colour_expectations(
+    valid: bool,
+    golden: &mut std::slice::Iter<'_, GoldenPixel>,
+    words: bool,
+) -> Vec<Expected> {
+    let n = if words { 6 } else { 3 };
+    if !valid {
+        return vec![Expected::DontCare; n];
+    }
+    let (v, _) = golden
+        .next()
+        .expect("golden pixels and address stream disagree");
+    let mut e: Vec<Expected> = v.map(|x| Expected::Real(to_u8(x) as f64)).to_vec();
+    if words {
+        // RG4 carries the +½ LSB rounding bias.
+        e.extend(v.map(|x| Expected::Real(x + 0.5)));
+    }
+    e
 }
 
-impl Pipe {
-    pub fn new() -> Result<Pipe, String> {
-        Ok(Pipe {
-            stepper: Stepper::new(GouraudRaster::default())?,
+/// BVI, driven by the golden address block's stream: the colour of event c in clock c + L.
+pub fn bvi_run(jobs: &[TriangleJob], golden: &[GoldenPixel]) -> TriangleRun {
+    let lat = IntensityInterpolator::LATENCY;
+    let (rows, stream) = bvi_rows(jobs);
+    let mut g = golden.iter();
+    let expected: Vec<Vec<Expected>> = (0..rows.len())
+        .map(|c| {
+            let valid = c >= lat && stream[c - lat].valid;
+            let mut e = vec![Expected::Word(valid as u64)];
+            e.extend(colour_expectations(valid, &mut g, true));
+            e
+        })
+        .collect();
+    assert!(g.next().is_none(), "golden pixels left over");
+    let word = Compare::Fixed {
+        format: INTENSITY,
+        tol: word_tolerance(golden),
+    };
+    let compare = vec![
+        Compare::Exact,
+        LEVEL_1LSB,
+        LEVEL_1LSB,
+        LEVEL_1LSB,
+        word,
+        word,
+        word,
+    ];
+    (rows, expected, compare)
+}
+
+/// Raster pipe: the address block's cycle model, loaded in the clocks [`pipe_rows`] loads; the
+/// pipe shows `ready` as is and the address stream one BVI latency later, with its colours.
+pub fn pipe_run(jobs: &[TriangleJob], golden: &[GoldenPixel]) -> TriangleRun {
+    let setups: Vec<AddressSetup> = jobs.iter().map(|j| j.addr).collect();
+    let rows = pipe_rows(jobs);
+    let delay = IntensityInterpolator::LATENCY;
+    let mut m = AddressBlockModel::new();
+    let mut addr: Vec<AddressOutputs> = Vec::with_capacity(rows.len());
+    let mut next = 0;
+    for row in &rows {
+        let o = m.outputs();
+        let load = (row[0] != 0).then(|| &setups[next]);
+        next += load.is_some() as usize;
+        addr.push(o);
+        m.clock(load);
+    }
+    let mut g = golden.iter();
+    let expected: Vec<Vec<Expected>> = (0..rows.len())
+        .map(|c| {
+            let d = match c.checked_sub(delay) {
+                Some(k) => addr[k],
+                None => AddressOutputs::default(),
+            };
+            let w = |v: u32| Expected::Word(v as u64);
+            let mut e = vec![w(addr[c].ready as u32), w(d.valid as u32), w(d.x), w(d.y)];
+            e.extend(colour_expectations(d.valid, &mut g, false));
+            e.push(w(d.done as u32));
+            e
+        })
+        .collect();
+    assert!(g.next().is_none(), "golden pixels left over");
+    let mut compare = vec![Compare::Exact; 8];
+    compare[4..7].copy_from_slice(&[LEVEL_1LSB; 3]);
+    (rows, expected, compare)
+}
+
+/// The BVI's twin output row.
+fn bvi_outputs(t: &BviTwin) -> Vec<u64> {
+    let (v, levels, words) = t.outputs();
+    let mut o = vec![v as u64];
+    o.extend(levels.map(u64::from));
+    o.extend(words.map(u64::from));
+    o
+}
+
+/// Row adapter of [`BviTwin`] (inputs `load`, twelve words, valid, row_start, step, carry).
+struct BviRows(BviTwin);
+
+impl Twin for BviRows {
+    fn step(&mut self, r: &[u64]) -> Vec<u64> {
+        let o = bvi_outputs(&self.0);
+        let w = row_words(r, 1);
+        self.0.clock(
+            (r[0] != 0).then_some(&w),
+            r[13] != 0,
+            r[14] != 0,
+            r[15] as u32,
+            r[16] != 0,
+        );
+        o
+    }
+}
+
+/// Twin of the raster pipe: the address block's cycle model feeding [`BviTwin`] (loaded on the
+/// accepted load), with x, y and done delayed one clock beside the BVI.
+struct PipeRows {
+    addr: AddressBlockModel,
+    bvi: BviTwin,
+    xy_done: (u32, u32, bool),
+}
+
+impl Twin for PipeRows {
+    fn step(&mut self, r: &[u64]) -> Vec<u64> {
+        let a = self.addr.outputs();
+        let (valid, levels, _) = self.bvi.outputs();
+        let (x, y, done) = self.xy_done;
+        let mut o = vec![a.ready as u64, valid as u64, x as u64, y as u64];
+        o.extend(levels.map(u64::from));
+        o.push(done as u64);
+        let setup = row_setup(r);
+        let words = row_words(r, 20);
+        let accepted = setup.is_some() && a.ready;
+        self.bvi.clock(
+            accepted.then_some(&words),
+            a.valid,
+            a.row_start,
+            a.step as u32,
+            a.carry,
+        );
+        self.xy_done = (a.x, a.y, a.done);
+        self.addr.clock(setup.as_ref());
+        o
+    }
+}
+
+impl Bench for IntensityInterpolator {
+    const ITEMS: &'static str = "triangles";
+    const DEFAULT_ITEMS: usize = 20;
+    fn stimulus(_: &NoParams, n: usize, seed: u64) -> Stimulus {
+        let (jobs, golden) = triangle_jobs(seed, n);
+        triangle_run(bvi_run(&jobs, &golden))
+    }
+    fn twin(_: &NoParams) -> Box<dyn Twin> {
+        Box::new(BviRows(BviTwin::default()))
+    }
+}
+
+impl Bench for GouraudRaster {
+    const ITEMS: &'static str = "triangles";
+    const DEFAULT_ITEMS: usize = 20;
+    fn stimulus(_: &NoParams, n: usize, seed: u64) -> Stimulus {
+        let (jobs, golden) = triangle_jobs(seed, n);
+        triangle_run(pipe_run(&jobs, &golden))
+    }
+    fn twin(_: &NoParams) -> Box<dyn Twin> {
+        Box::new(PipeRows {
+            addr: AddressBlockModel::new(),
+            bvi: BviTwin::default(),
+            xy_done: (0, 0, false),
         })
     }
-
-    /// Trace every following clock into `w`.
-    pub fn start_vcd(&mut self, w: Box<dyn Write>) {
-        self.stepper.start_vcd(w);
-    }
-
-    /// Run `jobs` through the pipe, each loaded as soon as `ready` is high;
-    /// `pixel(job_index, x, y, rgb)` for every valid output (the pipe keeps the jobs' order,
-    /// so the index counts the `done` markers seen before the pixel), `progress(done_triangles)` after each triangle's `done`. Stops
-    /// after the last `done`, or with an error after `max_clocks`.
-    pub fn run(
-        &mut self,
-        jobs: &[TriangleJob],
-        max_clocks: u64,
-        mut pixel: impl FnMut(usize, u32, u32, [u8; 3]),
-        mut progress: impl FnMut(u64),
-    ) -> Result<PipeStats, String> {
-        let mut st = PipeStats::default();
-        let mut out = vec![0u64; 8];
-        let idle = pipe_row(None);
-        let mut next = 0;
-        while st.triangles < jobs.len() as u64 {
-            if st.clocks >= max_clocks {
-                return Err(format!(
-                    "raster pipe: {} of {} triangles done after {max_clocks} clocks",
-                    st.triangles,
-                    jobs.len()
-                ));
-            }
-            // `ready` is a register output: its value for this clock is already settled.
-            let load = (self.stepper.dut().ready.val() && next < jobs.len()).then(|| &jobs[next]);
-            next += load.is_some() as usize;
-            match load {
-                Some(j) => self.stepper.step(&pipe_row(Some(j)), &mut out)?,
-                None => self.stepper.step(&idle, &mut out)?,
-            }
-            st.clocks += 1;
-            if out[1] != 0 {
-                st.pixels += 1;
-                pixel(
-                    st.triangles as usize,
-                    out[2] as u32,
-                    out[3] as u32,
-                    [out[4] as u8, out[5] as u8, out[6] as u8],
-                );
-            }
-            if out[7] != 0 {
-                st.triangles += 1;
-                progress(st.triangles);
-            }
-        }
-        self.stepper.stop_vcd();
-        Ok(st)
-    }
-}
-
-/// A clock budget for `jobs`: every row at the full line length plus latency, so a hung pipe
-/// stops instead of spinning.
-pub fn clock_budget(jobs: &[TriangleJob]) -> u64 {
-    jobs.iter().map(|j| 8 + j.addr.rows as u64 * 4097).sum()
 }

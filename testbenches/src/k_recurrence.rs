@@ -10,17 +10,12 @@ use rtl::fixed::{K_FULL, NORMAL};
 use rtl::k_recurrence::{span_setup, KRecurrence, SpanNormalizer};
 
 use crate::harness::{self, Expected};
-use crate::impl_dut;
+use crate::normalizer::{check_spec, seeded_runner};
 use crate::normalizer::{domain_vector, saturating_model};
+use crate::registry::{Bench, Stimulus, Twin};
+use golden::normalizer::twin;
 use rtl::normalizer::{error_budget, ErrorBudget, NormalizerCoeffs};
-
-impl_dut!(KRecurrence, clock: clock, inputs: [valid_in, load, k0, alpha, beta], outputs: [valid_out, k]);
-impl_dut!(
-    SpanNormalizer,
-    clock: clock,
-    inputs: [valid_in, load, x0, y0, z0, dx, dy, dz, k0, alpha, beta],
-    outputs: [valid_out, nx, ny, nz]
-);
+use rtl::registry::NoParams;
 
 /// A raster-line span: N_i = n0 + i·delta for i < len, integers in Q2.14 LSB units.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -316,4 +311,119 @@ pub fn spans_and_schedule(name: &str, n_spans: usize) -> (Vec<Span>, Vec<Clock>)
     let gaps = random_gaps(&mut r, pixels);
     let sched = schedule(&spans, &gaps);
     (spans, sched)
+}
+
+/// Seeded random spans totalling `pixels` pixels, and a schedule with random gaps.
+pub fn spans_for(runner: &mut TestRunner, pixels: usize) -> (Vec<Span>, Vec<Clock>) {
+    let st = span_strategy(64);
+    let mut spans = Vec::new();
+    let mut total = 0;
+    while total < pixels {
+        let mut s = st.new_tree(runner).expect("no rejection").current();
+        s.len = s.len.min(pixels - total);
+        total += s.len;
+        spans.push(s);
+    }
+    let gaps = random_gaps(runner, total);
+    let sched = schedule(&spans, &gaps);
+    (spans, sched)
+}
+
+/// Row adapter of [`twin::KRecurrenceTwin`] (inputs valid_in, load, k0, alpha, beta).
+struct KRecurrenceRows(twin::KRecurrenceTwin);
+
+impl Twin for KRecurrenceRows {
+    fn step(&mut self, r: &[u64]) -> Vec<u64> {
+        let (v, k) = self.0.outputs();
+        let w = |i: usize| r[i] as u32;
+        self.0.clock(r[0] != 0, r[1] != 0, w(2), w(3), w(4));
+        vec![v as u64, k as u64]
+    }
+}
+
+/// Row adapter of [`twin::SpanNormalizerTwin`] (inputs valid_in, load, x0, y0, z0, dx, dy,
+/// dz, k0, alpha, beta).
+struct SpanNormalizerRows(twin::SpanNormalizerTwin);
+
+impl Twin for SpanNormalizerRows {
+    fn step(&mut self, r: &[u64]) -> Vec<u64> {
+        let (v, n) = self.0.outputs();
+        let s = |i: usize| NORMAL.to_int(r[i]);
+        let w = |i: usize| r[i] as u32;
+        self.0.clock(
+            r[0] != 0,
+            r[1] != 0,
+            [s(2), s(3), s(4)],
+            [s(5), s(6), s(7)],
+            w(8),
+            w(9),
+            w(10),
+        );
+        let mut o = vec![v as u64];
+        o.extend(n.map(|x| NORMAL.from_int(x)));
+        o
+    }
+}
+
+impl Bench for KRecurrence {
+    const ITEMS: &'static str = "pixels";
+    const DEFAULT_ITEMS: usize = 1000;
+    fn stimulus(_: &NoParams, n: usize, seed: u64) -> Stimulus {
+        let (spans, sched) = spans_for(&mut seeded_runner(seed), n);
+        let (rows, expected) = krec_rows(&spans, &sched);
+        Stimulus {
+            rows,
+            expected,
+            compare: vec![harness::Compare::Exact; 2],
+        }
+    }
+    fn twin(_: &NoParams) -> Box<dyn Twin> {
+        Box::new(KRecurrenceRows(twin::KRecurrenceTwin::new()))
+    }
+    fn edge_rows(_: &NoParams, seed: u64) -> Vec<Vec<u64>> {
+        // The named edge spans, then loads with random 32-bit K_0, α, β (wrap-around sums).
+        let spans: Vec<Span> = edge_spans().into_iter().map(|(_, s)| s).collect();
+        let mut r = seeded_runner(seed ^ 0x6b72);
+        let gaps = random_gaps(&mut r, spans.iter().map(|s| s.len).sum());
+        let (mut rows, _) = krec_rows(&spans, &schedule(&spans, &gaps));
+        let words = prop::array::uniform4(any::<u32>());
+        for _ in 0..2000 {
+            let w = words.new_tree(&mut r).expect("no rejection").current();
+            rows.push(vec![
+                (w[3] & 3 != 0) as u64,
+                (w[3] & 12 == 0) as u64,
+                w[0] as u64,
+                w[1] as u64,
+                w[2] as u64,
+            ]);
+        }
+        rows
+    }
+}
+
+impl Bench for SpanNormalizer {
+    const ITEMS: &'static str = "pixels";
+    const DEFAULT_ITEMS: usize = 1000;
+    fn stimulus(c: &NormalizerCoeffs, n: usize, seed: u64) -> Stimulus {
+        let (spans, sched) = spans_for(&mut seeded_runner(seed), n);
+        let (rows, expected) = span_rows(&spans, &sched, c.requested);
+        Stimulus {
+            rows,
+            expected,
+            compare: check_spec("", 0, &span_budget(&spans, c)).compare,
+        }
+    }
+    fn twin(c: &NormalizerCoeffs) -> Box<dyn Twin> {
+        Box::new(SpanNormalizerRows(twin::SpanNormalizerTwin::new(
+            c.requested,
+        )))
+    }
+    fn edge_rows(c: &NormalizerCoeffs, seed: u64) -> Vec<Vec<u64>> {
+        let spans: Vec<Span> = edge_spans().into_iter().map(|(_, s)| s).collect();
+        let gaps = random_gaps(
+            &mut seeded_runner(seed ^ 0x736e),
+            spans.iter().map(|s| s.len).sum(),
+        );
+        span_rows(&spans, &schedule(&spans, &gaps), c.requested).0
+    }
 }

@@ -1,9 +1,9 @@
 pub mod address_block;
-pub mod blocks;
 pub mod harness;
 pub mod intensity_interpolator;
 pub mod k_recurrence;
 pub mod normalizer;
+pub mod registry;
 pub mod synth;
 pub mod tools;
 pub mod vcd_check;

@@ -3,7 +3,7 @@
 //! documented saturation behaviour, per-clock expectations and the end-to-end error against
 //! exact normalization.
 
-use golden::normalizer::Coeffs;
+use golden::normalizer::{twin, Coeffs};
 use proptest::prelude::*;
 use proptest::strategy::ValueTree;
 use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
@@ -11,10 +11,7 @@ use rtl::fixed::{HORNER_T1, K_NARROW, NORMAL, SCALE};
 use rtl::normalizer::{error_budget, ErrorBudget, Normalizer, NormalizerCoeffs, NormalizerK};
 
 use crate::harness::{self, CheckSpec, Compare, Expected, Failure, Report, Tolerance};
-use crate::impl_dut;
-
-impl_dut!(Normalizer, clock: clock, inputs: [valid_in, x, y, z], outputs: [valid_out, nx, ny, nz]);
-impl_dut!(NormalizerK, clock: clock, inputs: [valid_in, x, y, z, k], outputs: [valid_out, nx, ny, nz]);
+use crate::registry::{Bench, Stimulus, Twin};
 
 /// K range of quantized domain vectors: interpolating unit vectors ≤ 90° apart gives
 /// K ∈ [0.5, 1]; rounding each component to Q2.14 moves |N| by ≤ √3·2⁻¹⁵.
@@ -326,4 +323,129 @@ pub fn formula_max_error(c: Coeffs, lo: f64, hi: f64) -> f64 {
 /// most ‖δ‖/|N| ≤ √3·2⁻¹⁵/√K_min.
 pub fn input_quantization_bound() -> f64 {
     3f64.sqrt() * NORMAL.lsb() / 2.0 / DOMAIN_K.0.sqrt()
+}
+
+/// The normalizer's input word of a signed Q2.14 component, as the twin takes it.
+fn signed16(w: u64) -> i64 {
+    NORMAL.to_int(w)
+}
+
+fn vector_out(valid: bool, n: [i64; 3]) -> Vec<u64> {
+    let mut o = vec![valid as u64];
+    o.extend(n.map(|x| NORMAL.from_int(x)));
+    o
+}
+
+/// Row adapter of [`twin::NormalizerTwin`] (inputs valid_in, x, y, z).
+struct NormalizerRows(twin::NormalizerTwin);
+
+impl Twin for NormalizerRows {
+    fn step(&mut self, r: &[u64]) -> Vec<u64> {
+        let (v, n) = self.0.outputs();
+        self.0.clock(r[0] != 0, [r[1], r[2], r[3]].map(signed16));
+        vector_out(v, n)
+    }
+}
+
+/// Row adapter of [`twin::NormalizerKTwin`] (inputs valid_in, x, y, z, k).
+struct NormalizerKRows(twin::NormalizerKTwin);
+
+impl Twin for NormalizerKRows {
+    fn step(&mut self, r: &[u64]) -> Vec<u64> {
+        let (v, n) = self.0.outputs();
+        self.0
+            .clock(r[0] != 0, [r[1], r[2], r[3]].map(signed16), r[4] as i64);
+        vector_out(v, n)
+    }
+}
+
+/// `n` seeded domain vectors as normalizer rows with golden expectations (plus, for
+/// [`NormalizerK`], K as a fifth input: the exact sum of squares of the quantized vector).
+fn vector_stimulus(
+    c: &NormalizerCoeffs,
+    n: usize,
+    seed: u64,
+    latency: usize,
+    with_k: bool,
+) -> Stimulus {
+    let mut r = seeded_runner(seed);
+    let slots: Vec<Slot> = domain_vectors(&mut r, n)
+        .iter()
+        .map(|v| Slot::Vector(quantize(*v)))
+        .collect();
+    let mut rows = stimulus_rows(&slots, latency);
+    let expected = expectations(&rows, latency, c.requested);
+    if with_k {
+        for row in &mut rows {
+            let i = [row[1], row[2], row[3]].map(signed16);
+            row.push((i[0] * i[0] + i[1] * i[1] + i[2] * i[2]) as u64);
+        }
+    }
+    Stimulus {
+        rows,
+        expected,
+        compare: check_spec("", 0, &domain_budget(c)).compare,
+    }
+}
+
+/// Rows outside the domain for the twin: the named extreme cases, then `n` clocks of random
+/// raw words (K up to 12, every saturation path), valid toggling at random.
+pub fn raw_rows(seed: u64, n: usize, with_k: bool) -> Vec<Vec<u64>> {
+    let mut r = seeded_runner(seed ^ 0x5a5a_5a5a);
+    let words = prop::array::uniform4(any::<u16>());
+    let mut rows: Vec<Vec<u64>> = extreme_cases()
+        .iter()
+        .map(|(_, v)| vec![1, v[0], v[1], v[2]])
+        .collect();
+    for _ in 0..n {
+        let w = words.new_tree(&mut r).expect("no rejection").current();
+        rows.push(vec![
+            (w[3] & 3 != 0) as u64,
+            w[0] as u64,
+            w[1] as u64,
+            w[2] as u64,
+        ]);
+    }
+    if with_k {
+        for (i, row) in rows.iter_mut().enumerate() {
+            let v = [row[1], row[2], row[3]].map(signed16);
+            let k = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) as u64;
+            // Every fourth clock a random 32-bit K instead of the exact one (K saturation).
+            let k = if i % 4 == 3 {
+                (k.wrapping_mul(0x9E37_79B9) ^ (k >> 7)) & 0xFFFF_FFFF
+            } else {
+                k
+            };
+            row.push(k);
+        }
+    }
+    rows
+}
+
+impl Bench for Normalizer {
+    const ITEMS: &'static str = "vectors";
+    const DEFAULT_ITEMS: usize = 1000;
+    fn stimulus(c: &NormalizerCoeffs, n: usize, seed: u64) -> Stimulus {
+        vector_stimulus(c, n, seed, Normalizer::LATENCY, false)
+    }
+    fn twin(c: &NormalizerCoeffs) -> Box<dyn Twin> {
+        Box::new(NormalizerRows(twin::NormalizerTwin::new(c.requested)))
+    }
+    fn edge_rows(_: &NormalizerCoeffs, seed: u64) -> Vec<Vec<u64>> {
+        raw_rows(seed, 4000, false)
+    }
+}
+
+impl Bench for NormalizerK {
+    const ITEMS: &'static str = "vectors";
+    const DEFAULT_ITEMS: usize = 1000;
+    fn stimulus(c: &NormalizerCoeffs, n: usize, seed: u64) -> Stimulus {
+        vector_stimulus(c, n, seed, NormalizerK::LATENCY, true)
+    }
+    fn twin(c: &NormalizerCoeffs) -> Box<dyn Twin> {
+        Box::new(NormalizerKRows(twin::NormalizerKTwin::new(c.requested)))
+    }
+    fn edge_rows(_: &NormalizerCoeffs, seed: u64) -> Vec<Vec<u64>> {
+        raw_rows(seed, 4000, true)
+    }
 }

@@ -103,16 +103,7 @@ static DIR_COUNTER: AtomicU64 = AtomicU64::new(0);
 /// parallel tests never share files).
 pub fn unique_dir(tag: &str) -> Result<PathBuf, String> {
     let n = DIR_COUNTER.fetch_add(1, Ordering::SeqCst);
-    let safe: String = tag
-        .chars()
-        .map(|c| {
-            if c.is_ascii_alphanumeric() || c == '-' || c == '_' {
-                c
-            } else {
-                '_'
-            }
-        })
-        .collect();
+    let safe = crate::harness::file_safe(tag);
     let dir = crate::harness::target_dir()
         .join("tool-runs")
         .join(format!("{safe}-{}-{n}", std::process::id()));

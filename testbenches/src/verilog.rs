@@ -381,11 +381,25 @@ pub fn differential<D: Dut>(
     tag: &str,
 ) -> Result<DiffReport, DiffError> {
     let dut = make();
-    let (inputs, outputs) = (dut.inputs(), dut.outputs());
+    let ports = (dut.inputs(), dut.outputs());
     let rust_rows = simulate_rows(dut, rows).map_err(DiffError::Tool)?;
+    differential_rows(verilog, module, ports, rows, &rust_rows, sim, tag)
+}
+
+/// Run `rows` through `verilog` (top `module`, `ports` = inputs, outputs) under `sim` and
+/// require its outputs to equal `expected` (one row per clock) exactly.
+pub fn differential_rows(
+    verilog: &str,
+    module: &str,
+    (inputs, outputs): (Vec<Port>, Vec<Port>),
+    rows: &[Vec<u64>],
+    expected: &[Vec<u64>],
+    sim: Simulator,
+    tag: &str,
+) -> Result<DiffReport, DiffError> {
     let run =
         run_verilog(sim, verilog, module, &inputs, &outputs, rows, tag).map_err(DiffError::Tool)?;
-    compare_rows(&outputs, &rust_rows, &run).map_err(DiffError::Mismatch)?;
+    compare_rows(&outputs, expected, &run).map_err(DiffError::Mismatch)?;
     // A passing run's files (stimulus, outputs, Verilator objects: megabytes) are removed;
     // failures keep theirs for inspection. SHADECORE_KEEP_TOOL_RUNS keeps everything.
     if std::env::var_os("SHADECORE_KEEP_TOOL_RUNS").is_none() {

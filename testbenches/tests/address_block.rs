@@ -2,12 +2,11 @@
 //! the golden walk and the edge-function rasterizer (same set, no duplicates, same order and
 //! step types), over named edge cases and seeded random triangles.
 
-use glam::DVec3;
 use golden::address_block::{stream_pixels, AddressOutputs, AddressSetup};
 use golden::raster::{edge_function_pixels, walk};
 use golden::testing::runner;
 use golden::testing::seed_for;
-use golden::types::{ScreenTriangle, ScreenVertex};
+use golden::types::ScreenTriangle;
 use proptest::prelude::*;
 use proptest::test_runner::TestCaseError;
 use std::collections::HashSet;
@@ -16,14 +15,7 @@ use testbenches::address_block::{check as check_rtl, triangle_strategy};
 type Tri = [(i32, i32); 3];
 
 fn tri(p: Tri) -> ScreenTriangle {
-    ScreenTriangle {
-        v: p.map(|(x, y)| ScreenVertex {
-            x,
-            y,
-            z: 0.0,
-            normal: DVec3::Z,
-        }),
-    }
+    ScreenTriangle::from_points(p)
 }
 
 /// Check one stream of triangles: RTL vs model every clock (harness), then the pixels.
@@ -147,13 +139,11 @@ fn random_triangles_match_model_and_walk() {
 use proptest::strategy::ValueTree;
 use rtl::address_block::AddressBlock;
 use testbenches::address_block::stimulus;
-use testbenches::synth::check_and_synth;
-use testbenches::tools::{self, Tool};
+use testbenches::tools;
 use testbenches::verilog::{differential, DiffError, Simulator};
 
-fn address_block_verilog() -> String {
-    let raw = rtl::export::raw_verilog(AddressBlock::default()).expect("rust-hdl check");
-    rtl::export::rename_top(&raw, "address_block")
+fn block(name: &str) -> &'static dyn testbenches::registry::Entry {
+    testbenches::registry::find(name).unwrap()
 }
 
 /// The differential stimulus: the named cases and `n` seeded random triangle streams, walked
@@ -180,31 +170,14 @@ fn differential_setups(n: usize) -> Vec<AddressSetup> {
     tris.iter().map(|&p| AddressSetup::new(&tri(p))).collect()
 }
 
-#[test]
-fn yosys_synthesizes_address_block_cleanly() {
-    if !tools::require(&[Tool::Yosys], "yosys_synthesizes_address_block_cleanly") {
-        return;
-    }
-    let rep = check_and_synth(
-        &address_block_verilog(),
-        "address_block",
-        "yosys-address-block",
-    )
-    .unwrap_or_else(|e| panic!("{e}"));
-    print!("{rep}");
-    assert_eq!(rep.mac16(), 0, "the address block has no multiplier");
-    assert!(rep.luts() > 0 && rep.ffs() > 0, "empty netlist?");
-}
-
 fn differential_run(sim: Simulator, n: usize, tag: &str) {
     if !tools::require(sim.tools(), tag) {
         return;
     }
     let rows = stimulus(&differential_setups(n)).rows;
-    let rep = differential(
-        AddressBlock::default,
-        &address_block_verilog(),
-        "address_block",
+    let rep = testbenches::registry::differential(
+        block("address-block"),
+        &rtl::registry::Options::new(),
         &rows,
         sim,
         tag,
@@ -237,7 +210,7 @@ fn broken_address_block_export_is_caught() {
     ) {
         return;
     }
-    let good = address_block_verilog();
+    let good = rtl::export::verilog::<AddressBlock>(&rtl::registry::NoParams).unwrap();
     let rows = stimulus(&differential_setups(20)).rows;
     let mutants = [
         (

@@ -10,25 +10,17 @@ use golden::raster::{edge_function_pixels, walk};
 use golden::shade::ShadeContext;
 use golden::testing::{runner, seed_for};
 use golden::types::{Plane, ScreenTriangle, ScreenVertex};
+use pipeline::gouraud::{clock_budget, Pipe, TriangleJob};
 use proptest::prelude::*;
 use proptest::test_runner::TestCaseError;
 use std::collections::HashMap;
-use testbenches::address_block::triangle_strategy;
-use testbenches::intensity_interpolator::{
-    check_bvi as run_bvi, check_words, clock_budget, GoldenPixel, Pipe, TriangleJob,
-};
+use testbenches::address_block::{triangle_strategy, GoldenPixel};
+use testbenches::intensity_interpolator::{check_bvi as run_bvi, check_words};
 
 type Tri = [(i32, i32); 3];
 
 fn tri(p: Tri) -> ScreenTriangle {
-    ScreenTriangle {
-        v: p.map(|(x, y)| ScreenVertex {
-            x,
-            y,
-            z: 0.0,
-            normal: DVec3::Z,
-        }),
-    }
+    ScreenTriangle::from_points(p)
 }
 
 /// Error statistics of the running words against the golden value (LSB units).
@@ -377,14 +369,8 @@ use testbenches::synth::check_and_synth;
 use testbenches::tools::{self, Tool};
 use testbenches::verilog::{differential, DiffError, Simulator};
 
-fn bvi_verilog() -> String {
-    let raw = rtl::export::raw_verilog(IntensityInterpolator::default()).expect("rust-hdl check");
-    rtl::export::rename_top(&raw, "intensity_interpolator")
-}
-
-fn pipe_verilog() -> String {
-    let raw = rtl::export::raw_verilog(GouraudRaster::default()).expect("rust-hdl check");
-    rtl::export::rename_top(&raw, "gouraud_raster")
+fn block(name: &str) -> &'static dyn testbenches::registry::Entry {
+    testbenches::registry::find(name).unwrap()
 }
 
 /// Seeded random triangles with random vertex intensities (−40..320, so both saturation ends
@@ -435,60 +421,56 @@ fn yosys_synthesizes_bvi_and_pipe_cleanly() {
     if !tools::require(&[Tool::Yosys], "yosys_synthesizes_bvi_and_pipe_cleanly") {
         return;
     }
-    let rep = check_and_synth(&bvi_verilog(), "intensity_interpolator", "yosys-bvi")
-        .unwrap_or_else(|e| panic!("{e}"));
+    let rep = check_and_synth(
+        &rtl::export::verilog::<IntensityInterpolator>(&rtl::registry::NoParams).unwrap(),
+        "intensity_interpolator",
+        "yosys-bvi",
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
     print!("{rep}");
     assert_eq!(rep.mac16(), 0, "the BVI has adders only");
     assert!(
         rep.luts() > 0 && rep.ffs() >= 3 * 9 * 32,
         "nine 32-bit registers per channel"
     );
-    let rep = check_and_synth(&pipe_verilog(), "gouraud_raster", "yosys-pipe")
-        .unwrap_or_else(|e| panic!("{e}"));
+    let rep = check_and_synth(
+        &rtl::export::verilog::<GouraudRaster>(&rtl::registry::NoParams).unwrap(),
+        "gouraud_raster",
+        "yosys-pipe",
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
     print!("{rep}");
     assert_eq!(rep.mac16(), 0);
 }
 
+/// The BVI (60 seeded triangles' streams) and the raster pipe (30) against their exported
+/// Verilog under Icarus, bit-exact every clock.
 #[test]
-fn bvi_differential_icarus() {
-    if !tools::require(Simulator::Icarus.tools(), "bvi_differential_icarus") {
+fn bvi_and_pipe_differential_icarus() {
+    if !tools::require(
+        Simulator::Icarus.tools(),
+        "bvi_and_pipe_differential_icarus",
+    ) {
         return;
     }
-    let (rows, _) = bvi_rows(&differential_jobs(60));
-    let rep = differential(
-        IntensityInterpolator::default,
-        &bvi_verilog(),
-        "intensity_interpolator",
-        &rows,
-        Simulator::Icarus,
-        "diff-bvi",
-    )
-    .unwrap_or_else(|e| panic!("{e} (seed {})", seed_for("bvi_differential")));
-    println!(
-        "BVI bit-exact over {} clocks × {} ports; Icarus ran {:?}",
-        rep.cycles, rep.ports, rep.verilog_sim_time
-    );
-}
-
-#[test]
-fn pipe_differential_icarus() {
-    if !tools::require(Simulator::Icarus.tools(), "pipe_differential_icarus") {
-        return;
+    let runs = [
+        ("intensity-interpolator", bvi_rows(&differential_jobs(60)).0),
+        ("gouraud-raster", pipe_rows(&differential_jobs(30))),
+    ];
+    for (name, rows) in runs {
+        let rep = testbenches::registry::differential(
+            block(name),
+            &rtl::registry::Options::new(),
+            &rows,
+            Simulator::Icarus,
+            &format!("diff-{name}"),
+        )
+        .unwrap_or_else(|e| panic!("{name}: {e} (seed {})", seed_for("bvi_differential")));
+        println!(
+            "{name} bit-exact over {} clocks × {} ports; Icarus ran {:?}",
+            rep.cycles, rep.ports, rep.verilog_sim_time
+        );
     }
-    let rows = pipe_rows(&differential_jobs(30));
-    let rep = differential(
-        GouraudRaster::default,
-        &pipe_verilog(),
-        "gouraud_raster",
-        &rows,
-        Simulator::Icarus,
-        "diff-pipe",
-    )
-    .unwrap_or_else(|e| panic!("{e} (seed {})", seed_for("bvi_differential")));
-    println!(
-        "pipe bit-exact over {} clocks × {} ports; Icarus ran {:?}",
-        rep.cycles, rep.ports, rep.verilog_sim_time
-    );
 }
 
 #[test]
@@ -496,7 +478,7 @@ fn broken_bvi_export_is_caught() {
     if !tools::require(Simulator::Icarus.tools(), "broken_bvi_export_is_caught") {
         return;
     }
-    let good = bvi_verilog();
+    let good = rtl::export::verilog::<IntensityInterpolator>(&rtl::registry::NoParams).unwrap();
     let (rows, _) = bvi_rows(&differential_jobs(10));
     // Each mutation site occurs once per channel module; mutate the red channel's only.
     let mutants = [
@@ -509,7 +491,7 @@ fn broken_bvi_export_is_caught() {
         ),
     ];
     let red = good
-        .find("module intensity_interpolator$chan_r(")
+        .find("module intensity_interpolator$chan$0(")
         .expect("red channel module");
     for (what, from, to) in mutants {
         let at = red

@@ -326,3 +326,72 @@ fn domain_strategy_stays_in_the_domain() {
         "the strategy reaches both ends of the domain"
     );
 }
+
+/// A quantization bug in the coefficients the hardware is built with — one LSB on c2, c1 or
+/// c0, either set — is caught against the twin, which quantizes the requested coefficients
+/// itself: the coefficient words must equal the twin's, and a run with c2 one LSB off fails
+/// the every-clock comparison. (One LSB of c1 or c0 is 2⁻²⁹ or 2⁻²⁸: it moves an output only
+/// when a rounding lands within that of a half-LSB boundary, about once per 2¹⁴ vectors, so
+/// only the word comparison catches it reliably; the f64 bound never could.)
+#[test]
+fn twin_catches_a_one_lsb_coefficient_error() {
+    use golden::normalizer::twin::NormalizerKTwin;
+    use rtl::registry::RtlBlock;
+    use testbenches::registry::Bench;
+    let words = |c: &NormalizerCoeffs| (c.c2_mag as i64, c.c2_neg, c.c1, c.c0);
+    let seed = seed_for("twin_one_lsb_coefficient");
+    println!("[twin_one_lsb_coefficient] seed {seed}");
+    let rows = Normalizer::stimulus(&NormalizerCoeffs::published(), 3000, seed).rows;
+    for requested in [PUBLISHED, FIT] {
+        let good = NormalizerCoeffs::new(requested).unwrap();
+        let twin_words = NormalizerKTwin::new(requested).coefficient_words();
+        assert_eq!(words(&good), twin_words, "{requested:?}: coefficient words");
+        let bad = [
+            (
+                "c2 + 1 LSB",
+                NormalizerCoeffs {
+                    c2_mag: good.c2_mag + 1,
+                    ..good.clone()
+                },
+            ),
+            (
+                "c1 + 1 LSB",
+                NormalizerCoeffs {
+                    c1: good.c1 + 1,
+                    ..good.clone()
+                },
+            ),
+            (
+                "c0 + 1 LSB",
+                NormalizerCoeffs {
+                    c0: good.c0 + 1,
+                    ..good.clone()
+                },
+            ),
+        ];
+        for (what, c) in &bad {
+            assert_ne!(words(c), twin_words, "{what}");
+        }
+        let run = |c: &NormalizerCoeffs, name: &str| {
+            let mut twin = Normalizer::twin(&good);
+            let spec = harness::CheckSpec {
+                name: name.into(),
+                seed,
+                compare: vec![harness::Compare::Exact; 4],
+            };
+            harness::run(
+                || Normalizer::build(c),
+                &spec,
+                |k, _| rows.get(k as usize).cloned(),
+                |_, row| twin.step(row).into_iter().map(Expected::Word).collect(),
+            )
+            .map_err(Box::new)
+        };
+        run(&good, "twin-coeff-control").unwrap_or_else(|f| panic!("control: {f}"));
+        let f = run(&bad[0].1, "twin-coeff-mutant").expect_err("c2 + 1 LSB must be caught");
+        println!(
+            "{requested:?} c2 + 1 LSB: caught at cycle {} on {}",
+            f.cycle, f.signal
+        );
+    }
+}

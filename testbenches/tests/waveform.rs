@@ -1,22 +1,22 @@
-//! `shadecore sim … --vcd FILE`: the VCD it writes (through `testbenches::blocks::sim_to_vcd`,
+//! `shadecore sim … --vcd FILE`: the VCD it writes (through `testbenches::registry::sim_to_vcd`,
 //! the function the command calls) read back with an independent parser: the ports are
 //! declared and the sampled values equal the simulation's, clock by clock.
 
 use golden::testing::seed_for;
-use rtl::export::BlockKind;
-use rtl::normalizer::NormalizerCoeffs;
-use testbenches::blocks::{ports, sim_to_vcd};
+use rtl::registry::Options;
 use testbenches::harness::{target_dir, CLOCK_PERIOD_PS};
+use testbenches::registry::{find, sim_to_vcd};
 use testbenches::vcd_check::{sample, variables};
 
-fn check_vcd_of(block: BlockKind, n: usize) {
+fn check_vcd_of(block: &str, n: usize) {
+    let block = find(block).unwrap();
     let name = format!("waveform_{}", block.module_name());
     let seed = seed_for(&name);
     println!("[{name}] seed {seed}");
-    let c = NormalizerCoeffs::published();
+    let o = Options::new();
     let path = target_dir().join("sims").join(format!("test-{name}.vcd"));
-    let out = sim_to_vcd(block, &c, n, seed, &path).unwrap_or_else(|e| panic!("{e}"));
-    let (inputs, outputs) = ports(block, &c);
+    let out = sim_to_vcd(block, &o, n, seed, &path).unwrap_or_else(|e| panic!("{e}"));
+    let (inputs, outputs) = block.ports();
 
     // Every port is declared, with its width, in the `uut` scope.
     let vars = variables(&path).unwrap();
@@ -60,10 +60,10 @@ fn check_vcd_of(block: BlockKind, n: usize) {
 
 #[test]
 fn normalizer_vcd_matches_simulation() {
-    check_vcd_of(BlockKind::Normalizer, 300);
+    check_vcd_of("normalizer", 300);
 }
 
 #[test]
 fn k_recurrence_vcd_matches_simulation() {
-    check_vcd_of(BlockKind::KRecurrence, 300);
+    check_vcd_of("k-recurrence", 300);
 }

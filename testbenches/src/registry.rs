@@ -1,0 +1,408 @@
+//! The block registry: every exportable block, once. `shadecore export-verilog`, `synth`, `sim`
+//! (with its VCD), the generic tests (twin every clock, golden every clock, Yosys, Icarus,
+//! Verilator differential, SB_MAC16 count) and the README's block table are all driven from
+//! [`BLOCKS`].
+//!
+//! A block implements [`rtl::registry::RtlBlock`] in its `rtl/src` file (name, parameters,
+//! latency, multipliers, build) and [`Bench`] in its `testbenches/src` file (stimulus with
+//! golden expectations, its bit-exact twin); then one line in [`BLOCKS`] registers it.
+
+use std::marker::PhantomData;
+use std::path::Path;
+
+use rtl::registry::{module_name, BlockParams, Options, RtlBlock};
+
+use crate::harness::{self, CheckSpec, Compare, Expected, Failure, Port, Report};
+
+/// A seeded stimulus with golden expectations and how to compare them.
+pub struct Stimulus {
+    pub rows: Vec<Vec<u64>>,
+    pub expected: Vec<Vec<Expected>>,
+    pub compare: Vec<Compare>,
+}
+
+/// A block's bit-exact integer twin, written independently of the RTL (same rounding and
+/// saturation): one input row per clock in, the output row the block shows in that clock
+/// (sampled before the rising edge, as `rtl::sim::Stepper::step` samples) out. It starts
+/// from the reset state (every register 0, as rust-hdl's and the exported Verilog's).
+pub trait Twin {
+    fn step(&mut self, inputs: &[u64]) -> Vec<u64>;
+}
+
+/// The bench side of a block: implemented once, in its `testbenches/src` file.
+pub trait Bench: RtlBlock {
+    /// What one stimulus item is ("vectors", "pixels", "triangles").
+    const ITEMS: &'static str;
+    /// Items `shadecore sim` simulates by default.
+    const DEFAULT_ITEMS: usize;
+    /// `n` items of seeded random stimulus (plus the block's named cases where it has them)
+    /// with the golden (f64) expectation of every output port in every clock.
+    fn stimulus(p: &Self::Params, n: usize, seed: u64) -> Stimulus;
+    /// The block's bit-exact twin.
+    fn twin(p: &Self::Params) -> Box<dyn Twin>;
+    /// Extra rows for the twin comparison beyond the stimulus: named edge cases and inputs
+    /// outside the formula's domain (saturation paths). None by default.
+    fn edge_rows(_p: &Self::Params, _seed: u64) -> Vec<Vec<u64>> {
+        Vec::new()
+    }
+}
+
+/// A registered block, object-safe: what the commands and generic tests call.
+pub trait Entry: Sync {
+    fn name(&self) -> &'static str;
+    fn module_name(&self) -> String {
+        module_name(self.name())
+    }
+    fn summary(&self) -> &'static str;
+    fn latency(&self) -> usize;
+    fn latency_meaning(&self) -> &'static str;
+    fn multipliers(&self) -> usize;
+    fn items(&self) -> &'static str;
+    fn default_items(&self) -> usize;
+    /// The [`Options`] keys the block's parameters read.
+    fn param_keys(&self) -> &'static [&'static str];
+    /// Check that the options build this block (errors name the problem).
+    fn check_options(&self, o: &Options) -> Result<(), String>;
+    /// Input and output ports (the harness's row order).
+    fn ports(&self) -> (Vec<Port>, Vec<Port>);
+    fn verilog(&self, o: &Options) -> Result<String, String>;
+    fn stimulus(&self, o: &Options, n: usize, seed: u64) -> Result<Stimulus, String>;
+    /// Run `stim` through the RTL, checking every clock against the golden expectations.
+    fn run_golden(
+        &self,
+        o: &Options,
+        stim: &Stimulus,
+        name: &str,
+        seed: u64,
+    ) -> Result<Report, Box<Failure>>;
+    /// [`Bench::edge_rows`].
+    fn edge_rows(&self, o: &Options, seed: u64) -> Result<Vec<Vec<u64>>, String>;
+    /// The twin's output rows for `rows`.
+    fn twin_outputs(&self, o: &Options, rows: &[Vec<u64>]) -> Result<Vec<Vec<u64>>, String>;
+    /// Run `rows` through the RTL, requiring every output port in every clock to equal the
+    /// twin's bit for bit.
+    fn run_twin(
+        &self,
+        o: &Options,
+        rows: &[Vec<u64>],
+        name: &str,
+        seed: u64,
+    ) -> Result<Report, Box<Failure>>;
+    /// The rust-hdl simulation's output rows for `rows`.
+    fn simulate(&self, o: &Options, rows: &[Vec<u64>]) -> Result<Vec<Vec<u64>>, String>;
+    /// Replay `rows` writing a VCD of the whole run (every signal) to `path`.
+    fn write_vcd(&self, o: &Options, rows: &[Vec<u64>], path: &Path) -> Result<(), String>;
+}
+
+/// The [`Entry`] of a block type.
+pub struct Registered<B>(PhantomData<fn() -> B>);
+
+/// The registry entry of `B` (used in [`BLOCKS`]).
+pub const fn entry<B: Bench>() -> Registered<B> {
+    Registered(PhantomData)
+}
+
+fn failure(name: &str, seed: u64, detail: String) -> Box<Failure> {
+    Box::new(Failure {
+        name: name.into(),
+        seed,
+        cycle: 0,
+        signal: "(set-up)".into(),
+        expected: "-".into(),
+        actual: "-".into(),
+        vcd: None,
+        detail,
+    })
+}
+
+impl<B: Bench> Entry for Registered<B> {
+    fn name(&self) -> &'static str {
+        B::NAME
+    }
+    fn summary(&self) -> &'static str {
+        B::SUMMARY
+    }
+    fn latency(&self) -> usize {
+        B::LATENCY
+    }
+    fn latency_meaning(&self) -> &'static str {
+        B::LATENCY_MEANING
+    }
+    fn multipliers(&self) -> usize {
+        B::MULTIPLIERS
+    }
+    fn items(&self) -> &'static str {
+        B::ITEMS
+    }
+    fn default_items(&self) -> usize {
+        B::DEFAULT_ITEMS
+    }
+    fn param_keys(&self) -> &'static [&'static str] {
+        B::Params::KEYS
+    }
+    fn check_options(&self, o: &Options) -> Result<(), String> {
+        B::Params::from_options(o).map(|_| ())
+    }
+    fn ports(&self) -> (Vec<Port>, Vec<Port>) {
+        // Ports do not depend on the parameters; build with the defaults.
+        let d = B::build(&B::Params::from_options(&Options::new()).expect("default parameters"));
+        (d.inputs(), d.outputs())
+    }
+    fn verilog(&self, o: &Options) -> Result<String, String> {
+        rtl::export::verilog::<B>(&B::Params::from_options(o)?)
+    }
+    fn stimulus(&self, o: &Options, n: usize, seed: u64) -> Result<Stimulus, String> {
+        Ok(B::stimulus(&B::Params::from_options(o)?, n, seed))
+    }
+    fn run_golden(
+        &self,
+        o: &Options,
+        stim: &Stimulus,
+        name: &str,
+        seed: u64,
+    ) -> Result<Report, Box<Failure>> {
+        let p = B::Params::from_options(o).map_err(|e| failure(name, seed, e))?;
+        let spec = CheckSpec {
+            name: name.into(),
+            seed,
+            compare: stim.compare.clone(),
+        };
+        harness::run_rows(|| B::build(&p), &spec, &stim.rows, &stim.expected).map_err(Box::new)
+    }
+    fn edge_rows(&self, o: &Options, seed: u64) -> Result<Vec<Vec<u64>>, String> {
+        Ok(B::edge_rows(&B::Params::from_options(o)?, seed))
+    }
+    fn twin_outputs(&self, o: &Options, rows: &[Vec<u64>]) -> Result<Vec<Vec<u64>>, String> {
+        let mut t = B::twin(&B::Params::from_options(o)?);
+        Ok(rows.iter().map(|r| t.step(r)).collect())
+    }
+    fn run_twin(
+        &self,
+        o: &Options,
+        rows: &[Vec<u64>],
+        name: &str,
+        seed: u64,
+    ) -> Result<Report, Box<Failure>> {
+        let p = B::Params::from_options(o).map_err(|e| failure(name, seed, e))?;
+        let mut twin = B::twin(&p);
+        let n_out = self.ports().1.len();
+        let spec = CheckSpec {
+            name: name.into(),
+            seed,
+            compare: vec![Compare::Exact; n_out],
+        };
+        harness::run(
+            || B::build(&p),
+            &spec,
+            |c, _| rows.get(c as usize).cloned(),
+            |_, row| twin.step(row).into_iter().map(Expected::Word).collect(),
+        )
+        .map_err(Box::new)
+    }
+    fn simulate(&self, o: &Options, rows: &[Vec<u64>]) -> Result<Vec<Vec<u64>>, String> {
+        harness::simulate_rows(B::build(&B::Params::from_options(o)?), rows)
+    }
+    fn write_vcd(&self, o: &Options, rows: &[Vec<u64>], path: &Path) -> Result<(), String> {
+        let dut = B::build(&B::Params::from_options(o)?);
+        harness::write_vcd_window(dut, rows, 0, rows.len() as u64, path)
+    }
+}
+
+/// Every exportable block. Adding a block: its `rtl/src` file (with `impl RtlBlock`), its
+/// `testbenches/src` file (with `impl Bench`), and one line here.
+pub static BLOCKS: &[&dyn Entry] = &[
+    &entry::<rtl::normalizer::Normalizer>(),
+    &entry::<rtl::normalizer::NormalizerK>(),
+    &entry::<rtl::k_recurrence::KRecurrence>(),
+    &entry::<rtl::k_recurrence::SpanNormalizer>(),
+    &entry::<rtl::address_block::AddressBlock>(),
+    &entry::<rtl::intensity_interpolator::IntensityInterpolator>(),
+    &entry::<rtl::gouraud_raster::GouraudRaster>(),
+];
+
+/// The entry named `name`.
+pub fn find(name: &str) -> Result<&'static dyn Entry, String> {
+    BLOCKS
+        .iter()
+        .copied()
+        .find(|b| b.name() == name)
+        .ok_or_else(|| format!("unknown block {name:?} (expected one of: {})", names()))
+}
+
+/// `NAME` or `all`.
+pub fn select(name: &str) -> Result<Vec<&'static dyn Entry>, String> {
+    if name == "all" {
+        Ok(BLOCKS.to_vec())
+    } else {
+        find(name)
+            .map(|b| vec![b])
+            .map_err(|e| format!("{e}, or all"))
+    }
+}
+
+/// The block names, comma-separated.
+pub fn names() -> String {
+    BLOCKS
+        .iter()
+        .map(|b| b.name())
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// Check `o` against `blocks`: every key must be read by at least one of them, and each block
+/// must build with it.
+pub fn check_options(blocks: &[&dyn Entry], o: &Options) -> Result<(), String> {
+    for k in o.keys() {
+        if !blocks.iter().any(|b| b.param_keys().contains(&k)) {
+            let known: Vec<&str> = blocks
+                .iter()
+                .flat_map(|b| b.param_keys())
+                .copied()
+                .collect();
+            return Err(format!(
+                "parameter {k:?} is not read by {} (parameters: {})",
+                blocks
+                    .iter()
+                    .map(|b| b.name())
+                    .collect::<Vec<_>>()
+                    .join(", "),
+                if known.is_empty() {
+                    "none".to_string()
+                } else {
+                    known.join(", ")
+                }
+            ));
+        }
+    }
+    for b in blocks {
+        b.check_options(o)
+            .map_err(|e| format!("{}: {e}", b.name()))?;
+    }
+    Ok(())
+}
+
+/// Outcome of [`sim_to_vcd`].
+pub struct SimOutcome {
+    pub report: Report,
+    pub vcd: std::path::PathBuf,
+}
+
+/// `shadecore sim`: `n` seeded items through `block`, checked every clock against its twin
+/// (exactly) and the golden model (within the format's bound), then replayed into a VCD at
+/// `vcd`. A check failure is returned as the error (its own VCD is under `target/sims/`).
+pub fn sim_to_vcd(
+    block: &dyn Entry,
+    o: &Options,
+    n: usize,
+    seed: u64,
+    vcd: &Path,
+) -> Result<SimOutcome, String> {
+    let stim = block.stimulus(o, n, seed)?;
+    let name = format!("sim-{}", block.name());
+    block
+        .run_twin(o, &stim.rows, &format!("{name}-twin"), seed)
+        .map_err(|f| f.to_string())?;
+    let report = block
+        .run_golden(o, &stim, &name, seed)
+        .map_err(|f| f.to_string())?;
+    block.write_vcd(o, &report.inputs, vcd)?;
+    Ok(SimOutcome {
+        report,
+        vcd: vcd.to_path_buf(),
+    })
+}
+
+/// `shadecore synth`: Yosys cell counts, and the nextpnr UP5K Fmax when `pnr` and
+/// nextpnr-ice40 is installed (`None` otherwise).
+pub fn synth_block(
+    block: &dyn Entry,
+    o: &Options,
+    pnr: bool,
+) -> Result<(crate::synth::SynthReport, Option<f64>), String> {
+    use crate::tools::{self, Tool};
+    if !tools::available(Tool::Yosys) {
+        return Err("yosys is not installed (apt-get install yosys)".into());
+    }
+    let v = block.verilog(o)?;
+    let module = block.module_name();
+    let rep = crate::synth::check_and_synth(&v, &module, &format!("synth-{}", block.name()))?;
+    let fmax = if pnr && tools::available(Tool::NextpnrIce40) {
+        let (i, out) = block.ports();
+        Some(crate::synth::fmax_ice40_up5k(
+            &v,
+            &module,
+            &i,
+            &out,
+            &format!("pnr-{}", block.name()),
+        )?)
+    } else {
+        None
+    };
+    Ok((rep, fmax))
+}
+
+/// The differential check of a registered block: `rows` through the rust-hdl simulation and
+/// through its exported Verilog (built with `o`) under `sim`; identical outputs every clock.
+pub fn differential(
+    block: &dyn Entry,
+    o: &Options,
+    rows: &[Vec<u64>],
+    sim: crate::verilog::Simulator,
+    tag: &str,
+) -> Result<crate::verilog::DiffReport, crate::verilog::DiffError> {
+    use crate::verilog::DiffError;
+    let v = block.verilog(o).map_err(DiffError::Tool)?;
+    let rust_rows = block.simulate(o, rows).map_err(DiffError::Tool)?;
+    crate::verilog::differential_rows(
+        &v,
+        &block.module_name(),
+        block.ports(),
+        rows,
+        &rust_rows,
+        sim,
+        tag,
+    )
+}
+
+/// The rows every generic test of a block drives: `n` items of its seeded stimulus, then its
+/// edge rows.
+pub fn test_rows(
+    block: &dyn Entry,
+    o: &Options,
+    n: usize,
+    seed: u64,
+) -> Result<Vec<Vec<u64>>, String> {
+    let mut rows = block.stimulus(o, n, seed)?.rows;
+    rows.extend(block.edge_rows(o, seed)?);
+    Ok(rows)
+}
+
+/// The README's block table, generated from [`BLOCKS`] (`shadecore blocks` prints it; a test
+/// keeps the README's copy identical).
+pub fn markdown_table() -> String {
+    let mut s = String::from(
+        "| block | what it is | latency (clocks) | measured from | 16×16 multipliers | parameters |\n\
+         |---|---|---:|---|---:|---|\n",
+    );
+    for b in BLOCKS {
+        let params = if b.param_keys().is_empty() {
+            "—".to_string()
+        } else {
+            b.param_keys()
+                .iter()
+                .map(|k| format!("`{k}`"))
+                .collect::<Vec<_>>()
+                .join(", ")
+        };
+        s.push_str(&format!(
+            "| `{}` | {} | {} | {} | {} | {} |\n",
+            b.name(),
+            b.summary().replace('|', "\\|"),
+            b.latency(),
+            b.latency_meaning(),
+            b.multipliers(),
+            params
+        ));
+    }
+    s
+}

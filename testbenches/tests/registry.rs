@@ -1,0 +1,293 @@
+//! Generic tests over every block in the registry (`testbenches::registry::BLOCKS`): a block
+//! that is registered gets all of them without a line of its own.
+//!
+//! - its bit-exact twin equals the RTL on every port in every clock (seeded stimulus plus the
+//!   block's edge rows), and the golden f64 model agrees within the format-derived bound;
+//! - Yosys synthesizes it cleanly with the registry's multiplier count of SB_MAC16;
+//! - its exported Verilog is bit-exact with the rust-hdl simulation under Icarus and Verilator;
+//! - each parameter set it reads (`coeffs=published|fit`) builds.
+//!
+//! Tests needing a tool skip with a notice when it is missing, and fail when `CI` is set.
+//! `SHADECORE_SEED` replays or varies the seeds.
+
+use golden::testing::seed_for;
+use rtl::registry::Options;
+use testbenches::registry::{self, differential, test_rows, Entry, BLOCKS};
+use testbenches::synth::check_and_synth;
+use testbenches::tools::{self, Tool};
+use testbenches::verilog::Simulator;
+
+/// Items of stimulus per block in the generic tests (triangles take 1000–2000 clocks each).
+fn items(b: &dyn Entry) -> usize {
+    if b.items() == "triangles" {
+        12
+    } else {
+        3000
+    }
+}
+
+/// Every parameter set a block is tested with.
+fn option_sets(b: &dyn Entry) -> Vec<Options> {
+    if b.param_keys().contains(&"coeffs") {
+        vec![
+            Options::new().with("coeffs", "published"),
+            Options::new().with("coeffs", "fit"),
+        ]
+    } else {
+        vec![Options::new()]
+    }
+}
+
+fn label(b: &dyn Entry, o: &Options) -> String {
+    match o.get("coeffs") {
+        Some(c) => format!("{}-{c}", b.name()),
+        None => b.name().to_string(),
+    }
+}
+
+#[test]
+fn every_block_equals_its_twin_every_clock() {
+    for b in BLOCKS {
+        for o in option_sets(*b) {
+            let name = format!("twin-{}", label(*b, &o));
+            let seed = seed_for(&name);
+            let rows = test_rows(*b, &o, items(*b), seed).unwrap();
+            let rep = b
+                .run_twin(&o, &rows, &name, seed)
+                .unwrap_or_else(|f| panic!("{f}"));
+            println!(
+                "[{name}] seed {seed}: {} clocks × {} ports bit-exact with the twin",
+                rep.cycles,
+                rep.ports.len()
+            );
+            assert!(rep.cycles as usize == rows.len() && rows.len() > 100);
+        }
+    }
+}
+
+#[test]
+fn every_block_agrees_with_golden_every_clock() {
+    for b in BLOCKS {
+        for o in option_sets(*b) {
+            let name = format!("golden-{}", label(*b, &o));
+            let seed = seed_for(&name);
+            let stim = b.stimulus(&o, items(*b), seed).unwrap();
+            let rep = b
+                .run_golden(&o, &stim, &name, seed)
+                .unwrap_or_else(|f| panic!("{f}"));
+            print!("{rep}");
+            // Something was actually compared: the valid flag (output 0 or 1) every clock.
+            assert!(rep
+                .ports
+                .iter()
+                .all(|p| p.checked > 0 || p.name.contains("word")));
+        }
+    }
+}
+
+#[test]
+fn registry_names_are_unique_and_lookups_fail_clearly() {
+    let names: std::collections::HashSet<&str> = BLOCKS.iter().map(|b| b.name()).collect();
+    assert_eq!(names.len(), BLOCKS.len());
+    for b in BLOCKS {
+        assert_eq!(registry::find(b.name()).unwrap().name(), b.name());
+        assert!(b
+            .module_name()
+            .chars()
+            .all(|c| c.is_ascii_lowercase() || c == '_'));
+        let v = b.verilog(&Options::new()).unwrap();
+        assert!(
+            v.contains(&format!("module {}(", b.module_name())),
+            "{}",
+            b.name()
+        );
+        assert!(!v.contains("module top"), "{}", b.name());
+        // Only blocks built from coefficients name them in their header.
+        assert_eq!(
+            v.contains("// Coefficients"),
+            b.param_keys().contains(&"coeffs"),
+            "{}",
+            b.name()
+        );
+    }
+    assert!(registry::find("nope")
+        .err()
+        .unwrap()
+        .contains("expected one of"));
+    assert_eq!(registry::select("all").unwrap().len(), BLOCKS.len());
+    let o = Options::new().with("coeffs", "nope");
+    let e = registry::check_options(&registry::select("normalizer").unwrap(), &o).unwrap_err();
+    assert!(e.contains("unknown coefficient set"), "{e}");
+    let o = Options::new().with("colour", "red");
+    let e = registry::check_options(&registry::select("all").unwrap(), &o).unwrap_err();
+    assert!(e.contains("\"colour\" is not read"), "{e}");
+}
+
+#[test]
+fn yosys_synthesizes_every_block_with_its_multipliers() {
+    if !tools::require(
+        &[Tool::Yosys],
+        "yosys_synthesizes_every_block_with_its_multipliers",
+    ) {
+        return;
+    }
+    for b in BLOCKS {
+        for o in option_sets(*b) {
+            let v = b.verilog(&o).unwrap();
+            let rep = check_and_synth(&v, &b.module_name(), &format!("yosys-{}", label(*b, &o)))
+                .unwrap_or_else(|e| panic!("{}: {e}", b.name()));
+            print!("{rep}");
+            assert_eq!(
+                rep.mac16(),
+                b.multipliers() as u64,
+                "{}: multipliers mapped to SB_MAC16",
+                b.name()
+            );
+            assert!(
+                rep.luts() > 0 && rep.ffs() > 0,
+                "{}: empty netlist?",
+                b.name()
+            );
+        }
+    }
+}
+
+fn verilog_bit_exact(sim: Simulator, test: &str) {
+    if !tools::require(sim.tools(), test) {
+        return;
+    }
+    for b in BLOCKS {
+        for o in option_sets(*b) {
+            let name = format!("{test}-{}", label(*b, &o));
+            let seed = seed_for(&name);
+            let rows = test_rows(*b, &o, items(*b), seed).unwrap();
+            let rep = differential(*b, &o, &rows, sim, &name)
+                .unwrap_or_else(|e| panic!("{}: {e} (seed {seed})", label(*b, &o)));
+            println!(
+                "[{name}] {:?}: bit-exact over {} clocks × {} ports",
+                sim, rep.cycles, rep.ports
+            );
+        }
+    }
+}
+
+#[test]
+fn every_block_verilog_is_bit_exact_under_icarus() {
+    verilog_bit_exact(Simulator::Icarus, "icarus_bit_exact");
+}
+
+#[test]
+fn every_block_verilog_is_bit_exact_under_verilator() {
+    verilog_bit_exact(Simulator::Verilator, "verilator_bit_exact");
+}
+
+/// The latencies the registry states are what the RTL does: one fixed triangle, loaded in
+/// clock 0; its first row has pixels.
+#[test]
+fn triangle_block_latencies_match_the_rtl() {
+    use golden::types::{Plane, ScreenTriangle};
+    use pipeline::gouraud::{pipe_row, TriangleJob};
+    use rtl::address_block::AddressBlock;
+    use rtl::gouraud_raster::GouraudRaster;
+    use rtl::intensity_interpolator::IntensityInterpolator;
+    use rtl::sim::simulate_rows;
+    use testbenches::address_block::address_run;
+    use testbenches::intensity_interpolator::{bvi_rows, pipe_rows};
+    let t = ScreenTriangle::from_points([(3, 1), (40, 7), (11, 30)]);
+    let ramp = |c: f64| Plane { a: 1.0, b: 2.0, c };
+    let job = TriangleJob::new(&t, &[ramp(10.0), ramp(20.0), ramp(30.0)]);
+    let first = |outs: &[Vec<u64>], k: usize| outs.iter().position(|o| o[k] != 0);
+    let lat = |name: &str| registry::find(name).unwrap().latency();
+
+    let (rows, _, _) = address_run(&[job]);
+    assert_eq!(rows[0][0], 1, "loaded in clock 0");
+    let outs = simulate_rows(AddressBlock::default(), &rows).unwrap();
+    // Outputs: ready, valid, x, y, step, line_start, row_start, carry, done.
+    assert_eq!(first(&outs, 6), Some(lat("address-block")));
+    assert_eq!(first(&outs, 1), Some(lat("address-block")));
+
+    let rows = pipe_rows(&[job]);
+    assert_eq!(rows[0], pipe_row(Some(&job)), "loaded in clock 0");
+    let outs = simulate_rows(GouraudRaster::default(), &rows).unwrap();
+    assert_eq!(first(&outs, 1), Some(lat("gouraud-raster")));
+
+    // BVI: valid_out is the event's valid (input 13) delayed by the latency, every clock.
+    let (rows, _) = bvi_rows(&[job]);
+    let outs = simulate_rows(IntensityInterpolator::default(), &rows).unwrap();
+    let l = lat("intensity-interpolator");
+    assert!(rows.iter().any(|r| r[13] != 0));
+    for c in l..rows.len() {
+        assert_eq!(outs[c][0], rows[c - l][13], "clock {c}");
+    }
+}
+
+/// `shadecore sim` on every block: a checked run and a VCD declaring every port with its
+/// width; and the check can fail (the first valid clock's expectation altered: a word + 1, or
+/// a real + 2 LSB of its format).
+#[test]
+fn every_block_simulates_and_the_check_can_fail() {
+    use testbenches::harness::{target_dir, Expected};
+    use testbenches::registry::sim_to_vcd;
+    let seed = seed_for("blocks_sim");
+    println!("[blocks_sim] seed {seed}");
+    for b in BLOCKS {
+        let o = Options::new();
+        let n = if b.items() == "triangles" { 6 } else { 200 };
+        let vcd = target_dir()
+            .join("sims")
+            .join(format!("test-blocks-{}.vcd", b.name()));
+        let out = sim_to_vcd(*b, &o, n, seed, &vcd).unwrap_or_else(|e| panic!("{}: {e}", b.name()));
+        let (ins, outs) = b.ports();
+        let vars = testbenches::vcd_check::variables(&vcd).unwrap();
+        for p in ins.iter().chain(&outs) {
+            let full = format!("uut.{}", p.name);
+            assert!(
+                vars.iter()
+                    .any(|(n, w)| *n == full && *w as usize == p.width),
+                "{}: {full} ({} bits) missing from the VCD",
+                b.name(),
+                p.width
+            );
+        }
+        let valid = outs
+            .iter()
+            .position(|p| p.name.starts_with("valid"))
+            .unwrap();
+        let pixels = out.report.outputs.iter().filter(|o| o[valid] != 0).count();
+        assert!(
+            pixels > 0,
+            "{}: nothing valid in {} clocks",
+            b.name(),
+            out.report.cycles
+        );
+
+        // Alter the expectation of the first checked data port in the first valid clock.
+        let mut stim = b.stimulus(&o, n, seed).unwrap();
+        let clock = stim
+            .expected
+            .iter()
+            .position(|e| e[valid] == Expected::Word(1))
+            .unwrap();
+        let port = (0..outs.len())
+            .find(|&k| {
+                k != valid
+                    && stim.expected[clock][k] != Expected::DontCare
+                    && !outs[k].name.contains("ready")
+            })
+            .unwrap();
+        let lsb = match stim.compare[port] {
+            testbenches::harness::Compare::Fixed { format, .. } => format.lsb(),
+            testbenches::harness::Compare::Exact => 1.0,
+        };
+        stim.expected[clock][port] = match stim.expected[clock][port] {
+            Expected::Word(w) => Expected::Word(w + 1),
+            Expected::Real(v) => Expected::Real(v + 2.0 * lsb.max(1e-3)),
+            Expected::DontCare => unreachable!(),
+        };
+        let f = b
+            .run_golden(&o, &stim, &format!("blocks-mutant-{}", b.name()), seed)
+            .expect_err("an altered expectation must fail");
+        assert_eq!(f.cycle as usize, clock, "{}", b.name());
+        assert_eq!(f.signal, outs[port].name, "{}", b.name());
+    }
+}
