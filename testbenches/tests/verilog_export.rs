@@ -99,27 +99,19 @@ fn k_recurrence_and_span_normalizer_differential() {
     );
 }
 
-/// Replace the single occurrence of `from` in the module of `v` where it is unique — the
-/// whole text, or (for a shared primitive) the instance module named in `MODULE_OF` —
-/// by `to` (panics if the site is not unique there).
+/// Replace the single occurrence of `from` in `v` — in the whole text, or for a site inside a
+/// shared primitive in the instance module `MODULE_OF` names — by `to` (panics if the site is
+/// not unique there).
 fn mutate(v: &str, from: &str, to: &str) -> String {
-    let (start, end) = match MODULE_OF.iter().find(|(site, _)| *site == from) {
-        Some((_, m)) => {
-            let s = v
-                .find(&format!("module {m}("))
-                .expect("module of the mutation site");
-            (s, v[s..].find("endmodule").map_or(v.len(), |e| s + e))
-        }
-        None => (0, v.len()),
-    };
-    let region = &v[start..end];
+    if let Some((_, m)) = MODULE_OF.iter().find(|(site, _)| *site == from) {
+        return mutate_in(v, m, from, to);
+    }
     assert_eq!(
-        region.matches(from).count(),
+        v.matches(from).count(),
         1,
         "mutation site {from:?} must occur once"
     );
-    let at = start + region.find(from).expect("site");
-    format!("{}{to}{}", &v[..at], &v[at + from.len()..])
+    v.replacen(from, to, 1)
 }
 
 /// Mutation sites inside a shared primitive: the instance whose module is mutated.
@@ -204,4 +196,62 @@ fn broken_export_is_caught() {
             Ok(_) => panic!("mutant [{what}] was NOT caught by the differential test"),
         }
     }
+}
+
+/// A rounding bias of a quarter LSB in the normalizer's output stage (the half-LSB constant
+/// 2¹⁴ of every output lane made 2¹⁴ + 2¹³) — the kind of bug the rust-hdl simulation shares
+/// with its own Verilog, so only an independent model can see it — is caught by the
+/// bit-exact twin on the first vectors; the unmodified export equals the twin every clock.
+#[test]
+fn twin_catches_a_quarter_lsb_output_bias() {
+    use rtl::registry::RtlBlock;
+    use rtl::sim::Dut;
+    use testbenches::registry::Bench;
+    if !icarus("twin_catches_a_quarter_lsb_output_bias") {
+        return;
+    }
+    let c = NormalizerCoeffs::published();
+    let seed = seed_for("quarter_lsb_bias");
+    println!("[quarter_lsb_bias] seed {seed}");
+    let rows = Normalizer::stimulus(&c, 2000, seed).rows;
+    let mut twin = Normalizer::twin(&c);
+    let expected: Vec<Vec<u64>> = rows.iter().map(|r| twin.step(r)).collect();
+    let good = export::verilog::<Normalizer>(&c).unwrap();
+    let ports = Normalizer::build(&c);
+    let ports = (ports.inputs(), ports.outputs());
+    let run = |v: &str, tag: &str| {
+        verilog::differential_rows(
+            v,
+            "normalizer",
+            ports.clone(),
+            &rows,
+            &expected,
+            Simulator::Icarus,
+            tag,
+        )
+    };
+    run(&good, "quarter-lsb-control").unwrap_or_else(|e| panic!("control: {e}"));
+    let mut bad = good.clone();
+    for lane in ["x", "y", "z"] {
+        bad = mutate_in(
+            &bad,
+            &format!("normalizer$scale$lane_{lane}$round"),
+            "half_lsb = 32'h4000",
+            "half_lsb = 32'h6000",
+        );
+    }
+    match run(&bad, "quarter-lsb-mutant") {
+        Err(DiffError::Mismatch(m)) => println!("caught the ¼-LSB bias: {m}"),
+        Err(DiffError::Tool(e)) => panic!("mutant did not run: {e}"),
+        Ok(_) => panic!("a ¼-LSB output bias was NOT caught by the twin"),
+    }
+}
+
+/// [`mutate`] restricted to module `module`.
+fn mutate_in(v: &str, module: &str, from: &str, to: &str) -> String {
+    let s = v.find(&format!("module {module}(")).expect("module");
+    let e = v[s..].find("endmodule").map_or(v.len(), |e| s + e);
+    assert_eq!(v[s..e].matches(from).count(), 1, "{from:?} in {module}");
+    let at = s + v[s..e].find(from).unwrap();
+    format!("{}{to}{}", &v[..at], &v[at + from.len()..])
 }
