@@ -8,7 +8,7 @@
 //! every pixel along a line adds dir·a. The RTL adds the same increments, grouped per line
 //! (`short`/`long`: the whole move of the working edge into a line) and quantized to signed Q16.16.
 
-use crate::address_block::AddressSetup;
+use crate::address_block::{AddressOutputs, AddressSetup};
 use crate::types::{Plane, StepType, Walk};
 
 /// Fraction bits of the hardware's intensity words (signed Q16.16, 8-bit LSB units).
@@ -245,20 +245,13 @@ impl BviTwin {
         (self.valid_p1, w.map(saturate), w)
     }
 
-    /// One rising edge: the address block's event (`valid`, `row_start`, `step` code,
-    /// `carry`) and, with `load`, the next triangle's words.
-    pub fn clock(
-        &mut self,
-        load: Option<&[ChannelWords; 3]>,
-        valid: bool,
-        row_start: bool,
-        step: u32,
-        carry: bool,
-    ) {
-        let first = row_start && step == 0;
+    /// One rising edge: the address block's event `ev` (its `valid`, `row_start`, `step`
+    /// code and `carry`) and, with `load`, the next triangle's words.
+    pub fn clock(&mut self, load: Option<&[ChannelWords; 3]>, ev: &AddressOutputs) {
+        let first = ev.row_start && ev.step == 0;
         for (k, ch) in self.channels.iter_mut().enumerate() {
-            ch.clock(load.map(|w| &w[k]), first, row_start, carry, valid);
+            ch.clock(load.map(|w| &w[k]), first, ev.row_start, ev.carry, ev.valid);
         }
-        self.valid_p1 = valid;
+        self.valid_p1 = ev.valid;
     }
 }

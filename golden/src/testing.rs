@@ -54,3 +54,74 @@ pub fn split_vertices(m: &Mesh) -> Mesh {
     }
     out
 }
+
+/// One named test case of `named_triangles.txt`: triangles walked back to back, and their
+/// vertex intensities (`values[triangle][vertex][channel]`) where the case gives them.
+#[derive(Clone, Debug, PartialEq)]
+pub struct NamedCase {
+    pub name: &'static str,
+    pub tris: Vec<[(i32, i32); 3]>,
+    pub values: Option<Vec<[[f64; 3]; 3]>>,
+}
+
+/// The named triangles shared by the raster, address-block and intensity-interpolator tests
+/// (`golden/src/named_triangles.txt`: shapes, tiny and degenerate cases, slivers, address
+/// limits, back-to-back runs), in file order.
+pub fn named_triangles() -> Vec<NamedCase> {
+    fn numbers<T: std::str::FromStr>(s: &str, line: &str) -> Vec<T> {
+        s.split_whitespace()
+            .map(|w| {
+                w.parse()
+                    .unwrap_or_else(|_| panic!("named_triangles.txt: {line:?}"))
+            })
+            .collect()
+    }
+    fn groups<T: std::str::FromStr + Copy, const N: usize>(s: &str, line: &str) -> Vec<[T; N]> {
+        s.split(';')
+            .map(|g| {
+                let v: Vec<T> = numbers(g, line);
+                <[T; N]>::try_from(v).unwrap_or_else(|_| panic!("named_triangles.txt: {line:?}"))
+            })
+            .collect()
+    }
+    include_str!("named_triangles.txt")
+        .lines()
+        .map(str::trim)
+        .filter(|l| !l.is_empty() && !l.starts_with('#'))
+        .map(|line| {
+            let (name, rest) = line.split_once(':').expect("name: coordinates");
+            let (coords, values) = match rest.split_once('|') {
+                Some((c, v)) => (c, Some(v)),
+                None => (rest, None),
+            };
+            let tris = groups::<i32, 6>(coords, line)
+                .into_iter()
+                .map(|c| [(c[0], c[1]), (c[2], c[3]), (c[4], c[5])])
+                .collect::<Vec<_>>();
+            let values = values.map(|v| {
+                groups::<f64, 9>(v, line)
+                    .into_iter()
+                    .map(|c| [[c[0], c[1], c[2]], [c[3], c[4], c[5]], [c[6], c[7], c[8]]])
+                    .collect::<Vec<_>>()
+            });
+            assert!(
+                values.as_ref().is_none_or(|v| v.len() == tris.len()),
+                "{line:?}"
+            );
+            NamedCase {
+                name: name.trim(),
+                tris,
+                values,
+            }
+        })
+        .collect()
+}
+
+/// The named cases whose name starts with `prefix`, each with its triangles.
+pub fn named_with_prefix(prefix: &str) -> Vec<[(i32, i32); 3]> {
+    named_triangles()
+        .into_iter()
+        .filter(|c| c.name.starts_with(prefix))
+        .flat_map(|c| c.tris)
+        .collect()
+}

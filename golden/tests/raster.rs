@@ -392,14 +392,7 @@ fn turn_at_2048(y: i32) -> (StepType, i8) {
 
 #[test]
 fn degenerate_triangles_have_no_rows() {
-    for v in [
-        [(5, 5), (5, 5), (5, 5)],
-        [(0, 0), (0, 0), (9, 3)],
-        [(0, 0), (3, 3), (9, 9)],
-        [(0, 0), (4095, 0), (17, 0)],
-        [(7, 0), (7, 4095), (7, 100)],
-        [(0, 0), (4095, 4095), (2, 2)],
-    ] {
+    for v in golden::testing::named_with_prefix("degenerate_") {
         assert_eq!(walk(&tri(v)), Walk::default(), "{v:?}");
         assert!(edge_function_pixels(&tri(v)).is_empty(), "{v:?}");
     }
@@ -533,15 +526,7 @@ fn max_extent_square_splits_into_two_triangles_without_overlap_or_hole() {
 
 #[test]
 fn corner_vertices_at_address_limits() {
-    for v in [
-        [(0, 0), (4095, 4095), (0, 4095)],
-        [(0, 0), (4095, 4095), (4095, 0)],
-        [(4095, 0), (0, 4095), (4095, 4095)],
-        [(2047, 0), (4095, 4095), (0, 4095)],
-        [(0, 2048), (4095, 0), (4095, 4095)],
-        [(0, 0), (4095, 1), (4094, 1)],
-        [(0, 4094), (4095, 4095), (1, 4095)],
-    ] {
+    for v in golden::testing::named_with_prefix("corner_") {
         check_walk(v).unwrap();
     }
 }
@@ -917,4 +902,28 @@ fn culled_spheres_are_written_exactly_once() {
          exercised",
         folding_cases.get()
     );
+}
+
+/// The shared named cases parse, have unique names, stay inside 12-bit addresses, and give
+/// intensities for every triangle where they give any.
+#[test]
+fn named_triangles_are_well_formed() {
+    let cases = golden::testing::named_triangles();
+    let names: std::collections::HashSet<&str> = cases.iter().map(|c| c.name).collect();
+    assert_eq!(names.len(), cases.len(), "duplicate names");
+    assert!(cases.len() >= 40, "{} cases", cases.len());
+    for c in &cases {
+        assert!(c
+            .tris
+            .iter()
+            .flatten()
+            .all(|&(x, y)| (0..=4095).contains(&x) && (0..=4095).contains(&y)));
+        assert!(
+            c.values.as_ref().is_none_or(|v| v.len() == c.tris.len()),
+            "{}",
+            c.name
+        );
+    }
+    assert_eq!(golden::testing::named_with_prefix("corner_").len(), 7);
+    assert_eq!(golden::testing::named_with_prefix("degenerate_").len(), 9);
 }

@@ -194,15 +194,7 @@ pub fn triangle_jobs(seed: u64, n: usize) -> (Vec<TriangleJob>, Vec<GoldenPixel>
     for _ in 0..n {
         let (p, v) = st.new_tree(&mut r).expect("no rejection").current();
         let t = ScreenTriangle::from_points(p);
-        // A zero-area triangle has no plane; the hardware still walks it (no pixel).
-        let planes: [Plane; 3] = std::array::from_fn(|c| {
-            t.scalar_plane([v[0][c], v[1][c], v[2][c]])
-                .unwrap_or(Plane {
-                    a: 0.0,
-                    b: 0.0,
-                    c: 0.0,
-                })
-        });
+        let planes = channel_planes(&t, &v);
         let w = walk(&t);
         let per: [Vec<f64>; 3] = std::array::from_fn(|c| interpolate(&w, &planes[c]));
         for (k, adds) in additions(&w).into_iter().enumerate() {
@@ -211,6 +203,18 @@ pub fn triangle_jobs(seed: u64, n: usize) -> (Vec<TriangleJob>, Vec<GoldenPixel>
         jobs.push(TriangleJob::new(&t, &planes));
     }
     (jobs, golden)
+}
+
+/// The three colour channels' planes through the vertex intensities `v[vertex][channel]`; a
+/// zero-area triangle (no plane) gets flat zero planes — the hardware still walks it, with no
+/// pixel.
+pub fn channel_planes(t: &ScreenTriangle, v: &[[f64; 3]; 3]) -> [Plane; 3] {
+    let zero = Plane {
+        a: 0.0,
+        b: 0.0,
+        c: 0.0,
+    };
+    std::array::from_fn(|c| t.scalar_plane([v[0][c], v[1][c], v[2][c]]).unwrap_or(zero))
 }
 
 /// Rows, expectations and comparisons of a triangle block's run.

@@ -256,19 +256,21 @@ impl Twin for BviRows {
     fn step(&mut self, r: &[u64]) -> Vec<u64> {
         let o = bvi_outputs(&self.0);
         let w = row_words(r, 1);
-        self.0.clock(
-            (r[0] != 0).then_some(&w),
-            r[13] != 0,
-            r[14] != 0,
-            r[15] as u32,
-            r[16] != 0,
-        );
+        let ev = AddressOutputs {
+            valid: r[13] != 0,
+            row_start: r[14] != 0,
+            step: r[15] as u8,
+            carry: r[16] != 0,
+            ..Default::default()
+        };
+        self.0.clock((r[0] != 0).then_some(&w), &ev);
         o
     }
 }
 
 /// Twin of the raster pipe: the address block's cycle model feeding [`BviTwin`] (loaded on the
 /// accepted load), with x, y and done delayed one clock beside the BVI.
+#[derive(Default)]
 struct PipeRows {
     addr: AddressBlockModel,
     bvi: BviTwin,
@@ -286,43 +288,30 @@ impl Twin for PipeRows {
         let setup = row_setup(r);
         let words = row_words(r, 20);
         let accepted = setup.is_some() && a.ready;
-        self.bvi.clock(
-            accepted.then_some(&words),
-            a.valid,
-            a.row_start,
-            a.step as u32,
-            a.carry,
-        );
+        self.bvi.clock(accepted.then_some(&words), &a);
         self.xy_done = (a.x, a.y, a.done);
         self.addr.clock(setup.as_ref());
         o
     }
 }
 
-impl Bench for IntensityInterpolator {
-    const ITEMS: &'static str = "triangles";
-    const DEFAULT_ITEMS: usize = 20;
-    fn stimulus(_: &NoParams, n: usize, seed: u64) -> Stimulus {
-        let (jobs, golden) = triangle_jobs(seed, n);
-        triangle_run(bvi_run(&jobs, &golden))
-    }
-    fn twin(_: &NoParams) -> Box<dyn Twin> {
-        Box::new(BviRows(BviTwin::default()))
-    }
+/// The BVI and the raster pipe share their bench: seeded triangles with random vertex
+/// intensities, run as `$run` builds them, checked against `$twin`.
+macro_rules! triangle_bench {
+    ($block:ty, $run:ident, $twin:expr) => {
+        impl Bench for $block {
+            const ITEMS: &'static str = "triangles";
+            const DEFAULT_ITEMS: usize = 20;
+            fn stimulus(_: &NoParams, n: usize, seed: u64) -> Stimulus {
+                let (jobs, golden) = triangle_jobs(seed, n);
+                triangle_run($run(&jobs, &golden))
+            }
+            fn twin(_: &NoParams) -> Box<dyn Twin> {
+                Box::new($twin)
+            }
+        }
+    };
 }
 
-impl Bench for GouraudRaster {
-    const ITEMS: &'static str = "triangles";
-    const DEFAULT_ITEMS: usize = 20;
-    fn stimulus(_: &NoParams, n: usize, seed: u64) -> Stimulus {
-        let (jobs, golden) = triangle_jobs(seed, n);
-        triangle_run(pipe_run(&jobs, &golden))
-    }
-    fn twin(_: &NoParams) -> Box<dyn Twin> {
-        Box::new(PipeRows {
-            addr: AddressBlockModel::new(),
-            bvi: BviTwin::default(),
-            xy_done: (0, 0, false),
-        })
-    }
-}
+triangle_bench!(IntensityInterpolator, bvi_run, BviRows(BviTwin::default()));
+triangle_bench!(GouraudRaster, pipe_run, PipeRows::default());

@@ -422,30 +422,25 @@ pub fn raw_rows(seed: u64, n: usize, with_k: bool) -> Vec<Vec<u64>> {
     rows
 }
 
-impl Bench for Normalizer {
-    const ITEMS: &'static str = "vectors";
-    const DEFAULT_ITEMS: usize = 1000;
-    fn stimulus(c: &NormalizerCoeffs, n: usize, seed: u64) -> Stimulus {
-        vector_stimulus(c, n, seed, Normalizer::LATENCY, false)
-    }
-    fn twin(c: &NormalizerCoeffs) -> Box<dyn Twin> {
-        Box::new(NormalizerRows(twin::NormalizerTwin::new(c.requested)))
-    }
-    fn edge_rows(_: &NormalizerCoeffs, seed: u64) -> Vec<Vec<u64>> {
-        raw_rows(seed, 4000, false)
-    }
+/// The two normalizer tops share their bench: seeded domain vectors (with their exact K as a
+/// fifth input for the back end), the raw extreme rows, and their twin.
+macro_rules! normalizer_bench {
+    ($block:ty, $rows:ident, $twin:ident, $with_k:expr) => {
+        impl Bench for $block {
+            const ITEMS: &'static str = "vectors";
+            const DEFAULT_ITEMS: usize = 1000;
+            fn stimulus(c: &NormalizerCoeffs, n: usize, seed: u64) -> Stimulus {
+                vector_stimulus(c, n, seed, <$block>::LATENCY, $with_k)
+            }
+            fn twin(c: &NormalizerCoeffs) -> Box<dyn Twin> {
+                Box::new($rows(twin::$twin::new(c.requested)))
+            }
+            fn edge_rows(_: &NormalizerCoeffs, seed: u64) -> Vec<Vec<u64>> {
+                raw_rows(seed, 4000, $with_k)
+            }
+        }
+    };
 }
 
-impl Bench for NormalizerK {
-    const ITEMS: &'static str = "vectors";
-    const DEFAULT_ITEMS: usize = 1000;
-    fn stimulus(c: &NormalizerCoeffs, n: usize, seed: u64) -> Stimulus {
-        vector_stimulus(c, n, seed, NormalizerK::LATENCY, true)
-    }
-    fn twin(c: &NormalizerCoeffs) -> Box<dyn Twin> {
-        Box::new(NormalizerKRows(twin::NormalizerKTwin::new(c.requested)))
-    }
-    fn edge_rows(_: &NormalizerCoeffs, seed: u64) -> Vec<Vec<u64>> {
-        raw_rows(seed, 4000, true)
-    }
-}
+normalizer_bench!(Normalizer, NormalizerRows, NormalizerTwin, false);
+normalizer_bench!(NormalizerK, NormalizerKRows, NormalizerKTwin, true);

@@ -14,6 +14,9 @@ use rtl::registry::{module_name, BlockParams, Options, RtlBlock};
 
 use crate::harness::{self, CheckSpec, Compare, Expected, Failure, Port, Report};
 
+/// A checked run: its report, or the first failure (with its VCD).
+pub type Checked = Result<Report, Box<Failure>>;
+
 /// A seeded stimulus with golden expectations and how to compare them.
 pub struct Stimulus {
     pub rows: Vec<Vec<u64>>,
@@ -68,26 +71,14 @@ pub trait Entry: Sync {
     fn verilog(&self, o: &Options) -> Result<String, String>;
     fn stimulus(&self, o: &Options, n: usize, seed: u64) -> Result<Stimulus, String>;
     /// Run `stim` through the RTL, checking every clock against the golden expectations.
-    fn run_golden(
-        &self,
-        o: &Options,
-        stim: &Stimulus,
-        name: &str,
-        seed: u64,
-    ) -> Result<Report, Box<Failure>>;
+    fn run_golden(&self, o: &Options, stim: &Stimulus, name: &str, seed: u64) -> Checked;
     /// [`Bench::edge_rows`].
     fn edge_rows(&self, o: &Options, seed: u64) -> Result<Vec<Vec<u64>>, String>;
     /// The twin's output rows for `rows`.
     fn twin_outputs(&self, o: &Options, rows: &[Vec<u64>]) -> Result<Vec<Vec<u64>>, String>;
     /// Run `rows` through the RTL, requiring every output port in every clock to equal the
     /// twin's bit for bit.
-    fn run_twin(
-        &self,
-        o: &Options,
-        rows: &[Vec<u64>],
-        name: &str,
-        seed: u64,
-    ) -> Result<Report, Box<Failure>>;
+    fn run_twin(&self, o: &Options, rows: &[Vec<u64>], name: &str, seed: u64) -> Checked;
     /// The rust-hdl simulation's output rows for `rows`.
     fn simulate(&self, o: &Options, rows: &[Vec<u64>]) -> Result<Vec<Vec<u64>>, String>;
     /// Replay `rows` writing a VCD of the whole run (every signal) to `path`.
@@ -154,13 +145,7 @@ impl<B: Bench> Entry for Registered<B> {
     fn stimulus(&self, o: &Options, n: usize, seed: u64) -> Result<Stimulus, String> {
         Ok(B::stimulus(&B::Params::from_options(o)?, n, seed))
     }
-    fn run_golden(
-        &self,
-        o: &Options,
-        stim: &Stimulus,
-        name: &str,
-        seed: u64,
-    ) -> Result<Report, Box<Failure>> {
+    fn run_golden(&self, o: &Options, stim: &Stimulus, name: &str, seed: u64) -> Checked {
         let p = B::Params::from_options(o).map_err(|e| failure(name, seed, e))?;
         let spec = CheckSpec {
             name: name.into(),
@@ -176,13 +161,7 @@ impl<B: Bench> Entry for Registered<B> {
         let mut t = B::twin(&B::Params::from_options(o)?);
         Ok(rows.iter().map(|r| t.step(r)).collect())
     }
-    fn run_twin(
-        &self,
-        o: &Options,
-        rows: &[Vec<u64>],
-        name: &str,
-        seed: u64,
-    ) -> Result<Report, Box<Failure>> {
+    fn run_twin(&self, o: &Options, rows: &[Vec<u64>], name: &str, seed: u64) -> Checked {
         let p = B::Params::from_options(o).map_err(|e| failure(name, seed, e))?;
         let mut twin = B::twin(&p);
         let n_out = self.ports().1.len();
@@ -327,13 +306,12 @@ pub fn synth_block(
     let module = block.module_name();
     let rep = crate::synth::check_and_synth(&v, &module, &format!("synth-{}", block.name()))?;
     let fmax = if pnr && tools::available(Tool::NextpnrIce40) {
-        let (i, out) = block.ports();
+        let tag = format!("pnr-{}", block.name());
         Some(crate::synth::fmax_ice40_up5k(
             &v,
             &module,
-            &i,
-            &out,
-            &format!("pnr-{}", block.name()),
+            &block.ports(),
+            &tag,
         )?)
     } else {
         None
@@ -405,4 +383,42 @@ pub fn markdown_table() -> String {
         ));
     }
     s
+}
+
+/// The mutation check of a block's export: on `rows` under Icarus, the unmodified Verilog
+/// equals the rust-hdl simulation, and every one of `mutants` differs from it somewhere
+/// (panics otherwise, naming the mutant). Prints where each was caught.
+pub fn assert_mutants_caught(
+    block: &dyn Entry,
+    rows: &[Vec<u64>],
+    mutants: &[crate::verilog::Mutant],
+) {
+    use crate::verilog::{differential_rows, DiffError, Simulator};
+    let o = Options::new();
+    let good = block.verilog(&o).expect("export");
+    let expected = block.simulate(&o, rows).expect("rust-hdl simulation");
+    let run = |v: &str, tag: &str| {
+        let m = block.module_name();
+        differential_rows(
+            v,
+            &m,
+            block.ports(),
+            rows,
+            &expected,
+            Simulator::Icarus,
+            tag,
+        )
+    };
+    run(&good, &format!("mutant-control-{}", block.name()))
+        .unwrap_or_else(|e| panic!("control: {e}"));
+    for m in mutants {
+        match run(&m.apply(&good), &format!("mutant-{}", block.name())) {
+            Err(DiffError::Mismatch(d)) => println!("caught mutant [{}]: {d}", m.what),
+            Err(DiffError::Tool(e)) => panic!("mutant [{}] did not run: {e}", m.what),
+            Ok(_) => panic!(
+                "mutant [{}] was NOT caught by the differential test",
+                m.what
+            ),
+        }
+    }
 }

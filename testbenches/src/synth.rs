@@ -220,17 +220,18 @@ pub fn timing_shell(module: &str, inputs: &[Port], outputs: &[Port]) -> String {
 
 /// Estimated maximum clock (MHz) of `module` placed and routed by nextpnr-ice40 on an
 /// iCE40 UP5K (SG48 package, has SB_MAC16 DSPs), inside [`timing_shell`].
+/// `ports` are the block's (inputs, outputs).
 pub fn fmax_ice40_up5k(
     verilog: &str,
     module: &str,
-    inputs: &[Port],
-    outputs: &[Port],
+    ports: &(Vec<Port>, Vec<Port>),
     tag: &str,
 ) -> Result<f64, String> {
     let dir = tools::unique_dir(tag)?;
-    std::fs::write(dir.join("dut.v"), verilog).map_err(|e| e.to_string())?;
-    std::fs::write(dir.join("shell.v"), timing_shell(module, inputs, outputs))
-        .map_err(|e| e.to_string())?;
+    let shell = timing_shell(module, &ports.0, &ports.1);
+    for (name, text) in [("dut.v", verilog), ("shell.v", &shell)] {
+        std::fs::write(dir.join(name), text).map_err(|e| format!("cannot write {name}: {e}"))?;
+    }
     yosys(
         &dir,
         "read_verilog dut.v shell.v\nsynth_ice40 -dsp -top timing_shell -json shell.json\n",

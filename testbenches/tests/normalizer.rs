@@ -4,7 +4,7 @@ use golden::normalizer::{FIT, K_DOMAIN, PUBLISHED};
 use golden::testing::{runner, seed_for};
 use proptest::strategy::{Strategy, ValueTree};
 use rtl::fixed::{K_FULL, NORMAL};
-use rtl::normalizer::{CoeffError, Normalizer, NormalizerCoeffs, NormalizerK};
+use rtl::normalizer::{CoeffError, ErrorBudget, Normalizer, NormalizerCoeffs, NormalizerK};
 use testbenches::harness::{self, Expected};
 use testbenches::normalizer::*;
 
@@ -97,26 +97,22 @@ fn normalizer_domain_100k_fit() {
     domain_run(&c, "normalizer_domain_fit");
 }
 
+/// One named raw vector through the normalizer within budget `b`; prints input and output.
+fn check_named(kind: &str, label: &str, raw: [u64; 3], b: &ErrorBudget) {
+    let c = NormalizerCoeffs::published();
+    let name = format!("normalizer_{kind} {label}");
+    let report =
+        check_normalizer(&name, 0, &[Slot::Vector(raw)], &c, b).unwrap_or_else(|f| panic!("{f}"));
+    let out = &report.outputs[Normalizer::LATENCY];
+    let (i, o) = (dequantize(raw), dequantize([out[1], out[2], out[3]]));
+    println!("{label:<44} in {i:?} -> out {o:?}");
+}
+
 #[test]
 fn normalizer_named_domain_cases() {
-    let c = NormalizerCoeffs::published();
-    let b = domain_budget(&c);
+    let b = domain_budget(&NormalizerCoeffs::published());
     for (label, v) in edge_cases() {
-        let q = quantize(v);
-        let report = check_normalizer(
-            &format!("normalizer_edge {label}"),
-            0,
-            &[Slot::Vector(q)],
-            &c,
-            &b,
-        )
-        .unwrap_or_else(|f| panic!("{f}"));
-        let out = &report.outputs[Normalizer::LATENCY];
-        println!(
-            "{label:<32} in {:?} -> out {:?}",
-            dequantize(q),
-            dequantize([out[1], out[2], out[3]])
-        );
+        check_named("edge", label, quantize(v), &b);
     }
     // The K = 0.5 and K = 1 cases really have those K after quantization.
     let k = |v: [f64; 3]| {
@@ -132,20 +128,7 @@ fn normalizer_extreme_inputs_saturate_as_documented() {
     let c = NormalizerCoeffs::published();
     let b = general_budget(&c);
     for (label, raw) in extreme_cases() {
-        let report = check_normalizer(
-            &format!("normalizer_extreme {label}"),
-            0,
-            &[Slot::Vector(raw)],
-            &c,
-            &b,
-        )
-        .unwrap_or_else(|f| panic!("{f}"));
-        let out = &report.outputs[Normalizer::LATENCY];
-        println!(
-            "{label:<44} in {:?} -> out {:?}",
-            dequantize(raw),
-            dequantize([out[1], out[2], out[3]])
-        );
+        check_named("extreme", label, raw, &b);
     }
     // Spot checks of the rules themselves (not of the hardware): -2 on x gives K = 4 → K
     // saturates, f(2 − 2⁻¹⁵) ≈ 1.42 → x·f = −2.85 saturates to −2.
@@ -181,56 +164,31 @@ fn normalizer_valid_gaps_and_junk() {
 
 #[test]
 fn normalizer_k_takes_exact_k() {
-    // The back end alone, fed K = x² + y² + z² computed here from the quantized vector.
+    // The back end alone (its registry bench): 10 000 domain vectors, each with K = x² + y² + z²
+    // of the quantized vector as the fifth input, checked every clock against the golden model.
+    use rtl::registry::RtlBlock;
+    use testbenches::registry::Bench;
     let name = "normalizer_k";
-    let mut r = runner(name, 1);
+    let seed = seed_for(name);
     let c = NormalizerCoeffs::published();
-    let b = domain_budget(&c);
-    let vectors = domain_vectors(&mut r, 10_000);
-    let mut rows: Vec<Vec<u64>> = vectors
-        .iter()
-        .map(|v| {
-            let q = quantize(*v);
-            let i = q.map(|w| NORMAL.to_int(w));
-            vec![
-                1,
-                q[0],
-                q[1],
-                q[2],
-                (i[0] * i[0] + i[1] * i[1] + i[2] * i[2]) as u64,
-            ]
-        })
-        .collect();
-    let per_input: Vec<Vec<Expected>> = rows
-        .iter()
-        .map(|r| {
-            let e = saturating_model([r[1], r[2], r[3]], c.requested);
-            vec![
-                Expected::Word(1),
-                Expected::Real(e[0]),
-                Expected::Real(e[1]),
-                Expected::Real(e[2]),
-            ]
-        })
-        .collect();
-    harness::pad_rows(&mut rows, &[0; 5], NormalizerK::LATENCY);
-    let idle = vec![
-        Expected::Word(0),
-        Expected::DontCare,
-        Expected::DontCare,
-        Expected::DontCare,
-    ];
-    let mut per_input = per_input;
-    per_input.extend(std::iter::repeat_n(idle.clone(), NormalizerK::LATENCY));
-    let exp = harness::delay_expectations(&per_input, NormalizerK::LATENCY, &idle);
-    let report = harness::run_rows(
-        || NormalizerK::new(&c),
-        &check_spec(name, seed_for(name), &b),
-        &rows,
-        &exp,
-    )
-    .unwrap_or_else(|f| panic!("{f}"));
+    let stim = NormalizerK::stimulus(&c, 10_000, seed);
+    for r in stim.rows.iter().filter(|r| r[0] == 1) {
+        let i = [r[1], r[2], r[3]].map(|w| NORMAL.to_int(w));
+        assert_eq!(
+            r[4],
+            (i[0] * i[0] + i[1] * i[1] + i[2] * i[2]) as u64,
+            "K column"
+        );
+    }
+    let spec = harness::CheckSpec {
+        name: name.into(),
+        seed,
+        compare: stim.compare.clone(),
+    };
+    let report = harness::run_rows(|| NormalizerK::build(&c), &spec, &stim.rows, &stim.expected)
+        .unwrap_or_else(|f| panic!("{f}"));
     println!("{report}");
+    assert_eq!(report.port("nx").unwrap().checked, 10_000);
 }
 
 #[test]

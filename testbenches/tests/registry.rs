@@ -45,43 +45,51 @@ fn label(b: &dyn Entry, o: &Options) -> String {
     }
 }
 
+/// Every registered block with every parameter set, and a label naming both.
+fn variants() -> Vec<(&'static dyn Entry, Options, String)> {
+    BLOCKS
+        .iter()
+        .flat_map(|b| {
+            option_sets(*b)
+                .into_iter()
+                .map(|o| (*b, o.clone(), label(*b, &o)))
+        })
+        .collect()
+}
+
 #[test]
 fn every_block_equals_its_twin_every_clock() {
-    for b in BLOCKS {
-        for o in option_sets(*b) {
-            let name = format!("twin-{}", label(*b, &o));
-            let seed = seed_for(&name);
-            let rows = test_rows(*b, &o, items(*b), seed).unwrap();
-            let rep = b
-                .run_twin(&o, &rows, &name, seed)
-                .unwrap_or_else(|f| panic!("{f}"));
-            println!(
-                "[{name}] seed {seed}: {} clocks × {} ports bit-exact with the twin",
-                rep.cycles,
-                rep.ports.len()
-            );
-            assert!(rep.cycles as usize == rows.len() && rows.len() > 100);
-        }
+    for (b, o, label) in variants() {
+        let name = format!("twin-{label}");
+        let seed = seed_for(&name);
+        let rows = test_rows(b, &o, items(b), seed).unwrap();
+        let rep = b
+            .run_twin(&o, &rows, &name, seed)
+            .unwrap_or_else(|f| panic!("{f}"));
+        println!(
+            "[{name}] seed {seed}: {} clocks × {} ports bit-exact with the twin",
+            rep.cycles,
+            rep.ports.len()
+        );
+        assert!(rep.cycles as usize == rows.len() && rows.len() > 100);
     }
 }
 
 #[test]
 fn every_block_agrees_with_golden_every_clock() {
-    for b in BLOCKS {
-        for o in option_sets(*b) {
-            let name = format!("golden-{}", label(*b, &o));
-            let seed = seed_for(&name);
-            let stim = b.stimulus(&o, items(*b), seed).unwrap();
-            let rep = b
-                .run_golden(&o, &stim, &name, seed)
-                .unwrap_or_else(|f| panic!("{f}"));
-            print!("{rep}");
-            // Something was actually compared: the valid flag (output 0 or 1) every clock.
-            assert!(rep
-                .ports
-                .iter()
-                .all(|p| p.checked > 0 || p.name.contains("word")));
-        }
+    for (b, o, label) in variants() {
+        let name = format!("golden-{label}");
+        let seed = seed_for(&name);
+        let stim = b.stimulus(&o, items(b), seed).unwrap();
+        let rep = b
+            .run_golden(&o, &stim, &name, seed)
+            .unwrap_or_else(|f| panic!("{f}"));
+        print!("{rep}");
+        // Something was actually compared: the valid flag (output 0 or 1) every clock.
+        assert!(rep
+            .ports
+            .iter()
+            .all(|p| p.checked > 0 || p.name.contains("word")));
     }
 }
 
@@ -131,24 +139,22 @@ fn yosys_synthesizes_every_block_with_its_multipliers() {
     ) {
         return;
     }
-    for b in BLOCKS {
-        for o in option_sets(*b) {
-            let v = b.verilog(&o).unwrap();
-            let rep = check_and_synth(&v, &b.module_name(), &format!("yosys-{}", label(*b, &o)))
-                .unwrap_or_else(|e| panic!("{}: {e}", b.name()));
-            print!("{rep}");
-            assert_eq!(
-                rep.mac16(),
-                b.multipliers() as u64,
-                "{}: multipliers mapped to SB_MAC16",
-                b.name()
-            );
-            assert!(
-                rep.luts() > 0 && rep.ffs() > 0,
-                "{}: empty netlist?",
-                b.name()
-            );
-        }
+    for (b, o, label) in variants() {
+        let v = b.verilog(&o).unwrap();
+        let rep = check_and_synth(&v, &b.module_name(), &format!("yosys-{label}"))
+            .unwrap_or_else(|e| panic!("{}: {e}", b.name()));
+        print!("{rep}");
+        assert_eq!(
+            rep.mac16(),
+            b.multipliers() as u64,
+            "{}: multipliers mapped to SB_MAC16",
+            b.name()
+        );
+        assert!(
+            rep.luts() > 0 && rep.ffs() > 0,
+            "{}: empty netlist?",
+            b.name()
+        );
     }
 }
 
@@ -156,18 +162,16 @@ fn verilog_bit_exact(sim: Simulator, test: &str) {
     if !tools::require(sim.tools(), test) {
         return;
     }
-    for b in BLOCKS {
-        for o in option_sets(*b) {
-            let name = format!("{test}-{}", label(*b, &o));
-            let seed = seed_for(&name);
-            let rows = test_rows(*b, &o, items(*b), seed).unwrap();
-            let rep = differential(*b, &o, &rows, sim, &name)
-                .unwrap_or_else(|e| panic!("{}: {e} (seed {seed})", label(*b, &o)));
-            println!(
-                "[{name}] {:?}: bit-exact over {} clocks × {} ports",
-                sim, rep.cycles, rep.ports
-            );
-        }
+    for (b, o, label) in variants() {
+        let name = format!("{test}-{label}");
+        let seed = seed_for(&name);
+        let rows = test_rows(b, &o, items(b), seed).unwrap();
+        let rep = differential(b, &o, &rows, sim, &name)
+            .unwrap_or_else(|e| panic!("{label}: {e} (seed {seed})"));
+        println!(
+            "[{name}] {:?}: bit-exact over {} clocks × {} ports",
+            sim, rep.cycles, rep.ports
+        );
     }
 }
 

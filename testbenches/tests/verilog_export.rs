@@ -13,10 +13,10 @@ use rtl::normalizer::{Normalizer, NormalizerCoeffs};
 use rtl::registry::Options;
 use testbenches::k_recurrence::{krec_rows, span_rows, spans_and_schedule};
 use testbenches::normalizer::*;
-use testbenches::registry::{self, differential};
+use testbenches::registry::{self, assert_mutants_caught, differential};
 use testbenches::synth::check_and_synth;
 use testbenches::tools::{self, Tool};
-use testbenches::verilog::{self as verilog, DiffError, Simulator};
+use testbenches::verilog::{self as verilog, DiffError, Mutant, Simulator};
 
 fn icarus(test: &str) -> bool {
     tools::require(Simulator::Icarus.tools(), test)
@@ -99,34 +99,11 @@ fn k_recurrence_and_span_normalizer_differential() {
     );
 }
 
-/// Replace the single occurrence of `from` in `v` — in the whole text, or for a site inside a
-/// shared primitive in the instance module `MODULE_OF` names — by `to` (panics if the site is
-/// not unique there).
-fn mutate(v: &str, from: &str, to: &str) -> String {
-    if let Some((_, m)) = MODULE_OF.iter().find(|(site, _)| *site == from) {
-        return mutate_in(v, m, from, to);
-    }
-    assert_eq!(
-        v.matches(from).count(),
-        1,
-        "mutation site {from:?} must occur once"
-    );
-    v.replacen(from, to, 1)
-}
-
-/// Mutation sites inside a shared primitive: the instance whose module is mutated.
-const MODULE_OF: [(&str, &str); 3] = [
-    ("p = raw - corr", "normalizer$scale$lane_x$mul"),
-    ("rounded = wide + half_lsb", "normalizer$scale$k_round"),
-    ("|wide[(32'h1d)+:(3)] | &wide[", "normalizer$scale$k_round"),
-];
-
 #[test]
 fn broken_export_is_caught() {
     if !icarus("broken_export_is_caught") {
         return;
     }
-    let c = NormalizerCoeffs::published();
     // 3000 domain vectors, then the named and extreme cases (saturation logic is only
     // exercised by the latter).
     let (_, vectors) = domain_run_vectors();
@@ -137,65 +114,17 @@ fn broken_export_is_caught() {
     slots.extend(edge_cases().iter().map(|(_, v)| Slot::Vector(quantize(*v))));
     slots.extend(extreme_cases().iter().map(|(_, r)| Slot::Vector(*r)));
     let rows = stimulus_rows(&slots, Normalizer::LATENCY);
-    let good = export::verilog::<Normalizer>(&c).unwrap();
-    // Control: the unmodified export passes on this stimulus.
-    verilog::differential(
-        || Normalizer::new(&c),
-        &good,
-        "normalizer",
-        &rows,
-        Simulator::Icarus,
-        "mutant-control",
-    )
-    .unwrap_or_else(|e| panic!("control: {e}"));
-    // One flipped operator each; every mutant must be caught.
+    // One flipped operator each (inside a shared primitive: the instance named).
+    #[rustfmt::skip]
     let mutants = [
-        (
-            "K sum: + → -",
-            "k_full$d = sq_x$q + sq_y$q",
-            "k_full$d = sq_x$q - sq_y$q",
-        ),
-        (
-            "sign correction of Mul6 (x·f): - → +",
-            "p = raw - corr",
-            "p = raw + corr",
-        ),
-        (
-            "K rounding: + → -",
-            "rounded = wide + half_lsb",
-            "rounded = wide - half_lsb",
-        ),
-        (
-            "K saturation test: | → &",
-            "|wide[(32'h1d)+:(3)] | &wide[",
-            "|wide[(32'h1d)+:(3)] & &wide[",
-        ),
-        (
-            "halving c2·K: >> → <<",
-            "c2k_half = c2k$q >> 32'h1",
-            "c2k_half = c2k$q << 32'h1",
-        ),
-        (
-            "Horner add: + → -",
-            "f_wide = c0_rnd + t1k_half",
-            "f_wide = c0_rnd - t1k_half",
-        ),
+        Mutant { what: "K sum: + → -", module: "", from: "k_full$d = sq_x$q + sq_y$q", to: "k_full$d = sq_x$q - sq_y$q" },
+        Mutant { what: "sign correction of Mul6 (x·f): - → +", module: "normalizer$scale$lane_x$mul", from: "p = raw - corr", to: "p = raw + corr" },
+        Mutant { what: "K rounding: + → -", module: "normalizer$scale$k_round", from: "rounded = wide + half_lsb", to: "rounded = wide - half_lsb" },
+        Mutant { what: "K saturation test: | → &", module: "normalizer$scale$k_round", from: "|wide[(32'h1d)+:(3)] | &wide[", to: "|wide[(32'h1d)+:(3)] & &wide[" },
+        Mutant { what: "halving c2·K: >> → <<", module: "", from: "c2k_half = c2k$q >> 32'h1", to: "c2k_half = c2k$q << 32'h1" },
+        Mutant { what: "Horner add: + → -", module: "", from: "f_wide = c0_rnd + t1k_half", to: "f_wide = c0_rnd - t1k_half" },
     ];
-    for (what, from, to) in mutants {
-        let bad = mutate(&good, from, to);
-        match verilog::differential(
-            || Normalizer::new(&c),
-            &bad,
-            "normalizer",
-            &rows,
-            Simulator::Icarus,
-            "mutant",
-        ) {
-            Err(DiffError::Mismatch(m)) => println!("caught mutant [{what}]: {m}"),
-            Err(DiffError::Tool(e)) => panic!("mutant [{what}] did not run: {e}"),
-            Ok(_) => panic!("mutant [{what}] was NOT caught by the differential test"),
-        }
-    }
+    assert_mutants_caught(registry::find("normalizer").unwrap(), &rows, &mutants);
 }
 
 /// A rounding bias of a quarter LSB in the normalizer's output stage (the half-LSB constant
@@ -233,25 +162,21 @@ fn twin_catches_a_quarter_lsb_output_bias() {
     run(&good, "quarter-lsb-control").unwrap_or_else(|e| panic!("control: {e}"));
     let mut bad = good.clone();
     for lane in ["x", "y", "z"] {
-        bad = mutate_in(
-            &bad,
-            &format!("normalizer$scale$lane_{lane}$round"),
-            "half_lsb = 32'h4000",
-            "half_lsb = 32'h6000",
-        );
+        let module = format!("normalizer$scale$lane_{lane}$round");
+        let (from, to) = ("half_lsb = 32'h4000", "half_lsb = 32'h6000");
+        bad = Mutant {
+            what: "¼-LSB bias",
+            module: &module,
+            from,
+            to,
+        }
+        .apply(&bad);
     }
     match run(&bad, "quarter-lsb-mutant") {
-        Err(DiffError::Mismatch(m)) => println!("caught the ¼-LSB bias: {m}"),
+        Err(DiffError::Mismatch(m)) => {
+            println!("caught the ¼-LSB bias (the rust-hdl column is the twin here): {m}")
+        }
         Err(DiffError::Tool(e)) => panic!("mutant did not run: {e}"),
         Ok(_) => panic!("a ¼-LSB output bias was NOT caught by the twin"),
     }
-}
-
-/// [`mutate`] restricted to module `module`.
-fn mutate_in(v: &str, module: &str, from: &str, to: &str) -> String {
-    let s = v.find(&format!("module {module}(")).expect("module");
-    let e = v[s..].find("endmodule").map_or(v.len(), |e| s + e);
-    assert_eq!(v[s..e].matches(from).count(), 1, "{from:?} in {module}");
-    let at = s + v[s..e].find(from).unwrap();
-    format!("{}{to}{}", &v[..at], &v[at + from.len()..])
 }
