@@ -293,8 +293,6 @@ fn tilted_sphere_write_counts_match_reference() {
 // Exported Verilog of the BVI and of the whole pipe: Yosys, Icarus differential, mutants.
 
 use proptest::strategy::ValueTree;
-use rtl::gouraud_raster::GouraudRaster;
-use rtl::intensity_interpolator::IntensityInterpolator;
 use testbenches::intensity_interpolator::{bvi_rows, pipe_rows};
 use testbenches::registry::assert_mutants_caught;
 use testbenches::synth::check_and_synth;
