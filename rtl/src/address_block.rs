@@ -70,172 +70,90 @@
 //! Error budget: exact (integer).
 
 use crate::line_interpolator::LineInterpolator;
-use crate::registry::{NoParams, RtlBlock};
 use rust_hdl::prelude::*;
 
-#[derive(LogicBlock, Default)]
-pub struct AddressBlock {
-    pub clock: Signal<In, Clock>,
-    pub load: Signal<In, Bit>,
-    pub w_b0: Signal<In, Bits<12>>,
-    pub w_e0: Signal<In, Bits<13>>,
-    pub w_f: Signal<In, Bits<12>>,
-    pub w_r: Signal<In, Bits<13>>,
-    pub w_d: Signal<In, Bits<13>>,
-    pub a_b0: Signal<In, Bits<12>>,
-    pub a_e0: Signal<In, Bits<13>>,
-    pub a_f: Signal<In, Bits<12>>,
-    pub a_r: Signal<In, Bits<13>>,
-    pub a_d: Signal<In, Bits<13>>,
-    pub t_b0: Signal<In, Bits<12>>,
-    pub t_e0: Signal<In, Bits<13>>,
-    pub t_f: Signal<In, Bits<12>>,
-    pub t_r: Signal<In, Bits<13>>,
-    pub t_d: Signal<In, Bits<13>>,
-    pub y_top: Signal<In, Bits<12>>,
-    pub rows: Signal<In, Bits<12>>,
-    pub y_switch: Signal<In, Bits<12>>,
-    pub dir_neg: Signal<In, Bit>,
-
-    pub ready: Signal<Out, Bit>,
-    pub valid: Signal<Out, Bit>,
-    pub x: Signal<Out, Bits<12>>,
-    pub y: Signal<Out, Bits<12>>,
-    pub step: Signal<Out, Bits<2>>,
-    pub line_start: Signal<Out, Bit>,
-    pub row_start: Signal<Out, Bit>,
-    pub carry: Signal<Out, Bit>,
-    pub done: Signal<Out, Bit>,
-
-    /// Working edge top→bottom.
-    working: LineInterpolator,
-    /// Other side: adjacent edge, then the third edge.
-    other: LineInterpolator,
-
-    // E: edge stage.
-    e_busy: DFF<Bit>,
-    e_rows_left: DFF<Bits<12>>,
-    e_y: DFF<Bits<12>>,
-    e_first: DFF<Bit>,
-    e_dir_neg: DFF<Bit>,
-    e_y_switch: DFF<Bits<12>>,
-    wait_first: DFF<Bit>,
-    t_b0_q: DFF<Bits<12>>,
-    t_e0_q: DFF<Bits<13>>,
-    t_f_q: DFF<Bits<12>>,
-    t_r_q: DFF<Bits<13>>,
-    t_d_q: DFF<Bits<13>>,
-
-    // Buffer: RGr and the start registers of the next line.
-    nb_valid: DFF<Bit>,
-    nb_is_row: DFF<Bit>,
-    nb_x: DFF<Bits<12>>,
-    nb_y: DFF<Bits<12>>,
-    nb_len: DFF<Bits<12>>,
-    nb_step: DFF<Bits<2>>,
-    nb_carry: DFF<Bit>,
-    nb_dir_neg: DFF<Bit>,
-    nb_first: DFF<Bit>,
-    nb_last: DFF<Bit>,
-
-    // P: row counter stage (CTx, CTy, CTr).
-    p_busy: DFF<Bit>,
-    p_pix: DFF<Bit>,
-    p_x: DFF<Bits<12>>,
-    p_y: DFF<Bits<12>>,
-    p_ctr: DFF<Bits<12>>,
-    p_step: DFF<Bits<2>>,
-    p_line_start: DFF<Bit>,
-    p_row_start: DFF<Bit>,
-    p_carry: DFF<Bit>,
-    p_last: DFF<Bit>,
-    p_dir_neg: DFF<Bit>,
-
-    /// CTr ≠ 0 on a pixel: the line continues next clock.
-    p_more: Signal<Local, Bit>,
-    /// P takes the buffered record this clock.
-    nb_take: Signal<Local, Bit>,
-    /// E produces a record this clock.
-    e_fire: Signal<Local, Bit>,
-    /// E's record is a row (the triangle has rows left).
-    e_has_row: Signal<Local, Bit>,
-    ready_now: Signal<Local, Bit>,
-    do_load: Signal<Local, Bit>,
-    /// The next line is y_switch: load the third edge into `other`.
-    switch_now: Signal<Local, Bit>,
-    e_y_next: Signal<Local, Bits<12>>,
-    /// Row record: x_start (B_w or B_w − 1) and length.
-    rec_x: Signal<Local, Bits<12>>,
-    rec_len: Signal<Local, Bits<12>>,
-    /// nb_len ≠ 0.
-    nb_nonempty: Signal<Local, Bit>,
+/// The address block's set-up ports after `load` (the header's input table), one line per
+/// edge (`b0 e0 f r d`: see [`LineInterpolator`]), as a port bundle (`crate::declare`) for the
+/// blocks that contain an address block and pass its set-up through.
+#[macro_export]
+macro_rules! address_setup_ports {
+    ($($then:tt)*) => {
+        $crate::hw_bundle! {
+            [
+                w_b0: Bits<12>, w_e0: Bits<13>, w_f: Bits<12>, w_r: Bits<13>, w_d: Bits<13>,
+                a_b0: Bits<12>, a_e0: Bits<13>, a_f: Bits<12>, a_r: Bits<13>, a_d: Bits<13>,
+                t_b0: Bits<12>, t_e0: Bits<13>, t_f: Bits<12>, t_r: Bits<13>, t_d: Bits<13>,
+                y_top: Bits<12>, rows: Bits<12>, y_switch: Bits<12>, dir_neg: Bit,
+            ]
+            $($then)*
+        }
+    };
 }
 
-crate::impl_dut!(AddressBlock, clock: clock,
-    inputs: [load, w_b0, w_e0, w_f, w_r, w_d, a_b0, a_e0, a_f, a_r, a_d,
-             t_b0, t_e0, t_f, t_r, t_d, y_top, rows, y_switch, dir_neg],
-    outputs: [ready, valid, x, y, step, line_start, row_start, carry, done]);
+crate::hw_block! {
+    /// The address block: one triangle's set-up in, its events out (see the module header).
+    pub struct AddressBlock(clock) as "address-block" {
+        summary: "one triangle's set-up in, its pixel addresses and step types out (SPEC §5)",
+        latency: 3 => "load to the first event, one address per clock",
+        multipliers: 0,
+        in { load: Bit, address_setup_ports! }
+        out {
+            ready: Bit, valid: Bit, x: Bits<12>, y: Bits<12>, step: Bits<2>,
+            line_start: Bit, row_start: Bit, carry: Bit, done: Bit,
+        }
+        /// Working edge top→bottom.
+        working: LineInterpolator,
+        /// Other side: adjacent edge, then the third edge.
+        other: LineInterpolator,
 
-impl AddressBlock {
-    /// Clocks from the accepted `load` to the triangle's first event.
-    pub const LATENCY: usize = 3;
-}
+        // E: edge stage, and the third edge's set-up kept for the switch.
+        e_busy: DFF<Bit>, e_rows_left: DFF<Bits<12>>, e_y: DFF<Bits<12>>, e_first: DFF<Bit>,
+        e_dir_neg: DFF<Bit>, e_y_switch: DFF<Bits<12>>, wait_first: DFF<Bit>,
+        t_b0_q: DFF<Bits<12>>, t_e0_q: DFF<Bits<13>>, t_f_q: DFF<Bits<12>>,
+        t_r_q: DFF<Bits<13>>, t_d_q: DFF<Bits<13>>,
 
-impl RtlBlock for AddressBlock {
-    type Params = NoParams;
-    const NAME: &'static str = "address-block";
-    const SUMMARY: &'static str =
-        "one triangle's set-up in, its pixel addresses and step types out (SPEC §5)";
-    const LATENCY: usize = AddressBlock::LATENCY;
-    const LATENCY_MEANING: &'static str = "load to the first event, one address per clock";
-    const MULTIPLIERS: usize = 0;
-    fn build(_: &NoParams) -> Self {
-        AddressBlock::default()
+        // Buffer: RGr and the start registers of the next line.
+        nb_valid: DFF<Bit>, nb_is_row: DFF<Bit>,
+        nb_x: DFF<Bits<12>>, nb_y: DFF<Bits<12>>, nb_len: DFF<Bits<12>>, nb_step: DFF<Bits<2>>,
+        nb_carry: DFF<Bit>, nb_dir_neg: DFF<Bit>, nb_first: DFF<Bit>, nb_last: DFF<Bit>,
+
+        // P: row counter stage (CTx, CTy, CTr).
+        p_busy: DFF<Bit>, p_pix: DFF<Bit>,
+        p_x: DFF<Bits<12>>, p_y: DFF<Bits<12>>, p_ctr: DFF<Bits<12>>, p_step: DFF<Bits<2>>,
+        p_line_start: DFF<Bit>, p_row_start: DFF<Bit>, p_carry: DFF<Bit>, p_last: DFF<Bit>,
+        p_dir_neg: DFF<Bit>,
+
+        /// CTr ≠ 0 on a pixel: the line continues next clock.
+        p_more: Signal<Local, Bit>,
+        /// P takes the buffered record this clock.
+        nb_take: Signal<Local, Bit>,
+        /// E produces a record this clock.
+        e_fire: Signal<Local, Bit>,
+        /// E's record is a row (the triangle has rows left).
+        e_has_row: Signal<Local, Bit>,
+        ready_now: Signal<Local, Bit>, do_load: Signal<Local, Bit>,
+        /// The next line is y_switch: load the third edge into `other`.
+        switch_now: Signal<Local, Bit>,
+        e_y_next: Signal<Local, Bits<12>>,
+        /// Row record: x_start (B_w or B_w − 1) and length.
+        rec_x: Signal<Local, Bits<12>>, rec_len: Signal<Local, Bits<12>>,
+        /// nb_len ≠ 0.
+        nb_nonempty: Signal<Local, Bit>,
     }
 }
 
 impl Logic for AddressBlock {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(
-            self,
-            clock,
-            e_busy,
-            e_rows_left,
-            e_y,
-            e_first,
-            e_dir_neg,
-            e_y_switch,
-            wait_first,
-            t_b0_q,
-            t_e0_q,
-            t_f_q,
-            t_r_q,
-            t_d_q,
-            nb_valid,
-            nb_is_row,
-            nb_x,
-            nb_y,
-            nb_len,
-            nb_step,
-            nb_carry,
-            nb_dir_neg,
-            nb_first,
-            nb_last,
-            p_busy,
-            p_pix,
-            p_x,
-            p_y,
-            p_ctr,
-            p_step,
-            p_line_start,
-            p_row_start,
-            p_carry,
-            p_last,
-            p_dir_neg
-        );
-        self.working.clock.next = self.clock.val();
-        self.other.clock.next = self.clock.val();
+        // E, the third edge, the buffer, P (position, then flags): one call per group keeps
+        // each list short enough for rustfmt to leave on one line.
+        dff_setup!(self, clock, e_busy, e_rows_left, e_y, e_first, e_dir_neg);
+        dff_setup!(self, clock, e_y_switch, wait_first, t_b0_q, t_e0_q, t_f_q, t_r_q, t_d_q);
+        dff_setup!(self, clock, nb_valid, nb_is_row, nb_x, nb_y, nb_len, nb_step);
+        dff_setup!(self, clock, nb_carry, nb_dir_neg, nb_first, nb_last);
+        dff_setup!(self, clock, p_busy, p_pix, p_x, p_y, p_ctr, p_step, p_carry);
+        dff_setup!(self, clock, p_line_start, p_row_start, p_last, p_dir_neg);
+        clock!(self, clock, working, other);
 
         // Handshake between the stages.
         self.p_more.next = self.p_busy.q.val() & self.p_pix.q.val() & (self.p_ctr.q.val() != 0);

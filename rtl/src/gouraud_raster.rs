@@ -13,9 +13,10 @@
 //! sampled on the one `load` strobe, which is accepted when `ready` is high. Outputs:
 //! `valid`, `x`, `y` (12 bits), `red`, `green`, `blue` (8 bits, saturated), `done` (last event
 //! of a triangle), `ready`. Every output is a register or a function of registers. The set-up
-//! ports are declared again here, not bundled, because rust-hdl exports a top's ports only from
-//! its own signal fields and would name an interface's members `bundle$field`; the forwarding
-//! assignments are type-checked against the children's ports, so the widths cannot drift.
+//! ports are the children's own port bundles (`address_setup_ports!`,
+//! `intensity_setup_ports!`, see `crate::declare`), so their names and widths are written
+//! once; rust-hdl exports a top's ports only from its own signal fields, so they are fields
+//! here too, forwarded one by one in `update()` (type-checked against the children's ports).
 //! `x`, `y`, `done` wait `IntensityInterpolator::LATENCY` clocks (`Delay`) to meet their colour.
 //!
 //! Latency: load → first pixel 4 clocks (3 in the address block, 1 in the BVI). Throughput:
@@ -26,91 +27,33 @@
 use crate::address_block::AddressBlock;
 use crate::intensity_interpolator::IntensityInterpolator;
 use crate::primitives::Delay;
-use crate::registry::{NoParams, RtlBlock};
 use rust_hdl::prelude::*;
 
-#[derive(LogicBlock, Default)]
-pub struct GouraudRaster {
-    pub clock: Signal<In, Clock>,
-    pub load: Signal<In, Bit>,
-    pub w_b0: Signal<In, Bits<12>>,
-    pub w_e0: Signal<In, Bits<13>>,
-    pub w_f: Signal<In, Bits<12>>,
-    pub w_r: Signal<In, Bits<13>>,
-    pub w_d: Signal<In, Bits<13>>,
-    pub a_b0: Signal<In, Bits<12>>,
-    pub a_e0: Signal<In, Bits<13>>,
-    pub a_f: Signal<In, Bits<12>>,
-    pub a_r: Signal<In, Bits<13>>,
-    pub a_d: Signal<In, Bits<13>>,
-    pub t_b0: Signal<In, Bits<12>>,
-    pub t_e0: Signal<In, Bits<13>>,
-    pub t_f: Signal<In, Bits<12>>,
-    pub t_r: Signal<In, Bits<13>>,
-    pub t_d: Signal<In, Bits<13>>,
-    pub y_top: Signal<In, Bits<12>>,
-    pub rows: Signal<In, Bits<12>>,
-    pub y_switch: Signal<In, Bits<12>>,
-    pub dir_neg: Signal<In, Bit>,
-    pub r_start: Signal<In, Bits<32>>,
-    pub r_short: Signal<In, Bits<32>>,
-    pub r_long: Signal<In, Bits<32>>,
-    pub r_line: Signal<In, Bits<32>>,
-    pub g_start: Signal<In, Bits<32>>,
-    pub g_short: Signal<In, Bits<32>>,
-    pub g_long: Signal<In, Bits<32>>,
-    pub g_line: Signal<In, Bits<32>>,
-    pub b_start: Signal<In, Bits<32>>,
-    pub b_short: Signal<In, Bits<32>>,
-    pub b_long: Signal<In, Bits<32>>,
-    pub b_line: Signal<In, Bits<32>>,
-
-    pub ready: Signal<Out, Bit>,
-    pub valid: Signal<Out, Bit>,
-    pub x: Signal<Out, Bits<12>>,
-    pub y: Signal<Out, Bits<12>>,
-    pub red: Signal<Out, Bits<8>>,
-    pub green: Signal<Out, Bits<8>>,
-    pub blue: Signal<Out, Bits<8>>,
-    pub done: Signal<Out, Bit>,
-
-    pub addr: AddressBlock,
-    pub bvi: IntensityInterpolator,
-    // The address block's x, y, done, delayed to meet the BVI's colour of the same pixel.
-    x_p1: Delay<Bits<12>, { IntensityInterpolator::LATENCY }>,
-    y_p1: Delay<Bits<12>, { IntensityInterpolator::LATENCY }>,
-    done_p1: Delay<Bit, { IntensityInterpolator::LATENCY }>,
-}
-
-crate::impl_dut!(GouraudRaster, clock: clock,
-    inputs: [load, w_b0, w_e0, w_f, w_r, w_d, a_b0, a_e0, a_f, a_r, a_d,
-             t_b0, t_e0, t_f, t_r, t_d, y_top, rows, y_switch, dir_neg,
-             r_start, r_short, r_long, r_line, g_start, g_short, g_long, g_line,
-             b_start, b_short, b_long, b_line],
-    outputs: [ready, valid, x, y, red, green, blue, done]);
-
-impl GouraudRaster {
-    /// Clocks from the accepted `load` to the first pixel (address block + BVI).
-    pub const LATENCY: usize = AddressBlock::LATENCY + IntensityInterpolator::LATENCY;
-}
-
-impl RtlBlock for GouraudRaster {
-    type Params = NoParams;
-    const NAME: &'static str = "gouraud-raster";
-    const SUMMARY: &'static str = "Gouraud raster pipe: address block feeding the BVI (SPEC §5–6)";
-    const LATENCY: usize = GouraudRaster::LATENCY;
-    const LATENCY_MEANING: &'static str = "load to the first pixel, one pixel per clock";
-    const MULTIPLIERS: usize = 0;
-    fn build(_: &NoParams) -> Self {
-        GouraudRaster::default()
+crate::hw_block! {
+    /// The Gouraud raster pipe: address block + BVI (see the module header).
+    pub struct GouraudRaster(clock) as "gouraud-raster" {
+        summary: "Gouraud raster pipe: address block feeding the BVI (SPEC §5–6)",
+        latency: AddressBlock::LATENCY + IntensityInterpolator::LATENCY
+            => "load to the first pixel, one pixel per clock",
+        multipliers: 0,
+        in { load: Bit, address_setup_ports!, intensity_setup_ports! }
+        out {
+            ready: Bit, valid: Bit, x: Bits<12>, y: Bits<12>,
+            red: Bits<8>, green: Bits<8>, blue: Bits<8>, done: Bit,
+        }
+        pub addr: AddressBlock,
+        pub bvi: IntensityInterpolator,
+        // The address block's x, y, done, delayed to meet the BVI's colour of the same pixel.
+        x_p1: Delay<Bits<12>, { IntensityInterpolator::LATENCY }>,
+        y_p1: Delay<Bits<12>, { IntensityInterpolator::LATENCY }>,
+        done_p1: Delay<Bit, { IntensityInterpolator::LATENCY }>,
     }
 }
 
 impl Logic for GouraudRaster {
     #[hdl_gen]
     fn update(&mut self) {
-        clock!(self, clock, x_p1, y_p1, done_p1);
-        self.addr.clock.next = self.clock.val();
+        clock!(self, clock, addr, bvi, x_p1, y_p1, done_p1);
         self.addr.load.next = self.load.val();
         self.addr.w_b0.next = self.w_b0.val();
         self.addr.w_e0.next = self.w_e0.val();
@@ -133,7 +76,6 @@ impl Logic for GouraudRaster {
         self.addr.dir_neg.next = self.dir_neg.val();
 
         // The BVI's shadow bank is written on the same accepted load as the address block.
-        self.bvi.clock.next = self.clock.val();
         self.bvi.load.next = self.load.val() & self.addr.ready.val();
         self.bvi.r_start.next = self.r_start.val();
         self.bvi.r_short.next = self.r_short.val();

@@ -65,46 +65,41 @@
 //! 8-bit output differs from round(I) (clamped) by at most 1 LSB — by exactly 0 unless I lies
 //! within that bound of a half-integer.
 
-use crate::registry::{NoParams, RtlBlock};
 use rust_hdl::prelude::*;
 
-/// One colour channel: five registers, a shadow bank, one adder, the saturating output.
-#[derive(LogicBlock, Default)]
-pub struct IntensityChannel {
-    pub clock: Signal<In, Clock>,
-    /// Write the shadow bank from the set-up ports.
-    pub load: Signal<In, Bit>,
-    pub set_start: Signal<In, Bits<32>>,
-    pub set_short: Signal<In, Bits<32>>,
-    pub set_long: Signal<In, Bits<32>>,
-    pub set_line: Signal<In, Bits<32>>,
-    /// First event of a triangle (row_start with step Start).
-    pub ev_first: Signal<In, Bit>,
-    pub ev_row_start: Signal<In, Bit>,
-    pub ev_carry: Signal<In, Bit>,
-    pub ev_valid: Signal<In, Bit>,
-    /// The saturated 8-bit intensity of RG4.
-    pub level: Signal<Out, Bits<8>>,
-    /// RG4 itself, signed Q16.16 with the +½ bias (for blocks that need more than 8 bits).
-    pub word: Signal<Out, Bits<32>>,
-    /// RG1: increment of a line start after a short edge move.
-    rg1: DFF<Bits<32>>,
-    /// RG2: increment of a line start after a long edge move.
-    rg2: DFF<Bits<32>>,
-    /// RG3: increment along the raster line.
-    rg3: DFF<Bits<32>>,
-    /// RG4: the running intensity (the output).
-    rg4: DFF<Bits<32>>,
-    /// RG5: the intensity at the current line start.
-    rg5: DFF<Bits<32>>,
-    sh1: DFF<Bits<32>>,
-    sh2: DFF<Bits<32>>,
-    sh3: DFF<Bits<32>>,
-    sh5: DFF<Bits<32>>,
-    /// Adder operands and sum (signed Q16.16, modulo 2^32).
-    add_a: Signal<Local, Bits<32>>,
-    add_b: Signal<Local, Bits<32>>,
-    sum: Signal<Local, Bits<32>>,
+crate::hw_block! {
+    /// One colour channel: five registers, a shadow bank, one adder, the saturating output.
+    pub struct IntensityChannel(clock) {
+        in {
+            /// Write the shadow bank from the set-up ports.
+            load: Bit,
+            set_start: Bits<32>, set_short: Bits<32>, set_long: Bits<32>, set_line: Bits<32>,
+            /// First event of a triangle (row_start with step Start).
+            ev_first: Bit,
+            ev_row_start: Bit, ev_carry: Bit, ev_valid: Bit,
+        }
+        out {
+            /// The saturated 8-bit intensity of RG4.
+            level: Bits<8>,
+            /// RG4 itself, signed Q16.16 with the +½ bias (for blocks that need more than 8 bits).
+            word: Bits<32>,
+        }
+        /// RG1: increment of a line start after a short edge move.
+        rg1: DFF<Bits<32>>,
+        /// RG2: increment of a line start after a long edge move.
+        rg2: DFF<Bits<32>>,
+        /// RG3: increment along the raster line.
+        rg3: DFF<Bits<32>>,
+        /// RG4: the running intensity (the output).
+        rg4: DFF<Bits<32>>,
+        /// RG5: the intensity at the current line start.
+        rg5: DFF<Bits<32>>,
+        /// The shadow bank: RG1, RG2, RG3 and RG5 of the next triangle.
+        sh1: DFF<Bits<32>>, sh2: DFF<Bits<32>>, sh3: DFF<Bits<32>>, sh5: DFF<Bits<32>>,
+        /// Adder operands and sum (signed Q16.16, modulo 2^32).
+        add_a: Signal<Local, Bits<32>>, add_b: Signal<Local, Bits<32>>,
+        sum: Signal<Local, Bits<32>>,
+    }
 }
 
 impl Logic for IntensityChannel {
@@ -154,62 +149,43 @@ impl Logic for IntensityChannel {
     }
 }
 
-/// BVI: three channels sharing the address block's step information.
-#[derive(LogicBlock, Default)]
-pub struct IntensityInterpolator {
-    pub clock: Signal<In, Clock>,
-    pub load: Signal<In, Bit>,
-    pub r_start: Signal<In, Bits<32>>,
-    pub r_short: Signal<In, Bits<32>>,
-    pub r_long: Signal<In, Bits<32>>,
-    pub r_line: Signal<In, Bits<32>>,
-    pub g_start: Signal<In, Bits<32>>,
-    pub g_short: Signal<In, Bits<32>>,
-    pub g_long: Signal<In, Bits<32>>,
-    pub g_line: Signal<In, Bits<32>>,
-    pub b_start: Signal<In, Bits<32>>,
-    pub b_short: Signal<In, Bits<32>>,
-    pub b_long: Signal<In, Bits<32>>,
-    pub b_line: Signal<In, Bits<32>>,
-    pub in_valid: Signal<In, Bit>,
-    pub in_row_start: Signal<In, Bit>,
-    pub in_step: Signal<In, Bits<2>>,
-    pub in_carry: Signal<In, Bit>,
-    pub valid_out: Signal<Out, Bit>,
-    pub red: Signal<Out, Bits<8>>,
-    pub green: Signal<Out, Bits<8>>,
-    pub blue: Signal<Out, Bits<8>>,
-    /// The running words RG4 (signed Q16.16, +½ LSB bias, wrapping): the value before
-    /// saturation, exposed for the bench's format check and for wider consumers.
-    pub red_word: Signal<Out, Bits<32>>,
-    pub green_word: Signal<Out, Bits<32>>,
-    pub blue_word: Signal<Out, Bits<32>>,
-    /// The three colour channels: 0 red, 1 green, 2 blue.
-    pub chan: [IntensityChannel; 3],
-    valid_p1: DFF<Bit>,
-    first: Signal<Local, Bit>,
+/// The BVI's twelve set-up words after `load` (signed Q16.16: start, short, long, line for
+/// red, green, blue), as a port bundle (`crate::declare`) for the blocks that contain a BVI
+/// and pass its set-up through.
+#[macro_export]
+macro_rules! intensity_setup_ports {
+    ($($then:tt)*) => {
+        $crate::hw_bundle! {
+            [
+                r_start: Bits<32>, r_short: Bits<32>, r_long: Bits<32>, r_line: Bits<32>,
+                g_start: Bits<32>, g_short: Bits<32>, g_long: Bits<32>, g_line: Bits<32>,
+                b_start: Bits<32>, b_short: Bits<32>, b_long: Bits<32>, b_line: Bits<32>,
+            ]
+            $($then)*
+        }
+    };
 }
 
-crate::impl_dut!(IntensityInterpolator, clock: clock,
-    inputs: [load, r_start, r_short, r_long, r_line, g_start, g_short, g_long, g_line,
-             b_start, b_short, b_long, b_line, in_valid, in_row_start, in_step, in_carry],
-    outputs: [valid_out, red, green, blue, red_word, green_word, blue_word]);
-
-impl IntensityInterpolator {
-    /// Clocks from an event (`in_valid`) to its colour (`valid_out`).
-    pub const LATENCY: usize = 1;
-}
-
-impl RtlBlock for IntensityInterpolator {
-    type Params = NoParams;
-    const NAME: &'static str = "intensity-interpolator";
-    const SUMMARY: &'static str =
-        "BVI: the address block's step information in, 8-bit R, G, B per pixel out (SPEC §6)";
-    const LATENCY: usize = IntensityInterpolator::LATENCY;
-    const LATENCY_MEANING: &'static str = "in_valid to valid_out, one pixel per clock";
-    const MULTIPLIERS: usize = 0;
-    fn build(_: &NoParams) -> Self {
-        IntensityInterpolator::default()
+crate::hw_block! {
+    /// BVI: three channels sharing the address block's step information.
+    pub struct IntensityInterpolator(clock) as "intensity-interpolator" {
+        summary: "BVI: the address block's step information in, 8-bit R, G, B per pixel out (SPEC §6)",
+        latency: 1 => "in_valid to valid_out, one pixel per clock",
+        multipliers: 0,
+        in { load: Bit, intensity_setup_ports!,
+            in_valid: Bit, in_row_start: Bit, in_step: Bits<2>, in_carry: Bit,
+        }
+        out {
+            valid_out: Bit, red: Bits<8>, green: Bits<8>, blue: Bits<8>,
+            /// The running words RG4 (signed Q16.16, +½ LSB bias, wrapping): the value before
+            /// saturation, exposed for the bench's format check and for wider consumers.
+            red_word: Bits<32>,
+            green_word: Bits<32>, blue_word: Bits<32>,
+        }
+        /// The three colour channels: 0 red, 1 green, 2 blue.
+        pub chan: [IntensityChannel; 3],
+        valid_p1: DFF<Bit>,
+        first: Signal<Local, Bit>,
     }
 }
 

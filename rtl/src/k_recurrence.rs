@@ -50,7 +50,6 @@
 //! (signed Q2.14) as the normalizer's. Error budget: the normalizer's
 //! (`crate::normalizer::error_budget`).
 
-use crate::registry::{NoParams, RtlBlock};
 use rust_hdl::prelude::*;
 
 use crate::fixed::{K_ALPHA, K_FULL};
@@ -78,88 +77,25 @@ pub fn span_setup(n0: [i64; 3], delta: [i64; 3]) -> SpanSetup {
     }
 }
 
-/// The K recurrence alone. Latency [`KRecurrence::LATENCY`].
-#[derive(LogicBlock)]
-pub struct KRecurrence {
-    pub clock: Signal<In, Clock>,
-    pub valid_in: Signal<In, Bit>,
-    pub load: Signal<In, Bit>,
-    pub k0: Signal<In, Bits<32>>,
-    pub alpha: Signal<In, Bits<32>>,
-    pub beta: Signal<In, Bits<32>>,
-    pub valid_out: Signal<Out, Bit>,
-    pub k: Signal<Out, Bits<32>>,
-    // Stage 1: input registers (2α and 2β are wiring).
-    valid_p1: DFF<Bit>,
-    load_p1: DFF<Bit>,
-    k0_p1: DFF<Bits<32>>,
-    alpha2_p1: DFF<Bits<32>>,
-    beta_p1: DFF<Bits<32>>,
-    // Stage 2: recurrence state (value for the next pixel) and the output register.
-    k_next: DFF<Bits<32>>,
-    beta_i: DFF<Bits<32>>,
-    alpha2: DFF<Bits<32>>,
-    beta2: DFF<Bits<32>>,
-    k_out: DFF<Bits<32>>,
-    valid_p2: DFF<Bit>,
-    // This pixel's K, β_i, 2α, 2β: the loaded values on a load, else the state.
-    k_cur: Signal<Local, Bits<32>>,
-    beta_cur: Signal<Local, Bits<32>>,
-    alpha2_cur: Signal<Local, Bits<32>>,
-    beta2_cur: Signal<Local, Bits<32>>,
-}
-
-impl KRecurrence {
-    /// Clocks from `valid_in` to `valid_out`.
-    pub const LATENCY: usize = 2;
-
-    pub fn new() -> Self {
-        Self {
-            clock: Default::default(),
-            valid_in: Default::default(),
-            load: Default::default(),
-            k0: Default::default(),
-            alpha: Default::default(),
-            beta: Default::default(),
-            valid_out: Default::default(),
-            k: Default::default(),
-            valid_p1: Default::default(),
-            load_p1: Default::default(),
-            k0_p1: Default::default(),
-            alpha2_p1: Default::default(),
-            beta_p1: Default::default(),
-            k_next: Default::default(),
-            beta_i: Default::default(),
-            alpha2: Default::default(),
-            beta2: Default::default(),
-            k_out: Default::default(),
-            valid_p2: Default::default(),
-            k_cur: Default::default(),
-            beta_cur: Default::default(),
-            alpha2_cur: Default::default(),
-            beta2_cur: Default::default(),
-        }
+crate::hw_block! {
+    /// The K recurrence alone. Latency [`KRecurrence::LATENCY`].
+    pub struct KRecurrence(clock) as "k-recurrence" {
+        summary: "K along a span by additions: K_0, α, β in, K_i out (SPEC §1)",
+        latency: 2 => "valid_in to valid_out, one input per clock",
+        multipliers: 0,
+        in { valid_in: Bit, load: Bit, k0: Bits<32>, alpha: Bits<32>, beta: Bits<32> }
+        out { valid_out: Bit, k: Bits<32> }
+        // Stage 1: input registers (2α and 2β are wiring).
+        valid_p1: DFF<Bit>, load_p1: DFF<Bit>,
+        k0_p1: DFF<Bits<32>>, alpha2_p1: DFF<Bits<32>>, beta_p1: DFF<Bits<32>>,
+        // Stage 2: recurrence state (value for the next pixel) and the output register.
+        k_next: DFF<Bits<32>>, beta_i: DFF<Bits<32>>, alpha2: DFF<Bits<32>>, beta2: DFF<Bits<32>>,
+        k_out: DFF<Bits<32>>, valid_p2: DFF<Bit>,
+        // This pixel's K, β_i, 2α, 2β: the loaded values on a load, else the state.
+        k_cur: Signal<Local, Bits<32>>, beta_cur: Signal<Local, Bits<32>>,
+        alpha2_cur: Signal<Local, Bits<32>>, beta2_cur: Signal<Local, Bits<32>>,
     }
-}
-
-impl Default for KRecurrence {
-    fn default() -> Self {
-        Self::new()
-    }
-}
-
-crate::impl_dut!(KRecurrence, clock: clock, inputs: [valid_in, load, k0, alpha, beta], outputs: [valid_out, k]);
-
-impl RtlBlock for KRecurrence {
-    type Params = NoParams;
-    const NAME: &'static str = "k-recurrence";
-    const SUMMARY: &'static str = "K along a span by additions: K_0, α, β in, K_i out (SPEC §1)";
-    const LATENCY: usize = KRecurrence::LATENCY;
-    const LATENCY_MEANING: &'static str = "valid_in to valid_out, one input per clock";
-    const MULTIPLIERS: usize = 0;
-    fn build(_: &NoParams) -> Self {
-        KRecurrence::new()
-    }
+    new();
 }
 
 impl Logic for KRecurrence {
@@ -201,83 +137,25 @@ impl Logic for KRecurrence {
     }
 }
 
-/// K recurrence + vector interpolation feeding the normalizer's back end.
-/// Latency [`SpanNormalizer::LATENCY`].
-#[derive(LogicBlock)]
-pub struct SpanNormalizer {
-    pub clock: Signal<In, Clock>,
-    pub valid_in: Signal<In, Bit>,
-    pub load: Signal<In, Bit>,
-    pub x0: Signal<In, Bits<16>>,
-    pub y0: Signal<In, Bits<16>>,
-    pub z0: Signal<In, Bits<16>>,
-    pub dx: Signal<In, Bits<16>>,
-    pub dy: Signal<In, Bits<16>>,
-    pub dz: Signal<In, Bits<16>>,
-    pub k0: Signal<In, Bits<32>>,
-    pub alpha: Signal<In, Bits<32>>,
-    pub beta: Signal<In, Bits<32>>,
-    pub valid_out: Signal<Out, Bit>,
-    pub nx: Signal<Out, Bits<16>>,
-    pub ny: Signal<Out, Bits<16>>,
-    pub nz: Signal<Out, Bits<16>>,
-    krec: KRecurrence,
-    // Vector interpolation N_{i+1} = N_i + Δ, one component each, aligned with `krec`.
-    step_x: ComponentStep,
-    step_y: ComponentStep,
-    step_z: ComponentStep,
-    scale: NormalizerK,
-}
-
-impl SpanNormalizer {
-    /// Clocks from `valid_in` to `valid_out`.
-    pub const LATENCY: usize = KRecurrence::LATENCY + NormalizerK::LATENCY;
-
-    pub fn new(c: &NormalizerCoeffs) -> Self {
-        Self {
-            clock: Default::default(),
-            valid_in: Default::default(),
-            load: Default::default(),
-            x0: Default::default(),
-            y0: Default::default(),
-            z0: Default::default(),
-            dx: Default::default(),
-            dy: Default::default(),
-            dz: Default::default(),
-            k0: Default::default(),
-            alpha: Default::default(),
-            beta: Default::default(),
-            valid_out: Default::default(),
-            nx: Default::default(),
-            ny: Default::default(),
-            nz: Default::default(),
-            krec: KRecurrence::new(),
-            step_x: Default::default(),
-            step_y: Default::default(),
-            step_z: Default::default(),
-            scale: NormalizerK::new(c),
+crate::hw_block! {
+    /// K recurrence + vector interpolation feeding the normalizer's back end.
+    /// Latency [`SpanNormalizer::LATENCY`].
+    pub struct SpanNormalizer(clock) as "span-normalizer" {
+        summary: "K recurrence + vector interpolator feeding the normalizer back end (SPEC §1)",
+        latency: KRecurrence::LATENCY + NormalizerK::LATENCY
+            => "valid_in to valid_out, one input per clock",
+        multipliers: 5,
+        in { valid_in: Bit, load: Bit,
+            x0: Bits<16>, y0: Bits<16>, z0: Bits<16>, dx: Bits<16>, dy: Bits<16>, dz: Bits<16>,
+            k0: Bits<32>, alpha: Bits<32>, beta: Bits<32>,
         }
+        out { valid_out: Bit, nx: Bits<16>, ny: Bits<16>, nz: Bits<16> }
+        krec: KRecurrence,
+        // Vector interpolation N_{i+1} = N_i + Δ, one component each, aligned with `krec`.
+        step_x: ComponentStep, step_y: ComponentStep, step_z: ComponentStep,
+        scale: NormalizerK = NormalizerK::new(c),
     }
-}
-
-crate::impl_dut!(
-    SpanNormalizer,
-    clock: clock,
-    inputs: [valid_in, load, x0, y0, z0, dx, dy, dz, k0, alpha, beta],
-    outputs: [valid_out, nx, ny, nz]
-);
-
-impl RtlBlock for SpanNormalizer {
-    type Params = NormalizerCoeffs;
-    const NAME: &'static str = "span-normalizer";
-    const SUMMARY: &'static str =
-        "K recurrence + vector interpolator feeding the normalizer back end (SPEC §1)";
-    const LATENCY: usize = SpanNormalizer::LATENCY;
-    const LATENCY_MEANING: &'static str = "valid_in to valid_out, one input per clock";
-    const MULTIPLIERS: usize = 5;
-    fn build(p: &NormalizerCoeffs) -> Self {
-        SpanNormalizer::new(p)
-    }
+    new(c: &NormalizerCoeffs);
 }
 
 impl Logic for SpanNormalizer {
@@ -315,31 +193,22 @@ impl Logic for SpanNormalizer {
     }
 }
 
-/// One component of [`SpanNormalizer`]'s vector interpolation, `N_{i+1} = N_i + Δ` (signed
-/// Q2.14, modulo 2¹⁶; the caller keeps N_i representable), in [`KRecurrence`]'s two stages:
-/// input registers, then the recurrence state and the output register. `load` (with
-/// `valid_in`) takes `n0` and `delta`; clocks with `valid_in` low freeze it. `n` is N_i,
-/// [`KRecurrence::LATENCY`] clocks after its `valid_in`, beside K_i.
-#[derive(LogicBlock, Default)]
-struct ComponentStep {
-    pub clock: Signal<In, Clock>,
-    pub valid_in: Signal<In, Bit>,
-    pub load: Signal<In, Bit>,
-    pub n0: Signal<In, Bits<16>>,
-    pub delta: Signal<In, Bits<16>>,
-    pub n: Signal<Out, Bits<16>>,
-    // Stage 1: input registers.
-    valid_p1: DFF<Bit>,
-    load_p1: DFF<Bit>,
-    n0_p1: DFF<Bits<16>>,
-    delta_p1: DFF<Bits<16>>,
-    // Stage 2: recurrence state (value for the next pixel) and the output register.
-    n_next: DFF<Bits<16>>,
-    delta_hold: DFF<Bits<16>>,
-    n_out: DFF<Bits<16>>,
-    // This pixel's N and Δ: the loaded values on a load, else the state.
-    n_cur: Signal<Local, Bits<16>>,
-    delta_cur: Signal<Local, Bits<16>>,
+crate::hw_block! {
+    /// One component of [`SpanNormalizer`]'s vector interpolation, `N_{i+1} = N_i + Δ` (signed
+    /// Q2.14, modulo 2¹⁶; the caller keeps N_i representable), in [`KRecurrence`]'s two stages:
+    /// input registers, then the recurrence state and the output register. `load` (with
+    /// `valid_in`) takes `n0` and `delta`; clocks with `valid_in` low freeze it. `n` is N_i,
+    /// [`KRecurrence::LATENCY`] clocks after its `valid_in`, beside K_i.
+    struct ComponentStep(clock) {
+        in { valid_in: Bit, load: Bit, n0: Bits<16>, delta: Bits<16> }
+        out { n: Bits<16> }
+        // Stage 1: input registers.
+        valid_p1: DFF<Bit>, load_p1: DFF<Bit>, n0_p1: DFF<Bits<16>>, delta_p1: DFF<Bits<16>>,
+        // Stage 2: recurrence state (value for the next pixel) and the output register.
+        n_next: DFF<Bits<16>>, delta_hold: DFF<Bits<16>>, n_out: DFF<Bits<16>>,
+        // This pixel's N and Δ: the loaded values on a load, else the state.
+        n_cur: Signal<Local, Bits<16>>, delta_cur: Signal<Local, Bits<16>>,
+    }
 }
 
 impl Logic for ComponentStep {

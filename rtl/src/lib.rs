@@ -1,4 +1,5 @@
 pub mod address_block;
+pub mod declare;
 pub mod export;
 pub mod fixed;
 pub mod gouraud_raster;

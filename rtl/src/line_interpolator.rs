@@ -45,37 +45,33 @@
 
 use rust_hdl::prelude::*;
 
-#[derive(LogicBlock, Default)]
-pub struct LineInterpolator {
-    pub clock: Signal<In, Clock>,
-    pub load: Signal<In, Bit>,
-    pub load_b: Signal<In, Bits<12>>,
-    pub load_e: Signal<In, Bits<13>>,
-    pub load_f: Signal<In, Bits<12>>,
-    pub load_r: Signal<In, Bits<13>>,
-    pub load_d: Signal<In, Bits<13>>,
-    pub advance: Signal<In, Bit>,
-    pub bound: Signal<Out, Bits<12>>,
-    pub last_step: Signal<Out, Bits<2>>,
-    pub last_carry: Signal<Out, Bit>,
-    /// B, the boundary.
-    bound_q: DFF<Bits<12>>,
-    /// e, the error term.
-    err_q: DFF<Bits<13>>,
-    /// f, the whole move per line (two's complement).
-    quot_q: DFF<Bits<12>>,
-    /// r, the remainder added to the error per line.
-    rem_q: DFF<Bits<13>>,
-    /// D = 2Δy, the error's modulus.
-    den_q: DFF<Bits<13>>,
-    step_q: DFF<Bits<2>>,
-    carry_q: DFF<Bit>,
-    /// carry of the next move: e < r.
-    carry_next: Signal<Local, Bit>,
-    /// f + carry, 12 bits.
-    move_next: Signal<Local, Bits<12>>,
-    /// e − r, 13 bits modulo 2^13.
-    err_diff: Signal<Local, Bits<13>>,
+crate::hw_block! {
+    /// One edge's DDA (the header's formula); not exported alone.
+    pub struct LineInterpolator(clock) {
+        in {
+            load: Bit,
+            load_b: Bits<12>, load_e: Bits<13>, load_f: Bits<12>, load_r: Bits<13>, load_d: Bits<13>,
+            advance: Bit,
+        }
+        out { bound: Bits<12>, last_step: Bits<2>, last_carry: Bit }
+        /// B, the boundary.
+        bound_q: DFF<Bits<12>>,
+        /// e, the error term.
+        err_q: DFF<Bits<13>>,
+        /// f, the whole move per line (two's complement).
+        quot_q: DFF<Bits<12>>,
+        /// r, the remainder added to the error per line.
+        rem_q: DFF<Bits<13>>,
+        /// D = 2Δy, the error's modulus.
+        den_q: DFF<Bits<13>>,
+        step_q: DFF<Bits<2>>, carry_q: DFF<Bit>,
+        /// carry of the next move: e < r.
+        carry_next: Signal<Local, Bit>,
+        /// f + carry, 12 bits.
+        move_next: Signal<Local, Bits<12>>,
+        /// e − r, 13 bits modulo 2^13.
+        err_diff: Signal<Local, Bits<13>>,
+    }
 }
 
 impl Logic for LineInterpolator {

@@ -88,7 +88,7 @@ use crate::fixed::{QFormat, COEF_C0, COEF_C1, COEF_C2, HORNER_T1, K_NARROW, NORM
 use crate::primitives::{
     Delay, MulSignedUnsigned, RoundToQ2_14, RoundToUQ1_15, SatToQ2_14, SatToUQ1_15, SquareSigned,
 };
-use crate::registry::{BlockParams, Options, RtlBlock};
+use crate::registry::{BlockParams, Options};
 
 /// Why a coefficient set cannot be built.
 #[derive(Debug, thiserror::Error, PartialEq)]
@@ -305,130 +305,54 @@ pub fn error_budget(c: &NormalizerCoeffs, k_lo: f64, k_hi: f64, x_max: f64) -> E
     }
 }
 
-/// Back end of the normalizer: K in, N·f(K) out. Latency [`NormalizerK::LATENCY`].
-#[derive(LogicBlock)]
-pub struct NormalizerK {
-    pub clock: Signal<In, Clock>,
-    pub valid_in: Signal<In, Bit>,
-    pub x: Signal<In, Bits<16>>,
-    pub y: Signal<In, Bits<16>>,
-    pub z: Signal<In, Bits<16>>,
-    pub k: Signal<In, Bits<32>>,
-    pub valid_out: Signal<Out, Bit>,
-    pub nx: Signal<Out, Bits<16>>,
-    pub ny: Signal<Out, Bits<16>>,
-    pub nz: Signal<Out, Bits<16>>,
-    // Coefficients, with half an output LSB folded into the constants that are added anyway.
-    c2_mag: Constant<Bits<16>>,
-    c2_neg: Constant<Bit>,
-    c1_rnd: Constant<Bits<32>>,
-    c0_rnd: Constant<Bits<32>>,
-    sign32: Constant<Bits<32>>,
-    // B1
-    k_round: RoundToUQ1_15,
-    k_narrow: DFF<Bits<16>>,
-    // B2 (Mul4 is the plain unsigned multiply: both operands are unsigned)
-    c2k: DFF<Bits<32>>,
-    k_narrow_p2: Delay<Bits<16>, 2>,
-    // B3
-    t1_sat: SatToQ2_14,
-    t1: DFF<Bits<16>>,
-    // B4
-    mul5: MulSignedUnsigned,
-    t1k: DFF<Bits<32>>,
-    // B5
-    f_sat: SatToUQ1_15,
-    f: DFF<Bits<16>>,
-    // B6, B7: one lane per component.
-    lane_x: ScaleLane,
-    lane_y: ScaleLane,
-    lane_z: ScaleLane,
-    valid_p7: Delay<Bit, { NormalizerK::LATENCY }>,
-    // Combinational intermediates, each exactly sized (rust-hdl wraps per op, Verilog per context).
-    c2k_half: Signal<Local, Bits<32>>,
-    t1_wide: Signal<Local, Bits<32>>,
-    t1k_half: Signal<Local, Bits<32>>,
-    f_wide: Signal<Local, Bits<32>>,
+/// A 32-bit constant from a signed integer (two's complement).
+fn b32(v: i64) -> Constant<Bits<32>> {
+    Constant::new(((v as u64) & 0xFFFF_FFFF).into())
 }
 
-impl NormalizerK {
-    /// Clocks from `valid_in` to `valid_out`.
-    pub const LATENCY: usize = F_LATENCY + ScaleLane::LATENCY_FROM_F;
-
-    pub fn new(c: &NormalizerCoeffs) -> Self {
-        let b32 =
-            |v: i64| -> Constant<Bits<32>> { Constant::new(((v as u64) & 0xFFFF_FFFF).into()) };
-        Self {
-            clock: Default::default(),
-            valid_in: Default::default(),
-            x: Default::default(),
-            y: Default::default(),
-            z: Default::default(),
-            k: Default::default(),
-            valid_out: Default::default(),
-            nx: Default::default(),
-            ny: Default::default(),
-            nz: Default::default(),
-            c2_mag: Constant::new(c.c2_mag.into()),
-            c2_neg: Constant::new(c.c2_neg),
-            // Half an output LSB folded in: t1 drops 15 LSBs, f drops 13.
-            c1_rnd: b32(c.c1 + (1 << 14)),
-            c0_rnd: b32(c.c0 + (1 << 12)),
-            sign32: b32(1 << 31),
-            k_round: Default::default(),
-            k_narrow: Default::default(),
-            c2k: Default::default(),
-            k_narrow_p2: Default::default(),
-            t1_sat: Default::default(),
-            t1: Default::default(),
-            mul5: Default::default(),
-            t1k: Default::default(),
-            f_sat: Default::default(),
-            f: Default::default(),
-            lane_x: Default::default(),
-            lane_y: Default::default(),
-            lane_z: Default::default(),
-            valid_p7: Default::default(),
-            c2k_half: Default::default(),
-            t1_wide: Default::default(),
-            t1k_half: Default::default(),
-            f_wide: Default::default(),
-        }
+crate::hw_block! {
+    /// Back end of the normalizer: K in, N·f(K) out. Latency [`NormalizerK::LATENCY`].
+    pub struct NormalizerK(clock) as "normalizer-k" {
+        summary: "N and K in, N·f(K) out: the normalizer without its squarers (SPEC §1)",
+        latency: F_LATENCY + ScaleLane::LATENCY_FROM_F
+            => "valid_in to valid_out, one input per clock",
+        multipliers: 5,
+        in { valid_in: Bit, x: Bits<16>, y: Bits<16>, z: Bits<16>, k: Bits<32> }
+        out { valid_out: Bit, nx: Bits<16>, ny: Bits<16>, nz: Bits<16> }
+        // Coefficients, with half an output LSB folded into the constants that are added
+        // anyway: t1 drops 15 LSBs, f drops 13.
+        c2_mag: Constant<Bits<16>> = Constant::new(c.c2_mag.into()),
+        c2_neg: Constant<Bit> = Constant::new(c.c2_neg),
+        c1_rnd: Constant<Bits<32>> = b32(c.c1 + (1 << 14)),
+        c0_rnd: Constant<Bits<32>> = b32(c.c0 + (1 << 12)),
+        sign32: Constant<Bits<32>> = b32(1 << 31),
+        // B1
+        k_round: RoundToUQ1_15, k_narrow: DFF<Bits<16>>,
+        // B2 (Mul4 is the plain unsigned multiply: both operands are unsigned)
+        c2k: DFF<Bits<32>>, k_narrow_p2: Delay<Bits<16>, 2>,
+        // B3
+        t1_sat: SatToQ2_14, t1: DFF<Bits<16>>,
+        // B4
+        mul5: MulSignedUnsigned, t1k: DFF<Bits<32>>,
+        // B5
+        f_sat: SatToUQ1_15, f: DFF<Bits<16>>,
+        // B6, B7: one lane per component.
+        lane_x: ScaleLane, lane_y: ScaleLane, lane_z: ScaleLane,
+        valid_p7: Delay<Bit, { NormalizerK::LATENCY }>,
+        // Combinational intermediates, each exactly sized (rust-hdl wraps per op, Verilog per
+        // context).
+        c2k_half: Signal<Local, Bits<32>>, t1_wide: Signal<Local, Bits<32>>,
+        t1k_half: Signal<Local, Bits<32>>, f_wide: Signal<Local, Bits<32>>,
     }
-}
-
-crate::impl_dut!(NormalizerK, clock: clock, inputs: [valid_in, x, y, z, k], outputs: [valid_out, nx, ny, nz]);
-
-impl RtlBlock for NormalizerK {
-    type Params = NormalizerCoeffs;
-    const NAME: &'static str = "normalizer-k";
-    const SUMMARY: &'static str =
-        "N and K in, N·f(K) out: the normalizer without its squarers (SPEC §1)";
-    const LATENCY: usize = NormalizerK::LATENCY;
-    const LATENCY_MEANING: &'static str = "valid_in to valid_out, one input per clock";
-    const MULTIPLIERS: usize = 5;
-    fn build(p: &NormalizerCoeffs) -> Self {
-        NormalizerK::new(p)
-    }
+    new(c: &NormalizerCoeffs);
 }
 
 impl Logic for NormalizerK {
     #[hdl_gen]
     fn update(&mut self) {
-        clock!(
-            self,
-            clock,
-            k_narrow,
-            c2k,
-            k_narrow_p2,
-            t1,
-            t1k,
-            f,
-            lane_x,
-            lane_y,
-            lane_z,
-            valid_p7
-        );
+        // B1..B5 registers, then the lanes (B6, B7) and the valid line.
+        clock!(self, clock, k_narrow, c2k, k_narrow_p2, t1, t1k, f);
+        clock!(self, clock, lane_x, lane_y, lane_z, valid_p7);
         // B1: K (Q4.28) → Q1.15, round to nearest, saturate.
         self.k_round.wide.next = self.k.val();
         self.k_narrow.d.next = self.k_round.narrow.val();
@@ -480,21 +404,17 @@ impl Logic for NormalizerK {
 /// Clocks from K (B1's input) to f (B5's register): the delay a component needs to meet f.
 const F_LATENCY: usize = 5;
 
-/// One output component of [`NormalizerK`], stages B6 and B7: `n = x·f` (Mul6, Mul7 or Mul8),
-/// signed Q2.14 × unsigned Q1.15 → signed Q3.29 (exact), rounded and saturated to Q2.14.
-/// `x` enters with the vector's `valid_in` and waits [`F_LATENCY`] clocks for `f`; `n` is
-/// registered, [`ScaleLane::LATENCY_FROM_F`] clocks after `f`.
-#[derive(LogicBlock, Default)]
-struct ScaleLane {
-    pub clock: Signal<In, Clock>,
-    pub x: Signal<In, Bits<16>>,
-    pub f: Signal<In, Bits<16>>,
-    pub n: Signal<Out, Bits<16>>,
-    x_p5: Delay<Bits<16>, F_LATENCY>,
-    mul: MulSignedUnsigned,
-    xf: DFF<Bits<32>>,
-    round: RoundToQ2_14,
-    n_q: DFF<Bits<16>>,
+crate::hw_block! {
+    /// One output component of [`NormalizerK`], stages B6 and B7: `n = x·f` (Mul6, Mul7 or
+    /// Mul8), signed Q2.14 × unsigned Q1.15 → signed Q3.29 (exact), rounded and saturated to
+    /// Q2.14. `x` enters with the vector's `valid_in` and waits [`F_LATENCY`] clocks for `f`;
+    /// `n` is registered, [`ScaleLane::LATENCY_FROM_F`] clocks after `f`.
+    struct ScaleLane(clock) {
+        in { x: Bits<16>, f: Bits<16> }
+        out { n: Bits<16> }
+        x_p5: Delay<Bits<16>, F_LATENCY>, mul: MulSignedUnsigned, xf: DFF<Bits<32>>,
+        round: RoundToQ2_14, n_q: DFF<Bits<16>>,
+    }
 }
 
 impl ScaleLane {
@@ -519,80 +439,26 @@ impl Logic for ScaleLane {
     }
 }
 
-/// The full normalizer: N in, N' = N·f(|N|²) out. Latency [`Normalizer::LATENCY`].
-#[derive(LogicBlock)]
-pub struct Normalizer {
-    pub clock: Signal<In, Clock>,
-    pub valid_in: Signal<In, Bit>,
-    pub x: Signal<In, Bits<16>>,
-    pub y: Signal<In, Bits<16>>,
-    pub z: Signal<In, Bits<16>>,
-    pub valid_out: Signal<Out, Bit>,
-    pub nx: Signal<Out, Bits<16>>,
-    pub ny: Signal<Out, Bits<16>>,
-    pub nz: Signal<Out, Bits<16>>,
-    // S1
-    mul1: SquareSigned,
-    mul2: SquareSigned,
-    mul3: SquareSigned,
-    sq_x: DFF<Bits<32>>,
-    sq_y: DFF<Bits<32>>,
-    sq_z: DFF<Bits<32>>,
-    // S2
-    k_full: DFF<Bits<32>>,
-    // The vector and its valid wait for K (S1, S2).
-    valid_p2: Delay<Bit, 2>,
-    x_p2: Delay<Bits<16>, 2>,
-    y_p2: Delay<Bits<16>, 2>,
-    z_p2: Delay<Bits<16>, 2>,
-    // B1..B7
-    scale: NormalizerK,
-}
-
-impl Normalizer {
-    /// Clocks from `valid_in` to `valid_out`.
-    pub const LATENCY: usize = 2 + NormalizerK::LATENCY;
-
-    pub fn new(c: &NormalizerCoeffs) -> Self {
-        Self {
-            clock: Default::default(),
-            valid_in: Default::default(),
-            x: Default::default(),
-            y: Default::default(),
-            z: Default::default(),
-            valid_out: Default::default(),
-            nx: Default::default(),
-            ny: Default::default(),
-            nz: Default::default(),
-            mul1: Default::default(),
-            mul2: Default::default(),
-            mul3: Default::default(),
-            sq_x: Default::default(),
-            sq_y: Default::default(),
-            sq_z: Default::default(),
-            k_full: Default::default(),
-            valid_p2: Default::default(),
-            x_p2: Default::default(),
-            y_p2: Default::default(),
-            z_p2: Default::default(),
-            scale: NormalizerK::new(c),
-        }
+crate::hw_block! {
+    /// The full normalizer: N in, N' = N·f(|N|²) out. Latency [`Normalizer::LATENCY`].
+    pub struct Normalizer(clock) as "normalizer" {
+        summary: "N in, N·f(|N|²) out: squarers, Horner f(K), scaling; no division or root (SPEC §1)",
+        latency: 2 + NormalizerK::LATENCY => "valid_in to valid_out, one input per clock",
+        multipliers: 8,
+        in { valid_in: Bit, x: Bits<16>, y: Bits<16>, z: Bits<16> }
+        out { valid_out: Bit, nx: Bits<16>, ny: Bits<16>, nz: Bits<16> }
+        // S1
+        mul1: SquareSigned, mul2: SquareSigned, mul3: SquareSigned,
+        sq_x: DFF<Bits<32>>, sq_y: DFF<Bits<32>>, sq_z: DFF<Bits<32>>,
+        // S2
+        k_full: DFF<Bits<32>>,
+        // The vector and its valid wait for K (S1, S2).
+        valid_p2: Delay<Bit, 2>,
+        x_p2: Delay<Bits<16>, 2>, y_p2: Delay<Bits<16>, 2>, z_p2: Delay<Bits<16>, 2>,
+        // B1..B7
+        scale: NormalizerK = NormalizerK::new(c),
     }
-}
-
-crate::impl_dut!(Normalizer, clock: clock, inputs: [valid_in, x, y, z], outputs: [valid_out, nx, ny, nz]);
-
-impl RtlBlock for Normalizer {
-    type Params = NormalizerCoeffs;
-    const NAME: &'static str = "normalizer";
-    const SUMMARY: &'static str =
-        "N in, N·f(|N|²) out: squarers, Horner f(K), scaling; no division or root (SPEC §1)";
-    const LATENCY: usize = Normalizer::LATENCY;
-    const LATENCY_MEANING: &'static str = "valid_in to valid_out, one input per clock";
-    const MULTIPLIERS: usize = 8;
-    fn build(p: &NormalizerCoeffs) -> Self {
-        Normalizer::new(p)
-    }
+    new(c: &NormalizerCoeffs);
 }
 
 impl Logic for Normalizer {

@@ -69,25 +69,15 @@ impl<T: Synth, const N: usize> Logic for Delay<T, N> {
     }
 }
 
-/// Signed Q3.29 → signed Q2.14, for a word that already carries the half output LSB (2¹⁴):
-/// `narrow` = bits 30..15 of `wide` when bits 31 and 30 agree (the value fits [−2, 2)), else
-/// the bound on `wide`'s side: 0x8000 (−2) or 0x7FFF (2 − 2⁻¹⁴). Combinational.
-#[derive(LogicBlock)]
-pub struct SatToQ2_14 {
-    pub wide: Signal<In, Bits<32>>,
-    pub narrow: Signal<Out, Bits<16>>,
-    q2_14_min: Constant<Bits<16>>,
-    q2_14_max: Constant<Bits<16>>,
-}
-
-impl Default for SatToQ2_14 {
-    fn default() -> Self {
-        Self {
-            wide: Default::default(),
-            narrow: Default::default(),
-            q2_14_min: Constant::new(0x8000.into()),
-            q2_14_max: Constant::new(0x7FFF.into()),
-        }
+crate::hw_block! {
+    /// Signed Q3.29 → signed Q2.14, for a word that already carries the half output LSB (2¹⁴):
+    /// `narrow` = bits 30..15 of `wide` when bits 31 and 30 agree (the value fits [−2, 2)),
+    /// else the bound on `wide`'s side: 0x8000 (−2) or 0x7FFF (2 − 2⁻¹⁴). Combinational.
+    pub struct SatToQ2_14 {
+        in { wide: Bits<32> }
+        out { narrow: Bits<16> }
+        q2_14_min: Constant<Bits<16>> = Constant::new(0x8000.into()),
+        q2_14_max: Constant<Bits<16>> = Constant::new(0x7FFF.into()),
     }
 }
 
@@ -104,27 +94,16 @@ impl Logic for SatToQ2_14 {
     }
 }
 
-/// Signed Q3.29 → signed Q2.14, rounded to nearest (ties toward +∞) and saturated:
-/// `rounded = wide + 2¹⁴` (32-bit; wraps only for `wide` ≥ 2³¹ − 2¹⁴, which no 16×16 product
-/// reaches), then [`SatToQ2_14`]. Combinational.
-#[derive(LogicBlock)]
-pub struct RoundToQ2_14 {
-    pub wide: Signal<In, Bits<32>>,
-    pub narrow: Signal<Out, Bits<16>>,
-    half_lsb: Constant<Bits<32>>,
-    rounded: Signal<Local, Bits<32>>,
-    sat: SatToQ2_14,
-}
-
-impl Default for RoundToQ2_14 {
-    fn default() -> Self {
-        Self {
-            wide: Default::default(),
-            narrow: Default::default(),
-            half_lsb: Constant::new((1u64 << 14).into()),
-            rounded: Default::default(),
-            sat: Default::default(),
-        }
+crate::hw_block! {
+    /// Signed Q3.29 → signed Q2.14, rounded to nearest (ties toward +∞) and saturated:
+    /// `rounded = wide + 2¹⁴` (32-bit; wraps only for `wide` ≥ 2³¹ − 2¹⁴, which no 16×16
+    /// product reaches), then [`SatToQ2_14`]. Combinational.
+    pub struct RoundToQ2_14 {
+        in { wide: Bits<32> }
+        out { narrow: Bits<16> }
+        half_lsb: Constant<Bits<32>> = Constant::new((1u64 << 14).into()),
+        rounded: Signal<Local, Bits<32>>,
+        sat: SatToQ2_14,
     }
 }
 
@@ -137,22 +116,14 @@ impl Logic for RoundToQ2_14 {
     }
 }
 
-/// Signed Q4.28 → unsigned Q1.15, for a word that already carries the half output LSB (2¹²):
-/// negative → 0; ≥ 2 (bit 30 or 29 set) → 0xFFFF (2 − 2⁻¹⁵); else bits 28..13. Combinational.
-#[derive(LogicBlock)]
-pub struct SatToUQ1_15 {
-    pub wide: Signal<In, Bits<32>>,
-    pub narrow: Signal<Out, Bits<16>>,
-    uq1_15_max: Constant<Bits<16>>,
-}
-
-impl Default for SatToUQ1_15 {
-    fn default() -> Self {
-        Self {
-            wide: Default::default(),
-            narrow: Default::default(),
-            uq1_15_max: Constant::new(0xFFFF.into()),
-        }
+crate::hw_block! {
+    /// Signed Q4.28 → unsigned Q1.15, for a word that already carries the half output LSB
+    /// (2¹²): negative → 0; ≥ 2 (bit 30 or 29 set) → 0xFFFF (2 − 2⁻¹⁵); else bits 28..13.
+    /// Combinational.
+    pub struct SatToUQ1_15 {
+        in { wide: Bits<32> }
+        out { narrow: Bits<16> }
+        uq1_15_max: Constant<Bits<16>> = Constant::new(0xFFFF.into()),
     }
 }
 
@@ -169,28 +140,18 @@ impl Logic for SatToUQ1_15 {
     }
 }
 
-/// Unsigned Q4.28 → unsigned Q1.15, rounded to nearest (ties toward +∞) and saturated:
-/// bits 28..13 of `wide + 2¹²`, or 0xFFFF (2 − 2⁻¹⁵) when `wide` ≥ 2 − 2⁻¹⁶ (it would round
-/// to 2.0). That test is `wide` ≥ 2 (bits 31..29) or bits 28..12 all ones — bit tests instead
-/// of a 32-bit comparator, which would sit on the normalizer's critical path. Combinational.
-#[derive(LogicBlock)]
-pub struct RoundToUQ1_15 {
-    pub wide: Signal<In, Bits<32>>,
-    pub narrow: Signal<Out, Bits<16>>,
-    half_lsb: Constant<Bits<32>>,
-    uq1_15_max: Constant<Bits<16>>,
-    rounded: Signal<Local, Bits<32>>,
-}
-
-impl Default for RoundToUQ1_15 {
-    fn default() -> Self {
-        Self {
-            wide: Default::default(),
-            narrow: Default::default(),
-            half_lsb: Constant::new((1u64 << 12).into()),
-            uq1_15_max: Constant::new(0xFFFF.into()),
-            rounded: Default::default(),
-        }
+crate::hw_block! {
+    /// Unsigned Q4.28 → unsigned Q1.15, rounded to nearest (ties toward +∞) and saturated:
+    /// bits 28..13 of `wide + 2¹²`, or 0xFFFF (2 − 2⁻¹⁵) when `wide` ≥ 2 − 2⁻¹⁶ (it would
+    /// round to 2.0). That test is `wide` ≥ 2 (bits 31..29) or bits 28..12 all ones — bit tests
+    /// instead of a 32-bit comparator, which would sit on the normalizer's critical path.
+    /// Combinational.
+    pub struct RoundToUQ1_15 {
+        in { wide: Bits<32> }
+        out { narrow: Bits<16> }
+        half_lsb: Constant<Bits<32>> = Constant::new((1u64 << 12).into()),
+        uq1_15_max: Constant<Bits<16>> = Constant::new(0xFFFF.into()),
+        rounded: Signal<Local, Bits<32>>,
     }
 }
 
@@ -206,18 +167,18 @@ impl Logic for RoundToUQ1_15 {
     }
 }
 
-/// Signed × unsigned 16×16 → signed 32 on one unsigned multiplier (one DSP slice):
-/// `p = ua·ub − [a<0]·(ub ≪ 16)  (mod 2³²)`, exact since the true product fits 32 bits.
-/// Formats: `a` signed Qm.n, `b` unsigned Qk.l → `p` signed Q(m+k).(n+l). Combinational.
-#[derive(LogicBlock, Default)]
-pub struct MulSignedUnsigned {
-    pub a: Signal<In, Bits<16>>,
-    pub b: Signal<In, Bits<16>>,
-    pub p: Signal<Out, Bits<32>>,
-    /// ua·ub, the unsigned product.
-    raw: Signal<Local, Bits<32>>,
-    /// [a<0]·(ub ≪ 16), the sign correction.
-    corr: Signal<Local, Bits<32>>,
+crate::hw_block! {
+    /// Signed × unsigned 16×16 → signed 32 on one unsigned multiplier (one DSP slice):
+    /// `p = ua·ub − [a<0]·(ub ≪ 16)  (mod 2³²)`, exact since the true product fits 32 bits.
+    /// Formats: `a` signed Qm.n, `b` unsigned Qk.l → `p` signed Q(m+k).(n+l). Combinational.
+    pub struct MulSignedUnsigned {
+        in { a: Bits<16>, b: Bits<16> }
+        out { p: Bits<32> }
+        /// ua·ub, the unsigned product.
+        raw: Signal<Local, Bits<32>>,
+        /// [a<0]·(ub ≪ 16), the sign correction.
+        corr: Signal<Local, Bits<32>>,
+    }
 }
 
 impl Logic for MulSignedUnsigned {
@@ -233,17 +194,18 @@ impl Logic for MulSignedUnsigned {
     }
 }
 
-/// Signed square 16 → 32 on one unsigned multiplier (one DSP slice):
-/// `p = ua² − [a<0]·(ua ≪ 17)  (mod 2³²)`, exact (a² ≤ 2³⁰). Formats: `a` signed Qm.n →
-/// `p` unsigned Q2m.2n (signed Q2.14 → unsigned Q4.28). Combinational.
-#[derive(LogicBlock, Default)]
-pub struct SquareSigned {
-    pub a: Signal<In, Bits<16>>,
-    pub p: Signal<Out, Bits<32>>,
-    /// ua², the unsigned square.
-    raw: Signal<Local, Bits<32>>,
-    /// [a<0]·(ua ≪ 17), the sign correction.
-    corr: Signal<Local, Bits<32>>,
+crate::hw_block! {
+    /// Signed square 16 → 32 on one unsigned multiplier (one DSP slice):
+    /// `p = ua² − [a<0]·(ua ≪ 17)  (mod 2³²)`, exact (a² ≤ 2³⁰). Formats: `a` signed Qm.n →
+    /// `p` unsigned Q2m.2n (signed Q2.14 → unsigned Q4.28). Combinational.
+    pub struct SquareSigned {
+        in { a: Bits<16> }
+        out { p: Bits<32> }
+        /// ua², the unsigned square.
+        raw: Signal<Local, Bits<32>>,
+        /// [a<0]·(ua ≪ 17), the sign correction.
+        corr: Signal<Local, Bits<32>>,
+    }
 }
 
 impl Logic for SquareSigned {

@@ -1,7 +1,7 @@
 //! Hand-stepped simulation of the RTL blocks: the [`Dut`] view of a block (its clock, input
 //! ports and output ports as raw words), the [`Stepper`] that runs it one clock at a time, and
-//! VCD output. Every block file implements [`Dut`] beside its struct with [`impl_dut!`], so a
-//! block's port order is stated once, next to its ports.
+//! VCD output. Every block file declares its ports once with [`hw_block!`](crate::hw_block),
+//! which implements [`Dut`] through [`impl_dut!`](crate::impl_dut) in the declaration's port order.
 //!
 //! Timing of clock `c` (what [`Stepper::step`] does): at t = 10c the clock falls and the inputs
 //! change; the design settles and the outputs are sampled (what a downstream register would
@@ -27,7 +27,8 @@ pub struct Port {
     pub width: usize,
 }
 
-/// A rust-hdl block the harness can drive. Implement it with [`impl_dut!`].
+/// A rust-hdl block the harness can drive. Implemented by [`hw_block!`](crate::hw_block)
+/// (through [`impl_dut!`](crate::impl_dut)).
 pub trait Dut: Block {
     /// Input ports, in the order of a stimulus row (the clock is not one of them).
     fn inputs(&self) -> Vec<Port>;
@@ -66,7 +67,7 @@ impl<const N: usize> Word for Bits<N> {
     }
 }
 
-/// Width of a signal's type (helper for [`impl_dut!`]).
+/// Width of a signal's type (helper for [`impl_dut!`](crate::impl_dut)).
 pub fn width_of<D: Direction, T: Synth>(_: &Signal<D, T>) -> usize {
     T::BITS
 }
