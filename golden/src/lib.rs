@@ -25,5 +25,6 @@ pub mod shade;
 #[cfg(feature = "testing")]
 pub mod testing;
 pub mod types;
+pub mod vector_interpolator;
 
 pub use types::*;

@@ -10,3 +10,4 @@ pub mod normalizer;
 pub mod primitives;
 pub mod registry;
 pub mod sim;
+pub mod vector_interpolator;

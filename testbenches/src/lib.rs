@@ -7,4 +7,5 @@ pub mod registry;
 pub mod synth;
 pub mod tools;
 pub mod vcd_check;
+pub mod vector_interpolator;
 pub mod verilog;

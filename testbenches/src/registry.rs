@@ -197,6 +197,7 @@ pub static BLOCKS: &[&dyn Entry] = &[
     &entry::<rtl::address_block::AddressBlock>(),
     &entry::<rtl::intensity_interpolator::IntensityInterpolator>(),
     &entry::<rtl::gouraud_raster::GouraudRaster>(),
+    &entry::<rtl::vector_interpolator::VectorInterpolator>(),
 ];
 
 /// The entry named `name`.

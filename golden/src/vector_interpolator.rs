@@ -1,0 +1,96 @@
+//! Vector interpolator (SPEC §1, "constant increments"; the hardware adds them the way the BVI
+//! of SPEC §6 does): the interpolated normal N along the address block's walk, the golden of
+//! `rtl/src/vector_interpolator.rs`.
+//!
+//! Each component of N is a screen-space plane through the three vertex normals' component
+//! (`ScreenTriangle::scalar_plane`), so it is walked exactly like a BVI intensity channel: the
+//! value at the first line start, then per event one increment — the whole working-edge move
+//! into a line (`short` = f·a + b or `long` = (f + 1)·a + b, the grouped ΔN_H/ΔN_V/ΔN_D of
+//! SPEC §1) or one pixel along the line (`line` = dir·a). The hardware words are signed Q3.29
+//! (wrapping, like the BVI's: only the pixel values must be in range, and |N| ≤ 1 for
+//! interpolated unit normals); the output is rounded to signed Q2.14.
+
+use crate::address_block::{AddressOutputs, AddressSetup};
+use crate::intensity_interpolator::{BviTwin, ChannelSetup, ChannelWords};
+use crate::types::Plane;
+
+/// Fraction bits of the accumulator words (signed Q3.29).
+pub const WORD_FRAC_BITS: u32 = 29;
+/// Fraction bits of the output components (signed Q2.14).
+pub const OUT_FRAC_BITS: u32 = 14;
+
+/// `v` rounded to the nearest signed Q3.29 word (ties toward +∞), modulo 2³².
+pub fn quantize(v: f64) -> u32 {
+    let scaled = (v * (WORD_FRAC_BITS as f64).exp2() + 0.5).floor();
+    (scaled as i128).rem_euclid(1i128 << 32) as u32
+}
+
+/// The twelve set-up words (start, short, long, line for x, y, z) of the component planes
+/// `planes` for the walk `addr` describes. No rounding bias: the output stage rounds.
+pub fn setup(planes: &[Plane; 3], addr: &AddressSetup) -> [ChannelWords; 3] {
+    planes.map(|p| {
+        let s = ChannelSetup::new(&p, addr);
+        ChannelWords {
+            start: quantize(s.start),
+            short: quantize(s.short),
+            long: quantize(s.long),
+            line: quantize(s.line),
+        }
+    })
+}
+
+/// The bound on |output − N_k| for a pixel reached by `adds` additions: each of the `adds`
+/// quantized terms is off by ≤ 2⁻³⁰, and the output rounding by ≤ 2⁻¹⁵.
+pub fn error_bound(adds: u32) -> f64 {
+    adds as f64 * (-(WORD_FRAC_BITS as f64 + 1.0)).exp2() + (-(OUT_FRAC_BITS as f64 + 1.0)).exp2()
+}
+
+/// The output stage: a Q3.29 word to Q2.14 — add half an output LSB in the 32-bit adder
+/// (wrapping), drop 15 bits, saturate to [−2, 2) when the sum leaves that range.
+pub fn round_word(word: u32) -> i64 {
+    let sum = word.wrapping_add(1 << 14) as i32 as i64;
+    if (-(1 << 30)..(1 << 30)).contains(&sum) {
+        sum >> 15
+    } else if sum < 0 {
+        -(1 << 15)
+    } else {
+        (1 << 15) - 1
+    }
+}
+
+/// Bit-exact twin of the vector interpolator: the BVI's three accumulators ([`BviTwin`], the
+/// same register transfers on Q3.29 words) and the rounding output stage.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct VectorTwin(BviTwin);
+
+impl VectorTwin {
+    /// (valid_out, [nx, ny, nz] as signed Q2.14 integers) shown this clock.
+    pub fn outputs(&self) -> (bool, [i64; 3]) {
+        let (valid, _, words) = self.0.outputs();
+        (valid, words.map(round_word))
+    }
+    /// One rising edge with the address block's event `ev` and, with `load`, the next words.
+    pub fn clock(&mut self, load: Option<&[ChannelWords; 3]>, ev: &AddressOutputs) {
+        self.0.clock(load, ev);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn quantize_and_round() {
+        assert_eq!(quantize(1.0), 1 << 29);
+        assert_eq!(quantize(-1.0), (-(1i64 << 29)) as u32);
+        assert_eq!(round_word(1 << 29), 1 << 14);
+        // Half an output LSB rounds up; just below it rounds down.
+        assert_eq!(round_word(1 << 14), 1);
+        assert_eq!(round_word((1 << 14) - 1), 0);
+        assert_eq!(round_word((-(1i64 << 14)) as u32), 0);
+        // Beyond ±2: saturation, not wrap.
+        assert_eq!(round_word(3 << 29), (1 << 15) - 1);
+        assert_eq!(round_word((-(3i64 << 29)) as u32), -(1 << 15));
+        assert!(error_bound(8189) < 0.63 * (-14f64).exp2());
+    }
+}

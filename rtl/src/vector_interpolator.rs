@@ -1,0 +1,105 @@
+//! Vector interpolator (SPEC §1, "constant increments"; golden: `golden::vector_interpolator`):
+//! the interpolated normal N along the address block's walk, one pixel per clock, for the
+//! normalizer of the lit pixel pipeline.
+//!
+//! # Formula
+//!
+//! Each component N_k is a screen-space plane a·x + b·y + c through the vertex normals'
+//! component. The software set-up computes, once per triangle, the increments of SPEC §1
+//! grouped the way the address block moves (`short` = f·a + b and `long` = (f + 1)·a + b for the
+//! working edge's whole move into a line — the ΔN_H/ΔN_V/ΔN_D steps of that move summed —
+//! and `line` = dir·a along a line), and the value at the first line start. The hardware adds
+//! one of them per event, exactly as the BVI does for an intensity: each component is an
+//! [`IntensityChannel`] (RG1–RG5, shadow bank, one adder), on Q3.29 words instead of Q16.16.
+//! K for the normalizer is not formed here: the pipeline squares the rounded N (the
+//! normalizer's own squarers), which keeps K exact for the vector the normalizer scales.
+//!
+//! # Ports and formats
+//!
+//! | port | dir | format |
+//! |---|---|---|
+//! | `load` | in | write the shadow bank (with the address block's accepted load) |
+//! | `x_start x_short x_long x_line`, `y_…`, `z_…` | in | signed Q3.29 words, wrapping (`golden::vector_interpolator::setup`) |
+//! | `valid_in`, `row_start_in`, `step_in` (2), `carry_in` | in | the address block's `valid`, `row_start`, `step`, `carry` |
+//! | `valid_out` | out | `valid_in` one clock later |
+//! | `nx ny nz` | out | signed Q2.14: the running word RG4 rounded to nearest (ties toward +∞), saturated |
+//!
+//! Latency 1 clock (`valid_in` → `valid_out`, the registers RG4; the output rounding is
+//! combinational after them); throughput one pixel per clock; no stall. The shadow bank is
+//! loaded as the BVI's (see `intensity_interpolator`): assert `load` with the address block's
+//! accepted load.
+//!
+//! # Overflow
+//!
+//! Words wrap modulo 2³² on purpose (the sum of the quantized start and increments is exact
+//! modulo 2³², so a sliver's giant increment wraps and unwraps without loss); only the pixel
+//! values must be in range, and |N_k| ≤ 1 for interpolated unit normals (Q3.29 holds ±4). The
+//! output saturates to [−2, 2 − 2⁻¹⁴] (`RoundToQ2_14`) rather than wrap.
+//!
+//! # Error budget
+//!
+//! Each quantized term is off by ≤ 2⁻³⁰; a pixel reached by n ≤ 8189 additions is within
+//! n·2⁻³⁰ ≤ 7.6·10⁻⁶ (0.125 LSB of Q2.14) of the plane value before the output rounding, which
+//! adds ≤ 2⁻¹⁵: in all ≤ n·2⁻³⁰ + 2⁻¹⁵ (`golden::vector_interpolator::error_bound`).
+
+use rust_hdl::prelude::*;
+
+use crate::intensity_interpolator::IntensityChannel;
+use crate::primitives::RoundToQ2_14;
+
+crate::hw_block! {
+    /// The vector interpolator: three Q3.29 accumulators sharing the address block's events.
+    pub struct VectorInterpolator(clock) as "vector-interpolator" {
+        summary: "the address block's step information in, the interpolated normal N (Q2.14) per pixel out (SPEC §1)",
+        latency: 1 => "valid_in to valid_out, one pixel per clock",
+        multipliers: 0,
+        in {
+            load: Bit,
+            x_start: Bits<32>, x_short: Bits<32>, x_long: Bits<32>, x_line: Bits<32>,
+            y_start: Bits<32>, y_short: Bits<32>, y_long: Bits<32>, y_line: Bits<32>,
+            z_start: Bits<32>, z_short: Bits<32>, z_long: Bits<32>, z_line: Bits<32>,
+            valid_in: Bit, row_start_in: Bit, step_in: Bits<2>, carry_in: Bit,
+        }
+        out { valid_out: Bit, nx: Bits<16>, ny: Bits<16>, nz: Bits<16> }
+        /// The three components' accumulators: 0 x, 1 y, 2 z.
+        pub comp: [IntensityChannel; 3],
+        /// Their output rounding to Q2.14.
+        round: [RoundToQ2_14; 3],
+        valid_p1: DFF<Bit>,
+        first: Signal<Local, Bit>,
+    }
+}
+
+impl Logic for VectorInterpolator {
+    #[hdl_gen]
+    fn update(&mut self) {
+        dff_setup!(self, clock, valid_p1);
+        self.first.next = self.row_start_in.val() & (self.step_in.val() == 0);
+        self.valid_p1.d.next = self.valid_in.val();
+        for i in 0..3 {
+            self.comp[i].clock.next = self.clock.val();
+            self.comp[i].load.next = self.load.val();
+            self.comp[i].ev_first.next = self.first.val();
+            self.comp[i].ev_row_start.next = self.row_start_in.val();
+            self.comp[i].ev_carry.next = self.carry_in.val();
+            self.comp[i].ev_valid.next = self.valid_in.val();
+            self.round[i].wide.next = self.comp[i].word.val();
+        }
+        self.comp[0].set_start.next = self.x_start.val();
+        self.comp[0].set_short.next = self.x_short.val();
+        self.comp[0].set_long.next = self.x_long.val();
+        self.comp[0].set_line.next = self.x_line.val();
+        self.comp[1].set_start.next = self.y_start.val();
+        self.comp[1].set_short.next = self.y_short.val();
+        self.comp[1].set_long.next = self.y_long.val();
+        self.comp[1].set_line.next = self.y_line.val();
+        self.comp[2].set_start.next = self.z_start.val();
+        self.comp[2].set_short.next = self.z_short.val();
+        self.comp[2].set_long.next = self.z_long.val();
+        self.comp[2].set_line.next = self.z_line.val();
+        self.valid_out.next = self.valid_p1.q.val();
+        self.nx.next = self.round[0].narrow.val();
+        self.ny.next = self.round[1].narrow.val();
+        self.nz.next = self.round[2].narrow.val();
+    }
+}
