@@ -12,7 +12,7 @@ use std::fmt::Debug;
 use crate::sim::Dut;
 
 /// `key=value` build options from the command line (`--coeffs fit` is `coeffs=fit`). A block's
-/// parameter type reads the keys it knows; the command reports keys no selected block reads.
+/// parameter type reads the keys it knows and ignores the others.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct Options(BTreeMap<String, String>);
 
@@ -25,21 +25,8 @@ impl Options {
         self.0.insert(key.to_string(), value.to_string());
         self
     }
-    /// Parse `key=value` (the form of `--param`).
-    pub fn parse_pair(&mut self, pair: &str) -> Result<(), String> {
-        match pair.split_once('=') {
-            Some((k, v)) if !k.trim().is_empty() => {
-                self.0.insert(k.trim().to_string(), v.trim().to_string());
-                Ok(())
-            }
-            _ => Err(format!("--param {pair:?}: expected KEY=VALUE")),
-        }
-    }
     pub fn get(&self, key: &str) -> Option<&str> {
         self.0.get(key).map(String::as_str)
-    }
-    pub fn keys(&self) -> impl Iterator<Item = &str> {
-        self.0.keys().map(String::as_str)
     }
 }
 

@@ -9,8 +9,9 @@
 //! grouped the way the address block moves (`short` = f·a + b and `long` = (f + 1)·a + b for the
 //! working edge's whole move into a line — the ΔN_H/ΔN_V/ΔN_D steps of that move summed —
 //! and `line` = dir·a along a line), and the value at the first line start. The hardware adds
-//! one of them per event, exactly as the BVI does for an intensity: each component is an
-//! [`IntensityChannel`] (RG1–RG5, shadow bank, one adder), on Q3.29 words instead of Q16.16.
+//! one of them per event, exactly as the BVI does for an intensity: the block *is* a BVI
+//! ([`IntensityInterpolator`]: per component RG1–RG5, a shadow bank, one adder), its words read
+//! as Q3.29 instead of Q16.16, followed by a rounding stage per component.
 //! K for the normalizer is not formed here: the pipeline squares the rounded N (the
 //! normalizer's own squarers), which keeps K exact for the vector the normalizer scales.
 //!
@@ -24,8 +25,8 @@
 //! | `valid_out` | out | `valid_in` one clock later |
 //! | `nx ny nz` | out | signed Q2.14: the running word RG4 rounded to nearest (ties toward +∞), saturated |
 //!
-//! Latency 1 clock (`valid_in` → `valid_out`, the registers RG4; the output rounding is
-//! combinational after them); throughput one pixel per clock; no stall. The shadow bank is
+//! Latency 1 clock (`valid_in` → `valid_out`, the BVI's; the output rounding is combinational
+//! after its RG4 registers); throughput one pixel per clock; no stall. The shadow bank is
 //! loaded as the BVI's (see `intensity_interpolator`): assert `load` with the address block's
 //! accepted load.
 //!
@@ -44,11 +45,12 @@
 
 use rust_hdl::prelude::*;
 
-use crate::intensity_interpolator::IntensityChannel;
+use crate::intensity_interpolator::IntensityInterpolator;
 use crate::primitives::RoundToQ2_14;
 
 crate::hw_block! {
-    /// The vector interpolator: three Q3.29 accumulators sharing the address block's events.
+    /// The vector interpolator: the BVI's three accumulators on Q3.29 words, each rounded to
+    /// Q2.14.
     pub struct VectorInterpolator(clock) as "vector-interpolator" {
         summary: "the address block's step information in, the interpolated normal N (Q2.14) per pixel out (SPEC §1)",
         latency: 1 => "valid_in to valid_out, one pixel per clock",
@@ -61,43 +63,39 @@ crate::hw_block! {
             valid_in: Bit, row_start_in: Bit, step_in: Bits<2>, carry_in: Bit,
         }
         out { valid_out: Bit, nx: Bits<16>, ny: Bits<16>, nz: Bits<16> }
-        /// The three components' accumulators: 0 x, 1 y, 2 z.
-        pub comp: [IntensityChannel; 3],
-        /// Their output rounding to Q2.14.
+        /// The accumulators: the BVI itself, its red, green, blue channels carrying x, y, z
+        /// (its 8-bit outputs are unused and removed by synthesis).
+        pub acc: IntensityInterpolator,
+        /// The output rounding of each component to Q2.14.
         round: [RoundToQ2_14; 3],
-        valid_p1: DFF<Bit>,
-        first: Signal<Local, Bit>,
     }
 }
 
 impl Logic for VectorInterpolator {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, valid_p1);
-        self.first.next = self.row_start_in.val() & (self.step_in.val() == 0);
-        self.valid_p1.d.next = self.valid_in.val();
-        for i in 0..3 {
-            self.comp[i].clock.next = self.clock.val();
-            self.comp[i].load.next = self.load.val();
-            self.comp[i].ev_first.next = self.first.val();
-            self.comp[i].ev_row_start.next = self.row_start_in.val();
-            self.comp[i].ev_carry.next = self.carry_in.val();
-            self.comp[i].ev_valid.next = self.valid_in.val();
-            self.round[i].wide.next = self.comp[i].word.val();
-        }
-        self.comp[0].set_start.next = self.x_start.val();
-        self.comp[0].set_short.next = self.x_short.val();
-        self.comp[0].set_long.next = self.x_long.val();
-        self.comp[0].set_line.next = self.x_line.val();
-        self.comp[1].set_start.next = self.y_start.val();
-        self.comp[1].set_short.next = self.y_short.val();
-        self.comp[1].set_long.next = self.y_long.val();
-        self.comp[1].set_line.next = self.y_line.val();
-        self.comp[2].set_start.next = self.z_start.val();
-        self.comp[2].set_short.next = self.z_short.val();
-        self.comp[2].set_long.next = self.z_long.val();
-        self.comp[2].set_line.next = self.z_line.val();
-        self.valid_out.next = self.valid_p1.q.val();
+        self.acc.clock.next = self.clock.val();
+        self.acc.load.next = self.load.val();
+        self.acc.r_start.next = self.x_start.val();
+        self.acc.r_short.next = self.x_short.val();
+        self.acc.r_long.next = self.x_long.val();
+        self.acc.r_line.next = self.x_line.val();
+        self.acc.g_start.next = self.y_start.val();
+        self.acc.g_short.next = self.y_short.val();
+        self.acc.g_long.next = self.y_long.val();
+        self.acc.g_line.next = self.y_line.val();
+        self.acc.b_start.next = self.z_start.val();
+        self.acc.b_short.next = self.z_short.val();
+        self.acc.b_long.next = self.z_long.val();
+        self.acc.b_line.next = self.z_line.val();
+        self.acc.in_valid.next = self.valid_in.val();
+        self.acc.in_row_start.next = self.row_start_in.val();
+        self.acc.in_step.next = self.step_in.val();
+        self.acc.in_carry.next = self.carry_in.val();
+        self.round[0].wide.next = self.acc.red_word.val();
+        self.round[1].wide.next = self.acc.green_word.val();
+        self.round[2].wide.next = self.acc.blue_word.val();
+        self.valid_out.next = self.acc.valid_out.val();
         self.nx.next = self.round[0].narrow.val();
         self.ny.next = self.round[1].narrow.val();
         self.nz.next = self.round[2].narrow.val();

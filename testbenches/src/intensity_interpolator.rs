@@ -40,6 +40,18 @@ pub fn bvi_row(w: Option<&[ChannelWords; 3]>, o: &AddressOutputs) -> Vec<u64> {
     row
 }
 
+/// The address block's event a BVI input row carries (`row[13..17]`: valid, row_start,
+/// step, carry), the inverse of [`bvi_row`]'s tail.
+pub fn row_event(row: &[u64]) -> AddressOutputs {
+    AddressOutputs {
+        valid: row[13] != 0,
+        row_start: row[14] != 0,
+        step: row[15] as u8,
+        carry: row[16] != 0,
+        ..Default::default()
+    }
+}
+
 /// The BVI's input rows for `jobs`: the golden address block's stream (plus one idle clock to
 /// see the last colour), each triangle's words loaded in the clock the address block accepts
 /// its set-up. Returns the rows and the address stream they carry.
@@ -256,14 +268,7 @@ impl Twin for BviRows {
     fn step(&mut self, r: &[u64]) -> Vec<u64> {
         let o = bvi_outputs(&self.0);
         let w = row_words(r, 1);
-        let ev = AddressOutputs {
-            valid: r[13] != 0,
-            row_start: r[14] != 0,
-            step: r[15] as u8,
-            carry: r[16] != 0,
-            ..Default::default()
-        };
-        self.0.clock((r[0] != 0).then_some(&w), &ev);
+        self.0.clock((r[0] != 0).then_some(&w), &row_event(r));
         o
     }
 }

@@ -74,8 +74,6 @@ pub trait Entry: Sync {
     fn run_golden(&self, o: &Options, stim: &Stimulus, name: &str, seed: u64) -> Checked;
     /// [`Bench::edge_rows`].
     fn edge_rows(&self, o: &Options, seed: u64) -> Result<Vec<Vec<u64>>, String>;
-    /// The twin's output rows for `rows`.
-    fn twin_outputs(&self, o: &Options, rows: &[Vec<u64>]) -> Result<Vec<Vec<u64>>, String>;
     /// Run `rows` through the RTL, requiring every output port in every clock to equal the
     /// twin's bit for bit.
     fn run_twin(&self, o: &Options, rows: &[Vec<u64>], name: &str, seed: u64) -> Checked;
@@ -157,10 +155,6 @@ impl<B: Bench> Entry for Registered<B> {
     fn edge_rows(&self, o: &Options, seed: u64) -> Result<Vec<Vec<u64>>, String> {
         Ok(B::edge_rows(&B::Params::from_options(o)?, seed))
     }
-    fn twin_outputs(&self, o: &Options, rows: &[Vec<u64>]) -> Result<Vec<Vec<u64>>, String> {
-        let mut t = B::twin(&B::Params::from_options(o)?);
-        Ok(rows.iter().map(|r| t.step(r)).collect())
-    }
     fn run_twin(&self, o: &Options, rows: &[Vec<u64>], name: &str, seed: u64) -> Checked {
         let p = B::Params::from_options(o).map_err(|e| failure(name, seed, e))?;
         let mut twin = B::twin(&p);
@@ -227,38 +221,6 @@ pub fn names() -> String {
         .map(|b| b.name())
         .collect::<Vec<_>>()
         .join(", ")
-}
-
-/// Check `o` against `blocks`: every key must be read by at least one of them, and each block
-/// must build with it.
-pub fn check_options(blocks: &[&dyn Entry], o: &Options) -> Result<(), String> {
-    for k in o.keys() {
-        if !blocks.iter().any(|b| b.param_keys().contains(&k)) {
-            let known: Vec<&str> = blocks
-                .iter()
-                .flat_map(|b| b.param_keys())
-                .copied()
-                .collect();
-            return Err(format!(
-                "parameter {k:?} is not read by {} (parameters: {})",
-                blocks
-                    .iter()
-                    .map(|b| b.name())
-                    .collect::<Vec<_>>()
-                    .join(", "),
-                if known.is_empty() {
-                    "none".to_string()
-                } else {
-                    known.join(", ")
-                }
-            ));
-        }
-    }
-    for b in blocks {
-        b.check_options(o)
-            .map_err(|e| format!("{}: {e}", b.name()))?;
-    }
-    Ok(())
 }
 
 /// Outcome of [`sim_to_vcd`].

@@ -8,7 +8,6 @@
 //! `golden::vector_interpolator::error_bound` (n·2⁻³⁰ + 2⁻¹⁵ for a pixel reached by n additions),
 //! RMS within the RMS of those bounds.
 
-use golden::address_block::AddressOutputs;
 use golden::intensity_interpolator::additions;
 use golden::raster::walk;
 use golden::types::ScreenTriangle;
@@ -22,7 +21,7 @@ use rtl::vector_interpolator::VectorInterpolator;
 
 use crate::address_block::{triangle_run, triangle_strategy, GoldenPixel};
 use crate::harness::{Compare, Expected, Tolerance};
-use crate::intensity_interpolator::bvi_rows;
+use crate::intensity_interpolator::{bvi_rows, row_event};
 use crate::normalizer::seeded_runner;
 use crate::registry::{Bench, Stimulus, Twin};
 
@@ -65,15 +64,8 @@ struct VectorRows(VectorTwin);
 impl Twin for VectorRows {
     fn step(&mut self, r: &[u64]) -> Vec<u64> {
         let (valid, n) = self.0.outputs();
-        let ev = AddressOutputs {
-            valid: r[13] != 0,
-            row_start: r[14] != 0,
-            step: r[15] as u8,
-            carry: r[16] != 0,
-            ..Default::default()
-        };
         let w = row_words(r, 1);
-        self.0.clock((r[0] != 0).then_some(&w), &ev);
+        self.0.clock((r[0] != 0).then_some(&w), &row_event(r));
         std::iter::once(valid as u64)
             .chain(n.map(|x| NORMAL.from_int(x)))
             .collect()
