@@ -237,6 +237,11 @@ impl BlockParams for NormalizerCoeffs {
         };
         NormalizerCoeffs::new(c).map_err(|e| e.to_string())
     }
+    fn test_sets() -> Vec<Options> {
+        ["published", "fit"]
+            .map(|c| Options::new().with("coeffs", c))
+            .to_vec()
+    }
     fn describe(&self) -> Option<String> {
         let c = self.requested;
         Some(format!(

@@ -37,6 +37,16 @@ pub trait BlockParams: Clone + Debug + Send + Sync + 'static {
     fn from_options(o: &Options) -> Result<Self, String>;
     /// One line for the exported Verilog's header naming the parameters (`None`: none).
     fn describe(&self) -> Option<String>;
+    /// The parameter sets the generic tests build and check (every value that changes the
+    /// hardware): by default only the defaults.
+    fn test_sets() -> Vec<Options> {
+        vec![Options::new()]
+    }
+    /// 16×16 multipliers of the block built with these parameters, when they change the
+    /// count; `None`: the block's [`RtlBlock::MULTIPLIERS`].
+    fn multipliers(&self) -> Option<usize> {
+        None
+    }
 }
 
 /// The parameters of a block that has none.
@@ -64,7 +74,8 @@ pub trait RtlBlock: Dut + Sized {
     const LATENCY: usize;
     /// What [`RtlBlock::LATENCY`] measures, and the block's throughput.
     const LATENCY_MEANING: &'static str;
-    /// 16×16 multipliers instantiated (one DSP slice each: SB_MAC16 on iCE40).
+    /// 16×16 multipliers instantiated (one DSP slice each: SB_MAC16 on iCE40) by the default
+    /// build; a parameter set may change it ([`BlockParams::multipliers`]).
     const MULTIPLIERS: usize;
     fn build(p: &Self::Params) -> Self;
 }

@@ -59,7 +59,12 @@ pub trait Entry: Sync {
     fn summary(&self) -> &'static str;
     fn latency(&self) -> usize;
     fn latency_meaning(&self) -> &'static str;
+    /// Multipliers of the default build (the README table's figure).
     fn multipliers(&self) -> usize;
+    /// Multipliers of the build with `o`.
+    fn multipliers_with(&self, o: &Options) -> Result<usize, String>;
+    /// The option sets the generic tests build and check ([`BlockParams::test_sets`]).
+    fn test_sets(&self) -> Vec<Options>;
     fn items(&self) -> &'static str;
     fn default_items(&self) -> usize;
     /// The [`Options`] keys the block's parameters read.
@@ -119,6 +124,14 @@ impl<B: Bench> Entry for Registered<B> {
     }
     fn multipliers(&self) -> usize {
         B::MULTIPLIERS
+    }
+    fn multipliers_with(&self, o: &Options) -> Result<usize, String> {
+        Ok(B::Params::from_options(o)?
+            .multipliers()
+            .unwrap_or(B::MULTIPLIERS))
+    }
+    fn test_sets(&self) -> Vec<Options> {
+        B::Params::test_sets()
     }
     fn items(&self) -> &'static str {
         B::ITEMS

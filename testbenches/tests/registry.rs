@@ -28,21 +28,15 @@ fn items(b: &dyn Entry) -> usize {
 
 /// Every parameter set a block is tested with.
 fn option_sets(b: &dyn Entry) -> Vec<Options> {
-    if b.param_keys().contains(&"coeffs") {
-        vec![
-            Options::new().with("coeffs", "published"),
-            Options::new().with("coeffs", "fit"),
-        ]
-    } else {
-        vec![Options::new()]
-    }
+    b.test_sets()
 }
 
+/// The block's name and the values of the options it reads (`normalizer-fit`).
 fn label(b: &dyn Entry, o: &Options) -> String {
-    match o.get("coeffs") {
-        Some(c) => format!("{}-{c}", b.name()),
-        None => b.name().to_string(),
-    }
+    std::iter::once(b.name())
+        .chain(b.param_keys().iter().filter_map(|k| o.get(k)))
+        .collect::<Vec<_>>()
+        .join("-")
 }
 
 /// Every registered block with every parameter set, and a label naming both.
@@ -146,7 +140,7 @@ fn yosys_synthesizes_every_block_with_its_multipliers() {
         print!("{rep}");
         assert_eq!(
             rep.mac16(),
-            b.multipliers() as u64,
+            b.multipliers_with(&o).unwrap() as u64,
             "{}: multipliers mapped to SB_MAC16",
             b.name()
         );
