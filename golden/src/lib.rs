@@ -12,6 +12,7 @@ pub mod cubic;
 pub mod fast;
 pub mod gouraud;
 pub mod intensity_interpolator;
+pub mod lighting_unit;
 pub mod methods;
 pub mod nmse;
 pub mod normalizer;

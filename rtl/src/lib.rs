@@ -5,6 +5,7 @@ pub mod fixed;
 pub mod gouraud_raster;
 pub mod intensity_interpolator;
 pub mod k_recurrence;
+pub mod lighting_unit;
 pub mod line_interpolator;
 pub mod normalizer;
 pub mod primitives;

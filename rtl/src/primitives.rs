@@ -14,6 +14,7 @@
 //! | [`RoundToUQ1_15`]      | `wide` (32) → `narrow` (16) | unsigned Q4.28 → unsigned Q1.15: add ½ LSB (2¹²), drop 13 LSBs, saturate | 0 |
 //! | [`MulSignedUnsigned`]  | `a` (16), `b` (16) → `p` (32) | `a·b = ua·ub − [a<0]·(ub ≪ 16)` mod 2³² (one multiplier) | 0 |
 //! | [`SquareSigned`]       | `a` (16) → `p` (32)      | `a² = ua² − [a<0]·(ua ≪ 17)` mod 2³² (one multiplier) | 0 |
+//! | [`MulSigned`]          | `a` (16), `b` (16) → `p` (32) | `a·b = ua·ub − [a<0]·(ub ≪ 16) − [b<0]·(ua ≪ 16)` mod 2³² (one multiplier) | 0 |
 //!
 //! Rounding is to nearest with ties toward +∞ (add half an output LSB, then drop the LSBs), the
 //! rule of [`crate::fixed`]. The `Sat…` narrowings take a word that already carries the half LSB
@@ -221,6 +222,42 @@ impl Logic for SquareSigned {
     }
 }
 
+crate::hw_block! {
+    /// Signed × signed 16×16 → signed 32 on one unsigned multiplier (one DSP slice):
+    /// `p = ua·ub − [a<0]·(ub ≪ 16) − [b<0]·(ua ≪ 16)  (mod 2³²)`, exact since the true
+    /// product fits 32 bits (|p| ≤ 2³⁰). Formats: signed Qm.n × signed Qk.l → signed
+    /// Q(m+k).(n+l) (Q2.14 × Q2.14 → Q4.28). Combinational.
+    pub struct MulSigned {
+        in { a: Bits<16>, b: Bits<16> }
+        out { p: Bits<32> }
+        /// ua·ub, the unsigned product.
+        raw: Signal<Local, Bits<32>>,
+        /// [a<0]·(ub ≪ 16) and [b<0]·(ua ≪ 16), the sign corrections.
+        corr_a: Signal<Local, Bits<32>>,
+        corr_b: Signal<Local, Bits<32>>,
+        part: Signal<Local, Bits<32>>,
+    }
+}
+
+impl Logic for MulSigned {
+    #[hdl_gen]
+    fn update(&mut self) {
+        self.raw.next = self.a.val() * self.b.val();
+        if self.a.val().get_bit(15) {
+            self.corr_a.next = bit_cast::<32, 16>(self.b.val()) << 16;
+        } else {
+            self.corr_a.next = 0.into();
+        }
+        if self.b.val().get_bit(15) {
+            self.corr_b.next = bit_cast::<32, 16>(self.a.val()) << 16;
+        } else {
+            self.corr_b.next = 0.into();
+        }
+        self.part.next = self.raw.val() - self.corr_a.val();
+        self.p.next = self.part.val() - self.corr_b.val();
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -320,8 +357,10 @@ mod tests {
     fn multiplies_are_exact() {
         let mut mul = MulSignedUnsigned::default();
         let mut sq = SquareSigned::default();
+        let mut ss = MulSigned::default();
         mul.connect_all();
         sq.connect_all();
+        ss.connect_all();
         let edges = [
             0u32, 1, 2, 0x3FFF, 0x4000, 0x7FFE, 0x7FFF, 0x8000, 0x8001, 0xC000, 0xFFFF,
         ];
@@ -340,6 +379,15 @@ mod tests {
                     mul.p.val().to_u64(),
                     PRODUCT.from_int(sa * b as i64),
                     "{a:#x}·{b:#x}"
+                );
+                ss.a.next = (a as u64).into();
+                ss.b.next = (b as u64).into();
+                settle(&mut ss);
+                let sb = NORMAL.to_int(b as u64);
+                assert_eq!(
+                    ss.p.val().to_u64(),
+                    PRODUCT.from_int(sa * sb),
+                    "signed {a:#x}·{b:#x}"
                 );
             }
         }

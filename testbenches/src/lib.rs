@@ -2,6 +2,7 @@ pub mod address_block;
 pub mod harness;
 pub mod intensity_interpolator;
 pub mod k_recurrence;
+pub mod lighting_unit;
 pub mod normalizer;
 pub mod registry;
 pub mod synth;

@@ -205,6 +205,7 @@ pub static BLOCKS: &[&dyn Entry] = &[
     &entry::<rtl::intensity_interpolator::IntensityInterpolator>(),
     &entry::<rtl::gouraud_raster::GouraudRaster>(),
     &entry::<rtl::vector_interpolator::VectorInterpolator>(),
+    &entry::<rtl::lighting_unit::LightingUnit>(),
 ];
 
 /// The entry named `name`.

@@ -40,9 +40,21 @@ fn label(b: &dyn Entry, o: &Options) -> String {
 }
 
 /// Every registered block with every parameter set, and a label naming both.
+/// `SHADECORE_BLOCK=name[,name…]` narrows the run to those blocks (for working on one block;
+/// the full suite runs them all).
 fn variants() -> Vec<(&'static dyn Entry, Options, String)> {
+    let only: Option<Vec<String>> = std::env::var("SHADECORE_BLOCK")
+        .ok()
+        .map(|s| s.split(',').map(str::to_string).collect());
+    if let Some(o) = &only {
+        println!("SHADECORE_BLOCK set: only {o:?}");
+    }
     BLOCKS
         .iter()
+        .filter(|b| {
+            only.as_ref()
+                .is_none_or(|o| o.iter().any(|n| n == b.name()))
+        })
         .flat_map(|b| {
             option_sets(*b)
                 .into_iter()

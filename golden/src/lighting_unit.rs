@@ -1,0 +1,107 @@
+//! Lighting unit (SPEC §0 Blinn/Lambert with the SPEC §1 normalizer in front), the golden of
+//! `rtl/src/lighting_unit.rs`: N' = N·f(|N|²), then cos φ = N'·L and cos γ = N'·H (Blinn's
+//! half vector), each clamped to [0, 2). Lambert uses only cos φ (the colour combine's
+//! specular weights are zero); Phong's R·V is not built in hardware.
+//!
+//! Not a shading method: the per-pixel kernel of the normalizer, `brdf-k*` and `bump` RTL
+//! paths. L and H are unit vectors held as signed Q2.14 words; cosines come out unsigned Q1.15.
+
+use crate::normalizer::{normalize, Coeffs};
+use glam::DVec3;
+
+/// Fraction bits of the cosine outputs (unsigned Q1.15).
+pub const COS_FRAC_BITS: u32 = 15;
+/// Largest cosine the output holds (2 − 2⁻¹⁵); larger values saturate.
+pub const COS_MAX: f64 = 2.0 - 1.0 / 32768.0;
+
+/// The f64 lighting of an interpolated normal `n`: (cos φ, cos γ) = (N'·L, N'·H) with
+/// N' = n·f(|n|²), each clamped to [0, [`COS_MAX`]].
+pub fn cosines(n: DVec3, light: DVec3, half: DVec3, c: Coeffs) -> (f64, f64) {
+    let np = normalize(n, c);
+    let clamp = |v: f64| v.clamp(0.0, COS_MAX);
+    (clamp(np.dot(light)), clamp(np.dot(half)))
+}
+
+/// The bound on |cos_hw − cos| given a bound `component` on each component of N'_hw − N' and
+/// the unit vector `u` it is dotted with: Σ|u_i|·component (≤ √3·component) plus the output
+/// rounding (half an LSB, 2⁻¹⁶). The dot products themselves are exact.
+pub fn error_bound(component: f64, u: DVec3) -> f64 {
+    (u.x.abs() + u.y.abs() + u.z.abs()) * component + (-(COS_FRAC_BITS as f64 + 1.0)).exp2()
+}
+
+/// Bit-exact integer twin of `rtl/src/lighting_unit.rs`, from its header: the normalizer
+/// ([`crate::normalizer::twin::NormalizerTwin`], latency 9), then
+///
+/// ```text
+/// D1 p = N'_i·L_i, N'_i·H_i          six exact signed Q2.14 × Q2.14 → Q4.28 products
+/// D2 cos = sat(round(Σ p: Q4.28 → UQ1.15))   sum exact (34 bits), +2¹², drop 13 bits,
+///                                            negative → 0, ≥ 2 → 0xFFFF
+/// ```
+/// L and H are the words present when the pixel reaches D1.
+pub mod twin {
+    use crate::normalizer::twin::NormalizerTwin;
+    use crate::normalizer::Coeffs;
+
+    /// Round a Q4.28 sum to unsigned Q1.15: add half an LSB, drop 13 bits, clamp.
+    pub fn narrow(sum: i64) -> i64 {
+        ((sum + (1 << 12)) >> 13).clamp(0, 0xFFFF)
+    }
+
+    #[derive(Clone, Debug)]
+    pub struct LightingTwin {
+        norm: NormalizerTwin,
+        prod: [i64; 6],
+        cos: [i64; 2],
+        valid: [bool; 2],
+    }
+
+    impl LightingTwin {
+        pub fn new(c: Coeffs) -> Self {
+            Self {
+                norm: NormalizerTwin::new(c),
+                prod: [0; 6],
+                cos: [0; 2],
+                valid: [false; 2],
+            }
+        }
+        /// (valid_out, cos φ, cos γ as unsigned Q1.15 integers) shown this clock.
+        pub fn outputs(&self) -> (bool, i64, i64) {
+            (self.valid[1], self.cos[0], self.cos[1])
+        }
+        /// One rising edge: `v` the interpolated normal, `l` and `h` the light and half
+        /// vectors (signed Q2.14 integers).
+        pub fn clock(&mut self, valid_in: bool, v: [i64; 3], l: [i64; 3], h: [i64; 3]) {
+            let (nv, n) = self.norm.outputs();
+            self.cos = [
+                narrow(self.prod[0] + self.prod[1] + self.prod[2]),
+                narrow(self.prod[3] + self.prod[4] + self.prod[5]),
+            ];
+            self.prod = [
+                n[0] * l[0],
+                n[1] * l[1],
+                n[2] * l[2],
+                n[0] * h[0],
+                n[1] * h[1],
+                n[2] * h[2],
+            ];
+            self.valid = [nv, self.valid[0]];
+            self.norm.clock(valid_in, v);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn narrow_rounds_and_saturates() {
+        assert_eq!(twin::narrow(1 << 28), 0x8000, "1.0");
+        assert_eq!(twin::narrow(-1), 0, "negative clamps to 0");
+        assert_eq!(twin::narrow((1 << 12) - 1), 0, "below half an LSB");
+        assert_eq!(twin::narrow(1 << 12), 1, "half an LSB rounds up");
+        assert_eq!(twin::narrow(3 << 28), 0xFFFF, "3.0 saturates");
+        let (d, s) = cosines(DVec3::Z, DVec3::Z, -DVec3::Z, crate::normalizer::FIT);
+        assert!((d - 1.0).abs() < 1e-12 && s == 0.0);
+    }
+}

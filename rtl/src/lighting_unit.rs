@@ -1,0 +1,175 @@
+//! Lighting unit (SPEC §0 lighting with the SPEC §1 normalizer in front; golden:
+//! `golden::lighting_unit`): the interpolated normal in, the two cosines of Blinn lighting out.
+//!
+//! ```text
+//! N' = N·f(|N|²)                      (the normalizer, patent 63343: no division, no root)
+//! cos φ = max(N'·L, 0),  cos γ = max(N'·H, 0),   H = (L + V)/|L + V|  (Blinn)
+//! ```
+//! Lambert lighting uses cos φ only: the set-up loads zero specular weights into the colour
+//! combine, so cos γ is computed and ignored. Phong lighting (cos = R·V = 2(N'·L)(N'·V) − L·V)
+//! is not built: it would need a third dot product, a multiply and a subtract per pixel for a
+//! model the sources call the more expensive one; the RTL engine rejects `--lighting phong`.
+//!
+//! # Ports
+//! | port | dir | format |
+//! |---|---|---|
+//! | `valid_in` | in | 1 = x, y, z hold a normal this clock |
+//! | `x`, `y`, `z` | in | signed Q2.14: the interpolated (unnormalized) normal |
+//! | `lx ly lz`, `hx hy hz` | in | signed Q2.14: unit L and H, registers of the top (sampled when a pixel reaches D1; hold them while pixels are in flight) |
+//! | `valid_out` | out | `valid_in` delayed by the latency |
+//! | `cos_phi`, `cos_gamma` | out | unsigned Q1.15, registered |
+//!
+//! # Pipeline
+//! ```text
+//! N1..N9  the normalizer (`crate::normalizer::Normalizer`, coefficient set a build parameter)
+//! D1  p = nx·lx … nz·hz     six signed Q2.14 × Q2.14 → Q4.28 products, exact [MulSigned]
+//! D2  cos = Σp              three-operand sums in 34 bits (exact: |Σp| ≤ 3·2³⁰), + 2¹²
+//!                           (half LSB), then Q4.28 → unsigned Q1.15: negative → 0,
+//!                           ≥ 2 − 2⁻¹⁶ → 0xFFFF (2 − 2⁻¹⁵), else bits 28..13
+//! ```
+//! Latency 11 clocks (9 + 2), one pixel per clock, no stall; `valid` travels with the data.
+//! 14 multipliers: the normalizer's 8 and the six of D1.
+//!
+//! # Overflow
+//! Nothing wraps: the products are exact, the 34-bit sums cannot overflow for any input
+//! words, and the cosines saturate at 0 and 2 − 2⁻¹⁵. A published-coefficient normal is up to
+//! 0.35 % long, so cos γ may exceed 1 (by design: the golden model keeps that bias).
+//!
+//! # Error budget (vs `golden::lighting_unit::cosines` on the same quantized N, L, H)
+//! The normalizer's per-component bound e (1.04·10⁻⁴ published, 9.3·10⁻⁵ fit on the domain,
+//! `crate::normalizer::error_budget`) enters each dot product weighted by Σ|u_i| ≤ √3; the
+//! products and sums are exact; the output rounding adds 2⁻¹⁶:
+//! |Δcos| ≤ Σ|u_i|·e + 2⁻¹⁶ ≤ 1.96·10⁻⁴ (published), 1.77·10⁻⁴ (fit), i.e. ≤ 6.5 LSB of Q1.15
+//! (`golden::lighting_unit::error_bound`).
+
+use rust_hdl::prelude::*;
+
+use crate::normalizer::{Normalizer, NormalizerCoeffs};
+use crate::primitives::MulSigned;
+
+crate::hw_block! {
+    /// The lighting unit: normalizer, then N'·L and N'·H clamped to [0, 2) (see the module
+    /// header).
+    pub struct LightingUnit(clock) as "lighting-unit" {
+        summary: "N in, cos φ = N'·L and cos γ = N'·H out (Q1.15, clamped at 0): normalizer + two dot products (SPEC §0, §1)",
+        latency: Normalizer::LATENCY + 2 => "valid_in to valid_out, one pixel per clock",
+        multipliers: 14,
+        in {
+            valid_in: Bit, x: Bits<16>, y: Bits<16>, z: Bits<16>,
+            lx: Bits<16>, ly: Bits<16>, lz: Bits<16>,
+            hx: Bits<16>, hy: Bits<16>, hz: Bits<16>,
+        }
+        out { valid_out: Bit, cos_phi: Bits<16>, cos_gamma: Bits<16> }
+        // N1..N9
+        pub norm: Normalizer = Normalizer::new(c),
+        // D1: the six products in the order nx·lx, ny·ly, nz·lz, nx·hx, ny·hy, nz·hz.
+        mul: [MulSigned; 6],
+        prod: [DFF<Bits<32>>; 6],
+        valid_p1: DFF<Bit>,
+        // D2: each product sign-extended to 34 bits, the two sums, the cosines.
+        ext: [Signal<Local, Bits<34>>; 6],
+        sum_l: Signal<Local, Bits<34>>,
+        sum_h: Signal<Local, Bits<34>>,
+        sum_l_rnd: Signal<Local, Bits<34>>,
+        sum_h_rnd: Signal<Local, Bits<34>>,
+        sign_ext: Constant<Bits<34>> = Constant::new(0x3_0000_0000u64.into()),
+        half_lsb: Constant<Bits<34>> = Constant::new((1u64 << 12).into()),
+        cos_max: Constant<Bits<16>> = Constant::new(0xFFFF.into()),
+        cos_phi_q: DFF<Bits<16>>,
+        cos_gamma_q: DFF<Bits<16>>,
+        valid_p2: DFF<Bit>,
+    }
+    new(c: &NormalizerCoeffs);
+}
+
+impl Logic for LightingUnit {
+    #[hdl_gen]
+    fn update(&mut self) {
+        clock!(
+            self,
+            clock,
+            norm,
+            valid_p1,
+            cos_phi_q,
+            cos_gamma_q,
+            valid_p2
+        );
+        for i in 0..6 {
+            self.prod[i].clock.next = self.clock.val();
+            self.prod[i].d.next = self.mul[i].p.val();
+        }
+        self.norm.valid_in.next = self.valid_in.val();
+        self.norm.x.next = self.x.val();
+        self.norm.y.next = self.y.val();
+        self.norm.z.next = self.z.val();
+        // D1
+        self.mul[0].a.next = self.norm.nx.val();
+        self.mul[0].b.next = self.lx.val();
+        self.mul[1].a.next = self.norm.ny.val();
+        self.mul[1].b.next = self.ly.val();
+        self.mul[2].a.next = self.norm.nz.val();
+        self.mul[2].b.next = self.lz.val();
+        self.mul[3].a.next = self.norm.nx.val();
+        self.mul[3].b.next = self.hx.val();
+        self.mul[4].a.next = self.norm.ny.val();
+        self.mul[4].b.next = self.hy.val();
+        self.mul[5].a.next = self.norm.nz.val();
+        self.mul[5].b.next = self.hz.val();
+        self.valid_p1.d.next = self.norm.valid_out.val();
+        // D2: exact sums in 34 bits (|Σp| ≤ 3·2³⁰ needs 33 with the sign).
+        // (rust-hdl resolves a loop index inside bit_cast arguments in neither backend:
+        // written out.)
+        if self.prod[0].q.val().get_bit(31) {
+            self.ext[0].next = bit_cast::<34, 32>(self.prod[0].q.val()) | self.sign_ext.val();
+        } else {
+            self.ext[0].next = bit_cast::<34, 32>(self.prod[0].q.val());
+        }
+        if self.prod[1].q.val().get_bit(31) {
+            self.ext[1].next = bit_cast::<34, 32>(self.prod[1].q.val()) | self.sign_ext.val();
+        } else {
+            self.ext[1].next = bit_cast::<34, 32>(self.prod[1].q.val());
+        }
+        if self.prod[2].q.val().get_bit(31) {
+            self.ext[2].next = bit_cast::<34, 32>(self.prod[2].q.val()) | self.sign_ext.val();
+        } else {
+            self.ext[2].next = bit_cast::<34, 32>(self.prod[2].q.val());
+        }
+        if self.prod[3].q.val().get_bit(31) {
+            self.ext[3].next = bit_cast::<34, 32>(self.prod[3].q.val()) | self.sign_ext.val();
+        } else {
+            self.ext[3].next = bit_cast::<34, 32>(self.prod[3].q.val());
+        }
+        if self.prod[4].q.val().get_bit(31) {
+            self.ext[4].next = bit_cast::<34, 32>(self.prod[4].q.val()) | self.sign_ext.val();
+        } else {
+            self.ext[4].next = bit_cast::<34, 32>(self.prod[4].q.val());
+        }
+        if self.prod[5].q.val().get_bit(31) {
+            self.ext[5].next = bit_cast::<34, 32>(self.prod[5].q.val()) | self.sign_ext.val();
+        } else {
+            self.ext[5].next = bit_cast::<34, 32>(self.prod[5].q.val());
+        }
+        self.sum_l.next = self.ext[0].val() + self.ext[1].val() + self.ext[2].val();
+        self.sum_h.next = self.ext[3].val() + self.ext[4].val() + self.ext[5].val();
+        self.sum_l_rnd.next = self.sum_l.val() + self.half_lsb.val();
+        self.sum_h_rnd.next = self.sum_h.val() + self.half_lsb.val();
+        if self.sum_l_rnd.val().get_bit(33) {
+            self.cos_phi_q.d.next = 0.into();
+        } else if self.sum_l_rnd.val().get_bits::<4>(29).any() {
+            self.cos_phi_q.d.next = self.cos_max.val();
+        } else {
+            self.cos_phi_q.d.next = self.sum_l_rnd.val().get_bits::<16>(13);
+        }
+        if self.sum_h_rnd.val().get_bit(33) {
+            self.cos_gamma_q.d.next = 0.into();
+        } else if self.sum_h_rnd.val().get_bits::<4>(29).any() {
+            self.cos_gamma_q.d.next = self.cos_max.val();
+        } else {
+            self.cos_gamma_q.d.next = self.sum_h_rnd.val().get_bits::<16>(13);
+        }
+        self.valid_p2.d.next = self.valid_p1.q.val();
+        self.valid_out.next = self.valid_p2.q.val();
+        self.cos_phi.next = self.cos_phi_q.q.val();
+        self.cos_gamma.next = self.cos_gamma_q.q.val();
+    }
+}
