@@ -7,6 +7,7 @@ pub mod accuracy;
 pub mod address_block;
 pub mod angular;
 pub mod brdf;
+pub mod colour_combine;
 pub mod bump;
 pub mod cubic;
 pub mod fast;

@@ -206,6 +206,7 @@ pub static BLOCKS: &[&dyn Entry] = &[
     &entry::<rtl::gouraud_raster::GouraudRaster>(),
     &entry::<rtl::vector_interpolator::VectorInterpolator>(),
     &entry::<rtl::lighting_unit::LightingUnit>(),
+    &entry::<rtl::colour_combine::ColourCombine>(),
 ];
 
 /// The entry named `name`.

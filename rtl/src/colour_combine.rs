@@ -1,0 +1,110 @@
+//! Colour combine (SPEC §0; golden: `golden::colour_combine`): the two lighting terms in,
+//! TrueColor out.
+//!
+//! ```text
+//! I_c = amb_c + dif_c·cos φ + spc_c·S,   amb = I_a·k_a·D, dif = I_l·k_d·D, spc = I_l·k_s·S_col
+//! ```
+//! per channel c ∈ {r, g, b}, rounded to nearest and saturated to 0..255. The weights are
+//! per-material registers of the top (the set-up computes them: `golden::colour_combine::Weights`);
+//! Lambert lighting loads spc = 0.
+//!
+//! # Ports
+//! | port | dir | format |
+//! |---|---|---|
+//! | `valid_in` | in | 1 = cos_phi, spec hold a pixel's terms |
+//! | `cos_phi`, `spec` | in | unsigned Q1.15 (cos φ ≥ 0 from the lighting unit, S from the power unit) |
+//! | `amb_r … amb_b`, `dif_r … dif_b`, `spc_r … spc_b` | in | unsigned Q8.8 weights, registers (hold them while pixels are in flight) |
+//! | `valid_out` | out | `valid_in` two clocks later |
+//! | `red`, `green`, `blue` | out | 8 bits, registered |
+//!
+//! # Pipeline
+//! ```text
+//! C1 pd_c = dif_c·cos φ, ps_c = spc_c·S   UQ8.8 × UQ1.15 → UQ9.23, exact (6 multipliers)
+//! C2 sum_c = amb_c·2¹⁵ + pd_c + ps_c      34 bits, exact (< 1280·2²³); + 2²² (half LSB);
+//!    rgb_c = 255 if sum ≥ 256·2²³ (bits 33..31), else bits 30..23
+//! ```
+//! Latency 2 clocks, one pixel per clock, no stall.
+//!
+//! # Overflow
+//! None wraps: products and sums are exact; the result saturates at 255 ("colours that
+//! saturate": a highlight on a bright material clips instead of wrapping to black).
+//!
+//! # Error budget (vs the f64 combine of the same words)
+//! Exact until the final rounding: ≤ ½ LSB of the 8-bit output. Against the f64 combine of
+//! the unquantized weights add the weight quantization, ≤ 2⁻⁹·(1 + cos φ + S) ≤ 0.01 LSB.
+
+use rust_hdl::prelude::*;
+
+crate::hw_block! {
+    /// The colour combine (see the module header).
+    pub struct ColourCombine(clock) as "colour-combine" {
+        summary: "cos φ and S in, I = amb + dif·cos φ + spc·S per channel out, 8 bits saturated (SPEC §0)",
+        latency: 2 => "valid_in to valid_out, one pixel per clock",
+        multipliers: 6,
+        in {
+            valid_in: Bit, cos_phi: Bits<16>, spec: Bits<16>,
+            amb_r: Bits<16>, amb_g: Bits<16>, amb_b: Bits<16>,
+            dif_r: Bits<16>, dif_g: Bits<16>, dif_b: Bits<16>,
+            spc_r: Bits<16>, spc_g: Bits<16>, spc_b: Bits<16>,
+        }
+        out { valid_out: Bit, red: Bits<8>, green: Bits<8>, blue: Bits<8> }
+        // C1
+        pd: [DFF<Bits<32>>; 3],
+        ps: [DFF<Bits<32>>; 3],
+        valid_p1: DFF<Bit>,
+        // C2
+        amb_w: [Signal<Local, Bits<34>>; 3],
+        pd_w: [Signal<Local, Bits<34>>; 3],
+        ps_w: [Signal<Local, Bits<34>>; 3],
+        sum: [Signal<Local, Bits<34>>; 3],
+        sum_rnd: [Signal<Local, Bits<34>>; 3],
+        half_lsb: Constant<Bits<34>> = Constant::new((1u64 << 22).into()),
+        level_max: Constant<Bits<8>> = Constant::new(255.into()),
+        rgb: [DFF<Bits<8>>; 3],
+        valid_p2: DFF<Bit>,
+    }
+}
+
+impl Logic for ColourCombine {
+    #[hdl_gen]
+    fn update(&mut self) {
+        clock!(self, clock, valid_p1, valid_p2);
+        for c in 0..3 {
+            self.pd[c].clock.next = self.clock.val();
+            self.ps[c].clock.next = self.clock.val();
+            self.rgb[c].clock.next = self.clock.val();
+        }
+        // C1
+        self.pd[0].d.next = self.dif_r.val() * self.cos_phi.val();
+        self.pd[1].d.next = self.dif_g.val() * self.cos_phi.val();
+        self.pd[2].d.next = self.dif_b.val() * self.cos_phi.val();
+        self.ps[0].d.next = self.spc_r.val() * self.spec.val();
+        self.ps[1].d.next = self.spc_g.val() * self.spec.val();
+        self.ps[2].d.next = self.spc_b.val() * self.spec.val();
+        self.valid_p1.d.next = self.valid_in.val();
+        // C2 (written out per channel: rust-hdl resolves no loop index inside bit_cast).
+        self.amb_w[0].next = bit_cast::<34, 16>(self.amb_r.val()) << 15;
+        self.amb_w[1].next = bit_cast::<34, 16>(self.amb_g.val()) << 15;
+        self.amb_w[2].next = bit_cast::<34, 16>(self.amb_b.val()) << 15;
+        self.pd_w[0].next = bit_cast::<34, 32>(self.pd[0].q.val());
+        self.pd_w[1].next = bit_cast::<34, 32>(self.pd[1].q.val());
+        self.pd_w[2].next = bit_cast::<34, 32>(self.pd[2].q.val());
+        self.ps_w[0].next = bit_cast::<34, 32>(self.ps[0].q.val());
+        self.ps_w[1].next = bit_cast::<34, 32>(self.ps[1].q.val());
+        self.ps_w[2].next = bit_cast::<34, 32>(self.ps[2].q.val());
+        for c in 0..3 {
+            self.sum[c].next = self.amb_w[c].val() + self.pd_w[c].val() + self.ps_w[c].val();
+            self.sum_rnd[c].next = self.sum[c].val() + self.half_lsb.val();
+            if self.sum_rnd[c].val().get_bits::<3>(31).any() {
+                self.rgb[c].d.next = self.level_max.val();
+            } else {
+                self.rgb[c].d.next = self.sum_rnd[c].val().get_bits::<8>(23);
+            }
+        }
+        self.valid_p2.d.next = self.valid_p1.q.val();
+        self.valid_out.next = self.valid_p2.q.val();
+        self.red.next = self.rgb[0].q.val();
+        self.green.next = self.rgb[1].q.val();
+        self.blue.next = self.rgb[2].q.val();
+    }
+}
