@@ -1,4 +1,6 @@
-//! The RTL render engine: Gouraud images produced by the simulated hardware.
+//! The RTL render engine: images produced by the simulated hardware — Gouraud through the
+//! raster pipe, and the lit methods (`pipeline::lit::LIT_METHODS`) through the lit pixel
+//! pipeline ([`render_lit_rtl`], which also resolves depth with the hardware's z).
 //!
 //! Every triangle the golden renderer would draw (the same list, in the same order; zero-area
 //! triangles skipped as `golden::render::render` skips them) gets its set-up in software —
@@ -18,28 +20,44 @@ use golden::render::Frame;
 use golden::shade::ShadeContext;
 use golden::types::{ScreenTriangle, MAX_ADDRESS};
 use indicatif::ProgressBar;
+use golden::methods::Method;
 use pipeline::gouraud::{clock_budget, Pipe, PipeStats, TriangleJob};
+use pipeline::lit::{lit_clock_budget, LitJob, LitPipe, ShadingRegs, LIT_METHODS};
 
 /// An RTL render: the frame and the hardware's clock counts.
 #[derive(Clone, Debug)]
 pub struct RtlRender {
     pub frame: Frame,
     pub stats: PipeStats,
+    /// Lit pipeline only: pixels whose visible triangle under the hardware's depth words
+    /// differs from the one the f64 depth planes pick (surfaces closer than the z format
+    /// resolves); 0 for Gouraud, whose depth test uses the f64 planes.
+    pub visibility_mismatches: usize,
 }
 
-/// Render `tris` with Gouraud shading through the simulated address block and intensity
-/// interpolator into a `width`×`height` frame. `progress` gets its length set to the number
-/// of triangles sent to the hardware and advances as each one's `done` comes out.
-///
-/// Errors (one line): a canvas wider or taller than 4096, a vertex outside 0..=4095, or the
-/// hardware not finishing within its clock budget.
-pub fn render_gouraud_rtl(
-    tris: &[ScreenTriangle],
-    ctx: &ShadeContext,
-    width: u32,
-    height: u32,
-    progress: &ProgressBar,
-) -> Result<RtlRender> {
+/// The methods the RTL engine renders, comma-separated.
+pub fn rtl_method_names() -> String {
+    std::iter::once(Method::Gouraud)
+        .chain(LIT_METHODS)
+        .map(|m| m.name())
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// Check a method name for the RTL engine (one-line error naming the ones it has).
+pub fn check_rtl_method(m: Method) -> Result<()> {
+    if m == Method::Gouraud || LIT_METHODS.contains(&m) {
+        Ok(())
+    } else {
+        bail!(
+            "the rtl engine has no hardware for method {m} (it has: {})",
+            rtl_method_names()
+        )
+    }
+}
+
+/// Check the canvas and the vertex addresses against the hardware's 12 bits.
+fn check_addresses(tris: &[ScreenTriangle], width: u32, height: u32) -> Result<()> {
     let limit = MAX_ADDRESS as u32 + 1;
     if width == 0 || height == 0 || width > limit || height > limit {
         bail!("canvas {width}x{height}: each side must be 1..={limit} (12-bit addresses)");
@@ -55,6 +73,113 @@ pub fn render_gouraud_rtl(
             v.y
         );
     }
+    Ok(())
+}
+
+/// Render `tris` with `method` (Gouraud or one of [`LIT_METHODS`]) through the simulated
+/// hardware.
+pub fn render_rtl(
+    tris: &[ScreenTriangle],
+    method: Method,
+    ctx: &ShadeContext,
+    width: u32,
+    height: u32,
+    progress: &ProgressBar,
+) -> Result<RtlRender> {
+    check_rtl_method(method)?;
+    if method == Method::Gouraud {
+        render_gouraud_rtl(tris, ctx, width, height, progress)
+    } else {
+        render_lit_rtl(tris, method, ctx, width, height, progress)
+    }
+}
+
+/// Render `tris` with a lit method through the pixel pipeline (`rtl::pixel_pipeline`) built
+/// for it. Depth is the hardware's: each fragment's z word is tested against a z-buffer here
+/// (the frame writer, memory outside the pipeline; nearer wins, ties keep the first writer).
+/// Beside it the f64 depth planes pick a visible triangle per pixel as the golden renderer
+/// does; pixels where the two disagree are counted in
+/// [`RtlRender::visibility_mismatches`].
+///
+/// Errors (one line): as [`render_gouraud_rtl`], plus a lighting model or material the
+/// registers cannot hold (Phong lighting, a colour weight ≥ 256, a vertex depth beyond the
+/// depth words' range).
+pub fn render_lit_rtl(
+    tris: &[ScreenTriangle],
+    method: Method,
+    ctx: &ShadeContext,
+    width: u32,
+    height: u32,
+    progress: &ProgressBar,
+) -> Result<RtlRender> {
+    check_addresses(tris, width, height)?;
+    let regs = ShadingRegs::of(ctx).map_err(|e| anyhow::anyhow!("RTL set-up: {e}"))?;
+    let mut jobs = Vec::with_capacity(tris.len());
+    let mut depth = Vec::with_capacity(tris.len());
+    for (i, t) in tris.iter().enumerate() {
+        let job = LitJob::new(t).map_err(|e| anyhow::anyhow!("triangle {i}: {e}"))?;
+        let (Some(d), Some(job)) = (t.depth_plane(), job) else {
+            continue;
+        };
+        jobs.push(job);
+        depth.push(d);
+    }
+    progress.set_length(jobs.len() as u64);
+    progress.set_position(0);
+    let mut frame = Frame::new(width, height);
+    let n = width as usize * height as usize;
+    let mut golden_z = vec![f64::INFINITY; n];
+    let mut golden_winner = vec![usize::MAX; n];
+    let mut hw_winner = vec![usize::MAX; n];
+    let mut pipe = LitPipe::new(method).map_err(|e| anyhow::anyhow!("RTL set-up: {e}"))?;
+    let stats = pipe
+        .run(
+            &jobs,
+            &regs,
+            lit_clock_budget(&jobs),
+            |f| {
+                let (x, y) = (f.x as i32, f.y as i32);
+                if frame.put(x, y, f.z as f64, f.rgb) {
+                    hw_winner[y as usize * width as usize + x as usize] = f.job;
+                }
+                if (x as u32) < width && (y as u32) < height {
+                    let i = y as usize * width as usize + x as usize;
+                    let z = depth[f.job].at_pixel(x, y);
+                    if z < golden_z[i] {
+                        golden_z[i] = z;
+                        golden_winner[i] = f.job;
+                    }
+                }
+            },
+            |done| progress.set_position(done),
+        )
+        .map_err(|e| anyhow::anyhow!("RTL simulation: {e}"))?;
+    let visibility_mismatches = hw_winner
+        .iter()
+        .zip(&golden_winner)
+        .filter(|(a, b)| a != b)
+        .count();
+    Ok(RtlRender {
+        frame,
+        stats,
+        visibility_mismatches,
+    })
+}
+
+/// Render `tris` with Gouraud shading through the simulated address block and intensity
+/// interpolator into a `width`×`height` frame. `progress` gets its length set to the number
+/// of triangles sent to the hardware and advances as each one's `done` comes out.
+///
+/// Errors (one line): a canvas wider or taller than 4096, a vertex outside 0..=4095, or the
+/// hardware not finishing within its clock budget.
+pub fn render_gouraud_rtl(
+    tris: &[ScreenTriangle],
+    ctx: &ShadeContext,
+    width: u32,
+    height: u32,
+    progress: &ProgressBar,
+) -> Result<RtlRender> {
+    check_addresses(tris, width, height)?;
     // Same triangles as the golden renderer: those with a depth plane (non-zero area).
     let mut jobs = Vec::with_capacity(tris.len());
     let mut depth = Vec::with_capacity(tris.len());
@@ -79,7 +204,11 @@ pub fn render_gouraud_rtl(
             |done| progress.set_position(done),
         )
         .map_err(|e| anyhow::anyhow!("RTL simulation: {e}"))?;
-    Ok(RtlRender { frame, stats })
+    Ok(RtlRender {
+        frame,
+        stats,
+        visibility_mismatches: 0,
+    })
 }
 
 /// Largest per-channel difference between two frames' colours, and how many pixels differ at

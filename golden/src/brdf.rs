@@ -8,8 +8,11 @@
 //!
 //! Schlick's function S(n, c) = c/(n − n·c + c) is the comparison the source makes.
 //!
-//! The `brdf-k*` methods use the reference normal (exact per-pixel normalization) and replace
-//! only cos^n of the specular term by W with the shift-add division. With the Phong lighting
+//! The `brdf-k*` methods describe the hardware's path: the vector interpolator and the
+//! normalizer with the fitted coefficients ([`crate::normalizer::FIT`], no division or square
+//! root) in front, then W with the shift-add division in place of cos^n of the specular term.
+//! (Before the lit pixel pipeline existed they started from the exactly normalized normal; the
+//! fitted normalizer moves the image by NMSE < 10⁻⁵ against that.) With the Phong lighting
 //! model γ is the angle between R and V; with Lambert there is no specular term. When n < k the
 //! formula is still applied ((n+1)/(k+1) < 1, so the bracket stays positive); it is exact only
 //! at k = n.
@@ -75,10 +78,11 @@ pub fn cos_pow(n: u32, cos_gamma: f64) -> f64 {
     cos_gamma.max(0.0).powi(n as i32)
 }
 
-/// Shade one triangle with W for k (reference normal, shift-add division).
+/// Shade one triangle with W for k (fitted-normalizer front end, shift-add division).
 pub fn shade(tri: &ScreenTriangle, walk: &Walk, ctx: &ShadeContext, k: u32, emit: Emit) {
     let a = slope(ctx.n(), k, true);
-    crate::phong::shade_exact_front_end(tri, walk, ctx, emit, |_, _, d, s| {
+    let fit = crate::normalizer::FIT;
+    crate::normalizer::shade_front_end(tri, walk, ctx, fit, emit, |_, _, d, s| {
         ctx.combine(d, w_kernel(a, k, s))
     });
 }

@@ -18,6 +18,7 @@ pub mod methods;
 pub mod nmse;
 pub mod normalizer;
 pub mod phong;
+pub mod power_unit;
 pub mod quadric;
 pub mod raster;
 pub mod render;

@@ -140,19 +140,42 @@ pub fn interpolate(setup: &NormalizerSetup, walk: &Walk) -> Vec<WalkedNormal> {
     out
 }
 
-/// Per-pixel kernel: N' = N·f(K), then the lighting model's cosines with N'.
-pub fn pixel(p: &WalkedNormal, ctx: &ShadeContext, c: Coeffs) -> [u8; 3] {
+/// The lighting model's cosines (cos φ, cos λ) of N' = N·f(K), unclamped.
+pub fn cosines(p: &WalkedNormal, ctx: &ShadeContext, c: Coeffs) -> (f64, f64) {
     let n = p.n * scale(p.k, c);
     let cos_s = ctx.specular_vector().map_or(0.0, |x| n.dot(x));
-    let (d, s) = ctx.cosines(n.dot(ctx.light), cos_s);
+    ctx.cosines(n.dot(ctx.light), cos_s)
+}
+
+/// Per-pixel kernel: N' = N·f(K), then the lighting model's cosines with N'.
+pub fn pixel(p: &WalkedNormal, ctx: &ShadeContext, c: Coeffs) -> [u8; 3] {
+    let (d, s) = cosines(p, ctx, c);
     ctx.combine(d, ctx.specular_power(s))
 }
 
 /// The normalizer method (SPEC §1) with coefficients `c` ([`PUBLISHED`] or [`FIT`]).
 pub fn shade(tri: &ScreenTriangle, walk: &Walk, ctx: &ShadeContext, c: Coeffs, emit: Emit) {
+    shade_front_end(tri, walk, ctx, c, emit, |_, _, d, s| {
+        ctx.combine(d, ctx.specular_power(s))
+    });
+}
+
+/// The hardware's front end for the methods built on it (`brdf-k*`, `bump`): the vector
+/// interpolator and the normalizer with coefficients `c`, then the lighting model's cosines;
+/// `back_end(x, y, cos φ, cos λ)` forms the colour. (The reference's front end normalizes
+/// exactly: `crate::phong::shade_exact_front_end`.)
+pub fn shade_front_end(
+    tri: &ScreenTriangle,
+    walk: &Walk,
+    ctx: &ShadeContext,
+    c: Coeffs,
+    emit: Emit,
+    mut back_end: impl FnMut(i32, i32, f64, f64) -> [u8; 3],
+) {
     let Some(s) = setup(tri, walk) else { return };
     for p in interpolate(&s, walk) {
-        emit(p.x, p.y, pixel(&p, ctx, c));
+        let (d, sp) = cosines(&p, ctx, c);
+        emit(p.x, p.y, back_end(p.x, p.y, d, sp));
     }
 }
 

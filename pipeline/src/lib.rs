@@ -6,4 +6,8 @@
 //!   ([`gouraud::TriangleJob`]), the row layouts, and [`gouraud::Pipe`], which runs a list of
 //!   jobs to fragments.
 
+//! - [`lit`]: the lit pixel pipeline (`rtl::pixel_pipeline`): [`lit::LitJob`] set-up,
+//!   [`lit::ShadingRegs`], and [`lit::LitPipe`], which runs jobs to fragments with depth.
+
 pub mod gouraud;
+pub mod lit;

@@ -9,6 +9,8 @@ pub mod k_recurrence;
 pub mod lighting_unit;
 pub mod line_interpolator;
 pub mod normalizer;
+pub mod pixel_pipeline;
+pub mod power_unit;
 pub mod primitives;
 pub mod registry;
 pub mod sim;

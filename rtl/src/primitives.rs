@@ -14,6 +14,7 @@
 //! | [`RoundToUQ1_15`]      | `wide` (32) → `narrow` (16) | unsigned Q4.28 → unsigned Q1.15: add ½ LSB (2¹²), drop 13 LSBs, saturate | 0 |
 //! | [`MulSignedUnsigned`]  | `a` (16), `b` (16) → `p` (32) | `a·b = ua·ub − [a<0]·(ub ≪ 16)` mod 2³² (one multiplier) | 0 |
 //! | [`SquareSigned`]       | `a` (16) → `p` (32)      | `a² = ua² − [a<0]·(ua ≪ 17)` mod 2³² (one multiplier) | 0 |
+//! | [`RoundProductToUQ1_15`] | `wide` (32) → `narrow` (16) | unsigned Q2.30 → unsigned Q1.15: add ½ LSB (2¹⁴), drop 15 LSBs, saturate | 0 |
 //! | [`MulSigned`]          | `a` (16), `b` (16) → `p` (32) | `a·b = ua·ub − [a<0]·(ub ≪ 16) − [b<0]·(ua ≪ 16)` mod 2³² (one multiplier) | 0 |
 //!
 //! Rounding is to nearest with ties toward +∞ (add half an output LSB, then drop the LSBs), the
@@ -223,6 +224,32 @@ impl Logic for SquareSigned {
 }
 
 crate::hw_block! {
+    /// Unsigned Q2.30 → unsigned Q1.15, rounded to nearest (ties toward +∞) and saturated:
+    /// `rounded = wide + 2¹⁴` (cannot wrap: a 16×16 product is ≤ (2¹⁶ − 1)²), then bits
+    /// 30..15, or 0xFFFF (2 − 2⁻¹⁵) when bit 31 of `rounded` is set (the value rounds to ≥ 2).
+    /// For products of two UQ1.15 words. Combinational.
+    pub struct RoundProductToUQ1_15 {
+        in { wide: Bits<32> }
+        out { narrow: Bits<16> }
+        half_lsb: Constant<Bits<32>> = Constant::new((1u64 << 14).into()),
+        uq1_15_max: Constant<Bits<16>> = Constant::new(0xFFFF.into()),
+        rounded: Signal<Local, Bits<32>>,
+    }
+}
+
+impl Logic for RoundProductToUQ1_15 {
+    #[hdl_gen]
+    fn update(&mut self) {
+        self.rounded.next = self.wide.val() + self.half_lsb.val();
+        if self.rounded.val().get_bit(31) {
+            self.narrow.next = self.uq1_15_max.val();
+        } else {
+            self.narrow.next = self.rounded.val().get_bits::<16>(15);
+        }
+    }
+}
+
+crate::hw_block! {
     /// Signed × signed 16×16 → signed 32 on one unsigned multiplier (one DSP slice):
     /// `p = ua·ub − [a<0]·(ub ≪ 16) − [b<0]·(ua ≪ 16)  (mod 2³²)`, exact since the true
     /// product fits 32 bits (|p| ≤ 2³⁰). Formats: signed Qm.n × signed Qk.l → signed
@@ -310,6 +337,8 @@ mod tests {
         let mut round_s = RoundToQ2_14::default();
         let mut sat_u = SatToUQ1_15::default();
         let mut round_u = RoundToUQ1_15::default();
+        let mut round_p = RoundProductToUQ1_15::default();
+        round_p.connect_all();
         sat_s.connect_all();
         round_s.connect_all();
         sat_u.connect_all();
@@ -341,6 +370,15 @@ mod tests {
                     sat_u.narrow.val().to_u64(),
                     reference(f_wide, SCALE, w),
                     "SatToUQ1_15 {w:#x}"
+                );
+            }
+            round_p.wide.next = (w as u64).into();
+            settle(&mut round_p);
+            if w <= 0xFFFE_0001 {
+                assert_eq!(
+                    round_p.narrow.val().to_u64(),
+                    reference(QFormat::unsigned(2, 30), SCALE, w),
+                    "RoundProductToUQ1_15 {w:#x}"
                 );
             }
             round_u.wide.next = (w as u64).into();

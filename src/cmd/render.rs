@@ -4,7 +4,7 @@
 use std::collections::BTreeMap;
 use std::path::PathBuf;
 
-use anyhow::{bail, Context, Result};
+use anyhow::{Context, Result};
 use golden::methods::Method;
 use golden::nmse::{self, Band};
 use golden::render::{render, Frame};
@@ -21,7 +21,8 @@ use crate::setup::{build, SceneArgs, Setup};
 pub enum Engine {
     /// The f64 golden model.
     Golden,
-    /// The rust-hdl RTL simulated clock by clock (methods: gouraud).
+    /// The rust-hdl RTL simulated clock by clock (methods: gouraud through the raster pipe;
+    /// normalizer, normalizer-fit, brdf-k4, brdf-k8, brdf-k16 through the lit pixel pipeline).
     Rtl,
 }
 
@@ -62,6 +63,11 @@ pub struct RtlComparison {
     pub clocks: u64,
     pub pixels: u64,
     pub pixels_per_clock: f64,
+    /// Pixels whose visible surface under the hardware's depth words differs from the f64
+    /// depth planes' choice (0 where the engine tests depth in f64).
+    pub visibility_mismatches: usize,
+    /// Wall time of the simulation, seconds.
+    pub seconds: f64,
 }
 
 #[derive(Serialize, Debug)]
@@ -135,7 +141,14 @@ fn progress_bar(methods: usize, engine: Engine) -> ProgressBar {
 struct Frames {
     reference: Frame,
     methods: Vec<Frame>,
-    rtl_stats: Option<pipeline::gouraud::PipeStats>,
+    rtl_stats: Vec<RtlStats>,
+}
+
+/// The hardware's counters of one RTL method render.
+struct RtlStats {
+    pipe: pipeline::gouraud::PipeStats,
+    visibility_mismatches: usize,
+    seconds: f64,
 }
 
 /// Render the reference (always golden) and `methods` with `engine`.
@@ -151,34 +164,42 @@ fn render_frames(
             Ok(Frames {
                 reference,
                 methods: frames,
-                rtl_stats: None,
+                rtl_stats: Vec::new(),
             })
         }
         Engine::Rtl => {
-            if methods != [Method::Gouraud] {
-                bail!(
-                    "the rtl engine implements `--method gouraud` only so far (got {})",
-                    methods
-                        .iter()
-                        .map(|m| m.name())
-                        .collect::<Vec<_>>()
-                        .join(",")
-                );
+            for &m in methods {
+                crate::rtl_engine::check_rtl_method(m)?;
             }
             let (w, h) = (setup.width, setup.height);
             let reference = render(&setup.tris, Method::Reference, &setup.ctx, w, h);
-            bar.set_style(
-                ProgressStyle::with_template(
-                    "rtl sim [{bar:40}] {pos}/{len} triangles {elapsed} (eta {eta})",
-                )
-                .expect("static template")
-                .progress_chars("=> "),
-            );
-            let rtl = crate::rtl_engine::render_gouraud_rtl(&setup.tris, &setup.ctx, w, h, bar)?;
+            let mut frames = Vec::with_capacity(methods.len());
+            let mut stats = Vec::with_capacity(methods.len());
+            for (i, &m) in methods.iter().enumerate() {
+                bar.set_style(
+                    ProgressStyle::with_template(&format!(
+                        "rtl {} ({}/{}) [{{bar:40}}] {{pos}}/{{len}} triangles {{elapsed}} (eta {{eta}})",
+                        m.name(),
+                        i + 1,
+                        methods.len()
+                    ))
+                    .expect("static template")
+                    .progress_chars("=> "),
+                );
+                let t0 = std::time::Instant::now();
+                let rtl = crate::rtl_engine::render_rtl(&setup.tris, m, &setup.ctx, w, h, bar)
+                    .with_context(|| format!("method {m}"))?;
+                stats.push(RtlStats {
+                    pipe: rtl.stats,
+                    visibility_mismatches: rtl.visibility_mismatches,
+                    seconds: t0.elapsed().as_secs_f64(),
+                });
+                frames.push(rtl.frame);
+            }
             Ok(Frames {
                 reference,
-                methods: vec![rtl.frame],
-                rtl_stats: Some(rtl.stats),
+                methods: frames,
+                rtl_stats: stats,
             })
         }
     }
@@ -190,9 +211,10 @@ fn compare_with_golden(
     setup: &Setup,
     m: Method,
     frame: &Frame,
-    stats: &pipeline::gouraud::PipeStats,
+    rtl: &RtlStats,
     out: &std::path::Path,
 ) -> Result<RtlComparison> {
+    let stats = &rtl.pipe;
     let (w, h) = (setup.width, setup.height);
     let golden = render(&setup.tris, m, &setup.ctx, w, h);
     save_png(
@@ -220,6 +242,8 @@ fn compare_with_golden(
         clocks: stats.clocks,
         pixels: stats.pixels,
         pixels_per_clock: stats.pixels_per_clock(),
+        visibility_mismatches: rtl.visibility_mismatches,
+        seconds: rtl.seconds,
     })
 }
 
@@ -236,9 +260,9 @@ fn write_images(
     save_png(&out.join("reference.png"), w, h, &reference.rgb)?;
     let mut reports = BTreeMap::new();
     let mut tiles: Vec<(String, &[[u8; 3]])> = vec![("reference".into(), &reference.rgb[..])];
-    for (m, f) in methods.iter().zip(&frames.methods) {
+    for (i, (m, f)) in methods.iter().zip(&frames.methods).enumerate() {
         let mut r = compare(reference, f);
-        if let Some(stats) = &frames.rtl_stats {
+        if let Some(stats) = frames.rtl_stats.get(i) {
             r.rtl_vs_golden = Some(compare_with_golden(setup, *m, f, stats, out)?);
         }
         save_png(&out.join(format!("{}.png", m.name())), w, h, &f.rgb)?;
@@ -271,8 +295,9 @@ fn print_table(args: &Args, setup: &Setup, methods: &[Method], report: &Report) 
         );
         if let Some(c) = &r.rtl_vs_golden {
             println!(
-                "  rtl vs golden {}: NMSE {:.3e}, max {} LSB, {} pixels differ; {} pixels in {} clocks ({:.3} pixels/clock)",
-                m.name(), c.nmse, c.max_abs_diff, c.pixels_differing, c.pixels, c.clocks, c.pixels_per_clock
+                "  rtl vs golden {}: NMSE {:.3e}, max {} LSB, {} pixels differ; {} pixels in {} clocks ({:.3} pixels/clock, {:.1} s, {:.0} clocks/s); {} pixels with other visibility",
+                m.name(), c.nmse, c.max_abs_diff, c.pixels_differing, c.pixels, c.clocks, c.pixels_per_clock,
+                c.seconds, c.clocks as f64 / c.seconds.max(1e-9), c.visibility_mismatches
             );
         }
     }

@@ -5,6 +5,8 @@ pub mod intensity_interpolator;
 pub mod k_recurrence;
 pub mod lighting_unit;
 pub mod normalizer;
+pub mod pixel_pipeline;
+pub mod power_unit;
 pub mod registry;
 pub mod synth;
 pub mod tools;

@@ -207,6 +207,8 @@ pub static BLOCKS: &[&dyn Entry] = &[
     &entry::<rtl::vector_interpolator::VectorInterpolator>(),
     &entry::<rtl::lighting_unit::LightingUnit>(),
     &entry::<rtl::colour_combine::ColourCombine>(),
+    &entry::<rtl::power_unit::PowerUnit>(),
+    &entry::<rtl::pixel_pipeline::PixelPipeline>(),
 ];
 
 /// The entry named `name`.

@@ -1,0 +1,260 @@
+//! Power unit (SPEC §2, the output path of BRZSSK), the golden of `rtl/src/power_unit.rs`:
+//! the specular value S from cos γ — the exact cos^n γ (square-and-multiply over the bits of
+//! n) or W(n, γ) = [1 − (n+1)/(k+1)·(1 − cos γ)]^k for k = 4, 8, 16 (shift-add division,
+//! log2 k squarings; `crate::brdf`). Input and output unsigned Q1.15.
+
+use crate::brdf;
+
+/// Which specular value the unit computes (a build parameter of the hardware).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum PowerMode {
+    /// cos^n γ, square-and-multiply.
+    Exact,
+    /// W(n, γ) with k ∈ {4, 8, 16}.
+    W(u32),
+}
+
+impl PowerMode {
+    /// The k of W, `None` for the exact power.
+    pub fn k(self) -> Option<u32> {
+        match self {
+            PowerMode::Exact => None,
+            PowerMode::W(k) => Some(k),
+        }
+    }
+}
+
+/// The f64 specular value of `cos` (clamped at 0): cos^n or W with the shift-add division.
+pub fn power(mode: PowerMode, n: u32, cos: f64) -> f64 {
+    match mode {
+        PowerMode::Exact => brdf::cos_pow(n, cos),
+        PowerMode::W(k) => brdf::w_shift_add(n, k, cos),
+    }
+}
+
+/// The W-mode slope word a = (n+1)·(shift-add 1/(k+1)) in units of 2^-`frac` — exact:
+/// 51·(n+1) (k = 4, frac 8), 57·(n+1) (k = 8, frac 9), 15·(n+1) (k = 16, frac 8).
+pub fn slope_word(k: u32, n: u32) -> (u64, u32) {
+    let m = n as u64 + 1;
+    match k {
+        4 => (51 * m, 8),
+        8 => (57 * m, 9),
+        16 => (15 * m, 8),
+        _ => panic!("k = {k} has no shift-add division (4, 8, 16)"),
+    }
+}
+
+/// Bound on |S_hw − power(mode, n, c)| for an input word c (the same quantized cosine).
+///
+/// Every rounding to Q1.15 adds ≤ 2⁻¹⁶ absolute; a value v passed through j later squarings
+/// (or multiplies by factors ≤ c_max) has its error scaled by ≤ 2·v^(…) ≤ 2 per squaring and
+/// by ≤ c_max per multiply. With c ≤ 1 + ε the scaling per stage is ≤ 2(1 + ε)^(2^j): a sum
+/// over the stages, evaluated numerically here from the exact intermediate values.
+pub fn error_bound(mode: PowerMode, n: u32, c: f64) -> f64 {
+    let e = (-16f64).exp2();
+    match mode {
+        PowerMode::Exact => {
+            // Walk the square-and-multiply chain in f64, propagating a first-order bound:
+            // err(x·y) ≤ err(x)·y + err(y)·x + e (the rounding), err(x²) ≤ 2x·err(x) + e.
+            let (mut acc, mut acc_e) = (1.0f64, 0.0f64);
+            let (mut pw, mut pw_e) = (c, 0.0f64);
+            for j in 0..10 {
+                if (n >> j) & 1 == 1 {
+                    acc_e = if j == 0 {
+                        0.0
+                    } else {
+                        acc_e * pw + pw_e * acc + pw_e * acc_e + e
+                    };
+                    acc *= pw;
+                }
+                if j < 9 {
+                    pw_e = 2.0 * pw * pw_e + pw_e * pw_e + e;
+                    pw *= pw;
+                }
+            }
+            acc_e
+        }
+        PowerMode::W(k) => {
+            let (a, frac) = slope_word(k, n);
+            let a = a as f64 / (frac as f64).exp2();
+            let b = (1.0 - a * (1.0 - c)).max(0.0);
+            let (mut v, mut ve) = (b, e);
+            for _ in 0..k.trailing_zeros() {
+                ve = 2.0 * v * ve + ve * ve + e;
+                v *= v;
+            }
+            ve
+        }
+    }
+}
+
+/// Bit-exact integer twin of `rtl/src/power_unit.rs`, written from its header.
+///
+/// ```text
+/// rnd(p)  = min((p + 2¹⁴) >> 15, 0xFFFF)             UQ2.30 → UQ1.15, ties up, saturate
+/// exact:  E0  acc = n₀ ? c : 0x8000,  pw = rnd(c²)
+///         Ej  acc = n_j ? rnd(acc·pw) : acc,  pw = rnd(pw²)  (j = 1..9; E9 squares nothing)
+/// W:      W1  a = slope word, t = |c − 0x8000|, above = c > 0x8000, zero = c == 0
+///         W2  p = a·t                          (2^-(15+f) units)
+///         W3  b = zero ? 0 : above ? 2^(15+f) + p : max(2^(15+f) − p, 0);
+///             b = min((b + 2^(f−1)) >> f, 0xFFFF)
+///         W4..W7  b = rnd(b²) for the first log2 k stages, else b
+///         then 3 delay registers (latency 10 in both modes)
+/// ```
+/// n travels with its pixel (each stage reads the n that entered with the pixel).
+pub mod twin {
+    use super::{slope_word, PowerMode};
+    use std::collections::VecDeque;
+
+    /// UQ2.30 product → UQ1.15, rounded to nearest (ties up), saturated.
+    pub fn rnd(p: u64) -> u64 {
+        ((p + (1 << 14)) >> 15).min(0xFFFF)
+    }
+
+    /// One pixel in flight: (valid, value, pow or a, n).
+    #[derive(Clone, Copy, Debug, Default)]
+    struct Stage {
+        valid: bool,
+        acc: u64,
+        pw: u64,
+        n: u64,
+        above: bool,
+        zero: bool,
+    }
+
+    #[derive(Clone, Debug)]
+    pub struct PowerTwin {
+        mode: PowerMode,
+        /// W mode: fraction bits of the slope word (8 or 9).
+        frac: u32,
+        stages: [Stage; 10],
+        /// W mode: (valid, value) of the padding delay (3 registers).
+        pad: VecDeque<(bool, u64)>,
+    }
+
+    impl PowerTwin {
+        pub fn new(mode: PowerMode) -> Self {
+            PowerTwin {
+                mode,
+                frac: mode.k().map_or(8, |k| slope_word(k, 0).1),
+                stages: [Stage::default(); 10],
+                pad: std::iter::repeat_n((false, 0), 3).collect(),
+            }
+        }
+
+        /// (valid_out, S as a UQ1.15 word) shown this clock.
+        pub fn outputs(&self) -> (bool, u64) {
+            match self.mode {
+                PowerMode::Exact => (self.stages[9].valid, self.stages[9].acc),
+                PowerMode::W(_) => self.pad[0],
+            }
+        }
+
+        /// One rising edge: `cos` a UQ1.15 word, `n` the 10-bit exponent.
+        pub fn clock(&mut self, valid_in: bool, cos: u64, n: u64) {
+            let s = self.stages;
+            let n = n & 0x3FF;
+            match self.mode {
+                PowerMode::Exact => {
+                    let mut next = [Stage::default(); 10];
+                    next[0] = Stage {
+                        valid: valid_in,
+                        acc: if n & 1 == 1 { cos } else { 0x8000 },
+                        pw: rnd(cos * cos),
+                        n,
+                        ..Stage::default()
+                    };
+                    for j in 1..10 {
+                        let p = s[j - 1];
+                        next[j] = Stage {
+                            valid: p.valid,
+                            acc: if (p.n >> j) & 1 == 1 {
+                                rnd(p.acc * p.pw)
+                            } else {
+                                p.acc
+                            },
+                            pw: if j < 9 { rnd(p.pw * p.pw) } else { 0 },
+                            n: p.n,
+                            ..Stage::default()
+                        };
+                    }
+                    self.stages = next;
+                }
+                PowerMode::W(k) => {
+                    let squarings = k.trailing_zeros() as usize;
+                    // Output of W7 (stage index 6) enters the padding delay.
+                    self.pad.pop_front();
+                    self.pad.push_back((s[6].valid, s[6].acc));
+                    let mut next = [Stage::default(); 10];
+                    // W4..W7 (indices 3..6).
+                    for i in (3..7).rev() {
+                        let p = s[i - 1];
+                        let square = i - 3 < squarings;
+                        next[i] = Stage {
+                            valid: p.valid,
+                            acc: if square { rnd(p.acc * p.acc) } else { p.acc },
+                            ..Stage::default()
+                        };
+                    }
+                    // W3 (index 2): the bracket.
+                    let p = s[1];
+                    let frac = self.frac;
+                    let one = 1u64 << (15 + frac);
+                    let b = if p.zero {
+                        0
+                    } else if p.above {
+                        one + p.pw
+                    } else {
+                        one.saturating_sub(p.pw)
+                    };
+                    next[2] = Stage {
+                        valid: p.valid,
+                        acc: ((b + (1 << (frac - 1))) >> frac).min(0xFFFF),
+                        ..Stage::default()
+                    };
+                    // W2 (index 1): p = a·t.
+                    let p = s[0];
+                    next[1] = Stage {
+                        valid: p.valid,
+                        pw: p.acc * p.pw,
+                        above: p.above,
+                        zero: p.zero,
+                        ..Stage::default()
+                    };
+                    // W1 (index 0): a (held in `acc`), t (in `pw`).
+                    let (a, _) = slope_word(k, n as u32);
+                    next[0] = Stage {
+                        valid: valid_in,
+                        acc: a & 0xFFFF,
+                        pw: cos.abs_diff(0x8000),
+                        above: cos > 0x8000,
+                        zero: cos == 0,
+                        n,
+                    };
+                    self.stages = next;
+                }
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn slope_words_are_the_shift_add_divisions() {
+        for k in brdf::KS {
+            for n in [1, 50, 1000] {
+                let (a, f) = slope_word(k, n);
+                assert!(a < 1 << 16, "a fits 16 bits");
+                let exact = brdf::slope(n, k, true);
+                assert_eq!(a as f64 / (f as f64).exp2(), exact, "k {k} n {n}");
+            }
+        }
+        assert_eq!(twin::rnd(1 << 30), 0x8000);
+        assert_eq!(twin::rnd(0xFFFF * 0xFFFF), 0xFFFF);
+        assert_eq!(twin::rnd((1 << 14) - 1), 0);
+        assert_eq!(twin::rnd(1 << 14), 1);
+    }
+}

@@ -1,0 +1,267 @@
+//! The lit pixel pipeline (`rtl::pixel_pipeline`) as a render driver: per-triangle set-up in
+//! software (address block set-up, the normal planes' Q3.29 words, the depth plane's Q16.16
+//! words), per-frame registers (L, H, n, colour weights), fragments out in hardware order.
+//!
+//! Row layout (the top's input ports in order): `load`, the address set-up (19 words, as
+//! [`crate::gouraud::setup_row`]), the normal words (x, y, z × start short long line), the
+//! depth words (start short long line), then the shading registers (lx ly lz hx hy hz n,
+//! amb r g b, dif r g b, spc r g b). Outputs: ready, valid, x, y, z, red, green, blue, done.
+
+use std::io::Write;
+
+use golden::address_block::AddressSetup;
+use golden::colour_combine::Weights;
+use golden::intensity_interpolator::{ChannelSetup, ChannelWords};
+use golden::methods::Method;
+use golden::shade::{LightingModel, ShadeContext};
+use golden::types::ScreenTriangle;
+use golden::vector_interpolator as gvi;
+use rtl::fixed::NORMAL;
+use rtl::pixel_pipeline::PixelPipeline;
+use rtl::registry::{BlockParams, Options, RtlBlock};
+use rtl::sim::Stepper;
+
+use crate::gouraud::{row_setup, setup_row, PipeStats};
+
+/// Input words per row: load + 19 address + 12 normal + 4 depth + 16 registers.
+pub const ROW_WIDTH: usize = 52;
+/// Where the normal words start in a row.
+pub const NORMAL_AT: usize = 20;
+/// Where the depth words start.
+pub const DEPTH_AT: usize = 32;
+/// Where the shading registers start.
+pub const REGS_AT: usize = 36;
+/// Largest |vertex depth| the depth words hold with margin (signed Q16.16 holds ±2¹⁵).
+pub const DEPTH_LIMIT: f64 = 16384.0;
+
+/// The methods the lit pipeline renders, with their build options.
+pub const LIT_METHODS: [Method; 5] = [
+    Method::Normalizer,
+    Method::NormalizerFit,
+    Method::BrdfK4,
+    Method::BrdfK8,
+    Method::BrdfK16,
+];
+
+/// The pipeline build (`coeffs`, `power`) that computes `method`; `None` if it does not.
+pub fn method_options(method: Method) -> Option<Options> {
+    let (c, p) = match method {
+        Method::Normalizer => ("published", "exact"),
+        Method::NormalizerFit => ("fit", "exact"),
+        Method::BrdfK4 => ("fit", "w4"),
+        Method::BrdfK8 => ("fit", "w8"),
+        Method::BrdfK16 => ("fit", "w16"),
+        _ => return None,
+    };
+    Some(Options::new().with("coeffs", c).with("power", p))
+}
+
+/// The shading registers of a frame: L, H (signed Q2.14), n, the nine colour weights.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ShadingRegs {
+    pub light: [u64; 3],
+    pub half: [u64; 3],
+    pub n: u64,
+    pub weights: [u64; 9],
+}
+
+impl ShadingRegs {
+    /// The registers of `ctx`. Errors (one line): Phong lighting (not in hardware), a colour
+    /// weight beyond the Q8.8 register.
+    pub fn of(ctx: &ShadeContext) -> Result<ShadingRegs, String> {
+        if ctx.lighting == LightingModel::Phong {
+            return Err("the RTL pipeline lights with blinn or lambert; phong (R·V) is not built in hardware".into());
+        }
+        ctx.validate().map_err(|e| e.to_string())?;
+        let q = |v: glam::DVec3| v.to_array().map(|c| NORMAL.quantize(c));
+        Ok(ShadingRegs {
+            light: q(ctx.light),
+            half: q(ctx.half()),
+            n: ctx.n() as u64,
+            weights: Weights::of(ctx).words().map_err(|e| e.to_string())?,
+        })
+    }
+
+    /// The sixteen register words in row order.
+    pub fn row(&self) -> Vec<u64> {
+        let mut r = self.light.to_vec();
+        r.extend(self.half);
+        r.push(self.n);
+        r.extend(self.weights);
+        r
+    }
+}
+
+/// One triangle's set-up for the lit pipeline.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LitJob {
+    pub addr: AddressSetup,
+    pub normal: [ChannelWords; 3],
+    pub depth: ChannelWords,
+}
+
+impl LitJob {
+    /// Set-up of `tri`; `None` for zero area. Error: a vertex depth beyond ±[`DEPTH_LIMIT`].
+    pub fn new(tri: &ScreenTriangle) -> Result<Option<LitJob>, String> {
+        if let Some(v) = tri.v.iter().find(|v| !(v.z.abs() < DEPTH_LIMIT)) {
+            return Err(format!(
+                "vertex depth {} is outside the depth words' range ±{DEPTH_LIMIT}",
+                v.z
+            ));
+        }
+        let (Some(np), Some(dp)) = (tri.normal_plane(), tri.depth_plane()) else {
+            return Ok(None);
+        };
+        let addr = AddressSetup::new(tri);
+        Ok(Some(LitJob {
+            addr,
+            normal: gvi::setup(&[np.x, np.y, np.z], &addr),
+            depth: depth_words(&ChannelSetup::new(&dp, &addr)),
+        }))
+    }
+}
+
+/// The depth plane's words: signed Q16.16 in model units, rounded to nearest, without the
+/// BVI's +½ display bias (depth is compared, never displayed).
+pub fn depth_words(s: &ChannelSetup) -> ChannelWords {
+    use golden::intensity_interpolator::quantize;
+    ChannelWords {
+        start: quantize(s.start),
+        short: quantize(s.short),
+        long: quantize(s.long),
+        line: quantize(s.line),
+    }
+}
+
+fn channel(w: &ChannelWords) -> [u64; 4] {
+    [w.start, w.short, w.long, w.line].map(u64::from)
+}
+
+/// The pipeline's input row: `load` with a job's set-up (or idle), then the registers.
+pub fn lit_row(job: Option<&LitJob>, regs: &ShadingRegs) -> Vec<u64> {
+    let mut row = setup_row(job.map(|j| &j.addr));
+    let z = [ChannelWords::default(); 3];
+    for c in job.map_or(&z, |j| &j.normal) {
+        row.extend(channel(c));
+    }
+    row.extend(channel(job.map_or(&z[0], |j| &j.depth)));
+    row.extend(regs.row());
+    debug_assert_eq!(row.len(), ROW_WIDTH);
+    row
+}
+
+/// The inverse of [`lit_row`]: the job a row loads (if `load`) and the registers.
+pub fn row_job(row: &[u64]) -> (Option<LitJob>, ShadingRegs) {
+    let words = |at: usize| ChannelWords {
+        start: row[at] as u32,
+        short: row[at + 1] as u32,
+        long: row[at + 2] as u32,
+        line: row[at + 3] as u32,
+    };
+    let job = row_setup(row).map(|addr| LitJob {
+        addr,
+        normal: [0, 1, 2].map(|c| words(NORMAL_AT + 4 * c)),
+        depth: words(DEPTH_AT),
+    });
+    let r = &row[REGS_AT..];
+    let regs = ShadingRegs {
+        light: [r[0], r[1], r[2]],
+        half: [r[3], r[4], r[5]],
+        n: r[6],
+        weights: std::array::from_fn(|i| r[7 + i]),
+    };
+    (job, regs)
+}
+
+/// One fragment out of the pipeline.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Fragment {
+    /// Index of the triangle (jobs keep their order).
+    pub job: usize,
+    pub x: u32,
+    pub y: u32,
+    /// Depth word, signed Q16.16 (+½ LSB bias).
+    pub z: i32,
+    pub rgb: [u8; 3],
+}
+
+/// The lit pipeline, stepped by hand.
+pub struct LitPipe {
+    stepper: Stepper<PixelPipeline>,
+}
+
+impl LitPipe {
+    /// The pipeline built for `method` (one of [`LIT_METHODS`]).
+    pub fn new(method: Method) -> Result<LitPipe, String> {
+        let o = method_options(method).ok_or_else(|| {
+            format!(
+                "the RTL pixel pipeline does not compute {method} (it has: {})",
+                LIT_METHODS.map(|m| m.name()).join(", ")
+            )
+        })?;
+        let p = <PixelPipeline as RtlBlock>::Params::from_options(&o)?;
+        Ok(LitPipe {
+            stepper: Stepper::new(PixelPipeline::new(&p))?,
+        })
+    }
+
+    /// Trace every following clock into `w`.
+    pub fn start_vcd(&mut self, w: Box<dyn Write>) {
+        self.stepper.start_vcd(w);
+    }
+
+    /// Run `jobs` with registers `regs`, each job loaded as soon as `ready` is high;
+    /// `fragment` for every valid output, `progress(done_triangles)` after each `done`.
+    /// Stops after the last `done`, or with an error after `max_clocks`.
+    pub fn run(
+        &mut self,
+        jobs: &[LitJob],
+        regs: &ShadingRegs,
+        max_clocks: u64,
+        mut fragment: impl FnMut(Fragment),
+        mut progress: impl FnMut(u64),
+    ) -> Result<PipeStats, String> {
+        let mut st = PipeStats::default();
+        let mut out = vec![0u64; 9];
+        let idle = lit_row(None, regs);
+        let mut next = 0;
+        while st.triangles < jobs.len() as u64 {
+            if st.clocks >= max_clocks {
+                return Err(format!(
+                    "pixel pipeline: {} of {} triangles done after {max_clocks} clocks",
+                    st.triangles,
+                    jobs.len()
+                ));
+            }
+            let load = (self.stepper.dut().ready.val() && next < jobs.len()).then(|| &jobs[next]);
+            next += load.is_some() as usize;
+            match load {
+                Some(j) => self.stepper.step(&lit_row(Some(j), regs), &mut out)?,
+                None => self.stepper.step(&idle, &mut out)?,
+            }
+            st.clocks += 1;
+            if out[1] != 0 {
+                st.pixels += 1;
+                fragment(Fragment {
+                    job: st.triangles as usize,
+                    x: out[2] as u32,
+                    y: out[3] as u32,
+                    z: out[4] as u32 as i32,
+                    rgb: [out[5] as u8, out[6] as u8, out[7] as u8],
+                });
+            }
+            if out[8] != 0 {
+                st.triangles += 1;
+                progress(st.triangles);
+            }
+        }
+        self.stepper.stop_vcd();
+        Ok(st)
+    }
+}
+
+/// A clock budget for `jobs` (every row at full length plus the pipeline's latency).
+pub fn lit_clock_budget(jobs: &[LitJob]) -> u64 {
+    jobs.iter().map(|j| 8 + j.addr.rows as u64 * 4097).sum::<u64>()
+        + PixelPipeline::LATENCY as u64
+}

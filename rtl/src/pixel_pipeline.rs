@@ -1,0 +1,295 @@
+//! The lit pixel pipeline (SPEC §0, §1, §2, §5, §6): one triangle's set-up in, lit fragments
+//! out — per-pixel normal, normalized without division or square root, Blinn-lit, the
+//! specular power in hardware, TrueColor, with the fragment's depth. Golden: the `normalizer`,
+//! `normalizer-fit` and `brdf-k*` methods of `golden::methods` (which describe this path),
+//! walked by `golden::raster::walk`.
+//!
+//! ```text
+//!  load + set-up ─► AddressBlock ─valid,row_start,step,carry─┬─► VectorInterpolator ─N─► LightingUnit ─cos γ─► PowerUnit ─S─┐
+//!                        │                                   │        (1)                   (11)        └cos φ─► Delay(10) ─┴► ColourCombine ─► r, g, b
+//!                        │                                   └─► IntensityChannel (depth z) ─► Delay(23) ────────────────────────────────► z
+//!                        └── x, y, done ─► Delay(24) ─────────────────────────────────────────────────────────────────────────────────► x, y, done
+//! ```
+//!
+//! # Ports
+//! | port | dir | format |
+//! |---|---|---|
+//! | `load` | in | accepted when `ready` is high: writes the address block and every shadow bank |
+//! | address set-up (`w_b0` … `dir_neg`) | in | the address block's (`address_block`) |
+//! | `x_start` … `z_line` | in | the normal planes, signed Q3.29 words (`vector_interpolator`) |
+//! | `d_start d_short d_long d_line` | in | the depth plane, signed Q16.16 words in model units (the BVI's channel format) |
+//! | `lx ly lz`, `hx hy hz` | in | unit L and H, signed Q2.14 (frame registers) |
+//! | `n` | in | specular exponent, 10 bits (material register; 1..1000) |
+//! | `amb_r` … `spc_b` | in | colour weights, unsigned Q8.8 (material registers, `colour_combine`) |
+//! | `ready` | out | the address block's: a `load` is accepted this clock |
+//! | `valid` | out | a fragment this clock |
+//! | `x`, `y` | out | 12-bit pixel address |
+//! | `z` | out | depth, signed Q16.16 model units (RG4 of the depth channel; smaller is nearer) |
+//! | `red green blue` | out | 8 bits |
+//! | `done` | out | the last event of a triangle (may come with `valid` low) |
+//!
+//! Frame and material registers (`lx` … `spc_b`, `n`) are plain inputs sampled as each pixel
+//! passes the stage that uses them: hold them while fragments of a triangle are in flight
+//! (change them only after the last `done` a set of triangles needs). `n` is carried along the
+//! power unit with its pixel.
+//!
+//! # Latency, throughput
+//! Event → fragment 24 clocks (vector interpolator 1, lighting 11, power 10, colour 2);
+//! load → first fragment 27 (the address block's 3 more). One fragment per clock along a line;
+//! nothing in the pipeline stalls, so the address block is the only limit (one clock per line
+//! start without pixels, as in the Gouraud pipe).
+//!
+//! # Build parameters
+//! `coeffs` (the normalizer's set: published | fit) and `power` (exact | w4 | w8 | w16): the
+//! `normalizer`/`normalizer-fit` methods are `power=exact`, `brdf-kK` is `coeffs=fit power=wK`.
+//!
+//! # Overflow, error budget
+//! Those of the blocks: the normal words wrap by design (only pixel values must be in range);
+//! the cosines, power and colours saturate. Depth words wrap like the BVI's: the set-up keeps
+//! every vertex depth within ±2¹⁵. Against the golden method of the same name the colour is
+//! within the chained budgets; the bench and the image tests measure it (≤ 2 LSB required).
+
+use rust_hdl::prelude::*;
+
+use crate::address_block::AddressBlock;
+use crate::colour_combine::ColourCombine;
+use crate::intensity_interpolator::IntensityChannel;
+use crate::lighting_unit::LightingUnit;
+use crate::normalizer::NormalizerCoeffs;
+use crate::power_unit::{PowerParams, PowerUnit};
+use crate::primitives::Delay;
+use crate::registry::{BlockParams, Options, RtlBlock};
+use crate::vector_interpolator::VectorInterpolator;
+
+/// Clocks from an address event to its fragment.
+pub const EVENT_TO_FRAGMENT: usize = VectorInterpolator::LATENCY
+    + LightingUnit::LATENCY
+    + PowerUnit::LATENCY
+    + ColourCombine::LATENCY;
+
+/// Build parameters of the pipeline: the normalizer's coefficient set and the power unit's mode.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PipelineParams {
+    pub coeffs: NormalizerCoeffs,
+    pub power: PowerParams,
+}
+
+impl BlockParams for PipelineParams {
+    const KEYS: &'static [&'static str] = &["coeffs", "power"];
+    fn from_options(o: &Options) -> Result<Self, String> {
+        Ok(PipelineParams {
+            coeffs: NormalizerCoeffs::from_options(o)?,
+            power: PowerParams::from_options(o)?,
+        })
+    }
+    fn describe(&self) -> Option<String> {
+        let parts: Vec<String> = [self.coeffs.describe(), self.power.describe()]
+            .into_iter()
+            .flatten()
+            .collect();
+        Some(parts.join("; "))
+    }
+    fn test_sets() -> Vec<Options> {
+        vec![
+            Options::new().with("coeffs", "published").with("power", "exact"),
+            Options::new().with("coeffs", "fit").with("power", "w16"),
+        ]
+    }
+    fn multipliers(&self) -> Option<usize> {
+        Some(
+            <LightingUnit as RtlBlock>::MULTIPLIERS
+                + self
+                    .power
+                    .multipliers()
+                    .unwrap_or(<PowerUnit as RtlBlock>::MULTIPLIERS)
+                + <ColourCombine as RtlBlock>::MULTIPLIERS,
+        )
+    }
+}
+
+/// The depth plane's four words after `load` (signed Q16.16, the BVI channel's format).
+#[macro_export]
+macro_rules! depth_setup_ports {
+    ($($then:tt)*) => {
+        $crate::hw_bundle! {
+            [d_start: Bits<32>, d_short: Bits<32>, d_long: Bits<32>, d_line: Bits<32>]
+            $($then)*
+        }
+    };
+}
+
+/// The normal planes' twelve words after `load` (signed Q3.29, `vector_interpolator`).
+#[macro_export]
+macro_rules! normal_setup_ports {
+    ($($then:tt)*) => {
+        $crate::hw_bundle! {
+            [
+                x_start: Bits<32>, x_short: Bits<32>, x_long: Bits<32>, x_line: Bits<32>,
+                y_start: Bits<32>, y_short: Bits<32>, y_long: Bits<32>, y_line: Bits<32>,
+                z_start: Bits<32>, z_short: Bits<32>, z_long: Bits<32>, z_line: Bits<32>,
+            ]
+            $($then)*
+        }
+    };
+}
+
+/// The frame and material registers (L, H, n, the nine colour weights).
+#[macro_export]
+macro_rules! shading_registers {
+    ($($then:tt)*) => {
+        $crate::hw_bundle! {
+            [
+                lx: Bits<16>, ly: Bits<16>, lz: Bits<16>,
+                hx: Bits<16>, hy: Bits<16>, hz: Bits<16>,
+                n: Bits<10>,
+                amb_r: Bits<16>, amb_g: Bits<16>, amb_b: Bits<16>,
+                dif_r: Bits<16>, dif_g: Bits<16>, dif_b: Bits<16>,
+                spc_r: Bits<16>, spc_g: Bits<16>, spc_b: Bits<16>,
+            ]
+            $($then)*
+        }
+    };
+}
+
+crate::hw_block! {
+    /// The lit pixel pipeline (see the module header).
+    pub struct PixelPipeline(clock) as "pixel-pipeline" {
+        summary: "one triangle's set-up in, lit fragments (x, y, z, r, g, b) out: address block, vector interpolator, normalizer, Blinn lighting, power unit, colour combine (SPEC §0–§2, §5–§6)",
+        latency: AddressBlock::LATENCY + EVENT_TO_FRAGMENT
+            => "load to the first fragment, one fragment per clock",
+        multipliers: 38,
+        in {
+            load: Bit, address_setup_ports!, normal_setup_ports!, depth_setup_ports!,
+            shading_registers!,
+        }
+        out {
+            ready: Bit, valid: Bit, x: Bits<12>, y: Bits<12>, z: Bits<32>,
+            red: Bits<8>, green: Bits<8>, blue: Bits<8>, done: Bit,
+        }
+        pub addr: AddressBlock,
+        pub normal: VectorInterpolator,
+        pub depth: IntensityChannel,
+        pub light: LightingUnit = LightingUnit::new(&p.coeffs),
+        pub power: PowerUnit = PowerUnit::new(&p.power),
+        pub colour: ColourCombine,
+        accepted: Signal<Local, Bit>,
+        first: Signal<Local, Bit>,
+        cos_phi_p10: Delay<Bits<16>, { PowerUnit::LATENCY }>,
+        z_p23: Delay<Bits<32>, { EVENT_TO_FRAGMENT - 1 }>,
+        x_p24: Delay<Bits<12>, { EVENT_TO_FRAGMENT }>,
+        y_p24: Delay<Bits<12>, { EVENT_TO_FRAGMENT }>,
+        done_p24: Delay<Bit, { EVENT_TO_FRAGMENT }>,
+    }
+    new(p: &PipelineParams);
+}
+
+impl Logic for PixelPipeline {
+    #[hdl_gen]
+    fn update(&mut self) {
+        clock!(
+            self, clock, addr, normal, depth, light, power, colour, cos_phi_p10, z_p23, x_p24,
+            y_p24, done_p24
+        );
+        self.addr.load.next = self.load.val();
+        self.addr.w_b0.next = self.w_b0.val();
+        self.addr.w_e0.next = self.w_e0.val();
+        self.addr.w_f.next = self.w_f.val();
+        self.addr.w_r.next = self.w_r.val();
+        self.addr.w_d.next = self.w_d.val();
+        self.addr.a_b0.next = self.a_b0.val();
+        self.addr.a_e0.next = self.a_e0.val();
+        self.addr.a_f.next = self.a_f.val();
+        self.addr.a_r.next = self.a_r.val();
+        self.addr.a_d.next = self.a_d.val();
+        self.addr.t_b0.next = self.t_b0.val();
+        self.addr.t_e0.next = self.t_e0.val();
+        self.addr.t_f.next = self.t_f.val();
+        self.addr.t_r.next = self.t_r.val();
+        self.addr.t_d.next = self.t_d.val();
+        self.addr.y_top.next = self.y_top.val();
+        self.addr.rows.next = self.rows.val();
+        self.addr.y_switch.next = self.y_switch.val();
+        self.addr.dir_neg.next = self.dir_neg.val();
+        // Every shadow bank is written on the address block's accepted load.
+        self.accepted.next = self.load.val() & self.addr.ready.val();
+
+        // Normal planes.
+        self.normal.load.next = self.accepted.val();
+        self.normal.x_start.next = self.x_start.val();
+        self.normal.x_short.next = self.x_short.val();
+        self.normal.x_long.next = self.x_long.val();
+        self.normal.x_line.next = self.x_line.val();
+        self.normal.y_start.next = self.y_start.val();
+        self.normal.y_short.next = self.y_short.val();
+        self.normal.y_long.next = self.y_long.val();
+        self.normal.y_line.next = self.y_line.val();
+        self.normal.z_start.next = self.z_start.val();
+        self.normal.z_short.next = self.z_short.val();
+        self.normal.z_long.next = self.z_long.val();
+        self.normal.z_line.next = self.z_line.val();
+        self.normal.valid_in.next = self.addr.valid.val();
+        self.normal.row_start_in.next = self.addr.row_start.val();
+        self.normal.step_in.next = self.addr.step.val();
+        self.normal.carry_in.next = self.addr.carry.val();
+
+        // Depth plane: one more BVI channel on the same events.
+        self.first.next = self.addr.row_start.val() & (self.addr.step.val() == 0);
+        self.depth.load.next = self.accepted.val();
+        self.depth.set_start.next = self.d_start.val();
+        self.depth.set_short.next = self.d_short.val();
+        self.depth.set_long.next = self.d_long.val();
+        self.depth.set_line.next = self.d_line.val();
+        self.depth.ev_first.next = self.first.val();
+        self.depth.ev_row_start.next = self.addr.row_start.val();
+        self.depth.ev_carry.next = self.addr.carry.val();
+        self.depth.ev_valid.next = self.addr.valid.val();
+
+        // Lighting: normalizer, N'·L, N'·H.
+        self.light.valid_in.next = self.normal.valid_out.val();
+        self.light.x.next = self.normal.nx.val();
+        self.light.y.next = self.normal.ny.val();
+        self.light.z.next = self.normal.nz.val();
+        self.light.lx.next = self.lx.val();
+        self.light.ly.next = self.ly.val();
+        self.light.lz.next = self.lz.val();
+        self.light.hx.next = self.hx.val();
+        self.light.hy.next = self.hy.val();
+        self.light.hz.next = self.hz.val();
+
+        // Specular power; cos φ waits beside it.
+        self.power.valid_in.next = self.light.valid_out.val();
+        self.power.cos_gamma.next = self.light.cos_gamma.val();
+        self.power.n.next = self.n.val();
+        self.cos_phi_p10.d.next = self.light.cos_phi.val();
+
+        // Colour.
+        self.colour.valid_in.next = self.power.valid_out.val();
+        self.colour.cos_phi.next = self.cos_phi_p10.q.val();
+        self.colour.spec.next = self.power.spec.val();
+        self.colour.amb_r.next = self.amb_r.val();
+        self.colour.amb_g.next = self.amb_g.val();
+        self.colour.amb_b.next = self.amb_b.val();
+        self.colour.dif_r.next = self.dif_r.val();
+        self.colour.dif_g.next = self.dif_g.val();
+        self.colour.dif_b.next = self.dif_b.val();
+        self.colour.spc_r.next = self.spc_r.val();
+        self.colour.spc_g.next = self.spc_g.val();
+        self.colour.spc_b.next = self.spc_b.val();
+
+        // The fragment's address, depth and triangle end travel beside it.
+        self.z_p23.d.next = self.depth.word.val();
+        self.x_p24.d.next = self.addr.x.val();
+        self.y_p24.d.next = self.addr.y.val();
+        self.done_p24.d.next = self.addr.done.val();
+
+        self.ready.next = self.addr.ready.val();
+        self.valid.next = self.colour.valid_out.val();
+        self.x.next = self.x_p24.q.val();
+        self.y.next = self.y_p24.q.val();
+        self.z.next = self.z_p23.q.val();
+        self.red.next = self.colour.red.val();
+        self.green.next = self.colour.green.val();
+        self.blue.next = self.colour.blue.val();
+        self.done.next = self.done_p24.q.val();
+    }
+}

@@ -1,0 +1,422 @@
+//! Power unit (SPEC §2, the output path of BRZSSK; golden: `golden::power_unit`): the
+//! specular value S from cos γ, one pixel per clock.
+//!
+//! ```text
+//! exact:  S = cos^n γ                         square-and-multiply over the bits of n ≤ 1023
+//! W:      S = W(n, γ) = [1 − a·(1 − cos γ)]^k, 0 where the bracket is negative,
+//!         a = (n+1)·(1/4 − 1/16 + 1/64 − 1/256)  k = 4   (= 51·(n+1)·2⁻⁸)
+//!           = (n+1)·(1/8 − 1/64 + 1/512)         k = 8   (= 57·(n+1)·2⁻⁹)
+//!           = (n+1)·(1/16 − 1/256)               k = 16  (= 15·(n+1)·2⁻⁸)
+//! ```
+//! The mode is a build parameter (`power=exact|w4|w8|w16`): the `normalizer` methods need the
+//! exact power, `brdf-kK` uses W with k. Both datapaths are described; the mode constant
+//! selects the output and synthesis removes the other one.
+//!
+//! # Ports
+//! | port | dir | format |
+//! |---|---|---|
+//! | `valid_in` | in | 1 = cos_gamma holds a pixel's cosine |
+//! | `cos_gamma` | in | unsigned Q1.15, [0, 2): ≥ 0 from the lighting unit, may exceed 1 (published normalizer) |
+//! | `n` | in | specular exponent, 10 bits; travels with its pixel (a new material may follow in-flight pixels) |
+//! | `valid_out` | out | `valid_in` delayed 10 clocks |
+//! | `spec` | out | S, unsigned Q1.15, saturated at 0xFFFF (2 − 2⁻¹⁵) |
+//!
+//! # Pipeline (every product UQ1.15 × UQ1.15 → UQ2.30, exact, then rnd: + 2¹⁴, drop 15 bits,
+//! saturate at 0xFFFF [RoundProductToUQ1_15])
+//! ```text
+//! exact  E0  acc = n₀ ? c : 1.0 (0x8000),  pw = rnd(c²)                     1 squarer
+//!        Ej  acc = n_j ? rnd(acc·pw) : acc,  pw = rnd(pw²)   j = 1..8       2 multipliers each
+//!        E9  acc = n₉ ? rnd(acc·pw) : acc                                   1 multiplier
+//!        → 18 multipliers, latency 10
+//! W      W1  a = slope word by shifts and adds of n + 1 (16 bits, exact: ≤ 57·1024 < 2¹⁶),
+//!            t = |c − 1| (UQ1.15), above = c > 1, zero = c = 0
+//!        W2  p = a·t                        UQ8.8 (UQ7.9 for k = 8) × UQ1.15, exact, 32 bits
+//!        W3  b = 0 if zero; 1 + p if above; max(1 − p, 0) otherwise (in p's units, 32 bits,
+//!            cannot wrap), then round to UQ1.15 (+ half LSB, drop 8 or 9 bits), saturate
+//!        W4..W7  b = rnd(b²) in the first log2 k stages (2, 3, 4), passed through in the rest
+//!        then 3 delay registers to latency 10
+//!        → 1 + log2 k multipliers (3, 4, 5)
+//! ```
+//! cos γ = 0 gives 0 in both modes for n ≥ 1 (W: the `zero` flag, as `golden::brdf::w_kernel`).
+//! n = 0 gives 1.0 (cos⁰) in the exact mode and [1 − a·(1 − c)]^k with a = 1/(k+1) in W;
+//! n = 1001..1023 computes as written. The set-up rejects n outside 1..1000.
+//!
+//! Latency 10 clocks in every mode, one pixel per clock, no stall; `valid` travels with the
+//! data. The patent's multiplexed single-multiplier arrangement (one multiplier reused over
+//! several clocks per pixel) is not built: the pipeline must take one pixel per clock.
+//!
+//! # Overflow
+//! Nothing wraps: products are exact, W3's sum is below 2³², and every narrowing saturates at
+//! 2 − 2⁻¹⁵ (an S ≥ 2 leaves every colour weight < 128 saturating anyway only for bright
+//! specular colours; the colour combine clips at 255).
+//!
+//! # Error budget (vs the f64 `golden::power_unit::power` of the same input word)
+//! Each rounding adds ≤ 2⁻¹⁶; an error in a value later squared j times grows ≈ 2^j near
+//! c = 1 (less below it). `golden::power_unit::error_bound` propagates it to first order along
+//! the chain of the actual input: at c = 1 the exact mode gives ≤ 2⁻¹⁶·(2^popcount … ) —
+//! measured bounds: n = 1: 0, n = 50: 4.6·10⁻⁴, n = 256: 3.9·10⁻³, n = 1000: 1.4·10⁻² (3.6 LSB
+//! of an 8-bit colour at full specular weight); W(k = 16): ≤ 2.6·10⁻⁴ for every n.
+//! The input's own quantization (≤ 2⁻¹⁶) moves cos^n by n·2⁻¹⁶·cos^(n−1): that is the lighting
+//! unit's budget, not this block's.
+
+use golden::power_unit::PowerMode;
+use rust_hdl::prelude::*;
+
+use crate::primitives::{Delay, RoundProductToUQ1_15};
+use crate::registry::{BlockParams, Options};
+
+/// Build parameters: which specular value the unit computes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct PowerParams {
+    pub mode: PowerMode,
+}
+
+impl Default for PowerParams {
+    fn default() -> Self {
+        PowerParams {
+            mode: PowerMode::Exact,
+        }
+    }
+}
+
+impl PowerParams {
+    /// The k of W, `None` for the exact power.
+    pub fn k(&self) -> Option<u32> {
+        self.mode.k()
+    }
+    fn name(&self) -> String {
+        match self.mode {
+            PowerMode::Exact => "exact".into(),
+            PowerMode::W(k) => format!("w{k}"),
+        }
+    }
+}
+
+impl BlockParams for PowerParams {
+    const KEYS: &'static [&'static str] = &["power"];
+    /// `power=exact` (default: cos^n γ) or `power=w4|w8|w16` (W(n, γ) with that k).
+    fn from_options(o: &Options) -> Result<Self, String> {
+        let mode = match o.get("power").unwrap_or("exact") {
+            "exact" => PowerMode::Exact,
+            "w4" => PowerMode::W(4),
+            "w8" => PowerMode::W(8),
+            "w16" => PowerMode::W(16),
+            other => {
+                return Err(format!(
+                    "unsupported power mode {other:?} (expected exact, w4, w8 or w16: W(n, γ) has shift-add divisions for k = 4, 8, 16 only)"
+                ))
+            }
+        };
+        Ok(PowerParams { mode })
+    }
+    fn describe(&self) -> Option<String> {
+        Some(format!("Power mode {}", self.name()))
+    }
+    fn test_sets() -> Vec<Options> {
+        ["exact", "w4", "w8", "w16"]
+            .map(|m| Options::new().with("power", m))
+            .to_vec()
+    }
+    fn multipliers(&self) -> Option<usize> {
+        Some(match self.mode {
+            PowerMode::Exact => 18,
+            PowerMode::W(k) => 1 + k.trailing_zeros() as usize,
+        })
+    }
+}
+
+/// Fraction bits of the W slope word (9 for k = 8, else 8; 8 in the exact mode, unused).
+fn slope_frac(p: &PowerParams) -> u32 {
+    p.mode
+        .k()
+        .map_or(8, |k| golden::power_unit::slope_word(k, 0).1)
+}
+
+fn bit(b: bool) -> Constant<Bit> {
+    Constant::new(b)
+}
+
+crate::hw_block! {
+    /// The power unit (see the module header).
+    pub struct PowerUnit(clock) as "power-unit" {
+        summary: "cos γ and n in, S = cos^n γ (square-and-multiply) or W(n, γ) for k = 4, 8, 16 out, Q1.15 (SPEC §2)",
+        latency: 10 => "valid_in to valid_out in every mode, one pixel per clock",
+        multipliers: 18,
+        in { valid_in: Bit, cos_gamma: Bits<16>, n: Bits<10> }
+        out { valid_out: Bit, spec: Bits<16> }
+        // Mode constants.
+        w_mode: Constant<Bit> = bit(p.mode != PowerMode::Exact),
+        k8: Constant<Bit> = bit(p.mode == PowerMode::W(8)),
+        k16: Constant<Bit> = bit(p.mode == PowerMode::W(16)),
+        sq_on: [Constant<Bit>; 4] = std::array::from_fn(|i| bit(p.mode.k().is_some_and(|k| (i as u32) < k.trailing_zeros()))),
+        one: Constant<Bits<16>> = Constant::new(0x8000.into()),
+        // Exact path: E0..E9.
+        e_valid: [DFF<Bit>; 10],
+        e_n: [DFF<Bits<10>>; 10],
+        e_acc: [DFF<Bits<16>>; 10],
+        e_pw: [DFF<Bits<16>>; 9],
+        e_prod: [Signal<Local, Bits<32>>; 10],
+        e_sq: [Signal<Local, Bits<32>>; 9],
+        e_rnd_prod: [RoundProductToUQ1_15; 10],
+        e_rnd_sq: [RoundProductToUQ1_15; 9],
+        // W path: W1..W7 and the padding.
+        m1: Signal<Local, Bits<16>>,
+        a4: Signal<Local, Bits<16>>, a8: Signal<Local, Bits<16>>, a16: Signal<Local, Bits<16>>,
+        w_a: DFF<Bits<16>>, w_t: DFF<Bits<16>>, w_above: DFF<Bit>, w_zero: DFF<Bit>,
+        w_valid1: DFF<Bit>,
+        w_p: DFF<Bits<32>>, w_above2: DFF<Bit>, w_zero2: DFF<Bit>, w_valid2: DFF<Bit>,
+        /// 1.0 and half an output LSB in p's units (2^-(15+f), f = 9 for k = 8, else 8).
+        w_one: Constant<Bits<32>> = Constant::new((1u64 << (15 + slope_frac(p))).into()),
+        w_half: Constant<Bits<32>> = Constant::new((1u64 << (slope_frac(p) - 1)).into()),
+        w_sum: Signal<Local, Bits<32>>,
+        w_rnd: Signal<Local, Bits<32>>,
+        w_b: [DFF<Bits<16>>; 5],
+        w_valid: [DFF<Bit>; 5],
+        w_sq: [Signal<Local, Bits<32>>; 4],
+        w_rnd_sq: [RoundProductToUQ1_15; 4],
+        w_spec_p3: Delay<Bits<16>, 3>,
+        w_valid_p3: Delay<Bit, 3>,
+    }
+    new(p: &PowerParams);
+}
+
+impl Logic for PowerUnit {
+    #[hdl_gen]
+    fn update(&mut self) {
+        clock!(self, clock, w_a, w_t, w_above, w_zero, w_valid1, w_p, w_above2, w_zero2, w_valid2, w_spec_p3, w_valid_p3);
+        for j in 0..10 {
+            self.e_valid[j].clock.next = self.clock.val();
+            self.e_n[j].clock.next = self.clock.val();
+            self.e_acc[j].clock.next = self.clock.val();
+        }
+        for j in 0..9 {
+            self.e_pw[j].clock.next = self.clock.val();
+        }
+        for i in 0..5 {
+            self.w_b[i].clock.next = self.clock.val();
+            self.w_valid[i].clock.next = self.clock.val();
+        }
+        // ---- exact: E0
+        self.e_valid[0].d.next = self.valid_in.val();
+        self.e_n[0].d.next = self.n.val();
+        if self.n.val().get_bit(0) {
+            self.e_acc[0].d.next = self.cos_gamma.val();
+        } else {
+            self.e_acc[0].d.next = self.one.val();
+        }
+        self.e_sq[0].next = self.cos_gamma.val() * self.cos_gamma.val();
+        self.e_rnd_sq[0].wide.next = self.e_sq[0].val();
+        self.e_pw[0].d.next = self.e_rnd_sq[0].narrow.val();
+        self.e_prod[0].next = 0.into();
+        self.e_rnd_prod[0].wide.next = 0.into();
+        // E1
+        self.e_valid[1].d.next = self.e_valid[0].q.val();
+        self.e_n[1].d.next = self.e_n[0].q.val();
+        self.e_prod[1].next = self.e_acc[0].q.val() * self.e_pw[0].q.val();
+        self.e_rnd_prod[1].wide.next = self.e_prod[1].val();
+        if self.e_n[0].q.val().get_bit(1) {
+            self.e_acc[1].d.next = self.e_rnd_prod[1].narrow.val();
+        } else {
+            self.e_acc[1].d.next = self.e_acc[0].q.val();
+        }
+        self.e_sq[1].next = self.e_pw[0].q.val() * self.e_pw[0].q.val();
+        self.e_rnd_sq[1].wide.next = self.e_sq[1].val();
+        self.e_pw[1].d.next = self.e_rnd_sq[1].narrow.val();
+        // E2
+        self.e_valid[2].d.next = self.e_valid[1].q.val();
+        self.e_n[2].d.next = self.e_n[1].q.val();
+        self.e_prod[2].next = self.e_acc[1].q.val() * self.e_pw[1].q.val();
+        self.e_rnd_prod[2].wide.next = self.e_prod[2].val();
+        if self.e_n[1].q.val().get_bit(2) {
+            self.e_acc[2].d.next = self.e_rnd_prod[2].narrow.val();
+        } else {
+            self.e_acc[2].d.next = self.e_acc[1].q.val();
+        }
+        self.e_sq[2].next = self.e_pw[1].q.val() * self.e_pw[1].q.val();
+        self.e_rnd_sq[2].wide.next = self.e_sq[2].val();
+        self.e_pw[2].d.next = self.e_rnd_sq[2].narrow.val();
+        // E3
+        self.e_valid[3].d.next = self.e_valid[2].q.val();
+        self.e_n[3].d.next = self.e_n[2].q.val();
+        self.e_prod[3].next = self.e_acc[2].q.val() * self.e_pw[2].q.val();
+        self.e_rnd_prod[3].wide.next = self.e_prod[3].val();
+        if self.e_n[2].q.val().get_bit(3) {
+            self.e_acc[3].d.next = self.e_rnd_prod[3].narrow.val();
+        } else {
+            self.e_acc[3].d.next = self.e_acc[2].q.val();
+        }
+        self.e_sq[3].next = self.e_pw[2].q.val() * self.e_pw[2].q.val();
+        self.e_rnd_sq[3].wide.next = self.e_sq[3].val();
+        self.e_pw[3].d.next = self.e_rnd_sq[3].narrow.val();
+        // E4
+        self.e_valid[4].d.next = self.e_valid[3].q.val();
+        self.e_n[4].d.next = self.e_n[3].q.val();
+        self.e_prod[4].next = self.e_acc[3].q.val() * self.e_pw[3].q.val();
+        self.e_rnd_prod[4].wide.next = self.e_prod[4].val();
+        if self.e_n[3].q.val().get_bit(4) {
+            self.e_acc[4].d.next = self.e_rnd_prod[4].narrow.val();
+        } else {
+            self.e_acc[4].d.next = self.e_acc[3].q.val();
+        }
+        self.e_sq[4].next = self.e_pw[3].q.val() * self.e_pw[3].q.val();
+        self.e_rnd_sq[4].wide.next = self.e_sq[4].val();
+        self.e_pw[4].d.next = self.e_rnd_sq[4].narrow.val();
+        // E5
+        self.e_valid[5].d.next = self.e_valid[4].q.val();
+        self.e_n[5].d.next = self.e_n[4].q.val();
+        self.e_prod[5].next = self.e_acc[4].q.val() * self.e_pw[4].q.val();
+        self.e_rnd_prod[5].wide.next = self.e_prod[5].val();
+        if self.e_n[4].q.val().get_bit(5) {
+            self.e_acc[5].d.next = self.e_rnd_prod[5].narrow.val();
+        } else {
+            self.e_acc[5].d.next = self.e_acc[4].q.val();
+        }
+        self.e_sq[5].next = self.e_pw[4].q.val() * self.e_pw[4].q.val();
+        self.e_rnd_sq[5].wide.next = self.e_sq[5].val();
+        self.e_pw[5].d.next = self.e_rnd_sq[5].narrow.val();
+        // E6
+        self.e_valid[6].d.next = self.e_valid[5].q.val();
+        self.e_n[6].d.next = self.e_n[5].q.val();
+        self.e_prod[6].next = self.e_acc[5].q.val() * self.e_pw[5].q.val();
+        self.e_rnd_prod[6].wide.next = self.e_prod[6].val();
+        if self.e_n[5].q.val().get_bit(6) {
+            self.e_acc[6].d.next = self.e_rnd_prod[6].narrow.val();
+        } else {
+            self.e_acc[6].d.next = self.e_acc[5].q.val();
+        }
+        self.e_sq[6].next = self.e_pw[5].q.val() * self.e_pw[5].q.val();
+        self.e_rnd_sq[6].wide.next = self.e_sq[6].val();
+        self.e_pw[6].d.next = self.e_rnd_sq[6].narrow.val();
+        // E7
+        self.e_valid[7].d.next = self.e_valid[6].q.val();
+        self.e_n[7].d.next = self.e_n[6].q.val();
+        self.e_prod[7].next = self.e_acc[6].q.val() * self.e_pw[6].q.val();
+        self.e_rnd_prod[7].wide.next = self.e_prod[7].val();
+        if self.e_n[6].q.val().get_bit(7) {
+            self.e_acc[7].d.next = self.e_rnd_prod[7].narrow.val();
+        } else {
+            self.e_acc[7].d.next = self.e_acc[6].q.val();
+        }
+        self.e_sq[7].next = self.e_pw[6].q.val() * self.e_pw[6].q.val();
+        self.e_rnd_sq[7].wide.next = self.e_sq[7].val();
+        self.e_pw[7].d.next = self.e_rnd_sq[7].narrow.val();
+        // E8
+        self.e_valid[8].d.next = self.e_valid[7].q.val();
+        self.e_n[8].d.next = self.e_n[7].q.val();
+        self.e_prod[8].next = self.e_acc[7].q.val() * self.e_pw[7].q.val();
+        self.e_rnd_prod[8].wide.next = self.e_prod[8].val();
+        if self.e_n[7].q.val().get_bit(8) {
+            self.e_acc[8].d.next = self.e_rnd_prod[8].narrow.val();
+        } else {
+            self.e_acc[8].d.next = self.e_acc[7].q.val();
+        }
+        self.e_sq[8].next = self.e_pw[7].q.val() * self.e_pw[7].q.val();
+        self.e_rnd_sq[8].wide.next = self.e_sq[8].val();
+        self.e_pw[8].d.next = self.e_rnd_sq[8].narrow.val();
+        // E9
+        self.e_valid[9].d.next = self.e_valid[8].q.val();
+        self.e_n[9].d.next = self.e_n[8].q.val();
+        self.e_prod[9].next = self.e_acc[8].q.val() * self.e_pw[8].q.val();
+        self.e_rnd_prod[9].wide.next = self.e_prod[9].val();
+        if self.e_n[8].q.val().get_bit(9) {
+            self.e_acc[9].d.next = self.e_rnd_prod[9].narrow.val();
+        } else {
+            self.e_acc[9].d.next = self.e_acc[8].q.val();
+        }
+        // ---- W: W1 — a = (n+1)·C_k by shifts and adds (m1 = n + 1 ≤ 1024).
+        self.m1.next = bit_cast::<16, 10>(self.n.val()) + 1;
+        self.a4.next = (self.m1.val() << 5) + (self.m1.val() << 4) + (self.m1.val() << 1) + self.m1.val();
+        self.a8.next = (self.m1.val() << 5) + (self.m1.val() << 4) + (self.m1.val() << 3) + self.m1.val();
+        self.a16.next = (self.m1.val() << 4) - self.m1.val();
+        if self.k16.val() {
+            self.w_a.d.next = self.a16.val();
+        } else if self.k8.val() {
+            self.w_a.d.next = self.a8.val();
+        } else {
+            self.w_a.d.next = self.a4.val();
+        }
+        if self.cos_gamma.val() > self.one.val() {
+            self.w_t.d.next = self.cos_gamma.val() - self.one.val();
+            self.w_above.d.next = true;
+        } else {
+            self.w_t.d.next = self.one.val() - self.cos_gamma.val();
+            self.w_above.d.next = false;
+        }
+        self.w_zero.d.next = self.cos_gamma.val() == 0;
+        self.w_valid1.d.next = self.valid_in.val();
+        // W2: p = a·t, exact.
+        self.w_p.d.next = self.w_a.q.val() * self.w_t.q.val();
+        self.w_above2.d.next = self.w_above.q.val();
+        self.w_zero2.d.next = self.w_zero.q.val();
+        self.w_valid2.d.next = self.w_valid1.q.val();
+        // W3: the bracket 1 ± p in p's units (2^-(15+f)), clamped at 0, rounded to UQ1.15.
+        if self.w_above2.q.val() {
+            self.w_sum.next = self.w_one.val() + self.w_p.q.val();
+        } else if self.w_p.q.val() > self.w_one.val() {
+            self.w_sum.next = 0.into();
+        } else {
+            self.w_sum.next = self.w_one.val() - self.w_p.q.val();
+        }
+        self.w_rnd.next = self.w_sum.val() + self.w_half.val();
+        if self.w_zero2.q.val() {
+            self.w_b[0].d.next = 0.into();
+        } else if self.k8.val() {
+            if self.w_rnd.val().get_bits::<7>(25).any() {
+                self.w_b[0].d.next = 0xFFFF.into();
+            } else {
+                self.w_b[0].d.next = self.w_rnd.val().get_bits::<16>(9);
+            }
+        } else if self.w_rnd.val().get_bits::<8>(24).any() {
+            self.w_b[0].d.next = 0xFFFF.into();
+        } else {
+            self.w_b[0].d.next = self.w_rnd.val().get_bits::<16>(8);
+        }
+        self.w_valid[0].d.next = self.w_valid2.q.val();
+        // W4
+        self.w_sq[0].next = self.w_b[0].q.val() * self.w_b[0].q.val();
+        self.w_rnd_sq[0].wide.next = self.w_sq[0].val();
+        if self.sq_on[0].val() {
+            self.w_b[1].d.next = self.w_rnd_sq[0].narrow.val();
+        } else {
+            self.w_b[1].d.next = self.w_b[0].q.val();
+        }
+        self.w_valid[1].d.next = self.w_valid[0].q.val();
+        // W5
+        self.w_sq[1].next = self.w_b[1].q.val() * self.w_b[1].q.val();
+        self.w_rnd_sq[1].wide.next = self.w_sq[1].val();
+        if self.sq_on[1].val() {
+            self.w_b[2].d.next = self.w_rnd_sq[1].narrow.val();
+        } else {
+            self.w_b[2].d.next = self.w_b[1].q.val();
+        }
+        self.w_valid[2].d.next = self.w_valid[1].q.val();
+        // W6
+        self.w_sq[2].next = self.w_b[2].q.val() * self.w_b[2].q.val();
+        self.w_rnd_sq[2].wide.next = self.w_sq[2].val();
+        if self.sq_on[2].val() {
+            self.w_b[3].d.next = self.w_rnd_sq[2].narrow.val();
+        } else {
+            self.w_b[3].d.next = self.w_b[2].q.val();
+        }
+        self.w_valid[3].d.next = self.w_valid[2].q.val();
+        // W7
+        self.w_sq[3].next = self.w_b[3].q.val() * self.w_b[3].q.val();
+        self.w_rnd_sq[3].wide.next = self.w_sq[3].val();
+        if self.sq_on[3].val() {
+            self.w_b[4].d.next = self.w_rnd_sq[3].narrow.val();
+        } else {
+            self.w_b[4].d.next = self.w_b[3].q.val();
+        }
+        self.w_valid[4].d.next = self.w_valid[3].q.val();
+        self.w_spec_p3.d.next = self.w_b[4].q.val();
+        self.w_valid_p3.d.next = self.w_valid[4].q.val();
+        // Output: the mode constant selects the datapath.
+        if self.w_mode.val() {
+            self.valid_out.next = self.w_valid_p3.q.val();
+            self.spec.next = self.w_spec_p3.q.val();
+        } else {
+            self.valid_out.next = self.e_valid[9].q.val();
+            self.spec.next = self.e_acc[9].q.val();
+        }
+    }
+}

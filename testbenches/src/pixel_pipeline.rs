@@ -1,0 +1,270 @@
+//! Bench of the lit pixel pipeline (`rtl::pixel_pipeline`): its bit-exact twin (the address
+//! block's cycle model and the twins of every block, wired as the top wires them) and the
+//! golden method of the same build (the normalizer front end with the build's coefficients,
+//! then cos^n or W(n, γ) with k), every clock.
+//!
+//! Stimulus: seeded random triangles (`crate::address_block::triangle_strategy`) with random
+//! unit vertex normals facing the viewer and random depths, lit by the default context (Blinn,
+//! L = (1,1,1)/√3, n = 50, the thesis material), loaded as soon as `ready` allows.
+//! Tolerances: `ready`, `valid`, `x`, `y`, `done` exact; colours within 2 LSB of the golden
+//! method's colour (the bound for the image), RMS 0.5 LSB; `z` within the depth
+//! channel's bound (n·2⁻¹⁷ for n ≤ 8189 additions, ≤ 0.0625 model units).
+
+use std::collections::VecDeque;
+
+use golden::address_block::{AddressBlockModel, AddressOutputs, AddressSetup};
+use golden::colour_combine::twin::ColourTwin;
+use golden::intensity_interpolator::ChannelTwin;
+use golden::lighting_unit::twin::LightingTwin;
+use golden::normalizer::Coeffs;
+use golden::power_unit::twin::PowerTwin;
+use golden::raster::walk;
+use golden::shade::ShadeContext;
+use golden::types::ScreenTriangle;
+use golden::vector_interpolator::VectorTwin;
+use pipeline::lit::{lit_row, row_job, LitJob, ShadingRegs};
+use proptest::prelude::*;
+use proptest::strategy::ValueTree;
+use rtl::fixed::{INTENSITY, LEVEL, NORMAL};
+use rtl::pixel_pipeline::{PipelineParams, PixelPipeline, EVENT_TO_FRAGMENT};
+
+use crate::address_block::triangle_strategy;
+use crate::harness::{Compare, Expected, Tolerance};
+use crate::normalizer::seeded_runner;
+use crate::registry::{Bench, Stimulus, Twin};
+
+/// A delay line of `n` registers (reset 0): `out` is what went in `n` clocks ago.
+struct DelayLine(VecDeque<u64>);
+
+impl DelayLine {
+    fn new(n: usize) -> Self {
+        DelayLine(std::iter::repeat_n(0, n).collect())
+    }
+    fn out(&self) -> u64 {
+        self.0[0]
+    }
+    fn clock(&mut self, d: u64) {
+        self.0.pop_front();
+        self.0.push_back(d);
+    }
+}
+
+/// Twin of the whole pipeline.
+pub struct PipelineTwin {
+    addr: AddressBlockModel,
+    normal: VectorTwin,
+    depth: ChannelTwin,
+    light: LightingTwin,
+    power: PowerTwin,
+    colour: ColourTwin,
+    cos_phi: DelayLine,
+    z: DelayLine,
+    x: DelayLine,
+    y: DelayLine,
+    done: DelayLine,
+}
+
+impl PipelineTwin {
+    pub fn new(p: &PipelineParams) -> Self {
+        PipelineTwin {
+            addr: AddressBlockModel::new(),
+            normal: VectorTwin::default(),
+            depth: ChannelTwin::default(),
+            light: LightingTwin::new(p.coeffs.requested),
+            power: PowerTwin::new(p.power.mode),
+            colour: ColourTwin::default(),
+            cos_phi: DelayLine::new(rtl::power_unit::PowerUnit::LATENCY),
+            z: DelayLine::new(EVENT_TO_FRAGMENT - 1),
+            x: DelayLine::new(EVENT_TO_FRAGMENT),
+            y: DelayLine::new(EVENT_TO_FRAGMENT),
+            done: DelayLine::new(EVENT_TO_FRAGMENT),
+        }
+    }
+}
+
+impl Twin for PipelineTwin {
+    fn step(&mut self, r: &[u64]) -> Vec<u64> {
+        let a = self.addr.outputs();
+        let (cv, rgb) = self.colour.outputs();
+        let o = vec![
+            a.ready as u64,
+            cv as u64,
+            self.x.out(),
+            self.y.out(),
+            self.z.out(),
+            rgb[0],
+            rgb[1],
+            rgb[2],
+            self.done.out(),
+        ];
+        let (job, regs) = row_job(r);
+        let accepted = job.filter(|_| a.ready);
+        let (nv, n) = self.normal.outputs();
+        let (lv, cos_phi, cos_gamma) = self.light.outputs();
+        let (pv, spec) = self.power.outputs();
+        self.colour
+            .clock(pv, self.cos_phi.out(), spec, &regs.weights);
+        self.power.clock(lv, cos_gamma as u64, regs.n);
+        self.cos_phi.clock(cos_phi as u64);
+        let s = |w: [u64; 3]| w.map(|x| NORMAL.to_int(x));
+        self.light.clock(nv, n, s(regs.light), s(regs.half));
+        self.z.clock(self.depth.word() as u64);
+        self.normal.clock(accepted.as_ref().map(|j| &j.normal), &a);
+        let first = a.row_start && a.step == 0;
+        self.depth.clock(
+            accepted.as_ref().map(|j| &j.depth),
+            first,
+            a.row_start,
+            a.carry,
+            a.valid,
+        );
+        self.x.clock(a.x as u64);
+        self.y.clock(a.y as u64);
+        self.done.clock(a.done as u64);
+        self.addr.clock(accepted.as_ref().map(|j| &j.addr));
+        o
+    }
+}
+
+/// A unit normal facing the viewer (z ≥ 0.05).
+fn unit_normal() -> impl Strategy<Value = [f64; 3]> {
+    (0.05..=1.0f64, 0.0..std::f64::consts::TAU).prop_map(|(z, phi)| {
+        let r = (1.0 - z * z).sqrt();
+        [r * phi.cos(), r * phi.sin(), z]
+    })
+}
+
+/// `n` seeded triangles with unit vertex normals and depths in [−2, 2].
+pub fn lit_triangles(seed: u64, n: usize) -> Vec<ScreenTriangle> {
+    let mut r = seeded_runner(seed);
+    let st = (
+        triangle_strategy(),
+        prop::array::uniform3(unit_normal()),
+        prop::array::uniform3(-2.0..=2.0f64),
+    );
+    let mut out = Vec::with_capacity(n);
+    while out.len() < n {
+        let (p, normals, z) = st.new_tree(&mut r).expect("no rejection").current();
+        let mut t = ScreenTriangle::from_points(p);
+        for k in 0..3 {
+            t.v[k].normal = glam::DVec3::from_array(normals[k]);
+            t.v[k].z = z[k];
+        }
+        if t.normal_plane().is_some() {
+            out.push(t);
+        }
+    }
+    out
+}
+
+/// The golden colour of every pixel of `t`, in walk order, for the build's coefficients and
+/// power mode (`k` = None: exact cos^n).
+fn golden_colours(t: &ScreenTriangle, ctx: &ShadeContext, c: Coeffs, k: Option<u32>) -> Vec<[u8; 3]> {
+    let w = walk(t);
+    let mut out = Vec::with_capacity(w.pixel_count());
+    let a = k.map(|k| golden::brdf::slope(ctx.n(), k, true));
+    golden::normalizer::shade_front_end(t, &w, ctx, c, &mut |_, _, rgb| out.push(rgb), |_, _, d, s| {
+        let spec = match (k, a) {
+            (Some(k), Some(a)) => golden::brdf::w_kernel(a, k, s),
+            _ => ctx.specular_power(s),
+        };
+        ctx.combine(d, spec)
+    });
+    out
+}
+
+/// The pipeline's rows for `jobs` under `regs`: each job loaded in the clock the address
+/// block accepts it, then idle clocks to flush. Returns the rows and the address stream.
+fn pipeline_rows(jobs: &[LitJob], regs: &ShadingRegs) -> (Vec<Vec<u64>>, Vec<AddressOutputs>) {
+    let setups: Vec<AddressSetup> = jobs.iter().map(|j| j.addr).collect();
+    let st = crate::address_block::stimulus(&setups);
+    let mut rows = Vec::new();
+    let mut next = 0;
+    for c in 0..st.rows.len() + EVENT_TO_FRAGMENT + 1 {
+        let load = (st.loads.get(next) == Some(&c)).then(|| &jobs[next]);
+        next += load.is_some() as usize;
+        rows.push(lit_row(load, regs));
+    }
+    let mut stream = st.expected;
+    stream.resize(rows.len(), AddressOutputs::default());
+    (rows, stream)
+}
+
+impl Bench for PixelPipeline {
+    const ITEMS: &'static str = "triangles";
+    const DEFAULT_ITEMS: usize = 12;
+    fn stimulus(p: &PipelineParams, n: usize, seed: u64) -> Stimulus {
+        let ctx = ShadeContext::default();
+        let regs = ShadingRegs::of(&ctx).expect("default context fits the registers");
+        let tris = lit_triangles(seed, n);
+        let jobs: Vec<LitJob> = tris
+            .iter()
+            .map(|t| LitJob::new(t).unwrap().expect("non-degenerate"))
+            .collect();
+        let k = p.power.k();
+        let mut colours = tris
+            .iter()
+            .flat_map(|t| golden_colours(t, &ctx, p.coeffs.requested, k))
+            .collect::<Vec<_>>()
+            .into_iter();
+        let mut depths = tris
+            .iter()
+            .flat_map(|t| {
+                let d = t.depth_plane().unwrap();
+                walk(t)
+                    .pixels()
+                    .into_iter()
+                    .map(|px| d.at_pixel(px.x, px.y))
+                    .collect::<Vec<_>>()
+            })
+            .collect::<Vec<_>>()
+            .into_iter();
+        let (rows, stream) = pipeline_rows(&jobs, &regs);
+        let w = |v: u64| Expected::Word(v);
+        let expected: Vec<Vec<Expected>> = (0..rows.len())
+            .map(|c| {
+                let ready = stream[c].ready as u64;
+                let d = c
+                    .checked_sub(EVENT_TO_FRAGMENT)
+                    .map_or(AddressOutputs::default(), |k| stream[k]);
+                let mut e = vec![w(ready), w(d.valid as u64), w(d.x as u64), w(d.y as u64)];
+                if d.valid {
+                    let rgb = colours.next().expect("golden colours run out");
+                    e.push(Expected::Real(depths.next().expect("depths run out")));
+                    e.extend(rgb.map(|v| Expected::Real(v as f64)));
+                } else {
+                    e.extend([Expected::DontCare; 4]);
+                }
+                e.push(w(d.done as u64));
+                e
+            })
+            .collect();
+        assert!(colours.next().is_none(), "golden colours left over");
+        let level = Compare::Fixed {
+            format: LEVEL,
+            tol: Tolerance {
+                max_abs: 2.0,
+                rms: 0.5,
+            },
+        };
+        let bound = golden::vector_interpolator::error_bound(0).max(8189.0 * (-17f64).exp2());
+        let depth = Compare::Fixed {
+            format: INTENSITY,
+            tol: Tolerance {
+                max_abs: bound,
+                rms: bound,
+            },
+        };
+        let mut compare = vec![Compare::Exact; 9];
+        compare[4] = depth;
+        compare[5..8].copy_from_slice(&[level; 3]);
+        Stimulus {
+            rows,
+            expected,
+            compare,
+        }
+    }
+    fn twin(p: &PipelineParams) -> Box<dyn Twin> {
+        Box::new(PipelineTwin::new(p))
+    }
+}
