@@ -185,8 +185,17 @@ fn pipeline_rows(jobs: &[LitJob], regs: &ShadingRegs) -> (Vec<Vec<u64>>, Vec<Add
         next += load.is_some() as usize;
         rows.push(lit_row(load, regs));
     }
-    let mut stream = st.expected;
-    stream.resize(rows.len(), AddressOutputs::default());
+    // The address block's cycle model over all the rows (its idle clocks show `ready`).
+    let mut m = AddressBlockModel::new();
+    let mut stream = Vec::with_capacity(rows.len());
+    let mut next = 0;
+    for row in &rows {
+        stream.push(m.outputs());
+        let load = (row[0] != 0).then(|| &setups[next]);
+        next += load.is_some() as usize;
+        m.clock(load);
+    }
+    debug_assert_eq!(stream[..st.expected.len()], st.expected[..]);
     (rows, stream)
 }
 
