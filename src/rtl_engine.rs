@@ -16,11 +16,11 @@
 //! within 1 LSB per channel of the golden Gouraud image (the BVI's error budget).
 
 use anyhow::{bail, Result};
+use golden::methods::Method;
 use golden::render::Frame;
 use golden::shade::ShadeContext;
 use golden::types::{ScreenTriangle, MAX_ADDRESS};
 use indicatif::ProgressBar;
-use golden::methods::Method;
 use pipeline::gouraud::{clock_budget, Pipe, PipeStats, TriangleJob};
 use pipeline::lit::{lit_clock_budget, LitJob, LitPipe, ShadingRegs, LIT_METHODS};
 

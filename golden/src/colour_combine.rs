@@ -122,13 +122,20 @@ mod tests {
         let words = w.words().unwrap();
         assert_eq!(words[3], 64 << 8, "dif_r = 64");
         assert_eq!(words[6], 255 << 8, "spc_r = 255");
-        assert_eq!(words[0], (50.0 / 255.0 * 64.0 * 256.0 + 0.5f64).floor() as u64);
+        assert_eq!(
+            words[0],
+            (50.0 / 255.0 * 64.0 * 256.0 + 0.5f64).floor() as u64
+        );
         let mut ctx = ShadeContext::default();
         ctx.material.ks = 2.0;
         let e = Weights::of(&ctx).words().unwrap_err();
         assert_eq!(e.name, "spc_r");
         assert_eq!(twin::narrow(255 << 23), 255);
-        assert_eq!(twin::narrow((255 << 23) + (1 << 22)), 255, "255.5 saturates");
+        assert_eq!(
+            twin::narrow((255 << 23) + (1 << 22)),
+            255,
+            "255.5 saturates"
+        );
         assert_eq!(twin::narrow((1 << 22) - 1), 0);
         assert_eq!(twin::narrow(1 << 22), 1, "ties round up");
     }

@@ -262,6 +262,8 @@ impl LitPipe {
 
 /// A clock budget for `jobs` (every row at full length plus the pipeline's latency).
 pub fn lit_clock_budget(jobs: &[LitJob]) -> u64 {
-    jobs.iter().map(|j| 8 + j.addr.rows as u64 * 4097).sum::<u64>()
+    jobs.iter()
+        .map(|j| 8 + j.addr.rows as u64 * 4097)
+        .sum::<u64>()
         + PixelPipeline::LATENCY as u64
 }

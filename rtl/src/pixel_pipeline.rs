@@ -91,7 +91,9 @@ impl BlockParams for PipelineParams {
     }
     fn test_sets() -> Vec<Options> {
         vec![
-            Options::new().with("coeffs", "published").with("power", "exact"),
+            Options::new()
+                .with("coeffs", "published")
+                .with("power", "exact"),
             Options::new().with("coeffs", "fit").with("power", "w16"),
         ]
     }
@@ -187,8 +189,19 @@ impl Logic for PixelPipeline {
     #[hdl_gen]
     fn update(&mut self) {
         clock!(
-            self, clock, addr, normal, depth, light, power, colour, cos_phi_p10, z_p23, x_p24,
-            y_p24, done_p24
+            self,
+            clock,
+            addr,
+            normal,
+            depth,
+            light,
+            power,
+            colour,
+            cos_phi_p10,
+            z_p23,
+            x_p24,
+            y_p24,
+            done_p24
         );
         self.addr.load.next = self.load.val();
         self.addr.w_b0.next = self.w_b0.val();

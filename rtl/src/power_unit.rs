@@ -183,7 +183,10 @@ crate::hw_block! {
 impl Logic for PowerUnit {
     #[hdl_gen]
     fn update(&mut self) {
-        clock!(self, clock, w_a, w_t, w_above, w_zero, w_valid1, w_p, w_above2, w_zero2, w_valid2, w_spec_p3, w_valid_p3);
+        clock!(
+            self, clock, w_a, w_t, w_above, w_zero, w_valid1, w_p, w_above2, w_zero2, w_valid2,
+            w_spec_p3, w_valid_p3
+        );
         for j in 0..10 {
             self.e_valid[j].clock.next = self.clock.val();
             self.e_n[j].clock.next = self.clock.val();
@@ -325,8 +328,10 @@ impl Logic for PowerUnit {
         }
         // ---- W: W1 — a = (n+1)·C_k by shifts and adds (m1 = n + 1 ≤ 1024).
         self.m1.next = bit_cast::<16, 10>(self.n.val()) + 1;
-        self.a4.next = (self.m1.val() << 5) + (self.m1.val() << 4) + (self.m1.val() << 1) + self.m1.val();
-        self.a8.next = (self.m1.val() << 5) + (self.m1.val() << 4) + (self.m1.val() << 3) + self.m1.val();
+        self.a4.next =
+            (self.m1.val() << 5) + (self.m1.val() << 4) + (self.m1.val() << 1) + self.m1.val();
+        self.a8.next =
+            (self.m1.val() << 5) + (self.m1.val() << 4) + (self.m1.val() << 3) + self.m1.val();
         self.a16.next = (self.m1.val() << 4) - self.m1.val();
         if self.k16.val() {
             self.w_a.d.next = self.a16.val();

@@ -41,7 +41,12 @@ pub fn named_cases() -> Vec<(&'static str, u64, u64, [u64; 9])> {
         ("all zero", 0, 0, [0; 9]),
         ("default material, cos φ = 0, S = 0", 0, 0, default),
         ("default material, cos φ = 1, S = 0", ONE, 0, default),
-        ("default material, cos φ = 1, S = 1 (saturates)", ONE, ONE, default),
+        (
+            "default material, cos φ = 1, S = 1 (saturates)",
+            ONE,
+            ONE,
+            default,
+        ),
         ("largest weights and terms (saturates)", 0xFFFF, 0xFFFF, max),
         ("exact ties round up", 0, 0, tie),
         ("255.5 saturates to 255", 0, 0, [0xFF80; 9]),

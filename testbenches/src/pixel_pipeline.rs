@@ -159,17 +159,29 @@ pub fn lit_triangles(seed: u64, n: usize) -> Vec<ScreenTriangle> {
 
 /// The golden colour of every pixel of `t`, in walk order, for the build's coefficients and
 /// power mode (`k` = None: exact cos^n).
-fn golden_colours(t: &ScreenTriangle, ctx: &ShadeContext, c: Coeffs, k: Option<u32>) -> Vec<[u8; 3]> {
+fn golden_colours(
+    t: &ScreenTriangle,
+    ctx: &ShadeContext,
+    c: Coeffs,
+    k: Option<u32>,
+) -> Vec<[u8; 3]> {
     let w = walk(t);
     let mut out = Vec::with_capacity(w.pixel_count());
     let a = k.map(|k| golden::brdf::slope(ctx.n(), k, true));
-    golden::normalizer::shade_front_end(t, &w, ctx, c, &mut |_, _, rgb| out.push(rgb), |_, _, d, s| {
-        let spec = match (k, a) {
-            (Some(k), Some(a)) => golden::brdf::w_kernel(a, k, s),
-            _ => ctx.specular_power(s),
-        };
-        ctx.combine(d, spec)
-    });
+    golden::normalizer::shade_front_end(
+        t,
+        &w,
+        ctx,
+        c,
+        &mut |_, _, rgb| out.push(rgb),
+        |_, _, d, s| {
+            let spec = match (k, a) {
+                (Some(k), Some(a)) => golden::brdf::w_kernel(a, k, s),
+                _ => ctx.specular_power(s),
+            };
+            ctx.combine(d, spec)
+        },
+    );
     out
 }
 
