@@ -183,6 +183,8 @@ pub struct Fragment {
     /// Depth word, signed Q16.16 (+½ LSB bias).
     pub z: i32,
     pub rgb: [u8; 3],
+    /// The clock (0 = the run's first) whose outputs show the fragment.
+    pub clock: u64,
 }
 
 /// The lit pipeline, stepped by hand.
@@ -248,6 +250,7 @@ impl LitPipe {
                     y: out[3] as u32,
                     z: out[4] as u32 as i32,
                     rgb: [out[5] as u8, out[6] as u8, out[7] as u8],
+                    clock: st.clocks - 1,
                 });
             }
             if out[8] != 0 {

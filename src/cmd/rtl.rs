@@ -7,13 +7,18 @@ use rtl::registry::Options;
 use testbenches::registry::{self, Entry};
 
 /// The blocks named by `--block` (`NAME` or `all`) and the build options of the command line
-/// (`--coeffs` is `coeffs=…`, read by the normalizer blocks), checked against each other.
-fn selection(block: &str, coeffs: &str) -> anyhow::Result<(Vec<&'static dyn Entry>, Options)> {
+/// (`--coeffs` is `coeffs=…`, read by the normalizer blocks; `--power` is `power=…`, read by
+/// the power unit and the pixel pipeline), checked against each other.
+fn selection(
+    block: &str,
+    coeffs: &str,
+    power: &str,
+) -> anyhow::Result<(Vec<&'static dyn Entry>, Options)> {
     let blocks = registry::select(block).map_err(|e| anyhow!(e))?;
-    let o = Options::new().with("coeffs", coeffs);
-    // Blocks without coefficients ignore --coeffs (its default applies to every command).
+    let o = Options::new().with("coeffs", coeffs).with("power", power);
+    // A block ignores the options it does not read (their defaults apply to every command).
     for b in &blocks {
-        if b.param_keys().contains(&"coeffs") {
+        if !b.param_keys().is_empty() {
             b.check_options(&o).map_err(|e| anyhow!(e))?;
         }
     }
@@ -31,6 +36,9 @@ pub struct ExportArgs {
     /// Normalizer coefficients: published (0.822, −2.046, 2.227) or fit (golden FIT).
     #[arg(long, default_value = "published")]
     pub coeffs: String,
+    /// Power unit mode: exact (cos^n) or w4, w8, w16 (W(n, γ) with that k).
+    #[arg(long, default_value = "exact")]
+    pub power: String,
 }
 
 #[derive(clap::Args, Debug)]
@@ -52,6 +60,9 @@ pub struct SimArgs {
     /// Normalizer coefficients: published or fit.
     #[arg(long, default_value = "published")]
     pub coeffs: String,
+    /// Power unit mode: exact (cos^n) or w4, w8, w16 (W(n, γ) with that k).
+    #[arg(long, default_value = "exact")]
+    pub power: String,
 }
 
 #[derive(clap::Args, Debug)]
@@ -62,13 +73,16 @@ pub struct SynthArgs {
     /// Normalizer coefficients: published or fit.
     #[arg(long, default_value = "published")]
     pub coeffs: String,
+    /// Power unit mode: exact (cos^n) or w4, w8, w16 (W(n, γ) with that k).
+    #[arg(long, default_value = "exact")]
+    pub power: String,
     /// Skip place-and-route (no Fmax estimate).
     #[arg(long)]
     pub no_pnr: bool,
 }
 
 pub fn export(a: ExportArgs) -> anyhow::Result<()> {
-    let (blocks, o) = selection(&a.block, &a.coeffs)?;
+    let (blocks, o) = selection(&a.block, &a.coeffs, &a.power)?;
     for b in blocks {
         let text = b.verilog(&o).map_err(|e| anyhow!(e))?;
         let path = rtl::export::write(b.name(), &text, &a.out).map_err(|e| anyhow!(e))?;
@@ -85,7 +99,7 @@ pub fn export(a: ExportArgs) -> anyhow::Result<()> {
 
 pub fn sim(a: SimArgs) -> anyhow::Result<()> {
     let block = registry::find(&a.block).map_err(|e| anyhow!(e))?;
-    let (_, o) = selection(block.name(), &a.coeffs)?;
+    let (_, o) = selection(block.name(), &a.coeffs, &a.power)?;
     let n = a.vectors.unwrap_or(block.default_items());
     if n == 0 {
         bail!("--vectors must be at least 1");
@@ -116,7 +130,7 @@ pub fn sim(a: SimArgs) -> anyhow::Result<()> {
 }
 
 pub fn synth(a: SynthArgs) -> anyhow::Result<()> {
-    let (blocks, o) = selection(&a.block, &a.coeffs)?;
+    let (blocks, o) = selection(&a.block, &a.coeffs, &a.power)?;
     for b in blocks {
         let (rep, fmax) = registry::synth_block(b, &o, !a.no_pnr).map_err(|e| anyhow!(e))?;
         print!("{rep}");

@@ -1,0 +1,123 @@
+//! Throughput of the lit pixel pipeline (`rtl::pixel_pipeline`):
+//!
+//! - printed once (clock counts of the simulated hardware, not timings): fragments per clock
+//!   over the default scene (sphere rez 50, 400×400, light 90°) for each build, the latency
+//!   from load to the first fragment of one triangle, the wall time of each default-scene
+//!   RTL render and its simulated clocks per second, beside the Gouraud raster pipe's in the
+//!   same run (a ratio);
+//! - measured by criterion: simulated clocks per second of the whole pipeline over a slice
+//!   of the scene (throughput in elements = clocks).
+
+use std::time::Instant;
+
+use criterion::{criterion_group, criterion_main, Criterion, Throughput};
+use glam::DQuat;
+use golden::methods::Method;
+use golden::shade::ShadeContext;
+use golden::types::ScreenTriangle;
+use pipeline::gouraud::{clock_budget, Pipe, TriangleJob};
+use pipeline::lit::{lit_clock_budget, LitJob, LitPipe, ShadingRegs, LIT_METHODS};
+
+fn default_scene() -> (Vec<ScreenTriangle>, ShadeContext) {
+    let mesh = golden::scene::uv_sphere(50).unwrap();
+    let cam = golden::scene::Camera::fit(&mesh, 400, 400, DQuat::IDENTITY);
+    let tris = golden::scene::project(&mesh, &cam, 400, 400).unwrap();
+    let ctx = ShadeContext {
+        light: golden::scene::light_direction(90.0).unwrap(),
+        ..ShadeContext::default()
+    };
+    (tris, ctx)
+}
+
+fn lit_jobs(tris: &[ScreenTriangle]) -> Vec<LitJob> {
+    tris.iter()
+        .filter_map(|t| LitJob::new(t).unwrap())
+        .collect()
+}
+
+fn run(method: Method, jobs: &[LitJob], regs: &ShadingRegs) -> pipeline::gouraud::PipeStats {
+    LitPipe::new(method)
+        .unwrap()
+        .run(jobs, regs, lit_clock_budget(jobs), |_| {}, |_| {})
+        .unwrap()
+}
+
+fn figures() {
+    let (tris, ctx) = default_scene();
+    let jobs = lit_jobs(&tris);
+    let regs = ShadingRegs::of(&ctx).unwrap();
+    // Latency: one triangle, clocks from the load to the first fragment.
+    let mut pipe = LitPipe::new(Method::NormalizerFit).unwrap();
+    let mut first = None;
+    let one = &jobs[jobs.len() / 2..jobs.len() / 2 + 1];
+    pipe.run(
+        one,
+        &regs,
+        lit_clock_budget(one),
+        |f| {
+            first.get_or_insert(f.clock);
+        },
+        |_| {},
+    )
+    .unwrap();
+    println!(
+        "pixel pipeline latency: load in clock 0, first fragment shown in clock {} (registry: {})",
+        first.unwrap(),
+        rtl::pixel_pipeline::PixelPipeline::LATENCY
+    );
+    let g_jobs: Vec<TriangleJob> = tris
+        .iter()
+        .filter_map(|t| TriangleJob::gouraud(t, &ctx))
+        .collect();
+    let t0 = Instant::now();
+    let g = Pipe::new()
+        .unwrap()
+        .run(&g_jobs, clock_budget(&g_jobs), |_, _, _, _| {}, |_| {})
+        .unwrap();
+    let g_rate = g.clocks as f64 / t0.elapsed().as_secs_f64();
+    println!(
+        "gouraud raster pipe, default scene: {} fragments in {} clocks ({:.4}/clock), {:.0} clocks/s",
+        g.pixels,
+        g.clocks,
+        g.pixels_per_clock(),
+        g_rate
+    );
+    for m in LIT_METHODS {
+        let t0 = Instant::now();
+        let s = run(m, &jobs, &regs);
+        let secs = t0.elapsed().as_secs_f64();
+        let rate = s.clocks as f64 / secs;
+        println!(
+            "pixel pipeline {m}, default scene: {} fragments in {} clocks ({:.4} fragments/clock); \
+             {secs:.1} s wall, {rate:.0} clocks/s ({:.3}× the Gouraud pipe's rate)",
+            s.pixels,
+            s.clocks,
+            s.pixels_per_clock(),
+            rate / g_rate
+        );
+    }
+}
+
+fn bench(c: &mut Criterion) {
+    figures();
+    let (tris, ctx) = default_scene();
+    let jobs = lit_jobs(&tris);
+    let slice = &jobs[..jobs.len() / 10];
+    let regs = ShadingRegs::of(&ctx).unwrap();
+    let clocks = run(Method::NormalizerFit, slice, &regs).clocks;
+    let mut g = c.benchmark_group("rtl_lit");
+    g.sample_size(10);
+    g.throughput(Throughput::Elements(clocks));
+    g.bench_function("pixel_pipeline_clocks", |b| {
+        b.iter(|| run(Method::NormalizerFit, slice, &regs))
+    });
+    g.finish();
+}
+
+criterion_group! {
+    name = benches;
+    // No plots: the plotters backend needs fonts the CI image may lack.
+    config = Criterion::default().without_plots();
+    targets = bench
+}
+criterion_main!(benches);
