@@ -47,15 +47,18 @@
 //!
 //! # Overflow
 //! Nothing wraps: products are exact, W3's sum is below 2³², and every narrowing saturates at
-//! 2 − 2⁻¹⁵ (an S ≥ 2 leaves every colour weight < 128 saturating anyway only for bright
-//! specular colours; the colour combine clips at 255).
+//! 2 − 2⁻¹⁵. An S that should be ≥ 2 (cos γ > 1 from the published normalizer with a large n)
+//! is clipped there: with a specular weight ≥ 128 the colour is 255 either way; with a darker
+//! specular colour the clipped pixel is darker than the f64 model's.
 //!
 //! # Error budget (vs the f64 `golden::power_unit::power` of the same input word)
 //! Each rounding adds ≤ 2⁻¹⁶; an error in a value later squared j times grows ≈ 2^j near
-//! c = 1 (less below it). `golden::power_unit::error_bound` propagates it to first order along
-//! the chain of the actual input: at c = 1 the exact mode gives ≤ 2⁻¹⁶·(2^popcount … ) —
-//! measured bounds: n = 1: 0, n = 50: 4.6·10⁻⁴, n = 256: 3.9·10⁻³, n = 1000: 1.4·10⁻² (3.6 LSB
-//! of an 8-bit colour at full specular weight); W(k = 16): ≤ 2.6·10⁻⁴ for every n.
+//! c = 1 (less below it). `golden::power_unit::error_bound` propagates it along the chain of
+//! the actual input (first order plus the squared terms). Its maximum over c ∈ [0.92, 1]:
+//! n = 1: 0 (no rounding), n = 50: 7.6·10⁻⁴, n = 256: 3.9·10⁻³, n = 1000: 1.5·10⁻² (3.9 LSB of
+//! an 8-bit colour at full specular weight — the exact power needs wider words for n near
+//! 1000); W over c ∈ [0, 1], n ∈ {1, 50, 256, 1000}: 1.1·10⁻⁴ (k = 4), 2.3·10⁻⁴ (k = 8),
+//! 4.7·10⁻⁴ (k = 16); above c = 1 the bracket exceeds 1 and the bound grows with it.
 //! The input's own quantization (≤ 2⁻¹⁶) moves cos^n by n·2⁻¹⁶·cos^(n−1): that is the lighting
 //! unit's budget, not this block's.
 
