@@ -3,11 +3,17 @@
 //! cos^n(γ ± dγ) = (cos γ·cos dγ ∓ sin γ·sin dγ)^n, and the diffuse term the same way from
 //! cos φ = N̂·L. No perturbed normal is built or normalized.
 //!
-//! The block has no trigonometric units; everything trigonometric comes from a PROM:
-//! - sin γ for the given cos γ ([`SinProm`]: the address is cos γ quantized to
-//!   [`SIN_ADDR_BITS`] bits, the word is sin(arccos(address)));
+//! The block has no trigonometric units; everything trigonometric comes from a PROM, as the
+//! hardware (`rtl/src/brzssk.rs`) holds it — every word unsigned Q1.15:
+//! - sin γ for the given cos γ ([`SinProm`]: the address is cos γ ∈ [0, 1] rounded to
+//!   [`SIN_ADDR_BITS`] fraction bits, the word is sin(arccos(address)) rounded to Q1.15); the
+//!   diffuse term's sin φ comes from a smaller PROM of [`SIN_PHI_ADDR_BITS`] (no power follows
+//!   it, so its coarser steps cost < 0.1 LSB);
 //! - cos dγ and sin dγ for the perturbation code ([`BumpMap::code`]: a sign bit, held by the
 //!   trigger TG, and an unsigned magnitude of [`CODE_BITS`] bits).
+//!
+//! The cosines enter clamped at 0, as the lighting unit delivers them (a surface turned away
+//! from the light or the half vector is perturbed from 0, not from its negative cosine).
 //!
 //! Then two multipliers and an add/subtract selected by TG form cos(γ ± dγ), which is raised to
 //! n (square-and-multiply over the bits of n; exact power here) and scaled by k_s·I_l.
@@ -15,38 +21,48 @@
 //! The perturbation map is procedural and lives in screen space (the hardware's pixel address
 //! is what it has; the golden scenes carry no texture coordinates): an egg-crate
 //! dγ(x, y) = D·sin(2πx/P)·sin(2πy/P) with amplitude D = [`BumpMap::default`]'s 0.12 rad and
-//! period P = 16 pixels. The base normal is the reference one (exact normalization).
+//! period P = 16 pixels, so the code of a pixel depends on its address modulo 16 (a 256-entry
+//! code ROM in hardware). The base normal comes from the hardware's front end: the vector
+//! interpolator and the normalizer with the fitted coefficients
+//! (`crate::normalizer::shade_front_end`); the specular power is the exact cos^n.
 
 use crate::methods::Emit;
 use crate::shade::ShadeContext;
 use crate::types::{ScreenTriangle, Walk};
 use std::f64::consts::TAU;
 
-/// Address width of the sin-from-cos PROM.
-pub const SIN_ADDR_BITS: u32 = 16;
+/// Address fraction bits of the sin γ PROM (4097 words: 16 iCE40 block RAMs).
+pub const SIN_ADDR_BITS: u32 = 12;
+/// Address fraction bits of the sin φ PROM (1025 words).
+pub const SIN_PHI_ADDR_BITS: u32 = 10;
+
+/// `v` rounded to the nearest unsigned Q1.15 word (ties up), as a real.
+pub fn q15(v: f64) -> f64 {
+    (v * 32768.0 + 0.5).floor() / 32768.0
+}
 
 /// Magnitude bits of the perturbation code (plus one sign bit).
 pub const CODE_BITS: u32 = 8;
 
-/// The PROM word for sin γ, addressed by cos γ ∈ [−1, 1] quantized to `addr_bits`.
+/// The PROM word for sin γ, addressed by cos γ ∈ [0, 1] rounded to `addr_bits` fraction bits.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SinProm {
     pub addr_bits: u32,
 }
 
 impl SinProm {
-    /// Largest address: cos γ = 1.
+    /// Largest address: cos γ = 1 (2^addr_bits).
     pub fn top(&self) -> f64 {
-        ((1u64 << self.addr_bits) - 1) as f64
+        (1u64 << self.addr_bits) as f64
     }
-    /// Address of cos γ (cos γ = −1..1 mapped to −top..top, rounded).
+    /// Address of cos γ: clamp to [0, 1], then round to nearest (ties up) in 2^-addr_bits.
     pub fn address(&self, cos_gamma: f64) -> i64 {
-        (cos_gamma.clamp(-1.0, 1.0) * self.top()).round() as i64
+        (cos_gamma.clamp(0.0, 1.0) * self.top() + 0.5).floor() as i64
     }
-    /// The stored word: sin(arccos(address/top)) ≥ 0.
+    /// The stored word: sin(arccos(address/top)) rounded to Q1.15.
     pub fn word(&self, address: i64) -> f64 {
         let c = address as f64 / self.top();
-        (1.0 - c * c).max(0.0).sqrt()
+        q15((1.0 - c * c).max(0.0).sqrt())
     }
     /// sin γ for cos γ, as the PROM delivers it.
     pub fn sin(&self, cos_gamma: f64) -> f64 {
@@ -95,16 +111,18 @@ impl BumpMap {
             magnitude,
         }
     }
-    /// The PROM words (cos dγ, sin |dγ|) of a code.
+    /// The PROM words (cos dγ, sin |dγ|) of a code, each rounded to Q1.15.
     pub fn prom(&self, code: Code) -> (f64, f64) {
         let top = ((1u32 << CODE_BITS) - 1) as f64;
         let angle = code.magnitude as f64 / top * self.amplitude;
-        (angle.cos(), angle.sin())
+        (q15(angle.cos()), q15(angle.sin()))
     }
 }
 
-/// Per-pixel kernel: cos(γ + dγ) from cos γ and the code, without trigonometric units.
+/// Per-pixel kernel: cos(γ + dγ) from cos γ (clamped at 0 first) and the code, without
+/// trigonometric units.
 pub fn perturb(cos_gamma: f64, code: Code, map: &BumpMap, prom: &SinProm) -> f64 {
+    let cos_gamma = cos_gamma.max(0.0);
     let (cos_d, sin_d) = map.prom(code);
     let sin_g = prom.sin(cos_gamma);
     let product = sin_g * sin_d;
@@ -116,33 +134,39 @@ pub fn perturb(cos_gamma: f64, code: Code, map: &BumpMap, prom: &SinProm) -> f64
     }
 }
 
-/// Bump shading of one triangle with the default map and PROM.
-pub fn shade(tri: &ScreenTriangle, walk: &Walk, ctx: &ShadeContext, emit: Emit) {
-    shade_with(
-        tri,
-        walk,
-        ctx,
-        &BumpMap::default(),
-        &SinProm {
+/// The default PROMs: (sin φ, sin γ).
+pub fn default_proms() -> (SinProm, SinProm) {
+    (
+        SinProm {
+            addr_bits: SIN_PHI_ADDR_BITS,
+        },
+        SinProm {
             addr_bits: SIN_ADDR_BITS,
         },
-        emit,
     )
 }
 
-/// Bump shading with a given map and PROM.
+/// Bump shading of one triangle with the default map and PROMs.
+pub fn shade(tri: &ScreenTriangle, walk: &Walk, ctx: &ShadeContext, emit: Emit) {
+    let (phi, gamma) = default_proms();
+    shade_with(tri, walk, ctx, &BumpMap::default(), &phi, &gamma, emit)
+}
+
+/// Bump shading with a given map and PROMs (sin φ, sin γ), behind the hardware's front end.
 pub fn shade_with(
     tri: &ScreenTriangle,
     walk: &Walk,
     ctx: &ShadeContext,
     map: &BumpMap,
-    prom: &SinProm,
+    prom_phi: &SinProm,
+    prom_gamma: &SinProm,
     emit: Emit,
 ) {
-    crate::phong::shade_exact_front_end(tri, walk, ctx, emit, |x, y, d, s| {
+    let fit = crate::normalizer::FIT;
+    crate::normalizer::shade_front_end(tri, walk, ctx, fit, emit, |x, y, d, s| {
         let code = map.code(x, y);
-        let d = perturb(d, code, map, prom);
-        let s = perturb(s, code, map, prom);
+        let d = perturb(d, code, map, prom_phi);
+        let s = perturb(s, code, map, prom_gamma);
         ctx.combine(d, ctx.specular_power(s))
     });
 }
