@@ -20,7 +20,7 @@
 //!
 //! The perturbation map is procedural and lives in screen space (the hardware's pixel address
 //! is what it has; the golden scenes carry no texture coordinates): an egg-crate
-//! dγ(x, y) = D·sin(2πx/P)·sin(2πy/P) with amplitude D = [`BumpMap::default`]'s 0.12 rad and
+//! dγ(x, y) = D·sin(2πx/P)·sin(2πy/P) (x, y the integer pixel address) with amplitude D = [`BumpMap::default`]'s 0.12 rad and
 //! period P = 16 pixels, so the code of a pixel depends on its address modulo 16 (a 256-entry
 //! code ROM in hardware). The base normal comes from the hardware's front end: the vector
 //! interpolator and the normalizer with the fitted coefficients
@@ -96,9 +96,11 @@ pub struct Code {
 }
 
 impl BumpMap {
-    /// dγ at the centre of pixel (x, y), before quantization.
+    /// dγ at the corner (x, y) of the pixel grid, before quantization: sampled on the grid
+    /// itself so that the 16-pixel period holds exactly dγ = 0 (x or y ≡ 0, 8) and both
+    /// extremes ±D (x, y ≡ 4, 12).
     pub fn d_gamma(&self, x: i32, y: i32) -> f64 {
-        let (px, py) = (x as f64 + 0.5, y as f64 + 0.5);
+        let (px, py) = (x as f64, y as f64);
         self.amplitude * (TAU * px / self.period).sin() * (TAU * py / self.period).sin()
     }
     /// The stored code of pixel (x, y).

@@ -7,6 +7,7 @@ pub mod accuracy;
 pub mod address_block;
 pub mod angular;
 pub mod brdf;
+pub mod brzssk;
 pub mod bump;
 pub mod colour_combine;
 pub mod cubic;

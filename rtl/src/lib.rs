@@ -1,4 +1,5 @@
 pub mod address_block;
+pub mod brzssk;
 pub mod colour_combine;
 pub mod declare;
 pub mod export;

@@ -71,6 +71,66 @@ impl<T: Synth, const N: usize> Logic for Delay<T, N> {
     }
 }
 
+/// A synchronous ROM (PROM): `data` = `contents[address]` of the previous clock edge, as FPGA
+/// block RAM reads; 0 before the first edge in every simulator (rust-hdl's `SyncROM` leaves
+/// the Verilog register uninitialised, which Icarus shows as `x`). Latency 1. Exported as a
+/// `reg` array with an `initial` block, which Yosys maps to block RAM (iCE40: SB_RAM40_4K).
+/// Every one of the 2^N addresses holds a word.
+#[derive(LogicBlock)]
+pub struct Prom<D: Synth, const N: usize> {
+    pub address: Signal<In, Bits<N>>,
+    pub clock: Signal<In, Clock>,
+    pub data: Signal<Out, D>,
+    _contents: Box<std::collections::BTreeMap<Bits<N>, D>>,
+}
+
+impl<D: Synth, const N: usize> Prom<D, N> {
+    /// A PROM holding `words` from address 0 on.
+    pub fn new(words: impl IntoIterator<Item = D>) -> Self {
+        assert!(N < 20, "a PROM of 2^{N} words is not block RAM");
+        let contents: std::collections::BTreeMap<Bits<N>, D> = words
+            .into_iter()
+            .enumerate()
+            .map(|(i, w)| (Bits::<N>::from(i as u64), w))
+            .collect();
+        assert!(contents.len() == 1 << N, "a PROM of 2^{N} addresses needs 2^{N} words");
+        Self {
+            address: Signal::default(),
+            clock: Signal::default(),
+            data: Signal::new_with_default(D::default()),
+            _contents: Box::new(contents),
+        }
+    }
+}
+
+impl<D: Synth, const N: usize> Logic for Prom<D, N> {
+    fn update(&mut self) {
+        if self.clock.pos_edge() {
+            self.data.next = *self
+                ._contents
+                .get(&self.address.val())
+                .unwrap_or(&D::default());
+        }
+    }
+    fn connect(&mut self) {
+        self.data.connect();
+    }
+    fn hdl(&self) -> Verilog {
+        let init = self
+            ._contents
+            .iter()
+            .map(|(a, w)| format!("mem[{}] = {};", a.verilog(), w.verilog()))
+            .collect::<Vec<_>>()
+            .join("\n");
+        Verilog::Custom(format!(
+            "reg[{d}:0] mem [0:{last}];\n\ninitial begin\n{init}\ndata = 0;\nend\n\n\
+             always @(posedge clock) begin\n   data <= mem[address];\nend",
+            d = D::BITS - 1,
+            last = (1usize << N) - 1,
+        ))
+    }
+}
+
 crate::hw_block! {
     /// Signed Q3.29 → signed Q2.14, for a word that already carries the half output LSB (2¹⁴):
     /// `narrow` = bits 30..15 of `wide` when bits 31 and 30 agree (the value fits [−2, 2)),

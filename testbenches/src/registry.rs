@@ -208,6 +208,7 @@ pub static BLOCKS: &[&dyn Entry] = &[
     &entry::<rtl::lighting_unit::LightingUnit>(),
     &entry::<rtl::colour_combine::ColourCombine>(),
     &entry::<rtl::power_unit::PowerUnit>(),
+    &entry::<rtl::brzssk::Brzssk>(),
     &entry::<rtl::pixel_pipeline::PixelPipeline>(),
 ];
 
