@@ -35,25 +35,32 @@ pub const REGS_AT: usize = 36;
 pub const DEPTH_LIMIT: f64 = 16384.0;
 
 /// The methods the lit pipeline renders, with their build options.
-pub const LIT_METHODS: [Method; 5] = [
+pub const LIT_METHODS: [Method; 6] = [
     Method::Normalizer,
     Method::NormalizerFit,
     Method::BrdfK4,
     Method::BrdfK8,
     Method::BrdfK16,
+    Method::Bump,
 ];
 
 /// The pipeline build (`coeffs`, `power`) that computes `method`; `None` if it does not.
 pub fn method_options(method: Method) -> Option<Options> {
-    let (c, p) = match method {
-        Method::Normalizer => ("published", "exact"),
-        Method::NormalizerFit => ("fit", "exact"),
-        Method::BrdfK4 => ("fit", "w4"),
-        Method::BrdfK8 => ("fit", "w8"),
-        Method::BrdfK16 => ("fit", "w16"),
+    let (c, p, b) = match method {
+        Method::Normalizer => ("published", "exact", "off"),
+        Method::NormalizerFit => ("fit", "exact", "off"),
+        Method::BrdfK4 => ("fit", "w4", "off"),
+        Method::BrdfK8 => ("fit", "w8", "off"),
+        Method::BrdfK16 => ("fit", "w16", "off"),
+        Method::Bump => ("fit", "exact", "on"),
         _ => return None,
     };
-    Some(Options::new().with("coeffs", c).with("power", p))
+    Some(
+        Options::new()
+            .with("coeffs", c)
+            .with("power", p)
+            .with("bump", b),
+    )
 }
 
 /// The shading registers of a frame: L, H (signed Q2.14), n, the nine colour weights.

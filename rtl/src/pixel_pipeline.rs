@@ -1,14 +1,14 @@
 //! The lit pixel pipeline (SPEC §0, §1, §2, §5, §6): one triangle's set-up in, lit fragments
 //! out — per-pixel normal, normalized without division or square root, Blinn-lit, the
 //! specular power in hardware, TrueColor, with the fragment's depth. Golden: the `normalizer`,
-//! `normalizer-fit` and `brdf-k*` methods of `golden::methods` (which describe this path),
-//! walked by `golden::raster::walk`.
+//! `normalizer-fit`, `brdf-k*` and `bump` methods of `golden::methods` (which describe this
+//! path), walked by `golden::raster::walk`.
 //!
 //! ```text
-//!  load + set-up ─► AddressBlock ─valid,row_start,step,carry─┬─► VectorInterpolator ─N─► LightingUnit ─cos γ─► PowerUnit ─S─┐
-//!                        │                                   │        (1)                   (11)        └cos φ─► Delay(10) ─┴► ColourCombine ─► r, g, b
-//!                        │                                   └─► IntensityChannel (depth z) ─► Delay(23) ────────────────────────────────► z
-//!                        └── x, y, done ─► Delay(24) ─────────────────────────────────────────────────────────────────────────────────► x, y, done
+//!  load + set-up ─► AddressBlock ─valid,row_start,step,carry─┬─► VectorInterpolator ─N─► LightingUnit ─cos φ, cos γ─► Brzssk ─cos γ'─► PowerUnit ─S─┐
+//!                        │                                   │        (1)                   (11)         x, y (12) ──►  (4)   └cos φ'─► Delay(10) ─┴► ColourCombine ─► r, g, b
+//!                        │                                   └─► IntensityChannel (depth z) ─► Delay(27) ──────────────────────────────────────────────────► z
+//!                        └── x, y, done ─► Delay(28) ───────────────────────────────────────────────────────────────────────────────────────────────────► x, y, done
 //! ```
 //!
 //! # Ports
@@ -34,14 +34,16 @@
 //! power unit with its pixel.
 //!
 //! # Latency, throughput
-//! Event → fragment 24 clocks (vector interpolator 1, lighting 11, power 10, colour 2);
-//! load → first fragment 27 (the address block's 3 more). One fragment per clock along a line;
+//! Event → fragment 28 clocks (vector interpolator 1, lighting 11, BRZSSK 4, power 10,
+//! colour 2); load → first fragment 31 (the address block's 3 more). BRZSSK is in the path of
+//! every build (passing through unless `bump=on`), so every method has the same latency. One fragment per clock along a line;
 //! nothing in the pipeline stalls, so the address block is the only limit (one clock per line
 //! start without pixels, as in the Gouraud pipe).
 //!
 //! # Build parameters
-//! `coeffs` (the normalizer's set: published | fit) and `power` (exact | w4 | w8 | w16): the
-//! `normalizer`/`normalizer-fit` methods are `power=exact`, `brdf-kK` is `coeffs=fit power=wK`.
+//! `coeffs` (the normalizer's set: published | fit), `power` (exact | w4 | w8 | w16) and `bump`
+//! (off | on): the `normalizer`/`normalizer-fit` methods are `power=exact`, `brdf-kK` is
+//! `coeffs=fit power=wK`, `bump` is `coeffs=fit power=exact bump=on`.
 //!
 //! # Overflow, error budget
 //! Those of the blocks: the normal words wrap by design (only pixel values must be in range);
@@ -52,6 +54,7 @@
 use rust_hdl::prelude::*;
 
 use crate::address_block::AddressBlock;
+use crate::brzssk::{Brzssk, BrzsskParams};
 use crate::colour_combine::ColourCombine;
 use crate::intensity_interpolator::IntensityChannel;
 use crate::lighting_unit::LightingUnit;
@@ -64,26 +67,39 @@ use crate::vector_interpolator::VectorInterpolator;
 /// Clocks from an address event to its fragment.
 pub const EVENT_TO_FRAGMENT: usize = VectorInterpolator::LATENCY
     + LightingUnit::LATENCY
+    + Brzssk::LATENCY
     + PowerUnit::LATENCY
     + ColourCombine::LATENCY;
+
+/// Clocks from an address event to the pixel's arrival at BRZSSK (which needs its address).
+pub const EVENT_TO_BRZSSK: usize = VectorInterpolator::LATENCY + LightingUnit::LATENCY;
 
 /// Build parameters of the pipeline: the normalizer's coefficient set and the power unit's mode.
 #[derive(Clone, Debug, PartialEq)]
 pub struct PipelineParams {
     pub coeffs: NormalizerCoeffs,
     pub power: PowerParams,
+    /// BRZSSK perturbs (the `bump` method) or passes the cosines through.
+    pub bump: BrzsskParams,
 }
 
 impl BlockParams for PipelineParams {
-    const KEYS: &'static [&'static str] = &["coeffs", "power"];
+    const KEYS: &'static [&'static str] = &["coeffs", "power", "bump"];
+    /// `coeffs` (published | fit), `power` (exact | w4 | w8 | w16), `bump` (off | on; off by
+    /// default here).
     fn from_options(o: &Options) -> Result<Self, String> {
         Ok(PipelineParams {
             coeffs: NormalizerCoeffs::from_options(o)?,
             power: PowerParams::from_options(o)?,
+            bump: BrzsskParams::read(o, false)?,
         })
     }
     fn describe(&self) -> Option<String> {
-        let parts: Vec<String> = [self.coeffs.describe(), self.power.describe()]
+        let parts: Vec<String> = [
+            self.coeffs.describe(),
+            self.power.describe(),
+            self.bump.describe(),
+        ]
             .into_iter()
             .flatten()
             .collect();
@@ -93,8 +109,12 @@ impl BlockParams for PipelineParams {
         vec![
             Options::new()
                 .with("coeffs", "published")
-                .with("power", "exact"),
-            Options::new().with("coeffs", "fit").with("power", "w16"),
+                .with("power", "exact")
+                .with("bump", "off"),
+            Options::new()
+                .with("coeffs", "fit")
+                .with("power", "w16")
+                .with("bump", "on"),
         ]
     }
     fn multipliers(&self) -> Option<usize> {
@@ -104,7 +124,8 @@ impl BlockParams for PipelineParams {
                     .power
                     .multipliers()
                     .unwrap_or(<PowerUnit as RtlBlock>::MULTIPLIERS)
-                + <ColourCombine as RtlBlock>::MULTIPLIERS,
+                + <ColourCombine as RtlBlock>::MULTIPLIERS
+                + self.bump.multipliers().unwrap_or(0),
         )
     }
 }
@@ -156,7 +177,7 @@ macro_rules! shading_registers {
 crate::hw_block! {
     /// The lit pixel pipeline (see the module header).
     pub struct PixelPipeline(clock) as "pixel-pipeline" {
-        summary: "one triangle's set-up in, lit fragments (x, y, z, r, g, b) out: address block, vector interpolator, normalizer, Blinn lighting, power unit, colour combine (SPEC §0–§2, §5–§6)",
+        summary: "one triangle's set-up in, lit fragments (x, y, z, r, g, b) out: address block, vector interpolator, normalizer, Blinn lighting, BRZSSK, power unit, colour combine (SPEC §0–§2, §5–§6)",
         latency: AddressBlock::LATENCY + EVENT_TO_FRAGMENT
             => "load to the first fragment, one fragment per clock",
         multipliers: 38,
@@ -172,15 +193,18 @@ crate::hw_block! {
         pub normal: VectorInterpolator,
         pub depth: IntensityChannel,
         pub light: LightingUnit = LightingUnit::new(&p.coeffs),
+        pub bump: Brzssk = Brzssk::new(&p.bump),
+        x_p12: Delay<Bits<12>, { EVENT_TO_BRZSSK }>,
+        y_p12: Delay<Bits<12>, { EVENT_TO_BRZSSK }>,
         pub power: PowerUnit = PowerUnit::new(&p.power),
         pub colour: ColourCombine,
         accepted: Signal<Local, Bit>,
         first: Signal<Local, Bit>,
         cos_phi_p10: Delay<Bits<16>, { PowerUnit::LATENCY }>,
-        z_p23: Delay<Bits<32>, { EVENT_TO_FRAGMENT - 1 }>,
-        x_p24: Delay<Bits<12>, { EVENT_TO_FRAGMENT }>,
-        y_p24: Delay<Bits<12>, { EVENT_TO_FRAGMENT }>,
-        done_p24: Delay<Bit, { EVENT_TO_FRAGMENT }>,
+        z_p27: Delay<Bits<32>, { EVENT_TO_FRAGMENT - 1 }>,
+        x_p28: Delay<Bits<12>, { EVENT_TO_FRAGMENT }>,
+        y_p28: Delay<Bits<12>, { EVENT_TO_FRAGMENT }>,
+        done_p28: Delay<Bit, { EVENT_TO_FRAGMENT }>,
     }
     new(p: &PipelineParams);
 }
@@ -189,19 +213,8 @@ impl Logic for PixelPipeline {
     #[hdl_gen]
     fn update(&mut self) {
         clock!(
-            self,
-            clock,
-            addr,
-            normal,
-            depth,
-            light,
-            power,
-            colour,
-            cos_phi_p10,
-            z_p23,
-            x_p24,
-            y_p24,
-            done_p24
+            self, clock, addr, normal, depth, light, bump, x_p12, y_p12, power, colour,
+            cos_phi_p10, z_p27, x_p28, y_p28, done_p28
         );
         self.addr.load.next = self.load.val();
         self.addr.w_b0.next = self.w_b0.val();
@@ -269,11 +282,20 @@ impl Logic for PixelPipeline {
         self.light.hy.next = self.hy.val();
         self.light.hz.next = self.hz.val();
 
+        // BRZSSK: both cosines perturbed by the pixel's code (or passed through).
+        self.x_p12.d.next = self.addr.x.val();
+        self.y_p12.d.next = self.addr.y.val();
+        self.bump.valid_in.next = self.light.valid_out.val();
+        self.bump.cos_phi.next = self.light.cos_phi.val();
+        self.bump.cos_gamma.next = self.light.cos_gamma.val();
+        self.bump.x.next = self.x_p12.q.val();
+        self.bump.y.next = self.y_p12.q.val();
+
         // Specular power; cos φ waits beside it.
-        self.power.valid_in.next = self.light.valid_out.val();
-        self.power.cos_gamma.next = self.light.cos_gamma.val();
+        self.power.valid_in.next = self.bump.valid_out.val();
+        self.power.cos_gamma.next = self.bump.cos_gamma_out.val();
         self.power.n.next = self.n.val();
-        self.cos_phi_p10.d.next = self.light.cos_phi.val();
+        self.cos_phi_p10.d.next = self.bump.cos_phi_out.val();
 
         // Colour.
         self.colour.valid_in.next = self.power.valid_out.val();
@@ -290,19 +312,19 @@ impl Logic for PixelPipeline {
         self.colour.spc_b.next = self.spc_b.val();
 
         // The fragment's address, depth and triangle end travel beside it.
-        self.z_p23.d.next = self.depth.word.val();
-        self.x_p24.d.next = self.addr.x.val();
-        self.y_p24.d.next = self.addr.y.val();
-        self.done_p24.d.next = self.addr.done.val();
+        self.z_p27.d.next = self.depth.word.val();
+        self.x_p28.d.next = self.addr.x.val();
+        self.y_p28.d.next = self.addr.y.val();
+        self.done_p28.d.next = self.addr.done.val();
 
         self.ready.next = self.addr.ready.val();
         self.valid.next = self.colour.valid_out.val();
-        self.x.next = self.x_p24.q.val();
-        self.y.next = self.y_p24.q.val();
-        self.z.next = self.z_p23.q.val();
+        self.x.next = self.x_p28.q.val();
+        self.y.next = self.y_p28.q.val();
+        self.z.next = self.z_p27.q.val();
         self.red.next = self.colour.red.val();
         self.green.next = self.colour.green.val();
         self.blue.next = self.colour.blue.val();
-        self.done.next = self.done_p24.q.val();
+        self.done.next = self.done_p28.q.val();
     }
 }

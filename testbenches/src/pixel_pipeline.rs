@@ -13,6 +13,7 @@
 use std::collections::VecDeque;
 
 use golden::address_block::{AddressBlockModel, AddressOutputs, AddressSetup};
+use golden::brzssk::twin::BrzsskTwin;
 use golden::colour_combine::twin::ColourTwin;
 use golden::intensity_interpolator::ChannelTwin;
 use golden::lighting_unit::twin::LightingTwin;
@@ -26,7 +27,7 @@ use pipeline::lit::{lit_row, row_job, LitJob, ShadingRegs};
 use proptest::prelude::*;
 use proptest::strategy::ValueTree;
 use rtl::fixed::{INTENSITY, LEVEL, NORMAL};
-use rtl::pixel_pipeline::{PipelineParams, PixelPipeline, EVENT_TO_FRAGMENT};
+use rtl::pixel_pipeline::{PipelineParams, PixelPipeline, EVENT_TO_BRZSSK, EVENT_TO_FRAGMENT};
 
 use crate::address_block::triangle_strategy;
 use crate::harness::{Compare, Expected, Tolerance};
@@ -55,6 +56,9 @@ pub struct PipelineTwin {
     normal: VectorTwin,
     depth: ChannelTwin,
     light: LightingTwin,
+    bump: BrzsskTwin,
+    bx: DelayLine,
+    by: DelayLine,
     power: PowerTwin,
     colour: ColourTwin,
     cos_phi: DelayLine,
@@ -71,6 +75,9 @@ impl PipelineTwin {
             normal: VectorTwin::default(),
             depth: ChannelTwin::default(),
             light: LightingTwin::new(p.coeffs.requested),
+            bump: BrzsskTwin::new(p.bump.enable),
+            bx: DelayLine::new(EVENT_TO_BRZSSK),
+            by: DelayLine::new(EVENT_TO_BRZSSK),
             power: PowerTwin::new(p.power.mode),
             colour: ColourTwin::default(),
             cos_phi: DelayLine::new(rtl::power_unit::PowerUnit::LATENCY),
@@ -101,11 +108,21 @@ impl Twin for PipelineTwin {
         let accepted = job.filter(|_| a.ready);
         let (nv, n) = self.normal.outputs();
         let (lv, cos_phi, cos_gamma) = self.light.outputs();
+        let (bv, cos_phi_b, cos_gamma_b) = self.bump.outputs();
         let (pv, spec) = self.power.outputs();
         self.colour
             .clock(pv, self.cos_phi.out(), spec, &regs.weights);
-        self.power.clock(lv, cos_gamma as u64, regs.n);
-        self.cos_phi.clock(cos_phi as u64);
+        self.power.clock(bv, cos_gamma_b, regs.n);
+        self.cos_phi.clock(cos_phi_b);
+        self.bump.clock(
+            lv,
+            cos_phi as u64,
+            cos_gamma as u64,
+            self.bx.out(),
+            self.by.out(),
+        );
+        self.bx.clock(a.x as u64);
+        self.by.clock(a.y as u64);
         let s = |w: [u64; 3]| w.map(|x| NORMAL.to_int(x));
         self.light.clock(nv, n, s(regs.light), s(regs.half));
         self.z.clock(self.depth.word() as u64);
@@ -157,12 +174,13 @@ pub fn lit_triangles(seed: u64, n: usize) -> Vec<ScreenTriangle> {
     out
 }
 
-/// The golden colour of every pixel of `t`, in walk order, for the build's coefficients and
-/// power mode (`k` = None: exact cos^n).
+/// The golden colour of every pixel of `t`, in walk order, for the build's coefficients,
+/// bump setting and power mode (`k` = None: exact cos^n).
 fn golden_colours(
     t: &ScreenTriangle,
     ctx: &ShadeContext,
     c: Coeffs,
+    bump: bool,
     k: Option<u32>,
 ) -> Vec<[u8; 3]> {
     let w = walk(t);
@@ -174,7 +192,12 @@ fn golden_colours(
         ctx,
         c,
         &mut |_, _, rgb| out.push(rgb),
-        |_, _, d, s| {
+        |x, y, d, s| {
+            let (d, s) = if bump {
+                golden::brzssk::brzssk(d.max(0.0), s.max(0.0), x, y)
+            } else {
+                (d, s)
+            };
             let spec = match (k, a) {
                 (Some(k), Some(a)) => golden::brdf::w_kernel(a, k, s),
                 _ => ctx.specular_power(s),
@@ -225,7 +248,7 @@ impl Bench for PixelPipeline {
         let k = p.power.k();
         let mut colours = tris
             .iter()
-            .flat_map(|t| golden_colours(t, &ctx, p.coeffs.requested, k))
+            .flat_map(|t| golden_colours(t, &ctx, p.coeffs.requested, p.bump.enable, k))
             .collect::<Vec<_>>()
             .into_iter();
         let mut depths = tris
