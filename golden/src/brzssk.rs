@@ -48,9 +48,31 @@ pub fn dgamma_rom() -> Vec<u64> {
 
 /// A sin PROM of `addr_bits` fraction bits: 2^addr_bits + 1 Q1.15 words.
 pub fn sin_rom(addr_bits: u32) -> Vec<u64> {
-    let p = SinProm { addr_bits };
+    let p = SinProm {
+        addr_bits,
+        interp_bits: 0,
+    };
     (0..=(1i64 << addr_bits))
         .map(|a| (p.word(a) * 32768.0) as u64)
+        .collect()
+}
+
+/// Bits of the interpolated PROM's difference field (the largest step, at cos γ = 1, is
+/// 1024 LSB for 11 address bits).
+pub const SIN_DELTA_BITS: u32 = 11;
+
+/// The interpolated sin PROM: 2^addr_bits words `s[a] << 11 | (s[a] − s[a+1])`.
+pub fn sin_rom_interp(addr_bits: u32) -> Vec<u64> {
+    let s = sin_rom(addr_bits);
+    (0..1usize << addr_bits)
+        .map(|a| {
+            let d = s[a] - s[a + 1];
+            assert!(
+                d < 1 << SIN_DELTA_BITS,
+                "PROM step {d} exceeds the difference field"
+            );
+            (s[a] << SIN_DELTA_BITS) | d
+        })
         .collect()
 }
 
@@ -68,15 +90,15 @@ pub fn sin_address(w: u64, addr_bits: u32) -> u64 {
 /// Bit-exact integer twin of `rtl/src/brzssk.rs`, from its header:
 ///
 /// ```text
-/// B1  sφ = SINφ[addr(cos φ)], sγ = SINγ[addr(cos γ)], code = CODE[y₄ x₄]   (PROM reads)
+/// B1  sφ = SINφ[addr(cos φ)], sγ = SINγ-interpolated(cos γ), code = CODE[y₄ x₄]
 /// B2  (cd, sd) = DG[code.magnitude], TG = code.sign                        (PROM read)
 /// B3  pφ = cos φ·cd, qφ = sφ·sd, pγ = cos γ·cd, qγ = sγ·sd                 (UQ2.30, exact)
 /// B4  out = TG ? rnd(p + q) : rnd(max(p − q, 0))     rnd: + 2¹⁴, drop 15, saturate 0xFFFF
 /// ```
 /// With `enable` false the cosines pass through the same four registers unchanged.
 pub mod twin {
-    use super::{code_rom, dgamma_rom, sin_address, sin_rom};
-    use crate::bump::{SIN_ADDR_BITS, SIN_PHI_ADDR_BITS};
+    use super::{code_rom, dgamma_rom, sin_address, sin_rom, sin_rom_interp, SIN_DELTA_BITS};
+    use crate::bump::{SIN_ADDR_BITS, SIN_INTERP_BITS, SIN_PHI_ADDR_BITS};
 
     fn rnd(p: u64) -> u64 {
         ((p + (1 << 14)) >> 15).min(0xFFFF)
@@ -112,11 +134,24 @@ pub mod twin {
             BrzsskTwin {
                 enable,
                 sin_phi: sin_rom(SIN_PHI_ADDR_BITS),
-                sin_gamma: sin_rom(SIN_ADDR_BITS),
+                sin_gamma: sin_rom_interp(SIN_ADDR_BITS),
                 code: code_rom(),
                 dg: dgamma_rom(),
                 r: Regs::default(),
             }
+        }
+        /// The interpolated sin γ of a Q1.15 cosine word (0 from cos γ = 1 on).
+        pub fn sin_gamma_word(&self, w: u64) -> u64 {
+            self.sin_gamma_interp(w)
+        }
+        fn sin_gamma_interp(&self, w: u64) -> u64 {
+            if w >= 0x8000 {
+                return 0;
+            }
+            let f = SIN_INTERP_BITS;
+            let word = self.sin_gamma[(w >> f) as usize];
+            let (s, d) = (word >> SIN_DELTA_BITS, word & ((1 << SIN_DELTA_BITS) - 1));
+            s - ((d * (w & ((1 << f) - 1)) + (1 << (f - 1))) >> f)
         }
         /// (valid_out, cos φ', cos γ') shown this clock.
         pub fn outputs(&self) -> (bool, u64, u64) {
@@ -125,6 +160,12 @@ pub mod twin {
         /// One rising edge.
         pub fn clock(&mut self, valid_in: bool, cos_phi: u64, cos_gamma: u64, x: u64, y: u64) {
             let s = self.r.clone();
+            let sin_b1 = [
+                self.sin_phi[sin_address(cos_phi, SIN_PHI_ADDR_BITS) as usize],
+                self.sin_gamma_interp(cos_gamma),
+            ];
+            let code = self.code[(((y & 15) << 4) | (x & 15)) as usize];
+            let dg = self.dg[(s.code & 0xFF) as usize];
             let n = &mut self.r;
             // B4
             n.out = if self.enable {
@@ -149,15 +190,12 @@ pub mod twin {
             ];
             n.tg3 = s.tg;
             // B2
-            n.dg = self.dg[(s.code & 0xFF) as usize];
+            n.dg = dg;
             n.tg = s.code >> 8 != 0;
             n.sin2 = s.sin;
             // B1
-            n.sin = [
-                self.sin_phi[sin_address(cos_phi, SIN_PHI_ADDR_BITS) as usize],
-                self.sin_gamma[sin_address(cos_gamma, SIN_ADDR_BITS) as usize],
-            ];
-            n.code = self.code[(((y & 15) << 4) | (x & 15)) as usize];
+            n.sin = sin_b1;
+            n.code = code;
             n.cos = [[cos_phi, cos_gamma], s.cos[0], s.cos[1]];
             n.valid = [valid_in, s.valid[0], s.valid[1], s.valid[2]];
         }
@@ -181,5 +219,24 @@ mod tests {
         let d = dgamma_rom();
         assert_eq!(d[0], 0x8000 << 16, "dγ = 0: cos 1, sin 0");
         assert!(code_rom().iter().all(|&c| c < 512));
+    }
+
+    /// Every cosine word: the twin's interpolated PROM read equals the f64 SinProm's.
+    #[test]
+    fn interpolated_prom_matches_the_golden_sin() {
+        let (_, gamma) = bump::default_proms();
+        let t = twin::BrzsskTwin::new(true);
+        for w in 0..=0xFFFFu64 {
+            let want = gamma.sin(w as f64 / 32768.0);
+            assert_eq!(t.sin_gamma_word(w) as f64 / 32768.0, want, "word {w:#x}");
+        }
+        // Monotone and continuous across the PROM's steps: no jump larger than the largest
+        // slope allows (the last interval: 1024 LSB over 16 words).
+        let mut prev = t.sin_gamma_word(0);
+        for w in 1..0x8000u64 {
+            let s = t.sin_gamma_word(w);
+            assert!(s <= prev && prev - s <= 64, "word {w:#x}: {prev} → {s}");
+            prev = s;
+        }
     }
 }

@@ -5,10 +5,12 @@
 //!
 //! The block has no trigonometric units; everything trigonometric comes from a PROM, as the
 //! hardware (`rtl/src/brzssk.rs`) holds it — every word unsigned Q1.15:
-//! - sin γ for the given cos γ ([`SinProm`]: the address is cos γ ∈ [0, 1] rounded to
-//!   [`SIN_ADDR_BITS`] fraction bits, the word is sin(arccos(address)) rounded to Q1.15); the
-//!   diffuse term's sin φ comes from a smaller PROM of [`SIN_PHI_ADDR_BITS`] (no power follows
-//!   it, so its coarser steps cost < 0.1 LSB);
+//! - sin γ for the given cos γ ([`SinProm`]: the address is cos γ ∈ [0, 1] truncated to
+//!   [`SIN_ADDR_BITS`] fraction bits, the word sin(arccos(address)) rounded to Q1.15 beside its
+//!   difference to the next word, and the next [`SIN_INTERP_BITS`] bits of cos γ interpolate
+//!   linearly between the two: sin γ near cos γ = 1 is steep, and the power n after it would
+//!   turn a PROM step into a visible ring); the diffuse term's sin φ comes from a smaller PROM
+//!   of [`SIN_PHI_ADDR_BITS`] rounded address bits, without interpolation (no power follows it);
 //! - cos dγ and sin dγ for the perturbation code ([`BumpMap::code`]: a sign bit, held by the
 //!   trigger TG, and an unsigned magnitude of [`CODE_BITS`] bits).
 //!
@@ -31,8 +33,10 @@ use crate::shade::ShadeContext;
 use crate::types::{ScreenTriangle, Walk};
 use std::f64::consts::TAU;
 
-/// Address fraction bits of the sin γ PROM (4097 words: 16 iCE40 block RAMs).
-pub const SIN_ADDR_BITS: u32 = 12;
+/// Address fraction bits of the sin γ PROM (2048 words of 27 bits: 14 iCE40 block RAMs).
+pub const SIN_ADDR_BITS: u32 = 11;
+/// Bits of cos γ below the sin γ PROM's address that interpolate between its words.
+pub const SIN_INTERP_BITS: u32 = 4;
 /// Address fraction bits of the sin φ PROM (1025 words).
 pub const SIN_PHI_ADDR_BITS: u32 = 10;
 
@@ -44,10 +48,13 @@ pub fn q15(v: f64) -> f64 {
 /// Magnitude bits of the perturbation code (plus one sign bit).
 pub const CODE_BITS: u32 = 8;
 
-/// The PROM word for sin γ, addressed by cos γ ∈ [0, 1] rounded to `addr_bits` fraction bits.
+/// The PROM word for sin γ, addressed by cos γ ∈ [0, 1]: rounded to `addr_bits` fraction bits
+/// when `interp_bits` is 0; otherwise truncated to them, the next `interp_bits` bits (after
+/// rounding cos γ to `addr_bits + interp_bits`) interpolating linearly to the next word.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SinProm {
     pub addr_bits: u32,
+    pub interp_bits: u32,
 }
 
 impl SinProm {
@@ -64,9 +71,21 @@ impl SinProm {
         let c = address as f64 / self.top();
         q15((1.0 - c * c).max(0.0).sqrt())
     }
-    /// sin γ for cos γ, as the PROM delivers it.
+    /// sin γ for cos γ, as the PROM (and its interpolator) delivers it.
     pub fn sin(&self, cos_gamma: f64) -> f64 {
-        self.word(self.address(cos_gamma))
+        let f = self.interp_bits;
+        if f == 0 {
+            return self.word(self.address(cos_gamma));
+        }
+        let scale = (1u64 << (self.addr_bits + f)) as f64;
+        let u = (cos_gamma.clamp(0.0, 1.0) * scale + 0.5).floor() as i64;
+        let (a, frac) = (u >> f, u & ((1 << f) - 1));
+        if a >= 1 << self.addr_bits {
+            return 0.0;
+        }
+        let (s0, s1) = (self.word(a), self.word(a + 1));
+        let d = ((s0 - s1) * 32768.0).round() as i64;
+        s0 - ((d * frac + (1 << (f - 1))) >> f) as f64 / 32768.0
     }
 }
 
@@ -141,9 +160,11 @@ pub fn default_proms() -> (SinProm, SinProm) {
     (
         SinProm {
             addr_bits: SIN_PHI_ADDR_BITS,
+            interp_bits: 0,
         },
         SinProm {
             addr_bits: SIN_ADDR_BITS,
+            interp_bits: SIN_INTERP_BITS,
         },
     )
 }

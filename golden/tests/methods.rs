@@ -726,7 +726,8 @@ fn bump_perturbation_matches_the_angle_sum_within_the_prom_error() {
     use golden::bump::{self, BumpMap, SinProm};
     let map = BumpMap::default();
     let prom = SinProm {
-        addr_bits: bump::SIN_ADDR_BITS,
+        addr_bits: bump::SIN_PHI_ADDR_BITS,
+        interp_bits: 0,
     };
     let top = ((1u32 << bump::CODE_BITS) - 1) as f64;
     // PROM address: |c − c'| ≤ 1/(2·top) moves √(1 − c²) by at most √(2·|c − c'|) = √(1/top);

@@ -23,15 +23,17 @@
 //!
 //! # Pipeline (PROMs are synchronous: a read takes the clock edge, as block RAM does)
 //! ```text
-//! B1  sφ = SINφ[addr₁₀(cos φ)], sγ = SINγ[addr₁₂(cos γ)]   addr_A(w) = round(w·2^(A−15)),
-//!     code = CODE[y₃..₀ x₃..₀] (sign, 8-bit magnitude)      clamped to 2^A (cos ≥ 1)
-//! B2  cd, sd = DG[magnitude] (Q1.15 each), TG = sign
+//! B1  sφ = SINφ[round(cos φ·2¹⁰)] (cos φ ≥ 1 − 2⁻¹¹: 0), code = CODE[y₃..₀ x₃..₀] (sign,
+//!     8-bit magnitude), (s, d) = SINγ[cos γ bits 14..4] (cos γ ≥ 1: 0), frac = bits 3..0
+//! B2  cd, sd = DG[magnitude] (Q1.15 each), TG = sign; sγ = s − (d·frac + 8) >> 4 (shift-add)
 //! B3  pφ = cos φ·cd, qφ = sφ·sd, pγ = cos γ·cd, qγ = sγ·sd   UQ1.15² → UQ2.30, exact (4 multipliers)
 //! B4  TG ? p + q : max(p − q, 0), then + 2¹⁴, drop 15 bits, saturate at 0xFFFF
 //! ```
-//! PROM sizes: SINγ 4096 × 16 (12 address fraction bits: 16 iCE40 4-kbit block RAMs; the
-//! word of cos = 1, sin = 0, is a registered flag), SINφ 1024 × 16 (the diffuse term has no
-//! power after it), CODE 256 × 9, DG 256 × 32: 23 block RAMs of the UP5K's 30.
+//! PROM sizes: SINγ 2048 × 27 (s in Q1.15 and the step d = s[a] − s[a+1] ≤ 1024 to the next
+//! word, linearly interpolated by the 4 bits below the address: sin γ is steep near cos γ = 1
+//! and the power after it would turn a bare PROM step into a ring), SINφ 1024 × 16 (rounded
+//! address, no interpolation: no power follows the diffuse term), CODE 256 × 9, DG 256 × 32.
+//! The word of cos = 1 (sin = 0) is a registered flag, not a PROM address.
 //! Latency 4 clocks, one pixel per clock, no stall. Build parameter `bump` (on | off): off
 //! passes the cosines through the same four registers (the pixel pipeline keeps one latency
 //! for every method; synthesis removes the unused PROMs and multipliers).
@@ -41,8 +43,9 @@
 //! sin = 0 (the last word); sums stay below 2³²; outputs saturate at 2 − 2⁻¹⁵ and clamp at 0.
 //!
 //! # Error budget (vs `golden::brzssk::brzssk` of the same input words)
-//! The PROM contents and addressing are the golden's, bit for bit; the products are exact; the
-//! one rounding adds ≤ 2⁻¹⁶. The golden evaluates the same words in f64: |Δ| ≤ 2⁻¹⁶.
+//! The PROM contents, addressing and interpolation are the golden's, bit for bit (checked for
+//! every cosine word in `golden::brzssk`); the products are exact; the one rounding adds
+//! ≤ 2⁻¹⁶. The golden evaluates the same words in f64: |Δ| ≤ 2⁻¹⁶.
 //! (Against the angle sum cos(γ ± dγ) of the exact angles, the PROM steps add
 //! sin|dγ|·2^(−A/2), see `golden/tests/methods.rs`.)
 
@@ -70,7 +73,11 @@ impl BrzsskParams {
             None => default,
             Some("on") => true,
             Some("off") => false,
-            Some(other) => return Err(format!("unknown bump setting {other:?} (expected on or off)")),
+            Some(other) => {
+                return Err(format!(
+                    "unknown bump setting {other:?} (expected on or off)"
+                ))
+            }
         };
         Ok(BrzsskParams { enable })
     }
@@ -109,13 +116,18 @@ crate::hw_block! {
         // The PROMs hold addresses 0 .. 2^A − 1; address 2^A (cos ≥ 1 − 2^-(A+1), sin = 0)
         // is the registered `top` flag instead, which keeps SINγ at 16 block RAMs, not 32.
         sin_phi_rom: Prom<Bits<16>, 10> = rom(golden::brzssk::sin_rom(golden::bump::SIN_PHI_ADDR_BITS)),
-        sin_gamma_rom: Prom<Bits<16>, 12> = rom(golden::brzssk::sin_rom(golden::bump::SIN_ADDR_BITS)),
+        sin_gamma_rom: Prom<Bits<27>, 11> = rom(golden::brzssk::sin_rom_interp(golden::bump::SIN_ADDR_BITS)),
         code_rom: Prom<Bits<9>, 8> = rom(golden::brzssk::code_rom()),
         addr_phi: Signal<Local, Bits<10>>,
-        addr_gamma: Signal<Local, Bits<12>>,
         top_p1: [DFF<Bit>; 2],
+        /// The 4 interpolation bits of cos γ, and the shift-add d·frac (no multiplier).
+        frac_p1: DFF<Bits<4>>,
+        s_word: Signal<Local, Bits<16>>,
+        d_word: Signal<Local, Bits<16>>,
+        d_frac: [Signal<Local, Bits<16>>; 4],
+        d_prod: Signal<Local, Bits<16>>,
+        d_rnd: Signal<Local, Bits<16>>,
         rnd_phi: Signal<Local, Bits<16>>,
-        rnd_gamma: Signal<Local, Bits<16>>,
         code_addr: Signal<Local, Bits<8>>,
         cos_p1: [DFF<Bits<16>>; 2],
         valid_p1: DFF<Bit>,
@@ -145,9 +157,23 @@ crate::hw_block! {
 impl Logic for Brzssk {
     #[hdl_gen]
     fn update(&mut self) {
-        clock!(self, clock, sin_phi_rom, sin_gamma_rom, code_rom, valid_p1, dg_rom, tg, valid_p2, tg_p3, valid_p3, valid_p4);
+        clock!(
+            self,
+            clock,
+            sin_phi_rom,
+            sin_gamma_rom,
+            code_rom,
+            valid_p1,
+            dg_rom,
+            tg,
+            valid_p2,
+            tg_p3,
+            valid_p3,
+            valid_p4
+        );
         for k in 0..2 {
             self.top_p1[k].clock.next = self.clock.val();
+            self.frac_p1.clock.next = self.clock.val();
             self.cos_p1[k].clock.next = self.clock.val();
             self.sin_p2[k].clock.next = self.clock.val();
             self.cos_p2[k].clock.next = self.clock.val();
@@ -161,11 +187,11 @@ impl Logic for Brzssk {
         self.rnd_phi.next = self.cos_phi.val() + 16;
         self.addr_phi.next = self.rnd_phi.val().get_bits::<10>(5);
         self.top_p1[0].d.next = self.cos_phi.val() >= 0x7FF0;
-        self.rnd_gamma.next = self.cos_gamma.val() + 4;
-        self.addr_gamma.next = self.rnd_gamma.val().get_bits::<12>(3);
-        self.top_p1[1].d.next = self.cos_gamma.val() >= 0x7FFC;
+        // SINγ: address = cos γ truncated to 11 bits, the next 4 bits interpolate.
+        self.sin_gamma_rom.address.next = self.cos_gamma.val().get_bits::<11>(4);
+        self.frac_p1.d.next = self.cos_gamma.val().get_bits::<4>(0);
+        self.top_p1[1].d.next = self.cos_gamma.val().get_bit(15);
         self.sin_phi_rom.address.next = self.addr_phi.val();
-        self.sin_gamma_rom.address.next = self.addr_gamma.val();
         self.code_addr.next = (bit_cast::<8, 4>(self.y.val().get_bits::<4>(0)) << 4)
             | bit_cast::<8, 4>(self.x.val().get_bits::<4>(0));
         self.code_rom.address.next = self.code_addr.val();
@@ -180,10 +206,34 @@ impl Logic for Brzssk {
         } else {
             self.sin_p2[0].d.next = self.sin_phi_rom.data.val();
         }
+        // sin γ = s − round(d·frac / 16), d·frac by four shifted adds (d ≤ 1024, frac ≤ 15).
+        self.s_word.next = self.sin_gamma_rom.data.val().get_bits::<16>(11);
+        self.d_word.next = bit_cast::<16, 11>(self.sin_gamma_rom.data.val().get_bits::<11>(0));
+        self.d_frac[0].next = 0.into();
+        self.d_frac[1].next = 0.into();
+        self.d_frac[2].next = 0.into();
+        self.d_frac[3].next = 0.into();
+        if self.frac_p1.q.val().get_bit(0) {
+            self.d_frac[0].next = self.d_word.val();
+        }
+        if self.frac_p1.q.val().get_bit(1) {
+            self.d_frac[1].next = self.d_word.val() << 1;
+        }
+        if self.frac_p1.q.val().get_bit(2) {
+            self.d_frac[2].next = self.d_word.val() << 2;
+        }
+        if self.frac_p1.q.val().get_bit(3) {
+            self.d_frac[3].next = self.d_word.val() << 3;
+        }
+        self.d_prod.next = self.d_frac[0].val()
+            + self.d_frac[1].val()
+            + self.d_frac[2].val()
+            + self.d_frac[3].val();
+        self.d_rnd.next = self.d_prod.val() + 8;
         if self.top_p1[1].q.val() {
             self.sin_p2[1].d.next = 0.into();
         } else {
-            self.sin_p2[1].d.next = self.sin_gamma_rom.data.val();
+            self.sin_p2[1].d.next = self.s_word.val() - (self.d_rnd.val() >> 4);
         }
         self.cos_p2[0].d.next = self.cos_p1[0].q.val();
         self.cos_p2[1].d.next = self.cos_p1[1].q.val();

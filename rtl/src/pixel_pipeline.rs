@@ -100,9 +100,9 @@ impl BlockParams for PipelineParams {
             self.power.describe(),
             self.bump.describe(),
         ]
-            .into_iter()
-            .flatten()
-            .collect();
+        .into_iter()
+        .flatten()
+        .collect();
         Some(parts.join("; "))
     }
     fn test_sets() -> Vec<Options> {
@@ -213,8 +213,22 @@ impl Logic for PixelPipeline {
     #[hdl_gen]
     fn update(&mut self) {
         clock!(
-            self, clock, addr, normal, depth, light, bump, x_p12, y_p12, power, colour,
-            cos_phi_p10, z_p27, x_p28, y_p28, done_p28
+            self,
+            clock,
+            addr,
+            normal,
+            depth,
+            light,
+            bump,
+            x_p12,
+            y_p12,
+            power,
+            colour,
+            cos_phi_p10,
+            z_p27,
+            x_p28,
+            y_p28,
+            done_p28
         );
         self.addr.load.next = self.load.val();
         self.addr.w_b0.next = self.w_b0.val();

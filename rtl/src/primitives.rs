@@ -93,7 +93,10 @@ impl<D: Synth, const N: usize> Prom<D, N> {
             .enumerate()
             .map(|(i, w)| (Bits::<N>::from(i as u64), w))
             .collect();
-        assert!(contents.len() == 1 << N, "a PROM of 2^{N} addresses needs 2^{N} words");
+        assert!(
+            contents.len() == 1 << N,
+            "a PROM of 2^{N} addresses needs 2^{N} words"
+        );
         Self {
             address: Signal::default(),
             clock: Signal::default(),

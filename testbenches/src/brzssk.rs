@@ -83,7 +83,12 @@ impl Bench for Brzssk {
                 Some(i) if rows[i][0] == 1 => {
                     let q = |w: u64| SCALE.to_f64(w);
                     let (d, s) = if p.enable {
-                        brzssk(q(rows[i][1]), q(rows[i][2]), rows[i][3] as i32, rows[i][4] as i32)
+                        brzssk(
+                            q(rows[i][1]),
+                            q(rows[i][2]),
+                            rows[i][3] as i32,
+                            rows[i][4] as i32,
+                        )
                     } else {
                         (q(rows[i][1]), q(rows[i][2]))
                     };
@@ -110,7 +115,13 @@ impl Bench for Brzssk {
     }
     fn edge_rows(_: &BrzsskParams, seed: u64) -> Vec<Vec<u64>> {
         let mut r = seeded_runner(seed ^ 0xb2_2551);
-        let st = (any::<u16>(), any::<u16>(), 0u64..4096, 0u64..4096, any::<u8>());
+        let st = (
+            any::<u16>(),
+            any::<u16>(),
+            0u64..4096,
+            0u64..4096,
+            any::<u8>(),
+        );
         let mut rows: Vec<Vec<u64>> = [0u64, 1, ONE - 1, ONE, ONE + 1, 0xFFFF]
             .iter()
             .flat_map(|&c| (0..16).map(move |k| row(true, c, 0xFFFF - c, k, 15 - k)))
