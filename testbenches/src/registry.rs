@@ -82,6 +82,8 @@ pub trait Entry: Sync {
     /// Run `rows` through the RTL, requiring every output port in every clock to equal the
     /// twin's bit for bit.
     fn run_twin(&self, o: &Options, rows: &[Vec<u64>], name: &str, seed: u64) -> Checked;
+    /// The twin's output rows for `rows` (what the hardware must show, clock by clock).
+    fn twin_rows(&self, o: &Options, rows: &[Vec<u64>]) -> Result<Vec<Vec<u64>>, String>;
     /// The rust-hdl simulation's output rows for `rows`.
     fn simulate(&self, o: &Options, rows: &[Vec<u64>]) -> Result<Vec<Vec<u64>>, String>;
     /// Replay `rows` writing a VCD of the whole run (every signal) to `path`.
@@ -184,6 +186,10 @@ impl<B: Bench> Entry for Registered<B> {
             |_, row| twin.step(row).into_iter().map(Expected::Word).collect(),
         )
         .map_err(Box::new)
+    }
+    fn twin_rows(&self, o: &Options, rows: &[Vec<u64>]) -> Result<Vec<Vec<u64>>, String> {
+        let mut twin = B::twin(&B::Params::from_options(o)?);
+        Ok(rows.iter().map(|r| twin.step(r)).collect())
     }
     fn simulate(&self, o: &Options, rows: &[Vec<u64>]) -> Result<Vec<Vec<u64>>, String> {
         harness::simulate_rows(B::build(&B::Params::from_options(o)?), rows)
