@@ -13,9 +13,14 @@ fn selection(
     block: &str,
     coeffs: &str,
     power: &str,
+    bump: Option<&str>,
 ) -> anyhow::Result<(Vec<&'static dyn Entry>, Options)> {
     let blocks = registry::select(block).map_err(|e| anyhow!(e))?;
-    let o = Options::new().with("coeffs", coeffs).with("power", power);
+    let mut o = Options::new().with("coeffs", coeffs).with("power", power);
+    // Without --bump each block keeps its own default (on for brzssk, off in the pipeline).
+    if let Some(b) = bump {
+        o = o.with("bump", b);
+    }
     // A block ignores the options it does not read (their defaults apply to every command).
     for b in &blocks {
         if !b.param_keys().is_empty() {
@@ -39,6 +44,9 @@ pub struct ExportArgs {
     /// Power unit mode: exact (cos^n) or w4, w8, w16 (W(n, γ) with that k).
     #[arg(long, default_value = "exact")]
     pub power: String,
+    /// BRZSSK on or off (default: on for `brzssk`, off in `pixel-pipeline`).
+    #[arg(long)]
+    pub bump: Option<String>,
 }
 
 #[derive(clap::Args, Debug)]
@@ -63,6 +71,9 @@ pub struct SimArgs {
     /// Power unit mode: exact (cos^n) or w4, w8, w16 (W(n, γ) with that k).
     #[arg(long, default_value = "exact")]
     pub power: String,
+    /// BRZSSK on or off (default: on for `brzssk`, off in `pixel-pipeline`).
+    #[arg(long)]
+    pub bump: Option<String>,
 }
 
 #[derive(clap::Args, Debug)]
@@ -76,13 +87,16 @@ pub struct SynthArgs {
     /// Power unit mode: exact (cos^n) or w4, w8, w16 (W(n, γ) with that k).
     #[arg(long, default_value = "exact")]
     pub power: String,
+    /// BRZSSK on or off (default: on for `brzssk`, off in `pixel-pipeline`).
+    #[arg(long)]
+    pub bump: Option<String>,
     /// Skip place-and-route (no Fmax estimate).
     #[arg(long)]
     pub no_pnr: bool,
 }
 
 pub fn export(a: ExportArgs) -> anyhow::Result<()> {
-    let (blocks, o) = selection(&a.block, &a.coeffs, &a.power)?;
+    let (blocks, o) = selection(&a.block, &a.coeffs, &a.power, a.bump.as_deref())?;
     for b in blocks {
         let text = b.verilog(&o).map_err(|e| anyhow!(e))?;
         let path = rtl::export::write(b.name(), &text, &a.out).map_err(|e| anyhow!(e))?;
@@ -99,7 +113,7 @@ pub fn export(a: ExportArgs) -> anyhow::Result<()> {
 
 pub fn sim(a: SimArgs) -> anyhow::Result<()> {
     let block = registry::find(&a.block).map_err(|e| anyhow!(e))?;
-    let (_, o) = selection(block.name(), &a.coeffs, &a.power)?;
+    let (_, o) = selection(block.name(), &a.coeffs, &a.power, a.bump.as_deref())?;
     let n = a.vectors.unwrap_or(block.default_items());
     if n == 0 {
         bail!("--vectors must be at least 1");
@@ -130,7 +144,7 @@ pub fn sim(a: SimArgs) -> anyhow::Result<()> {
 }
 
 pub fn synth(a: SynthArgs) -> anyhow::Result<()> {
-    let (blocks, o) = selection(&a.block, &a.coeffs, &a.power)?;
+    let (blocks, o) = selection(&a.block, &a.coeffs, &a.power, a.bump.as_deref())?;
     for b in blocks {
         let (rep, fmax) = registry::synth_block(b, &o, !a.no_pnr).map_err(|e| anyhow!(e))?;
         print!("{rep}");
