@@ -22,7 +22,8 @@ pub enum Engine {
     /// The f64 golden model.
     Golden,
     /// The rust-hdl RTL simulated clock by clock (methods: gouraud through the raster pipe;
-    /// normalizer, normalizer-fit, brdf-k4, brdf-k8, brdf-k16 through the lit pixel pipeline).
+    /// normalizer, normalizer-fit, brdf-k4, brdf-k8, brdf-k16, bump through the lit pixel
+    /// pipeline; without --method, all of them).
     Rtl,
 }
 
@@ -30,8 +31,9 @@ pub enum Engine {
 pub struct Args {
     #[command(flatten)]
     pub scene: SceneArgs,
-    /// Methods to render, comma-separated (default: all). Names: flat, gouraud, normalizer,
-    /// normalizer-fit, fast, fast-fit, angular, quadric, cubic, brdf-k4, brdf-k8, brdf-k16, bump.
+    /// Methods to render, comma-separated (default: all; with `--engine rtl`, all the hardware
+    /// has). Names: flat, gouraud, normalizer, normalizer-fit, fast, fast-fit, angular, quadric,
+    /// cubic, brdf-k4, brdf-k8, brdf-k16, bump.
     #[arg(long, value_delimiter = ',')]
     pub method: Vec<String>,
     /// Output directory.
@@ -304,7 +306,14 @@ fn print_table(args: &Args, setup: &Setup, methods: &[Method], report: &Report) 
 }
 
 pub fn run(args: Args) -> Result<()> {
-    let methods = parse_methods(&args.method)?;
+    let methods = if args.engine == Engine::Rtl && args.method.is_empty() {
+        // The RTL engine's default: every method the hardware has.
+        std::iter::once(Method::Gouraud)
+            .chain(pipeline::lit::LIT_METHODS)
+            .collect()
+    } else {
+        parse_methods(&args.method)?
+    };
     let setup = build(&args.scene)?;
     std::fs::create_dir_all(&args.out)
         .with_context(|| format!("creating output directory {}", args.out.display()))?;
