@@ -285,16 +285,18 @@ fn every_block_simulates_and_the_check_can_fail() {
                     && !outs[k].name.contains("ready")
             })
             .unwrap();
-        // Beyond the port's tolerance by two LSBs (at least 10⁻³).
-        let delta = match stim.compare[port] {
+        // Beyond the clock's tolerance (the port's, or the clock's own bound) by two LSBs (at
+        // least 10⁻³).
+        let (tol, margin) = match stim.compare[port] {
             testbenches::harness::Compare::Fixed { format, tol } => {
-                tol.max_abs + 2.0 * format.lsb().max(1e-3)
+                (tol.max_abs, 2.0 * format.lsb().max(1e-3))
             }
-            testbenches::harness::Compare::Exact => 1.0,
+            testbenches::harness::Compare::Exact => (0.0, 1.0),
         };
         stim.expected[clock][port] = match stim.expected[clock][port] {
             Expected::Word(w) => Expected::Word(w + 1),
-            Expected::Real(v) => Expected::Real(v + delta),
+            Expected::Real(v) => Expected::Real(v + tol + margin),
+            Expected::Within(v, b) => Expected::Within(v + b.min(tol) + margin, b),
             Expected::DontCare => unreachable!(),
         };
         let f = b
