@@ -18,14 +18,18 @@ use shadecore::setup::{build, SceneArgs};
 
 /// The pixels where `bump` is ill-conditioned: cos(γ ± dγ) = c·cos dγ ∓ √(1 − c²)·sin dγ has
 /// the slope cos dγ ± sin dγ·c/√(1 − c²) in c, unbounded as c → 1 (the highlight's centre),
-/// so the lighting unit's own error on c (≤ 1.77·10⁻⁴ with the fitted coefficients,
-/// `golden::lighting_unit::error_bound`, derived from the formats) moves S = cos^n by up to
+/// so the lighting unit's own error on c (`golden::lighting_unit::error_bound` of the
+/// normalizer's format-derived budget: ≤ 1.77·10⁻⁴ with the fitted coefficients) moves S by up to
 /// n·S^((n−1)/n)·sin|dγ|·c/√(1 − c²)·Δc. Where that exceeds one 8-bit LSB of the specular
 /// colour, no implementation whose c is off by Δc can stay within 2 LSB of the f64 golden.
 /// Computed from the golden front end's c at each pixel of every triangle.
 fn ill_conditioned(s: &shadecore::setup::Setup) -> Vec<bool> {
     use golden::bump::BumpMap;
-    let dc = 1.77e-4;
+    // The lighting unit's bound on cos γ, from the normalizer's format-derived budget on its
+    // domain (fitted coefficients) and the half vector it is dotted with.
+    let coeffs = rtl::normalizer::NormalizerCoeffs::new(golden::normalizer::FIT).unwrap();
+    let budget = testbenches::normalizer::domain_budget(&coeffs);
+    let dc = golden::lighting_unit::error_bound(budget.component_max, s.ctx.half());
     let n = s.ctx.n() as f64;
     let spec = s.ctx.material.ks * s.ctx.material.specular.iter().cloned().fold(0.0, f64::max);
     let map = BumpMap::default();
