@@ -10,6 +10,7 @@ pub mod brdf;
 pub mod brzssk;
 pub mod bump;
 pub mod colour_combine;
+pub mod cos_v_accumulator;
 pub mod cubic;
 pub mod fast;
 pub mod gouraud;

@@ -1,6 +1,7 @@
 pub mod address_block;
 pub mod brzssk;
 pub mod colour_combine;
+pub mod cos_v_accumulator;
 pub mod declare;
 pub mod export;
 pub mod fixed;

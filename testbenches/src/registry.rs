@@ -216,6 +216,7 @@ pub static BLOCKS: &[&dyn Entry] = &[
     &entry::<rtl::power_unit::PowerUnit>(),
     &entry::<rtl::brzssk::Brzssk>(),
     &entry::<rtl::pixel_pipeline::PixelPipeline>(),
+    &entry::<rtl::cos_v_accumulator::CosVAccumulator>(),
 ];
 
 /// The entry named `name`.

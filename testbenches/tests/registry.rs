@@ -19,10 +19,11 @@ use testbenches::verilog::Simulator;
 
 /// Items of stimulus per block in the generic tests (triangles take 1000–2000 clocks each).
 fn items(b: &dyn Entry) -> usize {
-    if b.items() == "triangles" {
-        12
-    } else {
-        3000
+    match b.items() {
+        "triangles" => 12,
+        // A span of up to 61 pixels takes up to 61 clocks.
+        "spans" => 200,
+        _ => 3000,
     }
 }
 

@@ -1,0 +1,198 @@
+//! The cos v accumulator (SPEC §4, thesis fig. 3.6; golden: `golden::cos_v_accumulator`):
+//! angular interpolation along a span, two pixels per clock.
+//!
+//! ```text
+//! cos v(t) = cos β · cos(ψ − t·Δφ)        t = 0 … m
+//! ```
+//! Two accumulating adders in subtract mode run from both ends of the span at once: run A
+//! holds ψ − t·Δφ from t = 0 up and stops on the borrow (the argument turns negative: past the
+//! point E where cos v = cos β); run B holds (m·Δφ − ψ) − (m − u)·Δφ = u·Δφ − ψ from u = m down
+//! and stops when it reaches 0 or below. The set-up loads q = m·d − p from the same quantized
+//! words, so the two arguments are exact negatives and the runs split the span exactly (no
+//! pixel twice, none missed). Each run addresses its own copy of the cos PROM (block RAM has one
+//! read port) and one multiplier forms cos β·PROM[arg]. Two pixels per clock while E is inside
+//! the span; when E lies outside it, one run stops at once (the borrow on the first clock) and
+//! the other does the span at one pixel per clock. Per-span set-up (arccos, the division,
+//! cos β) is software: `golden::angular::span_setup`, quantized by
+//! `golden::cos_v_accumulator::SpanWords`.
+//!
+//! # Ports
+//! | port | dir | format |
+//! |---|---|---|
+//! | `load` | in | a span's words this clock (taken when `ready`) |
+//! | `p` | in | ψ, signed Q4.28 radians |
+//! | `q` | in | m·Δφ − ψ, signed Q4.28 |
+//! | `d` | in | Δφ ≥ 0, Q4.28 |
+//! | `cos_beta` | in | unsigned Q1.15 |
+//! | `m` | in | span length − 1, 12 bits |
+//! | `ready` | out | no pixel after this clock: a `load` now starts the next span without a gap |
+//! | `valid_a`, `t`, `cos_a` | out | run A's pixel: index (12 bits) and cos v (unsigned Q1.15) |
+//! | `valid_b`, `u`, `cos_b` | out | run B's pixel |
+//! | `last` | out | the span's last pixel(s) |
+//!
+//! # Pipeline
+//! ```text
+//! S0  state: arg_a, arg_b (32 bits), t (13), u (12), busy flags, m, d, cos β of the span;
+//!     A active = busy & arg_a ≥ 0 & t ≤ m; B active = busy & arg_b > 0;
+//!     address = (arg + 2¹⁷) bits 28..18, "top" (read 0) when bits 31..29 ≠ 0
+//! S1  PROM[address] (synchronous, one copy per run), flags, indices, cos β carried
+//! S2  cos = top ? 0 : round(cos β · PROM)   UQ1.15 × UQ1.15 → UQ2.30, + 2¹⁴, drop 15, saturate
+//! ```
+//! Latency: load → first pixels 3 clocks; results 2 clocks after their state. Throughput: up
+//! to two pixels per clock; a span takes max(|A|, |B|) clocks and the next one follows at once
+//! (`ready` rises in the last clock), so the per-span overhead is zero clocks in the block.
+//! 2 multipliers, 2 × 2048 × 16 PROM (2 × 8 iCE40 block RAMs).
+//!
+//! # Overflow
+//! Arguments are exact integers modulo 2³² (each run stops one step after its sign changes, far
+//! from the wrap); arguments ≥ 2 − 2⁻¹¹ rad read 0 (cos < 0 there, clamped); outputs saturate.
+//!
+//! # Error budget (vs `golden::cos_v_accumulator::cos_v` of the same words)
+//! The address rounding moves the argument by ≤ 2⁻¹¹ (cos by ≤ 2⁻¹¹·|sin|), the PROM word and
+//! the product roundings add 2⁻¹⁶ each: ≤ 2⁻¹¹ + 2⁻¹⁵ = 5.2·10⁻⁴.
+
+use rust_hdl::prelude::*;
+
+use crate::primitives::{Prom, RoundProductToUQ1_15};
+
+fn cos_prom() -> Prom<Bits<16>, 11> {
+    Prom::new(
+        golden::cos_v_accumulator::prom()
+            .into_iter()
+            .map(Bits::<16>::from),
+    )
+}
+
+crate::hw_block! {
+    /// The cos v accumulator (see the module header).
+    pub struct CosVAccumulator(clock) as "cos-v-accumulator" {
+        summary: "a span's ψ, Δφ, cos β in, cos v = cos β·cos(ψ − tΔφ) out from both ends, two pixels per clock (SPEC §4)",
+        latency: 3 => "load to the first pixels, up to two pixels per clock",
+        multipliers: 2,
+        in { load: Bit, p: Bits<32>, q: Bits<32>, d: Bits<32>, cos_beta: Bits<16>, m: Bits<12> }
+        out {
+            ready: Bit,
+            valid_a: Bit, t: Bits<12>, cos_a: Bits<16>,
+            valid_b: Bit, u: Bits<12>, cos_b: Bits<16>,
+            last: Bit,
+        }
+        // S0
+        busy_a: DFF<Bit>, busy_b: DFF<Bit>,
+        arg_a: DFF<Bits<32>>, arg_b: DFF<Bits<32>>,
+        t_q: DFF<Bits<13>>, u_q: DFF<Bits<12>>,
+        m_q: DFF<Bits<12>>, d_q: DFF<Bits<32>>, cb: DFF<Bits<16>>,
+        act_a: Signal<Local, Bit>, act_b: Signal<Local, Bit>,
+        next_a: Signal<Local, Bits<32>>, next_b: Signal<Local, Bits<32>>,
+        more: Signal<Local, Bit>,
+        m13: Signal<Local, Bits<13>>,
+        rnd_a: Signal<Local, Bits<32>>, rnd_b: Signal<Local, Bits<32>>,
+        half_step: Constant<Bits<32>> = Constant::new((1u64 << 17).into()),
+        // S1
+        prom_a: Prom<Bits<16>, 11> = cos_prom(),
+        prom_b: Prom<Bits<16>, 11> = cos_prom(),
+        valid1: [DFF<Bit>; 2], idx1: [DFF<Bits<12>>; 2], top1: [DFF<Bit>; 2],
+        cb1: DFF<Bits<16>>, last1: DFF<Bit>,
+        // S2
+        mul: [RoundProductToUQ1_15; 2],
+        prod: [Signal<Local, Bits<32>>; 2],
+        valid2: [DFF<Bit>; 2], idx2: [DFF<Bits<12>>; 2], cos2: [DFF<Bits<16>>; 2],
+        last2: DFF<Bit>,
+    }
+}
+
+impl Logic for CosVAccumulator {
+    #[hdl_gen]
+    fn update(&mut self) {
+        // State registers hold unless assigned (dff_setup!: d = q), the rest load every clock.
+        dff_setup!(self, clock, busy_a, busy_b, arg_a, arg_b, t_q, u_q, m_q, d_q, cb);
+        clock!(self, clock, prom_a, prom_b, cb1, last1, last2);
+        for k in 0..2 {
+            self.valid1[k].clock.next = self.clock.val();
+            self.idx1[k].clock.next = self.clock.val();
+            self.top1[k].clock.next = self.clock.val();
+            self.valid2[k].clock.next = self.clock.val();
+            self.idx2[k].clock.next = self.clock.val();
+            self.cos2[k].clock.next = self.clock.val();
+        }
+        // S0: which runs emit this clock, and whether any emits after it.
+        self.m13.next = bit_cast::<13, 12>(self.m_q.q.val());
+        self.act_a.next = self.busy_a.q.val()
+            & !self.arg_a.q.val().get_bit(31)
+            & (self.t_q.q.val() <= self.m13.val());
+        self.act_b.next =
+            self.busy_b.q.val() & !self.arg_b.q.val().get_bit(31) & self.arg_b.q.val().any();
+        self.next_a.next = self.arg_a.q.val() - self.d_q.q.val();
+        self.next_b.next = self.arg_b.q.val() - self.d_q.q.val();
+        self.more.next = (self.act_a.val()
+            & (self.t_q.q.val() < self.m13.val())
+            & !self.next_a.val().get_bit(31))
+            | (self.act_b.val()
+                & self.u_q.q.val().any()
+                & !self.next_b.val().get_bit(31)
+                & self.next_b.val().any());
+        self.ready.next = !self.more.val();
+        // The runs advance, or stop for good.
+        if self.act_a.val() {
+            self.arg_a.d.next = self.next_a.val();
+            self.t_q.d.next = self.t_q.q.val() + 1;
+        } else {
+            self.busy_a.d.next = false;
+        }
+        if self.act_b.val() {
+            self.arg_b.d.next = self.next_b.val();
+            if self.u_q.q.val().any() {
+                self.u_q.d.next = self.u_q.q.val() - 1;
+            } else {
+                self.busy_b.d.next = false;
+            }
+        } else {
+            self.busy_b.d.next = false;
+        }
+        if self.load.val() & !self.more.val() {
+            self.busy_a.d.next = true;
+            self.busy_b.d.next = true;
+            self.arg_a.d.next = self.p.val();
+            self.arg_b.d.next = self.q.val();
+            self.t_q.d.next = 0.into();
+            self.u_q.d.next = self.m.val();
+            self.m_q.d.next = self.m.val();
+            self.d_q.d.next = self.d.val();
+            self.cb.d.next = self.cos_beta.val();
+        }
+        // PROM addresses: the argument rounded to 2⁻¹⁰ rad.
+        self.rnd_a.next = self.arg_a.q.val() + self.half_step.val();
+        self.rnd_b.next = self.arg_b.q.val() + self.half_step.val();
+        self.prom_a.address.next = self.rnd_a.val().get_bits::<11>(18);
+        self.prom_b.address.next = self.rnd_b.val().get_bits::<11>(18);
+        // S1
+        self.valid1[0].d.next = self.act_a.val();
+        self.valid1[1].d.next = self.act_b.val();
+        self.idx1[0].d.next = self.t_q.q.val().get_bits::<12>(0);
+        self.idx1[1].d.next = self.u_q.q.val();
+        self.top1[0].d.next = self.rnd_a.val().get_bits::<3>(29).any();
+        self.top1[1].d.next = self.rnd_b.val().get_bits::<3>(29).any();
+        self.cb1.d.next = self.cb.q.val();
+        self.last1.d.next = (self.act_a.val() | self.act_b.val()) & !self.more.val();
+        // S2
+        self.prod[0].next = self.cb1.q.val() * self.prom_a.data.val();
+        self.prod[1].next = self.cb1.q.val() * self.prom_b.data.val();
+        for k in 0..2 {
+            self.mul[k].wide.next = self.prod[k].val();
+            self.valid2[k].d.next = self.valid1[k].q.val();
+            self.idx2[k].d.next = self.idx1[k].q.val();
+            if self.top1[k].q.val() {
+                self.cos2[k].d.next = 0.into();
+            } else {
+                self.cos2[k].d.next = self.mul[k].narrow.val();
+            }
+        }
+        self.last2.d.next = self.last1.q.val();
+        self.valid_a.next = self.valid2[0].q.val();
+        self.t.next = self.idx2[0].q.val();
+        self.cos_a.next = self.cos2[0].q.val();
+        self.valid_b.next = self.valid2[1].q.val();
+        self.u.next = self.idx2[1].q.val();
+        self.cos_b.next = self.cos2[1].q.val();
+        self.last.next = self.last2.q.val();
+    }
+}

@@ -1,0 +1,224 @@
+//! Bench of the cos v accumulator (`rtl::cos_v_accumulator`) against
+//! `golden::cos_v_accumulator` (the runs' index sets and cos β·cos(arg) in f64) and its
+//! bit-exact twin.
+//!
+//! Stimulus: named spans first — m = 0, 1, 2, odd and even m, N_a = N_b (Δφ = 0), E before the
+//! span (the borrow on run A's first clock), E beyond it (run B stops at once), cos β near 0 —
+//! then seeded random spans: unit end normals ≤ 90° apart, a unit X, m up to 60; each span
+//! loaded in the clock `ready` rises, back to back.
+//! Expectations: `ready`, valid flags, indices and `last` exact from the runs' index sets
+//! (`SpanWords::run_a`, `run_b`: clock k of a span shows run A's k-th and run B's k-th pixel);
+//! cos within `golden::cos_v_accumulator::ERROR_BOUND` of the f64 value.
+
+use glam::DVec3;
+use golden::angular::span_setup;
+use golden::cos_v_accumulator::{cos_v, twin::CosVTwin, SpanWords, ERROR_BOUND};
+use proptest::prelude::*;
+use proptest::strategy::ValueTree;
+use rtl::cos_v_accumulator::CosVAccumulator;
+use rtl::fixed::SCALE;
+use rtl::registry::NoParams;
+
+use crate::harness::{Compare, Expected, Tolerance};
+use crate::normalizer::seeded_runner;
+use crate::registry::{Bench, Stimulus, Twin};
+
+const MASK: i64 = (1 << 32) - 1;
+
+fn unit(z: f64, phi: f64) -> DVec3 {
+    let r = (1.0 - z * z).max(0.0).sqrt();
+    DVec3::new(r * phi.cos(), r * phi.sin(), z)
+}
+
+/// Named spans: (name, words).
+pub fn named_spans() -> Vec<(&'static str, SpanWords)> {
+    let a = DVec3::new(0.0, 0.0, 1.0);
+    let b = DVec3::new(0.6, 0.0, 0.8);
+    let mid = (a + b).normalize();
+    let w = |na: DVec3, nb: DVec3, x: DVec3, m: u32| SpanWords::new(&span_setup(na, nb, x, m));
+    vec![
+        ("m = 0", w(a, b, mid, 0)),
+        ("m = 1", w(a, b, mid, 1)),
+        ("m = 2", w(a, b, mid, 2)),
+        ("m = 7 (odd), E mid-span", w(a, b, mid, 7)),
+        ("m = 8 (even), E mid-span", w(a, b, mid, 8)),
+        ("N_a = N_b", w(a, a, mid, 9)),
+        (
+            "E before the span: borrow on the first clock",
+            w(a, b, DVec3::new(-0.3, 0.0, 0.95).normalize(), 10),
+        ),
+        (
+            "E beyond the span: run B stops at once",
+            w(a, b, DVec3::new(0.9, 0.0, 0.43).normalize(), 10),
+        ),
+        (
+            "cos β near 0",
+            w(a, b, DVec3::new(0.02, 0.9998, 0.0).normalize(), 12),
+        ),
+    ]
+}
+
+fn random_spans(seed: u64, n: usize) -> Vec<SpanWords> {
+    let mut r = seeded_runner(seed);
+    let st = (
+        (0.0..=1.0f64, 0.0..std::f64::consts::TAU),
+        (0.0..=1.0f64, 0.0..std::f64::consts::TAU),
+        (-1.0..=1.0f64, 0.0..std::f64::consts::TAU),
+        0u32..=60,
+    );
+    let mut out = Vec::with_capacity(n);
+    while out.len() < n {
+        let ((z1, p1), (z2, p2), (z3, p3), m) =
+            st.new_tree(&mut r).expect("no rejection").current();
+        let (na, nb, x) = (unit(z1, p1), unit(z2, p2), unit(z3, p3));
+        if na.dot(nb) < 0.0 {
+            continue;
+        }
+        out.push(SpanWords::new(&span_setup(na, nb, x, m)));
+    }
+    out
+}
+
+fn load_row(w: Option<&SpanWords>) -> Vec<u64> {
+    match w {
+        Some(w) => vec![
+            1,
+            (w.p & MASK) as u64,
+            (w.q & MASK) as u64,
+            (w.d & MASK) as u64,
+            w.cos_beta,
+            w.m as u64,
+        ],
+        None => vec![0; 6],
+    }
+}
+
+struct CosVRows(CosVTwin);
+
+impl Twin for CosVRows {
+    fn step(&mut self, r: &[u64]) -> Vec<u64> {
+        let o = self.0.outputs();
+        let signed = |x: u64| ((x as i64) << 32) >> 32;
+        let w = SpanWords {
+            p: signed(r[1]),
+            q: signed(r[2]),
+            d: signed(r[3]),
+            cos_beta: r[4],
+            m: r[5] as u32,
+        };
+        self.0.clock((r[0] != 0).then_some(&w));
+        o
+    }
+}
+
+/// Rows for `spans` back to back and the expectations of every clock.
+fn run(spans: &[SpanWords]) -> (Vec<Vec<u64>>, Vec<Vec<Expected>>) {
+    // Span i's state clocks start at s_i (s_0 = 1); span i + 1 loads in s_i + len_i − 1.
+    let mut rows = vec![load_row(spans.first())];
+    let mut state: Vec<Option<(usize, usize)>> = vec![None]; // (span, k) per state clock
+    for (i, w) in spans.iter().enumerate() {
+        let len = w.clocks();
+        for k in 0..len {
+            state.push(Some((i, k)));
+            let load = (k == len - 1).then(|| spans.get(i + 1)).flatten();
+            rows.push(load_row(load));
+        }
+    }
+    for _ in 0..3 {
+        rows.push(load_row(None));
+        state.push(None);
+    }
+    let runs: Vec<(Vec<u32>, Vec<u32>)> = spans.iter().map(|w| (w.run_a(), w.run_b())).collect();
+    let expected = (0..rows.len())
+        .map(|c| {
+            let ready = match state[c] {
+                Some((i, k)) => k + 1 == spans[i].clocks(),
+                None => true,
+            };
+            let mut e = vec![Expected::Word(ready as u64)];
+            let shown = c.checked_sub(2).and_then(|s| state[s]);
+            let lane = |idx: Option<&u32>, w: &SpanWords| match idx {
+                Some(&t) => vec![
+                    Expected::Word(1),
+                    Expected::Word(t as u64),
+                    Expected::Real(cos_v(w, t)),
+                ],
+                None => vec![Expected::Word(0), Expected::DontCare, Expected::DontCare],
+            };
+            match shown {
+                Some((i, k)) => {
+                    e.extend(lane(runs[i].0.get(k), &spans[i]));
+                    e.extend(lane(runs[i].1.get(k), &spans[i]));
+                    e.push(Expected::Word((k + 1 == spans[i].clocks()) as u64));
+                }
+                None => {
+                    for _ in 0..2 {
+                        e.extend([Expected::Word(0), Expected::DontCare, Expected::DontCare]);
+                    }
+                    e.push(Expected::Word(0));
+                }
+            }
+            e
+        })
+        .collect();
+    (rows, expected)
+}
+
+impl Bench for CosVAccumulator {
+    const ITEMS: &'static str = "spans";
+    const DEFAULT_ITEMS: usize = 200;
+    fn stimulus(_: &NoParams, n: usize, seed: u64) -> Stimulus {
+        let mut spans: Vec<SpanWords> = named_spans().into_iter().map(|(_, w)| w).collect();
+        spans.extend(random_spans(seed, n));
+        let (rows, expected) = run(&spans);
+        let cos = Compare::Fixed {
+            format: SCALE,
+            tol: Tolerance {
+                max_abs: ERROR_BOUND,
+                rms: ERROR_BOUND,
+            },
+        };
+        Stimulus {
+            rows,
+            expected,
+            compare: vec![
+                Compare::Exact,
+                Compare::Exact,
+                Compare::Exact,
+                cos,
+                Compare::Exact,
+                Compare::Exact,
+                cos,
+                Compare::Exact,
+            ],
+        }
+    }
+    fn twin(_: &NoParams) -> Box<dyn Twin> {
+        Box::new(CosVRows(CosVTwin::default()))
+    }
+    /// Loads in clocks where `ready` is low (ignored), idle gaps, raw words.
+    fn edge_rows(_: &NoParams, seed: u64) -> Vec<Vec<u64>> {
+        let mut r = seeded_runner(seed ^ 0xc05);
+        let st = (
+            any::<u32>(),
+            any::<u32>(),
+            0u32..(1 << 20),
+            any::<u16>(),
+            0u64..40,
+            any::<u8>(),
+        );
+        (0..1500)
+            .map(|_| {
+                let (p, q, d, cb, m, v) = st.new_tree(&mut r).expect("no rejection").current();
+                vec![
+                    (v & 7 == 0) as u64,
+                    p as u64,
+                    q as u64,
+                    d as u64,
+                    cb as u64,
+                    m,
+                ]
+            })
+            .collect()
+    }
+}
