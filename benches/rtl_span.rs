@@ -1,0 +1,121 @@
+//! Throughput of the span units (issue 10) — so far the cos v accumulator
+//! (`rtl::cos_v_accumulator`), fed the default scene's spans (sphere rez 50, 400×400, light
+//! 90°): per-span set-up by `golden::angular::span_setup` for H (the specular vector) and L,
+//! spans loaded whenever `ready` is high.
+//!
+//! Printed once (clock counts of the simulated hardware, not timings): pixels per clock over
+//! all spans and over spans of at least 16 pixels, and how often the symmetry point E lies
+//! inside the span (two pixels per clock) — then criterion measures simulated clocks per second.
+
+use criterion::{criterion_group, criterion_main, Criterion, Throughput};
+use glam::{DQuat, DVec3};
+use golden::angular::span_setup;
+use golden::cos_v_accumulator::SpanWords;
+use golden::methods::span_end_normals;
+use rtl::cos_v_accumulator::CosVAccumulator;
+use rtl::sim::Stepper;
+
+/// The default scene's spans for the unit vector `x`: (words, pixels).
+fn spans(x_of: impl Fn(&golden::shade::ShadeContext) -> DVec3) -> Vec<SpanWords> {
+    let mesh = golden::scene::uv_sphere(50).unwrap();
+    let cam = golden::scene::Camera::fit(&mesh, 400, 400, DQuat::IDENTITY);
+    let tris = golden::scene::project(&mesh, &cam, 400, 400).unwrap();
+    let ctx = golden::shade::ShadeContext {
+        light: golden::scene::light_direction(90.0).unwrap(),
+        ..Default::default()
+    };
+    let x = x_of(&ctx);
+    let mut out = Vec::new();
+    for t in &tris {
+        let Some(plane) = t.normal_plane() else {
+            continue;
+        };
+        let w = golden::raster::walk(t);
+        for row in w.rows.iter().filter(|r| r.len > 0) {
+            if let Some((na, nb)) = span_end_normals(&plane, row) {
+                out.push(SpanWords::new(&span_setup(na, nb, x, row.len - 1)));
+            }
+        }
+    }
+    out
+}
+
+/// Run `spans` back to back; (clocks, pixels).
+fn run(spans: &[SpanWords]) -> (u64, u64) {
+    let mut st = Stepper::new(CosVAccumulator::default()).unwrap();
+    let mut out = vec![0u64; 8];
+    let (mut clocks, mut pixels, mut next, mut lasts) = (0u64, 0u64, 0usize, 0usize);
+    while lasts < spans.len() {
+        let row = if st.dut().ready.val() && next < spans.len() {
+            let w = &spans[next];
+            next += 1;
+            vec![
+                1,
+                (w.p as u64) & 0xFFFF_FFFF,
+                (w.q as u64) & 0xFFFF_FFFF,
+                w.d as u64,
+                w.cos_beta,
+                w.m as u64,
+            ]
+        } else {
+            vec![0; 6]
+        };
+        st.step(&row, &mut out).unwrap();
+        clocks += 1;
+        pixels += out[1] + out[4];
+        lasts += out[7] as usize;
+    }
+    (clocks, pixels)
+}
+
+fn figures() {
+    for (name, x_of) in [
+        (
+            "H",
+            (|c: &golden::shade::ShadeContext| c.half())
+                as fn(&golden::shade::ShadeContext) -> DVec3,
+        ),
+        ("L", |c: &golden::shade::ShadeContext| c.light),
+    ] {
+        let all = spans(x_of);
+        let long: Vec<SpanWords> = all.iter().copied().filter(|w| w.m >= 15).collect();
+        let inside = |v: &[SpanWords]| {
+            v.iter()
+                .filter(|w| !w.run_a().is_empty() && !w.run_b().is_empty())
+                .count()
+        };
+        let (c, p) = run(&all);
+        let (cl, pl) = run(&long);
+        println!(
+            "cos v accumulator, default scene, X = {name}: {} spans, {p} pixels in {c} clocks \
+             ({:.3} pixels/clock; E inside {} spans); spans ≥ 16 pixels: {} spans, {pl} pixels in \
+             {cl} clocks ({:.3} pixels/clock; E inside {})",
+            all.len(),
+            p as f64 / c as f64,
+            inside(&all),
+            long.len(),
+            pl as f64 / cl as f64,
+            inside(&long),
+        );
+    }
+}
+
+fn bench(c: &mut Criterion) {
+    figures();
+    let s = spans(|c| c.half());
+    let slice = &s[..s.len() / 4];
+    let clocks = run(slice).0;
+    let mut g = c.benchmark_group("rtl_span");
+    g.sample_size(10);
+    g.throughput(Throughput::Elements(clocks));
+    g.bench_function("cos_v_accumulator_clocks", |b| b.iter(|| run(slice)));
+    g.finish();
+}
+
+criterion_group! {
+    name = benches;
+    // No plots: the plotters backend needs fonts the CI image may lack.
+    config = Criterion::default().without_plots();
+    targets = bench
+}
+criterion_main!(benches);
