@@ -4,8 +4,10 @@
 //! spans loaded whenever `ready` is high.
 //!
 //! Printed once (clock counts of the simulated hardware, not timings): pixels per clock over
-//! all spans and over spans of at least 16 pixels, and how often the symmetry point E lies
-//! inside the span (two pixels per clock) — then criterion measures simulated clocks per second.
+//! all spans and over spans of at least 16 pixels (the runs split each span at its midpoint),
+//! and how often the symmetry point E lies inside a span (the thesis' split point: splitting
+//! there would give two pixels per clock only for those) — then criterion measures simulated
+//! clocks per second.
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use glam::{DQuat, DVec3};
@@ -79,11 +81,8 @@ fn figures() {
     ] {
         let all = spans(x_of);
         let long: Vec<SpanWords> = all.iter().copied().filter(|w| w.m >= 15).collect();
-        let inside = |v: &[SpanWords]| {
-            v.iter()
-                .filter(|w| !w.run_a().is_empty() && !w.run_b().is_empty())
-                .count()
-        };
+        // The symmetry point E (argument 0) lies inside the span when ψ ≥ 0 and φ − ψ > 0.
+        let inside = |v: &[SpanWords]| v.iter().filter(|w| w.p >= 0 && w.q > 0).count();
         let (c, p) = run(&all);
         let (cl, pl) = run(&long);
         println!(

@@ -3,9 +3,15 @@
 //! at once — two pixels per clock.
 //!
 //! Per-span words (software set-up from [`crate::angular::span_setup`]): ψ as `p`, Δφ as `d`
-//! (signed Q4.28 radians, rounded), `q = m·d − p` (so that the two runs' arguments are exact
-//! negatives of each other: run A's ψ − t·Δφ ≥ 0 and run B's t·Δφ − ψ > 0 split the span
-//! exactly), cos β in unsigned Q1.15, m.
+//! (signed Q4.28 radians, rounded), `q = m·d − p` (run B's argument u·Δφ − ψ at u = m, the
+//! exact negative of run A's ψ − u·Δφ), cos β in unsigned Q1.15, m.
+//!
+//! The runs split the span at its midpoint: run A takes t = 0 … ⌈(m+1)/2⌉ − 1 upward, run B
+//! the rest downward from m, so every span of two or more pixels goes at two pixels per clock.
+//! (Splitting at the symmetry point E, as the thesis words it, gives two per clock only when E
+//! lies inside the span — on the default scene's spans that is 0 of 17 199 for H and 222 for L,
+//! `benches/rtl_span.rs` — so each run instead lets its argument pass through zero at E: cos is
+//! even, the PROM is addressed by |argument|, the reload with φ − ψ of fig. 3.6 in another form.)
 //!
 //! The PROM holds max(cos x, 0) for x = a·2⁻¹⁰, a = 0..2047 (x < 2 rad; cos is negative from
 //! π/2 on and every lighting cosine is clamped at 0), Q1.15 words; addressed by the argument
@@ -47,22 +53,21 @@ impl SpanWords {
             m: s.m,
         }
     }
-    /// Run A's indices: t = 0, 1, … while p − t·d ≥ 0 (and t ≤ m).
+    /// The first index of run B: h = ⌈(m + 1)/2⌉.
+    pub fn half(&self) -> u32 {
+        (self.m + 2) / 2
+    }
+    /// Run A's indices: t = 0 … h − 1.
     pub fn run_a(&self) -> Vec<u32> {
-        (0..=self.m)
-            .take_while(|&t| self.p - t as i64 * self.d >= 0)
-            .collect()
+        (0..self.half()).collect()
     }
-    /// Run B's indices: u = m, m − 1, … while q − (m − u)·d > 0 (and u ≥ 0).
+    /// Run B's indices: u = m, m − 1, … h.
     pub fn run_b(&self) -> Vec<u32> {
-        (0..=self.m)
-            .rev()
-            .take_while(|&u| self.q - (self.m - u) as i64 * self.d > 0)
-            .collect()
+        (self.half()..=self.m).rev().collect()
     }
-    /// Clocks the span occupies: the longer run (at least 1).
+    /// Clocks the span occupies: run A's length, h.
     pub fn clocks(&self) -> usize {
-        self.run_a().len().max(self.run_b().len()).max(1)
+        self.half() as usize
     }
     /// The argument of pixel t as a real: (p − t·d)·2⁻²⁸ (run A) or its negation (run B).
     pub fn argument(&self, t: u32) -> f64 {
@@ -95,11 +100,17 @@ pub mod twin {
 
     const MASK: i64 = (1 << 32) - 1;
 
-    /// The PROM address of a 32-bit argument word: + half an address step, bits 28..18; `None`
-    /// (read 0) when bits 31..29 of that sum are not all 0 (argument ≥ 2 − 2⁻¹¹, or negative).
+    /// The PROM address of a 32-bit argument word: its magnitude (two's complement negation
+    /// when bit 31 is set, modulo 2³²) + half an address step, bits 28..18; `None` (read 0) when
+    /// bits 31..29 of that sum are not all 0 (|argument| ≥ 2 − 2⁻¹¹).
     fn addr(arg: i64) -> Option<usize> {
         let shift = ANGLE_FRAC - PROM_FRAC;
-        let r = (arg + (1 << (shift - 1))) & MASK;
+        let mag = if arg & (1 << 31) != 0 {
+            (-arg) & MASK
+        } else {
+            arg & MASK
+        };
+        let r = (mag + (1 << (shift - 1))) & MASK;
         (r >> 29 == 0).then_some(((r >> shift) as usize) & (PROM_WORDS - 1))
     }
 
@@ -118,6 +129,7 @@ pub mod twin {
         t: u32,
         u: u32,
         m: u32,
+        h: u32,
         d: i64,
         cb: u64,
         // S1: PROM data, the flags and indices carried.
@@ -140,6 +152,7 @@ pub mod twin {
                 t: 0,
                 u: 0,
                 m: 0,
+                h: 0,
                 d: 0,
                 cb: 0,
                 s1: [(false, 0, 0, false); 2],
@@ -151,22 +164,16 @@ pub mod twin {
         }
     }
 
-    fn signed(w: i64) -> i64 {
-        ((w & MASK) << 32) >> 32
-    }
-
     impl CosVTwin {
         fn active(&self) -> (bool, bool) {
-            let a = self.busy_a && signed(self.arg_a) >= 0 && self.t <= self.m;
-            let b = self.busy_b && signed(self.arg_b) > 0;
+            let a = self.busy_a && self.t < self.h;
+            let b = self.busy_b && self.u >= self.h;
             (a, b)
         }
         /// Whether either run emits after this clock.
         fn more(&self) -> bool {
             let (a, b) = self.active();
-            let a_next = a && self.t < self.m && signed(self.arg_a - self.d) >= 0;
-            let b_next = b && self.u != 0 && signed(self.arg_b - self.d) > 0;
-            a_next || b_next
+            (a && self.t + 1 < self.h) || (b && self.u > self.h)
         }
         /// `ready` shown this clock: nothing to emit after this clock.
         pub fn ready(&self) -> bool {
@@ -235,6 +242,7 @@ pub mod twin {
                 self.t = 0;
                 self.u = w.m;
                 self.m = w.m;
+                self.h = (w.m + 2) >> 1;
                 self.d = w.d & MASK;
                 self.cb = w.cos_beta;
             }

@@ -5,14 +5,15 @@
 //! cos v(t) = cos β · cos(ψ − t·Δφ)        t = 0 … m
 //! ```
 //! Two accumulating adders in subtract mode run from both ends of the span at once: run A
-//! holds ψ − t·Δφ from t = 0 up and stops on the borrow (the argument turns negative: past the
-//! point E where cos v = cos β); run B holds (m·Δφ − ψ) − (m − u)·Δφ = u·Δφ − ψ from u = m down
-//! and stops when it reaches 0 or below. The set-up loads q = m·d − p from the same quantized
-//! words, so the two arguments are exact negatives and the runs split the span exactly (no
-//! pixel twice, none missed). Each run addresses its own copy of the cos PROM (block RAM has one
-//! read port) and one multiplier forms cos β·PROM[arg]. Two pixels per clock while E is inside
-//! the span; when E lies outside it, one run stops at once (the borrow on the first clock) and
-//! the other does the span at one pixel per clock. Per-span set-up (arccos, the division,
+//! holds ψ − t·Δφ for t = 0 … h − 1, run B holds (m·Δφ − ψ) − (m − u)·Δφ = u·Δφ − ψ for
+//! u = m … h, h = ⌈(m + 1)/2⌉ (the set-up loads q = m·d − p from the same quantized words). Each
+//! run addresses its own copy of the cos PROM (block RAM has one read port) with |argument| —
+//! when the argument borrows past the symmetry point E it keeps going on the other side, cos
+//! being even: the fig. 3.6 reload with φ − ψ in another form — and one multiplier forms
+//! cos β·PROM. So every span of two or more pixels goes at two pixels per clock. (Splitting at
+//! E instead, as the thesis words it, gives two per clock only when E lies inside the span: on
+//! the default scene 0 of 17 199 spans for H and 222 for L — `benches/rtl_span.rs` measured
+//! that design at 1.00 pixels/clock.) Per-span set-up (arccos, the division,
 //! cos β) is software: `golden::angular::span_setup`, quantized by
 //! `golden::cos_v_accumulator::SpanWords`.
 //!
@@ -32,20 +33,21 @@
 //!
 //! # Pipeline
 //! ```text
-//! S0  state: arg_a, arg_b (32 bits), t (13), u (12), busy flags, m, d, cos β of the span;
-//!     A active = busy & arg_a ≥ 0 & t ≤ m; B active = busy & arg_b > 0;
-//!     address = (arg + 2¹⁷) bits 28..18, "top" (read 0) when bits 31..29 ≠ 0
+//! S0  state: arg_a, arg_b (32 bits), t (13), u (12), h = (m + 2) >> 1, busy flags, d, cos β;
+//!     A active = busy & t < h; B active = busy & u ≥ h;
+//!     address = (|arg| + 2¹⁷) bits 28..18, "top" (read 0) when bits 31..29 ≠ 0
 //! S1  PROM[address] (synchronous, one copy per run), flags, indices, cos β carried
 //! S2  cos = top ? 0 : round(cos β · PROM)   UQ1.15 × UQ1.15 → UQ2.30, + 2¹⁴, drop 15, saturate
 //! ```
-//! Latency: load → first pixels 3 clocks; results 2 clocks after their state. Throughput: up
-//! to two pixels per clock; a span takes max(|A|, |B|) clocks and the next one follows at once
-//! (`ready` rises in the last clock), so the per-span overhead is zero clocks in the block.
+//! Latency: load → first pixels 3 clocks; results 2 clocks after their state. Throughput: two
+//! pixels per clock (one in the last clock of an odd-length span); a span takes ⌈(m + 1)/2⌉
+//! clocks and the next one follows at once (`ready` rises in the last clock), so the per-span
+//! overhead is zero clocks in the block.
 //! 2 multipliers, 2 × 2048 × 16 PROM (2 × 8 iCE40 block RAMs).
 //!
 //! # Overflow
-//! Arguments are exact integers modulo 2³² (each run stops one step after its sign changes, far
-//! from the wrap); arguments ≥ 2 − 2⁻¹¹ rad read 0 (cos < 0 there, clamped); outputs saturate.
+//! Arguments are exact integers modulo 2³² (|ψ|, |φ − ψ| ≤ π: far from the wrap);
+//! |arguments| ≥ 2 − 2⁻¹¹ rad read 0 (cos < 0 there, clamped); outputs saturate.
 //!
 //! # Error budget (vs `golden::cos_v_accumulator::cos_v` of the same words)
 //! The address rounding moves the argument by ≤ 2⁻¹¹ (cos by ≤ 2⁻¹¹·|sin|), the PROM word and
@@ -80,13 +82,19 @@ crate::hw_block! {
         busy_a: DFF<Bit>, busy_b: DFF<Bit>,
         arg_a: DFF<Bits<32>>, arg_b: DFF<Bits<32>>,
         t_q: DFF<Bits<13>>, u_q: DFF<Bits<12>>,
-        m_q: DFF<Bits<12>>, d_q: DFF<Bits<32>>, cb: DFF<Bits<16>>,
+        d_q: DFF<Bits<32>>, cb: DFF<Bits<16>>,
+        /// h = ⌈(m + 1)/2⌉: run A takes t < h, run B u ≥ h.
+        h_q: DFF<Bits<13>>,
+        m_plus2: Signal<Local, Bits<13>>,
+        t_plus1: Signal<Local, Bits<13>>,
+        u13: Signal<Local, Bits<13>>,
         act_a: Signal<Local, Bit>, act_b: Signal<Local, Bit>,
         next_a: Signal<Local, Bits<32>>, next_b: Signal<Local, Bits<32>>,
         more: Signal<Local, Bit>,
-        m13: Signal<Local, Bits<13>>,
+        mag_a: Signal<Local, Bits<32>>, mag_b: Signal<Local, Bits<32>>,
         rnd_a: Signal<Local, Bits<32>>, rnd_b: Signal<Local, Bits<32>>,
         half_step: Constant<Bits<32>> = Constant::new((1u64 << 17).into()),
+        zero: Constant<Bits<32>> = Constant::new(0.into()),
         // S1
         prom_a: Prom<Bits<16>, 11> = cos_prom(),
         prom_b: Prom<Bits<16>, 11> = cos_prom(),
@@ -104,7 +112,7 @@ impl Logic for CosVAccumulator {
     #[hdl_gen]
     fn update(&mut self) {
         // State registers hold unless assigned (dff_setup!: d = q), the rest load every clock.
-        dff_setup!(self, clock, busy_a, busy_b, arg_a, arg_b, t_q, u_q, m_q, d_q, cb);
+        dff_setup!(self, clock, busy_a, busy_b, arg_a, arg_b, t_q, u_q, d_q, cb, h_q);
         clock!(self, clock, prom_a, prom_b, cb1, last1, last2);
         for k in 0..2 {
             self.valid1[k].clock.next = self.clock.val();
@@ -115,26 +123,20 @@ impl Logic for CosVAccumulator {
             self.cos2[k].clock.next = self.clock.val();
         }
         // S0: which runs emit this clock, and whether any emits after it.
-        self.m13.next = bit_cast::<13, 12>(self.m_q.q.val());
-        self.act_a.next = self.busy_a.q.val()
-            & !self.arg_a.q.val().get_bit(31)
-            & (self.t_q.q.val() <= self.m13.val());
-        self.act_b.next =
-            self.busy_b.q.val() & !self.arg_b.q.val().get_bit(31) & self.arg_b.q.val().any();
+        self.m_plus2.next = bit_cast::<13, 12>(self.m.val()) + 2;
+        self.u13.next = bit_cast::<13, 12>(self.u_q.q.val());
+        self.t_plus1.next = self.t_q.q.val() + 1;
+        self.act_a.next = self.busy_a.q.val() & (self.t_q.q.val() < self.h_q.q.val());
+        self.act_b.next = self.busy_b.q.val() & (self.u13.val() >= self.h_q.q.val());
         self.next_a.next = self.arg_a.q.val() - self.d_q.q.val();
         self.next_b.next = self.arg_b.q.val() - self.d_q.q.val();
-        self.more.next = (self.act_a.val()
-            & (self.t_q.q.val() < self.m13.val())
-            & !self.next_a.val().get_bit(31))
-            | (self.act_b.val()
-                & self.u_q.q.val().any()
-                & !self.next_b.val().get_bit(31)
-                & self.next_b.val().any());
+        self.more.next = (self.act_a.val() & (self.t_plus1.val() < self.h_q.q.val()))
+            | (self.act_b.val() & (self.u13.val() > self.h_q.q.val()));
         self.ready.next = !self.more.val();
         // The runs advance, or stop for good.
         if self.act_a.val() {
             self.arg_a.d.next = self.next_a.val();
-            self.t_q.d.next = self.t_q.q.val() + 1;
+            self.t_q.d.next = self.t_plus1.val();
         } else {
             self.busy_a.d.next = false;
         }
@@ -155,13 +157,23 @@ impl Logic for CosVAccumulator {
             self.arg_b.d.next = self.q.val();
             self.t_q.d.next = 0.into();
             self.u_q.d.next = self.m.val();
-            self.m_q.d.next = self.m.val();
+            self.h_q.d.next = self.m_plus2.val() >> 1;
             self.d_q.d.next = self.d.val();
             self.cb.d.next = self.cos_beta.val();
         }
-        // PROM addresses: the argument rounded to 2⁻¹⁰ rad.
-        self.rnd_a.next = self.arg_a.q.val() + self.half_step.val();
-        self.rnd_b.next = self.arg_b.q.val() + self.half_step.val();
+        // PROM addresses: |argument| (cos is even) rounded to 2⁻¹⁰ rad.
+        if self.arg_a.q.val().get_bit(31) {
+            self.mag_a.next = self.zero.val() - self.arg_a.q.val();
+        } else {
+            self.mag_a.next = self.arg_a.q.val();
+        }
+        if self.arg_b.q.val().get_bit(31) {
+            self.mag_b.next = self.zero.val() - self.arg_b.q.val();
+        } else {
+            self.mag_b.next = self.arg_b.q.val();
+        }
+        self.rnd_a.next = self.mag_a.val() + self.half_step.val();
+        self.rnd_b.next = self.mag_b.val() + self.half_step.val();
         self.prom_a.address.next = self.rnd_a.val().get_bits::<11>(18);
         self.prom_b.address.next = self.rnd_b.val().get_bits::<11>(18);
         // S1
