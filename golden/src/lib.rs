@@ -13,6 +13,7 @@ pub mod colour_combine;
 pub mod cos_v_accumulator;
 pub mod cubic;
 pub mod fast;
+pub mod fast_unit;
 pub mod gouraud;
 pub mod intensity_interpolator;
 pub mod lighting_unit;

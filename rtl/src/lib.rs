@@ -4,6 +4,7 @@ pub mod colour_combine;
 pub mod cos_v_accumulator;
 pub mod declare;
 pub mod export;
+pub mod fast_unit;
 pub mod fixed;
 pub mod gouraud_raster;
 pub mod intensity_interpolator;

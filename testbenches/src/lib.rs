@@ -2,6 +2,7 @@ pub mod address_block;
 pub mod brzssk;
 pub mod colour_combine;
 pub mod cos_v_accumulator;
+pub mod fast_unit;
 pub mod harness;
 pub mod intensity_interpolator;
 pub mod k_recurrence;

@@ -217,6 +217,7 @@ pub static BLOCKS: &[&dyn Entry] = &[
     &entry::<rtl::brzssk::Brzssk>(),
     &entry::<rtl::pixel_pipeline::PixelPipeline>(),
     &entry::<rtl::cos_v_accumulator::CosVAccumulator>(),
+    &entry::<rtl::fast_unit::FastUnit>(),
 ];
 
 /// The entry named `name`.
