@@ -14,9 +14,13 @@ fn selection(
     coeffs: &str,
     power: &str,
     bump: Option<&str>,
+    inv_sqrt: &str,
 ) -> anyhow::Result<(Vec<&'static dyn Entry>, Options)> {
     let blocks = registry::select(block).map_err(|e| anyhow!(e))?;
-    let mut o = Options::new().with("coeffs", coeffs).with("power", power);
+    let mut o = Options::new()
+        .with("coeffs", coeffs)
+        .with("power", power)
+        .with("inv-sqrt", inv_sqrt);
     // Without --bump each block keeps its own default (on for brzssk, off in the pipeline).
     if let Some(b) = bump {
         o = o.with("bump", b);
@@ -47,6 +51,9 @@ pub struct ExportArgs {
     /// BRZSSK on or off (default: on for `brzssk`, off in `pixel-pipeline`).
     #[arg(long)]
     pub bump: Option<String>,
+    /// The fast unit's 1/sqrt(M+1) set: chebyshev, shift-add or fit.
+    #[arg(long, default_value = "chebyshev")]
+    pub inv_sqrt: String,
 }
 
 #[derive(clap::Args, Debug)]
@@ -74,6 +81,9 @@ pub struct SimArgs {
     /// BRZSSK on or off (default: on for `brzssk`, off in `pixel-pipeline`).
     #[arg(long)]
     pub bump: Option<String>,
+    /// The fast unit's 1/sqrt(M+1) set: chebyshev, shift-add or fit.
+    #[arg(long, default_value = "chebyshev")]
+    pub inv_sqrt: String,
 }
 
 #[derive(clap::Args, Debug)]
@@ -90,13 +100,22 @@ pub struct SynthArgs {
     /// BRZSSK on or off (default: on for `brzssk`, off in `pixel-pipeline`).
     #[arg(long)]
     pub bump: Option<String>,
+    /// The fast unit's 1/sqrt(M+1) set: chebyshev, shift-add or fit.
+    #[arg(long, default_value = "chebyshev")]
+    pub inv_sqrt: String,
     /// Skip place-and-route (no Fmax estimate).
     #[arg(long)]
     pub no_pnr: bool,
 }
 
 pub fn export(a: ExportArgs) -> anyhow::Result<()> {
-    let (blocks, o) = selection(&a.block, &a.coeffs, &a.power, a.bump.as_deref())?;
+    let (blocks, o) = selection(
+        &a.block,
+        &a.coeffs,
+        &a.power,
+        a.bump.as_deref(),
+        &a.inv_sqrt,
+    )?;
     for b in blocks {
         let text = b.verilog(&o).map_err(|e| anyhow!(e))?;
         let path = rtl::export::write(b.name(), &text, &a.out).map_err(|e| anyhow!(e))?;
@@ -113,7 +132,13 @@ pub fn export(a: ExportArgs) -> anyhow::Result<()> {
 
 pub fn sim(a: SimArgs) -> anyhow::Result<()> {
     let block = registry::find(&a.block).map_err(|e| anyhow!(e))?;
-    let (_, o) = selection(block.name(), &a.coeffs, &a.power, a.bump.as_deref())?;
+    let (_, o) = selection(
+        block.name(),
+        &a.coeffs,
+        &a.power,
+        a.bump.as_deref(),
+        &a.inv_sqrt,
+    )?;
     let n = a.vectors.unwrap_or(block.default_items());
     if n == 0 {
         bail!("--vectors must be at least 1");
@@ -144,7 +169,13 @@ pub fn sim(a: SimArgs) -> anyhow::Result<()> {
 }
 
 pub fn synth(a: SynthArgs) -> anyhow::Result<()> {
-    let (blocks, o) = selection(&a.block, &a.coeffs, &a.power, a.bump.as_deref())?;
+    let (blocks, o) = selection(
+        &a.block,
+        &a.coeffs,
+        &a.power,
+        a.bump.as_deref(),
+        &a.inv_sqrt,
+    )?;
     for b in blocks {
         let (rep, fmax) = registry::synth_block(b, &o, !a.no_pnr).map_err(|e| anyhow!(e))?;
         print!("{rep}");
