@@ -411,3 +411,44 @@ pub fn assert_mutants_caught(
         }
     }
 }
+
+/// The twin catches a wrong rounding: `block` (built with `o`) runs its test rows (`n` items,
+/// seeded by `name`) under Icarus; the unmodified Verilog must equal the twin's outputs every
+/// clock, and each of `mutants` (typically a rounding constant moved by a quarter LSB) must
+/// differ from them somewhere. Panics otherwise; prints where each was caught.
+pub fn assert_mutants_caught_by_twin(
+    block: &str,
+    o: &Options,
+    n: usize,
+    mutants: &[crate::verilog::Mutant],
+) {
+    use crate::verilog::{differential_rows, DiffError, Simulator};
+    let b = find(block).unwrap();
+    let name = format!("quarter-lsb-{block}");
+    let seed = golden::seed::seed_for(&name);
+    let rows = test_rows(b, o, n, seed).unwrap();
+    let twin = b.twin_rows(o, &rows).unwrap();
+    let v = b.verilog(o).unwrap();
+    let run = |text: &str, tag: &str| {
+        differential_rows(
+            text,
+            &b.module_name(),
+            b.ports(),
+            &rows,
+            &twin,
+            Simulator::Icarus,
+            tag,
+        )
+    };
+    run(&v, &format!("{name}-control")).unwrap_or_else(|e| panic!("{block} control: {e}"));
+    for m in mutants {
+        match run(&m.apply(&v), &name) {
+            Err(DiffError::Mismatch(d)) => println!("{block}: caught [{}]: {d}", m.what),
+            Err(DiffError::Tool(e)) => panic!("{block} [{}] did not run: {e}", m.what),
+            Ok(_) => panic!(
+                "{block} [{}] was NOT caught by the twin (seed {seed})",
+                m.what
+            ),
+        }
+    }
+}
