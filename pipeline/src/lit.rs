@@ -110,7 +110,11 @@ pub struct LitJob {
 impl LitJob {
     /// Set-up of `tri`; `None` for zero area. Error: a vertex depth beyond ±[`DEPTH_LIMIT`].
     pub fn new(tri: &ScreenTriangle) -> Result<Option<LitJob>, String> {
-        if let Some(v) = tri.v.iter().find(|v| !(v.z.abs() < DEPTH_LIMIT)) {
+        if let Some(v) = tri
+            .v
+            .iter()
+            .find(|v| v.z.is_nan() || v.z.abs() >= DEPTH_LIMIT)
+        {
             return Err(format!(
                 "vertex depth {} is outside the depth words' range ±{DEPTH_LIMIT}",
                 v.z

@@ -81,6 +81,8 @@ pub struct Prom<D: Synth, const N: usize> {
     pub address: Signal<In, Bits<N>>,
     pub clock: Signal<In, Clock>,
     pub data: Signal<Out, D>,
+    // Boxed as rust-hdl's own SyncROM holds it (the derive treats `_` fields as opaque).
+    #[allow(clippy::box_collection)]
     _contents: Box<std::collections::BTreeMap<Bits<N>, D>>,
 }
 

@@ -97,9 +97,7 @@ impl Bench for ColourCombine {
             .map(|t| match t.checked_sub(ColourCombine::LATENCY) {
                 Some(i) if rows[i][0] == 1 => {
                     let mut words: [u64; 9] = std::array::from_fn(|k| rows[i][3 + k]);
-                    for c in 0..3 {
-                        words[c] = rows[t - 1][3 + c];
-                    }
+                    words[..3].copy_from_slice(&rows[t - 1][3..6]);
                     let q = |x: u64| x as f64 / ONE as f64;
                     let v = intensity(&Weights::from_words(&words), q(rows[i][1]), q(rows[i][2]));
                     std::iter::once(Expected::Word(1))

@@ -47,8 +47,11 @@ fn row(valid: bool, n: [u64; 3], l: [u64; 3], h: [u64; 3]) -> Vec<u64> {
     r
 }
 
-/// Named cases: (name, N, L, H) in f64, quantized before use.
-pub fn named_cases() -> Vec<(String, [f64; 3], [f64; 3], [f64; 3])> {
+/// A named case: (name, N, L, H) in f64, quantized before use.
+pub type NamedCase = (String, [f64; 3], [f64; 3], [f64; 3]);
+
+/// The named cases.
+pub fn named_cases() -> Vec<NamedCase> {
     let mut out = Vec::new();
     for (name, v) in edge_cases() {
         let u = to_vec(v).normalize();
