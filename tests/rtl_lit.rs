@@ -239,3 +239,36 @@ fn bad_rtl_input_is_a_one_line_error() {
     let e = render_rtl(&s.tris, Method::BrdfK16, &ctx, 40, 40, &bar).unwrap_err();
     assert!(format!("{e:#}").contains("spc_r"), "{e:#}");
 }
+
+/// Lambert lighting through the RTL: the set-up loads zero specular weights, so the image has
+/// no highlight and equals the golden Lambert image of the same method within 2 LSB.
+#[test]
+fn lambert_lighting_through_the_rtl() {
+    let args = SceneArgs {
+        size: (120, 120),
+        rez: 12,
+        lighting: shadecore::setup::Lighting::Lambert,
+        ..SceneArgs::default()
+    };
+    let s = build(&args).unwrap();
+    for m in [Method::NormalizerFit, Method::Bump] {
+        let rtl = render_rtl(
+            &s.tris,
+            m,
+            &s.ctx,
+            s.width,
+            s.height,
+            &ProgressBar::hidden(),
+        )
+        .unwrap();
+        let gold = golden::render::render(&s.tris, m, &s.ctx, s.width, s.height);
+        let (max, n) = max_channel_diff(&rtl.frame, &gold);
+        println!("lambert {m}: max {max} LSB, {n} pixels differ");
+        assert!(max <= 2, "lambert {m}: {max} LSB");
+        // No specular term: no channel reaches the diffuse colour's ambient + full diffuse
+        // plus anything (the brightest pixel is at most the diffuse colour's own level + 1).
+        let top = rtl.frame.rgb.iter().map(|p| p[2]).max().unwrap();
+        let limit = (s.ctx.material.diffuse[2] * (1.0 + s.ctx.material.ka)).round() as u8 + 1;
+        assert!(top <= limit, "lambert {m}: blue reaches {top} > {limit}");
+    }
+}

@@ -281,3 +281,30 @@ pub fn lit_clock_budget(jobs: &[LitJob]) -> u64 {
         .sum::<u64>()
         + PixelPipeline::LATENCY as u64
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn lit_rows_round_trip() {
+        let t = ScreenTriangle::from_points([(3, 1), (40, 7), (11, 30)]);
+        let job = LitJob::new(&t).unwrap().unwrap();
+        let regs = ShadingRegs::of(&ShadeContext::default()).unwrap();
+        let row = lit_row(Some(&job), &regs);
+        assert_eq!(row.len(), ROW_WIDTH);
+        let (back, r) = row_job(&row);
+        assert_eq!(r, regs);
+        let back = back.unwrap();
+        assert_eq!((back.normal, back.depth), (job.normal, job.depth));
+        assert_eq!(back.addr.w.f_word(), job.addr.w.f_word());
+        assert_eq!(row_job(&lit_row(None, &regs)).0, None);
+        // Every method the lit pipeline renders has a build; others have none.
+        assert!(LIT_METHODS.iter().all(|&m| method_options(m).is_some()));
+        assert!(method_options(Method::Gouraud).is_none());
+        // A vertex depth beyond the words' range is an error, not a wrap.
+        let mut far = t;
+        far.v[1].z = 1e6;
+        assert!(LitJob::new(&far).unwrap_err().contains("depth"));
+    }
+}
