@@ -96,10 +96,10 @@ pub fn error_bound(mode: PowerMode, n: u32, c: f64) -> f64 {
 ///         Ej  acc = n_j ? rnd(acc·pw) : acc,  pw = rnd(pw²)  (j = 1..9; E9 squares nothing)
 /// W:      W1  a = slope word, t = |c − 0x8000|, above = c > 0x8000, zero = c == 0
 ///         W2  p = a·t                          (2^-(15+f) units)
-///         W3  b = zero ? 0 : above ? 2^(15+f) + p : max(2^(15+f) − p, 0);
-///             b = min((b + 2^(f−1)) >> f, 0xFFFF)
+///         W3a sum = zero ? 0 : above ? 2^(15+f) + p : max(2^(15+f) − p, 0)   (registered)
+///         W3b b = min((sum + 2^(f−1)) >> f, 0xFFFF)
 ///         W4..W7  b = rnd(b²) for the first log2 k stages, else b
-///         then 3 delay registers (latency 10 in both modes)
+///         then 2 delay registers (latency 10 in both modes)
 /// ```
 /// n travels with its pixel (each stage reads the n that entered with the pixel).
 pub mod twin {
@@ -128,7 +128,7 @@ pub mod twin {
         /// W mode: fraction bits of the slope word (8 or 9).
         frac: u32,
         stages: [Stage; 10],
-        /// W mode: (valid, value) of the padding delay (3 registers).
+        /// W mode: (valid, value) of the padding delay (2 registers).
         pad: VecDeque<(bool, u64)>,
     }
 
@@ -138,7 +138,7 @@ pub mod twin {
                 mode,
                 frac: mode.k().map_or(8, |k| slope_word(k, 0).1),
                 stages: [Stage::default(); 10],
-                pad: std::iter::repeat_n((false, 0), 3).collect(),
+                pad: std::iter::repeat_n((false, 0), 2).collect(),
             }
         }
 
@@ -182,23 +182,29 @@ pub mod twin {
                 }
                 PowerMode::W(k) => {
                     let squarings = k.trailing_zeros() as usize;
-                    // Output of W7 (stage index 6) enters the padding delay.
+                    // Output of W7 (stage index 7) enters the padding delay.
                     self.pad.pop_front();
-                    self.pad.push_back((s[6].valid, s[6].acc));
+                    self.pad.push_back((s[7].valid, s[7].acc));
                     let mut next = [Stage::default(); 10];
-                    // W4..W7 (indices 3..6).
-                    for i in (3..7).rev() {
+                    // W4..W7 (indices 4..7).
+                    for i in (4..8).rev() {
                         let p = s[i - 1];
-                        let square = i - 3 < squarings;
+                        let square = i - 4 < squarings;
                         next[i] = Stage {
                             valid: p.valid,
                             acc: if square { rnd(p.acc * p.acc) } else { p.acc },
                             ..Stage::default()
                         };
                     }
-                    // W3 (index 2): the bracket.
-                    let p = s[1];
+                    // W3b (index 3): the bracket rounded to UQ1.15.
                     let frac = self.frac;
+                    next[3] = Stage {
+                        valid: s[2].valid,
+                        acc: ((s[2].acc + (1 << (frac - 1))) >> frac).min(0xFFFF),
+                        ..Stage::default()
+                    };
+                    // W3a (index 2): the bracket 1 ± p in p's units, clamped at 0.
+                    let p = s[1];
                     let one = 1u64 << (15 + frac);
                     let b = if p.zero {
                         0
@@ -209,7 +215,7 @@ pub mod twin {
                     };
                     next[2] = Stage {
                         valid: p.valid,
-                        acc: ((b + (1 << (frac - 1))) >> frac).min(0xFFFF),
+                        acc: b,
                         ..Stage::default()
                     };
                     // W2 (index 1): p = a·t.

@@ -31,10 +31,11 @@
 //! W      W1  a = slope word by shifts and adds of n + 1 (16 bits, exact: ≤ 57·1024 < 2¹⁶),
 //!            t = |c − 1| (UQ1.15), above = c > 1, zero = c = 0
 //!        W2  p = a·t                        UQ8.8 (UQ7.9 for k = 8) × UQ1.15, exact, 32 bits
-//!        W3  b = 0 if zero; 1 + p if above; max(1 − p, 0) otherwise (in p's units, 32 bits,
-//!            cannot wrap), then round to UQ1.15 (+ half LSB, drop 8 or 9 bits), saturate
+//!        W3a sum = 0 if zero; 1 + p if above; max(1 − p, 0) otherwise (in p's units, 32 bits,
+//!            cannot wrap), registered
+//!        W3b b = round sum to UQ1.15 (+ half LSB, drop 8 or 9 bits), saturate
 //!        W4..W7  b = rnd(b²) in the first log2 k stages (2, 3, 4), passed through in the rest
-//!        then 3 delay registers to latency 10
+//!        then 2 delay registers to latency 10
 //!        → 1 + log2 k multipliers (3, 4, 5)
 //! ```
 //! cos γ = 0 gives 0 in both modes for n ≥ 1 (W: the `zero` flag, as `golden::brdf::w_kernel`).
@@ -172,13 +173,16 @@ crate::hw_block! {
         w_one: Constant<Bits<32>> = Constant::new((1u64 << (15 + slope_frac(p))).into()),
         w_half: Constant<Bits<32>> = Constant::new((1u64 << (slope_frac(p) - 1)).into()),
         w_sum: Signal<Local, Bits<32>>,
+        /// W3a: the bracket registered (splits W3's compare, subtract and rounding: the path
+        /// that limited Fmax to 22 MHz).
+        w_sum_q: DFF<Bits<32>>, w_valid3: DFF<Bit>,
         w_rnd: Signal<Local, Bits<32>>,
         w_b: [DFF<Bits<16>>; 5],
         w_valid: [DFF<Bit>; 5],
         w_sq: [Signal<Local, Bits<32>>; 4],
         w_rnd_sq: [RoundProductToUQ1_15; 4],
-        w_spec_p3: Delay<Bits<16>, 3>,
-        w_valid_p3: Delay<Bit, 3>,
+        w_spec_p2: Delay<Bits<16>, 2>,
+        w_valid_p2: Delay<Bit, 2>,
     }
     new(p: &PowerParams);
 }
@@ -188,7 +192,7 @@ impl Logic for PowerUnit {
     fn update(&mut self) {
         clock!(
             self, clock, w_a, w_t, w_above, w_zero, w_valid1, w_p, w_above2, w_zero2, w_valid2,
-            w_spec_p3, w_valid_p3
+            w_sum_q, w_valid3, w_spec_p2, w_valid_p2
         );
         for j in 0..10 {
             self.e_valid[j].clock.next = self.clock.val();
@@ -358,17 +362,20 @@ impl Logic for PowerUnit {
         self.w_zero2.d.next = self.w_zero.q.val();
         self.w_valid2.d.next = self.w_valid1.q.val();
         // W3: the bracket 1 ± p in p's units (2^-(15+f)), clamped at 0, rounded to UQ1.15.
-        if self.w_above2.q.val() {
+        if self.w_zero2.q.val() {
+            self.w_sum.next = 0.into();
+        } else if self.w_above2.q.val() {
             self.w_sum.next = self.w_one.val() + self.w_p.q.val();
         } else if self.w_p.q.val() > self.w_one.val() {
             self.w_sum.next = 0.into();
         } else {
             self.w_sum.next = self.w_one.val() - self.w_p.q.val();
         }
-        self.w_rnd.next = self.w_sum.val() + self.w_half.val();
-        if self.w_zero2.q.val() {
-            self.w_b[0].d.next = 0.into();
-        } else if self.k8.val() {
+        self.w_sum_q.d.next = self.w_sum.val();
+        self.w_valid3.d.next = self.w_valid2.q.val();
+        // W3b: round to UQ1.15, saturate.
+        self.w_rnd.next = self.w_sum_q.q.val() + self.w_half.val();
+        if self.k8.val() {
             if self.w_rnd.val().get_bits::<7>(25).any() {
                 self.w_b[0].d.next = 0xFFFF.into();
             } else {
@@ -379,7 +386,7 @@ impl Logic for PowerUnit {
         } else {
             self.w_b[0].d.next = self.w_rnd.val().get_bits::<16>(8);
         }
-        self.w_valid[0].d.next = self.w_valid2.q.val();
+        self.w_valid[0].d.next = self.w_valid3.q.val();
         // W4
         self.w_sq[0].next = self.w_b[0].q.val() * self.w_b[0].q.val();
         self.w_rnd_sq[0].wide.next = self.w_sq[0].val();
@@ -416,12 +423,12 @@ impl Logic for PowerUnit {
             self.w_b[4].d.next = self.w_b[3].q.val();
         }
         self.w_valid[4].d.next = self.w_valid[3].q.val();
-        self.w_spec_p3.d.next = self.w_b[4].q.val();
-        self.w_valid_p3.d.next = self.w_valid[4].q.val();
+        self.w_spec_p2.d.next = self.w_b[4].q.val();
+        self.w_valid_p2.d.next = self.w_valid[4].q.val();
         // Output: the mode constant selects the datapath.
         if self.w_mode.val() {
-            self.valid_out.next = self.w_valid_p3.q.val();
-            self.spec.next = self.w_spec_p3.q.val();
+            self.valid_out.next = self.w_valid_p2.q.val();
+            self.spec.next = self.w_spec_p2.q.val();
         } else {
             self.valid_out.next = self.e_valid[9].q.val();
             self.spec.next = self.e_acc[9].q.val();
