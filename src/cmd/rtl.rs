@@ -7,24 +7,11 @@ use rtl::registry::Options;
 use testbenches::registry::{self, Entry};
 
 /// The blocks named by `--block` (`NAME` or `all`) and the build options of the command line
-/// (`--coeffs` is `coeffs=…`, read by the normalizer blocks; `--power` is `power=…`, read by
-/// the power unit and the pixel pipeline), checked against each other.
-fn selection(
-    block: &str,
-    coeffs: &str,
-    power: &str,
-    bump: Option<&str>,
-    inv_sqrt: &str,
-) -> anyhow::Result<(Vec<&'static dyn Entry>, Options)> {
+/// ([`BuildArgs`]: `--coeffs` is `coeffs=…`, read by the normalizer blocks, and so on),
+/// checked against each other.
+fn selection(block: &str, build: &BuildArgs) -> anyhow::Result<(Vec<&'static dyn Entry>, Options)> {
     let blocks = registry::select(block).map_err(|e| anyhow!(e))?;
-    let mut o = Options::new()
-        .with("coeffs", coeffs)
-        .with("power", power)
-        .with("inv-sqrt", inv_sqrt);
-    // Without --bump each block keeps its own default (on for brzssk, off in the pipeline).
-    if let Some(b) = bump {
-        o = o.with("bump", b);
-    }
+    let o = build.options();
     // A block ignores the options it does not read (their defaults apply to every command).
     for b in &blocks {
         if !b.param_keys().is_empty() {
@@ -34,14 +21,9 @@ fn selection(
     Ok((blocks, o))
 }
 
+/// The build options every RTL command takes (each block reads the ones it knows).
 #[derive(clap::Args, Debug)]
-pub struct ExportArgs {
-    /// Block name (`shadecore blocks` lists them), or all.
-    #[arg(long, default_value = "all")]
-    pub block: String,
-    /// Output directory (one `<module>.v` per block).
-    #[arg(long, default_value = "target/verilog")]
-    pub out: PathBuf,
+pub struct BuildArgs {
     /// Normalizer coefficients: published (0.822, −2.046, 2.227) or fit (golden FIT).
     #[arg(long, default_value = "published")]
     pub coeffs: String,
@@ -54,6 +36,33 @@ pub struct ExportArgs {
     /// The fast unit's 1/sqrt(M+1) set: chebyshev, shift-add or fit.
     #[arg(long, default_value = "chebyshev")]
     pub inv_sqrt: String,
+}
+
+impl BuildArgs {
+    /// The options as `key=value` pairs; without --bump each block keeps its own default (on
+    /// for brzssk, off in the pipeline).
+    fn options(&self) -> Options {
+        let o = Options::new()
+            .with("coeffs", &self.coeffs)
+            .with("power", &self.power)
+            .with("inv-sqrt", &self.inv_sqrt);
+        match &self.bump {
+            Some(b) => o.with("bump", b),
+            None => o,
+        }
+    }
+}
+
+#[derive(clap::Args, Debug)]
+pub struct ExportArgs {
+    /// Block name (`shadecore blocks` lists them), or all.
+    #[arg(long, default_value = "all")]
+    pub block: String,
+    /// Output directory (one `<module>.v` per block).
+    #[arg(long, default_value = "target/verilog")]
+    pub out: PathBuf,
+    #[command(flatten)]
+    pub build: BuildArgs,
 }
 
 #[derive(clap::Args, Debug)]
@@ -72,18 +81,8 @@ pub struct SimArgs {
     /// VCD file to write (default target/sims/<block>.vcd).
     #[arg(long)]
     pub vcd: Option<PathBuf>,
-    /// Normalizer coefficients: published or fit.
-    #[arg(long, default_value = "published")]
-    pub coeffs: String,
-    /// Power unit mode: exact (cos^n) or w4, w8, w16 (W(n, γ) with that k).
-    #[arg(long, default_value = "exact")]
-    pub power: String,
-    /// BRZSSK on or off (default: on for `brzssk`, off in `pixel-pipeline`).
-    #[arg(long)]
-    pub bump: Option<String>,
-    /// The fast unit's 1/sqrt(M+1) set: chebyshev, shift-add or fit.
-    #[arg(long, default_value = "chebyshev")]
-    pub inv_sqrt: String,
+    #[command(flatten)]
+    pub build: BuildArgs,
 }
 
 #[derive(clap::Args, Debug)]
@@ -91,31 +90,15 @@ pub struct SynthArgs {
     /// Block name (`shadecore blocks` lists them), or all.
     #[arg(long, default_value = "normalizer")]
     pub block: String,
-    /// Normalizer coefficients: published or fit.
-    #[arg(long, default_value = "published")]
-    pub coeffs: String,
-    /// Power unit mode: exact (cos^n) or w4, w8, w16 (W(n, γ) with that k).
-    #[arg(long, default_value = "exact")]
-    pub power: String,
-    /// BRZSSK on or off (default: on for `brzssk`, off in `pixel-pipeline`).
-    #[arg(long)]
-    pub bump: Option<String>,
-    /// The fast unit's 1/sqrt(M+1) set: chebyshev, shift-add or fit.
-    #[arg(long, default_value = "chebyshev")]
-    pub inv_sqrt: String,
+    #[command(flatten)]
+    pub build: BuildArgs,
     /// Skip place-and-route (no Fmax estimate).
     #[arg(long)]
     pub no_pnr: bool,
 }
 
 pub fn export(a: ExportArgs) -> anyhow::Result<()> {
-    let (blocks, o) = selection(
-        &a.block,
-        &a.coeffs,
-        &a.power,
-        a.bump.as_deref(),
-        &a.inv_sqrt,
-    )?;
+    let (blocks, o) = selection(&a.block, &a.build)?;
     for b in blocks {
         let text = b.verilog(&o).map_err(|e| anyhow!(e))?;
         let path = rtl::export::write(b.name(), &text, &a.out).map_err(|e| anyhow!(e))?;
@@ -132,13 +115,7 @@ pub fn export(a: ExportArgs) -> anyhow::Result<()> {
 
 pub fn sim(a: SimArgs) -> anyhow::Result<()> {
     let block = registry::find(&a.block).map_err(|e| anyhow!(e))?;
-    let (_, o) = selection(
-        block.name(),
-        &a.coeffs,
-        &a.power,
-        a.bump.as_deref(),
-        &a.inv_sqrt,
-    )?;
+    let (_, o) = selection(block.name(), &a.build)?;
     let n = a.vectors.unwrap_or(block.default_items());
     if n == 0 {
         bail!("--vectors must be at least 1");
@@ -169,13 +146,7 @@ pub fn sim(a: SimArgs) -> anyhow::Result<()> {
 }
 
 pub fn synth(a: SynthArgs) -> anyhow::Result<()> {
-    let (blocks, o) = selection(
-        &a.block,
-        &a.coeffs,
-        &a.power,
-        a.bump.as_deref(),
-        &a.inv_sqrt,
-    )?;
+    let (blocks, o) = selection(&a.block, &a.build)?;
     for b in blocks {
         let (rep, fmax) = registry::synth_block(b, &o, !a.no_pnr).map_err(|e| anyhow!(e))?;
         print!("{rep}");
