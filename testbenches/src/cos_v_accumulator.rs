@@ -22,6 +22,7 @@ use rtl::registry::NoParams;
 use crate::harness::{Compare, Expected, Tolerance};
 use crate::normalizer::seeded_runner;
 use crate::registry::{Bench, Stimulus, Twin};
+use crate::span::span_run;
 
 const MASK: i64 = (1 << 32) - 1;
 
@@ -111,57 +112,20 @@ impl Twin for CosVRows {
     }
 }
 
-/// Rows for `spans` back to back and the expectations of every clock.
+/// Rows for `spans` back to back and every clock's expectations: clock k of a span shows run
+/// A's k-th and run B's k-th pixel, 2 clocks after its state.
 fn run(spans: &[SpanWords]) -> (Vec<Vec<u64>>, Vec<Vec<Expected>>) {
-    // Span i's state clocks start at s_i (s_0 = 1); span i + 1 loads in s_i + len_i − 1.
-    let mut rows = vec![load_row(spans.first())];
-    let mut state: Vec<Option<(usize, usize)>> = vec![None]; // (span, k) per state clock
-    for (i, w) in spans.iter().enumerate() {
-        let len = w.clocks();
-        for k in 0..len {
-            state.push(Some((i, k)));
-            let load = (k == len - 1).then(|| spans.get(i + 1)).flatten();
-            rows.push(load_row(load));
-        }
-    }
-    for _ in 0..3 {
-        rows.push(load_row(None));
-        state.push(None);
-    }
     let runs: Vec<(Vec<u32>, Vec<u32>)> = spans.iter().map(|w| (w.run_a(), w.run_b())).collect();
-    let expected = (0..rows.len())
-        .map(|c| {
-            let ready = match state[c] {
-                Some((i, k)) => k + 1 == spans[i].clocks(),
-                None => true,
-            };
-            let mut e = vec![Expected::Word(ready as u64)];
-            let shown = c.checked_sub(2).and_then(|s| state[s]);
-            let lane = |idx: Option<&u32>, w: &SpanWords| match idx {
-                Some(&t) => vec![
-                    Expected::Word(1),
-                    Expected::Word(t as u64),
-                    Expected::Real(cos_v(w, t)),
-                ],
-                None => vec![Expected::Word(0), Expected::DontCare, Expected::DontCare],
-            };
-            match shown {
-                Some((i, k)) => {
-                    e.extend(lane(runs[i].0.get(k), &spans[i]));
-                    e.extend(lane(runs[i].1.get(k), &spans[i]));
-                    e.push(Expected::Word((k + 1 == spans[i].clocks()) as u64));
-                }
-                None => {
-                    for _ in 0..2 {
-                        e.extend([Expected::Word(0), Expected::DontCare, Expected::DontCare]);
-                    }
-                    e.push(Expected::Word(0));
-                }
-            }
-            e
-        })
-        .collect();
-    (rows, expected)
+    span_run(
+        spans.len(),
+        |i| spans[i].clocks(),
+        |i| load_row(i.map(|i| &spans[i])),
+        2,
+        |i, k| {
+            let lane = |r: &Vec<u32>| r.get(k).map(|&t| (t as u64, cos_v(&spans[i], t)));
+            [lane(&runs[i].0), lane(&runs[i].1)]
+        },
+    )
 }
 
 impl Bench for CosVAccumulator {

@@ -18,6 +18,7 @@ use rtl::fixed::SCALE;
 use crate::harness::{Compare, Expected, Tolerance};
 use crate::normalizer::seeded_runner;
 use crate::registry::{Bench, Stimulus, Twin};
+use crate::span::span_run;
 
 const M32: i64 = (1 << 32) - 1;
 const M48: i64 = (1 << 48) - 1;
@@ -101,61 +102,21 @@ impl Twin for FastRows {
     }
 }
 
-/// Rows for `spans` back to back and every clock's expectations.
+/// Rows for `spans` back to back and every clock's expectations: step k of a span shows
+/// pixel k and (unless it is the same pixel) its mirror m − k, 7 clocks after its state.
 fn run(spans: &[FastWords], p: &FastParams) -> (Vec<Vec<u64>>, Vec<Vec<Expected>>) {
-    let mut rows = vec![load_row(spans.first())];
-    let mut state: Vec<Option<(usize, usize)>> = vec![None];
-    for (i, w) in spans.iter().enumerate() {
-        let len = w.clocks();
-        for k in 0..len {
-            state.push(Some((i, k)));
-            let load = (k == len - 1).then(|| spans.get(i + 1)).flatten();
-            rows.push(load_row(load));
-        }
-    }
-    for _ in 0..8 {
-        rows.push(load_row(None));
-        state.push(None);
-    }
     let values: Vec<Vec<f64>> = spans.iter().map(|w| w.values(p.coeffs)).collect();
-    let expected = (0..rows.len())
-        .map(|c| {
-            let ready = match state[c] {
-                Some((i, k)) => k + 1 == spans[i].clocks(),
-                None => true,
-            };
-            let mut e = vec![Expected::Word(ready as u64)];
-            match c.checked_sub(7).and_then(|s| state[s]) {
-                Some((i, k)) => {
-                    let m = spans[i].m as usize;
-                    let v = &values[i];
-                    e.extend([
-                        Expected::Word(1),
-                        Expected::Word(k as u64),
-                        Expected::Real(v[k]),
-                    ]);
-                    if 2 * k != m {
-                        e.extend([
-                            Expected::Word(1),
-                            Expected::Word((m - k) as u64),
-                            Expected::Real(v[m - k]),
-                        ]);
-                    } else {
-                        e.extend([Expected::Word(0), Expected::DontCare, Expected::DontCare]);
-                    }
-                    e.push(Expected::Word((k + 1 == spans[i].clocks()) as u64));
-                }
-                None => {
-                    for _ in 0..2 {
-                        e.extend([Expected::Word(0), Expected::DontCare, Expected::DontCare]);
-                    }
-                    e.push(Expected::Word(0));
-                }
-            }
-            e
-        })
-        .collect();
-    (rows, expected)
+    span_run(
+        spans.len(),
+        |i| spans[i].clocks(),
+        |i| load_row(i.map(|i| &spans[i])),
+        7,
+        |i, k| {
+            let m = spans[i].m as usize;
+            let right = (2 * k != m).then(|| ((m - k) as u64, values[i][m - k]));
+            [Some((k as u64, values[i][k])), right]
+        },
+    )
 }
 
 impl Bench for FastUnit {

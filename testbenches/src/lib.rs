@@ -11,6 +11,7 @@ pub mod normalizer;
 pub mod pixel_pipeline;
 pub mod power_unit;
 pub mod registry;
+pub mod span;
 pub mod synth;
 pub mod tools;
 pub mod vcd_check;
