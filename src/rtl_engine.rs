@@ -1,6 +1,8 @@
 //! The RTL render engine: images produced by the simulated hardware — Gouraud through the
-//! raster pipe, and the lit methods (`pipeline::lit::LIT_METHODS`) through the lit pixel
-//! pipeline ([`render_lit_rtl`], which also resolves depth with the hardware's z).
+//! raster pipe, the lit methods (`pipeline::lit::LIT_METHODS`) through the lit pixel
+//! pipeline ([`render_lit_rtl`], which also resolves depth with the hardware's z), and the
+//! span methods (`pipeline::span::SPAN_METHODS`: angular, fast, fast-fit) through the span
+//! pipelines, two fragments per clock ([`render_span_rtl`]).
 //!
 //! Every triangle the golden renderer would draw (the same list, in the same order; zero-area
 //! triangles skipped as `golden::render::render` skips them) gets its set-up in software —
@@ -19,10 +21,11 @@ use anyhow::{bail, Result};
 use golden::methods::Method;
 use golden::render::Frame;
 use golden::shade::ShadeContext;
-use golden::types::{ScreenTriangle, MAX_ADDRESS};
+use golden::types::{Plane, ScreenTriangle, MAX_ADDRESS};
 use indicatif::ProgressBar;
 use pipeline::gouraud::{clock_budget, Pipe, PipeStats, TriangleJob};
 use pipeline::lit::{lit_clock_budget, LitJob, LitPipe, ShadingRegs, LIT_METHODS};
+use pipeline::span::{span_clock_budget, span_jobs, SpanPipe, SPAN_METHODS};
 
 /// An RTL render: the frame and the hardware's clock counts.
 #[derive(Clone, Debug)]
@@ -39,6 +42,7 @@ pub struct RtlRender {
 pub fn rtl_method_names() -> String {
     std::iter::once(Method::Gouraud)
         .chain(LIT_METHODS)
+        .chain(SPAN_METHODS)
         .map(|m| m.name())
         .collect::<Vec<_>>()
         .join(", ")
@@ -46,7 +50,7 @@ pub fn rtl_method_names() -> String {
 
 /// Check a method name for the RTL engine (one-line error naming the ones it has).
 pub fn check_rtl_method(m: Method) -> Result<()> {
-    if m == Method::Gouraud || LIT_METHODS.contains(&m) {
+    if m == Method::Gouraud || LIT_METHODS.contains(&m) || SPAN_METHODS.contains(&m) {
         Ok(())
     } else {
         bail!(
@@ -76,8 +80,8 @@ fn check_addresses(tris: &[ScreenTriangle], width: u32, height: u32) -> Result<(
     Ok(())
 }
 
-/// Render `tris` with `method` (Gouraud or one of [`LIT_METHODS`]) through the simulated
-/// hardware.
+/// Render `tris` with `method` (Gouraud, one of [`LIT_METHODS`] or of [`SPAN_METHODS`])
+/// through the simulated hardware.
 pub fn render_rtl(
     tris: &[ScreenTriangle],
     method: Method,
@@ -89,6 +93,8 @@ pub fn render_rtl(
     check_rtl_method(method)?;
     if method == Method::Gouraud {
         render_gouraud_rtl(tris, ctx, width, height, progress)
+    } else if SPAN_METHODS.contains(&method) {
+        render_span_rtl(tris, method, ctx, width, height, progress)
     } else {
         render_lit_rtl(tris, method, ctx, width, height, progress)
     }
@@ -126,44 +132,113 @@ pub fn render_lit_rtl(
     }
     progress.set_length(jobs.len() as u64);
     progress.set_position(0);
-    let mut frame = Frame::new(width, height);
-    let n = width as usize * height as usize;
-    let mut golden_z = vec![f64::INFINITY; n];
-    let mut golden_winner = vec![usize::MAX; n];
-    let mut hw_winner = vec![usize::MAX; n];
+    let mut writer = FrameWriter::new(width, height);
     let mut pipe = LitPipe::new(method).map_err(|e| anyhow::anyhow!("RTL set-up: {e}"))?;
     let stats = pipe
         .run(
             &jobs,
             &regs,
             lit_clock_budget(&jobs),
-            |f| {
-                let (x, y) = (f.x as i32, f.y as i32);
-                if frame.put(x, y, f.z as f64, f.rgb) {
-                    hw_winner[y as usize * width as usize + x as usize] = f.job;
-                }
-                if (x as u32) < width && (y as u32) < height {
-                    let i = y as usize * width as usize + x as usize;
-                    let z = depth[f.job].at_pixel(x, y);
-                    if z < golden_z[i] {
-                        golden_z[i] = z;
-                        golden_winner[i] = f.job;
-                    }
-                }
-            },
+            |f| writer.put(f.job, f.x, f.y, f.z, f.rgb, &depth[f.job]),
             |done| progress.set_position(done),
         )
         .map_err(|e| anyhow::anyhow!("RTL simulation: {e}"))?;
-    let visibility_mismatches = hw_winner
-        .iter()
-        .zip(&golden_winner)
-        .filter(|(a, b)| a != b)
-        .count();
-    Ok(RtlRender {
-        frame,
-        stats,
-        visibility_mismatches,
-    })
+    Ok(writer.finish(stats))
+}
+
+/// Render `tris` with a span method (`angular`, `fast`, `fast-fit`) through the span pipeline
+/// (`rtl::span_pipeline`) built for it: the span front end (`pipeline::span::span_jobs`, the
+/// golden method's per-line set-up in software) loads one raster line at a time, the hardware
+/// returns two fragments per clock, and the frame writer takes both (z-buffer as in
+/// [`render_lit_rtl`]). `progress` counts spans.
+pub fn render_span_rtl(
+    tris: &[ScreenTriangle],
+    method: Method,
+    ctx: &ShadeContext,
+    width: u32,
+    height: u32,
+    progress: &ProgressBar,
+) -> Result<RtlRender> {
+    check_addresses(tris, width, height)?;
+    let regs = ShadingRegs::of(ctx).map_err(|e| anyhow::anyhow!("RTL set-up: {e}"))?;
+    let mut pipe = SpanPipe::new(method).map_err(|e| anyhow::anyhow!("RTL set-up: {e}"))?;
+    let mut spans = Vec::new();
+    let mut depth = Vec::with_capacity(tris.len());
+    for (i, t) in tris.iter().enumerate() {
+        let Some(d) = t.depth_plane() else { continue };
+        let k = depth.len();
+        spans.extend(
+            span_jobs(t, k, pipe.kind(), ctx).map_err(|e| anyhow::anyhow!("triangle {i}: {e}"))?,
+        );
+        depth.push(d);
+    }
+    progress.set_length(spans.len() as u64);
+    progress.set_position(0);
+    let mut writer = FrameWriter::new(width, height);
+    let stats = pipe
+        .run(
+            &spans,
+            &regs,
+            span_clock_budget(&spans),
+            |f| writer.put(f.triangle, f.x, f.y, f.z, f.rgb, &depth[f.triangle]),
+            |done| progress.set_position(done),
+        )
+        .map_err(|e| anyhow::anyhow!("RTL simulation: {e}"))?;
+    Ok(writer.finish(stats))
+}
+
+/// The frame writer of the lit and span pipelines: a z-buffer on the hardware's depth words
+/// (nearer wins, ties keep the first writer), and beside it the f64 depth planes picking a
+/// visible triangle per pixel as the golden renderer does, to count the pixels where the two
+/// disagree.
+struct FrameWriter {
+    frame: Frame,
+    golden_z: Vec<f64>,
+    golden_winner: Vec<usize>,
+    hw_winner: Vec<usize>,
+}
+
+impl FrameWriter {
+    fn new(width: u32, height: u32) -> FrameWriter {
+        let n = width as usize * height as usize;
+        FrameWriter {
+            frame: Frame::new(width, height),
+            golden_z: vec![f64::INFINITY; n],
+            golden_winner: vec![usize::MAX; n],
+            hw_winner: vec![usize::MAX; n],
+        }
+    }
+
+    /// A fragment of triangle `k` (whose f64 depth plane is `plane`) with depth word `z`.
+    fn put(&mut self, k: usize, x: u32, y: u32, z: i32, rgb: [u8; 3], plane: &Plane) {
+        let (w, h) = (self.frame.width, self.frame.height);
+        let (xi, yi) = (x as i32, y as i32);
+        if self.frame.put(xi, yi, z as f64, rgb) {
+            self.hw_winner[y as usize * w as usize + x as usize] = k;
+        }
+        if x < w && y < h {
+            let i = y as usize * w as usize + x as usize;
+            let zf = plane.at_pixel(xi, yi);
+            if zf < self.golden_z[i] {
+                self.golden_z[i] = zf;
+                self.golden_winner[i] = k;
+            }
+        }
+    }
+
+    fn finish(self, stats: PipeStats) -> RtlRender {
+        let visibility_mismatches = self
+            .hw_winner
+            .iter()
+            .zip(&self.golden_winner)
+            .filter(|(a, b)| a != b)
+            .count();
+        RtlRender {
+            frame: self.frame,
+            stats,
+            visibility_mismatches,
+        }
+    }
 }
 
 /// Render `tris` with Gouraud shading through the simulated address block and intensity

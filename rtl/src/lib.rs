@@ -17,4 +17,5 @@ pub mod power_unit;
 pub mod primitives;
 pub mod registry;
 pub mod sim;
+pub mod span_pipeline;
 pub mod vector_interpolator;

@@ -1,0 +1,399 @@
+//! The span pipelines (`rtl::span_pipeline`) as a render driver: the span front end — per
+//! raster line of the triangle walk, the software set-up of the golden method (end normals,
+//! then `golden::angular::span_setup` or `golden::fast::span_setup` for L and H, quantized to
+//! the span unit's words) and the line's depth words — then the spans fed back to back, two
+//! fragments per clock out.
+//!
+//! Row layout (the top's input ports in order): `load`, `y`, `x0`, `dir`, `m`, the L words, the
+//! H words (angular: p q d cos β; fast: b h g d0 dd), `z0`, `zm`, `dz`, then the material
+//! registers (n, amb r g b, dif r g b, spc r g b). Outputs: ready, lane A (valid x z r g b),
+//! lane B (valid x z r g b), y, last.
+
+use std::collections::VecDeque;
+use std::io::Write;
+
+use golden::cos_v_accumulator::SpanWords;
+use golden::fast_unit::FastWords;
+use golden::intensity_interpolator::quantize;
+use golden::methods::{row_end, span_end_normals, Method};
+use golden::raster::walk;
+use golden::shade::ShadeContext;
+use golden::types::ScreenTriangle;
+use rtl::fast_unit::FastParams;
+use rtl::registry::{BlockParams, Options, RtlBlock};
+use rtl::sim::Stepper;
+use rtl::span_pipeline::{AngularPipeline, FastPipeline};
+
+use crate::gouraud::PipeStats;
+use crate::lit::{ShadingRegs, DEPTH_LIMIT};
+
+/// The methods the span pipelines render.
+pub const SPAN_METHODS: [Method; 3] = [Method::Angular, Method::Fast, Method::FastFit];
+
+/// Outputs per clock: ready, 2 × (valid x z r g b), y, last.
+pub const OUTPUTS: usize = 15;
+
+/// Which span unit a method uses.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum SpanKind {
+    Angular,
+    /// The fast unit with this `inv-sqrt` set (`chebyshev`, `shift-add`, `fit`).
+    Fast(&'static str),
+}
+
+impl SpanKind {
+    /// The span pipeline that computes `method`; `None` if none does.
+    pub fn of(method: Method) -> Option<SpanKind> {
+        match method {
+            Method::Angular => Some(SpanKind::Angular),
+            Method::Fast => Some(SpanKind::Fast("chebyshev")),
+            Method::FastFit => Some(SpanKind::Fast("fit")),
+            _ => None,
+        }
+    }
+    /// The fast unit's build parameters (the chebyshev set for [`SpanKind::Angular`], unused).
+    pub fn fast_params(self) -> FastParams {
+        let name = match self {
+            SpanKind::Fast(n) => n,
+            SpanKind::Angular => "chebyshev",
+        };
+        FastParams::from_options(&Options::new().with("inv-sqrt", name))
+            .expect("the span kinds name known sets")
+    }
+}
+
+/// One vector's span-unit words.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum UnitWords {
+    Angular(SpanWords),
+    Fast(FastWords),
+}
+
+const MASK32: i64 = (1 << 32) - 1;
+const MASK48: i64 = (1 << 48) - 1;
+
+impl UnitWords {
+    /// The unit's set-up of `x` on a line with end normals `na`, `nb` (`None`: the end normals
+    /// vanish, zero words: the pixel gets the ambient colour).
+    pub fn new(kind: SpanKind, ends: Option<(glam::DVec3, glam::DVec3)>, x: glam::DVec3, m: u32) -> UnitWords {
+        match (kind, ends) {
+            (SpanKind::Angular, Some((a, b))) => {
+                UnitWords::Angular(SpanWords::new(&golden::angular::span_setup(a, b, x, m)))
+            }
+            (SpanKind::Angular, None) => UnitWords::Angular(SpanWords {
+                m,
+                ..SpanWords::default()
+            }),
+            (SpanKind::Fast(_), Some((a, b))) => {
+                UnitWords::Fast(FastWords::new(&golden::fast::span_setup(a, b, x, m)))
+            }
+            (SpanKind::Fast(_), None) => UnitWords::Fast(FastWords {
+                m,
+                ..FastWords::default()
+            }),
+        }
+    }
+    /// The words in port order.
+    pub fn row(&self) -> Vec<u64> {
+        match self {
+            UnitWords::Angular(w) => vec![
+                (w.p & MASK32) as u64,
+                (w.q & MASK32) as u64,
+                (w.d & MASK32) as u64,
+                w.cos_beta,
+            ],
+            UnitWords::Fast(w) => vec![
+                (w.b & MASK32) as u64,
+                (w.h & MASK32) as u64,
+                (w.g & MASK32) as u64,
+                (w.d0 & MASK48) as u64,
+                (w.dd & MASK48) as u64,
+            ],
+        }
+    }
+    fn zero(kind: SpanKind) -> UnitWords {
+        UnitWords::new(kind, None, glam::DVec3::ZERO, 0)
+    }
+}
+
+/// One raster line's set-up for a span pipeline.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SpanJob {
+    /// Index of the triangle (jobs keep their order).
+    pub triangle: usize,
+    pub y: u32,
+    /// x of pixel 0.
+    pub x0: u32,
+    /// Pixel t is at x0 − t (else x0 + t).
+    pub leftward: bool,
+    /// Pixels − 1.
+    pub m: u32,
+    pub light: UnitWords,
+    pub half: UnitWords,
+    /// Depth at pixel 0, at pixel m, and per pixel step (signed Q16.16 words).
+    pub z0: u32,
+    pub zm: u32,
+    pub dz: u32,
+}
+
+impl SpanJob {
+    /// Clocks the span occupies in the span unit: ⌊m/2⌋ + 1.
+    pub fn clocks(&self) -> u64 {
+        self.m as u64 / 2 + 1
+    }
+}
+
+/// The span front end: the spans of triangle `tri` (index `triangle`) for `kind` under `ctx`,
+/// in walk order; none for a zero-area triangle. Error: a vertex depth beyond ±[`DEPTH_LIMIT`].
+pub fn span_jobs(
+    tri: &ScreenTriangle,
+    triangle: usize,
+    kind: SpanKind,
+    ctx: &ShadeContext,
+) -> Result<Vec<SpanJob>, String> {
+    if let Some(v) = tri
+        .v
+        .iter()
+        .find(|v| v.z.is_nan() || v.z.abs() >= DEPTH_LIMIT)
+    {
+        return Err(format!(
+            "vertex depth {} is outside the depth words' range ±{DEPTH_LIMIT}",
+            v.z
+        ));
+    }
+    let (Some(plane), Some(depth)) = (tri.normal_plane(), tri.depth_plane()) else {
+        return Ok(Vec::new());
+    };
+    let spec = ctx.specular_vector();
+    Ok(walk(tri)
+        .rows
+        .iter()
+        .filter(|r| r.len > 0)
+        .map(|row| {
+            let m = row.len - 1;
+            let ends = span_end_normals(&plane, row);
+            let end = row_end(row);
+            SpanJob {
+                triangle,
+                y: row.y as u32,
+                x0: row.x_start as u32,
+                leftward: row.dir < 0,
+                m,
+                light: UnitWords::new(kind, ends, ctx.light, m),
+                half: spec.map_or(UnitWords::new(kind, None, glam::DVec3::ZERO, m), |h| {
+                    UnitWords::new(kind, ends, h, m)
+                }),
+                z0: quantize(depth.at_pixel(row.x_start, row.y)),
+                zm: quantize(depth.at_pixel(end, row.y)),
+                dz: quantize(depth.a * row.dir as f64),
+            }
+        })
+        .collect())
+}
+
+/// The top's input row: `load` with a span (or idle), then the material registers.
+pub fn span_row(kind: SpanKind, job: Option<&SpanJob>, regs: &ShadingRegs) -> Vec<u64> {
+    let mut row = match job {
+        Some(j) => vec![
+            1,
+            j.y as u64,
+            j.x0 as u64,
+            j.leftward as u64,
+            j.m as u64,
+        ],
+        None => vec![0; 5],
+    };
+    let z = UnitWords::zero(kind);
+    row.extend(job.map_or(&z, |j| &j.light).row());
+    row.extend(job.map_or(&z, |j| &j.half).row());
+    row.extend(job.map_or([0; 3], |j| [j.z0, j.zm, j.dz]).map(u64::from));
+    row.push(regs.n);
+    row.extend(regs.weights);
+    row
+}
+
+/// One fragment out of a span pipeline.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SpanFragment {
+    pub triangle: usize,
+    pub x: u32,
+    pub y: u32,
+    /// Depth word, signed Q16.16.
+    pub z: i32,
+    pub rgb: [u8; 3],
+    /// The clock (0 = the run's first) whose outputs show it.
+    pub clock: u64,
+    /// Lane B (the mirror run).
+    pub lane_b: bool,
+}
+
+enum Top {
+    Angular(Box<Stepper<AngularPipeline>>),
+    Fast(Box<Stepper<FastPipeline>>),
+}
+
+/// A span pipeline, stepped by hand.
+pub struct SpanPipe {
+    kind: SpanKind,
+    top: Top,
+}
+
+impl SpanPipe {
+    /// The span pipeline for `method` (one of [`SPAN_METHODS`]).
+    pub fn new(method: Method) -> Result<SpanPipe, String> {
+        let kind = SpanKind::of(method).ok_or_else(|| {
+            format!(
+                "the RTL span pipelines do not compute {method} (they have: {})",
+                SPAN_METHODS.map(|m| m.name()).join(", ")
+            )
+        })?;
+        let top = match kind {
+            SpanKind::Angular => Top::Angular(Box::new(Stepper::new(AngularPipeline::default())?)),
+            SpanKind::Fast(_) => Top::Fast(Box::new(Stepper::new(FastPipeline::new(
+                &kind.fast_params(),
+            ))?)),
+        };
+        Ok(SpanPipe { kind, top })
+    }
+
+    pub fn kind(&self) -> SpanKind {
+        self.kind
+    }
+
+    /// Load → first fragments.
+    pub fn latency(&self) -> usize {
+        match self.top {
+            Top::Angular(_) => AngularPipeline::LATENCY,
+            Top::Fast(_) => <FastPipeline as RtlBlock>::LATENCY,
+        }
+    }
+
+    /// Trace every following clock into `w`.
+    pub fn start_vcd(&mut self, w: Box<dyn Write>) {
+        match &mut self.top {
+            Top::Angular(s) => s.start_vcd(w),
+            Top::Fast(s) => s.start_vcd(w),
+        }
+    }
+
+    fn ready(&self) -> bool {
+        match &self.top {
+            Top::Angular(s) => s.dut().ready.val(),
+            Top::Fast(s) => s.dut().ready.val(),
+        }
+    }
+
+    fn step(&mut self, row: &[u64], out: &mut [u64]) -> Result<(), String> {
+        match &mut self.top {
+            Top::Angular(s) => s.step(row, out),
+            Top::Fast(s) => s.step(row, out),
+        }
+    }
+
+    /// Run `spans` (from [`span_jobs`], in order) with registers `regs`, each loaded in the clock
+    /// `ready` is high; `fragment` for every valid lane, `progress(spans_done)` every 256 spans.
+    /// [`PipeStats::triangles`] counts spans here. Stops after the last span's `last`, or with
+    /// an error after `max_clocks`.
+    pub fn run(
+        &mut self,
+        spans: &[SpanJob],
+        regs: &ShadingRegs,
+        max_clocks: u64,
+        mut fragment: impl FnMut(SpanFragment),
+        mut progress: impl FnMut(u64),
+    ) -> Result<PipeStats, String> {
+        let mut st = PipeStats::default();
+        let mut out = vec![0u64; OUTPUTS];
+        let idle = span_row(self.kind, None, regs);
+        let mut in_flight: VecDeque<usize> = VecDeque::new();
+        let mut next = 0;
+        while st.triangles < spans.len() as u64 {
+            if st.clocks >= max_clocks {
+                return Err(format!(
+                    "span pipeline: {} of {} spans done after {max_clocks} clocks",
+                    st.triangles,
+                    spans.len()
+                ));
+            }
+            let load = (self.ready() && next < spans.len()).then(|| &spans[next]);
+            match load {
+                Some(j) => {
+                    in_flight.push_back(j.triangle);
+                    next += 1;
+                    let row = span_row(self.kind, Some(j), regs);
+                    self.step(&row, &mut out)?;
+                }
+                None => self.step(&idle, &mut out)?,
+            }
+            st.clocks += 1;
+            let triangle = in_flight.front().copied().unwrap_or(usize::MAX);
+            for (lane, at) in [(false, 1), (true, 7)] {
+                if out[at] != 0 {
+                    st.pixels += 1;
+                    fragment(SpanFragment {
+                        triangle,
+                        x: out[at + 1] as u32,
+                        y: out[13] as u32,
+                        z: out[at + 2] as u32 as i32,
+                        rgb: [out[at + 3] as u8, out[at + 4] as u8, out[at + 5] as u8],
+                        clock: st.clocks - 1,
+                        lane_b: lane,
+                    });
+                }
+            }
+            if out[14] != 0 {
+                in_flight.pop_front();
+                st.triangles += 1;
+                if st.triangles % 256 == 0 || st.triangles == spans.len() as u64 {
+                    progress(st.triangles);
+                }
+            }
+        }
+        match &mut self.top {
+            Top::Angular(s) => s.stop_vcd(),
+            Top::Fast(s) => s.stop_vcd(),
+        }
+        Ok(st)
+    }
+}
+
+/// A clock budget for `spans`: their clocks plus the pipeline's latency and margin.
+pub fn span_clock_budget(spans: &[SpanJob]) -> u64 {
+    spans.iter().map(SpanJob::clocks).sum::<u64>() + 64
+}
+
+/// Clocks the spans take at two pixels per clock with no gap, and their pixels.
+pub fn span_schedule(spans: &[SpanJob]) -> (u64, u64) {
+    (
+        spans.iter().map(SpanJob::clocks).sum(),
+        spans.iter().map(|s| s.m as u64 + 1).sum(),
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn span_rows_have_the_ports_width() {
+        let t = ScreenTriangle::from_points([(3, 1), (40, 7), (11, 30)]);
+        let ctx = ShadeContext::default();
+        let regs = ShadingRegs::of(&ctx).unwrap();
+        for (kind, words) in [(SpanKind::Angular, 4), (SpanKind::Fast("fit"), 5)] {
+            let jobs = span_jobs(&t, 0, kind, &ctx).unwrap();
+            assert_eq!(
+                jobs.iter().map(|j| j.m as usize + 1).sum::<usize>(),
+                walk(&t).pixel_count()
+            );
+            let row = span_row(kind, Some(&jobs[0]), &regs);
+            assert_eq!(row.len(), 5 + 2 * words + 3 + 10);
+            assert_eq!(span_row(kind, None, &regs).len(), row.len());
+        }
+        let mut far = t;
+        far.v[0].z = 1e6;
+        assert!(span_jobs(&far, 0, SpanKind::Angular, &ctx)
+            .unwrap_err()
+            .contains("depth"));
+        assert!(SpanKind::of(Method::Gouraud).is_none());
+    }
+}
