@@ -19,10 +19,9 @@ use golden::methods::{row_end, span_end_normals, Method};
 use golden::raster::walk;
 use golden::shade::ShadeContext;
 use golden::types::ScreenTriangle;
-use rtl::fast_unit::FastParams;
 use rtl::registry::{BlockParams, Options, RtlBlock};
 use rtl::sim::Stepper;
-use rtl::span_pipeline::{AngularPipeline, FastPipeline};
+use rtl::span_pipeline::{AngularPipeline, FastPipeline, FastPipelineParams};
 
 use crate::gouraud::PipeStats;
 use crate::lit::{ShadingRegs, DEPTH_LIMIT};
@@ -52,12 +51,12 @@ impl SpanKind {
         }
     }
     /// The fast unit's build parameters (the chebyshev set for [`SpanKind::Angular`], unused).
-    pub fn fast_params(self) -> FastParams {
+    pub fn fast_params(self) -> FastPipelineParams {
         let name = match self {
             SpanKind::Fast(n) => n,
             SpanKind::Angular => "chebyshev",
         };
-        FastParams::from_options(&Options::new().with("inv-sqrt", name))
+        FastPipelineParams::from_options(&Options::new().with("inv-sqrt", name))
             .expect("the span kinds name known sets")
     }
 }

@@ -60,7 +60,28 @@ use crate::cos_v_accumulator::CosVAccumulator;
 use crate::fast_unit::{FastParams, FastUnit};
 use crate::power_unit::{PowerParams, PowerUnit};
 use crate::primitives::Delay;
-use crate::registry::RtlBlock;
+use crate::registry::{BlockParams, Options, RtlBlock};
+
+/// Build parameters of [`FastPipeline`]: the fast units' 1/√(M+1) set (`inv-sqrt`, as
+/// `fast-unit`). The generic tests build `fit` (the `fast-fit` method) and `chebyshev`
+/// (`fast`); `fast-unit` itself is tested with every set.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FastPipelineParams(pub FastParams);
+
+impl BlockParams for FastPipelineParams {
+    const KEYS: &'static [&'static str] = FastParams::KEYS;
+    fn from_options(o: &Options) -> Result<Self, String> {
+        FastParams::from_options(o).map(FastPipelineParams)
+    }
+    fn describe(&self) -> Option<String> {
+        self.0.describe()
+    }
+    fn test_sets() -> Vec<Options> {
+        ["fit", "chebyshev"]
+            .map(|c| Options::new().with("inv-sqrt", c))
+            .to_vec()
+    }
+}
 
 /// Clocks from the span units' pixels to the fragments (power 10, colour 2).
 pub const SHADE_LATENCY: usize = PowerUnit::LATENCY + ColourCombine::LATENCY;
@@ -423,12 +444,12 @@ crate::hw_block! {
             valid_b: Bit, x_b: Bits<12>, z_b: Bits<32>, red_b: Bits<8>, green_b: Bits<8>, blue_b: Bits<8>,
             y_out: Bits<12>, last: Bit,
         }
-        pub unit_l: FastUnit = FastUnit::new(p),
-        pub unit_h: FastUnit = FastUnit::new(p),
+        pub unit_l: FastUnit = FastUnit::new(&p.0),
+        pub unit_h: FastUnit = FastUnit::new(&p.0),
         pub shader: SpanShader<{ FastUnit::LATENCY - 1 }>,
         take: Signal<Local, Bit>,
     }
-    new(p: &FastParams);
+    new(p: &FastPipelineParams);
 }
 
 impl Logic for FastPipeline {

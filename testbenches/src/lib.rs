@@ -12,6 +12,7 @@ pub mod pixel_pipeline;
 pub mod power_unit;
 pub mod registry;
 pub mod span;
+pub mod span_pipeline;
 pub mod synth;
 pub mod tools;
 pub mod vcd_check;

@@ -35,16 +35,16 @@ use crate::normalizer::seeded_runner;
 use crate::registry::{Bench, Stimulus, Twin};
 
 /// A delay line of `n` registers (reset 0): `out` is what went in `n` clocks ago.
-struct DelayLine(VecDeque<u64>);
+pub(crate) struct DelayLine(VecDeque<u64>);
 
 impl DelayLine {
-    fn new(n: usize) -> Self {
+    pub(crate) fn new(n: usize) -> Self {
         DelayLine(std::iter::repeat_n(0, n).collect())
     }
-    fn out(&self) -> u64 {
+    pub(crate) fn out(&self) -> u64 {
         self.0[0]
     }
-    fn clock(&mut self, d: u64) {
+    pub(crate) fn clock(&mut self, d: u64) {
         self.0.pop_front();
         self.0.push_back(d);
     }

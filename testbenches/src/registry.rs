@@ -218,6 +218,8 @@ pub static BLOCKS: &[&dyn Entry] = &[
     &entry::<rtl::pixel_pipeline::PixelPipeline>(),
     &entry::<rtl::cos_v_accumulator::CosVAccumulator>(),
     &entry::<rtl::fast_unit::FastUnit>(),
+    &entry::<rtl::span_pipeline::AngularPipeline>(),
+    &entry::<rtl::span_pipeline::FastPipeline>(),
 ];
 
 /// The entry named `name`.

@@ -1,0 +1,394 @@
+//! Benches of the span pipelines (`rtl::span_pipeline`: `angular-pipeline`, `fast-pipeline`):
+//! their bit-exact twin (the span units' twins, the base registers and depth runs, the power and
+//! colour twins per lane, wired as the tops wire them) and the golden method of the same build
+//! (`golden::angular::shade`, `golden::fast::shade` with the build's 1/√(M+1) set), every clock.
+//!
+//! Stimulus: seeded random triangles (`crate::pixel_pipeline::lit_triangles`: unit vertex
+//! normals facing the viewer, depths in [−2, 2]) under the default context (Blinn, n = 50),
+//! through the span front end (`pipeline::span::span_jobs`), each span loaded in the clock
+//! `ready` rises. Triangle tips give the short spans (m = 0, 1, 2), odd and even m throughout.
+//! Expectations: `ready`, the valid flags, `x`, `y`, `last` exact from the schedule (clock k of a
+//! span shows pixel k in lane A and pixel m − k in lane B when m − k > k); colours within 2 LSB
+//! of the golden method (the bound), RMS 0.5 LSB; `z` within 2048·2⁻¹⁷ + 2⁻¹⁶ of the
+//! f64 depth plane (the depth run's bound).
+
+use golden::colour_combine::twin::ColourTwin;
+use golden::cos_v_accumulator::{twin::CosVTwin, SpanWords};
+use golden::fast_unit::{twin::FastTwin, FastWords};
+use golden::normalizer::Coeffs;
+use golden::power_unit::twin::PowerTwin;
+use golden::raster::walk;
+use golden::shade::ShadeContext;
+use golden::types::ScreenTriangle;
+use pipeline::lit::ShadingRegs;
+use pipeline::span::{span_jobs, span_row, SpanJob, SpanKind, UnitWords};
+use proptest::strategy::{Strategy, ValueTree};
+use rtl::cos_v_accumulator::CosVAccumulator;
+use rtl::fast_unit::FastUnit;
+use rtl::fixed::{INTENSITY, LEVEL};
+use golden::power_unit::PowerMode;
+use rtl::power_unit::PowerUnit;
+use rtl::registry::NoParams;
+use rtl::span_pipeline::{AngularPipeline, FastPipeline, FastPipelineParams, SHADE_LATENCY};
+
+use crate::harness::{Compare, Expected, Tolerance};
+use crate::normalizer::seeded_runner;
+use crate::pixel_pipeline::{lit_triangles, DelayLine};
+use crate::registry::{Bench, Stimulus, Twin};
+
+/// One span unit's twin.
+enum UnitTwin {
+    Angular(CosVTwin),
+    Fast(FastTwin),
+}
+
+impl UnitTwin {
+    /// ready, valid_a, index_a, cos_a, valid_b, index_b, cos_b, last.
+    fn outputs(&self) -> Vec<u64> {
+        match self {
+            UnitTwin::Angular(t) => t.outputs(),
+            UnitTwin::Fast(t) => t.outputs(),
+        }
+    }
+    fn clock(&mut self, load: Option<&UnitWords>) {
+        match (self, load) {
+            (UnitTwin::Angular(t), Some(UnitWords::Angular(w))) => t.clock(Some(w)),
+            (UnitTwin::Angular(t), _) => t.clock(None),
+            (UnitTwin::Fast(t), Some(UnitWords::Fast(w))) => t.clock(Some(w)),
+            (UnitTwin::Fast(t), _) => t.clock(None),
+        }
+    }
+}
+
+/// Twin of a span pipeline top.
+pub struct SpanPipelineTwin {
+    kind: SpanKind,
+    unit_l: UnitTwin,
+    unit_h: UnitTwin,
+    // base registers: x0, y, dir, dz, za, zb
+    base: [u64; 6],
+    base_d: Vec<DelayLine>,
+    power: [PowerTwin; 2],
+    cd: [DelayLine; 2],
+    colour: [ColourTwin; 2],
+    // x_a, x_b, z_a, z_b, y, last
+    out_d: Vec<DelayLine>,
+}
+
+impl SpanPipelineTwin {
+    pub fn new(kind: SpanKind) -> Self {
+        let unit = || match kind {
+            SpanKind::Angular => UnitTwin::Angular(CosVTwin::default()),
+            SpanKind::Fast(_) => UnitTwin::Fast(FastTwin::new(coeffs(kind))),
+        };
+        let u1 = match kind {
+            SpanKind::Angular => CosVAccumulator::LATENCY - 1,
+            SpanKind::Fast(_) => FastUnit::LATENCY - 1,
+        };
+        let (unit_l, unit_h) = (unit(), unit());
+        SpanPipelineTwin {
+            kind,
+            unit_l,
+            unit_h,
+            base: [0; 6],
+            base_d: (0..5).map(|_| DelayLine::new(u1)).collect(),
+            power: [0, 1].map(|_| PowerTwin::new(PowerMode::Exact)),
+            cd: [0, 1].map(|_| DelayLine::new(PowerUnit::LATENCY)),
+            colour: Default::default(),
+            out_d: (0..6).map(|_| DelayLine::new(SHADE_LATENCY)).collect(),
+        }
+    }
+}
+
+fn coeffs(kind: SpanKind) -> Coeffs {
+    kind.fast_params().0.coeffs
+}
+
+/// The span a row loads (if `load`): its base and unit words, from the row layout of
+/// `pipeline::span::span_row`.
+fn row_span(kind: SpanKind, r: &[u64]) -> (bool, [u64; 6], UnitWords, UnitWords, u64, [u64; 9]) {
+    let sx = |x: u64, bits: u32| ((x << (64 - bits)) as i64) >> (64 - bits);
+    let m = r[4] as u32;
+    let (l, h, at) = match kind {
+        SpanKind::Angular => {
+            let w = |k: usize| {
+                UnitWords::Angular(SpanWords {
+                    p: sx(r[k], 32),
+                    q: sx(r[k + 1], 32),
+                    d: sx(r[k + 2], 32),
+                    cos_beta: r[k + 3],
+                    m,
+                })
+            };
+            (w(5), w(9), 13)
+        }
+        SpanKind::Fast(_) => {
+            let w = |k: usize| {
+                UnitWords::Fast(FastWords {
+                    b: sx(r[k], 32),
+                    h: sx(r[k + 1], 32),
+                    g: sx(r[k + 2], 32),
+                    d0: sx(r[k + 3], 48),
+                    dd: sx(r[k + 4], 48),
+                    m,
+                })
+            };
+            (w(5), w(10), 15)
+        }
+    };
+    // base: x0, y, dir, dz, z0, zm
+    let base = [r[2], r[1], r[3], r[at + 2], r[at], r[at + 1]];
+    let weights = std::array::from_fn(|i| r[at + 4 + i]);
+    (r[0] != 0, base, l, h, r[at + 3], weights)
+}
+
+impl Twin for SpanPipelineTwin {
+    fn step(&mut self, r: &[u64]) -> Vec<u64> {
+        let ul = self.unit_l.outputs();
+        let uh = self.unit_h.outputs();
+        let lane = |k: usize, this: &Self| {
+            let (v, rgb) = this.colour[k].outputs();
+            vec![
+                v as u64,
+                this.out_d[k].out(),
+                this.out_d[2 + k].out(),
+                rgb[0],
+                rgb[1],
+                rgb[2],
+            ]
+        };
+        let mut o = vec![ul[0]];
+        o.extend(lane(0, self));
+        o.extend(lane(1, self));
+        o.push(self.out_d[4].out());
+        o.push(self.out_d[5].out());
+
+        let (load, base, l, h, n, w) = row_span(self.kind, r);
+        let take = load && ul[0] != 0;
+        for k in 0..2 {
+            let (pv, spec) = self.power[k].outputs();
+            self.colour[k].clock(pv, self.cd[k].out(), spec, &w);
+            // lanes: (valid, index, cos) at 1.. and 4..
+            self.power[k].clock(ul[1 + 3 * k] != 0, uh[3 + 3 * k], n);
+            self.cd[k].clock(ul[3 + 3 * k]);
+        }
+        let (x0, y, dir) = (
+            self.base_d[0].out(),
+            self.base_d[1].out(),
+            self.base_d[2].out(),
+        );
+        let x = |t: u64| {
+            if dir != 0 {
+                x0.wrapping_sub(t) & 0xfff
+            } else {
+                (x0 + t) & 0xfff
+            }
+        };
+        let outs = [
+            x(ul[2]),
+            x(ul[5]),
+            self.base_d[3].out(),
+            self.base_d[4].out(),
+            y,
+            ul[7],
+        ];
+        for (d, v) in self.out_d.iter_mut().zip(outs) {
+            d.clock(v);
+        }
+        let [bx, by, bdir, bdz, za, zb] = self.base;
+        for (d, v) in self.base_d.iter_mut().zip([bx, by, bdir, za, zb]) {
+            d.clock(v);
+        }
+        self.base = if take {
+            let [x0, y, dir, dz, z0, zm] = base;
+            [x0, y, dir, dz, z0, zm]
+        } else {
+            [
+                bx,
+                by,
+                bdir,
+                bdz,
+                (za + bdz) & 0xffff_ffff,
+                zb.wrapping_sub(bdz) & 0xffff_ffff,
+            ]
+        };
+        let (wl, wh) = (load.then_some(&l), load.then_some(&h));
+        self.unit_l.clock(wl);
+        self.unit_h.clock(wh);
+        o
+    }
+}
+
+/// The golden colour of every pixel of `t` under `kind`, in walk order.
+fn golden_colours(t: &ScreenTriangle, ctx: &ShadeContext, kind: SpanKind) -> Vec<[u8; 3]> {
+    let w = walk(t);
+    let mut out = Vec::with_capacity(w.pixel_count());
+    let mut emit = |_: i32, _: i32, rgb: [u8; 3]| out.push(rgb);
+    match kind {
+        SpanKind::Angular => golden::angular::shade(t, &w, ctx, &mut emit),
+        SpanKind::Fast(_) => golden::fast::shade(t, &w, ctx, coeffs(kind), &mut emit),
+    }
+    out
+}
+
+/// Rows and expectations for `tris` through the span pipeline of `kind`.
+fn span_stimulus(kind: SpanKind, tris: &[ScreenTriangle], latency: usize) -> Stimulus {
+    let ctx = ShadeContext::default();
+    let regs = ShadingRegs::of(&ctx).expect("default context fits the registers");
+    let mut spans: Vec<SpanJob> = Vec::new();
+    let mut colours = Vec::new();
+    let mut depths = Vec::new();
+    for (i, t) in tris.iter().enumerate() {
+        spans.extend(span_jobs(t, i, kind, &ctx).expect("depths in range"));
+        colours.extend(golden_colours(t, &ctx, kind));
+        let d = t.depth_plane().expect("non-degenerate");
+        depths.extend(
+            walk(t)
+                .pixels()
+                .into_iter()
+                .map(|px| d.at_pixel(px.x, px.y)),
+        );
+    }
+    // Pixel p of span i is colours[first[i] + p] (walk order = span order, t order).
+    let mut first = Vec::with_capacity(spans.len());
+    let mut at = 0;
+    for s in &spans {
+        first.push(at);
+        at += s.m as usize + 1;
+    }
+    assert_eq!(at, colours.len(), "spans and golden pixels disagree");
+    // Schedule: the first span loads in clock 0; span i occupies clocks(i) clocks; the next
+    // loads in its last clock.
+    let mut rows = vec![span_row(kind, spans.first(), &regs)];
+    let mut state: Vec<Option<(usize, u64)>> = vec![None];
+    for (i, s) in spans.iter().enumerate() {
+        for k in 0..s.clocks() {
+            state.push(Some((i, k)));
+            let next = (k + 1 == s.clocks()).then(|| spans.get(i + 1)).flatten();
+            rows.push(span_row(kind, next, &regs));
+        }
+    }
+    for _ in 0..=latency {
+        rows.push(span_row(kind, None, &regs));
+        state.push(None);
+    }
+    let word = Expected::Word;
+    let expected = (0..rows.len())
+        .map(|c| {
+            let ready = state[c].is_none_or(|(i, k)| k + 1 == spans[i].clocks());
+            let mut e = vec![word(ready as u64)];
+            let shown = c.checked_sub(latency - 1).and_then(|s| state[s]);
+            let pixel = |i: usize, t: u64| {
+                let s = &spans[i];
+                let x = if s.leftward {
+                    s.x0 as u64 - t
+                } else {
+                    s.x0 as u64 + t
+                };
+                let p = first[i] + t as usize;
+                let mut v = vec![word(1), word(x), Expected::Real(depths[p])];
+                v.extend(colours[p].map(|c| Expected::Real(c as f64)));
+                v
+            };
+            let none = || {
+                let mut v = vec![word(0)];
+                v.extend([Expected::DontCare; 5]);
+                v
+            };
+            match shown {
+                Some((i, k)) => {
+                    let m = spans[i].m as u64;
+                    e.extend(pixel(i, k));
+                    e.extend(if m - k > k { pixel(i, m - k) } else { none() });
+                    e.push(word(spans[i].y as u64));
+                    e.push(word((k + 1 == spans[i].clocks()) as u64));
+                }
+                None => {
+                    e.extend(none());
+                    e.extend(none());
+                    e.push(Expected::DontCare);
+                    e.push(word(0));
+                }
+            }
+            e
+        })
+        .collect();
+    let level = Compare::Fixed {
+        format: LEVEL,
+        tol: Tolerance {
+            max_abs: 2.0,
+            rms: 0.5,
+        },
+    };
+    let zb = 2048.0 * (-17f64).exp2() + (-16f64).exp2();
+    let depth = Compare::Fixed {
+        format: INTENSITY,
+        tol: Tolerance {
+            max_abs: zb,
+            rms: zb,
+        },
+    };
+    let lane = [Compare::Exact, Compare::Exact, depth, level, level, level];
+    let mut compare = vec![Compare::Exact];
+    compare.extend(lane);
+    compare.extend(lane);
+    compare.extend([Compare::Exact, Compare::Exact]);
+    Stimulus {
+        rows,
+        expected,
+        compare,
+    }
+}
+
+/// Loads in random clocks (ignored while `ready` is low) with the spans of a few triangles.
+fn span_edge_rows(kind: SpanKind, seed: u64) -> Vec<Vec<u64>> {
+    let ctx = ShadeContext::default();
+    let regs = ShadingRegs::of(&ctx).expect("default context fits the registers");
+    let spans: Vec<SpanJob> = lit_triangles(seed ^ 0x5a5, 4)
+        .iter()
+        .enumerate()
+        .flat_map(|(i, t)| span_jobs(t, i, kind, &ctx).expect("depths in range"))
+        .collect();
+    let mut r = seeded_runner(seed ^ 0x5a6);
+    let mut next = 0;
+    (0..600)
+        .map(|_| {
+            let load = (0u8..4).new_tree(&mut r).expect("no rejection").current() == 0;
+            let s = (load && next < spans.len()).then(|| &spans[next]);
+            next += s.is_some() as usize;
+            span_row(kind, s, &regs)
+        })
+        .collect()
+}
+
+impl Bench for AngularPipeline {
+    const ITEMS: &'static str = "triangles";
+    const DEFAULT_ITEMS: usize = 12;
+    fn stimulus(_: &NoParams, n: usize, seed: u64) -> Stimulus {
+        span_stimulus(SpanKind::Angular, &lit_triangles(seed, n), Self::LATENCY)
+    }
+    fn twin(_: &NoParams) -> Box<dyn Twin> {
+        Box::new(SpanPipelineTwin::new(SpanKind::Angular))
+    }
+    fn edge_rows(_: &NoParams, seed: u64) -> Vec<Vec<u64>> {
+        span_edge_rows(SpanKind::Angular, seed)
+    }
+}
+
+fn fast_kind(p: &FastPipelineParams) -> SpanKind {
+    SpanKind::Fast(p.0.name)
+}
+
+impl Bench for FastPipeline {
+    const ITEMS: &'static str = "triangles";
+    const DEFAULT_ITEMS: usize = 12;
+    fn stimulus(p: &FastPipelineParams, n: usize, seed: u64) -> Stimulus {
+        span_stimulus(fast_kind(p), &lit_triangles(seed, n), Self::LATENCY)
+    }
+    fn twin(p: &FastPipelineParams) -> Box<dyn Twin> {
+        Box::new(SpanPipelineTwin::new(fast_kind(p)))
+    }
+    fn edge_rows(p: &FastPipelineParams, seed: u64) -> Vec<Vec<u64>> {
+        span_edge_rows(fast_kind(p), seed)
+    }
+}
