@@ -1,0 +1,152 @@
+//! The span pipelines render images (issue "Two pixels per clock"): `angular`, `fast` and
+//! `fast-fit` through the simulated RTL (`shadecore::rtl_engine::render_rtl` → the
+//! `angular-pipeline` / `fast-pipeline` tops, two fragments per clock) against the golden image
+//! of the same method (max LSB per channel, pixels differing, identical coverage) and against
+//! the reference (NMSE), on the default sphere and the default torus.
+//!
+//! Bounds (the issue's): every method within 2 LSB per channel of its golden image; `angular`
+//! and `fast-fit` at NMSE ≤ 10⁻⁴ against the reference on both scenes (`fast`, the published
+//! Chebyshev set, is ~2·10⁻³ in the golden model itself, so it has no NMSE bound); no pixel
+//! sees another surface than the f64 depth planes pick. And the schedule: the spans go back to
+//! back, so the run takes exactly Σ(⌊m/2⌋ + 1) clocks of spans plus the pipeline's latency.
+
+use golden::methods::Method;
+use golden::render::render;
+use indicatif::ProgressBar;
+use pipeline::span::{span_jobs, span_schedule, SpanKind, SPAN_METHODS};
+use shadecore::rtl_engine::{max_channel_diff, render_rtl};
+use shadecore::setup::{build, SceneArgs};
+
+fn check_scene(label: &str, args: &SceneArgs, nmse_bound: &[(Method, f64)]) {
+    let s = build(args).unwrap();
+    let reference = render(&s.tris, Method::Reference, &s.ctx, s.width, s.height);
+    for m in SPAN_METHODS {
+        let t0 = std::time::Instant::now();
+        let rtl = render_rtl(
+            &s.tris,
+            m,
+            &s.ctx,
+            s.width,
+            s.height,
+            &ProgressBar::hidden(),
+        )
+        .unwrap_or_else(|e| panic!("{label} {m}: {e:#}"));
+        let gold = render(&s.tris, m, &s.ctx, s.width, s.height);
+        assert_eq!(
+            rtl.frame.fragments, gold.fragments,
+            "{label} {m}: coverage differs"
+        );
+        let (max, n) = max_channel_diff(&rtl.frame, &gold);
+        let nmse = golden::nmse::nmse(&reference.rgb, &rtl.frame.rgb);
+        // The schedule the spans should take: ⌊m/2⌋ + 1 clocks each, back to back.
+        let kind = SpanKind::of(m).unwrap();
+        let spans: Vec<_> = s
+            .tris
+            .iter()
+            .filter(|t| t.depth_plane().is_some())
+            .enumerate()
+            .flat_map(|(i, t)| span_jobs(t, i, kind, &s.ctx).unwrap())
+            .collect();
+        let (span_clocks, pixels) = span_schedule(&spans);
+        let latency = pipeline::span::SpanPipe::new(m).unwrap().latency() as u64;
+        println!(
+            "{label} {m}: {} fragments in {} clocks ({:.3}/clock; {} spans, {span_clocks} span \
+             clocks + latency {latency}; {:.1} s); vs golden max {max} LSB, {n} pixels differ; \
+             NMSE vs reference {nmse:.3e}; {} pixels with other visibility",
+            rtl.stats.pixels,
+            rtl.stats.clocks,
+            rtl.stats.pixels_per_clock(),
+            spans.len(),
+            t0.elapsed().as_secs_f64(),
+            rtl.visibility_mismatches
+        );
+        assert_eq!(rtl.stats.pixels, pixels, "{label} {m}: fragment count");
+        assert_eq!(
+            rtl.stats.clocks,
+            span_clocks + latency,
+            "{label} {m}: the spans do not go back to back"
+        );
+        assert!(max <= 2, "{label} {m}: RTL differs from golden by {max} LSB");
+        assert_eq!(
+            rtl.visibility_mismatches, 0,
+            "{label} {m}: visibility differs"
+        );
+        if let Some((_, b)) = nmse_bound.iter().find(|(mm, _)| *mm == m) {
+            assert!(nmse <= *b, "{label} {m}: NMSE {nmse:.3e} > {b}");
+        }
+    }
+}
+
+#[test]
+fn default_scene_every_span_method_through_the_rtl() {
+    check_scene(
+        "sphere rez 50 400x400",
+        &SceneArgs::default(),
+        &[(Method::Angular, 1e-4), (Method::FastFit, 1e-4)],
+    );
+}
+
+#[test]
+fn torus_every_span_method_through_the_rtl() {
+    let args = SceneArgs {
+        scene: "torus".into(),
+        ..SceneArgs::default()
+    };
+    check_scene(
+        "torus rez 50 400x400",
+        &args,
+        &[(Method::Angular, 1e-4), (Method::FastFit, 1e-4)],
+    );
+}
+
+#[test]
+fn span_pipeline_input_errors_are_one_line() {
+    let s = build(&SceneArgs {
+        size: (40, 40),
+        rez: 6,
+        ..SceneArgs::default()
+    })
+    .unwrap();
+    let bar = ProgressBar::hidden();
+    let mut ctx = s.ctx;
+    ctx.lighting = golden::shade::LightingModel::Phong;
+    let e = render_rtl(&s.tris, Method::Angular, &ctx, 40, 40, &bar).unwrap_err();
+    let msg = format!("{e:#}");
+    assert!(msg.contains("phong") && !msg.contains('\n'), "{msg}");
+    let mut far = s.tris.clone();
+    far[0].v[0].z = 1e6;
+    let e = render_rtl(&far, Method::FastFit, &s.ctx, 40, 40, &bar).unwrap_err();
+    assert!(format!("{e:#}").contains("depth"), "{e:#}");
+    let e = render_rtl(&s.tris, Method::Angular, &s.ctx, 5000, 40, &bar).unwrap_err();
+    assert!(format!("{e:#}").contains("canvas"), "{e:#}");
+    // The method list names the span methods.
+    let e = render_rtl(&s.tris, Method::Cubic, &s.ctx, 40, 40, &bar).unwrap_err();
+    assert!(format!("{e:#}").contains("fast-fit"), "{e:#}");
+}
+
+/// Lambert: the H words are zero, so no highlight; equal to the golden Lambert image.
+#[test]
+fn lambert_lighting_through_the_span_pipelines() {
+    let args = SceneArgs {
+        size: (120, 120),
+        rez: 12,
+        lighting: shadecore::setup::Lighting::Lambert,
+        ..SceneArgs::default()
+    };
+    let s = build(&args).unwrap();
+    for m in SPAN_METHODS {
+        let rtl = render_rtl(
+            &s.tris,
+            m,
+            &s.ctx,
+            s.width,
+            s.height,
+            &ProgressBar::hidden(),
+        )
+        .unwrap();
+        let gold = render(&s.tris, m, &s.ctx, s.width, s.height);
+        let (max, n) = max_channel_diff(&rtl.frame, &gold);
+        println!("lambert {m}: max {max} LSB, {n} pixels differ");
+        assert!(max <= 2, "lambert {m}: {max} LSB");
+    }
+}
