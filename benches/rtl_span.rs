@@ -4,11 +4,19 @@
 //! 90°): per-span set-up by `golden::angular::span_setup` for H (the specular vector) and L,
 //! spans loaded whenever `ready` is high.
 //!
-//! Printed once (clock counts of the simulated hardware, not timings): pixels per clock over
-//! all spans and over spans of at least 16 pixels (the runs split each span at its midpoint),
-//! and how often the symmetry point E lies inside a span (the thesis' split point: splitting
-//! there would give two pixels per clock only for those) — then criterion measures simulated
-//! clocks per second.
+//! Printed once (clock counts of the simulated hardware, not timings):
+//! - per unit: pixels per clock over all spans and over spans of at least 16 pixels (the runs
+//!   split each span at its midpoint), and how often the symmetry point E lies inside a span
+//!   (the thesis' split point: splitting there would give two pixels per clock only for those);
+//! - per span pipeline top (`angular-pipeline`, `fast-pipeline` with the fit set), the whole
+//!   default scene through the span front end: fragments per clock, the clocks beyond
+//!   Σ(⌊m/2⌋ + 1) per span (the per-span overhead), and the same on spans ≥ 16 pixels;
+//! - the thesis' average triangle (SPEC §11; both the 78-pixel triangle the deltas give and the
+//!   100-pixel scaled one): clocks from its load to its last fragment and its steady-state
+//!   clocks, through each span top and through the one-pixel-per-clock lit pipeline and the
+//!   Gouraud pipe, beside the sources' Pentium M cycle counts (the README's table).
+//!
+//! Then criterion measures simulated clocks per second.
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use glam::{DQuat, DVec3};
@@ -16,6 +24,12 @@ use golden::angular::span_setup;
 use golden::cos_v_accumulator::SpanWords;
 use golden::fast_unit::FastWords;
 use golden::methods::span_end_normals;
+use golden::methods::Method;
+use golden::shade::ShadeContext;
+use golden::types::ScreenTriangle;
+use pipeline::gouraud::{clock_budget, Pipe, TriangleJob};
+use pipeline::lit::{lit_clock_budget, LitJob, LitPipe, ShadingRegs};
+use pipeline::span::{span_clock_budget, span_jobs, span_schedule, SpanJob, SpanPipe};
 use rtl::cos_v_accumulator::CosVAccumulator;
 use rtl::fast_unit::{FastParams, FastUnit};
 use rtl::registry::{BlockParams, Options};
@@ -160,9 +174,150 @@ fn figures() {
     }
 }
 
+/// (clocks, pixels, spans, Σ(⌊m/2⌋ + 1)) of `tris` through the span top for `method`.
+fn run_top(
+    method: Method,
+    tris: &[ScreenTriangle],
+    ctx: &ShadeContext,
+    keep: impl Fn(&SpanJob) -> bool,
+) -> (u64, u64, usize, u64, usize) {
+    let mut pipe = SpanPipe::new(method).unwrap();
+    let spans: Vec<SpanJob> = tris
+        .iter()
+        .filter(|t| t.depth_plane().is_some())
+        .enumerate()
+        .flat_map(|(i, t)| span_jobs(t, i, pipe.kind(), ctx).unwrap())
+        .filter(|s| keep(s))
+        .collect();
+    let regs = ShadingRegs::of(ctx).unwrap();
+    let st = pipe
+        .run(&spans, &regs, span_clock_budget(&spans), |_| {}, |_| {})
+        .unwrap();
+    let (span_clocks, pixels) = span_schedule(&spans);
+    assert_eq!(st.pixels, pixels);
+    (
+        st.clocks,
+        st.pixels,
+        spans.len(),
+        span_clocks,
+        pipe.latency(),
+    )
+}
+
+fn default_scene() -> (Vec<ScreenTriangle>, ShadeContext) {
+    let mesh = golden::scene::uv_sphere(50).unwrap();
+    let cam = golden::scene::Camera::fit(&mesh, 400, 400, DQuat::IDENTITY);
+    let tris = golden::scene::project(&mesh, &cam, 400, 400).unwrap();
+    let ctx = ShadeContext {
+        light: golden::scene::light_direction(90.0).unwrap(),
+        ..ShadeContext::default()
+    };
+    (tris, ctx)
+}
+
+fn pipeline_figures() {
+    let (tris, ctx) = default_scene();
+    for m in [Method::Angular, Method::FastFit] {
+        let (c, p, n, sc, lat) = run_top(m, &tris, &ctx, |_| true);
+        let (cl, pl, nl, scl, _) = run_top(m, &tris, &ctx, |s| s.m >= 15);
+        println!(
+            "span pipeline {m}, default scene: {p} fragments in {c} clocks ({:.3}/clock); {n} \
+             spans, {sc} span clocks + latency {lat}: overhead {} clocks per span; spans ≥ 16 \
+             pixels: {nl} spans, {pl} fragments in {cl} clocks ({:.3}/clock, {:.3} without the \
+             latency; overhead {} clocks per span)",
+            p as f64 / c as f64,
+            (c - sc - lat as u64) as f64 / n as f64,
+            pl as f64 / cl as f64,
+            pl as f64 / scl as f64,
+            (cl - scl - lat as u64) as f64 / nl as f64,
+        );
+    }
+}
+
+/// The thesis' average triangle (SPEC §11) with normals from a sphere-like cap, n = 256.
+fn average_triangle(points: [(i32, i32); 3]) -> ScreenTriangle {
+    let mut t = ScreenTriangle::from_points(points);
+    let normals = [
+        DVec3::new(-0.2, -0.3, 0.93),
+        DVec3::new(-0.4, 0.1, 0.91),
+        DVec3::new(0.3, 0.35, 0.89),
+    ];
+    for (v, n) in t.v.iter_mut().zip(normals) {
+        v.normal = n.normalize();
+    }
+    t
+}
+
+fn average_triangle_table() {
+    let ctx = ShadeContext {
+        material: golden::shade::Material {
+            shininess: 256,
+            ..Default::default()
+        },
+        ..ShadeContext::default()
+    };
+    let regs = ShadingRegs::of(&ctx).unwrap();
+    println!("| triangle | pixels | method | hardware | clocks, load → last fragment | clocks per triangle, streamed |");
+    println!("|---|---|---|---|---|---|");
+    for (label, pts) in [
+        (
+            "A (17,10) B (10,18) C (26,22)",
+            [(17, 10), (10, 18), (26, 22)],
+        ),
+        (
+            "scaled (20,10) (12,19) (30,24)",
+            [(20, 10), (12, 19), (30, 24)],
+        ),
+    ] {
+        let t = average_triangle(pts);
+        let px = golden::raster::walk(&t).pixel_count();
+        let tris = [t];
+        // Gouraud pipe and the lit pipeline: one triangle, then the steady state (10 copies).
+        let g = |k: usize| {
+            let jobs: Vec<TriangleJob> = (0..k)
+                .map(|_| TriangleJob::gouraud(&t, &ctx).unwrap())
+                .collect();
+            Pipe::new()
+                .unwrap()
+                .run(&jobs, clock_budget(&jobs), |_, _, _, _| {}, |_| {})
+                .unwrap()
+                .clocks
+        };
+        let l = |k: usize| {
+            let jobs: Vec<LitJob> = (0..k).map(|_| LitJob::new(&t).unwrap().unwrap()).collect();
+            LitPipe::new(Method::NormalizerFit)
+                .unwrap()
+                .run(&jobs, &regs, lit_clock_budget(&jobs), |_| {}, |_| {})
+                .unwrap()
+                .clocks
+        };
+        let (g1, g10) = (g(1), g(10));
+        println!(
+            "| {label} | {px} | gouraud | raster pipe (address block + BVI) | {g1} | {:.1} |",
+            (g10 - g1) as f64 / 9.0
+        );
+        let (l1, l10) = (l(1), l(10));
+        println!("| {label} | {px} | normalizer-fit, brdf-k*, bump | lit pixel pipeline | {l1} | {:.1} |", (l10 - l1) as f64 / 9.0);
+        for (m, hw) in [
+            (Method::Angular, "angular-pipeline"),
+            (Method::FastFit, "fast-pipeline"),
+        ] {
+            let (c1, ..) = run_top(m, &tris, &ctx, |_| true);
+            let ten: Vec<ScreenTriangle> = std::iter::repeat_n(t, 10).collect();
+            let (c10, ..) = run_top(m, &ten, &ctx, |_| true);
+            println!(
+                "| {label} | {px} | {m} | {hw} | {c1} | {:.1} |",
+                (c10 - c1) as f64 / 9.0
+            );
+        }
+    }
+}
+
 fn bench(c: &mut Criterion) {
     figures();
     fast_figures();
+    pipeline_figures();
+    average_triangle_table();
     let s = spans(|c| c.half());
     let slice = &s[..s.len() / 4];
     let clocks = run(slice).0;

@@ -66,7 +66,10 @@ fn check_scene(label: &str, args: &SceneArgs, nmse_bound: &[(Method, f64)]) {
             span_clocks + latency,
             "{label} {m}: the spans do not go back to back"
         );
-        assert!(max <= 2, "{label} {m}: RTL differs from golden by {max} LSB");
+        assert!(
+            max <= 2,
+            "{label} {m}: RTL differs from golden by {max} LSB"
+        );
         assert_eq!(
             rtl.visibility_mismatches, 0,
             "{label} {m}: visibility differs"

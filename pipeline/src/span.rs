@@ -74,7 +74,12 @@ const MASK48: i64 = (1 << 48) - 1;
 impl UnitWords {
     /// The unit's set-up of `x` on a line with end normals `na`, `nb` (`None`: the end normals
     /// vanish, zero words: the pixel gets the ambient colour).
-    pub fn new(kind: SpanKind, ends: Option<(glam::DVec3, glam::DVec3)>, x: glam::DVec3, m: u32) -> UnitWords {
+    pub fn new(
+        kind: SpanKind,
+        ends: Option<(glam::DVec3, glam::DVec3)>,
+        x: glam::DVec3,
+        m: u32,
+    ) -> UnitWords {
         match (kind, ends) {
             (SpanKind::Angular, Some((a, b))) => {
                 UnitWords::Angular(SpanWords::new(&golden::angular::span_setup(a, b, x, m)))
@@ -193,13 +198,7 @@ pub fn span_jobs(
 /// The top's input row: `load` with a span (or idle), then the material registers.
 pub fn span_row(kind: SpanKind, job: Option<&SpanJob>, regs: &ShadingRegs) -> Vec<u64> {
     let mut row = match job {
-        Some(j) => vec![
-            1,
-            j.y as u64,
-            j.x0 as u64,
-            j.leftward as u64,
-            j.m as u64,
-        ],
+        Some(j) => vec![1, j.y as u64, j.x0 as u64, j.leftward as u64, j.m as u64],
         None => vec![0; 5],
     };
     let z = UnitWords::zero(kind);

@@ -243,8 +243,8 @@ impl<const U1: usize> Logic for SpanShader<U1> {
     fn update(&mut self) {
         dff_setup!(self, clock, x0_q, y_q, dir_q, dz_q, za, zb);
         clock!(
-            self, clock, x0_d, y_d, dir_d, za_d, zb_d, power_a, power_b, cd_a_p, cd_b_p,
-            colour_a, colour_b, xa_p, xb_p, za_p, zb_p, y_p, last_p
+            self, clock, x0_d, y_d, dir_d, za_d, zb_d, power_a, power_b, cd_a_p, cd_b_p, colour_a,
+            colour_b, xa_p, xb_p, za_p, zb_p, y_p, last_p
         );
         // The depth runs advance with the units' state: pixel k from the start, m − k from
         // the end (every clock; a load restarts them).
