@@ -38,11 +38,19 @@ pub struct RtlRender {
     pub visibility_mismatches: usize,
 }
 
-/// The methods the RTL engine renders, comma-separated.
-pub fn rtl_method_names() -> String {
+/// The methods the RTL engine renders, in order: Gouraud, the lit pipeline's, the span
+/// pipelines'.
+pub fn rtl_methods() -> Vec<Method> {
     std::iter::once(Method::Gouraud)
         .chain(LIT_METHODS)
         .chain(SPAN_METHODS)
+        .collect()
+}
+
+/// The methods the RTL engine renders, comma-separated.
+pub fn rtl_method_names() -> String {
+    rtl_methods()
+        .iter()
         .map(|m| m.name())
         .collect::<Vec<_>>()
         .join(", ")
@@ -50,7 +58,7 @@ pub fn rtl_method_names() -> String {
 
 /// Check a method name for the RTL engine (one-line error naming the ones it has).
 pub fn check_rtl_method(m: Method) -> Result<()> {
-    if m == Method::Gouraud || LIT_METHODS.contains(&m) || SPAN_METHODS.contains(&m) {
+    if rtl_methods().contains(&m) {
         Ok(())
     } else {
         bail!(

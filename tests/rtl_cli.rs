@@ -79,14 +79,14 @@ fn rtl_engine_rejects_methods_it_does_not_implement() {
         "--engine",
         "rtl",
         "--method",
-        "fast",
+        "quadric",
         "--out",
         dir.path().to_str().unwrap(),
     ]);
     assert!(!out.status.success());
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(
-        err.contains("gouraud") && !err.contains("panicked"),
+        err.contains("gouraud") && err.contains("fast-fit") && !err.contains("panicked"),
         "{err}"
     );
 }

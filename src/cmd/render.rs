@@ -23,7 +23,8 @@ pub enum Engine {
     Golden,
     /// The rust-hdl RTL simulated clock by clock (methods: gouraud through the raster pipe;
     /// normalizer, normalizer-fit, brdf-k4, brdf-k8, brdf-k16, bump through the lit pixel
-    /// pipeline; without --method, all of them).
+    /// pipeline; angular, fast, fast-fit through the span pipelines, two pixels per clock;
+    /// without --method, all of them).
     Rtl,
 }
 
@@ -308,9 +309,7 @@ fn print_table(args: &Args, setup: &Setup, methods: &[Method], report: &Report) 
 pub fn run(args: Args) -> Result<()> {
     let methods = if args.engine == Engine::Rtl && args.method.is_empty() {
         // The RTL engine's default: every method the hardware has.
-        std::iter::once(Method::Gouraud)
-            .chain(pipeline::lit::LIT_METHODS)
-            .collect()
+        crate::rtl_engine::rtl_methods()
     } else {
         parse_methods(&args.method)?
     };

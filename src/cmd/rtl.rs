@@ -148,15 +148,22 @@ pub fn sim(a: SimArgs) -> anyhow::Result<()> {
 pub fn synth(a: SynthArgs) -> anyhow::Result<()> {
     let (blocks, o) = selection(&a.block, &a.build)?;
     for b in blocks {
-        let (rep, fmax) = registry::synth_block(b, &o, !a.no_pnr).map_err(|e| anyhow!(e))?;
+        let (rep, placement) = registry::synth_block(b, &o, !a.no_pnr).map_err(|e| anyhow!(e))?;
         print!("{rep}");
-        match fmax {
-            Some(f) => println!(
+        match placement {
+            registry::Placement::Fmax(f) => println!(
                 "{}: nextpnr-ice40 --up5k (sg48, timing shell): max clock {f:.1} MHz",
                 rep.top
             ),
-            None if a.no_pnr => {}
-            None => println!("{}: nextpnr-ice40 not installed: no Fmax estimate", rep.top),
+            registry::Placement::TooManyMultipliers(n) => println!(
+                "{}: not placed: {n} SB_MAC16 > the iCE40 UP5K's {} (no Fmax estimate)",
+                rep.top,
+                registry::UP5K_MAC16
+            ),
+            registry::Placement::NoTool => {
+                println!("{}: nextpnr-ice40 not installed: no Fmax estimate", rep.top)
+            }
+            registry::Placement::NotAsked => {}
         }
     }
     Ok(())

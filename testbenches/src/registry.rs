@@ -288,7 +288,7 @@ pub fn synth_block(
     block: &dyn Entry,
     o: &Options,
     pnr: bool,
-) -> Result<(crate::synth::SynthReport, Option<f64>), String> {
+) -> Result<(crate::synth::SynthReport, Placement), String> {
     use crate::tools::{self, Tool};
     if !tools::available(Tool::Yosys) {
         return Err("yosys is not installed (apt-get install yosys)".into());
@@ -296,18 +296,38 @@ pub fn synth_block(
     let v = block.verilog(o)?;
     let module = block.module_name();
     let rep = crate::synth::check_and_synth(&v, &module, &format!("synth-{}", block.name()))?;
-    let fmax = if pnr && tools::available(Tool::NextpnrIce40) {
+    let placement = if !pnr {
+        Placement::NotAsked
+    } else if rep.mac16() > UP5K_MAC16 {
+        Placement::TooManyMultipliers(rep.mac16())
+    } else if !tools::available(Tool::NextpnrIce40) {
+        Placement::NoTool
+    } else {
         let tag = format!("pnr-{}", block.name());
-        Some(crate::synth::fmax_ice40_up5k(
+        Placement::Fmax(crate::synth::fmax_ice40_up5k(
             &v,
             &module,
             &block.ports(),
             &tag,
         )?)
-    } else {
-        None
     };
-    Ok((rep, fmax))
+    Ok((rep, placement))
+}
+
+/// SB_MAC16 blocks of the iCE40 UP5K, the part `synth` places into.
+pub const UP5K_MAC16: u64 = 8;
+
+/// What place-and-route said about a block (`synth_block`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Placement {
+    /// nextpnr-ice40's maximum clock after routing, MHz.
+    Fmax(f64),
+    /// More SB_MAC16 than the UP5K has: not placed.
+    TooManyMultipliers(u64),
+    /// nextpnr-ice40 is not installed.
+    NoTool,
+    /// `--no-pnr`.
+    NotAsked,
 }
 
 /// The differential check of a registered block: `rows` through the rust-hdl simulation and
