@@ -15,6 +15,7 @@ pub mod cubic;
 pub mod fast;
 pub mod fast_unit;
 pub mod gouraud;
+pub mod horner_unit;
 pub mod intensity_interpolator;
 pub mod lighting_unit;
 pub mod methods;

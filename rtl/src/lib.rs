@@ -7,6 +7,7 @@ pub mod export;
 pub mod fast_unit;
 pub mod fixed;
 pub mod gouraud_raster;
+pub mod horner_unit;
 pub mod intensity_interpolator;
 pub mod k_recurrence;
 pub mod lighting_unit;

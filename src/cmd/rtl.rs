@@ -36,6 +36,10 @@ pub struct BuildArgs {
     /// The fast unit's 1/sqrt(M+1) set: chebyshev, shift-add or fit.
     #[arg(long, default_value = "chebyshev")]
     pub inv_sqrt: String,
+    /// The Horner unit's variant: serial (fig. 2.6, one multiplier, 3 clocks per pixel) or
+    /// pipelined (three multipliers, one pixel per clock).
+    #[arg(long, default_value = "serial")]
+    pub horner: String,
 }
 
 impl BuildArgs {
@@ -45,7 +49,8 @@ impl BuildArgs {
         let o = Options::new()
             .with("coeffs", &self.coeffs)
             .with("power", &self.power)
-            .with("inv-sqrt", &self.inv_sqrt);
+            .with("inv-sqrt", &self.inv_sqrt)
+            .with("horner", &self.horner);
         match &self.bump {
             Some(b) => o.with("bump", b),
             None => o,

@@ -4,6 +4,7 @@ pub mod colour_combine;
 pub mod cos_v_accumulator;
 pub mod fast_unit;
 pub mod harness;
+pub mod horner_unit;
 pub mod intensity_interpolator;
 pub mod k_recurrence;
 pub mod lighting_unit;

@@ -220,6 +220,7 @@ pub static BLOCKS: &[&dyn Entry] = &[
     &entry::<rtl::fast_unit::FastUnit>(),
     &entry::<rtl::span_pipeline::AngularPipeline>(),
     &entry::<rtl::span_pipeline::FastPipeline>(),
+    &entry::<rtl::horner_unit::HornerUnit>(),
 ];
 
 /// The entry named `name`.
