@@ -88,8 +88,16 @@ fn check_addresses(tris: &[ScreenTriangle], width: u32, height: u32) -> Result<(
     Ok(())
 }
 
+/// Build choices of the RTL engine beyond the method.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct RtlBuild {
+    /// `cubic` through the pipelined Horner units (one pixel per clock) instead of the serial
+    /// fig. 2.6 unit (three clocks per pixel).
+    pub horner_pipelined: bool,
+}
+
 /// Render `tris` with `method` (Gouraud, one of [`LIT_METHODS`] or of [`SPAN_METHODS`])
-/// through the simulated hardware.
+/// through the simulated hardware, with the default [`RtlBuild`].
 pub fn render_rtl(
     tris: &[ScreenTriangle],
     method: Method,
@@ -98,11 +106,24 @@ pub fn render_rtl(
     height: u32,
     progress: &ProgressBar,
 ) -> Result<RtlRender> {
+    render_rtl_with(tris, method, ctx, width, height, progress, RtlBuild::default())
+}
+
+/// [`render_rtl`] with the build choices `build`.
+pub fn render_rtl_with(
+    tris: &[ScreenTriangle],
+    method: Method,
+    ctx: &ShadeContext,
+    width: u32,
+    height: u32,
+    progress: &ProgressBar,
+    build: RtlBuild,
+) -> Result<RtlRender> {
     check_rtl_method(method)?;
     if method == Method::Gouraud {
         render_gouraud_rtl(tris, ctx, width, height, progress)
     } else if SPAN_METHODS.contains(&method) {
-        render_span_rtl(tris, method, ctx, width, height, progress)
+        render_span_rtl(tris, method, ctx, width, height, progress, build)
     } else {
         render_lit_rtl(tris, method, ctx, width, height, progress)
     }
@@ -154,10 +175,11 @@ pub fn render_lit_rtl(
     Ok(writer.finish(stats))
 }
 
-/// Render `tris` with a span method (`angular`, `fast`, `fast-fit`) through the span pipeline
-/// (`rtl::span_pipeline`) built for it: the span front end (`pipeline::span::span_jobs`, the
-/// golden method's per-line set-up in software) loads one raster line at a time, the hardware
-/// returns two fragments per clock, and the frame writer takes both (z-buffer as in
+/// Render `tris` with a span method through the span pipeline built for it — `angular`,
+/// `fast`, `fast-fit` through `rtl::span_pipeline` (two fragments per clock), `cubic` through
+/// `rtl::cubic_pipeline` (Horner variant from `build`): the span front end
+/// (`pipeline::span::span_jobs`, the golden method's per-line set-up in software) loads one
+/// raster line at a time and the frame writer takes every fragment (z-buffer as in
 /// [`render_lit_rtl`]). `progress` counts spans.
 pub fn render_span_rtl(
     tris: &[ScreenTriangle],
@@ -166,10 +188,23 @@ pub fn render_span_rtl(
     width: u32,
     height: u32,
     progress: &ProgressBar,
+    build: RtlBuild,
 ) -> Result<RtlRender> {
     check_addresses(tris, width, height)?;
-    let regs = ShadingRegs::of(ctx).map_err(|e| anyhow::anyhow!("RTL set-up: {e}"))?;
-    let mut pipe = SpanPipe::new(method).map_err(|e| anyhow::anyhow!("RTL set-up: {e}"))?;
+    // The cubic's samples are lit in software (any lighting model); the other span tops light
+    // in hardware and need the registers.
+    let regs = if method == Method::Cubic {
+        ShadingRegs {
+            light: [0; 3],
+            half: [0; 3],
+            n: 0,
+            weights: [0; 9],
+        }
+    } else {
+        ShadingRegs::of(ctx).map_err(|e| anyhow::anyhow!("RTL set-up: {e}"))?
+    };
+    let mut pipe = SpanPipe::with_horner(method, build.horner_pipelined)
+        .map_err(|e| anyhow::anyhow!("RTL set-up: {e}"))?;
     let mut spans = Vec::new();
     let mut depth = Vec::with_capacity(tris.len());
     for (i, t) in tris.iter().enumerate() {

@@ -57,8 +57,9 @@ pub struct CubicSpan {
     pub coeffs: [[f64; 4]; 3],
 }
 
-/// Set-up of one non-empty raster line.
-pub fn span_setup(plane: &VecPlane, row: &Row, ctx: &ShadeContext) -> CubicSpan {
+/// The four exactly lit samples of one non-empty raster line per channel: `[c]` = [I(0), I(1),
+/// I(1/2), I(1/4)] of channel c (the set-up's input; a vanishing normal gets the ambient colour).
+pub fn span_samples(plane: &VecPlane, row: &Row, ctx: &ShadeContext) -> [[f64; 4]; 3] {
     let na = plane.at_pixel(row.x_start, row.y);
     let nb = plane.at_pixel(row_end(row), row.y);
     // The plane is linear, so the normal at fraction p of the span is na + p·(nb − na).
@@ -67,7 +68,13 @@ pub fn span_setup(plane: &VecPlane, row: &Row, ctx: &ShadeContext) -> CubicSpan 
         None => ctx.intensity(0.0, 0.0),
     };
     let (i1, i2, i3, i4) = (sample(0.0), sample(1.0), sample(0.5), sample(0.25));
-    let coeffs = std::array::from_fn(|c| coefficients(i1[c], i2[c], i3[c], i4[c], THIRD));
+    std::array::from_fn(|c| [i1[c], i2[c], i3[c], i4[c]])
+}
+
+/// Set-up of one non-empty raster line.
+pub fn span_setup(plane: &VecPlane, row: &Row, ctx: &ShadeContext) -> CubicSpan {
+    let s = span_samples(plane, row, ctx);
+    let coeffs = std::array::from_fn(|c| coefficients(s[c][0], s[c][1], s[c][2], s[c][3], THIRD));
     CubicSpan {
         m: row.len - 1,
         coeffs,

@@ -21,15 +21,19 @@ use golden::shade::ShadeContext;
 use golden::types::ScreenTriangle;
 use rtl::registry::{BlockParams, Options, RtlBlock};
 use rtl::sim::Stepper;
+use golden::horner_unit::HornerWords;
+use rtl::cubic_pipeline::{CubicParams, CubicPipeline};
+use rtl::horner_unit::HornerParams;
 use rtl::span_pipeline::{AngularPipeline, FastPipeline, FastPipelineParams};
 
 use crate::gouraud::PipeStats;
 use crate::lit::{ShadingRegs, DEPTH_LIMIT};
 
 /// The methods the span pipelines render.
-pub const SPAN_METHODS: [Method; 3] = [Method::Angular, Method::Fast, Method::FastFit];
+pub const SPAN_METHODS: [Method; 4] = [Method::Angular, Method::Fast, Method::FastFit, Method::Cubic];
 
-/// Outputs per clock: ready, 2 × (valid x z r g b), y, last.
+/// Outputs per clock of the two-lane tops: ready, 2 × (valid x z r g b), y, last; the cubic
+/// top has one lane: ready, valid x z r g b, y, last.
 pub const OUTPUTS: usize = 15;
 
 /// Which span unit a method uses.
@@ -38,23 +42,34 @@ pub enum SpanKind {
     Angular,
     /// The fast unit with this `inv-sqrt` set (`chebyshev`, `shift-add`, `fit`).
     Fast(&'static str),
+    /// Three Horner units, serial (fig. 2.6) or pipelined.
+    Cubic { pipelined: bool },
 }
 
 impl SpanKind {
     /// The span pipeline that computes `method`; `None` if none does.
+    /// (`cubic` through the serial Horner unit; [`SpanKind::with_horner`] picks the variant.)
     pub fn of(method: Method) -> Option<SpanKind> {
         match method {
             Method::Angular => Some(SpanKind::Angular),
             Method::Fast => Some(SpanKind::Fast("chebyshev")),
             Method::FastFit => Some(SpanKind::Fast("fit")),
+            Method::Cubic => Some(SpanKind::Cubic { pipelined: false }),
             _ => None,
         }
     }
-    /// The fast unit's build parameters (the chebyshev set for [`SpanKind::Angular`], unused).
+    /// The cubic kind with the Horner variant `pipelined`; other kinds unchanged.
+    pub fn with_horner(self, pipelined: bool) -> SpanKind {
+        match self {
+            SpanKind::Cubic { .. } => SpanKind::Cubic { pipelined },
+            k => k,
+        }
+    }
+    /// The fast unit's build parameters (the chebyshev set for the other kinds, unused).
     pub fn fast_params(self) -> FastPipelineParams {
         let name = match self {
             SpanKind::Fast(n) => n,
-            SpanKind::Angular => "chebyshev",
+            _ => "chebyshev",
         };
         FastPipelineParams::from_options(&Options::new().with("inv-sqrt", name))
             .expect("the span kinds name known sets")
@@ -91,7 +106,7 @@ impl UnitWords {
             (SpanKind::Fast(_), Some((a, b))) => {
                 UnitWords::Fast(FastWords::new(&golden::fast::span_setup(a, b, x, m)))
             }
-            (SpanKind::Fast(_), None) => UnitWords::Fast(FastWords {
+            (SpanKind::Fast(_), None) | (SpanKind::Cubic { .. }, _) => UnitWords::Fast(FastWords {
                 m,
                 ..FastWords::default()
             }),
@@ -132,18 +147,34 @@ pub struct SpanJob {
     pub leftward: bool,
     /// Pixels − 1.
     pub m: u32,
-    pub light: UnitWords,
-    pub half: UnitWords,
+    pub words: JobWords,
     /// Depth at pixel 0, at pixel m, and per pixel step (signed Q16.16 words).
     pub z0: u32,
     pub zm: u32,
     pub dz: u32,
 }
 
+/// A line's words for the span units.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum JobWords {
+    /// Angular or fast: the unit words for L and for H.
+    Pair { light: UnitWords, half: UnitWords },
+    /// Cubic: each channel's samples; `pipelined`: the Horner variant (clocks per pixel).
+    Cubic {
+        channels: [HornerWords; 3],
+        pipelined: bool,
+    },
+}
+
 impl SpanJob {
-    /// Clocks the span occupies in the span unit: ⌊m/2⌋ + 1.
+    /// Clocks the span occupies in the span units: ⌊m/2⌋ + 1 (two pixels per clock), or
+    /// m + 1 (pipelined Horner), 3(m + 1) (serial Horner).
     pub fn clocks(&self) -> u64 {
-        self.m as u64 / 2 + 1
+        match self.words {
+            JobWords::Pair { .. } => self.m as u64 / 2 + 1,
+            JobWords::Cubic { pipelined: true, .. } => self.m as u64 + 1,
+            JobWords::Cubic { pipelined: false, .. } => 3 * (self.m as u64 + 1),
+        }
     }
 }
 
@@ -177,16 +208,26 @@ pub fn span_jobs(
             let m = row.len - 1;
             let ends = span_end_normals(&plane, row);
             let end = row_end(row);
+            let words = match kind {
+                SpanKind::Cubic { pipelined } => JobWords::Cubic {
+                    channels: golden::cubic::span_samples(&plane, row, ctx)
+                        .map(|s| HornerWords::new(s, m)),
+                    pipelined,
+                },
+                _ => JobWords::Pair {
+                    light: UnitWords::new(kind, ends, ctx.light, m),
+                    half: spec.map_or(UnitWords::new(kind, None, glam::DVec3::ZERO, m), |h| {
+                        UnitWords::new(kind, ends, h, m)
+                    }),
+                },
+            };
             SpanJob {
                 triangle,
                 y: row.y as u32,
                 x0: row.x_start as u32,
                 leftward: row.dir < 0,
                 m,
-                light: UnitWords::new(kind, ends, ctx.light, m),
-                half: spec.map_or(UnitWords::new(kind, None, glam::DVec3::ZERO, m), |h| {
-                    UnitWords::new(kind, ends, h, m)
-                }),
+                words,
                 z0: quantize(depth.at_pixel(row.x_start, row.y)),
                 zm: quantize(depth.at_pixel(end, row.y)),
                 dz: quantize(depth.a * row.dir as f64),
@@ -195,15 +236,39 @@ pub fn span_jobs(
         .collect())
 }
 
-/// The top's input row: `load` with a span (or idle), then the material registers.
+/// The top's input row: `load` with a span (or idle), then (angular, fast) the material
+/// registers.
 pub fn span_row(kind: SpanKind, job: Option<&SpanJob>, regs: &ShadingRegs) -> Vec<u64> {
     let mut row = match job {
-        Some(j) => vec![1, j.y as u64, j.x0 as u64, j.leftward as u64, j.m as u64],
+        Some(j) => vec![
+            1,
+            j.y as u64,
+            j.x0 as u64,
+            j.leftward as u64,
+            j.m as u64,
+        ],
         None => vec![0; 5],
     };
+    if let SpanKind::Cubic { .. } = kind {
+        match job.map(|j| j.words) {
+            Some(JobWords::Cubic { channels, .. }) => {
+                row.push(channels[0].step);
+                for c in channels {
+                    row.extend(c.i.map(|v| (v as u64) & 0xFFFF));
+                }
+            }
+            _ => row.extend([0; 13]),
+        }
+        row.extend(job.map_or([0; 2], |j| [j.z0, j.dz]).map(u64::from));
+        return row;
+    }
     let z = UnitWords::zero(kind);
-    row.extend(job.map_or(&z, |j| &j.light).row());
-    row.extend(job.map_or(&z, |j| &j.half).row());
+    let (l, h) = match job.map(|j| j.words) {
+        Some(JobWords::Pair { light, half }) => (light, half),
+        _ => (z, z),
+    };
+    row.extend(l.row());
+    row.extend(h.row());
     row.extend(job.map_or([0; 3], |j| [j.z0, j.zm, j.dz]).map(u64::from));
     row.push(regs.n);
     row.extend(regs.weights);
@@ -228,6 +293,7 @@ pub struct SpanFragment {
 enum Top {
     Angular(Box<Stepper<AngularPipeline>>),
     Fast(Box<Stepper<FastPipeline>>),
+    Cubic(Box<Stepper<CubicPipeline>>),
 }
 
 /// A span pipeline, stepped by hand.
@@ -237,9 +303,15 @@ pub struct SpanPipe {
 }
 
 impl SpanPipe {
-    /// The span pipeline for `method` (one of [`SPAN_METHODS`]).
+    /// The span pipeline for `method` (one of [`SPAN_METHODS`]; `cubic` with the serial Horner
+    /// unit).
     pub fn new(method: Method) -> Result<SpanPipe, String> {
-        let kind = SpanKind::of(method).ok_or_else(|| {
+        SpanPipe::with_horner(method, false)
+    }
+
+    /// As [`SpanPipe::new`], `cubic` through the pipelined Horner units if `pipelined`.
+    pub fn with_horner(method: Method, pipelined: bool) -> Result<SpanPipe, String> {
+        let kind = SpanKind::of(method).map(|k| k.with_horner(pipelined)).ok_or_else(|| {
             format!(
                 "the RTL span pipelines do not compute {method} (they have: {})",
                 SPAN_METHODS.map(|m| m.name()).join(", ")
@@ -250,6 +322,9 @@ impl SpanPipe {
             SpanKind::Fast(_) => Top::Fast(Box::new(Stepper::new(FastPipeline::new(
                 &kind.fast_params(),
             ))?)),
+            SpanKind::Cubic { pipelined } => Top::Cubic(Box::new(Stepper::new(
+                CubicPipeline::new(&CubicParams(HornerParams { pipelined })),
+            )?)),
         };
         Ok(SpanPipe { kind, top })
     }
@@ -263,6 +338,7 @@ impl SpanPipe {
         match self.top {
             Top::Angular(_) => AngularPipeline::LATENCY,
             Top::Fast(_) => <FastPipeline as RtlBlock>::LATENCY,
+            Top::Cubic(_) => <CubicPipeline as RtlBlock>::LATENCY,
         }
     }
 
@@ -271,6 +347,7 @@ impl SpanPipe {
         match &mut self.top {
             Top::Angular(s) => s.start_vcd(w),
             Top::Fast(s) => s.start_vcd(w),
+            Top::Cubic(s) => s.start_vcd(w),
         }
     }
 
@@ -278,6 +355,7 @@ impl SpanPipe {
         match &self.top {
             Top::Angular(s) => s.dut().ready.val(),
             Top::Fast(s) => s.dut().ready.val(),
+            Top::Cubic(s) => s.dut().ready.val(),
         }
     }
 
@@ -285,6 +363,7 @@ impl SpanPipe {
         match &mut self.top {
             Top::Angular(s) => s.step(row, out),
             Top::Fast(s) => s.step(row, out),
+            Top::Cubic(s) => s.step(row, out),
         }
     }
 
@@ -325,13 +404,18 @@ impl SpanPipe {
             }
             st.clocks += 1;
             let triangle = in_flight.front().copied().unwrap_or(usize::MAX);
-            for (lane, at) in [(false, 1), (true, 7)] {
+            // Lane A: valid x z r g b from port 1; lane B (two-lane tops) from port 7.
+            let (lanes, y_at, last_at): (&[(bool, usize)], usize, usize) = match self.kind {
+                SpanKind::Cubic { .. } => (&[(false, 1)], 7, 8),
+                _ => (&[(false, 1), (true, 7)], 13, 14),
+            };
+            for &(lane, at) in lanes {
                 if out[at] != 0 {
                     st.pixels += 1;
                     fragment(SpanFragment {
                         triangle,
                         x: out[at + 1] as u32,
-                        y: out[13] as u32,
+                        y: out[y_at] as u32,
                         z: out[at + 2] as u32 as i32,
                         rgb: [out[at + 3] as u8, out[at + 4] as u8, out[at + 5] as u8],
                         clock: st.clocks - 1,
@@ -339,7 +423,7 @@ impl SpanPipe {
                     });
                 }
             }
-            if out[14] != 0 {
+            if out[last_at] != 0 {
                 in_flight.pop_front();
                 st.triangles += 1;
                 if st.triangles % 256 == 0 || st.triangles == spans.len() as u64 {
@@ -350,6 +434,7 @@ impl SpanPipe {
         match &mut self.top {
             Top::Angular(s) => s.stop_vcd(),
             Top::Fast(s) => s.stop_vcd(),
+            Top::Cubic(s) => s.stop_vcd(),
         }
         Ok(st)
     }
@@ -386,6 +471,15 @@ mod tests {
             let row = span_row(kind, Some(&jobs[0]), &regs);
             assert_eq!(row.len(), 5 + 2 * words + 3 + 10);
             assert_eq!(span_row(kind, None, &regs).len(), row.len());
+        }
+        // Cubic: base, step, 12 samples, z0, dz.
+        for pipelined in [false, true] {
+            let kind = SpanKind::Cubic { pipelined };
+            let jobs = span_jobs(&t, 0, kind, &ctx).unwrap();
+            assert_eq!(span_row(kind, Some(&jobs[0]), &regs).len(), 20);
+            assert_eq!(span_row(kind, None, &regs).len(), 20);
+            let per = if pipelined { 1 } else { 3 };
+            assert!(jobs.iter().all(|j| j.clocks() == per * (j.m as u64 + 1)));
         }
         let mut far = t;
         far.v[0].z = 1e6;

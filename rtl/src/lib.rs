@@ -2,6 +2,7 @@ pub mod address_block;
 pub mod brzssk;
 pub mod colour_combine;
 pub mod cos_v_accumulator;
+pub mod cubic_pipeline;
 pub mod declare;
 pub mod export;
 pub mod fast_unit;

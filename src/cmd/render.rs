@@ -24,7 +24,7 @@ pub enum Engine {
     /// The rust-hdl RTL simulated clock by clock (methods: gouraud through the raster pipe;
     /// normalizer, normalizer-fit, brdf-k4, brdf-k8, brdf-k16, bump through the lit pixel
     /// pipeline; angular, fast, fast-fit through the span pipelines, two pixels per clock;
-    /// without --method, all of them).
+    /// cubic through the Horner units (--horner); without --method, all of them).
     Rtl,
 }
 
@@ -43,6 +43,18 @@ pub struct Args {
     /// Engine computing the method images (the reference is always golden).
     #[arg(long, value_enum, default_value = "golden")]
     pub engine: Engine,
+    /// With `--engine rtl`: the Horner units `cubic` goes through — serial (fig. 2.6, one
+    /// multiplier, 3 clocks per pixel) or pipelined (three multipliers, one pixel per clock).
+    /// The images are identical; the clock counts differ.
+    #[arg(long, value_enum, default_value = "serial")]
+    pub horner: Horner,
+}
+
+/// The Horner unit variant of the cubic pipeline.
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Horner {
+    Serial,
+    Pipelined,
 }
 
 /// Per-method result in `report.json`.
@@ -159,6 +171,7 @@ fn render_frames(
     setup: &Setup,
     methods: &[Method],
     engine: Engine,
+    build: crate::rtl_engine::RtlBuild,
     bar: &ProgressBar,
 ) -> Result<Frames> {
     match engine {
@@ -181,17 +194,26 @@ fn render_frames(
             for (i, &m) in methods.iter().enumerate() {
                 bar.set_style(
                     ProgressStyle::with_template(&format!(
-                        "rtl {} ({}/{}) [{{bar:40}}] {{pos}}/{{len}} triangles {{elapsed}} (eta {{eta}})",
+                        "rtl {} ({}/{}) [{{bar:40}}] {{pos}}/{{len}} {} {{elapsed}} (eta {{eta}})",
                         m.name(),
                         i + 1,
-                        methods.len()
+                        methods.len(),
+                        if pipeline::span::SPAN_METHODS.contains(&m) { "lines" } else { "triangles" }
                     ))
                     .expect("static template")
                     .progress_chars("=> "),
                 );
                 let t0 = std::time::Instant::now();
-                let rtl = crate::rtl_engine::render_rtl(&setup.tris, m, &setup.ctx, w, h, bar)
-                    .with_context(|| format!("method {m}"))?;
+                let rtl = crate::rtl_engine::render_rtl_with(
+                    &setup.tris,
+                    m,
+                    &setup.ctx,
+                    w,
+                    h,
+                    bar,
+                    build,
+                )
+                .with_context(|| format!("method {m}"))?;
                 stats.push(RtlStats {
                     pipe: rtl.stats,
                     visibility_mismatches: rtl.visibility_mismatches,
@@ -317,7 +339,10 @@ pub fn run(args: Args) -> Result<()> {
     std::fs::create_dir_all(&args.out)
         .with_context(|| format!("creating output directory {}", args.out.display()))?;
     let bar = progress_bar(methods.len(), args.engine);
-    let frames = render_frames(&setup, &methods, args.engine, &bar)?;
+    let build = crate::rtl_engine::RtlBuild {
+        horner_pipelined: args.horner == Horner::Pipelined,
+    };
+    let frames = render_frames(&setup, &methods, args.engine, build, &bar)?;
     bar.finish_and_clear();
     let reports = write_images(&setup, &methods, &frames, &args.out)?;
     let report = Report {

@@ -1,6 +1,7 @@
 pub mod address_block;
 pub mod brzssk;
 pub mod colour_combine;
+pub mod cubic_pipeline;
 pub mod cos_v_accumulator;
 pub mod fast_unit;
 pub mod harness;

@@ -221,6 +221,7 @@ pub static BLOCKS: &[&dyn Entry] = &[
     &entry::<rtl::span_pipeline::AngularPipeline>(),
     &entry::<rtl::span_pipeline::FastPipeline>(),
     &entry::<rtl::horner_unit::HornerUnit>(),
+    &entry::<rtl::cubic_pipeline::CubicPipeline>(),
 ];
 
 /// The entry named `name`.

@@ -1,0 +1,202 @@
+//! Bench of the cubic span pipeline (`rtl::cubic_pipeline`, both Horner variants): its
+//! bit-exact twin (three Horner twins, the base registers and their delay, the output register
+//! with the depth run) and the golden `cubic` method (`golden::cubic::shade`), every clock.
+//!
+//! Stimulus: seeded random triangles (`crate::pixel_pipeline::lit_triangles`) under the default
+//! context, through the span front end (`pipeline::span::span_jobs`, the cubic set-up per line),
+//! each line loaded in the clock `ready` rises; triangle tips give one-pixel lines, every
+//! triangle ends with its last line. Expectations: `ready`, `valid`, `x`, `y`, `last` exact from
+//! the schedule (serial: pixel t after the line's clock 3t + 2, two clocks later; pipelined:
+//! after its clock t, four clocks later); colours within 2 LSB of the golden method, RMS 0.5;
+//! `z` within 4096·2⁻¹⁷ + 2⁻¹⁶ of the f64 depth plane.
+
+use golden::horner_unit::{twin::HornerTwin, HornerWords};
+use golden::raster::walk;
+use golden::shade::ShadeContext;
+use golden::types::ScreenTriangle;
+use pipeline::lit::ShadingRegs;
+use pipeline::span::{span_jobs, span_row, SpanJob, SpanKind};
+use rtl::cubic_pipeline::{CubicParams, CubicPipeline};
+use rtl::fixed::{INTENSITY, LEVEL};
+use rtl::horner_unit::HornerUnit;
+use rtl::registry::RtlBlock;
+
+use crate::harness::{Compare, Expected, Tolerance};
+use crate::pixel_pipeline::{lit_triangles, DelayLine};
+use crate::registry::{Bench, Stimulus, Twin};
+use crate::span_pipeline::golden_colours;
+
+/// Twin of the cubic pipeline.
+pub struct CubicPipelineTwin {
+    units: [HornerTwin; 3],
+    // x0, y, dir, z0, dz
+    base: [u64; 5],
+    base_d: Vec<DelayLine>,
+    // valid, x, z, r, g, b, y, last
+    out: [u64; 8],
+}
+
+impl CubicPipelineTwin {
+    pub fn new(p: &CubicParams) -> Self {
+        CubicPipelineTwin {
+            units: [0, 1, 2].map(|_| HornerTwin::new(p.0.pipelined)),
+            base: [0; 5],
+            base_d: (0..5)
+                .map(|_| DelayLine::new(<HornerUnit as RtlBlock>::LATENCY - 1))
+                .collect(),
+            out: [0; 8],
+        }
+    }
+}
+
+impl Twin for CubicPipelineTwin {
+    fn step(&mut self, r: &[u64]) -> Vec<u64> {
+        let u: Vec<Vec<u64>> = self.units.iter().map(|t| t.outputs()).collect();
+        let mut o = vec![u[0][0]];
+        o.extend(self.out);
+        // Row: load y x0 dir m step r1..r4 g1..g4 b1..b4 z0 dz.
+        let load = r[0] != 0;
+        let take = load && u[0][0] != 0;
+        let [x0, y, dir, z0, dz] = std::array::from_fn(|k| self.base_d[k].out());
+        let (valid, t) = (u[0][1] != 0, u[0][2]);
+        let x = if dir != 0 {
+            x0.wrapping_sub(t) & 0xfff
+        } else {
+            (x0 + t) & 0xfff
+        };
+        let z = if !valid {
+            self.out[2]
+        } else if t == 0 {
+            z0
+        } else {
+            (self.out[2] + dz) & 0xffff_ffff
+        };
+        self.out = [valid as u64, x, z, u[0][3], u[1][3], u[2][3], y, u[0][4]];
+        for (d, v) in self.base_d.iter_mut().zip(self.base) {
+            d.clock(v);
+        }
+        if take {
+            self.base = [r[2], r[1], r[3], r[18], r[19]];
+        }
+        for (c, unit) in self.units.iter_mut().enumerate() {
+            let w = HornerWords {
+                i: std::array::from_fn(|k| r[6 + 4 * c + k] as u16 as i16 as i64),
+                step: r[5],
+                m: r[4] as u32,
+            };
+            unit.clock(load.then_some(&w));
+        }
+        o
+    }
+}
+
+fn stimulus(p: &CubicParams, tris: &[ScreenTriangle]) -> Stimulus {
+    let kind = SpanKind::Cubic {
+        pipelined: p.0.pipelined,
+    };
+    let ctx = ShadeContext::default();
+    let regs = ShadingRegs::of(&ctx).expect("default context fits the registers");
+    let mut spans: Vec<SpanJob> = Vec::new();
+    let mut colours = Vec::new();
+    let mut depths = Vec::new();
+    for (i, t) in tris.iter().enumerate() {
+        spans.extend(span_jobs(t, i, kind, &ctx).expect("depths in range"));
+        colours.extend(golden_colours(t, &ctx, kind));
+        let d = t.depth_plane().expect("non-degenerate");
+        depths.extend(walk(t).pixels().into_iter().map(|px| d.at_pixel(px.x, px.y)));
+    }
+    let mut first = Vec::with_capacity(spans.len());
+    let mut at = 0;
+    for s in &spans {
+        first.push(at);
+        at += s.m as usize + 1;
+    }
+    assert_eq!(at, colours.len(), "spans and golden pixels disagree");
+    let (per_pixel, delay) = if p.0.pipelined { (1, 4) } else { (3, 2) };
+    let mut rows = vec![span_row(kind, spans.first(), &regs)];
+    let mut state: Vec<Option<(usize, u64)>> = vec![None];
+    for (i, s) in spans.iter().enumerate() {
+        for k in 0..s.clocks() {
+            state.push(Some((i, k)));
+            let next = (k + 1 == s.clocks()).then(|| spans.get(i + 1)).flatten();
+            rows.push(span_row(kind, next, &regs));
+        }
+    }
+    for _ in 0..=delay + 1 {
+        rows.push(span_row(kind, None, &regs));
+        state.push(None);
+    }
+    let w = Expected::Word;
+    let expected = (0..rows.len())
+        .map(|c| {
+            let ready = state[c].is_none_or(|(i, k)| k + 1 == spans[i].clocks());
+            let shown = c
+                .checked_sub(delay)
+                .and_then(|s| state[s])
+                .filter(|&(_, k)| k % per_pixel == per_pixel - 1)
+                .map(|(i, k)| (i, k / per_pixel));
+            let mut e = vec![w(ready as u64)];
+            match shown {
+                Some((i, t)) => {
+                    let s = &spans[i];
+                    let x = if s.leftward {
+                        s.x0 as u64 - t
+                    } else {
+                        s.x0 as u64 + t
+                    };
+                    let px = first[i] + t as usize;
+                    e.extend([w(1), w(x), Expected::Real(depths[px])]);
+                    e.extend(colours[px].map(|v| Expected::Real(v as f64)));
+                    e.extend([w(s.y as u64), w((t == s.m as u64) as u64)]);
+                }
+                None => {
+                    e.push(w(0));
+                    e.extend([Expected::DontCare; 6]);
+                    e.push(w(0));
+                }
+            }
+            e
+        })
+        .collect();
+    let level = Compare::Fixed {
+        format: LEVEL,
+        tol: Tolerance {
+            max_abs: 2.0,
+            rms: 0.5,
+        },
+    };
+    let zb = 4096.0 * (-17f64).exp2() + (-16f64).exp2();
+    let depth = Compare::Fixed {
+        format: INTENSITY,
+        tol: Tolerance {
+            max_abs: zb,
+            rms: zb,
+        },
+    };
+    Stimulus {
+        rows,
+        expected,
+        compare: vec![
+            Compare::Exact,
+            Compare::Exact,
+            Compare::Exact,
+            depth,
+            level,
+            level,
+            level,
+            Compare::Exact,
+            Compare::Exact,
+        ],
+    }
+}
+
+impl Bench for CubicPipeline {
+    const ITEMS: &'static str = "triangles";
+    const DEFAULT_ITEMS: usize = 4;
+    fn stimulus(p: &CubicParams, n: usize, seed: u64) -> Stimulus {
+        stimulus(p, &lit_triangles(seed, n))
+    }
+    fn twin(p: &CubicParams) -> Box<dyn Twin> {
+        Box::new(CubicPipelineTwin::new(p))
+    }
+}
