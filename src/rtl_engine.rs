@@ -106,7 +106,15 @@ pub fn render_rtl(
     height: u32,
     progress: &ProgressBar,
 ) -> Result<RtlRender> {
-    render_rtl_with(tris, method, ctx, width, height, progress, RtlBuild::default())
+    render_rtl_with(
+        tris,
+        method,
+        ctx,
+        width,
+        height,
+        progress,
+        RtlBuild::default(),
+    )
 }
 
 /// [`render_rtl`] with the build choices `build`.
@@ -191,9 +199,9 @@ pub fn render_span_rtl(
     build: RtlBuild,
 ) -> Result<RtlRender> {
     check_addresses(tris, width, height)?;
-    // The cubic's samples are lit in software (any lighting model); the other span tops light
-    // in hardware and need the registers.
-    let regs = if method == Method::Cubic {
+    // The cubic's samples and the quadric's coefficients are lit in software (any lighting
+    // model); the other span tops light in hardware and need the registers.
+    let regs = if matches!(method, Method::Cubic | Method::Quadric) {
         ShadingRegs {
             light: [0; 3],
             half: [0; 3],

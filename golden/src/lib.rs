@@ -24,6 +24,7 @@ pub mod normalizer;
 pub mod phong;
 pub mod power_unit;
 pub mod quadric;
+pub mod quadric_unit;
 pub mod raster;
 pub mod render;
 pub mod scene;

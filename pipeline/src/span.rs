@@ -14,23 +14,31 @@ use std::io::Write;
 
 use golden::cos_v_accumulator::SpanWords;
 use golden::fast_unit::FastWords;
+use golden::horner_unit::HornerWords;
 use golden::intensity_interpolator::quantize;
 use golden::methods::{row_end, span_end_normals, Method};
+use golden::quadric_unit::{line_words, QuadricWords};
 use golden::raster::walk;
 use golden::shade::ShadeContext;
 use golden::types::ScreenTriangle;
-use rtl::registry::{BlockParams, Options, RtlBlock};
-use rtl::sim::Stepper;
-use golden::horner_unit::HornerWords;
 use rtl::cubic_pipeline::{CubicParams, CubicPipeline};
 use rtl::horner_unit::HornerParams;
+use rtl::quadric_unit::QuadricUnit;
+use rtl::registry::{BlockParams, Options, RtlBlock};
+use rtl::sim::Stepper;
 use rtl::span_pipeline::{AngularPipeline, FastPipeline, FastPipelineParams};
 
 use crate::gouraud::PipeStats;
 use crate::lit::{ShadingRegs, DEPTH_LIMIT};
 
 /// The methods the span pipelines render.
-pub const SPAN_METHODS: [Method; 4] = [Method::Angular, Method::Fast, Method::FastFit, Method::Cubic];
+pub const SPAN_METHODS: [Method; 5] = [
+    Method::Angular,
+    Method::Fast,
+    Method::FastFit,
+    Method::Quadric,
+    Method::Cubic,
+];
 
 /// Outputs per clock of the two-lane tops: ready, 2 × (valid x z r g b), y, last; the cubic
 /// top has one lane: ready, valid x z r g b, y, last.
@@ -43,7 +51,11 @@ pub enum SpanKind {
     /// The fast unit with this `inv-sqrt` set (`chebyshev`, `shift-add`, `fit`).
     Fast(&'static str),
     /// Three Horner units, serial (fig. 2.6) or pipelined.
-    Cubic { pipelined: bool },
+    Cubic {
+        pipelined: bool,
+    },
+    /// The quadric forward-difference unit.
+    Quadric,
 }
 
 impl SpanKind {
@@ -55,6 +67,7 @@ impl SpanKind {
             Method::Fast => Some(SpanKind::Fast("chebyshev")),
             Method::FastFit => Some(SpanKind::Fast("fit")),
             Method::Cubic => Some(SpanKind::Cubic { pipelined: false }),
+            Method::Quadric => Some(SpanKind::Quadric),
             _ => None,
         }
     }
@@ -106,10 +119,12 @@ impl UnitWords {
             (SpanKind::Fast(_), Some((a, b))) => {
                 UnitWords::Fast(FastWords::new(&golden::fast::span_setup(a, b, x, m)))
             }
-            (SpanKind::Fast(_), None) | (SpanKind::Cubic { .. }, _) => UnitWords::Fast(FastWords {
-                m,
-                ..FastWords::default()
-            }),
+            (SpanKind::Fast(_), None) | (SpanKind::Cubic { .. } | SpanKind::Quadric, _) => {
+                UnitWords::Fast(FastWords {
+                    m,
+                    ..FastWords::default()
+                })
+            }
         }
     }
     /// The words in port order.
@@ -164,6 +179,8 @@ pub enum JobWords {
         channels: [HornerWords; 3],
         pipelined: bool,
     },
+    /// Quadric: each channel's I(x0), I(x0 + d), 2A.
+    Quadric([QuadricWords; 3]),
 }
 
 impl SpanJob {
@@ -171,9 +188,13 @@ impl SpanJob {
     /// m + 1 (pipelined Horner), 3(m + 1) (serial Horner).
     pub fn clocks(&self) -> u64 {
         match self.words {
-            JobWords::Pair { .. } => self.m as u64 / 2 + 1,
-            JobWords::Cubic { pipelined: true, .. } => self.m as u64 + 1,
-            JobWords::Cubic { pipelined: false, .. } => 3 * (self.m as u64 + 1),
+            JobWords::Pair { .. } | JobWords::Quadric(_) => self.m as u64 / 2 + 1,
+            JobWords::Cubic {
+                pipelined: true, ..
+            } => self.m as u64 + 1,
+            JobWords::Cubic {
+                pipelined: false, ..
+            } => 3 * (self.m as u64 + 1),
         }
     }
 }
@@ -200,7 +221,14 @@ pub fn span_jobs(
         return Ok(Vec::new());
     };
     let spec = ctx.specular_vector();
-    Ok(walk(tri)
+    let quadric = match kind {
+        SpanKind::Quadric => match golden::quadric::setup(tri, ctx) {
+            Some(q) => Some(q),
+            None => return Ok(Vec::new()), // the golden method draws nothing either
+        },
+        _ => None,
+    };
+    walk(tri)
         .rows
         .iter()
         .filter(|r| r.len > 0)
@@ -209,6 +237,14 @@ pub fn span_jobs(
             let ends = span_end_normals(&plane, row);
             let end = row_end(row);
             let words = match kind {
+                SpanKind::Quadric => {
+                    let q = quadric.as_ref().expect("set up above");
+                    let mut ch = [QuadricWords::default(); 3];
+                    for (c, w) in ch.iter_mut().enumerate() {
+                        *w = line_words(q, c, row)?;
+                    }
+                    JobWords::Quadric(ch)
+                }
                 SpanKind::Cubic { pipelined } => JobWords::Cubic {
                     channels: golden::cubic::span_samples(&plane, row, ctx)
                         .map(|s| HornerWords::new(s, m)),
@@ -221,7 +257,7 @@ pub fn span_jobs(
                     }),
                 },
             };
-            SpanJob {
+            Ok(SpanJob {
                 triangle,
                 y: row.y as u32,
                 x0: row.x_start as u32,
@@ -231,24 +267,30 @@ pub fn span_jobs(
                 z0: quantize(depth.at_pixel(row.x_start, row.y)),
                 zm: quantize(depth.at_pixel(end, row.y)),
                 dz: quantize(depth.a * row.dir as f64),
-            }
+            })
         })
-        .collect())
+        .collect()
 }
 
 /// The top's input row: `load` with a span (or idle), then (angular, fast) the material
 /// registers.
 pub fn span_row(kind: SpanKind, job: Option<&SpanJob>, regs: &ShadingRegs) -> Vec<u64> {
     let mut row = match job {
-        Some(j) => vec![
-            1,
-            j.y as u64,
-            j.x0 as u64,
-            j.leftward as u64,
-            j.m as u64,
-        ],
+        Some(j) => vec![1, j.y as u64, j.x0 as u64, j.leftward as u64, j.m as u64],
         None => vec![0; 5],
     };
+    if kind == SpanKind::Quadric {
+        match job.map(|j| j.words) {
+            Some(JobWords::Quadric(ch)) => {
+                for w in ch {
+                    row.extend([w.i0, w.i1, w.a2].map(|v| (v as u64) & ((1 << 48) - 1)));
+                }
+            }
+            _ => row.extend([0; 9]),
+        }
+        row.extend(job.map_or([0; 2], |j| [j.z0, j.dz]).map(u64::from));
+        return row;
+    }
     if let SpanKind::Cubic { .. } = kind {
         match job.map(|j| j.words) {
             Some(JobWords::Cubic { channels, .. }) => {
@@ -294,6 +336,7 @@ enum Top {
     Angular(Box<Stepper<AngularPipeline>>),
     Fast(Box<Stepper<FastPipeline>>),
     Cubic(Box<Stepper<CubicPipeline>>),
+    Quadric(Box<Stepper<QuadricUnit>>),
 }
 
 /// A span pipeline, stepped by hand.
@@ -311,12 +354,14 @@ impl SpanPipe {
 
     /// As [`SpanPipe::new`], `cubic` through the pipelined Horner units if `pipelined`.
     pub fn with_horner(method: Method, pipelined: bool) -> Result<SpanPipe, String> {
-        let kind = SpanKind::of(method).map(|k| k.with_horner(pipelined)).ok_or_else(|| {
-            format!(
-                "the RTL span pipelines do not compute {method} (they have: {})",
-                SPAN_METHODS.map(|m| m.name()).join(", ")
-            )
-        })?;
+        let kind = SpanKind::of(method)
+            .map(|k| k.with_horner(pipelined))
+            .ok_or_else(|| {
+                format!(
+                    "the RTL span pipelines do not compute {method} (they have: {})",
+                    SPAN_METHODS.map(|m| m.name()).join(", ")
+                )
+            })?;
         let top = match kind {
             SpanKind::Angular => Top::Angular(Box::new(Stepper::new(AngularPipeline::default())?)),
             SpanKind::Fast(_) => Top::Fast(Box::new(Stepper::new(FastPipeline::new(
@@ -325,6 +370,7 @@ impl SpanPipe {
             SpanKind::Cubic { pipelined } => Top::Cubic(Box::new(Stepper::new(
                 CubicPipeline::new(&CubicParams(HornerParams { pipelined })),
             )?)),
+            SpanKind::Quadric => Top::Quadric(Box::new(Stepper::new(QuadricUnit::default())?)),
         };
         Ok(SpanPipe { kind, top })
     }
@@ -339,6 +385,7 @@ impl SpanPipe {
             Top::Angular(_) => AngularPipeline::LATENCY,
             Top::Fast(_) => <FastPipeline as RtlBlock>::LATENCY,
             Top::Cubic(_) => <CubicPipeline as RtlBlock>::LATENCY,
+            Top::Quadric(_) => QuadricUnit::LATENCY,
         }
     }
 
@@ -348,6 +395,7 @@ impl SpanPipe {
             Top::Angular(s) => s.start_vcd(w),
             Top::Fast(s) => s.start_vcd(w),
             Top::Cubic(s) => s.start_vcd(w),
+            Top::Quadric(s) => s.start_vcd(w),
         }
     }
 
@@ -356,6 +404,7 @@ impl SpanPipe {
             Top::Angular(s) => s.dut().ready.val(),
             Top::Fast(s) => s.dut().ready.val(),
             Top::Cubic(s) => s.dut().ready.val(),
+            Top::Quadric(s) => s.dut().ready.val(),
         }
     }
 
@@ -364,6 +413,7 @@ impl SpanPipe {
             Top::Angular(s) => s.step(row, out),
             Top::Fast(s) => s.step(row, out),
             Top::Cubic(s) => s.step(row, out),
+            Top::Quadric(s) => s.step(row, out),
         }
     }
 
@@ -435,6 +485,7 @@ impl SpanPipe {
             Top::Angular(s) => s.stop_vcd(),
             Top::Fast(s) => s.stop_vcd(),
             Top::Cubic(s) => s.stop_vcd(),
+            Top::Quadric(s) => s.stop_vcd(),
         }
         Ok(st)
     }

@@ -103,8 +103,8 @@ impl Logic for CubicPipeline {
     fn update(&mut self) {
         dff_setup!(self, clock, x0_q, y_q, dir_q, z0_q, dz_q, o_z);
         clock!(
-            self, clock, unit_r, unit_g, unit_b, x0_d, y_d, dir_d, z0_d, dz_d, o_v, o_x, o_r,
-            o_g, o_b, o_y, o_l
+            self, clock, unit_r, unit_g, unit_b, x0_d, y_d, dir_d, z0_d, dz_d, o_v, o_x, o_r, o_g,
+            o_b, o_y, o_l
         );
         self.take.next = self.load.val() & self.unit_r.ready.val();
         self.unit_r.load.next = self.load.val();

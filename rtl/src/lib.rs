@@ -17,6 +17,7 @@ pub mod normalizer;
 pub mod pixel_pipeline;
 pub mod power_unit;
 pub mod primitives;
+pub mod quadric_unit;
 pub mod registry;
 pub mod sim;
 pub mod span_pipeline;

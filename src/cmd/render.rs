@@ -198,7 +198,11 @@ fn render_frames(
                         m.name(),
                         i + 1,
                         methods.len(),
-                        if pipeline::span::SPAN_METHODS.contains(&m) { "lines" } else { "triangles" }
+                        if pipeline::span::SPAN_METHODS.contains(&m) {
+                            "lines"
+                        } else {
+                            "triangles"
+                        }
                     ))
                     .expect("static template")
                     .progress_chars("=> "),

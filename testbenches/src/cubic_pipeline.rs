@@ -103,7 +103,12 @@ fn stimulus(p: &CubicParams, tris: &[ScreenTriangle]) -> Stimulus {
         spans.extend(span_jobs(t, i, kind, &ctx).expect("depths in range"));
         colours.extend(golden_colours(t, &ctx, kind));
         let d = t.depth_plane().expect("non-degenerate");
-        depths.extend(walk(t).pixels().into_iter().map(|px| d.at_pixel(px.x, px.y)));
+        depths.extend(
+            walk(t)
+                .pixels()
+                .into_iter()
+                .map(|px| d.at_pixel(px.x, px.y)),
+        );
     }
     let mut first = Vec::with_capacity(spans.len());
     let mut at = 0;

@@ -1,8 +1,8 @@
 pub mod address_block;
 pub mod brzssk;
 pub mod colour_combine;
-pub mod cubic_pipeline;
 pub mod cos_v_accumulator;
+pub mod cubic_pipeline;
 pub mod fast_unit;
 pub mod harness;
 pub mod horner_unit;
@@ -12,6 +12,7 @@ pub mod lighting_unit;
 pub mod normalizer;
 pub mod pixel_pipeline;
 pub mod power_unit;
+pub mod quadric_unit;
 pub mod registry;
 pub mod span;
 pub mod span_pipeline;

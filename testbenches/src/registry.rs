@@ -222,6 +222,7 @@ pub static BLOCKS: &[&dyn Entry] = &[
     &entry::<rtl::span_pipeline::FastPipeline>(),
     &entry::<rtl::horner_unit::HornerUnit>(),
     &entry::<rtl::cubic_pipeline::CubicPipeline>(),
+    &entry::<rtl::quadric_unit::QuadricUnit>(),
 ];
 
 /// The entry named `name`.

@@ -36,7 +36,8 @@ use crate::normalizer::seeded_runner;
 use crate::pixel_pipeline::{lit_triangles, DelayLine};
 use crate::registry::{Bench, Stimulus, Twin};
 
-const NOT_CUBIC: &str = "the cubic pipeline has its own bench (crate::cubic_pipeline)";
+const NOT_CUBIC: &str =
+    "the cubic and quadric tops have their own benches (crate::cubic_pipeline, crate::quadric_unit)";
 
 /// One span unit's twin.
 enum UnitTwin {
@@ -82,12 +83,12 @@ impl SpanPipelineTwin {
         let unit = || match kind {
             SpanKind::Angular => UnitTwin::Angular(CosVTwin::default()),
             SpanKind::Fast(_) => UnitTwin::Fast(FastTwin::new(coeffs(kind))),
-            SpanKind::Cubic { .. } => unreachable!("{NOT_CUBIC}"),
+            SpanKind::Cubic { .. } | SpanKind::Quadric => unreachable!("{NOT_CUBIC}"),
         };
         let u1 = match kind {
             SpanKind::Angular => CosVAccumulator::LATENCY - 1,
             SpanKind::Fast(_) => FastUnit::LATENCY - 1,
-            SpanKind::Cubic { .. } => unreachable!("{NOT_CUBIC}"),
+            SpanKind::Cubic { .. } | SpanKind::Quadric => unreachable!("{NOT_CUBIC}"),
         };
         let (unit_l, unit_h) = (unit(), unit());
         SpanPipelineTwin {
@@ -139,7 +140,7 @@ fn row_span(kind: SpanKind, r: &[u64]) -> (bool, [u64; 6], UnitWords, UnitWords,
             };
             (w(5), w(10), 15)
         }
-        SpanKind::Cubic { .. } => unreachable!("{NOT_CUBIC}"),
+        SpanKind::Cubic { .. } | SpanKind::Quadric => unreachable!("{NOT_CUBIC}"),
     };
     // base: x0, y, dir, dz, z0, zm
     let base = [r[2], r[1], r[3], r[at + 2], r[at], r[at + 1]];
@@ -225,7 +226,11 @@ impl Twin for SpanPipelineTwin {
 }
 
 /// The golden colour of every pixel of `t` under `kind`, in walk order.
-pub(crate) fn golden_colours(t: &ScreenTriangle, ctx: &ShadeContext, kind: SpanKind) -> Vec<[u8; 3]> {
+pub(crate) fn golden_colours(
+    t: &ScreenTriangle,
+    ctx: &ShadeContext,
+    kind: SpanKind,
+) -> Vec<[u8; 3]> {
     let w = walk(t);
     let mut out = Vec::with_capacity(w.pixel_count());
     let mut emit = |_: i32, _: i32, rgb: [u8; 3]| out.push(rgb);
@@ -233,6 +238,7 @@ pub(crate) fn golden_colours(t: &ScreenTriangle, ctx: &ShadeContext, kind: SpanK
         SpanKind::Angular => golden::angular::shade(t, &w, ctx, &mut emit),
         SpanKind::Fast(_) => golden::fast::shade(t, &w, ctx, coeffs(kind), &mut emit),
         SpanKind::Cubic { .. } => golden::cubic::shade(t, &w, ctx, &mut emit),
+        SpanKind::Quadric => golden::quadric::shade(t, &w, ctx, &mut emit),
     }
     out
 }

@@ -1,0 +1,225 @@
+//! Bench of the quadric forward-difference unit (`rtl::quadric_unit`) against the golden
+//! `quadric` method (`golden::quadric::shade`, f64) and its bit-exact twin
+//! (`golden::quadric_unit::twin`).
+//!
+//! Stimulus: named triangles first — equal vertex normals (constant intensity), normals at the
+//! half vector (the highlight saturates at 255), a one-pixel-high sliver (one-pixel lines), a
+//! large triangle (long lines; every triangle ends with its last line) — then seeded random
+//! triangles (`crate::pixel_pipeline::lit_triangles`), under the default context, through the
+//! span front end (`pipeline::span::span_jobs`, the quadric set-up), each line loaded in the clock
+//! `ready` rises. Expectations: `ready`, valid flags, `x`, `y`, `last` exact from the schedule
+//! (clock j of a line shows pixels 2j and 2j + 1, one clock after its state); colours within
+//! 2 LSB of the golden method, RMS 0.5; `z` within 4096·2⁻¹⁷ + 2⁻¹⁶ of the f64 depth plane.
+
+use glam::DVec3;
+use golden::quadric_unit::twin::{QuadricLine, QuadricTwin};
+use golden::quadric_unit::QuadricWords;
+use golden::raster::walk;
+use golden::shade::ShadeContext;
+use golden::types::ScreenTriangle;
+use pipeline::lit::ShadingRegs;
+use pipeline::span::{span_jobs, span_row, SpanJob, SpanKind};
+use rtl::fixed::{INTENSITY, LEVEL};
+use rtl::quadric_unit::QuadricUnit;
+use rtl::registry::NoParams;
+
+use crate::harness::{Compare, Expected, Tolerance};
+use crate::pixel_pipeline::lit_triangles;
+use crate::registry::{Bench, Stimulus, Twin};
+use crate::span_pipeline::golden_colours;
+
+/// Named triangles: (name, triangle).
+pub fn named_triangles() -> Vec<(&'static str, ScreenTriangle)> {
+    let ctx = ShadeContext::default();
+    let with = |p: [(i32, i32); 3], n: [DVec3; 3]| {
+        let mut t = ScreenTriangle::from_points(p);
+        for (v, n) in t.v.iter_mut().zip(n) {
+            v.normal = n.normalize();
+        }
+        t
+    };
+    let h = ctx.half();
+    vec![
+        (
+            "constant intensity (equal normals)",
+            with([(5, 3), (40, 9), (12, 30)], [DVec3::new(0.2, 0.3, 0.9); 3]),
+        ),
+        (
+            "highlight: normals near H, saturating",
+            with(
+                [(50, 5), (90, 12), (60, 40)],
+                [
+                    h,
+                    (h + DVec3::new(0.05, 0.0, 0.0)),
+                    (h + DVec3::new(0.0, 0.05, 0.0)),
+                ],
+            ),
+        ),
+        (
+            "one-pixel-high sliver: one-pixel lines",
+            with(
+                [(10, 60), (30, 61), (11, 61)],
+                [DVec3::Z, DVec3::X + DVec3::Z, DVec3::Y + DVec3::Z],
+            ),
+        ),
+        (
+            "large triangle: long lines",
+            with(
+                [(0, 70), (300, 90), (40, 160)],
+                [
+                    DVec3::new(-0.5, -0.3, 0.8),
+                    DVec3::new(0.6, -0.2, 0.7),
+                    DVec3::new(0.1, 0.7, 0.7),
+                ],
+            ),
+        ),
+    ]
+}
+
+/// Twin on the top's rows: load y x0 dir m (r0 r1 ra g0 g1 ga b0 b1 ba) z0 dz.
+struct QuadricRows(QuadricTwin);
+
+impl Twin for QuadricRows {
+    fn step(&mut self, r: &[u64]) -> Vec<u64> {
+        let o = self.0.outputs();
+        let sx = |v: u64| ((v << 16) as i64) >> 16;
+        let line = QuadricLine {
+            y: r[1],
+            x0: r[2],
+            leftward: r[3] != 0,
+            m: r[4] as u32,
+            ch: std::array::from_fn(|c| QuadricWords {
+                i0: sx(r[5 + 3 * c]),
+                i1: sx(r[6 + 3 * c]),
+                a2: sx(r[7 + 3 * c]),
+            }),
+            z0: r[14],
+            dz: r[15],
+        };
+        self.0.clock((r[0] != 0).then_some(&line));
+        o
+    }
+}
+
+fn stimulus(tris: &[ScreenTriangle]) -> Stimulus {
+    let kind = SpanKind::Quadric;
+    let ctx = ShadeContext::default();
+    let regs = ShadingRegs::of(&ctx).expect("default context fits the registers");
+    let mut spans: Vec<SpanJob> = Vec::new();
+    let mut colours = Vec::new();
+    let mut depths = Vec::new();
+    for (i, t) in tris.iter().enumerate() {
+        spans.extend(span_jobs(t, i, kind, &ctx).expect("in range"));
+        colours.extend(golden_colours(t, &ctx, kind));
+        let d = t.depth_plane().expect("non-degenerate");
+        depths.extend(
+            walk(t)
+                .pixels()
+                .into_iter()
+                .map(|px| d.at_pixel(px.x, px.y)),
+        );
+    }
+    let mut first = Vec::with_capacity(spans.len());
+    let mut at = 0;
+    for s in &spans {
+        first.push(at);
+        at += s.m as usize + 1;
+    }
+    assert_eq!(at, colours.len(), "spans and golden pixels disagree");
+    let mut rows = vec![span_row(kind, spans.first(), &regs)];
+    let mut state: Vec<Option<(usize, u64)>> = vec![None];
+    for (i, s) in spans.iter().enumerate() {
+        for k in 0..s.clocks() {
+            state.push(Some((i, k)));
+            let next = (k + 1 == s.clocks()).then(|| spans.get(i + 1)).flatten();
+            rows.push(span_row(kind, next, &regs));
+        }
+    }
+    for _ in 0..3 {
+        rows.push(span_row(kind, None, &regs));
+        state.push(None);
+    }
+    let w = Expected::Word;
+    let expected = (0..rows.len())
+        .map(|c| {
+            let ready = state[c].is_none_or(|(i, k)| k + 1 == spans[i].clocks());
+            let mut e = vec![w(ready as u64)];
+            let shown = c.checked_sub(1).and_then(|s| state[s]);
+            let pixel = |i: usize, t: u64| {
+                let s = &spans[i];
+                let x = if s.leftward {
+                    s.x0 as u64 - t
+                } else {
+                    s.x0 as u64 + t
+                };
+                let px = first[i] + t as usize;
+                let mut v = vec![w(1), w(x), Expected::Real(depths[px])];
+                v.extend(colours[px].map(|c| Expected::Real(c as f64)));
+                v
+            };
+            let none = || {
+                let mut v = vec![w(0)];
+                v.extend([Expected::DontCare; 5]);
+                v
+            };
+            match shown {
+                Some((i, k)) => {
+                    let m = spans[i].m as u64;
+                    e.extend(pixel(i, 2 * k));
+                    e.extend(if 2 * k < m {
+                        pixel(i, 2 * k + 1)
+                    } else {
+                        none()
+                    });
+                    e.push(w(spans[i].y as u64));
+                    e.push(w((k + 1 == spans[i].clocks()) as u64));
+                }
+                None => {
+                    e.extend(none());
+                    e.extend(none());
+                    e.push(Expected::DontCare);
+                    e.push(w(0));
+                }
+            }
+            e
+        })
+        .collect();
+    let level = Compare::Fixed {
+        format: LEVEL,
+        tol: Tolerance {
+            max_abs: 2.0,
+            rms: 0.5,
+        },
+    };
+    let zb = 4096.0 * (-17f64).exp2() + (-16f64).exp2();
+    let depth = Compare::Fixed {
+        format: INTENSITY,
+        tol: Tolerance {
+            max_abs: zb,
+            rms: zb,
+        },
+    };
+    let lane = [Compare::Exact, Compare::Exact, depth, level, level, level];
+    let mut compare = vec![Compare::Exact];
+    compare.extend(lane);
+    compare.extend(lane);
+    compare.extend([Compare::Exact, Compare::Exact]);
+    Stimulus {
+        rows,
+        expected,
+        compare,
+    }
+}
+
+impl Bench for QuadricUnit {
+    const ITEMS: &'static str = "triangles";
+    const DEFAULT_ITEMS: usize = 12;
+    fn stimulus(_: &NoParams, n: usize, seed: u64) -> Stimulus {
+        let mut tris: Vec<ScreenTriangle> = named_triangles().into_iter().map(|(_, t)| t).collect();
+        tris.extend(lit_triangles(seed, n));
+        stimulus(&tris)
+    }
+    fn twin(_: &NoParams) -> Box<dyn Twin> {
+        Box::new(QuadricRows(QuadricTwin::new()))
+    }
+}
