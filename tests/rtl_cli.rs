@@ -79,7 +79,7 @@ fn rtl_engine_rejects_methods_it_does_not_implement() {
         "--engine",
         "rtl",
         "--method",
-        "quadric",
+        "flat",
         "--out",
         dir.path().to_str().unwrap(),
     ]);

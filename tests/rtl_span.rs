@@ -195,7 +195,7 @@ fn span_pipeline_input_errors_are_one_line() {
     let e = render_rtl(&s.tris, Method::Angular, &s.ctx, 5000, 40, &bar).unwrap_err();
     assert!(format!("{e:#}").contains("canvas"), "{e:#}");
     // The method list names the span methods.
-    let e = render_rtl(&s.tris, Method::Quadric, &s.ctx, 40, 40, &bar).unwrap_err();
+    let e = render_rtl(&s.tris, Method::Flat, &s.ctx, 40, 40, &bar).unwrap_err();
     assert!(format!("{e:#}").contains("fast-fit"), "{e:#}");
 }
 
