@@ -4,8 +4,9 @@
 //! I_{k+2} = 2·I_{k+1} − I_k + 2A and I_{k+3} = 3·I_{k+1} − 2·I_k + 6A (shifts and adds).
 //!
 //! Words per line and channel (software set-up, `crate::quadric`): I0 = I(x0) by the direct
-//! form (2.2), I1 = I(x0 + d) by (2.3), and 2A; signed Q17.30 in 48 bits (LSB units of the
-//! 8-bit channel). The recurrence on the words is exact (integers); the output rounds to an
+//! form (2.2), I1 = I(x0 + d) by (2.3), and 2A; signed Q34.30 in 64 bits (LSB units of the
+//! 8-bit channel: a quadric fitted on a sliver triangle overshoots by orders of magnitude at
+//! pixel centres just outside it, where the image saturates anyway). The recurrence on the words is exact (integers); the output rounds to an
 //! integer (+2²⁹, drop 30 bits, ties up) and saturates to 0..=255. Depth runs beside it: lane A
 //! from z0 by 2·dz, lane B from z0 + dz by 2·dz (signed Q16.16).
 
@@ -15,15 +16,16 @@ use crate::types::Row;
 /// Fraction bits of the intensity words.
 pub const FRAC: u32 = 30;
 /// Width of the intensity words.
-pub const BITS: u32 = 48;
-/// Largest |intensity| (LSB units) the set-up accepts on a line (the words hold ±2¹⁷; the
-/// recurrence's intermediate 3·I_{k+1} needs two more bits of headroom).
-pub const RANGE: f64 = 16384.0;
+pub const BITS: u32 = 64;
+/// Largest |intensity| (LSB units) the set-up accepts on a line: the words hold ±2³³; the
+/// recurrence is exact modulo 2⁶⁴ (its intermediates may wrap), so only the values themselves
+/// must fit, with a margin for the output rounding.
+pub const RANGE: f64 = 2147483648.0;
 
 /// One channel's words for one line.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub struct QuadricWords {
-    /// I(x0), I(x0 + d), 2A as signed Q17.30.
+    /// I(x0), I(x0 + d), 2A as signed Q34.30.
     pub i0: i64,
     pub i1: i64,
     pub a2: i64,
@@ -97,7 +99,7 @@ pub mod twin {
         }
     }
 
-    /// A Q17.30 word → 8 bits: +2²⁹, drop 30, saturate to 0..=255.
+    /// A Q34.30 word → 8 bits: +2²⁹, drop 30, saturate to 0..=255.
     pub fn out8(v: i128) -> u64 {
         ((wrap(v + (1 << (FRAC - 1)))) >> FRAC).clamp(0, 255) as u64
     }

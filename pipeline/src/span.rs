@@ -283,7 +283,7 @@ pub fn span_row(kind: SpanKind, job: Option<&SpanJob>, regs: &ShadingRegs) -> Ve
         match job.map(|j| j.words) {
             Some(JobWords::Quadric(ch)) => {
                 for w in ch {
-                    row.extend([w.i0, w.i1, w.a2].map(|v| (v as u64) & ((1 << 48) - 1)));
+                    row.extend([w.i0, w.i1, w.a2].map(|v| v as u64));
                 }
             }
             _ => row.extend([0; 9]),

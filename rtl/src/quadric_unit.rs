@@ -20,7 +20,7 @@
 //! |---|---|---|
 //! | `load` | in | a line's words (taken when `ready`) |
 //! | `y`, `x0`, `dir`, `m` | in | the line: y, first pixel's x, 1 = leftward (x0 − t), pixels − 1 |
-//! | `r0 r1 ra`, `g0 g1 ga`, `b0 b1 ba` | in | per channel I(x0), I(x0 + d), 2A: signed Q17.30 (48 bits), LSB units |
+//! | `r0 r1 ra`, `g0 g1 ga`, `b0 b1 ba` | in | per channel I(x0), I(x0 + d), 2A: signed Q34.30 (64 bits), LSB units |
 //! | `z0`, `dz` | in | depth at pixel 0 and per pixel step, signed Q16.16 |
 //! | `ready` | out | a `load` now follows the current line without a gap |
 //! | `valid_a`, `x_a`, `z_a`, `red_a` … | out | lane A: pixel 2j in the line's clock j |
@@ -33,9 +33,11 @@
 //! odd-length line; 0 clocks per line.
 //!
 //! # Overflow
-//! The recurrence is exact modulo 2⁴⁸ (it must not saturate: each word feeds the next); the
-//! span front end rejects a line whose intensities leave ±2¹⁴ LSB (`golden::quadric_unit::RANGE`;
-//! the words hold ±2¹⁷), so the true values never wrap. Outputs saturate to 0..=255.
+//! The recurrence is exact modulo 2⁶⁴ (it must not saturate: each word feeds the next, and its
+//! intermediates may wrap harmlessly); the span front end rejects a line whose intensities leave
+//! ±2³¹ LSB (`golden::quadric_unit::RANGE`; the words hold ±2³³ — a quadric fitted on a sliver
+//! overshoots wildly at pixel centres just outside it), so the values themselves never wrap.
+//! Outputs saturate to 0..=255.
 //!
 //! # Error budget (vs `golden::quadric::row_kernel`, f64)
 //! The words' rounding (2⁻³¹ each) grows along the line as δI0 + k·δΔ + k²/2·δ(2A): ≤ 0.004 LSB
@@ -44,12 +46,12 @@
 use rust_hdl::prelude::*;
 
 crate::hw_block! {
-    /// A Q17.30 word (48 bits) → 8 bits: +2²⁹, drop 30, saturate to 0..=255. Combinational.
+    /// A Q34.30 word (64 bits) → 8 bits: +2²⁹, drop 30, saturate to 0..=255. Combinational.
     pub struct RoundSat8Q30 {
-        in { v: Bits<48> }
+        in { v: Bits<64> }
         out { q: Bits<8> }
-        half: Constant<Bits<48>> = Constant::new((1u64 << 29).into()),
-        rnd: Signal<Local, Bits<48>>,
+        half: Constant<Bits<64>> = Constant::new((1u64 << 29).into()),
+        rnd: Signal<Local, Bits<64>>,
     }
 }
 
@@ -57,9 +59,9 @@ impl Logic for RoundSat8Q30 {
     #[hdl_gen]
     fn update(&mut self) {
         self.rnd.next = self.v.val() + self.half.val();
-        if self.rnd.val().get_bit(47) {
+        if self.rnd.val().get_bit(63) {
             self.q.next = 0.into();
-        } else if self.rnd.val().get_bits::<9>(38).any() {
+        } else if self.rnd.val().get_bits::<25>(38).any() {
             self.q.next = 255.into();
         } else {
             self.q.next = self.rnd.val().get_bits::<8>(30);
@@ -75,9 +77,9 @@ crate::hw_block! {
         multipliers: 0,
         in {
             load: Bit, span_base_ports!,
-            r0: Bits<48>, r1: Bits<48>, ra: Bits<48>,
-            g0: Bits<48>, g1: Bits<48>, ga: Bits<48>,
-            b0: Bits<48>, b1: Bits<48>, ba: Bits<48>,
+            r0: Bits<64>, r1: Bits<64>, ra: Bits<64>,
+            g0: Bits<64>, g1: Bits<64>, ga: Bits<64>,
+            b0: Bits<64>, b1: Bits<64>, ba: Bits<64>,
             z0: Bits<32>, dz: Bits<32>,
         }
         out {
@@ -89,7 +91,7 @@ crate::hw_block! {
         // State.
         busy: DFF<Bit>, t_q: DFF<Bits<13>>, m_q: DFF<Bits<13>>, x0_q: DFF<Bits<12>>,
         y_q: DFF<Bits<12>>, dir_q: DFF<Bit>,
-        p: [DFF<Bits<48>>; 3], q: [DFF<Bits<48>>; 3], a2: [DFF<Bits<48>>; 3],
+        p: [DFF<Bits<64>>; 3], q: [DFF<Bits<64>>; 3], a2: [DFF<Bits<64>>; 3],
         za: DFF<Bits<32>>, zb: DFF<Bits<32>>, dz_q: DFF<Bits<32>>,
         t2: Signal<Local, Bits<13>>, t1: Signal<Local, Bits<13>>,
         is_last: Signal<Local, Bit>, vb: Signal<Local, Bit>, rdy: Signal<Local, Bit>,
