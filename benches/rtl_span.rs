@@ -174,14 +174,25 @@ fn figures() {
     }
 }
 
-/// (clocks, pixels, spans, Σ(⌊m/2⌋ + 1)) of `tris` through the span top for `method`.
+/// (clocks, pixels, spans, Σ(⌊m/2⌋ + 1), latency) of `tris` through the span top for `method`.
 fn run_top(
     method: Method,
     tris: &[ScreenTriangle],
     ctx: &ShadeContext,
     keep: impl Fn(&SpanJob) -> bool,
 ) -> (u64, u64, usize, u64, usize) {
-    let mut pipe = SpanPipe::new(method).unwrap();
+    run_top_with(method, false, tris, ctx, keep)
+}
+
+/// [`run_top`] with the cubic's Horner variant.
+fn run_top_with(
+    method: Method,
+    pipelined: bool,
+    tris: &[ScreenTriangle],
+    ctx: &ShadeContext,
+    keep: impl Fn(&SpanJob) -> bool,
+) -> (u64, u64, usize, u64, usize) {
+    let mut pipe = SpanPipe::with_horner(method, pipelined).unwrap();
     let spans: Vec<SpanJob> = tris
         .iter()
         .filter(|t| t.depth_plane().is_some())
@@ -217,7 +228,7 @@ fn default_scene() -> (Vec<ScreenTriangle>, ShadeContext) {
 
 fn pipeline_figures() {
     let (tris, ctx) = default_scene();
-    for m in [Method::Angular, Method::FastFit] {
+    for m in [Method::Angular, Method::FastFit, Method::Quadric] {
         let (c, p, n, sc, lat) = run_top(m, &tris, &ctx, |_| true);
         let (cl, pl, nl, scl, _) = run_top(m, &tris, &ctx, |s| s.m >= 15);
         println!(
@@ -298,13 +309,20 @@ fn average_triangle_table() {
         );
         let (l1, l10) = (l(1), l(10));
         println!("| {label} | {px} | normalizer-fit, brdf-k*, bump | lit pixel pipeline | {l1} | {:.1} |", (l10 - l1) as f64 / 9.0);
-        for (m, hw) in [
-            (Method::Angular, "angular-pipeline"),
-            (Method::FastFit, "fast-pipeline"),
+        for (m, pipelined, hw) in [
+            (Method::Angular, false, "angular-pipeline"),
+            (Method::FastFit, false, "fast-pipeline"),
+            (Method::Quadric, false, "quadric-unit"),
+            (
+                Method::Cubic,
+                false,
+                "cubic-pipeline, serial Horner (fig. 2.6)",
+            ),
+            (Method::Cubic, true, "cubic-pipeline, pipelined Horner"),
         ] {
-            let (c1, ..) = run_top(m, &tris, &ctx, |_| true);
+            let (c1, ..) = run_top_with(m, pipelined, &tris, &ctx, |_| true);
             let ten: Vec<ScreenTriangle> = std::iter::repeat_n(t, 10).collect();
-            let (c10, ..) = run_top(m, &ten, &ctx, |_| true);
+            let (c10, ..) = run_top_with(m, pipelined, &ten, &ctx, |_| true);
             println!(
                 "| {label} | {px} | {m} | {hw} | {c1} | {:.1} |",
                 (c10 - c1) as f64 / 9.0
@@ -313,10 +331,30 @@ fn average_triangle_table() {
     }
 }
 
+/// The Horner unit's clocks per pixel (fig. 2.6 serial, pipelined) over the default scene.
+fn horner_figures() {
+    let (tris, ctx) = default_scene();
+    for pipelined in [false, true] {
+        let (c, p, n, sc, _) = run_top_with(Method::Cubic, pipelined, &tris, &ctx, |_| true);
+        println!(
+            "cubic pipeline ({} Horner), default scene: {p} fragments in {c} clocks ({:.3} clocks \
+             per pixel; {n} lines, {sc} line clocks + {} tail)",
+            if pipelined {
+                "pipelined"
+            } else {
+                "serial, fig. 2.6"
+            },
+            c as f64 / p as f64,
+            c - sc,
+        );
+    }
+}
+
 fn bench(c: &mut Criterion) {
     figures();
     fast_figures();
     pipeline_figures();
+    horner_figures();
     average_triangle_table();
     let s = spans(|c| c.half());
     let slice = &s[..s.len() / 4];
