@@ -1,4 +1,5 @@
-//! Rounding errors of a quarter LSB in the lit pipeline's blocks and the span units are caught by the bit-exact
+//! Rounding errors of a quarter LSB in the lit pipeline's blocks, the span units, the Horner unit
+//! and the quadric unit are caught by the bit-exact
 //! twins: each block's exported Verilog, with one rounding constant moved by a quarter of its
 //! output LSB, runs under Icarus on the block's test rows and must differ from the twin's
 //! outputs somewhere (and the unmodified Verilog must equal them everywhere). The twins are
@@ -54,5 +55,21 @@ fn quarter_lsb_rounding_errors_are_caught_by_the_twins() {
     check("fast-unit", &Options::new(), 60, &[
         Mutant { what: "t1 rounding + ¼ LSB", module: "fast_unit", from: "localparam  half_t1 = 32'h8000;", to: "localparam  half_t1 = 32'hc000;" },
         Mutant { what: "M rounding + ¼ LSB", module: "fast_unit", from: "localparam  half31 = 49'h40000000;", to: "localparam  half31 = 49'h60000000;" },
+    ]);
+    // The Horner unit and the quadric unit (issue 11).
+    #[rustfmt::skip]
+    check("horner-unit", &Options::new().with("horner", "serial"), 60, &[
+        Mutant { what: "MUL product rounding + ¼ LSB", module: "horner_unit$mul", from: "localparam  half = 48'h4000;", to: "localparam  half = 48'h6000;" },
+        Mutant { what: "output rounding + ¼ LSB", module: "horner_unit$out_s", from: "localparam  half = 32'h800;", to: "localparam  half = 32'hc00;" },
+        Mutant { what: "p rounding + ¼ LSB", module: "horner_unit", from: "localparam  p_half = 29'h800;", to: "localparam  p_half = 29'hc00;" },
+    ]);
+    #[rustfmt::skip]
+    check("horner-unit", &Options::new().with("horner", "pipelined"), 60, &[
+        Mutant { what: "second MUL's rounding + ¼ LSB", module: "horner_unit$mul2", from: "localparam  half = 48'h4000;", to: "localparam  half = 48'h6000;" },
+        Mutant { what: "output rounding + ¼ LSB", module: "horner_unit$out_p", from: "localparam  half = 32'h800;", to: "localparam  half = 32'hc00;" },
+    ]);
+    #[rustfmt::skip]
+    check("quadric-unit", &Options::new(), 6, &[
+        Mutant { what: "lane B red rounding + ¼ LSB", module: "quadric_unit$sat_b$0", from: "localparam  half = 64'h20000000;", to: "localparam  half = 64'h30000000;" },
     ]);
 }
