@@ -1,14 +1,20 @@
 //! The quadric forward-difference unit (SPEC §8), the golden of `rtl/src/quadric_unit.rs`:
-//! along a raster line, per colour channel, I(x + 2d) = 2·I(x + d) − I(x) + 2A, two pixels per
-//! clock — the pair (I_k, I_{k+1}) steps to (I_{k+2}, I_{k+3}) with
-//! I_{k+2} = 2·I_{k+1} − I_k + 2A and I_{k+3} = 3·I_{k+1} − 2·I_k + 6A (shifts and adds).
+//! quadric shading by forward differences only — the line starts by a 2-D difference tracker
+//! that moves to the next line with the y terms, each line two pixels per clock.
 //!
-//! Words per line and channel (software set-up, `crate::quadric`): I0 = I(x0) by the direct
-//! form (2.2), I1 = I(x0 + d) by (2.3), and 2A; signed Q34.30 in 64 bits (LSB units of the
-//! 8-bit channel: a quadric fitted on a sliver triangle overshoots by orders of magnitude at
-//! pixel centres just outside it, where the image saturates anyway). The recurrence on the words is exact (integers); the output rounds to an
-//! integer (+2²⁹, drop 30 bits, ties up) and saturates to 0..=255. Depth runs beside it: lane A
-//! from z0 by 2·dz, lane B from z0 + dz by 2·dz (signed Q16.16).
+//! Per triangle and channel (software set-up, `crate::quadric`): at the first line's first pixel
+//! (u, v) (relative to the first vertex, pixel centres) I0 = I(u, v) by the direct form (2.2),
+//! Dx = I(u + 1, v) − I(u, v) = 2A·u + A + C·v + D (2.3), Dy = I(u, v + 1) − I(u, v) =
+//! 2B·v + B + C·u + E, and the second differences 2A, 2B, C. The tracker holds (I, Dx, Dy) at
+//! the current line start and moves by adds only:
+//! y-step: I += Dy, Dy += 2B, Dx += C; x-step (±1): I ± …, Dx ± 2A, Dy ± C (and a double
+//! x-step of ±2 per clock). Along a line (direction d) the generator holds (I_k, I_{k+1}) and
+//! steps to (I_{k+2}, I_{k+3}) = (2·I_{k+1} − I_k + 2A, 3·I_{k+1} − 2·I_k + 6A): two pixels per
+//! clock. All words signed Q34.30 in 64 bits, LSB units of the 8-bit channel; every update is
+//! an exact integer add modulo 2⁶⁴, so the values equal the exact quadric of the words wherever
+//! they fit (the front end checks each line's range). Output: +2²⁹, drop 30, saturate 0..=255.
+//! Depth per line (z0, dz, software) runs beside it: lane A from z0 by 2·dz, lane B from
+//! z0 + dz.
 
 use crate::quadric::{direct, QuadricSetup};
 use crate::types::Row;
@@ -22,66 +28,62 @@ pub const BITS: u32 = 64;
 /// must fit, with a margin for the output rounding.
 pub const RANGE: f64 = 2147483648.0;
 
-/// One channel's words for one line.
+/// One channel's words for one triangle: I, Dx, Dy at its first line's first pixel, and the
+/// second differences 2A, 2B, C (signed Q34.30).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub struct QuadricWords {
-    /// I(x0), I(x0 + d), 2A as signed Q34.30.
     pub i0: i64,
-    pub i1: i64,
+    pub dx: i64,
+    pub dy: i64,
     pub a2: i64,
+    pub b2: i64,
+    pub c: i64,
 }
 
 fn word(v: f64) -> i64 {
     (v * (FRAC as f64).exp2() + 0.5).floor() as i64
 }
 
-/// The words of channel `channel` on `row` (its first two pixels by (2.2) and (2.3), as
-/// `crate::quadric::row_kernel`), or an error when the line's intensities leave ±[`RANGE`].
-pub fn line_words(s: &QuadricSetup, channel: usize, row: &Row) -> Result<QuadricWords, String> {
+/// The words of channel `channel` with the tracker starting at `row`'s first pixel.
+pub fn triangle_words(s: &QuadricSetup, channel: usize, row: &Row) -> QuadricWords {
+    let [a, b, c, d, e, _] = s.coeffs[channel];
+    let u = row.x_start as f64 + 0.5 - s.origin.0;
+    let v = row.y as f64 + 0.5 - s.origin.1;
+    QuadricWords {
+        i0: word(direct(&s.coeffs[channel], u, v)),
+        dx: word(2.0 * a * u + a + c * v + d),
+        dy: word(2.0 * b * v + b + c * u + e),
+        a2: word(2.0 * a),
+        b2: word(2.0 * b),
+        c: word(c),
+    }
+}
+
+/// Check that channel `channel`'s intensities on `row` (both ends and the parabola's vertex)
+/// and its coefficients stay within ±[`RANGE`]; a one-line error otherwise.
+pub fn check_line(s: &QuadricSetup, channel: usize, row: &Row) -> Result<(), String> {
     let k = &s.coeffs[channel];
     let (a, c, d) = (k[0], k[2], k[3]);
     let x0 = row.x_start as f64 + 0.5 - s.origin.0;
     let y = row.y as f64 + 0.5 - s.origin.1;
     let dir = row.dir as f64;
-    let i0 = direct(k, x0, y);
-    let i1 = i0 + dir * (2.0 * a * x0 + c * y + d) + a;
-    // The line's extreme values: both ends and the parabola's vertex.
     let m = row.len.saturating_sub(1) as f64;
     let at = |t: f64| direct(k, x0 + dir * t, y);
-    let mut worst = i0.abs().max(i1.abs()).max(at(m).abs());
+    let mut worst = at(0.0).abs().max(at(m).abs());
     if a != 0.0 {
         let t = -(2.0 * a * x0 + c * y + d) * dir / (2.0 * a);
         if (0.0..=m).contains(&t) {
             worst = worst.max(at(t).abs());
         }
     }
-    if !worst.is_finite() || worst >= RANGE || !(2.0 * a).is_finite() || (2.0 * a).abs() >= RANGE {
+    let coeff_max = k.iter().fold(0.0f64, |w, v| w.max(v.abs()));
+    if !worst.is_finite() || worst >= RANGE || !coeff_max.is_finite() || coeff_max >= RANGE {
         return Err(format!(
             "quadric intensity {worst:.0} on line y = {} is beyond the unit's ±{RANGE} range",
             row.y
         ));
     }
-    Ok(QuadricWords {
-        i0: word(i0),
-        i1: word(i1),
-        a2: word(2.0 * a),
-    })
-}
-
-impl QuadricWords {
-    /// The f64 values the words stand for at pixels 0..=m (the exact recurrence on them).
-    pub fn values(&self, m: u32) -> Vec<f64> {
-        let f = (-(FRAC as f64)).exp2();
-        let mut out = Vec::with_capacity(m as usize + 1);
-        let (mut p, mut q) = (self.i0 as i128, self.i1 as i128);
-        for _ in 0..=m {
-            out.push(p as f64 * f);
-            let r = 2 * q - p + self.a2 as i128;
-            p = q;
-            q = r;
-        }
-        out
-    }
+    Ok(())
 }
 
 /// Bit-exact twin of `rtl::quadric_unit::QuadricUnit`.
@@ -104,26 +106,65 @@ pub mod twin {
         ((wrap(v + (1 << (FRAC - 1)))) >> FRAC).clamp(0, 255) as u64
     }
 
-    /// The line a load carries.
+    /// The line a load carries (`first`: the triangle's first line, with its words).
     #[derive(Clone, Copy, Debug, Default, PartialEq)]
     pub struct QuadricLine {
         pub y: u64,
         pub x0: u64,
         pub leftward: bool,
         pub m: u32,
+        pub first: bool,
         pub ch: [QuadricWords; 3],
         pub z0: u64,
         pub dz: u64,
     }
 
+    /// The 2-D tracker's state per channel: I, Dx, Dy and the second differences.
+    #[derive(Clone, Copy, Debug, Default)]
+    struct Track {
+        i: i128,
+        dx: i128,
+        dy: i128,
+        a2: i128,
+        b2: i128,
+        c: i128,
+    }
+
+    impl Track {
+        fn y_step(&mut self) {
+            self.i = wrap(self.i + self.dy);
+            self.dy = wrap(self.dy + self.b2);
+            self.dx = wrap(self.dx + self.c);
+        }
+        /// An x-step of `s` ∈ {−2, −1, 1, 2} pixels.
+        fn x_step(&mut self, s: i64) {
+            let (i, dx, a2) = (self.i, self.dx, self.a2);
+            self.i = wrap(match s {
+                2 => i + 2 * dx + a2,
+                1 => i + dx,
+                -1 => i - dx + a2,
+                _ => i - 2 * dx + 3 * a2,
+            });
+            self.dx = wrap(dx + s as i128 * a2);
+            self.dy = wrap(self.dy + s as i128 * self.c);
+        }
+    }
+
     #[derive(Clone, Debug, Default)]
     pub struct QuadricTwin {
-        busy: bool,
-        t: u32,
+        // tracker
+        tbusy: bool,
+        tx: u64,
+        ty: u64,
         line: QuadricLine,
+        tr: [Track; 3],
+        // generator
+        gbusy: bool,
+        t: u32,
+        gline: QuadricLine,
         p: [i128; 3],
         q: [i128; 3],
-        a2: [i128; 3],
+        ga2: [i128; 3],
         za: u64,
         zb: u64,
         out: Vec<u64>,
@@ -136,11 +177,15 @@ pub mod twin {
                 ..Default::default()
             }
         }
-        fn last(&self) -> bool {
-            self.t + 2 > self.line.m
+        fn glast(&self) -> bool {
+            self.t + 2 > self.gline.m
+        }
+        fn handover(&self) -> bool {
+            let positioned = self.tbusy && self.ty == self.line.y && self.tx == self.line.x0;
+            positioned && (!self.gbusy || self.glast())
         }
         pub fn ready(&self) -> bool {
-            !self.busy || self.last()
+            !self.tbusy || self.handover()
         }
         /// ready, lane A (valid x z r g b), lane B (valid x z r g b), y, last.
         pub fn outputs(&self) -> Vec<u64> {
@@ -149,7 +194,7 @@ pub mod twin {
             o
         }
         pub fn clock(&mut self, load: Option<&QuadricLine>) {
-            let l = &self.line;
+            let l = &self.gline;
             let x = |t: u32| {
                 if l.leftward {
                     l.x0.wrapping_sub(t as u64) & 0xfff
@@ -157,38 +202,82 @@ pub mod twin {
                     (l.x0 + t as u64) & 0xfff
                 }
             };
-            let vb = self.busy && self.t < l.m;
-            let mut o = vec![self.busy as u64, x(self.t), self.za];
+            let vb = self.gbusy && self.t < l.m;
+            let mut o = vec![self.gbusy as u64, x(self.t), self.za];
             o.extend(self.p.map(out8));
             o.extend([vb as u64, x(self.t + 1), self.zb]);
             o.extend(self.q.map(out8));
-            o.extend([l.y, (self.busy && self.last()) as u64]);
+            o.extend([l.y, (self.gbusy && self.glast()) as u64]);
             self.out = o;
+            let handover = self.handover();
             let ready = self.ready();
-            if self.busy {
-                if self.last() {
-                    self.busy = false;
+            // Generator.
+            if self.gbusy {
+                if self.glast() {
+                    self.gbusy = false;
                 } else {
                     for c in 0..3 {
-                        let (p, q, a2) = (self.p[c], self.q[c], self.a2[c]);
+                        let (p, q, a2) = (self.p[c], self.q[c], self.ga2[c]);
                         self.p[c] = wrap(2 * q - p + a2);
                         self.q[c] = wrap(3 * q - 2 * p + 3 * a2);
                     }
                     self.t += 2;
-                    let dz2 = self.line.dz.wrapping_mul(2);
+                    let dz2 = self.gline.dz.wrapping_mul(2);
                     self.za = self.za.wrapping_add(dz2) & 0xffff_ffff;
                     self.zb = self.zb.wrapping_add(dz2) & 0xffff_ffff;
                 }
             }
-            if let Some(l) = load.filter(|_| ready) {
-                self.busy = true;
+            if handover {
+                let l = self.line;
+                self.gbusy = true;
                 self.t = 0;
-                self.line = *l;
-                self.p = l.ch.map(|w| w.i0 as i128);
-                self.q = l.ch.map(|w| w.i1 as i128);
-                self.a2 = l.ch.map(|w| w.a2 as i128);
+                self.gline = l;
+                for c in 0..3 {
+                    let tr = &self.tr[c];
+                    self.p[c] = tr.i;
+                    self.q[c] = if l.leftward {
+                        wrap(tr.i - tr.dx + tr.a2)
+                    } else {
+                        wrap(tr.i + tr.dx)
+                    };
+                    self.ga2[c] = tr.a2;
+                }
                 self.za = l.z0;
                 self.zb = l.z0.wrapping_add(l.dz) & 0xffff_ffff;
+                self.tbusy = false;
+            } else if self.tbusy {
+                // Move one step toward the line start: down first, then across.
+                if self.ty != self.line.y {
+                    self.tr.iter_mut().for_each(Track::y_step);
+                    self.ty = (self.ty + 1) & 0xfff;
+                } else if self.tx != self.line.x0 {
+                    let d = self.line.x0 as i64 - self.tx as i64;
+                    let s = d.clamp(-2, 2);
+                    self.tr.iter_mut().for_each(|t| t.x_step(s));
+                    self.tx = (self.tx as i64 + s) as u64 & 0xfff;
+                }
+            }
+            if let Some(l) = load.filter(|_| ready) {
+                self.tbusy = true;
+                self.line = *l;
+                if l.first {
+                    for c in 0..3 {
+                        let w = &l.ch[c];
+                        self.tr[c] = Track {
+                            i: w.i0 as i128,
+                            dx: w.dx as i128,
+                            dy: w.dy as i128,
+                            a2: w.a2 as i128,
+                            b2: w.b2 as i128,
+                            c: w.c as i128,
+                        };
+                    }
+                    self.tx = l.x0;
+                    self.ty = l.y;
+                } else if self.ty != l.y {
+                    self.tr.iter_mut().for_each(Track::y_step);
+                    self.ty = (self.ty + 1) & 0xfff;
+                }
             }
         }
     }

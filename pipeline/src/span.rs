@@ -17,7 +17,7 @@ use golden::fast_unit::FastWords;
 use golden::horner_unit::HornerWords;
 use golden::intensity_interpolator::quantize;
 use golden::methods::{row_end, span_end_normals, Method};
-use golden::quadric_unit::{line_words, QuadricWords};
+use golden::quadric_unit::{check_line, triangle_words, QuadricWords};
 use golden::raster::walk;
 use golden::shade::ShadeContext;
 use golden::types::ScreenTriangle;
@@ -179,8 +179,9 @@ pub enum JobWords {
         channels: [HornerWords; 3],
         pipelined: bool,
     },
-    /// Quadric: each channel's I(x0), I(x0 + d), 2A.
-    Quadric([QuadricWords; 3]),
+    /// Quadric: `first` line of its triangle, with each channel's tracker words (zero on the
+    /// other lines: the tracker walks there).
+    Quadric { first: bool, ch: [QuadricWords; 3] },
 }
 
 impl SpanJob {
@@ -188,7 +189,7 @@ impl SpanJob {
     /// m + 1 (pipelined Horner), 3(m + 1) (serial Horner).
     pub fn clocks(&self) -> u64 {
         match self.words {
-            JobWords::Pair { .. } | JobWords::Quadric(_) => self.m as u64 / 2 + 1,
+            JobWords::Pair { .. } | JobWords::Quadric { .. } => self.m as u64 / 2 + 1,
             JobWords::Cubic {
                 pipelined: true, ..
             } => self.m as u64 + 1,
@@ -232,7 +233,8 @@ pub fn span_jobs(
         .rows
         .iter()
         .filter(|r| r.len > 0)
-        .map(|row| {
+        .enumerate()
+        .map(|(line, row)| {
             let m = row.len - 1;
             let ends = span_end_normals(&plane, row);
             let end = row_end(row);
@@ -241,9 +243,15 @@ pub fn span_jobs(
                     let q = quadric.as_ref().expect("set up above");
                     let mut ch = [QuadricWords::default(); 3];
                     for (c, w) in ch.iter_mut().enumerate() {
-                        *w = line_words(q, c, row)?;
+                        check_line(q, c, row)?;
+                        if line == 0 {
+                            *w = triangle_words(q, c, row);
+                        }
                     }
-                    JobWords::Quadric(ch)
+                    JobWords::Quadric {
+                        first: line == 0,
+                        ch,
+                    }
                 }
                 SpanKind::Cubic { pipelined } => JobWords::Cubic {
                     channels: golden::cubic::span_samples(&plane, row, ctx)
@@ -281,12 +289,13 @@ pub fn span_row(kind: SpanKind, job: Option<&SpanJob>, regs: &ShadingRegs) -> Ve
     };
     if kind == SpanKind::Quadric {
         match job.map(|j| j.words) {
-            Some(JobWords::Quadric(ch)) => {
+            Some(JobWords::Quadric { first, ch }) => {
+                row.push(first as u64);
                 for w in ch {
-                    row.extend([w.i0, w.i1, w.a2].map(|v| v as u64));
+                    row.extend([w.i0, w.dx, w.dy, w.a2, w.b2, w.c].map(|v| v as u64));
                 }
             }
-            _ => row.extend([0; 9]),
+            _ => row.extend([0; 19]),
         }
         row.extend(job.map_or([0; 2], |j| [j.z0, j.dz]).map(u64::from));
         return row;
@@ -491,9 +500,42 @@ impl SpanPipe {
     }
 }
 
-/// A clock budget for `spans`: their clocks plus the pipeline's latency and margin.
+/// A clock budget for `spans`: their clocks plus the pipeline's latency and margin (and for
+/// the quadric unit every line start's move).
 pub fn span_clock_budget(spans: &[SpanJob]) -> u64 {
-    spans.iter().map(SpanJob::clocks).sum::<u64>() + 64
+    spans
+        .iter()
+        .map(|s| s.clocks() + 2 + 4096 / 2 * matches!(s.words, JobWords::Quadric { .. }) as u64)
+        .sum::<u64>()
+        + 64
+}
+
+/// The quadric unit's timing (the header of `rtl::quadric_unit`), written apart from its twin:
+/// for each line (loaded whenever `ready` is high) the clock its load is taken and the clock the
+/// tracker hands it to the generator. A line is taken in its predecessor's hand-over clock; the
+/// tracker reaches its start 1 + (Δy − 1) + ⌈|Δx0|/2⌉ clocks after the load (the first line of a
+/// triangle: 1); the hand-over waits for the generator's last clock of the previous line
+/// (⌊m/2⌋ + 1 clocks after its hand-over). The line's pixels show from hand-over + 2.
+pub fn quadric_timing(spans: &[SpanJob]) -> Vec<(u64, u64)> {
+    let mut out = Vec::with_capacity(spans.len());
+    let mut take = 0u64;
+    let mut gen_free_at = 0u64;
+    for (i, s) in spans.iter().enumerate() {
+        let first = matches!(s.words, JobWords::Quadric { first: true, .. });
+        let moves = if first {
+            1
+        } else {
+            let prev = &spans[i - 1];
+            let dy = (s.y - prev.y) as u64;
+            let dx = (s.x0 as i64 - prev.x0 as i64).unsigned_abs();
+            1 + (dy - 1) + dx.div_ceil(2)
+        };
+        let hand = (take + moves).max(gen_free_at);
+        out.push((take, hand));
+        gen_free_at = hand + s.clocks();
+        take = hand;
+    }
+    out
 }
 
 /// Clocks the spans take at two pixels per clock with no gap, and their pixels.
@@ -532,6 +574,12 @@ mod tests {
             let per = if pipelined { 1 } else { 3 };
             assert!(jobs.iter().all(|j| j.clocks() == per * (j.m as u64 + 1)));
         }
+        // Quadric: base, first, 18 words, z0, dz; the first line carries the words.
+        let jobs = span_jobs(&t, 0, SpanKind::Quadric, &ctx).unwrap();
+        assert_eq!(span_row(SpanKind::Quadric, Some(&jobs[0]), &regs).len(), 26);
+        assert_eq!(span_row(SpanKind::Quadric, None, &regs).len(), 26);
+        assert_eq!(span_row(SpanKind::Quadric, Some(&jobs[0]), &regs)[5], 1);
+        assert_eq!(span_row(SpanKind::Quadric, Some(&jobs[1]), &regs)[5], 0);
         let mut far = t;
         far.v[0].z = 1e6;
         assert!(span_jobs(&far, 0, SpanKind::Angular, &ctx)

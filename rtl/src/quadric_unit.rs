@@ -1,47 +1,56 @@
 //! The quadric forward-difference unit (SPEC §8; golden: `golden::quadric_unit`): quadric
-//! shading along a raster line, three colour channels, two pixels per clock, adds and shifts
-//! only.
+//! shading by adds and shifts only — a 2-D difference tracker that moves from line start to
+//! line start with the y terms, and a line generator giving two pixels per clock — for three
+//! colour channels.
 //!
 //! ```text
-//! I(x, y) = A·x² + B·y² + C·x·y + D·x + E·y + F        (per channel; set-up per triangle)
-//! I_{k+2} = 2·I_{k+1} − I_k + 2A                        (2.5)
-//! I_{k+3} = 3·I_{k+1} − 2·I_k + 6A                      (2.5) applied twice
+//! I(x, y) = A·x² + B·y² + C·x·y + D·x + E·y + F        per channel, solved per triangle (software)
+//! tracker at a line start:  I, Dx = I(x+1) − I(x), Dy = I(y+1) − I(y)
+//!   y-step  I += Dy   Dy += 2B   Dx += C               (the y terms)
+//!   x-step  I += Dx   Dx += 2A   Dy += C               (and −1, ±2: shifts and adds)
+//! line generator (2.5):  (I_k, I_{k+1}) → (2·I_{k+1} − I_k + 2A, 3·I_{k+1} − 2·I_k + 6A)
 //! ```
-//! The six coefficients per channel are solved per triangle in software (the golden set-up);
-//! the line's first two pixels come from the direct form (2.2) and (2.3) in the span front end
-//! — the thesis notes the direct form is always needed at a line start, and with it the y terms
-//! (B·y², C·y, E·y) of the line are folded into I0 and I1 there. The unit then holds the pair
-//! (I_k, I_{k+1}) per channel and steps it to (I_{k+2}, I_{k+3}) each clock: pixels k and
-//! k + 1 in lanes A and B. Per channel and not per lighting term: the quadric is fitted to the
-//! lit intensity (the thesis' form), so there is nothing left to combine.
+//! Set-up per triangle (software, the golden set-up code): the six coefficients, then I, Dx, Dy
+//! at the first line's first pixel by the direct forms (2.2), (2.3) — once per triangle — and
+//! 2A, 2B, C; loaded with the triangle's first line (`first`). Every later line start is reached
+//! by the tracker: one y-step at the line's load, then x-steps of up to two pixels per clock to
+//! the line's x0 (the walk's line start, from the address block's edge walk). The tracker works
+//! on the next line while the generator emits the current one; the hand-over takes the
+//! tracker's I and its first difference in the line's direction (I + Dx rightward,
+//! I − Dx + 2A leftward) as the generator's pair. Per channel and not per lighting term: the
+//! quadric is fitted to the lit intensity (the thesis' form), so nothing is left to combine.
 //!
 //! # Ports
 //! | port | dir | format |
 //! |---|---|---|
-//! | `load` | in | a line's words (taken when `ready`) |
+//! | `load` | in | a line (taken when `ready`) |
 //! | `y`, `x0`, `dir`, `m` | in | the line: y, first pixel's x, 1 = leftward (x0 − t), pixels − 1 |
-//! | `r0 r1 ra`, `g0 g1 ga`, `b0 b1 ba` | in | per channel I(x0), I(x0 + d), 2A: signed Q34.30 (64 bits), LSB units |
-//! | `z0`, `dz` | in | depth at pixel 0 and per pixel step, signed Q16.16 |
-//! | `ready` | out | a `load` now follows the current line without a gap |
+//! | `first` | in | the triangle's first line: the words below are loaded into the tracker |
+//! | `ri rdx rdy ra rb rc`, `g…`, `b…` | in | per channel I, Dx, Dy at that line's first pixel, 2A, 2B, C: signed Q34.30 (64 bits), LSB units |
+//! | `z0`, `dz` | in | depth at the line's pixel 0 and per pixel step, signed Q16.16 |
+//! | `ready` | out | the tracker takes a line this clock |
 //! | `valid_a`, `x_a`, `z_a`, `red_a` … | out | lane A: pixel 2j in the line's clock j |
 //! | `valid_b`, `x_b`, `z_b`, `red_b` … | out | lane B: pixel 2j + 1 (when ≤ m) |
 //! | `y_out`, `last` | out | the line; its last clock |
 //!
 //! # Latency, throughput
-//! Load → first pixels 2 clocks (state, output register). ⌊m/2⌋ + 1 clocks per line, the next
-//! line's load taken in its last clock: two pixels per clock, one in the last clock of an
-//! odd-length line; 0 clocks per line.
+//! A line is taken in the clock the tracker hands its previous line over (or when idle), reaches
+//! its start after ⌈|Δx0|/2⌉ clocks of x-steps (the y-step rides on the load), and is handed to
+//! the generator when that finishes its line: per line max(⌊m/2⌋ + 1, 1 + ⌈|Δx0|/2⌉) clocks,
+//! two pixels per clock on lines longer than their start's move. Load → first pixels of a
+//! triangle's first line: 3 clocks (load, hand-over, output register).
 //!
 //! # Overflow
-//! The recurrence is exact modulo 2⁶⁴ (it must not saturate: each word feeds the next, and its
-//! intermediates may wrap harmlessly); the span front end rejects a line whose intensities leave
-//! ±2³¹ LSB (`golden::quadric_unit::RANGE`; the words hold ±2³³ — a quadric fitted on a sliver
+//! Every update is an exact integer add modulo 2⁶⁴ (nothing may saturate: each word feeds the
+//! next; intermediates may wrap harmlessly, the values equal the exact quadric of the words
+//! modulo 2⁶⁴); the span front end rejects a line whose intensities or coefficients leave ±2³¹
+//! LSB (`golden::quadric_unit::RANGE`; the words hold ±2³³ — a quadric fitted on a sliver
 //! overshoots wildly at pixel centres just outside it), so the values themselves never wrap.
 //! Outputs saturate to 0..=255.
 //!
 //! # Error budget (vs `golden::quadric::row_kernel`, f64)
-//! The words' rounding (2⁻³¹ each) grows along the line as δI0 + k·δΔ + k²/2·δ(2A): ≤ 0.004 LSB
-//! at k = 4095; the output rounding ½ LSB.
+//! The words' rounding (2⁻³¹ each) grows with the walk as a quadratic in the distance: ≤ 1.5·N²·2⁻³¹
+//! for a triangle N pixels across (≤ 0.012 LSB at N = 4096); the output rounding ½ LSB.
 
 use rust_hdl::prelude::*;
 
@@ -72,14 +81,14 @@ impl Logic for RoundSat8Q30 {
 crate::hw_block! {
     /// The quadric forward-difference unit (see the module header).
     pub struct QuadricUnit(clock) as "quadric-unit" {
-        summary: "a raster line's I(x0), I(x0 + d), 2A per channel in, quadric-shaded fragments out two per clock by forward differences, adds and shifts only (SPEC §8)",
-        latency: 2 => "load to the first two pixels, two pixels per clock",
+        summary: "a triangle's I, Dx, Dy, 2A, 2B, C per channel and its raster lines in, quadric-shaded fragments out two per clock: a 2-D difference tracker over the line starts and a line generator, adds and shifts only (SPEC §8)",
+        latency: 3 => "load of a triangle's first line to its first two pixels, two pixels per clock along a line",
         multipliers: 0,
         in {
-            load: Bit, span_base_ports!,
-            r0: Bits<64>, r1: Bits<64>, ra: Bits<64>,
-            g0: Bits<64>, g1: Bits<64>, ga: Bits<64>,
-            b0: Bits<64>, b1: Bits<64>, ba: Bits<64>,
+            load: Bit, span_base_ports!, first: Bit,
+            ri: Bits<64>, rdx: Bits<64>, rdy: Bits<64>, ra: Bits<64>, rb: Bits<64>, rc: Bits<64>,
+            gi: Bits<64>, gdx: Bits<64>, gdy: Bits<64>, ga: Bits<64>, gb: Bits<64>, gc: Bits<64>,
+            bi: Bits<64>, bdx: Bits<64>, bdy: Bits<64>, ba: Bits<64>, bb: Bits<64>, bc: Bits<64>,
             z0: Bits<32>, dz: Bits<32>,
         }
         out {
@@ -88,13 +97,27 @@ crate::hw_block! {
             valid_b: Bit, x_b: Bits<12>, z_b: Bits<32>, red_b: Bits<8>, green_b: Bits<8>, blue_b: Bits<8>,
             y_out: Bits<12>, last: Bit,
         }
-        // State.
-        busy: DFF<Bit>, t_q: DFF<Bits<13>>, m_q: DFF<Bits<13>>, x0_q: DFF<Bits<12>>,
-        y_q: DFF<Bits<12>>, dir_q: DFF<Bit>,
-        p: [DFF<Bits<64>>; 3], q: [DFF<Bits<64>>; 3], a2: [DFF<Bits<64>>; 3],
-        za: DFF<Bits<32>>, zb: DFF<Bits<32>>, dz_q: DFF<Bits<32>>,
+        // Tracker: position, the line it holds, (I, Dx, Dy, 2A, 2B, C) per channel.
+        tbusy: DFF<Bit>, tx: DFF<Bits<12>>, ty: DFF<Bits<12>>,
+        ly: DFF<Bits<12>>, lx0: DFF<Bits<12>>, ldir: DFF<Bit>, lm: DFF<Bits<12>>,
+        lz0: DFF<Bits<32>>, ldz: DFF<Bits<32>>,
+        ti: [DFF<Bits<64>>; 3], tdx: [DFF<Bits<64>>; 3], tdy: [DFF<Bits<64>>; 3],
+        ta2: [DFF<Bits<64>>; 3], tb2: [DFF<Bits<64>>; 3], tc: [DFF<Bits<64>>; 3],
+        w_i: [Signal<Local, Bits<64>>; 3], w_dx: [Signal<Local, Bits<64>>; 3], w_dy: [Signal<Local, Bits<64>>; 3],
+        w_a2: [Signal<Local, Bits<64>>; 3], w_b2: [Signal<Local, Bits<64>>; 3], w_c: [Signal<Local, Bits<64>>; 3],
+        diff: Signal<Local, Bits<13>>, neg: Signal<Local, Bit>, big: Signal<Local, Bit>,
+        sdx: [Signal<Local, Bits<64>>; 3], sa2: [Signal<Local, Bits<64>>; 3],
+        sc: [Signal<Local, Bits<64>>; 3], ia: [Signal<Local, Bits<64>>; 3],
+        step: Signal<Local, Bits<12>>,
+        positioned: Signal<Local, Bit>, handover: Signal<Local, Bit>, can_take: Signal<Local, Bit>,
+        accept: Signal<Local, Bit>, y_move: Signal<Local, Bit>, x_move: Signal<Local, Bit>,
+        // Generator: the line being emitted.
+        gbusy: DFF<Bit>, t_q: DFF<Bits<13>>, gm: DFF<Bits<13>>, gx0: DFF<Bits<12>>,
+        gy: DFF<Bits<12>>, gdir: DFF<Bit>, gdz: DFF<Bits<32>>,
+        p: [DFF<Bits<64>>; 3], q: [DFF<Bits<64>>; 3], ga2: [DFF<Bits<64>>; 3],
+        za: DFF<Bits<32>>, zb: DFF<Bits<32>>,
         t2: Signal<Local, Bits<13>>, t1: Signal<Local, Bits<13>>,
-        is_last: Signal<Local, Bit>, vb: Signal<Local, Bit>, rdy: Signal<Local, Bit>,
+        glast: Signal<Local, Bit>, gen_free: Signal<Local, Bit>, vb: Signal<Local, Bit>,
         xa: Signal<Local, Bits<12>>, xb: Signal<Local, Bits<12>>,
         sat_a: [RoundSat8Q30; 3], sat_b: [RoundSat8Q30; 3],
         // Output register.
@@ -107,30 +130,159 @@ crate::hw_block! {
 impl Logic for QuadricUnit {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, busy, t_q, m_q, x0_q, y_q, dir_q, za, zb, dz_q);
+        dff_setup!(
+            self, clock, tbusy, tx, ty, ly, lx0, ldir, lm, lz0, ldz, gbusy, t_q, gm, gx0, gy, gdir,
+            gdz, za, zb
+        );
         clock!(self, clock, o_va, o_xa, o_za, o_vb, o_xb, o_zb, o_y, o_l);
         for c in 0..3 {
+            self.ti[c].clock.next = self.clock.val();
+            self.tdx[c].clock.next = self.clock.val();
+            self.tdy[c].clock.next = self.clock.val();
+            self.ta2[c].clock.next = self.clock.val();
+            self.tb2[c].clock.next = self.clock.val();
+            self.tc[c].clock.next = self.clock.val();
+            self.ti[c].d.next = self.ti[c].q.val();
+            self.tdx[c].d.next = self.tdx[c].q.val();
+            self.tdy[c].d.next = self.tdy[c].q.val();
+            self.ta2[c].d.next = self.ta2[c].q.val();
+            self.tb2[c].d.next = self.tb2[c].q.val();
+            self.tc[c].d.next = self.tc[c].q.val();
             self.p[c].clock.next = self.clock.val();
             self.q[c].clock.next = self.clock.val();
-            self.a2[c].clock.next = self.clock.val();
+            self.ga2[c].clock.next = self.clock.val();
             self.p[c].d.next = self.p[c].q.val();
             self.q[c].d.next = self.q[c].q.val();
-            self.a2[c].d.next = self.a2[c].q.val();
+            self.ga2[c].d.next = self.ga2[c].q.val();
             self.o_ca[c].clock.next = self.clock.val();
             self.o_cb[c].clock.next = self.clock.val();
         }
+        // The load's words per channel.
+        self.w_i[0].next = self.ri.val();
+        self.w_dx[0].next = self.rdx.val();
+        self.w_dy[0].next = self.rdy.val();
+        self.w_a2[0].next = self.ra.val();
+        self.w_b2[0].next = self.rb.val();
+        self.w_c[0].next = self.rc.val();
+        self.w_i[1].next = self.gi.val();
+        self.w_dx[1].next = self.gdx.val();
+        self.w_dy[1].next = self.gdy.val();
+        self.w_a2[1].next = self.ga.val();
+        self.w_b2[1].next = self.gb.val();
+        self.w_c[1].next = self.gc.val();
+        self.w_i[2].next = self.bi.val();
+        self.w_dx[2].next = self.bdx.val();
+        self.w_dy[2].next = self.bdy.val();
+        self.w_a2[2].next = self.ba.val();
+        self.w_b2[2].next = self.bb.val();
+        self.w_c[2].next = self.bc.val();
+
+        // Generator status.
         self.t1.next = self.t_q.q.val() + 1;
         self.t2.next = self.t_q.q.val() + 2;
-        self.is_last.next = self.t2.val() > self.m_q.q.val();
-        self.vb.next = self.busy.q.val() & (self.t_q.q.val() < self.m_q.q.val());
-        self.rdy.next = !self.busy.q.val() | self.is_last.val();
+        self.glast.next = self.t2.val() > self.gm.q.val();
+        self.gen_free.next = !self.gbusy.q.val() | self.glast.val();
+        self.vb.next = self.gbusy.q.val() & (self.t_q.q.val() < self.gm.q.val());
 
-        // Output register: both lanes, from the state.
-        self.xa.next = self.x0_q.q.val() + self.t_q.q.val().get_bits::<12>(0);
-        self.xb.next = self.x0_q.q.val() + self.t1.val().get_bits::<12>(0);
-        if self.dir_q.q.val() {
-            self.xa.next = self.x0_q.q.val() - self.t_q.q.val().get_bits::<12>(0);
-            self.xb.next = self.x0_q.q.val() - self.t1.val().get_bits::<12>(0);
+        // Tracker status and moves.
+        self.positioned.next = self.tbusy.q.val()
+            & (self.ty.q.val() == self.ly.q.val())
+            & (self.tx.q.val() == self.lx0.q.val());
+        self.handover.next = self.positioned.val() & self.gen_free.val();
+        self.can_take.next = !self.tbusy.q.val() | self.handover.val();
+        self.accept.next = self.load.val() & self.can_take.val();
+        self.y_move.next =
+            self.tbusy.q.val() & !self.handover.val() & (self.ty.q.val() != self.ly.q.val());
+        self.x_move.next = self.tbusy.q.val()
+            & !self.handover.val()
+            & (self.ty.q.val() == self.ly.q.val())
+            & (self.tx.q.val() != self.lx0.q.val());
+        self.diff.next = bit_cast::<13, 12>(self.lx0.q.val()) - bit_cast::<13, 12>(self.tx.q.val());
+        self.neg.next = self.diff.val().get_bit(12);
+        self.big.next = self.diff.val().get_bits::<11>(1).any();
+        if self.neg.val() {
+            self.big.next = self.diff.val() != 0x1FFF;
+        }
+        self.step.next = 1.into();
+        if self.big.val() {
+            self.step.next = 2.into();
+        }
+        for c in 0..3 {
+            self.sdx[c].next = self.tdx[c].q.val();
+            self.sa2[c].next = self.ta2[c].q.val();
+            self.sc[c].next = self.tc[c].q.val();
+            if self.big.val() {
+                self.sdx[c].next = self.tdx[c].q.val() << 1;
+                self.sa2[c].next = self.ta2[c].q.val() << 1;
+                self.sc[c].next = self.tc[c].q.val() << 1;
+            }
+            // The a2 term of I's step: +2: a2; +1: 0; −1: a2; −2: 3·a2.
+            self.ia[c].next = 0.into();
+            if self.neg.val() | self.big.val() {
+                self.ia[c].next = self.ta2[c].q.val();
+            }
+            if self.neg.val() & self.big.val() {
+                self.ia[c].next = (self.ta2[c].q.val() << 1) + self.ta2[c].q.val();
+            }
+        }
+        if self.y_move.val()
+            | (self.accept.val() & !self.first.val() & (self.ty.q.val() != self.y.val()))
+        {
+            self.ty.d.next = self.ty.q.val() + 1;
+            for c in 0..3 {
+                self.ti[c].d.next = self.ti[c].q.val() + self.tdy[c].q.val();
+                self.tdy[c].d.next = self.tdy[c].q.val() + self.tb2[c].q.val();
+                self.tdx[c].d.next = self.tdx[c].q.val() + self.tc[c].q.val();
+            }
+        }
+        if self.x_move.val() {
+            if self.neg.val() {
+                self.tx.d.next = self.tx.q.val() - self.step.val();
+                for c in 0..3 {
+                    self.ti[c].d.next = self.ti[c].q.val() - self.sdx[c].val() + self.ia[c].val();
+                    self.tdx[c].d.next = self.tdx[c].q.val() - self.sa2[c].val();
+                    self.tdy[c].d.next = self.tdy[c].q.val() - self.sc[c].val();
+                }
+            } else {
+                self.tx.d.next = self.tx.q.val() + self.step.val();
+                for c in 0..3 {
+                    self.ti[c].d.next = self.ti[c].q.val() + self.sdx[c].val() + self.ia[c].val();
+                    self.tdx[c].d.next = self.tdx[c].q.val() + self.sa2[c].val();
+                    self.tdy[c].d.next = self.tdy[c].q.val() + self.sc[c].val();
+                }
+            }
+        }
+        if self.handover.val() {
+            self.tbusy.d.next = false;
+        }
+        if self.accept.val() {
+            self.tbusy.d.next = true;
+            self.ly.d.next = self.y.val();
+            self.lx0.d.next = self.x0.val();
+            self.ldir.d.next = self.dir.val();
+            self.lm.d.next = self.m.val();
+            self.lz0.d.next = self.z0.val();
+            self.ldz.d.next = self.dz.val();
+            if self.first.val() {
+                self.tx.d.next = self.x0.val();
+                self.ty.d.next = self.y.val();
+                for c in 0..3 {
+                    self.ti[c].d.next = self.w_i[c].val();
+                    self.tdx[c].d.next = self.w_dx[c].val();
+                    self.tdy[c].d.next = self.w_dy[c].val();
+                    self.ta2[c].d.next = self.w_a2[c].val();
+                    self.tb2[c].d.next = self.w_b2[c].val();
+                    self.tc[c].d.next = self.w_c[c].val();
+                }
+            }
+        }
+
+        // Output register: both lanes, from the generator's state.
+        self.xa.next = self.gx0.q.val() + self.t_q.q.val().get_bits::<12>(0);
+        self.xb.next = self.gx0.q.val() + self.t1.val().get_bits::<12>(0);
+        if self.gdir.q.val() {
+            self.xa.next = self.gx0.q.val() - self.t_q.q.val().get_bits::<12>(0);
+            self.xb.next = self.gx0.q.val() - self.t1.val().get_bits::<12>(0);
         }
         for c in 0..3 {
             self.sat_a[c].v.next = self.p[c].q.val();
@@ -138,55 +290,56 @@ impl Logic for QuadricUnit {
             self.o_ca[c].d.next = self.sat_a[c].q.val();
             self.o_cb[c].d.next = self.sat_b[c].q.val();
         }
-        self.o_va.d.next = self.busy.q.val();
+        self.o_va.d.next = self.gbusy.q.val();
         self.o_xa.d.next = self.xa.val();
         self.o_za.d.next = self.za.q.val();
         self.o_vb.d.next = self.vb.val();
         self.o_xb.d.next = self.xb.val();
         self.o_zb.d.next = self.zb.q.val();
-        self.o_y.d.next = self.y_q.q.val();
-        self.o_l.d.next = self.busy.q.val() & self.is_last.val();
+        self.o_y.d.next = self.gy.q.val();
+        self.o_l.d.next = self.gbusy.q.val() & self.glast.val();
 
-        // Step the pairs: I_{k+2} = 2·I_{k+1} − I_k + 2A, I_{k+3} = 3·I_{k+1} − 2·I_k + 6A.
-        if self.busy.q.val() {
-            if self.is_last.val() {
-                self.busy.d.next = false;
+        // Generator: step the pairs, or take the tracker's line.
+        if self.gbusy.q.val() {
+            if self.glast.val() {
+                self.gbusy.d.next = false;
             } else {
                 for c in 0..3 {
                     self.p[c].d.next =
-                        (self.q[c].q.val() << 1) - self.p[c].q.val() + self.a2[c].q.val();
+                        (self.q[c].q.val() << 1) - self.p[c].q.val() + self.ga2[c].q.val();
                     self.q[c].d.next = (self.q[c].q.val() << 1) + self.q[c].q.val()
                         - (self.p[c].q.val() << 1)
-                        + (self.a2[c].q.val() << 1)
-                        + self.a2[c].q.val();
+                        + (self.ga2[c].q.val() << 1)
+                        + self.ga2[c].q.val();
                 }
                 self.t_q.d.next = self.t2.val();
-                self.za.d.next = self.za.q.val() + (self.dz_q.q.val() << 1);
-                self.zb.d.next = self.zb.q.val() + (self.dz_q.q.val() << 1);
+                self.za.d.next = self.za.q.val() + (self.gdz.q.val() << 1);
+                self.zb.d.next = self.zb.q.val() + (self.gdz.q.val() << 1);
             }
         }
-        if self.load.val() & self.rdy.val() {
-            self.busy.d.next = true;
+        if self.handover.val() {
+            self.gbusy.d.next = true;
             self.t_q.d.next = 0.into();
-            self.m_q.d.next = bit_cast::<13, 12>(self.m.val());
-            self.x0_q.d.next = self.x0.val();
-            self.y_q.d.next = self.y.val();
-            self.dir_q.d.next = self.dir.val();
-            self.p[0].d.next = self.r0.val();
-            self.q[0].d.next = self.r1.val();
-            self.a2[0].d.next = self.ra.val();
-            self.p[1].d.next = self.g0.val();
-            self.q[1].d.next = self.g1.val();
-            self.a2[1].d.next = self.ga.val();
-            self.p[2].d.next = self.b0.val();
-            self.q[2].d.next = self.b1.val();
-            self.a2[2].d.next = self.ba.val();
-            self.za.d.next = self.z0.val();
-            self.zb.d.next = self.z0.val() + self.dz.val();
-            self.dz_q.d.next = self.dz.val();
+            self.gm.d.next = bit_cast::<13, 12>(self.lm.q.val());
+            self.gx0.d.next = self.lx0.q.val();
+            self.gy.d.next = self.ly.q.val();
+            self.gdir.d.next = self.ldir.q.val();
+            self.gdz.d.next = self.ldz.q.val();
+            self.za.d.next = self.lz0.q.val();
+            self.zb.d.next = self.lz0.q.val() + self.ldz.q.val();
+            for c in 0..3 {
+                self.p[c].d.next = self.ti[c].q.val();
+                self.ga2[c].d.next = self.ta2[c].q.val();
+                if self.ldir.q.val() {
+                    self.q[c].d.next =
+                        self.ti[c].q.val() - self.tdx[c].q.val() + self.ta2[c].q.val();
+                } else {
+                    self.q[c].d.next = self.ti[c].q.val() + self.tdx[c].q.val();
+                }
+            }
         }
 
-        self.ready.next = self.rdy.val();
+        self.ready.next = self.can_take.val();
         self.valid_a.next = self.o_va.q.val();
         self.x_a.next = self.o_xa.q.val();
         self.z_a.next = self.o_za.q.val();

@@ -7,8 +7,10 @@
 //! large triangle (long lines; every triangle ends with its last line) — then seeded random
 //! triangles (`crate::pixel_pipeline::lit_triangles`), under the default context, through the
 //! span front end (`pipeline::span::span_jobs`, the quadric set-up), each line loaded in the clock
-//! `ready` rises. Expectations: `ready`, valid flags, `x`, `y`, `last` exact from the schedule
-//! (clock j of a line shows pixels 2j and 2j + 1, one clock after its state); colours within
+//! `ready` is high. Expectations: `ready`, valid flags, `x`, `y`, `last` exact from the timing
+//! model `pipeline::span::quadric_timing` (written apart from the twin: a line is taken at its
+//! predecessor's hand-over, the tracker moves 1 + ⌈|Δx0|/2⌉ clocks, the generator shows pixels
+//! 2j and 2j + 1 two clocks after hand-over + j); colours within
 //! 2 LSB of the golden method, RMS 0.5; `z` within 4096·2⁻¹⁷ + 2⁻¹⁶ of the f64 depth plane.
 
 use glam::DVec3;
@@ -18,7 +20,7 @@ use golden::raster::walk;
 use golden::shade::ShadeContext;
 use golden::types::ScreenTriangle;
 use pipeline::lit::ShadingRegs;
-use pipeline::span::{span_jobs, span_row, SpanJob, SpanKind};
+use pipeline::span::{quadric_timing, span_jobs, span_row, SpanJob, SpanKind};
 use rtl::fixed::{INTENSITY, LEVEL};
 use rtl::quadric_unit::QuadricUnit;
 use rtl::registry::NoParams;
@@ -76,25 +78,32 @@ pub fn named_triangles() -> Vec<(&'static str, ScreenTriangle)> {
     ]
 }
 
-/// Twin on the top's rows: load y x0 dir m (r0 r1 ra g0 g1 ga b0 b1 ba) z0 dz.
+/// Twin on the top's rows: load y x0 dir m first (i dx dy a2 b2 c per channel) z0 dz.
 struct QuadricRows(QuadricTwin);
 
 impl Twin for QuadricRows {
     fn step(&mut self, r: &[u64]) -> Vec<u64> {
         let o = self.0.outputs();
-        let sx = |v: u64| v as i64;
+        let w = |k: usize| r[k] as i64;
         let line = QuadricLine {
             y: r[1],
             x0: r[2],
             leftward: r[3] != 0,
             m: r[4] as u32,
-            ch: std::array::from_fn(|c| QuadricWords {
-                i0: sx(r[5 + 3 * c]),
-                i1: sx(r[6 + 3 * c]),
-                a2: sx(r[7 + 3 * c]),
+            first: r[5] != 0,
+            ch: std::array::from_fn(|c| {
+                let at = 6 + 6 * c;
+                QuadricWords {
+                    i0: w(at),
+                    dx: w(at + 1),
+                    dy: w(at + 2),
+                    a2: w(at + 3),
+                    b2: w(at + 4),
+                    c: w(at + 5),
+                }
             }),
-            z0: r[14],
-            dz: r[15],
+            z0: r[24],
+            dz: r[25],
         };
         self.0.clock((r[0] != 0).then_some(&line));
         o
@@ -126,25 +135,31 @@ fn stimulus(tris: &[ScreenTriangle]) -> Stimulus {
         at += s.m as usize + 1;
     }
     assert_eq!(at, colours.len(), "spans and golden pixels disagree");
-    let mut rows = vec![span_row(kind, spans.first(), &regs)];
-    let mut state: Vec<Option<(usize, u64)>> = vec![None];
-    for (i, s) in spans.iter().enumerate() {
-        for k in 0..s.clocks() {
-            state.push(Some((i, k)));
-            let next = (k + 1 == s.clocks()).then(|| spans.get(i + 1)).flatten();
-            rows.push(span_row(kind, next, &regs));
+    // Schedule: `quadric_timing` gives each line's load and hand-over clocks; clock j of its
+    // generator (hand-over + 1 + j) shows pixels 2j and 2j + 1 one clock later.
+    let timing = quadric_timing(&spans);
+    let end = timing.last().map_or(0, |&(_, h)| h) as usize
+        + spans.last().map_or(0, |s| s.clocks()) as usize
+        + 3;
+    let mut rows = vec![span_row(kind, None, &regs); end];
+    let mut shown: Vec<Option<(usize, u64)>> = vec![None; end];
+    let mut ready = vec![false; end];
+    ready[0] = true;
+    for (i, &(take, hand)) in timing.iter().enumerate() {
+        rows[take as usize] = span_row(kind, Some(&spans[i]), &regs);
+        ready[hand as usize] = true;
+        for j in 0..spans[i].clocks() {
+            shown[(hand + 2 + j) as usize] = Some((i, j));
         }
     }
-    for _ in 0..3 {
-        rows.push(span_row(kind, None, &regs));
-        state.push(None);
+    let last_hand = timing.last().map_or(0, |&(_, h)| h) as usize;
+    for r in ready.iter_mut().skip(last_hand + 1) {
+        *r = true;
     }
     let w = Expected::Word;
     let expected = (0..rows.len())
         .map(|c| {
-            let ready = state[c].is_none_or(|(i, k)| k + 1 == spans[i].clocks());
-            let mut e = vec![w(ready as u64)];
-            let shown = c.checked_sub(1).and_then(|s| state[s]);
+            let mut e = vec![w(ready[c] as u64)];
             let pixel = |i: usize, t: u64| {
                 let s = &spans[i];
                 let x = if s.leftward {
@@ -162,7 +177,7 @@ fn stimulus(tris: &[ScreenTriangle]) -> Stimulus {
                 v.extend([Expected::DontCare; 5]);
                 v
             };
-            match shown {
+            match shown[c] {
                 Some((i, k)) => {
                     let m = spans[i].m as u64;
                     e.extend(pixel(i, 2 * k));
