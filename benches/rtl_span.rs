@@ -8,9 +8,12 @@
 //! - per unit: pixels per clock over all spans and over spans of at least 16 pixels (the runs
 //!   split each span at its midpoint), and how often the symmetry point E lies inside a span
 //!   (the thesis' split point: splitting there would give two pixels per clock only for those);
-//! - per span pipeline top (`angular-pipeline`, `fast-pipeline` with the fit set), the whole
-//!   default scene through the span front end: fragments per clock, the clocks beyond
-//!   Σ(⌊m/2⌋ + 1) per span (the per-span overhead), and the same on spans ≥ 16 pixels;
+//! - per span pipeline top (`angular-pipeline`, `fast-pipeline` with the fit set,
+//!   `quadric-unit`), the whole default scene through the span front end: fragments per clock,
+//!   the clocks beyond Σ(⌊m/2⌋ + 1) per line (the per-line overhead), and the rate on the
+//!   lines of ≥ 16 pixels inside that stream (each line's clocks counted from the previous
+//!   line's last fragment, so whatever the hardware spends between lines is included);
+//! - the cubic pipeline's clocks per pixel with each Horner variant;
 //! - the thesis' average triangle (SPEC §11; both the 78-pixel triangle the deltas give and the
 //!   100-pixel scaled one): clocks from its load to its last fragment and its steady-state
 //!   clocks, through each span top and through the one-pixel-per-clock lit pipeline and the
@@ -226,21 +229,65 @@ fn default_scene() -> (Vec<ScreenTriangle>, ShadeContext) {
     (tris, ctx)
 }
 
+/// Per line of a whole-scene run through the top for `method`, from the fragments' clock
+/// stamps: (pixels, clocks since the previous line's last fragment). Lines of ≥ 16 pixels
+/// measured this way include whatever the hardware spends between lines (the quadric tracker's
+/// moves).
+fn line_clocks(method: Method, tris: &[ScreenTriangle], ctx: &ShadeContext) -> Vec<(u64, u64)> {
+    let mut pipe = SpanPipe::new(method).unwrap();
+    let spans: Vec<SpanJob> = tris
+        .iter()
+        .filter(|t| t.depth_plane().is_some())
+        .enumerate()
+        .flat_map(|(i, t)| span_jobs(t, i, pipe.kind(), ctx).unwrap())
+        .collect();
+    let regs = ShadingRegs::of(ctx).unwrap();
+    // Lines come out in order; a line ends with the fragment of its last pixel.
+    let mut lines: Vec<(u64, u64)> = Vec::new(); // (pixels, last clock)
+    let mut key = None;
+    pipe.run(
+        &spans,
+        &regs,
+        span_clock_budget(&spans),
+        |f| {
+            let k = (f.triangle, f.y);
+            if key != Some(k) {
+                key = Some(k);
+                lines.push((0, 0));
+            }
+            let l = lines.last_mut().unwrap();
+            l.0 += 1;
+            l.1 = f.clock;
+        },
+        |_| {},
+    )
+    .unwrap();
+    let mut prev = 0;
+    lines
+        .into_iter()
+        .map(|(p, last)| {
+            let c = last - prev;
+            prev = last;
+            (p, c)
+        })
+        .collect()
+}
+
 fn pipeline_figures() {
     let (tris, ctx) = default_scene();
     for m in [Method::Angular, Method::FastFit, Method::Quadric] {
         let (c, p, n, sc, lat) = run_top(m, &tris, &ctx, |_| true);
-        let (cl, pl, nl, scl, _) = run_top(m, &tris, &ctx, |s| s.m >= 15);
+        let lines = line_clocks(m, &tris, &ctx);
+        let long: Vec<_> = lines.iter().filter(|l| l.0 >= 16).collect();
+        let (lp, lc) = long.iter().fold((0, 0), |(p, c), l| (p + l.0, c + l.1));
         println!(
             "span pipeline {m}, default scene: {p} fragments in {c} clocks ({:.3}/clock); {n} \
-             spans, {sc} span clocks + latency {lat}: overhead {} clocks per span; spans ≥ 16 \
-             pixels: {nl} spans, {pl} fragments in {cl} clocks ({:.3}/clock, {:.3} without the \
-             latency; overhead {} clocks per span)",
+             lines, {sc} line clocks + latency {lat}: {:.3} clocks per line beyond its own; lines \
+             ≥ 16 pixels in the stream: {} lines, {lp} fragments in {lc} clocks ({:.3}/clock)",
             p as f64 / c as f64,
             (c - sc - lat as u64) as f64 / n as f64,
-            pl as f64 / cl as f64,
-            pl as f64 / scl as f64,
-            (cl - scl - lat as u64) as f64 / nl as f64,
+            long.len(),
+            lp as f64 / lc as f64,
         );
     }
 }
