@@ -66,3 +66,25 @@ fn draw_text(pic: &mut Picture, x0: u32, y0: u32, text: &str, colour: [u8; 3]) {
         }
     }
 }
+
+/// `println!` that returns an error instead of panicking when standard output is closed (a
+/// pipe whose reader has gone: `shadecore render | true`): `outln!(...)?` gives the one-line
+/// "writing to standard output: Broken pipe" and a non-zero exit.
+#[macro_export]
+macro_rules! outln {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        writeln!(std::io::stdout().lock(), $($arg)*)
+            .map_err(|e| anyhow::anyhow!("writing to standard output: {e}"))
+    }};
+}
+
+/// `print!` as [`outln!`].
+#[macro_export]
+macro_rules! out {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        write!(std::io::stdout().lock(), $($arg)*)
+            .map_err(|e| anyhow::anyhow!("writing to standard output: {e}"))
+    }};
+}

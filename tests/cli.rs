@@ -196,3 +196,48 @@ fn obj_scene_renders() {
         "the mesh is not visible"
     );
 }
+
+/// A closed standard output (the reader of a pipe gone: `shadecore render | true`) is a
+/// one-line error and a non-zero exit on every command that prints, never a panic. The pipe's
+/// read end is closed before the command starts, so its first write fails deterministically.
+#[test]
+fn closed_standard_output_is_a_one_line_error() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().to_str().unwrap();
+    let cases: [&[&str]; 6] = [
+        &["accuracy"],
+        &["blocks"],
+        &[
+            "render", "--size", "40x40", "--rez", "6", "--method", "gouraud", "--out", out,
+        ],
+        &["export-verilog", "--block", "normalizer", "--out", out],
+        &[
+            "sim",
+            "--block",
+            "normalizer",
+            "--vectors",
+            "50",
+            "--vcd",
+            &format!("{out}/n.vcd"),
+        ],
+        &["raster", "--tri", "3,1,40,12,9,30"],
+    ];
+    for args in cases {
+        let (reader, writer) = std::io::pipe().unwrap();
+        drop(reader);
+        let o = Command::new(env!("CARGO_BIN_EXE_shadecore"))
+            .args(args)
+            .stdout(writer)
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&o.stderr);
+        assert!(!o.status.success(), "{args:?} exited 0");
+        assert!(!stderr.contains("panicked"), "{args:?} panicked: {stderr}");
+        let lines: Vec<&str> = stderr.lines().filter(|l| !l.trim().is_empty()).collect();
+        assert_eq!(lines.len(), 1, "{args:?}: {stderr:?}");
+        assert!(
+            lines[0].starts_with("error") && lines[0].contains("standard output"),
+            "{args:?}: {stderr:?}"
+        );
+    }
+}

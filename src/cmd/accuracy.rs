@@ -23,9 +23,9 @@ pub struct Args {
 pub fn run(a: Args) -> Result<()> {
     let report = accuracy::report();
     if a.json {
-        println!("{}", serde_json::to_string_pretty(&report)?);
+        crate::outln!("{}", serde_json::to_string_pretty(&report)?)?;
     } else {
-        print!("{}", table(&report));
+        crate::out!("{}", table(&report))?;
     }
     if let Some(dir) = &a.plots {
         std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;

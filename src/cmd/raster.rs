@@ -116,7 +116,7 @@ pub fn run(a: Args) -> Result<()> {
     match &a.dump {
         Some(p) => {
             std::fs::write(p, text).with_context(|| format!("cannot write {}", p.display()))?;
-            println!(
+            crate::outln!(
                 "{}: {} clocks, {pixels} pixels on {rows} raster lines ({:.3} pixels/clock); CSV in {}{}",
                 match a.engine {
                     Engine::Rtl => "rtl",
@@ -126,7 +126,7 @@ pub fn run(a: Args) -> Result<()> {
                 pixels as f64 / out.len() as f64,
                 p.display(),
                 a.vcd.as_ref().map_or(String::new(), |v| format!(", waveform in {}", v.display()))
-            );
+            )?;
         }
         None => {
             std::io::stdout()

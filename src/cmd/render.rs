@@ -306,30 +306,31 @@ fn write_images(
 }
 
 /// Print the NMSE table (and the RTL comparisons) of `report`.
-fn print_table(args: &Args, setup: &Setup, methods: &[Method], report: &Report) {
-    println!(
+fn print_table(args: &Args, setup: &Setup, methods: &[Method], report: &Report) -> Result<()> {
+    crate::outln!(
         "scene {} rez {} n {} light {}° {}x{} {:?} lighting, {} front-facing triangles, engine {:?}",
         args.scene.scene, args.scene.rez, args.scene.shininess, args.scene.light_deg,
         setup.width, setup.height, args.scene.lighting, setup.tris.len(), args.engine
-    );
-    println!("{:<16} {:>12} {:>6}  band", "method", "NMSE", "max Δ");
+    )?;
+    crate::outln!("{:<16} {:>12} {:>6}  band", "method", "NMSE", "max Δ")?;
     for m in methods {
         let r = &report.methods[m.name()];
-        println!(
+        crate::outln!(
             "{:<16} {:>12.3e} {:>6}  {}",
             m.name(),
             r.nmse,
             r.max_abs_diff,
             r.band.label()
-        );
+        )?;
         if let Some(c) = &r.rtl_vs_golden {
-            println!(
+            crate::outln!(
                 "  rtl vs golden {}: NMSE {:.3e}, max {} LSB, {} pixels differ; {} pixels in {} clocks ({:.3} pixels/clock, {:.1} s, {:.0} clocks/s); {} pixels with other visibility",
                 m.name(), c.nmse, c.max_abs_diff, c.pixels_differing, c.pixels, c.clocks, c.pixels_per_clock,
                 c.seconds, c.clocks as f64 / c.seconds.max(1e-9), c.visibility_mismatches
-            );
+            )?;
         }
     }
+    Ok(())
 }
 
 pub fn run(args: Args) -> Result<()> {
@@ -358,7 +359,7 @@ pub fn run(args: Args) -> Result<()> {
     let json = serde_json::to_string_pretty(&report).expect("report serializes");
     std::fs::write(args.out.join("report.json"), json + "\n")
         .with_context(|| format!("writing {}", args.out.join("report.json").display()))?;
-    print_table(&args, &setup, &methods, &report);
-    println!("wrote {}", args.out.display());
+    print_table(&args, &setup, &methods, &report)?;
+    crate::outln!("wrote {}", args.out.display())?;
     Ok(())
 }

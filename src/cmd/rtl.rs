@@ -107,13 +107,13 @@ pub fn export(a: ExportArgs) -> anyhow::Result<()> {
     for b in blocks {
         let text = b.verilog(&o).map_err(|e| anyhow!(e))?;
         let path = rtl::export::write(b.name(), &text, &a.out).map_err(|e| anyhow!(e))?;
-        println!(
+        crate::outln!(
             "{}: module {} (latency {} clocks) -> {}",
             b.name(),
             b.module_name(),
             b.latency(),
             path.display()
-        );
+        )?;
     }
     Ok(())
 }
@@ -138,15 +138,15 @@ pub fn sim(a: SimArgs) -> anyhow::Result<()> {
     }
     let t = std::time::Instant::now();
     let out = registry::sim_to_vcd(block, &o, n, seed, &vcd).map_err(|e| anyhow!(e))?;
-    print!("{}", out.report);
-    println!(
+    crate::out!("{}", out.report)?;
+    crate::outln!(
         "{}: {n} {} checked every clock against the bit-exact twin and the golden model (latency {}), seed {seed}, {:.2?}",
         block.name(),
         block.items(),
         block.latency(),
         t.elapsed()
-    );
-    println!("VCD: {}", out.vcd.display());
+    )?;
+    crate::outln!("VCD: {}", out.vcd.display())?;
     Ok(())
 }
 
@@ -154,28 +154,28 @@ pub fn synth(a: SynthArgs) -> anyhow::Result<()> {
     let (blocks, o) = selection(&a.block, &a.build)?;
     for b in blocks {
         let (rep, placement) = registry::synth_block(b, &o, !a.no_pnr).map_err(|e| anyhow!(e))?;
-        print!("{rep}");
+        crate::out!("{rep}")?;
         match placement {
-            registry::Placement::Fmax(f) => println!(
+            registry::Placement::Fmax(f) => crate::outln!(
                 "{}: nextpnr-ice40 --up5k (sg48, timing shell): max clock {f:.1} MHz",
                 rep.top
             ),
-            registry::Placement::TooManyMultipliers(n) => println!(
+            registry::Placement::TooManyMultipliers(n) => crate::outln!(
                 "{}: not placed: {n} SB_MAC16 > the iCE40 UP5K's {} (no Fmax estimate)",
                 rep.top,
                 registry::UP5K_MAC16
             ),
             registry::Placement::NoTool => {
-                println!("{}: nextpnr-ice40 not installed: no Fmax estimate", rep.top)
+                crate::outln!("{}: nextpnr-ice40 not installed: no Fmax estimate", rep.top)
             }
-            registry::Placement::NotAsked => {}
-        }
+            registry::Placement::NotAsked => Ok(()),
+        }?;
     }
     Ok(())
 }
 
 /// `shadecore blocks`: the registry as the README's Markdown table.
 pub fn blocks() -> anyhow::Result<()> {
-    print!("{}", registry::markdown_table());
+    crate::out!("{}", registry::markdown_table())?;
     Ok(())
 }

@@ -103,11 +103,11 @@ pub fn run(args: Args) -> Result<()> {
         .with_context(|| format!("creating output directory {}", args.out.display()))?;
     std::fs::write(args.out.join("sweep.csv"), &csv).context("writing sweep.csv")?;
     std::fs::write(args.out.join("sweep.md"), &md).context("writing sweep.md")?;
-    print!("{md}");
-    println!(
+    crate::out!("{md}")?;
+    crate::outln!(
         "wrote {} and {}",
         args.out.join("sweep.csv").display(),
         args.out.join("sweep.md").display()
-    );
+    )?;
     Ok(())
 }
