@@ -164,6 +164,32 @@ fn bad_meshes_are_one_line_errors() {
     );
     let empty = write("empty.obj", "# nothing here\n");
     assert_clean_error(&["render", "--out", out, "--scene", &empty], "empty.obj");
+    // Hostile files: an endless device behind a .obj name (it used to be read until memory ran
+    // out), a named pipe (it used to block forever), a huge file (sparse: no disk used).
+    let zero = tmp.path().join("zero-device.obj");
+    std::os::unix::fs::symlink("/dev/zero", &zero).unwrap();
+    assert_clean_error(
+        &["render", "--out", out, "--scene", zero.to_str().unwrap()],
+        "not a regular file",
+    );
+    let fifo = tmp.path().join("pipe.obj");
+    if Command::new("mkfifo").arg(&fifo).status().is_ok_and(|s| s.success()) {
+        assert_clean_error(
+            &["render", "--out", out, "--scene", fifo.to_str().unwrap()],
+            "not a regular file",
+        );
+    } else {
+        println!("mkfifo not available: the named-pipe case is not run");
+    }
+    let huge = tmp.path().join("huge.obj");
+    std::fs::File::create(&huge)
+        .unwrap()
+        .set_len(golden::scene::MAX_OBJ_BYTES + 1)
+        .unwrap();
+    assert_clean_error(
+        &["render", "--out", out, "--scene", huge.to_str().unwrap()],
+        "limit",
+    );
 }
 
 #[test]

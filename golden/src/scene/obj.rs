@@ -9,6 +9,9 @@ use glam::DVec3;
 use super::mesh::{first_bad_index, first_non_finite, normal_problem, Mesh};
 use super::SceneError;
 
+/// Largest OBJ file [`load_obj`] reads (256 MiB: several million triangles).
+pub const MAX_OBJ_BYTES: u64 = 256 << 20;
+
 /// Loads a Wavefront OBJ through `tobj` (polygons triangulated, one index per vertex; points
 /// and lines ignored; materials ignored). All objects of the file are merged into one mesh.
 ///
@@ -18,10 +21,40 @@ use super::SceneError;
 /// 0-based indices of the loaded mesh (vertices in order of first use by a face).
 pub fn load_obj(path: &Path) -> Result<Mesh, SceneError> {
     let shown = path.display().to_string();
-    if path.is_dir() {
+    // Only a regular file of bounded size is read: a device (/dev/zero) would be read until
+    // memory runs out, a named pipe would block forever.
+    let meta = match std::fs::metadata(path) {
+        Ok(m) => m,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
+            return Err(SceneError::ObjMissing { path: shown })
+        }
+        Err(e) => {
+            return Err(SceneError::ObjUnreadable {
+                path: shown,
+                reason: e.to_string(),
+            })
+        }
+    };
+    if meta.is_dir() {
         return Err(SceneError::ObjUnreadable {
             path: shown,
             reason: "is a directory".into(),
+        });
+    }
+    if !meta.is_file() {
+        return Err(SceneError::ObjUnreadable {
+            path: shown,
+            reason: "is not a regular file (a device, pipe or socket)".into(),
+        });
+    }
+    if meta.len() > MAX_OBJ_BYTES {
+        return Err(SceneError::ObjUnreadable {
+            path: shown,
+            reason: format!(
+                "is {} MiB, above the {} MiB limit",
+                meta.len() >> 20,
+                MAX_OBJ_BYTES >> 20
+            ),
         });
     }
     // `..Default::default()` keeps this compiling if a tobj feature adds option fields.
