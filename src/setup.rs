@@ -1,7 +1,7 @@
 //! Scene set-up shared by every command: mesh, camera, projection to 12-bit screen addresses,
 //! light, viewer and material. This is the "software side" that also drives the RTL engine.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use anyhow::{bail, Context, Result};
 use glam::{DQuat, DVec3};
@@ -32,9 +32,11 @@ impl From<Lighting> for LightingModel {
 /// prototype's: sphere, tessellation 50, shininess 50, light at 90°.
 #[derive(clap::Args, Debug, Clone, serde::Serialize)]
 pub struct SceneArgs {
-    /// `sphere`, `torus`, or the path of a Wavefront .obj mesh.
+    /// `sphere`, `torus`, or the path of a Wavefront .obj mesh (any path the system accepts,
+    /// UTF-8 or not).
     #[arg(long, default_value = "sphere")]
-    pub scene: String,
+    #[serde(serialize_with = "lossy_path")]
+    pub scene: PathBuf,
     /// Tessellation of the procedural sphere / torus (the prototype's "Sphere Rez").
     #[arg(long, default_value_t = 50, value_parser = clap::value_parser!(u32).range(3..=100))]
     pub rez: u32,
@@ -97,21 +99,56 @@ pub struct Setup {
     pub height: u32,
 }
 
+fn lossy_path<S: serde::Serializer>(p: &Path, s: S) -> std::result::Result<S::Ok, S::Error> {
+    s.serialize_str(&p.to_string_lossy())
+}
+
+impl SceneArgs {
+    /// The scene is an OBJ file (its name ends in `.obj`, any case).
+    pub fn is_obj(&self) -> bool {
+        self.scene
+            .extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("obj"))
+    }
+
+    /// One line for reports: the scene, and its tessellation when it is procedural.
+    pub fn describe(&self) -> String {
+        if self.is_obj() {
+            format!("scene {}", self.scene.display())
+        } else {
+            format!("scene {} rez {}", self.scene.display(), self.rez)
+        }
+    }
+}
+
 /// Build the scene described by `args`.
 pub fn build(args: &SceneArgs) -> Result<Setup> {
     let (width, height) = args.size;
-    let (mesh, rotation) = match args.scene.as_str() {
-        "sphere" => (scene::uv_sphere(args.rez)?, DQuat::IDENTITY),
-        "torus" => (
+    let (mesh, rotation) = match args.scene.to_str() {
+        Some("sphere") => (scene::uv_sphere(args.rez)?, DQuat::IDENTITY),
+        Some("torus") => (
             scene::torus(args.rez)?,
             DQuat::from_rotation_x(55f64.to_radians()),
         ),
-        path if path.to_ascii_lowercase().ends_with(".obj") => {
-            (scene::load_obj(Path::new(path))?, DQuat::IDENTITY)
+        _ if args.is_obj() => {
+            let (mesh, fallbacks) = scene::load_obj_counting(&args.scene)?;
+            if fallbacks > 0 {
+                let (n, verb) = if fallbacks == 1 {
+                    ("vertex", "gets")
+                } else {
+                    ("vertices", "get")
+                };
+                eprintln!(
+                    "warning: OBJ file {}: {fallbacks} {n} whose faces' normals cancel {verb} the normal of its first face",
+                    args.scene.display()
+                );
+            }
+            (mesh, DQuat::IDENTITY)
         }
-        other => {
-            bail!("unknown scene {other:?}: expected `sphere`, `torus` or the path of a .obj file")
-        }
+        _ => bail!(
+            "unknown scene {:?}: expected `sphere`, `torus` or the path of a .obj file",
+            args.scene.display().to_string()
+        ),
     };
     let camera = Camera::fit(&mesh, width, height, rotation);
     let tris = scene::project(&mesh, &camera, width, height)

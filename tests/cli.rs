@@ -173,7 +173,11 @@ fn bad_meshes_are_one_line_errors() {
         "not a regular file",
     );
     let fifo = tmp.path().join("pipe.obj");
-    if Command::new("mkfifo").arg(&fifo).status().is_ok_and(|s| s.success()) {
+    if Command::new("mkfifo")
+        .arg(&fifo)
+        .status()
+        .is_ok_and(|s| s.success())
+    {
         assert_clean_error(
             &["render", "--out", out, "--scene", fifo.to_str().unwrap()],
             "not a regular file",
@@ -266,4 +270,132 @@ fn closed_standard_output_is_a_one_line_error() {
             "{args:?}: {stderr:?}"
         );
     }
+}
+
+/// A render that covers no pixel (a 2×1 canvas; a mesh whose only face is back-facing) says so
+/// and exits non-zero instead of reporting every method "identical" on a black image.
+#[test]
+fn a_render_that_draws_nothing_is_an_error() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("out");
+    let out = out.to_str().unwrap();
+    assert_clean_error(
+        &["render", "--out", out, "--size", "2x1"],
+        "nothing to draw",
+    );
+    let back = tmp.path().join("back.obj");
+    // Seen from +z, clockwise: back-facing.
+    std::fs::write(&back, "v 0 0 0\nv 0 1 0\nv 1 0 0\nf 1 2 3\n").unwrap();
+    assert_clean_error(
+        &["render", "--out", out, "--scene", back.to_str().unwrap()],
+        "nothing to draw",
+    );
+}
+
+/// A method named twice is rendered and printed once; the report's bands use the printed
+/// table's words; an OBJ scene's header has no tessellation.
+#[test]
+fn report_and_table_agree() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().to_str().unwrap();
+    let o = shadecore(&[
+        "render",
+        "--size",
+        "60x60",
+        "--rez",
+        "6",
+        "--method",
+        "flat,gouraud,flat",
+        "--out",
+        out,
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let table = String::from_utf8_lossy(&o.stdout);
+    let rows: Vec<&str> = table.lines().filter(|l| l.starts_with("flat ")).collect();
+    assert_eq!(rows.len(), 1, "{table}");
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(tmp.path().join("report.json")).unwrap())
+            .unwrap();
+    for m in ["flat", "gouraud"] {
+        let band = report["methods"][m]["band"].as_str().unwrap();
+        let row = table
+            .lines()
+            .find(|l| l.starts_with(&format!("{m} ")))
+            .unwrap();
+        assert!(row.ends_with(band), "{m}: table {row:?}, report {band:?}");
+    }
+    let obj = tmp.path().join("tri.obj");
+    std::fs::write(&obj, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").unwrap();
+    let o = shadecore(&[
+        "render",
+        "--size",
+        "60x60",
+        "--method",
+        "flat",
+        "--scene",
+        obj.to_str().unwrap(),
+        "--out",
+        out,
+    ]);
+    let header = String::from_utf8_lossy(&o.stdout);
+    let first = header.lines().next().unwrap_or_default();
+    assert!(
+        first.contains("tri.obj") && !first.contains("rez"),
+        "{first}"
+    );
+}
+
+/// Paths the system accepts are accepted, UTF-8 or not (scene file and output directory).
+#[test]
+fn non_utf8_paths_work() {
+    use std::ffi::OsStr;
+    use std::os::unix::ffi::OsStrExt;
+    let tmp = tempfile::tempdir().unwrap();
+    let obj = tmp.path().join(OsStr::from_bytes(b"tri-\xff.obj"));
+    std::fs::write(&obj, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").unwrap();
+    let out = tmp.path().join(OsStr::from_bytes(b"out-\xfe"));
+    let o = Command::new(env!("CARGO_BIN_EXE_shadecore"))
+        .arg("render")
+        .args(["--size", "40x40", "--method", "flat", "--scene"])
+        .arg(&obj)
+        .arg("--out")
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(out.join("flat.png").exists());
+}
+
+/// A mesh whose faces' normals cancel at some vertices (a two-sided sheet) renders, with one
+/// warning line counting those vertices, instead of being refused whole.
+#[test]
+fn cancelling_face_normals_render_with_a_warning() {
+    let tmp = tempfile::tempdir().unwrap();
+    let obj = tmp.path().join("sheet.obj");
+    std::fs::write(
+        &obj,
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 2 4 3\nf 1 3 2\n",
+    )
+    .unwrap();
+    let out = tmp.path().join("out");
+    let o = shadecore(&[
+        "render",
+        "--size",
+        "40x40",
+        "--method",
+        "flat",
+        "--scene",
+        obj.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{stderr}");
+    let warnings: Vec<&str> = stderr
+        .lines()
+        .filter(|l| l.starts_with("warning"))
+        .collect();
+    assert_eq!(warnings.len(), 1, "{stderr}");
+    // Vertex 1 is in the two opposite faces only; the others also touch the second face.
+    assert!(warnings[0].contains("1 vertex whose"), "{stderr}");
 }

@@ -4,9 +4,9 @@
 
 use serde::Serialize;
 
-/// The thesis' verdict bands for an NMSE value.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "kebab-case")]
+/// The thesis' verdict bands for an NMSE value. Serialized as its [`Band::label`], the words
+/// the printed table uses.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Band {
     /// NMSE ≤ 0.0001: the images look identical.
     Identical,
@@ -37,6 +37,12 @@ impl Band {
             Band::Noticeable => "noticeably different",
             Band::Different => "entirely different",
         }
+    }
+}
+
+impl Serialize for Band {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.serialize_str(self.label())
     }
 }
 

@@ -16,7 +16,7 @@ pub mod projection;
 pub mod snap;
 
 pub use mesh::{torus, uv_sphere, Mesh, REZ_RANGE, TORUS_MAJOR, TORUS_MINOR};
-pub use obj::{load_obj, MAX_OBJ_BYTES};
+pub use obj::{load_obj, load_obj_counting, MAX_OBJ_BYTES};
 pub use projection::{light_direction, project, Camera, LIGHT_ELEVATION_DEG, MAX_CANVAS};
 pub use snap::screen_addresses;
 

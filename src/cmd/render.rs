@@ -98,14 +98,18 @@ pub fn parse_methods(names: &[String]) -> Result<Vec<Method>> {
     if names.is_empty() {
         return Ok(Method::ALL_NON_REFERENCE.to_vec());
     }
-    names
-        .iter()
-        .map(|n| {
-            n.trim()
-                .parse::<Method>()
-                .map_err(|e| anyhow::anyhow!("{e}"))
-        })
-        .collect()
+    let mut out: Vec<Method> = Vec::with_capacity(names.len());
+    for n in names {
+        let m = n
+            .trim()
+            .parse::<Method>()
+            .map_err(|e| anyhow::anyhow!("{e}"))?;
+        // A method named twice is rendered and reported once.
+        if !out.contains(&m) {
+            out.push(m);
+        }
+    }
+    Ok(out)
 }
 
 /// Render the reference and `methods` with the golden engine, in parallel.
@@ -308,9 +312,15 @@ fn write_images(
 /// Print the NMSE table (and the RTL comparisons) of `report`.
 fn print_table(args: &Args, setup: &Setup, methods: &[Method], report: &Report) -> Result<()> {
     crate::outln!(
-        "scene {} rez {} n {} light {}° {}x{} {:?} lighting, {} front-facing triangles, engine {:?}",
-        args.scene.scene, args.scene.rez, args.scene.shininess, args.scene.light_deg,
-        setup.width, setup.height, args.scene.lighting, setup.tris.len(), args.engine
+        "{} n {} light {}° {}x{} {:?} lighting, {} front-facing triangles, engine {:?}",
+        args.scene.describe(),
+        args.scene.shininess,
+        args.scene.light_deg,
+        setup.width,
+        setup.height,
+        args.scene.lighting,
+        setup.tris.len(),
+        args.engine
     )?;
     crate::outln!("{:<16} {:>12} {:>6}  band", "method", "NMSE", "max Δ")?;
     for m in methods {
@@ -341,6 +351,22 @@ pub fn run(args: Args) -> Result<()> {
         parse_methods(&args.method)?
     };
     let setup = build(&args.scene)?;
+    // A scene that covers no pixel would report every method "identical" on a black image.
+    let covered = render(
+        &setup.tris,
+        Method::Flat,
+        &setup.ctx,
+        setup.width,
+        setup.height,
+    )
+    .fragments;
+    if covered.iter().all(|&n| n == 0) {
+        anyhow::bail!(
+            "nothing to draw: no front-facing triangle of the scene covers a pixel of the {}x{} canvas",
+            setup.width,
+            setup.height
+        );
+    }
     std::fs::create_dir_all(&args.out)
         .with_context(|| format!("creating output directory {}", args.out.display()))?;
     let bar = progress_bar(methods.len(), args.engine);

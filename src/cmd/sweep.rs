@@ -42,7 +42,7 @@ pub fn run(args: Args) -> Result<()> {
         for &shininess in &args.shininess {
             for &light_deg in &args.light_deg {
                 configs.push(SceneArgs {
-                    scene: args.scene.clone(),
+                    scene: args.scene.clone().into(),
                     rez,
                     shininess,
                     light_deg,
@@ -86,7 +86,7 @@ pub fn run(args: Args) -> Result<()> {
             writeln!(
                 csv,
                 "{},{},{},{},{},{:.8},{}",
-                c.scene,
+                c.scene.display(),
                 c.rez,
                 c.shininess,
                 c.light_deg,

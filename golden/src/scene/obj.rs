@@ -20,6 +20,12 @@ pub const MAX_OBJ_BYTES: u64 = 256 << 20;
 /// *position* (so texture seams do not become shading seams). Vertex numbers in errors are the
 /// 0-based indices of the loaded mesh (vertices in order of first use by a face).
 pub fn load_obj(path: &Path) -> Result<Mesh, SceneError> {
+    load_obj_counting(path).map(|(mesh, _)| mesh)
+}
+
+/// [`load_obj`], also returning how many vertices got their first face's normal because the
+/// area-weighted sum of their faces' normals vanished (faces that cancel, common in scans).
+pub fn load_obj_counting(path: &Path) -> Result<(Mesh, usize), SceneError> {
     let shown = path.display().to_string();
     // Only a regular file of bounded size is read: a device (/dev/zero) would be read until
     // memory runs out, a named pipe would block forever.
@@ -85,9 +91,10 @@ pub fn load_obj(path: &Path) -> Result<Mesh, SceneError> {
 /// The mesh of the objects `tobj` loaded from the file `shown`: every check of [`load_obj`] that
 /// is the project's own (index range, finite positions, normals: all or none per object, usable),
 /// and the smooth normals.
-fn from_models(models: &[tobj::Model], shown: &str) -> Result<Mesh, SceneError> {
+fn from_models(models: &[tobj::Model], shown: &str) -> Result<(Mesh, usize), SceneError> {
     let origin = format!("OBJ file {shown}");
     let mut mesh = Mesh::default();
+    let mut fallbacks = 0;
     for model in models {
         let m = &model.mesh;
         let base = mesh.positions.len();
@@ -122,11 +129,15 @@ fn from_models(models: &[tobj::Model], shown: &str) -> Result<Mesh, SceneError> 
         if m.normals.is_empty() {
             let computed = smooth_normals(&mesh.positions[base..], &tris, base);
             for (k, n) in computed.into_iter().enumerate() {
-                mesh.normals.push(n.ok_or_else(|| SceneError::BadNormal {
-                    origin: origin.clone(),
-                    vertex: base + k,
-                    problem: "zero-length computed",
-                })?);
+                let n = match n {
+                    Some(n) => n,
+                    None => {
+                        // The faces' normals cancel: the first of its faces with an area.
+                        fallbacks += 1;
+                        face_normal(&mesh.positions, &tris, (base + k) as u32).unwrap_or(DVec3::Z)
+                    }
+                };
+                mesh.normals.push(n);
             }
         } else if m.normals.len() == m.positions.len() {
             for (k, c) in m.normals.chunks_exact(3).enumerate() {
@@ -153,7 +164,16 @@ fn from_models(models: &[tobj::Model], shown: &str) -> Result<Mesh, SceneError> 
         return Err(SceneError::ObjEmpty { path: shown.into() });
     }
     mesh.check(&origin)?;
-    Ok(mesh)
+    Ok((mesh, fallbacks))
+}
+
+/// The unit normal of the first triangle of `tris` that uses vertex `v` and has an area.
+fn face_normal(positions: &[DVec3], tris: &[[u32; 3]], v: u32) -> Option<DVec3> {
+    tris.iter().filter(|t| t.contains(&v)).find_map(|t| {
+        let [a, b, c] = t.map(|i| positions[i as usize]);
+        let n = (b - a).cross(c - a);
+        normal_problem(n).is_none().then(|| n.normalize())
+    })
 }
 
 /// Area-weighted vertex normals of the triangles `tris` (indices offset by `base`) over
@@ -295,12 +315,19 @@ mod tests {
                 "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2 3//1\n",
                 "normals are given for",
             ),
-            (
-                "degenerate",
-                "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n",
-                "zero-length computed normal",
-            ),
         ];
+        // Faces whose normals cancel at a vertex (a two-sided sheet: the same triangle both
+        // ways) load, the vertex taking its first face's normal; counted for the warning.
+        let f = TempObj::new("cancel", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 3 2\n");
+        let (mesh, fallbacks) = load_obj_counting(&f.0).unwrap();
+        assert_eq!(fallbacks, 3);
+        assert!(mesh
+            .normals
+            .iter()
+            .all(|n| (*n - DVec3::Z).length() < 1e-12));
+        // Only degenerate faces: no face normal either; +Z, counted.
+        let f = TempObj::new("degenerate", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n");
+        assert_eq!(load_obj_counting(&f.0).unwrap().1, 3);
         for (name, text, want) in cases {
             let f = TempObj::new(name, text);
             let e = load_obj(&f.0).unwrap_err().to_string();
@@ -399,7 +426,7 @@ mod tests {
             let first = model(&tri, normals(3), &[[0, 1, 2]]);
             // Vertex 3 is the last of the second object.
             let last = model(&square, normals(4), &[[0, 1, 2], [1, 3, 2]]);
-            let m = from_models(&[first.clone(), last], "hand.obj").unwrap();
+            let (m, _) = from_models(&[first.clone(), last], "hand.obj").unwrap();
             assert_eq!(m.triangles, vec![[0, 1, 2], [3, 4, 5], [4, 6, 5]]);
             let past = model(&square, normals(4), &[[0, 1, 2], [1, 4, 2]]);
             let e = from_models(&[first, past], "hand.obj").unwrap_err();
