@@ -124,6 +124,11 @@ fn bad_cli_arguments_are_one_line_errors() {
     assert_clean_error(&["render", "--out", out, "--scene", "cube"], "cube");
     assert_clean_error(&["render", "--out", out, "--lighting", "toon"], "toon");
     assert_clean_error(&["frobnicate"], "frobnicate");
+    // A simulation too large to hold (it used to grow memory without bound).
+    assert_clean_error(
+        &["sim", "--block", "normalizer", "--vectors", "100000000"],
+        "limit",
+    );
 }
 
 #[test]

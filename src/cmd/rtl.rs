@@ -75,8 +75,9 @@ pub struct SimArgs {
     /// Block name (`shadecore blocks` lists them).
     #[arg(long, default_value = "normalizer")]
     pub block: String,
-    /// Random items to simulate, in the block's unit (`shadecore blocks`): vectors or pixels
-    /// (default 1000), triangles (default 20, 1000–2000 clocks each on average).
+    /// Random items to simulate, in the block's unit (`shadecore blocks`): the block's default
+    /// (vectors, pixels, spans or triangles), at most 50 times that (the stimulus is held in
+    /// memory and the VCD of every signal grows with it).
     #[arg(long)]
     pub vectors: Option<usize>,
     /// Seed of the stimulus (default: the test runner's seed for "shadecore-sim";
@@ -118,12 +119,23 @@ pub fn export(a: ExportArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
+/// `sim` simulates at most this many times a block's default number of items.
+pub const SIM_LIMIT_FACTOR: usize = 50;
+
 pub fn sim(a: SimArgs) -> anyhow::Result<()> {
     let block = registry::find(&a.block).map_err(|e| anyhow!(e))?;
     let (_, o) = selection(block.name(), &a.build)?;
     let n = a.vectors.unwrap_or(block.default_items());
     if n == 0 {
         bail!("--vectors must be at least 1");
+    }
+    let limit = SIM_LIMIT_FACTOR * block.default_items();
+    if n > limit {
+        bail!(
+            "--vectors {n} is above {}'s limit of {limit} {} ({SIM_LIMIT_FACTOR} × its default: the stimulus is held in memory and the VCD of every signal grows with it, about 3 kB per normalizer vector)",
+            block.name(),
+            block.items()
+        );
     }
     let seed = a
         .seed
