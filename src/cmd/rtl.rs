@@ -172,10 +172,9 @@ pub fn synth(a: SynthArgs) -> anyhow::Result<()> {
                 "{}: nextpnr-ice40 --up5k (sg48, timing shell): max clock {f:.1} MHz",
                 rep.top
             ),
-            registry::Placement::TooManyMultipliers(n) => crate::outln!(
-                "{}: not placed: {n} SB_MAC16 > the iCE40 UP5K's {} (no Fmax estimate)",
-                rep.top,
-                registry::UP5K_MAC16
+            registry::Placement::DoesNotFit(why) => crate::outln!(
+                "{}: not placed: {why} (no Fmax estimate)",
+                rep.top
             ),
             registry::Placement::NoTool => {
                 crate::outln!("{}: nextpnr-ice40 not installed: no Fmax estimate", rep.top)

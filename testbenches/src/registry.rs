@@ -302,7 +302,9 @@ pub fn synth_block(
     let placement = if !pnr {
         Placement::NotAsked
     } else if rep.mac16() > UP5K_MAC16 {
-        Placement::TooManyMultipliers(rep.mac16())
+        Placement::DoesNotFit(format!("{} SB_MAC16 > the iCE40 UP5K's {UP5K_MAC16}", rep.mac16()))
+    } else if rep.luts() > UP5K_LUT4 {
+        Placement::DoesNotFit(format!("{} LUT4 > the iCE40 UP5K's {UP5K_LUT4}", rep.luts()))
     } else if !tools::available(Tool::NextpnrIce40) {
         Placement::NoTool
     } else {
@@ -319,14 +321,16 @@ pub fn synth_block(
 
 /// SB_MAC16 blocks of the iCE40 UP5K, the part `synth` places into.
 pub const UP5K_MAC16: u64 = 8;
+/// Logic cells (LUT4) of the iCE40 UP5K.
+pub const UP5K_LUT4: u64 = 5280;
 
 /// What place-and-route said about a block (`synth_block`).
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub enum Placement {
     /// nextpnr-ice40's maximum clock after routing, MHz.
     Fmax(f64),
-    /// More SB_MAC16 than the UP5K has: not placed.
-    TooManyMultipliers(u64),
+    /// More SB_MAC16 or LUT4 than the UP5K has (which, and how many): not placed.
+    DoesNotFit(String),
     /// nextpnr-ice40 is not installed.
     NoTool,
     /// `--no-pnr`.
