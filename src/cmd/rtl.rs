@@ -119,6 +119,18 @@ pub fn export(a: ExportArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
+/// A spinner with elapsed time on standard error for a step that can take minutes (hidden when
+/// standard error is not a terminal).
+fn spinner(what: String) -> indicatif::ProgressBar {
+    let p = indicatif::ProgressBar::new_spinner().with_style(
+        indicatif::ProgressStyle::with_template("{spinner} {msg} ({elapsed})")
+            .expect("static template"),
+    );
+    p.set_message(what);
+    p.enable_steady_tick(std::time::Duration::from_millis(200));
+    p
+}
+
 /// `sim` simulates at most this many times a block's default number of items.
 pub const SIM_LIMIT_FACTOR: usize = 50;
 
@@ -149,7 +161,14 @@ pub fn sim(a: SimArgs) -> anyhow::Result<()> {
         std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
     }
     let t = std::time::Instant::now();
-    let out = registry::sim_to_vcd(block, &o, n, seed, &vcd).map_err(|e| anyhow!(e))?;
+    let spin = spinner(format!(
+        "sim {}: {n} {}, checked against twin and golden, then the VCD",
+        block.name(),
+        block.items()
+    ));
+    let out = registry::sim_to_vcd(block, &o, n, seed, &vcd).map_err(|e| anyhow!(e));
+    spin.finish_and_clear();
+    let out = out?;
     crate::out!("{}", out.report)?;
     crate::outln!(
         "{}: {n} {} checked every clock against the bit-exact twin and the golden model (latency {}), seed {seed}, {:.2?}",
@@ -165,17 +184,23 @@ pub fn sim(a: SimArgs) -> anyhow::Result<()> {
 pub fn synth(a: SynthArgs) -> anyhow::Result<()> {
     let (blocks, o) = selection(&a.block, &a.build)?;
     for b in blocks {
-        let (rep, placement) = registry::synth_block(b, &o, !a.no_pnr).map_err(|e| anyhow!(e))?;
+        let spin = spinner(format!(
+            "synth {}: Yosys{}",
+            b.name(),
+            if a.no_pnr { "" } else { ", then nextpnr-ice40" }
+        ));
+        let result = registry::synth_block(b, &o, !a.no_pnr).map_err(|e| anyhow!(e));
+        spin.finish_and_clear();
+        let (rep, placement) = result?;
         crate::out!("{rep}")?;
         match placement {
             registry::Placement::Fmax(f) => crate::outln!(
                 "{}: nextpnr-ice40 --up5k (sg48, timing shell): max clock {f:.1} MHz",
                 rep.top
             ),
-            registry::Placement::DoesNotFit(why) => crate::outln!(
-                "{}: not placed: {why} (no Fmax estimate)",
-                rep.top
-            ),
+            registry::Placement::DoesNotFit(why) => {
+                crate::outln!("{}: not placed: {why} (no Fmax estimate)", rep.top)
+            }
             registry::Placement::NoTool => {
                 crate::outln!("{}: nextpnr-ice40 not installed: no Fmax estimate", rep.top)
             }

@@ -302,9 +302,15 @@ pub fn synth_block(
     let placement = if !pnr {
         Placement::NotAsked
     } else if rep.mac16() > UP5K_MAC16 {
-        Placement::DoesNotFit(format!("{} SB_MAC16 > the iCE40 UP5K's {UP5K_MAC16}", rep.mac16()))
+        Placement::DoesNotFit(format!(
+            "{} SB_MAC16 > the iCE40 UP5K's {UP5K_MAC16}",
+            rep.mac16()
+        ))
     } else if rep.luts() > UP5K_LUT4 {
-        Placement::DoesNotFit(format!("{} LUT4 > the iCE40 UP5K's {UP5K_LUT4}", rep.luts()))
+        Placement::DoesNotFit(format!(
+            "{} LUT4 > the iCE40 UP5K's {UP5K_LUT4}",
+            rep.luts()
+        ))
     } else if !tools::available(Tool::NextpnrIce40) {
         Placement::NoTool
     } else {
