@@ -23,6 +23,8 @@ use golden::render::Frame;
 use golden::shade::ShadeContext;
 use golden::types::{Plane, ScreenTriangle, MAX_ADDRESS};
 use indicatif::ProgressBar;
+
+use crate::verilator_engine::Sim;
 use pipeline::gouraud::{clock_budget, Pipe, PipeStats, TriangleJob};
 use pipeline::lit::{lit_clock_budget, LitJob, LitPipe, ShadingRegs, LIT_METHODS};
 use pipeline::span::{span_clock_budget, span_jobs, SpanPipe, SPAN_METHODS};
@@ -94,6 +96,8 @@ pub struct RtlBuild {
     /// `cubic` through the pipelined Horner units (one pixel per clock) instead of the serial
     /// fig. 2.6 unit (three clocks per pixel).
     pub horner_pipelined: bool,
+    /// The simulator: rust-hdl (default) or the exported Verilog under Verilator.
+    pub sim: crate::verilator_engine::Sim,
 }
 
 /// Render `tris` with `method` (Gouraud, one of [`LIT_METHODS`] or of [`SPAN_METHODS`])
@@ -129,11 +133,11 @@ pub fn render_rtl_with(
 ) -> Result<RtlRender> {
     check_rtl_method(method)?;
     if method == Method::Gouraud {
-        render_gouraud_rtl(tris, ctx, width, height, progress)
+        render_gouraud_rtl_with(tris, ctx, width, height, progress, build)
     } else if SPAN_METHODS.contains(&method) {
         render_span_rtl(tris, method, ctx, width, height, progress, build)
     } else {
-        render_lit_rtl(tris, method, ctx, width, height, progress)
+        render_lit_rtl_with(tris, method, ctx, width, height, progress, build)
     }
 }
 
@@ -155,6 +159,27 @@ pub fn render_lit_rtl(
     height: u32,
     progress: &ProgressBar,
 ) -> Result<RtlRender> {
+    render_lit_rtl_with(
+        tris,
+        method,
+        ctx,
+        width,
+        height,
+        progress,
+        RtlBuild::default(),
+    )
+}
+
+/// [`render_lit_rtl`] with the build choices `build` (the simulator).
+pub fn render_lit_rtl_with(
+    tris: &[ScreenTriangle],
+    method: Method,
+    ctx: &ShadeContext,
+    width: u32,
+    height: u32,
+    progress: &ProgressBar,
+    build: RtlBuild,
+) -> Result<RtlRender> {
     check_addresses(tris, width, height)?;
     let regs = ShadingRegs::of(ctx).map_err(|e| anyhow::anyhow!("RTL set-up: {e}"))?;
     let mut jobs = Vec::with_capacity(tris.len());
@@ -170,7 +195,14 @@ pub fn render_lit_rtl(
     progress.set_length(jobs.len() as u64);
     progress.set_position(0);
     let mut writer = FrameWriter::new(width, height);
-    let mut pipe = LitPipe::new(method).map_err(|e| anyhow::anyhow!("RTL set-up: {e}"))?;
+    let mut pipe = match build.sim {
+        Sim::RustHdl => LitPipe::new(method).map_err(|e| anyhow::anyhow!("RTL set-up: {e}"))?,
+        Sim::Verilator => {
+            let o = pipeline::lit::method_options(method)
+                .ok_or_else(|| anyhow::anyhow!("no lit pipeline build for {method}"))?;
+            LitPipe::replay(crate::verilator_engine::lit_replay(&o, &jobs, &regs)?)
+        }
+    };
     let stats = pipe
         .run(
             &jobs,
@@ -213,6 +245,7 @@ pub fn render_span_rtl(
     };
     let mut pipe = SpanPipe::with_horner(method, build.horner_pipelined)
         .map_err(|e| anyhow::anyhow!("RTL set-up: {e}"))?;
+    let kind = pipe.kind();
     let mut spans = Vec::new();
     let mut depth = Vec::with_capacity(tris.len());
     for (i, t) in tris.iter().enumerate() {
@@ -225,6 +258,12 @@ pub fn render_span_rtl(
     }
     progress.set_length(spans.len() as u64);
     progress.set_position(0);
+    if build.sim == Sim::Verilator {
+        pipe = SpanPipe::replay(
+            kind,
+            crate::verilator_engine::span_replay(kind, &spans, &regs)?,
+        );
+    }
     let mut writer = FrameWriter::new(width, height);
     let stats = pipe
         .run(
@@ -305,6 +344,18 @@ pub fn render_gouraud_rtl(
     height: u32,
     progress: &ProgressBar,
 ) -> Result<RtlRender> {
+    render_gouraud_rtl_with(tris, ctx, width, height, progress, RtlBuild::default())
+}
+
+/// [`render_gouraud_rtl`] with the build choices `build` (the simulator).
+pub fn render_gouraud_rtl_with(
+    tris: &[ScreenTriangle],
+    ctx: &ShadeContext,
+    width: u32,
+    height: u32,
+    progress: &ProgressBar,
+    build: RtlBuild,
+) -> Result<RtlRender> {
     check_addresses(tris, width, height)?;
     // Same triangles as the golden renderer: those with a depth plane (non-zero area).
     let mut jobs = Vec::with_capacity(tris.len());
@@ -318,7 +369,10 @@ pub fn render_gouraud_rtl(
     }
     progress.set_length(jobs.len() as u64);
     let mut frame = Frame::new(width, height);
-    let mut pipe = Pipe::new().map_err(|e| anyhow::anyhow!("RTL set-up: {e}"))?;
+    let mut pipe = match build.sim {
+        Sim::RustHdl => Pipe::new().map_err(|e| anyhow::anyhow!("RTL set-up: {e}"))?,
+        Sim::Verilator => Pipe::replay(crate::verilator_engine::gouraud_replay(&jobs)?),
+    };
     let stats = pipe
         .run(
             &jobs,

@@ -25,6 +25,7 @@ use shadecore::setup::{build, SceneArgs};
 /// same, [`serial_and_pipelined_horner_give_the_same_image`]).
 const PIPELINED: RtlBuild = RtlBuild {
     horner_pipelined: true,
+    sim: shadecore::verilator_engine::Sim::RustHdl,
 };
 
 fn check_scene(label: &str, args: &SceneArgs, nmse_bound: &[(Method, f64)]) {

@@ -134,21 +134,49 @@ impl PipeStats {
     }
 }
 
-/// The raster pipe, stepped by hand through [`Stepper`].
+enum PipeSim {
+    Rust(Box<Stepper<GouraudRaster>>),
+    Replay(crate::replay::Replay),
+}
+
+/// The raster pipe, stepped by hand through [`Stepper`] (or a recorded run replayed).
 pub struct Pipe {
-    stepper: Stepper<GouraudRaster>,
+    sim: PipeSim,
 }
 
 impl Pipe {
     pub fn new() -> Result<Pipe, String> {
         Ok(Pipe {
-            stepper: Stepper::new(GouraudRaster::default())?,
+            sim: PipeSim::Rust(Box::new(Stepper::new(GouraudRaster::default())?)),
         })
     }
 
-    /// Trace every following clock into `w`.
+    /// A recorded run of the pipe (see [`crate::replay`]).
+    pub fn replay(r: crate::replay::Replay) -> Pipe {
+        Pipe {
+            sim: PipeSim::Replay(r),
+        }
+    }
+
+    /// Trace every following clock into `w` (rust-hdl only).
     pub fn start_vcd(&mut self, w: Box<dyn Write>) {
-        self.stepper.start_vcd(w);
+        if let PipeSim::Rust(s) = &mut self.sim {
+            s.start_vcd(w);
+        }
+    }
+
+    fn ready(&self) -> bool {
+        match &self.sim {
+            PipeSim::Rust(s) => s.dut().ready.val(),
+            PipeSim::Replay(r) => r.ready(),
+        }
+    }
+
+    fn step(&mut self, row: &[u64], out: &mut [u64]) -> Result<(), String> {
+        match &mut self.sim {
+            PipeSim::Rust(s) => s.step(row, out),
+            PipeSim::Replay(r) => r.step(row, out),
+        }
     }
 
     /// Run `jobs` through the pipe, each loaded as soon as `ready` is high;
@@ -176,11 +204,11 @@ impl Pipe {
                 ));
             }
             // `ready` is a register output: its value for this clock is already settled.
-            let load = (self.stepper.dut().ready.val() && next < jobs.len()).then(|| &jobs[next]);
+            let load = (self.ready() && next < jobs.len()).then(|| &jobs[next]);
             next += load.is_some() as usize;
             match load {
-                Some(j) => self.stepper.step(&pipe_row(Some(j)), &mut out)?,
-                None => self.stepper.step(&idle, &mut out)?,
+                Some(j) => self.step(&pipe_row(Some(j)), &mut out)?,
+                None => self.step(&idle, &mut out)?,
             }
             st.clocks += 1;
             if out[1] != 0 {
@@ -197,7 +225,9 @@ impl Pipe {
                 progress(st.triangles);
             }
         }
-        self.stepper.stop_vcd();
+        if let PipeSim::Rust(s) = &mut self.sim {
+            s.stop_vcd();
+        }
         Ok(st)
     }
 }

@@ -198,9 +198,14 @@ pub struct Fragment {
     pub clock: u64,
 }
 
-/// The lit pipeline, stepped by hand.
+enum LitSim {
+    Rust(Box<Stepper<PixelPipeline>>),
+    Replay(crate::replay::Replay),
+}
+
+/// The lit pipeline, stepped by hand (or a recorded run replayed).
 pub struct LitPipe {
-    stepper: Stepper<PixelPipeline>,
+    sim: LitSim,
 }
 
 impl LitPipe {
@@ -214,13 +219,36 @@ impl LitPipe {
         })?;
         let p = <PixelPipeline as RtlBlock>::Params::from_options(&o)?;
         Ok(LitPipe {
-            stepper: Stepper::new(PixelPipeline::new(&p))?,
+            sim: LitSim::Rust(Box::new(Stepper::new(PixelPipeline::new(&p))?)),
         })
     }
 
-    /// Trace every following clock into `w`.
+    /// A recorded run of the pipeline (see [`crate::replay`]).
+    pub fn replay(r: crate::replay::Replay) -> LitPipe {
+        LitPipe {
+            sim: LitSim::Replay(r),
+        }
+    }
+
+    /// Trace every following clock into `w` (rust-hdl only).
     pub fn start_vcd(&mut self, w: Box<dyn Write>) {
-        self.stepper.start_vcd(w);
+        if let LitSim::Rust(s) = &mut self.sim {
+            s.start_vcd(w);
+        }
+    }
+
+    fn ready(&self) -> bool {
+        match &self.sim {
+            LitSim::Rust(s) => s.dut().ready.val(),
+            LitSim::Replay(r) => r.ready(),
+        }
+    }
+
+    fn step(&mut self, row: &[u64], out: &mut [u64]) -> Result<(), String> {
+        match &mut self.sim {
+            LitSim::Rust(s) => s.step(row, out),
+            LitSim::Replay(r) => r.step(row, out),
+        }
     }
 
     /// Run `jobs` with registers `regs`, each job loaded as soon as `ready` is high;
@@ -246,11 +274,11 @@ impl LitPipe {
                     jobs.len()
                 ));
             }
-            let load = (self.stepper.dut().ready.val() && next < jobs.len()).then(|| &jobs[next]);
+            let load = (self.ready() && next < jobs.len()).then(|| &jobs[next]);
             next += load.is_some() as usize;
             match load {
-                Some(j) => self.stepper.step(&lit_row(Some(j), regs), &mut out)?,
-                None => self.stepper.step(&idle, &mut out)?,
+                Some(j) => self.step(&lit_row(Some(j), regs), &mut out)?,
+                None => self.step(&idle, &mut out)?,
             }
             st.clocks += 1;
             if out[1] != 0 {
@@ -269,7 +297,9 @@ impl LitPipe {
                 progress(st.triangles);
             }
         }
-        self.stepper.stop_vcd();
+        if let LitSim::Rust(s) = &mut self.sim {
+            s.stop_vcd();
+        }
         Ok(st)
     }
 }

@@ -346,6 +346,7 @@ enum Top {
     Fast(Box<Stepper<FastPipeline>>),
     Cubic(Box<Stepper<CubicPipeline>>),
     Quadric(Box<Stepper<QuadricUnit>>),
+    Replay(crate::replay::Replay),
 }
 
 /// A span pipeline, stepped by hand.
@@ -388,6 +389,14 @@ impl SpanPipe {
         self.kind
     }
 
+    /// A recorded run of the top for `kind` (see [`crate::replay`]).
+    pub fn replay(kind: SpanKind, r: crate::replay::Replay) -> SpanPipe {
+        SpanPipe {
+            kind,
+            top: Top::Replay(r),
+        }
+    }
+
     /// Load → first fragments.
     pub fn latency(&self) -> usize {
         match self.top {
@@ -395,6 +404,12 @@ impl SpanPipe {
             Top::Fast(_) => <FastPipeline as RtlBlock>::LATENCY,
             Top::Cubic(_) => <CubicPipeline as RtlBlock>::LATENCY,
             Top::Quadric(_) => QuadricUnit::LATENCY,
+            Top::Replay(_) => match self.kind {
+                SpanKind::Angular => AngularPipeline::LATENCY,
+                SpanKind::Fast(_) => <FastPipeline as RtlBlock>::LATENCY,
+                SpanKind::Cubic { .. } => <CubicPipeline as RtlBlock>::LATENCY,
+                SpanKind::Quadric => QuadricUnit::LATENCY,
+            },
         }
     }
 
@@ -405,6 +420,7 @@ impl SpanPipe {
             Top::Fast(s) => s.start_vcd(w),
             Top::Cubic(s) => s.start_vcd(w),
             Top::Quadric(s) => s.start_vcd(w),
+            Top::Replay(_) => {}
         }
     }
 
@@ -414,6 +430,7 @@ impl SpanPipe {
             Top::Fast(s) => s.dut().ready.val(),
             Top::Cubic(s) => s.dut().ready.val(),
             Top::Quadric(s) => s.dut().ready.val(),
+            Top::Replay(r) => r.ready(),
         }
     }
 
@@ -423,6 +440,7 @@ impl SpanPipe {
             Top::Fast(s) => s.step(row, out),
             Top::Cubic(s) => s.step(row, out),
             Top::Quadric(s) => s.step(row, out),
+            Top::Replay(r) => r.step(row, out),
         }
     }
 
@@ -495,6 +513,7 @@ impl SpanPipe {
             Top::Fast(s) => s.stop_vcd(),
             Top::Cubic(s) => s.stop_vcd(),
             Top::Quadric(s) => s.stop_vcd(),
+            Top::Replay(_) => {}
         }
         Ok(st)
     }

@@ -48,6 +48,11 @@ pub struct Args {
     /// The images are identical; the clock counts differ.
     #[arg(long, value_enum, default_value = "serial")]
     pub horner: Horner,
+    /// With `--engine rtl`: the simulator — rust-hdl (stepped by hand) or verilator (the
+    /// exported Verilog, compiled once per block and cached under target/verilator-engine;
+    /// the frames are bit-identical).
+    #[arg(long, value_enum, default_value = "rust-hdl")]
+    pub sim: crate::verilator_engine::Sim,
 }
 
 /// The Horner unit variant of the cubic pipeline.
@@ -372,6 +377,7 @@ pub fn run(args: Args) -> Result<()> {
     let bar = progress_bar(methods.len(), args.engine);
     let build = crate::rtl_engine::RtlBuild {
         horner_pipelined: args.horner == Horner::Pipelined,
+        sim: args.sim,
     };
     let frames = render_frames(&setup, &methods, args.engine, build, &bar)?;
     bar.finish_and_clear();

@@ -1,0 +1,79 @@
+//! The Verilator engine (`render --engine rtl --sim verilator`) gives the same frames as the
+//! rust-hdl simulation, bit for bit, with the same clock counts, for every pipeline: the
+//! Gouraud pipe, the lit pipeline (two builds), the span tops, the quadric unit and the cubic
+//! pipeline (both Horner variants). Skips with a notice without Verilator (fails when `CI` is
+//! set).
+
+use golden::methods::Method;
+use indicatif::ProgressBar;
+use shadecore::rtl_engine::{render_rtl_with, RtlBuild};
+use shadecore::setup::{build, SceneArgs};
+use shadecore::verilator_engine::Sim;
+use testbenches::tools::{self, Tool};
+
+#[test]
+fn verilator_frames_equal_rust_hdl_frames() {
+    if !tools::require(&[Tool::Verilator], "verilator_frames_equal_rust_hdl_frames") {
+        return;
+    }
+    let s = build(&SceneArgs {
+        size: (120, 120),
+        rez: 12,
+        ..SceneArgs::default()
+    })
+    .unwrap();
+    let cases = [
+        (Method::Gouraud, false),
+        (Method::NormalizerFit, false),
+        (Method::Bump, false),
+        (Method::Angular, false),
+        (Method::FastFit, false),
+        (Method::Quadric, false),
+        (Method::Cubic, false),
+        (Method::Cubic, true),
+    ];
+    for (m, pipelined) in cases {
+        let run = |sim: Sim| {
+            render_rtl_with(
+                &s.tris,
+                m,
+                &s.ctx,
+                s.width,
+                s.height,
+                &ProgressBar::hidden(),
+                RtlBuild {
+                    horner_pipelined: pipelined,
+                    sim,
+                },
+            )
+            .unwrap_or_else(|e| panic!("{m} ({sim:?}): {e:#}"))
+        };
+        let t0 = std::time::Instant::now();
+        let v = run(Sim::Verilator);
+        let tv = t0.elapsed();
+        let t0 = std::time::Instant::now();
+        let r = run(Sim::RustHdl);
+        let tr = t0.elapsed();
+        println!(
+            "{m}{}: {} fragments, {} clocks; verilator {tv:.1?} (build cached after the first run), rust-hdl {tr:.1?}",
+            if pipelined { " (pipelined Horner)" } else { "" },
+            r.stats.pixels,
+            r.stats.clocks
+        );
+        assert!(
+            r.stats.pixels > 1000,
+            "{m}: only {} fragments",
+            r.stats.pixels
+        );
+        assert_eq!(v.frame.rgb, r.frame.rgb, "{m}: the frames differ");
+        assert_eq!(
+            v.frame.depth, r.frame.depth,
+            "{m}: the depth buffers differ"
+        );
+        assert_eq!(
+            (v.stats.clocks, v.stats.pixels),
+            (r.stats.clocks, r.stats.pixels),
+            "{m}: clock counts differ"
+        );
+    }
+}
