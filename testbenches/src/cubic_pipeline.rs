@@ -11,20 +11,16 @@
 //! `z` within 4096·2⁻¹⁷ + 2⁻¹⁶ of the f64 depth plane.
 
 use golden::horner_unit::{twin::HornerTwin, HornerWords};
-use golden::raster::walk;
-use golden::shade::ShadeContext;
 use golden::types::ScreenTriangle;
-use pipeline::lit::ShadingRegs;
-use pipeline::span::{span_jobs, span_row, SpanJob, SpanKind};
+use pipeline::span::{span_row, SpanKind};
 use rtl::cubic_pipeline::{CubicParams, CubicPipeline};
-use rtl::fixed::{INTENSITY, LEVEL};
 use rtl::horner_unit::HornerUnit;
 use rtl::registry::RtlBlock;
 
-use crate::harness::{Compare, Expected, Tolerance};
+use crate::harness::{Compare, Expected};
 use crate::pixel_pipeline::{lit_triangles, DelayLine};
 use crate::registry::{Bench, Stimulus, Twin};
-use crate::span_pipeline::golden_colours;
+use crate::span_pipeline::{idle_lane, lane_compare, GoldenSpans};
 
 /// Twin of the cubic pipeline.
 pub struct CubicPipelineTwin {
@@ -94,41 +90,20 @@ fn stimulus(p: &CubicParams, tris: &[ScreenTriangle]) -> Stimulus {
     let kind = SpanKind::Cubic {
         pipelined: p.0.pipelined,
     };
-    let ctx = ShadeContext::default();
-    let regs = ShadingRegs::of(&ctx).expect("default context fits the registers");
-    let mut spans: Vec<SpanJob> = Vec::new();
-    let mut colours = Vec::new();
-    let mut depths = Vec::new();
-    for (i, t) in tris.iter().enumerate() {
-        spans.extend(span_jobs(t, i, kind, &ctx).expect("depths in range"));
-        colours.extend(golden_colours(t, &ctx, kind));
-        let d = t.depth_plane().expect("non-degenerate");
-        depths.extend(
-            walk(t)
-                .pixels()
-                .into_iter()
-                .map(|px| d.at_pixel(px.x, px.y)),
-        );
-    }
-    let mut first = Vec::with_capacity(spans.len());
-    let mut at = 0;
-    for s in &spans {
-        first.push(at);
-        at += s.m as usize + 1;
-    }
-    assert_eq!(at, colours.len(), "spans and golden pixels disagree");
+    let g = GoldenSpans::new(kind, tris);
+    let (spans, regs) = (&g.spans, &g.regs);
     let (per_pixel, delay) = if p.0.pipelined { (1, 4) } else { (3, 2) };
-    let mut rows = vec![span_row(kind, spans.first(), &regs)];
+    let mut rows = vec![span_row(kind, spans.first(), regs)];
     let mut state: Vec<Option<(usize, u64)>> = vec![None];
     for (i, s) in spans.iter().enumerate() {
         for k in 0..s.clocks() {
             state.push(Some((i, k)));
             let next = (k + 1 == s.clocks()).then(|| spans.get(i + 1)).flatten();
-            rows.push(span_row(kind, next, &regs));
+            rows.push(span_row(kind, next, regs));
         }
     }
     for _ in 0..=delay + 1 {
-        rows.push(span_row(kind, None, &regs));
+        rows.push(span_row(kind, None, regs));
         state.push(None);
     }
     let w = Expected::Word;
@@ -144,54 +119,25 @@ fn stimulus(p: &CubicParams, tris: &[ScreenTriangle]) -> Stimulus {
             match shown {
                 Some((i, t)) => {
                     let s = &spans[i];
-                    let x = if s.leftward {
-                        s.x0 as u64 - t
-                    } else {
-                        s.x0 as u64 + t
-                    };
-                    let px = first[i] + t as usize;
-                    e.extend([w(1), w(x), Expected::Real(depths[px])]);
-                    e.extend(colours[px].map(|v| Expected::Real(v as f64)));
+                    e.extend(g.lane(i, t));
                     e.extend([w(s.y as u64), w((t == s.m as u64) as u64)]);
                 }
                 None => {
-                    e.push(w(0));
-                    e.extend([Expected::DontCare; 6]);
+                    e.extend(idle_lane());
+                    e.push(Expected::DontCare);
                     e.push(w(0));
                 }
             }
             e
         })
         .collect();
-    let level = Compare::Fixed {
-        format: LEVEL,
-        tol: Tolerance {
-            max_abs: 2.0,
-            rms: 0.5,
-        },
-    };
-    let zb = 4096.0 * (-17f64).exp2() + (-16f64).exp2();
-    let depth = Compare::Fixed {
-        format: INTENSITY,
-        tol: Tolerance {
-            max_abs: zb,
-            rms: zb,
-        },
-    };
+    let mut compare = vec![Compare::Exact];
+    compare.extend(lane_compare(4096.0));
+    compare.extend([Compare::Exact, Compare::Exact]);
     Stimulus {
         rows,
         expected,
-        compare: vec![
-            Compare::Exact,
-            Compare::Exact,
-            Compare::Exact,
-            depth,
-            level,
-            level,
-            level,
-            Compare::Exact,
-            Compare::Exact,
-        ],
+        compare,
     }
 }
 

@@ -16,19 +16,16 @@
 use glam::DVec3;
 use golden::quadric_unit::twin::{QuadricLine, QuadricTwin};
 use golden::quadric_unit::QuadricWords;
-use golden::raster::walk;
 use golden::shade::ShadeContext;
 use golden::types::ScreenTriangle;
-use pipeline::lit::ShadingRegs;
-use pipeline::span::{quadric_timing, span_jobs, span_row, SpanJob, SpanKind};
-use rtl::fixed::{INTENSITY, LEVEL};
+use pipeline::span::{quadric_timing, span_jobs, span_row, SpanKind};
 use rtl::quadric_unit::QuadricUnit;
 use rtl::registry::NoParams;
 
-use crate::harness::{Compare, Expected, Tolerance};
+use crate::harness::{Compare, Expected};
 use crate::pixel_pipeline::lit_triangles;
 use crate::registry::{Bench, Stimulus, Twin};
-use crate::span_pipeline::golden_colours;
+use crate::span_pipeline::{idle_lane, lane_compare, GoldenSpans};
 
 /// Named triangles: (name, triangle).
 pub fn named_triangles() -> Vec<(&'static str, ScreenTriangle)> {
@@ -112,47 +109,24 @@ impl Twin for QuadricRows {
 
 fn stimulus(tris: &[ScreenTriangle]) -> Stimulus {
     let kind = SpanKind::Quadric;
-    let ctx = ShadeContext::default();
-    let regs = ShadingRegs::of(&ctx).expect("default context fits the registers");
-    let mut spans: Vec<SpanJob> = Vec::new();
-    let mut colours = Vec::new();
-    let mut depths = Vec::new();
-    for (i, t) in tris.iter().enumerate() {
-        spans.extend(span_jobs(t, i, kind, &ctx).expect("in range"));
-        colours.extend(golden_colours(t, &ctx, kind));
-        let d = t.depth_plane().expect("non-degenerate");
-        depths.extend(
-            walk(t)
-                .pixels()
-                .into_iter()
-                .map(|px| d.at_pixel(px.x, px.y)),
-        );
-    }
-    let mut first = Vec::with_capacity(spans.len());
-    let mut at = 0;
-    for s in &spans {
-        first.push(at);
-        at += s.m as usize + 1;
-    }
-    assert_eq!(at, colours.len(), "spans and golden pixels disagree");
+    let g = GoldenSpans::new(kind, tris);
+    let (spans, regs) = (&g.spans, &g.regs);
     // Schedule: `quadric_timing` gives each line's load and hand-over clocks; clock j of its
     // generator (hand-over + 1 + j) shows pixels 2j and 2j + 1 one clock later.
-    let timing = quadric_timing(&spans);
-    let end = timing.last().map_or(0, |&(_, h)| h) as usize
-        + spans.last().map_or(0, |s| s.clocks()) as usize
-        + 3;
-    let mut rows = vec![span_row(kind, None, &regs); end];
+    let timing = quadric_timing(spans);
+    let last_hand = timing.last().map_or(0, |&(_, h)| h) as usize;
+    let end = last_hand + spans.last().map_or(0, |s| s.clocks()) as usize + 3;
+    let mut rows = vec![span_row(kind, None, regs); end];
     let mut shown: Vec<Option<(usize, u64)>> = vec![None; end];
     let mut ready = vec![false; end];
     ready[0] = true;
     for (i, &(take, hand)) in timing.iter().enumerate() {
-        rows[take as usize] = span_row(kind, Some(&spans[i]), &regs);
+        rows[take as usize] = span_row(kind, Some(&spans[i]), regs);
         ready[hand as usize] = true;
         for j in 0..spans[i].clocks() {
             shown[(hand + 2 + j) as usize] = Some((i, j));
         }
     }
-    let last_hand = timing.last().map_or(0, |&(_, h)| h) as usize;
     for r in ready.iter_mut().skip(last_hand + 1) {
         *r = true;
     }
@@ -160,38 +134,21 @@ fn stimulus(tris: &[ScreenTriangle]) -> Stimulus {
     let expected = (0..rows.len())
         .map(|c| {
             let mut e = vec![w(ready[c] as u64)];
-            let pixel = |i: usize, t: u64| {
-                let s = &spans[i];
-                let x = if s.leftward {
-                    s.x0 as u64 - t
-                } else {
-                    s.x0 as u64 + t
-                };
-                let px = first[i] + t as usize;
-                let mut v = vec![w(1), w(x), Expected::Real(depths[px])];
-                v.extend(colours[px].map(|c| Expected::Real(c as f64)));
-                v
-            };
-            let none = || {
-                let mut v = vec![w(0)];
-                v.extend([Expected::DontCare; 5]);
-                v
-            };
             match shown[c] {
                 Some((i, k)) => {
                     let m = spans[i].m as u64;
-                    e.extend(pixel(i, 2 * k));
+                    e.extend(g.lane(i, 2 * k));
                     e.extend(if 2 * k < m {
-                        pixel(i, 2 * k + 1)
+                        g.lane(i, 2 * k + 1)
                     } else {
-                        none()
+                        idle_lane()
                     });
                     e.push(w(spans[i].y as u64));
                     e.push(w((k + 1 == spans[i].clocks()) as u64));
                 }
                 None => {
-                    e.extend(none());
-                    e.extend(none());
+                    e.extend(idle_lane());
+                    e.extend(idle_lane());
                     e.push(Expected::DontCare);
                     e.push(w(0));
                 }
@@ -199,22 +156,7 @@ fn stimulus(tris: &[ScreenTriangle]) -> Stimulus {
             e
         })
         .collect();
-    let level = Compare::Fixed {
-        format: LEVEL,
-        tol: Tolerance {
-            max_abs: 2.0,
-            rms: 0.5,
-        },
-    };
-    let zb = 4096.0 * (-17f64).exp2() + (-16f64).exp2();
-    let depth = Compare::Fixed {
-        format: INTENSITY,
-        tol: Tolerance {
-            max_abs: zb,
-            rms: zb,
-        },
-    };
-    let lane = [Compare::Exact, Compare::Exact, depth, level, level, level];
+    let lane = lane_compare(4096.0);
     let mut compare = vec![Compare::Exact];
     compare.extend(lane);
     compare.extend(lane);

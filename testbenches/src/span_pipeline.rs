@@ -243,45 +243,116 @@ pub(crate) fn golden_colours(
     out
 }
 
+/// The golden side of a span-top bench: the spans of `tris` (default context, through the span
+/// front end), the golden colour and the f64 depth of every pixel in walk order, and where each
+/// span's pixels start in them.
+pub(crate) struct GoldenSpans {
+    pub spans: Vec<SpanJob>,
+    pub regs: ShadingRegs,
+    colours: Vec<[u8; 3]>,
+    depths: Vec<f64>,
+    first: Vec<usize>,
+}
+
+impl GoldenSpans {
+    pub fn new(kind: SpanKind, tris: &[ScreenTriangle]) -> GoldenSpans {
+        let ctx = ShadeContext::default();
+        let regs = ShadingRegs::of(&ctx).expect("default context fits the registers");
+        let mut spans: Vec<SpanJob> = Vec::new();
+        let mut colours = Vec::new();
+        let mut depths = Vec::new();
+        for (i, t) in tris.iter().enumerate() {
+            spans.extend(span_jobs(t, i, kind, &ctx).expect("in range"));
+            colours.extend(golden_colours(t, &ctx, kind));
+            let d = t.depth_plane().expect("non-degenerate");
+            depths.extend(
+                walk(t)
+                    .pixels()
+                    .into_iter()
+                    .map(|px| d.at_pixel(px.x, px.y)),
+            );
+        }
+        // Pixel p of span i is colours[first[i] + p] (walk order = span order, t order).
+        let mut first = Vec::with_capacity(spans.len());
+        let mut at = 0;
+        for s in &spans {
+            first.push(at);
+            at += s.m as usize + 1;
+        }
+        assert_eq!(at, colours.len(), "spans and golden pixels disagree");
+        GoldenSpans {
+            spans,
+            regs,
+            colours,
+            depths,
+            first,
+        }
+    }
+
+    /// Pixel t of span i as a lane: valid, x, z (f64 plane), r, g, b (golden).
+    pub fn lane(&self, i: usize, t: u64) -> Vec<Expected> {
+        let s = &self.spans[i];
+        let x = if s.leftward {
+            s.x0 as u64 - t
+        } else {
+            s.x0 as u64 + t
+        };
+        let p = self.first[i] + t as usize;
+        let mut v = vec![
+            Expected::Word(1),
+            Expected::Word(x),
+            Expected::Real(self.depths[p]),
+        ];
+        v.extend(self.colours[p].map(|c| Expected::Real(c as f64)));
+        v
+    }
+}
+
+/// A lane showing nothing: valid low, the rest unchecked.
+pub(crate) fn idle_lane() -> Vec<Expected> {
+    let mut v = vec![Expected::Word(0)];
+    v.extend([Expected::DontCare; 5]);
+    v
+}
+
+/// A lane's comparisons: valid and x exact, z within `steps`·2⁻¹⁷ + 2⁻¹⁶ (the depth run's
+/// rounded step over at most `steps` additions), colours within 2 LSB of golden, RMS 0.5.
+pub(crate) fn lane_compare(steps: f64) -> [Compare; 6] {
+    let level = Compare::Fixed {
+        format: LEVEL,
+        tol: Tolerance {
+            max_abs: 2.0,
+            rms: 0.5,
+        },
+    };
+    let zb = steps * (-17f64).exp2() + (-16f64).exp2();
+    let depth = Compare::Fixed {
+        format: INTENSITY,
+        tol: Tolerance {
+            max_abs: zb,
+            rms: zb,
+        },
+    };
+    [Compare::Exact, Compare::Exact, depth, level, level, level]
+}
+
 /// Rows and expectations for `tris` through the span pipeline of `kind`.
 fn span_stimulus(kind: SpanKind, tris: &[ScreenTriangle], latency: usize) -> Stimulus {
-    let ctx = ShadeContext::default();
-    let regs = ShadingRegs::of(&ctx).expect("default context fits the registers");
-    let mut spans: Vec<SpanJob> = Vec::new();
-    let mut colours = Vec::new();
-    let mut depths = Vec::new();
-    for (i, t) in tris.iter().enumerate() {
-        spans.extend(span_jobs(t, i, kind, &ctx).expect("depths in range"));
-        colours.extend(golden_colours(t, &ctx, kind));
-        let d = t.depth_plane().expect("non-degenerate");
-        depths.extend(
-            walk(t)
-                .pixels()
-                .into_iter()
-                .map(|px| d.at_pixel(px.x, px.y)),
-        );
-    }
-    // Pixel p of span i is colours[first[i] + p] (walk order = span order, t order).
-    let mut first = Vec::with_capacity(spans.len());
-    let mut at = 0;
-    for s in &spans {
-        first.push(at);
-        at += s.m as usize + 1;
-    }
-    assert_eq!(at, colours.len(), "spans and golden pixels disagree");
+    let g = GoldenSpans::new(kind, tris);
+    let (spans, regs) = (&g.spans, &g.regs);
     // Schedule: the first span loads in clock 0; span i occupies clocks(i) clocks; the next
     // loads in its last clock.
-    let mut rows = vec![span_row(kind, spans.first(), &regs)];
+    let mut rows = vec![span_row(kind, spans.first(), regs)];
     let mut state: Vec<Option<(usize, u64)>> = vec![None];
     for (i, s) in spans.iter().enumerate() {
         for k in 0..s.clocks() {
             state.push(Some((i, k)));
             let next = (k + 1 == s.clocks()).then(|| spans.get(i + 1)).flatten();
-            rows.push(span_row(kind, next, &regs));
+            rows.push(span_row(kind, next, regs));
         }
     }
     for _ in 0..=latency {
-        rows.push(span_row(kind, None, &regs));
+        rows.push(span_row(kind, None, regs));
         state.push(None);
     }
     let word = Expected::Word;
@@ -290,34 +361,21 @@ fn span_stimulus(kind: SpanKind, tris: &[ScreenTriangle], latency: usize) -> Sti
             let ready = state[c].is_none_or(|(i, k)| k + 1 == spans[i].clocks());
             let mut e = vec![word(ready as u64)];
             let shown = c.checked_sub(latency - 1).and_then(|s| state[s]);
-            let pixel = |i: usize, t: u64| {
-                let s = &spans[i];
-                let x = if s.leftward {
-                    s.x0 as u64 - t
-                } else {
-                    s.x0 as u64 + t
-                };
-                let p = first[i] + t as usize;
-                let mut v = vec![word(1), word(x), Expected::Real(depths[p])];
-                v.extend(colours[p].map(|c| Expected::Real(c as f64)));
-                v
-            };
-            let none = || {
-                let mut v = vec![word(0)];
-                v.extend([Expected::DontCare; 5]);
-                v
-            };
             match shown {
                 Some((i, k)) => {
                     let m = spans[i].m as u64;
-                    e.extend(pixel(i, k));
-                    e.extend(if m - k > k { pixel(i, m - k) } else { none() });
+                    e.extend(g.lane(i, k));
+                    e.extend(if m - k > k {
+                        g.lane(i, m - k)
+                    } else {
+                        idle_lane()
+                    });
                     e.push(word(spans[i].y as u64));
                     e.push(word((k + 1 == spans[i].clocks()) as u64));
                 }
                 None => {
-                    e.extend(none());
-                    e.extend(none());
+                    e.extend(idle_lane());
+                    e.extend(idle_lane());
                     e.push(Expected::DontCare);
                     e.push(word(0));
                 }
@@ -325,22 +383,7 @@ fn span_stimulus(kind: SpanKind, tris: &[ScreenTriangle], latency: usize) -> Sti
             e
         })
         .collect();
-    let level = Compare::Fixed {
-        format: LEVEL,
-        tol: Tolerance {
-            max_abs: 2.0,
-            rms: 0.5,
-        },
-    };
-    let zb = 2048.0 * (-17f64).exp2() + (-16f64).exp2();
-    let depth = Compare::Fixed {
-        format: INTENSITY,
-        tol: Tolerance {
-            max_abs: zb,
-            rms: zb,
-        },
-    };
-    let lane = [Compare::Exact, Compare::Exact, depth, level, level, level];
+    let lane = lane_compare(2048.0);
     let mut compare = vec![Compare::Exact];
     compare.extend(lane);
     compare.extend(lane);
