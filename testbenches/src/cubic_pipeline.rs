@@ -17,10 +17,10 @@ use rtl::cubic_pipeline::{CubicParams, CubicPipeline};
 use rtl::horner_unit::HornerUnit;
 use rtl::registry::RtlBlock;
 
-use crate::harness::{Compare, Expected};
+use crate::harness::Compare;
 use crate::pixel_pipeline::{lit_triangles, DelayLine};
 use crate::registry::{Bench, Stimulus, Twin};
-use crate::span_pipeline::{idle_lane, lane_compare, GoldenSpans};
+use crate::span_pipeline::{expect_row, lane_compare, GoldenSpans, Shown};
 
 /// Twin of the cubic pipeline.
 pub struct CubicPipelineTwin {
@@ -106,7 +106,6 @@ fn stimulus(p: &CubicParams, tris: &[ScreenTriangle]) -> Stimulus {
         rows.push(span_row(kind, None, regs));
         state.push(None);
     }
-    let w = Expected::Word;
     let expected = (0..rows.len())
         .map(|c| {
             let ready = state[c].is_none_or(|(i, k)| k + 1 == spans[i].clocks());
@@ -115,20 +114,17 @@ fn stimulus(p: &CubicParams, tris: &[ScreenTriangle]) -> Stimulus {
                 .and_then(|s| state[s])
                 .filter(|&(_, k)| k % per_pixel == per_pixel - 1)
                 .map(|(i, k)| (i, k / per_pixel));
-            let mut e = vec![w(ready as u64)];
-            match shown {
-                Some((i, t)) => {
-                    let s = &spans[i];
-                    e.extend(g.lane(i, t));
-                    e.extend([w(s.y as u64), w((t == s.m as u64) as u64)]);
-                }
-                None => {
-                    e.extend(idle_lane());
-                    e.push(Expected::DontCare);
-                    e.push(w(0));
-                }
-            }
-            e
+            expect_row(
+                &g,
+                ready,
+                false,
+                shown.map(|(i, t)| Shown {
+                    span: i,
+                    a: t,
+                    b: None,
+                    last: t == spans[i].m as u64,
+                }),
+            )
         })
         .collect();
     let mut compare = vec![Compare::Exact];

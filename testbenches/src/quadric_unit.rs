@@ -22,10 +22,10 @@ use pipeline::span::{quadric_timing, span_jobs, span_row, SpanKind};
 use rtl::quadric_unit::QuadricUnit;
 use rtl::registry::NoParams;
 
-use crate::harness::{Compare, Expected};
+use crate::harness::Compare;
 use crate::pixel_pipeline::lit_triangles;
 use crate::registry::{Bench, Stimulus, Twin};
-use crate::span_pipeline::{idle_lane, lane_compare, GoldenSpans};
+use crate::span_pipeline::{expect_row, lane_compare, GoldenSpans, Shown};
 
 /// Named triangles: (name, triangle).
 pub fn named_triangles() -> Vec<(&'static str, ScreenTriangle)> {
@@ -130,30 +130,19 @@ fn stimulus(tris: &[ScreenTriangle]) -> Stimulus {
     for r in ready.iter_mut().skip(last_hand + 1) {
         *r = true;
     }
-    let w = Expected::Word;
     let expected = (0..rows.len())
         .map(|c| {
-            let mut e = vec![w(ready[c] as u64)];
-            match shown[c] {
-                Some((i, k)) => {
-                    let m = spans[i].m as u64;
-                    e.extend(g.lane(i, 2 * k));
-                    e.extend(if 2 * k < m {
-                        g.lane(i, 2 * k + 1)
-                    } else {
-                        idle_lane()
-                    });
-                    e.push(w(spans[i].y as u64));
-                    e.push(w((k + 1 == spans[i].clocks()) as u64));
-                }
-                None => {
-                    e.extend(idle_lane());
-                    e.extend(idle_lane());
-                    e.push(Expected::DontCare);
-                    e.push(w(0));
-                }
-            }
-            e
+            expect_row(
+                &g,
+                ready[c],
+                true,
+                shown[c].map(|(i, k)| Shown {
+                    span: i,
+                    a: 2 * k,
+                    b: Some((2 * k < spans[i].m as u64).then_some(2 * k + 1)),
+                    last: k + 1 == spans[i].clocks(),
+                }),
+            )
         })
         .collect();
     let lane = lane_compare(4096.0);

@@ -308,6 +308,47 @@ impl GoldenSpans {
     }
 }
 
+/// What a span top shows in one clock: the span, lane A's pixel, lane B's pixel if any (`None`
+/// inside the outer option for a one-lane top), and whether it is the span's last clock.
+pub(crate) struct Shown {
+    pub span: usize,
+    pub a: u64,
+    pub b: Option<Option<u64>>,
+    pub last: bool,
+}
+
+/// The expected output row of a span top: ready, lane A, lane B (two-lane tops), y, last.
+pub(crate) fn expect_row(
+    g: &GoldenSpans,
+    ready: bool,
+    two_lanes: bool,
+    shown: Option<Shown>,
+) -> Vec<Expected> {
+    let mut e = vec![Expected::Word(ready as u64)];
+    match shown {
+        Some(sh) => {
+            e.extend(g.lane(sh.span, sh.a));
+            if two_lanes {
+                e.extend(match sh.b.flatten() {
+                    Some(t) => g.lane(sh.span, t),
+                    None => idle_lane(),
+                });
+            }
+            e.push(Expected::Word(g.spans[sh.span].y as u64));
+            e.push(Expected::Word(sh.last as u64));
+        }
+        None => {
+            e.extend(idle_lane());
+            if two_lanes {
+                e.extend(idle_lane());
+            }
+            e.push(Expected::DontCare);
+            e.push(Expected::Word(0));
+        }
+    }
+    e
+}
+
 /// A lane showing nothing: valid low, the rest unchecked.
 pub(crate) fn idle_lane() -> Vec<Expected> {
     let mut v = vec![Expected::Word(0)];
@@ -355,32 +396,24 @@ fn span_stimulus(kind: SpanKind, tris: &[ScreenTriangle], latency: usize) -> Sti
         rows.push(span_row(kind, None, regs));
         state.push(None);
     }
-    let word = Expected::Word;
     let expected = (0..rows.len())
         .map(|c| {
             let ready = state[c].is_none_or(|(i, k)| k + 1 == spans[i].clocks());
-            let mut e = vec![word(ready as u64)];
             let shown = c.checked_sub(latency - 1).and_then(|s| state[s]);
-            match shown {
-                Some((i, k)) => {
+            expect_row(
+                &g,
+                ready,
+                true,
+                shown.map(|(i, k)| {
                     let m = spans[i].m as u64;
-                    e.extend(g.lane(i, k));
-                    e.extend(if m - k > k {
-                        g.lane(i, m - k)
-                    } else {
-                        idle_lane()
-                    });
-                    e.push(word(spans[i].y as u64));
-                    e.push(word((k + 1 == spans[i].clocks()) as u64));
-                }
-                None => {
-                    e.extend(idle_lane());
-                    e.extend(idle_lane());
-                    e.push(Expected::DontCare);
-                    e.push(word(0));
-                }
-            }
-            e
+                    Shown {
+                        span: i,
+                        a: k,
+                        b: Some((m - k > k).then_some(m - k)),
+                        last: k + 1 == spans[i].clocks(),
+                    }
+                }),
+            )
         })
         .collect();
     let lane = lane_compare(2048.0);
