@@ -36,7 +36,7 @@
 //! | `ready` | out | the span units': a `load` now follows the current span without a gap |
 //! | `valid_a`, `x_a`, `z_a`, `red_a`, `green_a`, `blue_a` | out | lane A: pixel t = k in the span's clock k |
 //! | `valid_b`, `x_b`, … `blue_b` | out | lane B: pixel m − k (when m − k > k) |
-//! | `y` | out | the line of both lanes' pixels |
+//! | `y_out` | out | the line of both lanes' pixels (`y` is taken by the input) |
 //! | `last` | out | the span's last clock |
 //!
 //! # Latency, throughput
