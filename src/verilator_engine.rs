@@ -169,6 +169,31 @@ pub fn span_replay(kind: SpanKind, spans: &[SpanJob], regs: &ShadingRegs) -> Res
     record(block, &o, rows)
 }
 
+/// The address block walking `setups` under Verilator: its outputs per clock, through the same
+/// reactive loop as `testbenches::address_block::run_reactive` (a load whenever `ready` is high),
+/// checked against the scheduled rows by the replay.
+pub fn address_outputs(
+    setups: &[AddressSetup],
+) -> Result<Vec<golden::address_block::AddressOutputs>> {
+    use testbenches::address_block::{row_outputs, stimulus};
+    let st = stimulus(setups);
+    let mut replay = record("address-block", &Options::new(), st.rows.clone())?;
+    let mut out = Vec::with_capacity(st.rows.len());
+    let mut row = vec![0u64; 9];
+    let (mut next, mut dones) = (0, 0);
+    while dones < setups.len() {
+        let load = (replay.ready() && next < setups.len()).then(|| &setups[next]);
+        next += load.is_some() as usize;
+        replay
+            .step(&pipeline::gouraud::setup_row(load), &mut row)
+            .map_err(|e| anyhow!(e))?;
+        let o = row_outputs(&row);
+        dones += o.done as usize;
+        out.push(o);
+    }
+    Ok(out)
+}
+
 /// Where the engine caches its builds.
 pub fn cache_dir() -> PathBuf {
     testbenches::harness::target_dir().join("verilator-engine")

@@ -77,3 +77,29 @@ fn verilator_frames_equal_rust_hdl_frames() {
         );
     }
 }
+
+/// `raster --sim verilator` gives the address block's per-clock outputs of the rust-hdl run,
+/// clock for clock, on ordinary, degenerate, one-pixel and sliver triangles.
+#[test]
+fn verilator_raster_equals_rust_hdl_raster() {
+    use shadecore::cmd::raster::{parse_tri, walk_clocks_with, Engine};
+    if !tools::require(
+        &[Tool::Verilator],
+        "verilator_raster_equals_rust_hdl_raster",
+    ) {
+        return;
+    }
+    for t in [
+        "3,1,40,12,9,30",
+        "10,10,20,10,30,10",
+        "5,5,5,5,5,5",
+        "0,0,4095,3,7,1",
+        "100,0,0,60,200,61",
+    ] {
+        let tri = parse_tri(t).unwrap();
+        let v = walk_clocks_with(&tri, Engine::Rtl, None, Sim::Verilator).unwrap();
+        let r = walk_clocks_with(&tri, Engine::Rtl, None, Sim::RustHdl).unwrap();
+        assert_eq!(v, r, "{t}: the Verilator run differs");
+        println!("{t}: {} clocks identical", r.len());
+    }
+}

@@ -30,9 +30,13 @@ pub struct Args {
     /// Write the per-clock CSV here instead of standard output.
     #[arg(long)]
     pub dump: Option<PathBuf>,
-    /// Write a waveform (VCD) of the RTL run here (RTL engine only).
+    /// Write a waveform (VCD) of the RTL run here (RTL engine under rust-hdl only).
     #[arg(long)]
     pub vcd: Option<PathBuf>,
+    /// With `--engine rtl`: the simulator — rust-hdl, or the exported Verilog under verilator
+    /// (the same CSV, clock for clock).
+    #[arg(long, value_enum, default_value = "rust-hdl")]
+    pub sim: crate::verilator_engine::Sim,
 }
 
 /// Parse `X0,Y0,X1,Y1,X2,Y2` into a triangle (depth 0, normal +z: only addresses matter here).
@@ -71,7 +75,23 @@ pub fn walk_clocks(
     engine: Engine,
     vcd: Option<&std::path::Path>,
 ) -> Result<Vec<AddressOutputs>> {
+    walk_clocks_with(tri, engine, vcd, crate::verilator_engine::Sim::RustHdl)
+}
+
+/// [`walk_clocks`] with the RTL under the simulator `sim`.
+pub fn walk_clocks_with(
+    tri: &ScreenTriangle,
+    engine: Engine,
+    vcd: Option<&std::path::Path>,
+    sim: crate::verilator_engine::Sim,
+) -> Result<Vec<AddressOutputs>> {
     let setup = AddressSetup::new(tri);
+    if engine == Engine::Rtl && sim == crate::verilator_engine::Sim::Verilator {
+        if vcd.is_some() {
+            bail!("--vcd needs --sim rust-hdl (the Verilator run writes no waveform)");
+        }
+        return crate::verilator_engine::address_outputs(&[setup]);
+    }
     match engine {
         Engine::Golden => {
             if vcd.is_some() {
@@ -109,7 +129,7 @@ pub fn csv(out: &[AddressOutputs]) -> String {
 
 pub fn run(a: Args) -> Result<()> {
     let tri = parse_tri(&a.tri)?;
-    let out = walk_clocks(&tri, a.engine, a.vcd.as_deref())?;
+    let out = walk_clocks_with(&tri, a.engine, a.vcd.as_deref(), a.sim)?;
     let text = csv(&out);
     let pixels = out.iter().filter(|o| o.valid).count();
     let rows = out.iter().filter(|o| o.row_start).count();
