@@ -110,16 +110,7 @@ pub struct LitJob {
 impl LitJob {
     /// Set-up of `tri`; `None` for zero area. Error: a vertex depth beyond ±[`DEPTH_LIMIT`].
     pub fn new(tri: &ScreenTriangle) -> Result<Option<LitJob>, String> {
-        if let Some(v) = tri
-            .v
-            .iter()
-            .find(|v| v.z.is_nan() || v.z.abs() >= DEPTH_LIMIT)
-        {
-            return Err(format!(
-                "vertex depth {} is outside the depth words' range ±{DEPTH_LIMIT}",
-                v.z
-            ));
-        }
+        check_depths(tri)?;
         let (Some(np), Some(dp)) = (tri.normal_plane(), tri.depth_plane()) else {
             return Ok(None);
         };
@@ -129,6 +120,22 @@ impl LitJob {
             normal: gvi::setup(&[np.x, np.y, np.z], &addr),
             depth: depth_words(&ChannelSetup::new(&dp, &addr)),
         }))
+    }
+}
+
+/// Check that every vertex depth of `tri` fits the depth words (±[`DEPTH_LIMIT`]); the
+/// one-line error names the depth. Shared by every pipeline's set-up.
+pub fn check_depths(tri: &ScreenTriangle) -> Result<(), String> {
+    match tri
+        .v
+        .iter()
+        .find(|v| v.z.is_nan() || v.z.abs() >= DEPTH_LIMIT)
+    {
+        Some(v) => Err(format!(
+            "vertex depth {} is outside the depth words' range ±{DEPTH_LIMIT}",
+            v.z
+        )),
+        None => Ok(()),
     }
 }
 

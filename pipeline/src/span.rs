@@ -29,7 +29,7 @@ use rtl::sim::Stepper;
 use rtl::span_pipeline::{AngularPipeline, FastPipeline, FastPipelineParams};
 
 use crate::gouraud::PipeStats;
-use crate::lit::{ShadingRegs, DEPTH_LIMIT};
+use crate::lit::{check_depths, ShadingRegs};
 
 /// The methods the span pipelines render.
 pub const SPAN_METHODS: [Method; 5] = [
@@ -201,23 +201,14 @@ impl SpanJob {
 }
 
 /// The span front end: the spans of triangle `tri` (index `triangle`) for `kind` under `ctx`,
-/// in walk order; none for a zero-area triangle. Error: a vertex depth beyond ±[`DEPTH_LIMIT`].
+/// in walk order; none for a zero-area triangle. Error: a vertex depth beyond ±[`DEPTH_LIMIT`](crate::lit::DEPTH_LIMIT).
 pub fn span_jobs(
     tri: &ScreenTriangle,
     triangle: usize,
     kind: SpanKind,
     ctx: &ShadeContext,
 ) -> Result<Vec<SpanJob>, String> {
-    if let Some(v) = tri
-        .v
-        .iter()
-        .find(|v| v.z.is_nan() || v.z.abs() >= DEPTH_LIMIT)
-    {
-        return Err(format!(
-            "vertex depth {} is outside the depth words' range ±{DEPTH_LIMIT}",
-            v.z
-        ));
-    }
+    check_depths(tri)?;
     let (Some(plane), Some(depth)) = (tri.normal_plane(), tri.depth_plane()) else {
         return Ok(Vec::new());
     };

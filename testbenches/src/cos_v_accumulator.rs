@@ -22,14 +22,9 @@ use rtl::registry::NoParams;
 use crate::harness::{Compare, Expected, Tolerance};
 use crate::normalizer::seeded_runner;
 use crate::registry::{Bench, Stimulus, Twin};
-use crate::span::span_run;
+use crate::span::{random_span_vectors, span_run};
 
 const MASK: i64 = (1 << 32) - 1;
-
-fn unit(z: f64, phi: f64) -> DVec3 {
-    let r = (1.0 - z * z).max(0.0).sqrt();
-    DVec3::new(r * phi.cos(), r * phi.sin(), z)
-}
 
 /// Named spans: (name, words).
 pub fn named_spans() -> Vec<(&'static str, SpanWords)> {
@@ -60,24 +55,10 @@ pub fn named_spans() -> Vec<(&'static str, SpanWords)> {
 }
 
 fn random_spans(seed: u64, n: usize) -> Vec<SpanWords> {
-    let mut r = seeded_runner(seed);
-    let st = (
-        (0.0..=1.0f64, 0.0..std::f64::consts::TAU),
-        (0.0..=1.0f64, 0.0..std::f64::consts::TAU),
-        (-1.0..=1.0f64, 0.0..std::f64::consts::TAU),
-        0u32..=60,
-    );
-    let mut out = Vec::with_capacity(n);
-    while out.len() < n {
-        let ((z1, p1), (z2, p2), (z3, p3), m) =
-            st.new_tree(&mut r).expect("no rejection").current();
-        let (na, nb, x) = (unit(z1, p1), unit(z2, p2), unit(z3, p3));
-        if na.dot(nb) < 0.0 {
-            continue;
-        }
-        out.push(SpanWords::new(&span_setup(na, nb, x, m)));
-    }
-    out
+    random_span_vectors(seed, n)
+        .into_iter()
+        .map(|(na, nb, x, m)| SpanWords::new(&span_setup(na, nb, x, m)))
+        .collect()
 }
 
 fn load_row(w: Option<&SpanWords>) -> Vec<u64> {

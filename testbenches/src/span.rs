@@ -4,7 +4,39 @@
 //! `latency` clocks later, beside `ready` and `last`. Output order: ready, (valid, index,
 //! value) for lanes A and B, last.
 
+use glam::DVec3;
+use proptest::strategy::{Strategy, ValueTree};
+
 use crate::harness::Expected;
+use crate::normalizer::seeded_runner;
+
+/// The unit vector at height `z` and azimuth `phi`.
+fn unit(z: f64, phi: f64) -> DVec3 {
+    let r = (1.0 - z * z).max(0.0).sqrt();
+    DVec3::new(r * phi.cos(), r * phi.sin(), z)
+}
+
+/// `n` seeded random spans for the span units' benches: unit end normals N_a, N_b in the upper
+/// hemisphere at most 90° apart, a unit X anywhere, m in 0..=60 — as (N_a, N_b, X, m).
+pub fn random_span_vectors(seed: u64, n: usize) -> Vec<(DVec3, DVec3, DVec3, u32)> {
+    let mut r = seeded_runner(seed);
+    let st = (
+        (0.0..=1.0f64, 0.0..std::f64::consts::TAU),
+        (0.0..=1.0f64, 0.0..std::f64::consts::TAU),
+        (-1.0..=1.0f64, 0.0..std::f64::consts::TAU),
+        0u32..=60,
+    );
+    let mut out = Vec::with_capacity(n);
+    while out.len() < n {
+        let ((z1, p1), (z2, p2), (z3, p3), m) =
+            st.new_tree(&mut r).expect("no rejection").current();
+        let (na, nb, x) = (unit(z1, p1), unit(z2, p2), unit(z3, p3));
+        if na.dot(nb) >= 0.0 {
+            out.push((na, nb, x, m));
+        }
+    }
+    out
+}
 
 /// One lane's expectation: its (index, value) this clock, or nothing.
 pub type Lane = Option<(u64, f64)>;
