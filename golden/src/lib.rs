@@ -14,6 +14,7 @@ pub mod cos_v_accumulator;
 pub mod cubic;
 pub mod fast;
 pub mod fast_unit;
+pub mod four_triangle;
 pub mod gouraud;
 pub mod horner_unit;
 pub mod intensity_interpolator;
