@@ -86,12 +86,8 @@ pub fn subdivide(tri: &ScreenTriangle) -> Option<[HalfTriangle; 4]> {
     let (m_tm, m_tb, m_mb) = (mid(o.top, o.mid), mid(o.top, o.bot), mid(o.mid, o.bot));
     Some([
         HalfTriangle { v: [t, m_tm, m_tb] },
-        HalfTriangle {
-            v: [m_tm, m, m_mb],
-        },
-        HalfTriangle {
-            v: [m_tb, m_mb, b],
-        },
+        HalfTriangle { v: [m_tm, m, m_mb] },
+        HalfTriangle { v: [m_tb, m_mb, b] },
         HalfTriangle {
             v: [m_tm, m_mb, m_tb],
         },
@@ -154,8 +150,14 @@ impl HalfTriangle {
             .collect();
         let xs = self.v.map(|v| v.0);
         let ys = self.v.map(|v| v.1);
-        let (x0, x1) = (xs.iter().min().unwrap() / 2, (xs.iter().max().unwrap() + 1) / 2);
-        let (y0, y1) = (ys.iter().min().unwrap() / 2, (ys.iter().max().unwrap() + 1) / 2);
+        let (x0, x1) = (
+            xs.iter().min().unwrap() / 2,
+            (xs.iter().max().unwrap() + 1) / 2,
+        );
+        let (y0, y1) = (
+            ys.iter().min().unwrap() / 2,
+            (ys.iter().max().unwrap() + 1) / 2,
+        );
         let mut out = Vec::new();
         for y in y0..=y1 {
             for x in x0..=x1 {
@@ -366,22 +368,33 @@ impl FourTriangleSetup {
         let o = orientation(tri).expect("non-zero area");
         // A sub-edge's Δ in doubled units is its parent edge's Δ in pixels.
         let inc = |a: (i32, i32), b: (i32, i32)| {
-            EdgeIncrements::of(&edge_setup((0, 0), ((b.0 - a.0) as i64, (b.1 - a.1) as i64)))
+            EdgeIncrements::of(&edge_setup(
+                (0, 0),
+                ((b.0 - a.0) as i64, (b.1 - a.1) as i64),
+            ))
         };
-        let (w, a, t) = (
-            inc(o.top, o.bot),
-            inc(o.top, o.mid),
-            inc(o.mid, o.bot),
-        );
+        let (w, a, t) = (inc(o.top, o.bot), inc(o.top, o.mid), inc(o.mid, o.bot));
         let lanes = std::array::from_fn(|k| {
             let s = address_setup(&subs[k]);
             let (si_a, si_t) = (EdgeIncrements::of(&s.a), EdgeIncrements::of(&s.t));
-            assert_eq!(EdgeIncrements::of(&s.w), w, "lane {k}: working edge not shared");
+            assert_eq!(
+                EdgeIncrements::of(&s.w),
+                w,
+                "lane {k}: working edge not shared"
+            );
             // Where two parent edges have equal increments either choice loads the same words.
             let a_third = si_a != a;
             let t_adjacent = si_t != t;
-            assert_eq!(si_a, if a_third { t } else { a }, "lane {k}: other edge not shared");
-            assert_eq!(si_t, if t_adjacent { a } else { t }, "lane {k}: third edge not shared");
+            assert_eq!(
+                si_a,
+                if a_third { t } else { a },
+                "lane {k}: other edge not shared"
+            );
+            assert_eq!(
+                si_t,
+                if t_adjacent { a } else { t },
+                "lane {k}: third edge not shared"
+            );
             LaneSetup {
                 w_b0: s.w.b0,
                 w_e0: s.w.e0,
@@ -529,8 +542,16 @@ mod tests {
             let mut wp: Vec<_> = w.pixels().iter().map(|q| (q.x, q.y)).collect();
             wp.sort_by_key(|&(x, y)| (y, x));
             assert_eq!(wp, px, "{p:?} lane {k}: walk vs edge functions");
-            assert_eq!(lane_pixels(&out, k), w.pixels(), "{p:?} lane {k}: model vs walk");
-            assert_eq!(setup.lane(k), address_setup(h), "{p:?} lane {k}: shared words");
+            assert_eq!(
+                lane_pixels(&out, k),
+                w.pixels(),
+                "{p:?} lane {k}: model vs walk"
+            );
+            assert_eq!(
+                setup.lane(k),
+                address_setup(h),
+                "{p:?} lane {k}: shared words"
+            );
         }
         assert_eq!(union, parent, "{p:?}: union differs from the parent");
     }

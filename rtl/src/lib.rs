@@ -7,6 +7,7 @@ pub mod declare;
 pub mod export;
 pub mod fast_unit;
 pub mod fixed;
+pub mod four_triangle;
 pub mod gouraud_raster;
 pub mod horner_unit;
 pub mod intensity_interpolator;

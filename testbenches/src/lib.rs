@@ -4,6 +4,7 @@ pub mod colour_combine;
 pub mod cos_v_accumulator;
 pub mod cubic_pipeline;
 pub mod fast_unit;
+pub mod four_triangle;
 pub mod harness;
 pub mod horner_unit;
 pub mod intensity_interpolator;

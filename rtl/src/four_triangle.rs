@@ -1,0 +1,291 @@
+//! Four-triangle address block (SPEC §7, figs. 3.9–3.10): one parent triangle's set-up in,
+//! the pixel addresses of its four midpoint sub-triangles out, up to four per clock
+//! (golden: `golden::four_triangle`, whose `FourTriangleModel` this block matches bit for bit
+//! every clock; the fill rule that makes the four lanes tile the parent's pixel set exactly is
+//! in that module's doc).
+//!
+//! # Structure
+//!
+//! ```text
+//!                 shared increments (CT1/CT2 of the patent, "shifted right by one")
+//!  load ─► w_f w_r w_d │ a_f a_r a_d │ t_f t_r t_d ───────┬──────┬──────┬──────┐
+//!                                                         ▼      ▼      ▼      ▼
+//!  per lane: (b0, e0) of its three edges, rows ──►     lane 0  lane 1  lane 2  lane 3
+//!                                                     corner  corner  corner  middle
+//!                                                     at T    at m_tm at m_tb (180°)
+//!                                                         │      │      │      │
+//!                                               l0_* ◄────┘ l1_* ◄┘ l2_* ◄┘ l3_* ◄┘
+//! ```
+//!
+//! Each lane is an [`AddressBlock`] (SPEC §5: two line interpolators, RGr, CTx/CTy/CTr).
+//! Every sub-triangle edge is parallel to a parent edge and half as long, so its DDA
+//! increments (f, r, D) are the parent edge's: three shared triples, loaded once. The lanes
+//! differ by their start registers (b0, e0 per edge; the patent's register/counter pairs for
+//! the sub-triangles' top vertices, and RG10/RG11 for the middle one): the three corner shapes
+//! are translated by half-pixel offsets, which changes which pixel centres they cover, so they
+//! cannot share one error term (see `golden::four_triangle`). Each lane's other and third edge
+//! select the adjacent (T→M) or third (M→B) parent triple (`lK_a_third`, `lK_t_adjacent`):
+//! the middle lane, turned by 180°, takes them the other way round, and a lane whose
+//! adjacent edge holds no row starts on its third edge.
+//!
+//! # Ports
+//!
+//! Inputs, sampled on the rising edge of `clock` when `load & ready`:
+//!
+//! | port                               | bits          | meaning                                   |
+//! |------------------------------------|---------------|-------------------------------------------|
+//! | `load`                             | 1             | load one parent triangle                  |
+//! | `w_f w_r w_d`                      | 12, 13, 13    | increments of the parent's working edge T→B (f two's complement) |
+//! | `a_f a_r a_d`, `t_f t_r t_d`       | same          | adjacent edge T→M, third edge M→B          |
+//! | `lK_w_b0 lK_w_e0`                  | 12, 13        | lane K's working edge: boundary, error term on its first row |
+//! | `lK_a_b0 lK_a_e0`, `lK_a_third`    | 12, 13, 1     | its other edge on the first row; uses the third-edge triple |
+//! | `lK_t_b0 lK_t_e0`, `lK_t_adjacent` | 12, 13, 1     | its third edge; uses the adjacent-edge triple |
+//! | `lK_y_top lK_rows lK_y_switch`     | 12 each       | first line, number of lines, switch line  |
+//! | `lK_dir_neg`                       | 1             | lane K's lines run towards −x             |
+//!
+//! Outputs: `ready` (a load is accepted in this clock: all four lanes are ready), and per lane
+//! K (= sub-triangle index K: 0 corner at T, 1 at m_tm, 2 at m_tb, 3 middle) the address
+//! block's outputs `lK_valid lK_x lK_y` (1, 12, 12), `lK_step` (2), `lK_line_start`,
+//! `lK_row_start`, `lK_carry`, `lK_done` (1 each; `done` is the lane's last event of the
+//! triangle). All are registers of the lanes, or the AND of their `ready` registers.
+//!
+//! # Timing
+//!
+//! Latency: load → first events 3 clocks (the address block's). Throughput: up to four
+//! addresses per clock; a parent takes max over the lanes of Σ max(len, 1) over the lane's
+//! rows (the sub-triangles are congruent, so the lanes are nearly balanced). The next parent is
+//! accepted when every lane has produced its last row and taken its first record, so a lane
+//! that finishes early idles (valid = 0) until then.
+//! Overflow: none for set-ups in range (every counter exact modulo its width). Error budget:
+//! exact (integer).
+
+use crate::address_block::AddressBlock;
+use rust_hdl::prelude::*;
+
+crate::hw_block! {
+    /// The four-triangle address block (see the module header).
+    pub struct FourTriangle(clock) as "four-triangle" {
+        summary: "one triangle's set-up in, the addresses of its four midpoint sub-triangles out, up to four per clock (SPEC §7)",
+        latency: AddressBlock::LATENCY => "load to the first events, up to four addresses per clock",
+        multipliers: 0,
+        in {
+            load: Bit,
+            w_f: Bits<12>, w_r: Bits<13>, w_d: Bits<13>,
+            a_f: Bits<12>, a_r: Bits<13>, a_d: Bits<13>,
+            t_f: Bits<12>, t_r: Bits<13>, t_d: Bits<13>,
+            l0_w_b0: Bits<12>, l0_w_e0: Bits<13>, l0_a_b0: Bits<12>, l0_a_e0: Bits<13>, l0_a_third: Bit,
+            l0_t_b0: Bits<12>, l0_t_e0: Bits<13>, l0_t_adjacent: Bit,
+            l0_y_top: Bits<12>, l0_rows: Bits<12>, l0_y_switch: Bits<12>, l0_dir_neg: Bit,
+            l1_w_b0: Bits<12>, l1_w_e0: Bits<13>, l1_a_b0: Bits<12>, l1_a_e0: Bits<13>, l1_a_third: Bit,
+            l1_t_b0: Bits<12>, l1_t_e0: Bits<13>, l1_t_adjacent: Bit,
+            l1_y_top: Bits<12>, l1_rows: Bits<12>, l1_y_switch: Bits<12>, l1_dir_neg: Bit,
+            l2_w_b0: Bits<12>, l2_w_e0: Bits<13>, l2_a_b0: Bits<12>, l2_a_e0: Bits<13>, l2_a_third: Bit,
+            l2_t_b0: Bits<12>, l2_t_e0: Bits<13>, l2_t_adjacent: Bit,
+            l2_y_top: Bits<12>, l2_rows: Bits<12>, l2_y_switch: Bits<12>, l2_dir_neg: Bit,
+            l3_w_b0: Bits<12>, l3_w_e0: Bits<13>, l3_a_b0: Bits<12>, l3_a_e0: Bits<13>, l3_a_third: Bit,
+            l3_t_b0: Bits<12>, l3_t_e0: Bits<13>, l3_t_adjacent: Bit,
+            l3_y_top: Bits<12>, l3_rows: Bits<12>, l3_y_switch: Bits<12>, l3_dir_neg: Bit,
+        }
+        out {
+            ready: Bit,
+            l0_valid: Bit, l0_x: Bits<12>, l0_y: Bits<12>, l0_step: Bits<2>,
+            l0_line_start: Bit, l0_row_start: Bit, l0_carry: Bit, l0_done: Bit,
+            l1_valid: Bit, l1_x: Bits<12>, l1_y: Bits<12>, l1_step: Bits<2>,
+            l1_line_start: Bit, l1_row_start: Bit, l1_carry: Bit, l1_done: Bit,
+            l2_valid: Bit, l2_x: Bits<12>, l2_y: Bits<12>, l2_step: Bits<2>,
+            l2_line_start: Bit, l2_row_start: Bit, l2_carry: Bit, l2_done: Bit,
+            l3_valid: Bit, l3_x: Bits<12>, l3_y: Bits<12>, l3_step: Bits<2>,
+            l3_line_start: Bit, l3_row_start: Bit, l3_carry: Bit, l3_done: Bit,
+        }
+        /// Lane 0: sub-triangle 0.
+        pub lane0: AddressBlock,
+        /// Lane 1: sub-triangle 1.
+        pub lane1: AddressBlock,
+        /// Lane 2: sub-triangle 2.
+        pub lane2: AddressBlock,
+        /// Lane 3: sub-triangle 3.
+        pub lane3: AddressBlock,
+        /// All four lanes are ready: the load is taken.
+        all_ready: Signal<Local, Bit>,
+    }
+}
+
+impl Logic for FourTriangle {
+    #[hdl_gen]
+    fn update(&mut self) {
+        clock!(self, clock, lane0, lane1, lane2, lane3);
+        self.all_ready.next = self.lane0.ready.val()
+            & self.lane1.ready.val()
+            & self.lane2.ready.val()
+            & self.lane3.ready.val();
+        self.ready.next = self.all_ready.val();
+
+        // Lane 0.
+        self.lane0.load.next = self.load.val() & self.all_ready.val();
+        self.lane0.w_b0.next = self.l0_w_b0.val();
+        self.lane0.w_e0.next = self.l0_w_e0.val();
+        self.lane0.w_f.next = self.w_f.val();
+        self.lane0.w_r.next = self.w_r.val();
+        self.lane0.w_d.next = self.w_d.val();
+        self.lane0.a_b0.next = self.l0_a_b0.val();
+        self.lane0.a_e0.next = self.l0_a_e0.val();
+        if self.l0_a_third.val() {
+            self.lane0.a_f.next = self.t_f.val();
+            self.lane0.a_r.next = self.t_r.val();
+            self.lane0.a_d.next = self.t_d.val();
+        } else {
+            self.lane0.a_f.next = self.a_f.val();
+            self.lane0.a_r.next = self.a_r.val();
+            self.lane0.a_d.next = self.a_d.val();
+        }
+        self.lane0.t_b0.next = self.l0_t_b0.val();
+        self.lane0.t_e0.next = self.l0_t_e0.val();
+        if self.l0_t_adjacent.val() {
+            self.lane0.t_f.next = self.a_f.val();
+            self.lane0.t_r.next = self.a_r.val();
+            self.lane0.t_d.next = self.a_d.val();
+        } else {
+            self.lane0.t_f.next = self.t_f.val();
+            self.lane0.t_r.next = self.t_r.val();
+            self.lane0.t_d.next = self.t_d.val();
+        }
+        self.lane0.y_top.next = self.l0_y_top.val();
+        self.lane0.rows.next = self.l0_rows.val();
+        self.lane0.y_switch.next = self.l0_y_switch.val();
+        self.lane0.dir_neg.next = self.l0_dir_neg.val();
+        self.l0_valid.next = self.lane0.valid.val();
+        self.l0_x.next = self.lane0.x.val();
+        self.l0_y.next = self.lane0.y.val();
+        self.l0_step.next = self.lane0.step.val();
+        self.l0_line_start.next = self.lane0.line_start.val();
+        self.l0_row_start.next = self.lane0.row_start.val();
+        self.l0_carry.next = self.lane0.carry.val();
+        self.l0_done.next = self.lane0.done.val();
+
+        // Lane 1.
+        self.lane1.load.next = self.load.val() & self.all_ready.val();
+        self.lane1.w_b0.next = self.l1_w_b0.val();
+        self.lane1.w_e0.next = self.l1_w_e0.val();
+        self.lane1.w_f.next = self.w_f.val();
+        self.lane1.w_r.next = self.w_r.val();
+        self.lane1.w_d.next = self.w_d.val();
+        self.lane1.a_b0.next = self.l1_a_b0.val();
+        self.lane1.a_e0.next = self.l1_a_e0.val();
+        if self.l1_a_third.val() {
+            self.lane1.a_f.next = self.t_f.val();
+            self.lane1.a_r.next = self.t_r.val();
+            self.lane1.a_d.next = self.t_d.val();
+        } else {
+            self.lane1.a_f.next = self.a_f.val();
+            self.lane1.a_r.next = self.a_r.val();
+            self.lane1.a_d.next = self.a_d.val();
+        }
+        self.lane1.t_b0.next = self.l1_t_b0.val();
+        self.lane1.t_e0.next = self.l1_t_e0.val();
+        if self.l1_t_adjacent.val() {
+            self.lane1.t_f.next = self.a_f.val();
+            self.lane1.t_r.next = self.a_r.val();
+            self.lane1.t_d.next = self.a_d.val();
+        } else {
+            self.lane1.t_f.next = self.t_f.val();
+            self.lane1.t_r.next = self.t_r.val();
+            self.lane1.t_d.next = self.t_d.val();
+        }
+        self.lane1.y_top.next = self.l1_y_top.val();
+        self.lane1.rows.next = self.l1_rows.val();
+        self.lane1.y_switch.next = self.l1_y_switch.val();
+        self.lane1.dir_neg.next = self.l1_dir_neg.val();
+        self.l1_valid.next = self.lane1.valid.val();
+        self.l1_x.next = self.lane1.x.val();
+        self.l1_y.next = self.lane1.y.val();
+        self.l1_step.next = self.lane1.step.val();
+        self.l1_line_start.next = self.lane1.line_start.val();
+        self.l1_row_start.next = self.lane1.row_start.val();
+        self.l1_carry.next = self.lane1.carry.val();
+        self.l1_done.next = self.lane1.done.val();
+
+        // Lane 2.
+        self.lane2.load.next = self.load.val() & self.all_ready.val();
+        self.lane2.w_b0.next = self.l2_w_b0.val();
+        self.lane2.w_e0.next = self.l2_w_e0.val();
+        self.lane2.w_f.next = self.w_f.val();
+        self.lane2.w_r.next = self.w_r.val();
+        self.lane2.w_d.next = self.w_d.val();
+        self.lane2.a_b0.next = self.l2_a_b0.val();
+        self.lane2.a_e0.next = self.l2_a_e0.val();
+        if self.l2_a_third.val() {
+            self.lane2.a_f.next = self.t_f.val();
+            self.lane2.a_r.next = self.t_r.val();
+            self.lane2.a_d.next = self.t_d.val();
+        } else {
+            self.lane2.a_f.next = self.a_f.val();
+            self.lane2.a_r.next = self.a_r.val();
+            self.lane2.a_d.next = self.a_d.val();
+        }
+        self.lane2.t_b0.next = self.l2_t_b0.val();
+        self.lane2.t_e0.next = self.l2_t_e0.val();
+        if self.l2_t_adjacent.val() {
+            self.lane2.t_f.next = self.a_f.val();
+            self.lane2.t_r.next = self.a_r.val();
+            self.lane2.t_d.next = self.a_d.val();
+        } else {
+            self.lane2.t_f.next = self.t_f.val();
+            self.lane2.t_r.next = self.t_r.val();
+            self.lane2.t_d.next = self.t_d.val();
+        }
+        self.lane2.y_top.next = self.l2_y_top.val();
+        self.lane2.rows.next = self.l2_rows.val();
+        self.lane2.y_switch.next = self.l2_y_switch.val();
+        self.lane2.dir_neg.next = self.l2_dir_neg.val();
+        self.l2_valid.next = self.lane2.valid.val();
+        self.l2_x.next = self.lane2.x.val();
+        self.l2_y.next = self.lane2.y.val();
+        self.l2_step.next = self.lane2.step.val();
+        self.l2_line_start.next = self.lane2.line_start.val();
+        self.l2_row_start.next = self.lane2.row_start.val();
+        self.l2_carry.next = self.lane2.carry.val();
+        self.l2_done.next = self.lane2.done.val();
+
+        // Lane 3.
+        self.lane3.load.next = self.load.val() & self.all_ready.val();
+        self.lane3.w_b0.next = self.l3_w_b0.val();
+        self.lane3.w_e0.next = self.l3_w_e0.val();
+        self.lane3.w_f.next = self.w_f.val();
+        self.lane3.w_r.next = self.w_r.val();
+        self.lane3.w_d.next = self.w_d.val();
+        self.lane3.a_b0.next = self.l3_a_b0.val();
+        self.lane3.a_e0.next = self.l3_a_e0.val();
+        if self.l3_a_third.val() {
+            self.lane3.a_f.next = self.t_f.val();
+            self.lane3.a_r.next = self.t_r.val();
+            self.lane3.a_d.next = self.t_d.val();
+        } else {
+            self.lane3.a_f.next = self.a_f.val();
+            self.lane3.a_r.next = self.a_r.val();
+            self.lane3.a_d.next = self.a_d.val();
+        }
+        self.lane3.t_b0.next = self.l3_t_b0.val();
+        self.lane3.t_e0.next = self.l3_t_e0.val();
+        if self.l3_t_adjacent.val() {
+            self.lane3.t_f.next = self.a_f.val();
+            self.lane3.t_r.next = self.a_r.val();
+            self.lane3.t_d.next = self.a_d.val();
+        } else {
+            self.lane3.t_f.next = self.t_f.val();
+            self.lane3.t_r.next = self.t_r.val();
+            self.lane3.t_d.next = self.t_d.val();
+        }
+        self.lane3.y_top.next = self.l3_y_top.val();
+        self.lane3.rows.next = self.l3_rows.val();
+        self.lane3.y_switch.next = self.l3_y_switch.val();
+        self.lane3.dir_neg.next = self.l3_dir_neg.val();
+        self.l3_valid.next = self.lane3.valid.val();
+        self.l3_x.next = self.lane3.x.val();
+        self.l3_y.next = self.lane3.y.val();
+        self.l3_step.next = self.lane3.step.val();
+        self.l3_line_start.next = self.lane3.line_start.val();
+        self.l3_row_start.next = self.lane3.row_start.val();
+        self.l3_carry.next = self.lane3.carry.val();
+        self.l3_done.next = self.lane3.done.val();
+    }
+}

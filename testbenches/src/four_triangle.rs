@@ -1,0 +1,244 @@
+//! Cycle-by-cycle bench of the four-triangle address block (`rtl::four_triangle`) against its
+//! cycle-accurate golden model (`golden::four_triangle::FourTriangleModel`), on the shared
+//! harness. As for the address block, the model decides in which clock each parent is loaded
+//! (its `ready`), and predicts every output port exactly; [`run_reactive`] lets the RTL's own
+//! `ready` pace the loads instead (what `raster --address four-triangle` and the renderer do).
+
+use crate::harness::{CheckSpec, Compare, Expected, Failure, Report, Stepper};
+use crate::normalizer::seeded_runner;
+use crate::registry::{self, Bench, Twin};
+use golden::address_block::AddressOutputs;
+use golden::four_triangle::{
+    EdgeIncrements, FourOutputs, FourTriangleModel, FourTriangleSetup, LaneSetup,
+};
+use golden::types::ScreenTriangle;
+use proptest::strategy::{Strategy, ValueTree};
+use rtl::four_triangle::FourTriangle;
+use rtl::registry::NoParams;
+use std::io::Write;
+
+/// Output ports: `ready`, then eight per lane.
+pub const OUTPUTS: usize = 1 + 4 * 8;
+
+/// The block's input row of one clock (port order of `rtl::four_triangle`): `load`, the three
+/// shared increment triples, then each lane's words; all zero without a load.
+pub fn setup_row(s: Option<&FourTriangleSetup>) -> Vec<u64> {
+    let z = FourTriangleSetup::default();
+    let (load, s) = (s.is_some() as u64, s.unwrap_or(&z));
+    let mut row = vec![load];
+    for i in [&s.w, &s.a, &s.t] {
+        row.extend([i.f_word() as u64, i.r as u64, i.d as u64]);
+    }
+    for l in &s.lanes {
+        row.extend([
+            l.w_b0 as u64,
+            l.w_e0 as u64,
+            l.a_b0 as u64,
+            l.a_e0 as u64,
+            l.a_third as u64,
+            l.t_b0 as u64,
+            l.t_e0 as u64,
+            l.t_adjacent as u64,
+            l.y_top as u64,
+            l.rows as u64,
+            l.y_switch as u64,
+            l.dir_neg as u64,
+        ]);
+    }
+    row
+}
+
+/// The inverse of [`setup_row`] (`f` read back as the 12-bit two's-complement word).
+pub fn row_setup(r: &[u64]) -> Option<FourTriangleSetup> {
+    if r[0] == 0 {
+        return None;
+    }
+    let inc = |k: usize| EdgeIncrements {
+        f: ((r[k] as u32) << 20) as i32 >> 20,
+        r: r[k + 1] as u32,
+        d: r[k + 2] as u32,
+    };
+    let lane = |k: usize| {
+        let b = 10 + 12 * k;
+        LaneSetup {
+            w_b0: r[b] as u32,
+            w_e0: r[b + 1] as u32,
+            a_b0: r[b + 2] as u32,
+            a_e0: r[b + 3] as u32,
+            a_third: r[b + 4] != 0,
+            t_b0: r[b + 5] as u32,
+            t_e0: r[b + 6] as u32,
+            t_adjacent: r[b + 7] != 0,
+            y_top: r[b + 8] as u32,
+            rows: r[b + 9] as u32,
+            y_switch: r[b + 10] as u32,
+            dir_neg: r[b + 11] != 0,
+        }
+    };
+    Some(FourTriangleSetup {
+        w: inc(1),
+        a: inc(4),
+        t: inc(7),
+        lanes: std::array::from_fn(lane),
+    })
+}
+
+/// The output row the model predicts.
+pub fn outputs_row(o: &FourOutputs) -> Vec<u64> {
+    let mut row = vec![o.ready as u64];
+    for l in &o.lanes {
+        row.extend([
+            l.valid as u64,
+            l.x as u64,
+            l.y as u64,
+            l.step as u64,
+            l.line_start as u64,
+            l.row_start as u64,
+            l.carry as u64,
+            l.done as u64,
+        ]);
+    }
+    row
+}
+
+/// An output row read back as the model's struct.
+pub fn row_outputs(r: &[u64]) -> FourOutputs {
+    FourOutputs {
+        ready: r[0] != 0,
+        lanes: std::array::from_fn(|k| {
+            let b = 1 + 8 * k;
+            AddressOutputs {
+                ready: r[0] != 0,
+                valid: r[b] != 0,
+                x: r[b + 1] as u32,
+                y: r[b + 2] as u32,
+                step: r[b + 3] as u8,
+                line_start: r[b + 4] != 0,
+                row_start: r[b + 5] != 0,
+                carry: r[b + 6] != 0,
+                done: r[b + 7] != 0,
+            }
+        }),
+    }
+}
+
+/// Input rows and the model's outputs of walking `setups` back to back (each loaded in the
+/// first clock the model is ready), up to the clock in which every lane has shown its last
+/// `done`.
+pub fn stimulus(setups: &[FourTriangleSetup]) -> (Vec<Vec<u64>>, Vec<FourOutputs>) {
+    let mut m = FourTriangleModel::new();
+    let (mut rows, mut expected) = (Vec::new(), Vec::new());
+    let mut dones = [0usize; 4];
+    let mut next = 0;
+    while dones.iter().any(|&d| d < setups.len()) {
+        let o = m.outputs();
+        let load = (o.ready && next < setups.len()).then(|| &setups[next]);
+        next += load.is_some() as usize;
+        for (d, l) in dones.iter_mut().zip(&o.lanes) {
+            *d += l.done as usize;
+        }
+        rows.push(setup_row(load));
+        expected.push(o);
+        m.clock(load);
+    }
+    (rows, expected)
+}
+
+/// Run the RTL on the model's stimulus, every output port compared exactly every clock.
+pub fn check(
+    name: &str,
+    seed: u64,
+    setups: &[FourTriangleSetup],
+) -> Result<(Report, Vec<FourOutputs>), Box<Failure>> {
+    let (rows, expected) = stimulus(setups);
+    let spec = CheckSpec {
+        name: name.into(),
+        seed,
+        compare: vec![Compare::Exact; OUTPUTS],
+    };
+    let expected: Vec<Vec<Expected>> = expected
+        .iter()
+        .map(|o| outputs_row(o).into_iter().map(Expected::Word).collect())
+        .collect();
+    let report = crate::harness::run_rows(FourTriangle::default, &spec, &rows, &expected)
+        .map_err(Box::new)?;
+    let outs = report.outputs.iter().map(|r| row_outputs(r)).collect();
+    Ok((report, outs))
+}
+
+/// Walk `setups` through the RTL with its own `ready` pacing the loads (no model); stops once
+/// every lane has shown its last `done`, or with an error after `max_clocks`.
+pub fn run_reactive(
+    setups: &[FourTriangleSetup],
+    max_clocks: usize,
+    vcd: Option<Box<dyn Write>>,
+) -> Result<Vec<FourOutputs>, String> {
+    let mut s = Stepper::new(FourTriangle::default())?;
+    if let Some(w) = vcd {
+        s.start_vcd(w);
+    }
+    let mut out = Vec::new();
+    let mut row = vec![0u64; OUTPUTS];
+    let (mut next, mut dones) = (0, [0usize; 4]);
+    while dones.iter().any(|&d| d < setups.len()) {
+        if out.len() >= max_clocks {
+            return Err(format!("not every lane done after {max_clocks} clocks"));
+        }
+        let load = (s.dut().ready.val() && next < setups.len()).then(|| &setups[next]);
+        next += load.is_some() as usize;
+        s.step(&setup_row(load), &mut row)?;
+        let o = row_outputs(&row);
+        for (d, l) in dones.iter_mut().zip(&o.lanes) {
+            *d += l.done as usize;
+        }
+        out.push(o);
+    }
+    s.stop_vcd();
+    Ok(out)
+}
+
+/// `n` seeded random parents from the address block's triangle families
+/// ([`crate::address_block::triangle_strategy`]: small, medium, axis-aligned, one-pixel,
+/// degenerate, slivers up to 4095).
+pub fn random_triangles(seed: u64, n: usize) -> Vec<ScreenTriangle> {
+    let mut r = seeded_runner(seed);
+    let st = crate::address_block::triangle_strategy();
+    (0..n)
+        .map(|_| ScreenTriangle::from_points(st.new_tree(&mut r).expect("no rejection").current()))
+        .collect()
+}
+
+/// Row adapter of the cycle model (written independently of the RTL:
+/// golden/src/four_triangle.rs).
+struct FourRows(FourTriangleModel);
+
+impl Twin for FourRows {
+    fn step(&mut self, r: &[u64]) -> Vec<u64> {
+        let o = outputs_row(&self.0.outputs());
+        self.0.clock(row_setup(r).as_ref());
+        o
+    }
+}
+
+impl Bench for FourTriangle {
+    const ITEMS: &'static str = "triangles";
+    const DEFAULT_ITEMS: usize = 20;
+    fn stimulus(_: &NoParams, n: usize, seed: u64) -> registry::Stimulus {
+        let setups: Vec<FourTriangleSetup> = random_triangles(seed, n)
+            .iter()
+            .map(FourTriangleSetup::new)
+            .collect();
+        let (rows, expected) = stimulus(&setups);
+        registry::Stimulus {
+            rows,
+            expected: expected
+                .iter()
+                .map(|o| outputs_row(o).into_iter().map(Expected::Word).collect())
+                .collect(),
+            compare: vec![Compare::Exact; OUTPUTS],
+        }
+    }
+    fn twin(_: &NoParams) -> Box<dyn Twin> {
+        Box::new(FourRows(FourTriangleModel::new()))
+    }
+}
