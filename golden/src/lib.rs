@@ -31,6 +31,7 @@ pub mod render;
 pub mod scene;
 pub mod seed;
 pub mod shade;
+pub mod subdivision;
 #[cfg(feature = "testing")]
 pub mod testing;
 pub mod types;

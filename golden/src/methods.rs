@@ -10,6 +10,7 @@
 //! |---|---|---|
 //! | reference, flat | [`crate::phong`] | exact normalization / one normal per face |
 //! | gouraud | [`crate::gouraud`] | plane per colour channel |
+//! | subdivision | [`crate::subdivision`] (§7) | four sub-triangles, a plane each |
 //! | normalizer, normalizer-fit | [`crate::normalizer`] (§1) | N·f(K), K by recurrence |
 //! | fast, fast-fit | [`crate::fast`] (§3) | p/√q, two points per step |
 //! | angular | [`crate::angular`] (§4) | cos β·cos(ψ − tΔφ) |
@@ -31,6 +32,8 @@ pub enum Method {
     Reference,
     Flat,
     Gouraud,
+    /// Midpoint subdivision into four (SPEC §7), each sub-triangle Gouraud-shaded.
+    Subdivision,
     /// SPEC §1 with the published f(K) = 0.822K² − 2.046K + 2.227.
     Normalizer,
     /// SPEC §1 with [`crate::normalizer::FIT`] (same hardware, exact at K = 1).
@@ -50,9 +53,10 @@ pub enum Method {
 
 impl Method {
     /// Every method except the reference, in the order reports list them.
-    pub const ALL_NON_REFERENCE: [Method; 13] = [
+    pub const ALL_NON_REFERENCE: [Method; 14] = [
         Method::Flat,
         Method::Gouraud,
+        Method::Subdivision,
         Method::Normalizer,
         Method::NormalizerFit,
         Method::Fast,
@@ -77,6 +81,7 @@ impl Method {
             Method::Reference => "reference",
             Method::Flat => "flat",
             Method::Gouraud => "gouraud",
+            Method::Subdivision => "subdivision",
             Method::Normalizer => "normalizer",
             Method::NormalizerFit => "normalizer-fit",
             Method::Fast => "fast",
@@ -144,6 +149,7 @@ pub fn shade_triangle(
         Method::Reference => phong::shade(tri, walk, ctx, emit),
         Method::Flat => phong::shade_flat(tri, walk, ctx, emit),
         Method::Gouraud => gouraud::shade(tri, walk, ctx, emit),
+        Method::Subdivision => subdivision::shade(tri, ctx, emit),
         Method::Normalizer => normalizer::shade(tri, walk, ctx, normalizer::PUBLISHED, emit),
         Method::NormalizerFit => normalizer::shade(tri, walk, ctx, normalizer::FIT, emit),
         Method::Fast => fast::shade(tri, walk, ctx, fast::CHEBYSHEV, emit),

@@ -22,4 +22,5 @@ pub mod quadric_unit;
 pub mod registry;
 pub mod sim;
 pub mod span_pipeline;
+pub mod subdivision_raster;
 pub mod vector_interpolator;
