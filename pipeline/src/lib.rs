@@ -17,3 +17,4 @@ pub mod gouraud;
 pub mod lit;
 pub mod replay;
 pub mod span;
+pub mod subdivision;

@@ -141,7 +141,10 @@ crate::hw_block! {
 impl Logic for SubdivisionRaster {
     #[hdl_gen]
     fn update(&mut self) {
-        clock!(self, clock, addr, bvi0, bvi1, bvi2, bvi3, x0_p1, y0_p1, done0_p1, x1_p1, y1_p1, done1_p1, x2_p1, y2_p1, done2_p1, x3_p1, y3_p1, done3_p1);
+        clock!(
+            self, clock, addr, bvi0, bvi1, bvi2, bvi3, x0_p1, y0_p1, done0_p1, x1_p1, y1_p1,
+            done1_p1, x2_p1, y2_p1, done2_p1, x3_p1, y3_p1, done3_p1
+        );
         self.addr.load.next = self.load.val();
         self.addr.w_f.next = self.w_f.val();
         self.addr.w_r.next = self.w_r.val();

@@ -8,9 +8,7 @@ use crate::harness::{CheckSpec, Compare, Expected, Failure, Report, Stepper};
 use crate::normalizer::seeded_runner;
 use crate::registry::{self, Bench, Twin};
 use golden::address_block::AddressOutputs;
-use golden::four_triangle::{
-    EdgeIncrements, FourOutputs, FourTriangleModel, FourTriangleSetup, LaneSetup,
-};
+use golden::four_triangle::{FourOutputs, FourTriangleModel, FourTriangleSetup};
 use golden::types::ScreenTriangle;
 use proptest::strategy::{Strategy, ValueTree};
 use rtl::four_triangle::FourTriangle;
@@ -20,68 +18,7 @@ use std::io::Write;
 /// Output ports: `ready`, then eight per lane.
 pub const OUTPUTS: usize = 1 + 4 * 8;
 
-/// The block's input row of one clock (port order of `rtl::four_triangle`): `load`, the three
-/// shared increment triples, then each lane's words; all zero without a load.
-pub fn setup_row(s: Option<&FourTriangleSetup>) -> Vec<u64> {
-    let z = FourTriangleSetup::default();
-    let (load, s) = (s.is_some() as u64, s.unwrap_or(&z));
-    let mut row = vec![load];
-    for i in [&s.w, &s.a, &s.t] {
-        row.extend([i.f_word() as u64, i.r as u64, i.d as u64]);
-    }
-    for l in &s.lanes {
-        row.extend([
-            l.w_b0 as u64,
-            l.w_e0 as u64,
-            l.a_b0 as u64,
-            l.a_e0 as u64,
-            l.a_third as u64,
-            l.t_b0 as u64,
-            l.t_e0 as u64,
-            l.t_adjacent as u64,
-            l.y_top as u64,
-            l.rows as u64,
-            l.y_switch as u64,
-            l.dir_neg as u64,
-        ]);
-    }
-    row
-}
-
-/// The inverse of [`setup_row`] (`f` read back as the 12-bit two's-complement word).
-pub fn row_setup(r: &[u64]) -> Option<FourTriangleSetup> {
-    if r[0] == 0 {
-        return None;
-    }
-    let inc = |k: usize| EdgeIncrements {
-        f: ((r[k] as u32) << 20) as i32 >> 20,
-        r: r[k + 1] as u32,
-        d: r[k + 2] as u32,
-    };
-    let lane = |k: usize| {
-        let b = 10 + 12 * k;
-        LaneSetup {
-            w_b0: r[b] as u32,
-            w_e0: r[b + 1] as u32,
-            a_b0: r[b + 2] as u32,
-            a_e0: r[b + 3] as u32,
-            a_third: r[b + 4] != 0,
-            t_b0: r[b + 5] as u32,
-            t_e0: r[b + 6] as u32,
-            t_adjacent: r[b + 7] != 0,
-            y_top: r[b + 8] as u32,
-            rows: r[b + 9] as u32,
-            y_switch: r[b + 10] as u32,
-            dir_neg: r[b + 11] != 0,
-        }
-    };
-    Some(FourTriangleSetup {
-        w: inc(1),
-        a: inc(4),
-        t: inc(7),
-        lanes: std::array::from_fn(lane),
-    })
-}
+pub use pipeline::subdivision::{row_setup, setup_row};
 
 /// The output row the model predicts.
 pub fn outputs_row(o: &FourOutputs) -> Vec<u64> {

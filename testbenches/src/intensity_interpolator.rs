@@ -157,7 +157,7 @@ fn word_tolerance(golden: &[GoldenPixel]) -> Tolerance {
 }
 
 /// 8-bit outputs: within 1 LSB of the rounded, clamped golden value.
-const LEVEL_1LSB: Compare = Compare::Fixed {
+pub const LEVEL_1LSB: Compare = Compare::Fixed {
     format: LEVEL,
     tol: Tolerance {
         max_abs: 1.0,

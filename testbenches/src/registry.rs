@@ -211,6 +211,7 @@ pub static BLOCKS: &[&dyn Entry] = &[
     &entry::<rtl::intensity_interpolator::IntensityInterpolator>(),
     &entry::<rtl::gouraud_raster::GouraudRaster>(),
     &entry::<rtl::four_triangle::FourTriangle>(),
+    &entry::<rtl::subdivision_raster::SubdivisionRaster>(),
     &entry::<rtl::vector_interpolator::VectorInterpolator>(),
     &entry::<rtl::lighting_unit::LightingUnit>(),
     &entry::<rtl::colour_combine::ColourCombine>(),
