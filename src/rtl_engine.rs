@@ -43,7 +43,8 @@ pub struct RtlRender {
 /// The methods the RTL engine renders, in order: Gouraud, the lit pipeline's, the span
 /// pipelines'.
 pub fn rtl_methods() -> Vec<Method> {
-    std::iter::once(Method::Gouraud)
+    [Method::Gouraud, Method::Subdivision]
+        .into_iter()
         .chain(LIT_METHODS)
         .chain(SPAN_METHODS)
         .collect()
@@ -98,6 +99,23 @@ pub struct RtlBuild {
     pub horner_pipelined: bool,
     /// The simulator: rust-hdl (default) or the exported Verilog under Verilator.
     pub sim: crate::verilator_engine::Sim,
+    /// The address block `gouraud` goes through: the single block (one address per clock,
+    /// default) or the four-triangle block (four lanes, a BVI each). `subdivision` always
+    /// takes the four-triangle block; the other methods only the single one.
+    pub address: Address,
+}
+
+/// Which address block walks the triangles (`--address`).
+#[derive(clap::ValueEnum, Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Address {
+    /// The method's default: the single address block (SPEC §5), the four-triangle block for
+    /// `subdivision`.
+    #[default]
+    Default,
+    /// The single address block (SPEC §5), one address per clock.
+    Single,
+    /// The four-triangle block (SPEC §7), up to four addresses per clock.
+    FourTriangle,
 }
 
 /// Render `tris` with `method` (Gouraud, one of [`LIT_METHODS`] or of [`SPAN_METHODS`])
@@ -132,6 +150,21 @@ pub fn render_rtl_with(
     build: RtlBuild,
 ) -> Result<RtlRender> {
     check_rtl_method(method)?;
+    match (method, build.address) {
+        (Method::Gouraud | Method::Subdivision, Address::FourTriangle)
+        | (Method::Subdivision, Address::Default) => {
+            return render_subdivision_rtl(tris, method, ctx, width, height, progress, build)
+        }
+        (Method::Subdivision, Address::Single) => bail!(
+            "method subdivision walks its four sub-triangles with the four-triangle block: \
+             use --address four-triangle (or leave --address out)"
+        ),
+        (m, Address::FourTriangle) => bail!(
+            "--address four-triangle feeds a BVI per lane: it renders gouraud and subdivision, \
+             not {m}"
+        ),
+        _ => {}
+    }
     if method == Method::Gouraud {
         render_gouraud_rtl_with(tris, ctx, width, height, progress, build)
     } else if SPAN_METHODS.contains(&method) {
@@ -372,6 +405,61 @@ pub fn render_gouraud_rtl_with(
     let mut pipe = match build.sim {
         Sim::RustHdl => Pipe::new().map_err(|e| anyhow::anyhow!("RTL set-up: {e}"))?,
         Sim::Verilator => Pipe::replay(crate::verilator_engine::gouraud_replay(&jobs)?),
+    };
+    let stats = pipe
+        .run(
+            &jobs,
+            clock_budget(&jobs),
+            |k, x, y, rgb| {
+                let (x, y) = (x as i32, y as i32);
+                frame.put(x, y, depth[k].at_pixel(x, y), rgb);
+            },
+            |done| progress.set_position(done),
+        )
+        .map_err(|e| anyhow::anyhow!("RTL simulation: {e}"))?;
+    Ok(RtlRender {
+        frame,
+        stats,
+        visibility_mismatches: 0,
+    })
+}
+
+/// Render `tris` through the subdivision raster pipe (`rtl::subdivision_raster`: the
+/// four-triangle address block and a BVI per lane): `gouraud` (every lane interpolates the
+/// parent's planes) or `subdivision` (each lane its sub-triangle's). Depth as in
+/// [`render_gouraud_rtl`] (the parent's f64 depth plane at the pixel centre). `progress`
+/// counts parents every lane has finished.
+pub fn render_subdivision_rtl(
+    tris: &[ScreenTriangle],
+    method: Method,
+    ctx: &ShadeContext,
+    width: u32,
+    height: u32,
+    progress: &ProgressBar,
+    build: RtlBuild,
+) -> Result<RtlRender> {
+    use pipeline::subdivision::{clock_budget, SubJob, SubPipe};
+    check_addresses(tris, width, height)?;
+    let mut jobs = Vec::with_capacity(tris.len());
+    let mut depth = Vec::with_capacity(tris.len());
+    for t in tris {
+        let job = match method {
+            Method::Gouraud => SubJob::gouraud(t, ctx),
+            Method::Subdivision => SubJob::subdivision(t, ctx),
+            m => bail!("the subdivision pipe has no set-up for method {m}"),
+        };
+        let (Some(d), Some(job)) = (t.depth_plane(), job) else {
+            continue;
+        };
+        jobs.push(job);
+        depth.push(d);
+    }
+    progress.set_length(jobs.len() as u64);
+    progress.set_position(0);
+    let mut frame = Frame::new(width, height);
+    let mut pipe = match build.sim {
+        Sim::RustHdl => SubPipe::new().map_err(|e| anyhow::anyhow!("RTL set-up: {e}"))?,
+        Sim::Verilator => SubPipe::replay(crate::verilator_engine::subdivision_replay(&jobs)?),
     };
     let stats = pipe
         .run(

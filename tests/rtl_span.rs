@@ -26,6 +26,7 @@ use shadecore::setup::{build, SceneArgs};
 const PIPELINED: RtlBuild = RtlBuild {
     horner_pipelined: true,
     sim: shadecore::verilator_engine::Sim::RustHdl,
+    address: shadecore::rtl_engine::Address::Default,
 };
 
 fn check_scene(label: &str, args: &SceneArgs, nmse_bound: &[(Method, f64)]) {

@@ -24,6 +24,7 @@ fn verilator_frames_equal_rust_hdl_frames() {
     .unwrap();
     let cases = [
         (Method::Gouraud, false),
+        (Method::Subdivision, false),
         (Method::NormalizerFit, false),
         (Method::Bump, false),
         (Method::Angular, false),
@@ -44,6 +45,7 @@ fn verilator_frames_equal_rust_hdl_frames() {
                 RtlBuild {
                     horner_pipelined: pipelined,
                     sim,
+                    ..RtlBuild::default()
                 },
             )
             .unwrap_or_else(|e| panic!("{m} ({sim:?}): {e:#}"))

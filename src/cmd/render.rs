@@ -21,7 +21,9 @@ use crate::setup::{build, SceneArgs, Setup};
 pub enum Engine {
     /// The f64 golden model.
     Golden,
-    /// The rust-hdl RTL simulated clock by clock (methods: gouraud through the raster pipe;
+    /// The rust-hdl RTL simulated clock by clock (methods: gouraud through the raster pipe
+    /// (or the four-triangle block with --address four-triangle); subdivision through the
+    /// four-triangle block and four BVIs;
     /// normalizer, normalizer-fit, brdf-k4, brdf-k8, brdf-k16, bump through the lit pixel
     /// pipeline; angular, fast, fast-fit through the span pipelines, two pixels per clock;
     /// cubic through the Horner units (--horner); without --method, all of them).
@@ -33,7 +35,7 @@ pub struct Args {
     #[command(flatten)]
     pub scene: SceneArgs,
     /// Methods to render, comma-separated (default: all; with `--engine rtl`, all the hardware
-    /// has). Names: flat, gouraud, normalizer, normalizer-fit, fast, fast-fit, angular, quadric,
+    /// has). Names: flat, gouraud, subdivision, normalizer, normalizer-fit, fast, fast-fit, angular, quadric,
     /// cubic, brdf-k4, brdf-k8, brdf-k16, bump.
     #[arg(long, value_delimiter = ',')]
     pub method: Vec<String>,
@@ -53,6 +55,11 @@ pub struct Args {
     /// the frames are bit-identical).
     #[arg(long, value_enum, default_value = "rust-hdl")]
     pub sim: crate::verilator_engine::Sim,
+    /// With `--engine rtl`: the address block — single (SPEC §5, one address per clock) or
+    /// four-triangle (SPEC §7, four lanes with a BVI each: gouraud and subdivision only).
+    /// Default: single, four-triangle for subdivision.
+    #[arg(long, value_enum, default_value = "default", hide_default_value = true)]
+    pub address: crate::rtl_engine::Address,
 }
 
 /// The Horner unit variant of the cubic pipeline.
@@ -378,6 +385,7 @@ pub fn run(args: Args) -> Result<()> {
     let build = crate::rtl_engine::RtlBuild {
         horner_pipelined: args.horner == Horner::Pipelined,
         sim: args.sim,
+        address: args.address,
     };
     let frames = render_frames(&setup, &methods, args.engine, build, &bar)?;
     bar.finish_and_clear();
