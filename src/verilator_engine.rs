@@ -216,6 +216,32 @@ pub fn address_outputs(
     Ok(out)
 }
 
+/// The four-triangle block walking `setups` under Verilator: its outputs per clock, through the
+/// same reactive loop as `testbenches::four_triangle::run_reactive`.
+pub fn four_triangle_outputs(
+    setups: &[golden::four_triangle::FourTriangleSetup],
+) -> Result<Vec<golden::four_triangle::FourOutputs>> {
+    use testbenches::four_triangle::{row_outputs, stimulus, OUTPUTS};
+    let (rows, _) = stimulus(setups);
+    let mut replay = record("four-triangle", &Options::new(), rows.clone())?;
+    let mut out = Vec::with_capacity(rows.len());
+    let mut row = vec![0u64; OUTPUTS];
+    let (mut next, mut dones) = (0, [0usize; 4]);
+    while dones.iter().any(|&d| d < setups.len()) {
+        let load = (replay.ready() && next < setups.len()).then(|| &setups[next]);
+        next += load.is_some() as usize;
+        replay
+            .step(&pipeline::subdivision::setup_row(load), &mut row)
+            .map_err(|e| anyhow!(e))?;
+        let o = row_outputs(&row);
+        for (d, l) in dones.iter_mut().zip(&o.lanes) {
+            *d += l.done as usize;
+        }
+        out.push(o);
+    }
+    Ok(out)
+}
+
 /// Where the engine caches its builds.
 pub fn cache_dir() -> PathBuf {
     testbenches::harness::target_dir().join("verilator-engine")

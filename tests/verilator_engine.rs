@@ -105,3 +105,28 @@ fn verilator_raster_equals_rust_hdl_raster() {
         println!("{t}: {} clocks identical", r.len());
     }
 }
+
+/// `raster --address four-triangle --sim verilator` gives the four-triangle block's per-clock
+/// outputs of the rust-hdl run, clock for clock.
+#[test]
+fn verilator_four_triangle_raster_equals_rust_hdl() {
+    use shadecore::cmd::raster::{four_clocks, parse_tri, Engine};
+    if !tools::require(
+        &[Tool::Verilator],
+        "verilator_four_triangle_raster_equals_rust_hdl",
+    ) {
+        return;
+    }
+    for t in [
+        "3,1,40,12,9,30",
+        "10,10,20,10,30,10",
+        "0,0,4095,3,7,1",
+        "100,0,0,61,201,61",
+    ] {
+        let tri = parse_tri(t).unwrap();
+        let v = four_clocks(&tri, Engine::Rtl, None, Sim::Verilator).unwrap();
+        let r = four_clocks(&tri, Engine::Rtl, None, Sim::RustHdl).unwrap();
+        assert_eq!(v, r, "{t}: the Verilator run differs");
+        println!("{t}: {} clocks identical", r.len());
+    }
+}

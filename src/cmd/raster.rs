@@ -2,6 +2,12 @@
 //! RTL or its cycle-accurate golden model — and write one CSV row per clock:
 //! `cycle,valid,x,y,step,line_start,done` (step: 0 Start, 1 H, 2 V, 3 D; cycle 0 is the
 //! clock in which the set-up is loaded; the last row is the clock showing `done`).
+//!
+//! With `--address four-triangle` the four-triangle block (SPEC §7) walks the triangle's four
+//! midpoint sub-triangles at once: one CSV row per clock with the same six columns per lane,
+//! `valid0,x0,y0,step0,line_start0,done0, … ,done3` (lane K = sub-triangle K: 0 the corner at
+//! the top vertex, 1 at the top–middle midpoint, 2 at the top–bottom midpoint, 3 the middle
+//! one); the last row is the clock in which every lane has shown its `done`.
 
 use std::io::Write;
 use std::path::PathBuf;
@@ -37,6 +43,78 @@ pub struct Args {
     /// (the same CSV, clock for clock).
     #[arg(long, value_enum, default_value = "rust-hdl")]
     pub sim: crate::verilator_engine::Sim,
+    /// The address block: single (SPEC §5, one address per clock) or four-triangle (SPEC §7,
+    /// the four midpoint sub-triangles, up to four addresses per clock).
+    #[arg(long, value_enum, default_value = "single")]
+    pub address: RasterAddress,
+}
+
+/// `raster --address`.
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RasterAddress {
+    Single,
+    FourTriangle,
+}
+
+/// The per-clock outputs of the four-triangle block walking `tri` with `engine`.
+pub fn four_clocks(
+    tri: &ScreenTriangle,
+    engine: Engine,
+    vcd: Option<&std::path::Path>,
+    sim: crate::verilator_engine::Sim,
+) -> Result<Vec<golden::four_triangle::FourOutputs>> {
+    use golden::four_triangle::FourTriangleSetup;
+    let setup = FourTriangleSetup::new(tri);
+    if vcd.is_some() && (engine == Engine::Golden || sim == crate::verilator_engine::Sim::Verilator)
+    {
+        bail!("--vcd needs --engine rtl --sim rust-hdl (only that run writes a waveform)");
+    }
+    match (engine, sim) {
+        (Engine::Golden, _) => Ok(golden::four_triangle::run(&[setup]).0),
+        (Engine::Rtl, crate::verilator_engine::Sim::Verilator) => {
+            crate::verilator_engine::four_triangle_outputs(&[setup])
+        }
+        (Engine::Rtl, crate::verilator_engine::Sim::RustHdl) => {
+            let trace: Option<Box<dyn Write>> = match vcd {
+                Some(p) => Some(Box::new(std::io::BufWriter::new(
+                    std::fs::File::create(p)
+                        .with_context(|| format!("cannot create {}", p.display()))?,
+                ))),
+                None => None,
+            };
+            let rows = setup
+                .lanes
+                .iter()
+                .map(|l| l.rows as usize)
+                .max()
+                .unwrap_or(0);
+            let budget = 16 + (rows + 1) * (MAX_ADDRESS as usize + 2);
+            testbenches::four_triangle::run_reactive(&[setup], budget, trace)
+                .map_err(|e| anyhow::anyhow!("RTL simulation: {e}"))
+        }
+    }
+}
+
+/// The CSV text of a four-triangle run.
+pub fn four_csv(out: &[golden::four_triangle::FourOutputs]) -> String {
+    let mut s = String::from("cycle");
+    for k in 0..4 {
+        s.push_str(&format!(
+            ",valid{k},x{k},y{k},step{k},line_start{k},done{k}"
+        ));
+    }
+    s.push('\n');
+    for (c, o) in out.iter().enumerate() {
+        s.push_str(&c.to_string());
+        for l in &o.lanes {
+            s.push_str(&format!(
+                ",{},{},{},{},{},{}",
+                l.valid as u8, l.x, l.y, l.step, l.line_start as u8, l.done as u8
+            ));
+        }
+        s.push('\n');
+    }
+    s
 }
 
 /// Parse `X0,Y0,X1,Y1,X2,Y2` into a triangle (depth 0, normal +z: only addresses matter here).
@@ -129,21 +207,34 @@ pub fn csv(out: &[AddressOutputs]) -> String {
 
 pub fn run(a: Args) -> Result<()> {
     let tri = parse_tri(&a.tri)?;
-    let out = walk_clocks_with(&tri, a.engine, a.vcd.as_deref(), a.sim)?;
-    let text = csv(&out);
-    let pixels = out.iter().filter(|o| o.valid).count();
-    let rows = out.iter().filter(|o| o.row_start).count();
+    let (text, clocks, pixels, rows) = match a.address {
+        RasterAddress::Single => {
+            let out = walk_clocks_with(&tri, a.engine, a.vcd.as_deref(), a.sim)?;
+            let pixels = out.iter().filter(|o| o.valid).count();
+            let rows = out.iter().filter(|o| o.row_start).count();
+            (csv(&out), out.len(), pixels, rows)
+        }
+        RasterAddress::FourTriangle => {
+            let out = four_clocks(&tri, a.engine, a.vcd.as_deref(), a.sim)?;
+            let pixels = out.iter().map(|o| o.addresses()).sum();
+            let rows = out
+                .iter()
+                .map(|o| o.lanes.iter().filter(|l| l.row_start).count())
+                .sum();
+            (four_csv(&out), out.len(), pixels, rows)
+        }
+    };
     match &a.dump {
         Some(p) => {
             std::fs::write(p, text).with_context(|| format!("cannot write {}", p.display()))?;
             crate::outln!(
-                "{}: {} clocks, {pixels} pixels on {rows} raster lines ({:.3} pixels/clock); CSV in {}{}",
+                "{}: {clocks} clocks, {pixels} pixels on {rows} raster lines{} ({:.3} pixels/clock); CSV in {}{}",
                 match a.engine {
                     Engine::Rtl => "rtl",
                     Engine::Golden => "golden",
                 },
-                out.len(),
-                pixels as f64 / out.len() as f64,
+                if a.address == RasterAddress::FourTriangle { " of four sub-triangles" } else { "" },
+                pixels as f64 / clocks as f64,
                 p.display(),
                 a.vcd.as_ref().map_or(String::new(), |v| format!(", waveform in {}", v.display()))
             )?;
@@ -175,6 +266,20 @@ mod tests {
             assert!(e.contains(what) && !e.contains('\n'), "{s}: {e}");
         }
         assert!(parse_tri(" 0, 0 ,4095,0,0,4095").is_ok());
+    }
+
+    #[test]
+    fn four_triangle_rtl_and_golden_agree_and_cover_the_parent() {
+        let t = parse_tri("3,1,40,7,11,30").unwrap();
+        let sim = crate::verilator_engine::Sim::RustHdl;
+        let r = four_clocks(&t, Engine::Rtl, None, sim).unwrap();
+        let g = four_clocks(&t, Engine::Golden, None, sim).unwrap();
+        assert_eq!(r, g);
+        let text = four_csv(&r);
+        assert_eq!(text.lines().count(), r.len() + 1);
+        assert_eq!(text.lines().next().unwrap().split(',').count(), 25);
+        let pixels: usize = r.iter().map(|o| o.addresses()).sum();
+        assert_eq!(pixels, golden::raster::edge_function_pixels(&t).len());
     }
 
     #[test]
