@@ -3,8 +3,11 @@
 //! - printed once (clock counts of the simulated hardware, not timings): pixels per clock over
 //!   the default scene (sphere rez 50, 400×400, light 90°) and over large triangles
 //!   (≥ 1000 pixels), and the clocks each raster line costs beyond its pixels;
+//! - the same figures through the four-triangle block (`rtl::subdivision_raster`: four
+//!   address lanes and a BVI each, SPEC §7), side by side with the single address block in
+//!   one run: addresses per clock on the default scene and on triangles of ≥ 1000 pixels;
 //! - measured by criterion: simulated clocks per second of the hand-stepped rust-hdl model of
-//!   the two blocks together (throughput in elements = clocks).
+//!   the two blocks together, and of the four-triangle pipe (throughput in elements = clocks).
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use glam::DQuat;
@@ -12,6 +15,7 @@ use golden::raster::walk;
 use golden::shade::ShadeContext;
 use golden::types::{ScreenTriangle, ScreenVertex};
 use pipeline::gouraud::{clock_budget, Pipe, PipeStats, TriangleJob};
+use pipeline::subdivision::{clock_budget as sub_budget, SubJob, SubPipe};
 
 fn default_scene() -> (Vec<ScreenTriangle>, ShadeContext) {
     let mesh = golden::scene::uv_sphere(50).unwrap();
@@ -61,6 +65,55 @@ fn run(jobs: &[TriangleJob]) -> PipeStats {
         .unwrap()
         .run(jobs, clock_budget(jobs), |_, _, _, _| {}, |_| {})
         .unwrap()
+}
+
+fn sub_jobs(tris: &[ScreenTriangle], ctx: &ShadeContext) -> Vec<SubJob> {
+    tris.iter().filter_map(|t| SubJob::gouraud(t, ctx)).collect()
+}
+
+fn sub_run(jobs: &[SubJob]) -> PipeStats {
+    SubPipe::new()
+        .unwrap()
+        .run(jobs, sub_budget(jobs), |_, _, _, _| {}, |_| {})
+        .unwrap()
+}
+
+/// Single address block vs four-triangle block, on the same triangles, in one run.
+fn four_triangle_figures() {
+    let (tris, ctx) = default_scene();
+    let large = large_triangles(40);
+    let lctx = ShadeContext::default();
+    println!("addresses per clock, single address block vs four-triangle block (Gouraud pipes):");
+    for (label, t, c) in [
+        ("default scene", &tris, &ctx),
+        ("large triangles (≥ 1000 px) back to back", &large, &lctx),
+    ] {
+        let a = run(&jobs(t, c));
+        let b = sub_run(&sub_jobs(t, c));
+        assert_eq!(a.pixels, b.pixels, "{label}: the two blocks cover different pixels");
+        println!(
+            "  {label}: {} pixels; single {} clocks ({:.3}/clock), four-triangle {} clocks \
+             ({:.3}/clock), ratio {:.2}×",
+            a.pixels,
+            a.clocks,
+            a.pixels_per_clock(),
+            b.clocks,
+            b.pixels_per_clock(),
+            a.clocks as f64 / b.clocks as f64
+        );
+    }
+    let (mut worst, mut px, mut clk) = (f64::INFINITY, 0, 0);
+    for t in &large {
+        let s = sub_run(&sub_jobs(std::slice::from_ref(t), &lctx));
+        worst = worst.min(s.pixels_per_clock());
+        px += s.pixels;
+        clk += s.clocks;
+    }
+    println!(
+        "  large triangles one at a time (with the 4-clock latency each): {:.3} addresses/clock, \
+         worst triangle {worst:.3}",
+        px as f64 / clk as f64
+    );
 }
 
 fn rows(tris: &[ScreenTriangle]) -> u64 {
@@ -116,6 +169,7 @@ fn figures() {
 
 fn bench(c: &mut Criterion) {
     figures();
+    four_triangle_figures();
     let (tris, ctx) = default_scene();
     let scene_jobs = jobs(&tris, &ctx);
     let clocks = run(&scene_jobs).clocks;
@@ -123,6 +177,9 @@ fn bench(c: &mut Criterion) {
     g.sample_size(10);
     g.throughput(Throughput::Elements(clocks));
     g.bench_function("default_scene_clocks", |b| b.iter(|| run(&scene_jobs)));
+    let sj = sub_jobs(&tris, &ctx);
+    g.throughput(Throughput::Elements(sub_run(&sj).clocks));
+    g.bench_function("four_triangle_default_scene_clocks", |b| b.iter(|| sub_run(&sj)));
     g.finish();
 }
 
