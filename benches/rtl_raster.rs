@@ -68,7 +68,9 @@ fn run(jobs: &[TriangleJob]) -> PipeStats {
 }
 
 fn sub_jobs(tris: &[ScreenTriangle], ctx: &ShadeContext) -> Vec<SubJob> {
-    tris.iter().filter_map(|t| SubJob::gouraud(t, ctx)).collect()
+    tris.iter()
+        .filter_map(|t| SubJob::gouraud(t, ctx))
+        .collect()
 }
 
 fn sub_run(jobs: &[SubJob]) -> PipeStats {
@@ -90,7 +92,10 @@ fn four_triangle_figures() {
     ] {
         let a = run(&jobs(t, c));
         let b = sub_run(&sub_jobs(t, c));
-        assert_eq!(a.pixels, b.pixels, "{label}: the two blocks cover different pixels");
+        assert_eq!(
+            a.pixels, b.pixels,
+            "{label}: the two blocks cover different pixels"
+        );
         println!(
             "  {label}: {} pixels; single {} clocks ({:.3}/clock), four-triangle {} clocks \
              ({:.3}/clock), ratio {:.2}×",
@@ -179,7 +184,9 @@ fn bench(c: &mut Criterion) {
     g.bench_function("default_scene_clocks", |b| b.iter(|| run(&scene_jobs)));
     let sj = sub_jobs(&tris, &ctx);
     g.throughput(Throughput::Elements(sub_run(&sj).clocks));
-    g.bench_function("four_triangle_default_scene_clocks", |b| b.iter(|| sub_run(&sj)));
+    g.bench_function("four_triangle_default_scene_clocks", |b| {
+        b.iter(|| sub_run(&sj))
+    });
     g.finish();
 }
 

@@ -56,6 +56,12 @@ pub struct SceneArgs {
     /// Lighting model used by the reference and every method.
     #[arg(long, value_enum, default_value = "blinn")]
     pub lighting: Lighting,
+    /// Adaptive subdivision of the projected mesh before every method (set-up software,
+    /// `golden::refine`): 0 (off), 1 or 2 levels of midpoint splits of every interior edge,
+    /// or auto (split edges whose normals are more than 15° apart, up to 4 levels). The
+    /// reference is always the undivided mesh.
+    #[arg(long, default_value = "0")]
+    pub subdivide: golden::refine::Subdivide,
 }
 
 impl Default for SceneArgs {
@@ -67,6 +73,7 @@ impl Default for SceneArgs {
             light_deg: 90.0,
             size: (400, 400),
             lighting: Lighting::Blinn,
+            subdivide: golden::refine::Subdivide::OFF,
         }
     }
 }
@@ -93,7 +100,10 @@ pub fn parse_size(s: &str) -> Result<(u32, u32), String> {
 
 /// Everything a renderer needs.
 pub struct Setup {
+    /// The triangles every method renders (after `--subdivide`).
     pub tris: Vec<ScreenTriangle>,
+    /// The undivided mesh: what the reference renders.
+    pub base: Vec<ScreenTriangle>,
     pub ctx: ShadeContext,
     pub width: u32,
     pub height: u32,
@@ -113,10 +123,14 @@ impl SceneArgs {
 
     /// One line for reports: the scene, and its tessellation when it is procedural.
     pub fn describe(&self) -> String {
+        let sub = match self.subdivide {
+            golden::refine::Subdivide::Levels(0) => String::new(),
+            s => format!(" subdivide {s}"),
+        };
         if self.is_obj() {
-            format!("scene {}", self.scene.display())
+            format!("scene {}{sub}", self.scene.display())
         } else {
-            format!("scene {} rez {}", self.scene.display(), self.rez)
+            format!("scene {} rez {}{sub}", self.scene.display(), self.rez)
         }
     }
 }
@@ -151,8 +165,9 @@ pub fn build(args: &SceneArgs) -> Result<Setup> {
         ),
     };
     let camera = Camera::fit(&mesh, width, height, rotation);
-    let tris = scene::project(&mesh, &camera, width, height)
+    let base = scene::project(&mesh, &camera, width, height)
         .with_context(|| format!("projecting scene {:?}", args.scene))?;
+    let tris = golden::refine::refine(&base, args.subdivide);
     let light = scene::light_direction(args.light_deg)?;
     let ctx = ShadeContext::new(
         Material {
@@ -165,6 +180,7 @@ pub fn build(args: &SceneArgs) -> Result<Setup> {
     )?;
     Ok(Setup {
         tris,
+        base,
         ctx,
         width,
         height,

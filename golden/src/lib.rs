@@ -27,6 +27,7 @@ pub mod power_unit;
 pub mod quadric;
 pub mod quadric_unit;
 pub mod raster;
+pub mod refine;
 pub mod render;
 pub mod scene;
 pub mod seed;

@@ -127,7 +127,7 @@ pub fn parse_methods(names: &[String]) -> Result<Vec<Method>> {
 /// Render the reference and `methods` with the golden engine, in parallel.
 pub fn render_golden(setup: &Setup, methods: &[Method], bar: &ProgressBar) -> (Frame, Vec<Frame>) {
     let reference = render(
-        &setup.tris,
+        &setup.base,
         Method::Reference,
         &setup.ctx,
         setup.width,
@@ -204,7 +204,7 @@ fn render_frames(
                 crate::rtl_engine::check_rtl_method(m)?;
             }
             let (w, h) = (setup.width, setup.height);
-            let reference = render(&setup.tris, Method::Reference, &setup.ctx, w, h);
+            let reference = render(&setup.base, Method::Reference, &setup.ctx, w, h);
             let mut frames = Vec::with_capacity(methods.len());
             let mut stats = Vec::with_capacity(methods.len());
             for (i, &m) in methods.iter().enumerate() {
@@ -324,7 +324,7 @@ fn write_images(
 /// Print the NMSE table (and the RTL comparisons) of `report`.
 fn print_table(args: &Args, setup: &Setup, methods: &[Method], report: &Report) -> Result<()> {
     crate::outln!(
-        "{} n {} light {}° {}x{} {:?} lighting, {} front-facing triangles, engine {:?}",
+        "{} n {} light {}° {}x{} {:?} lighting, {} front-facing triangles{}, engine {:?}",
         args.scene.describe(),
         args.scene.shininess,
         args.scene.light_deg,
@@ -332,6 +332,11 @@ fn print_table(args: &Args, setup: &Setup, methods: &[Method], report: &Report) 
         setup.height,
         args.scene.lighting,
         setup.tris.len(),
+        if setup.tris.len() != setup.base.len() {
+            format!(" ({} before subdivision)", setup.base.len())
+        } else {
+            String::new()
+        },
         args.engine
     )?;
     crate::outln!("{:<16} {:>12} {:>6}  band", "method", "NMSE", "max Δ")?;

@@ -34,6 +34,9 @@ pub struct Args {
     /// Output directory for sweep.csv and sweep.md.
     #[arg(long, default_value = "out")]
     pub out: PathBuf,
+    /// Adaptive subdivision before every method: 0, 1, 2 or auto (as `render --subdivide`).
+    #[arg(long, default_value = "0")]
+    pub subdivide: golden::refine::Subdivide,
 }
 
 pub fn run(args: Args) -> Result<()> {
@@ -48,6 +51,7 @@ pub fn run(args: Args) -> Result<()> {
                     light_deg,
                     size: args.size,
                     lighting: args.lighting,
+                    subdivide: args.subdivide,
                 });
             }
         }
