@@ -313,16 +313,27 @@ pub fn synth_block(
             "{} LUT4 > the iCE40 UP5K's {UP5K_LUT4}",
             rep.luts()
         ))
+    } else if rep.ffs() > UP5K_LUT4 {
+        // One flip-flop per logic cell.
+        Placement::DoesNotFit(format!(
+            "{} flip-flops > the iCE40 UP5K's {UP5K_LUT4} logic cells",
+            rep.ffs()
+        ))
     } else if !tools::available(Tool::NextpnrIce40) {
         Placement::NoTool
     } else {
         let tag = format!("pnr-{}", block.name());
-        Placement::Fmax(crate::synth::fmax_ice40_up5k(
-            &v,
-            &module,
-            &block.ports(),
-            &tag,
-        )?)
+        match crate::synth::fmax_ice40_up5k(&v, &module, &block.ports(), &tag) {
+            Ok(f) => Placement::Fmax(f),
+            // LUTs and flip-flops that do not pack into the part's logic cells together.
+            Err(e) if e.contains("Unable to place cell") => Placement::DoesNotFit(format!(
+                "nextpnr-ice40 ran out of the UP5K's {UP5K_LUT4} logic cells ({} LUT4 and {} \
+                 flip-flops do not pack)",
+                rep.luts(),
+                rep.ffs()
+            )),
+            Err(e) => return Err(e),
+        }
     };
     Ok((rep, placement))
 }
