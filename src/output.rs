@@ -21,9 +21,9 @@ pub struct Picture {
 const LABEL_H: u32 = 14;
 const GAP: u32 = 4;
 
-/// Lay out `tiles` (label, image of `w`×`h`) in a grid of `cols` columns, each with its label
-/// above it in an 8×8 bitmap font.
-pub fn sheet(tiles: &[(String, &[[u8; 3]])], w: u32, h: u32, cols: u32) -> Picture {
+/// Lay out `tiles` (label, image of `w`×`h`, or `None` for an empty cell) in a grid of `cols`
+/// columns, each with its label above it in an 8×8 bitmap font.
+pub fn sheet(tiles: &[(String, Option<&[[u8; 3]]>)], w: u32, h: u32, cols: u32) -> Picture {
     let cols = cols.max(1).min(tiles.len().max(1) as u32);
     let rows = (tiles.len() as u32).div_ceil(cols);
     let cell_w = w + GAP;
@@ -39,6 +39,7 @@ pub fn sheet(tiles: &[(String, &[[u8; 3]])], w: u32, h: u32, cols: u32) -> Pictu
         let ox = GAP + (i as u32 % cols) * cell_w;
         let oy = GAP + (i as u32 / cols) * cell_h;
         draw_text(&mut pic, ox, oy + 3, label, [230, 230, 230]);
+        let Some(img) = img else { continue };
         for y in 0..h {
             let src = (y * w) as usize;
             let dst = ((oy + LABEL_H + y) * width + ox) as usize;

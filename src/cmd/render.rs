@@ -8,7 +8,7 @@ use anyhow::{Context, Result};
 use golden::methods::Method;
 use golden::nmse::{self, Band};
 use golden::render::{render, Frame};
-use indicatif::{ProgressBar, ProgressStyle};
+use indicatif::{MultiProgress, ProgressBar, ProgressStyle};
 use rayon::prelude::*;
 use serde::Serialize;
 
@@ -19,6 +19,9 @@ use crate::setup::{build, SceneArgs, Setup};
 #[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Engine {
+    /// Both: every method through the golden model, and every method the hardware has through
+    /// the simulated RTL as well (the default: the main job).
+    Both,
     /// The f64 golden model.
     Golden,
     /// The rust-hdl RTL simulated clock by clock (methods: gouraud through the raster pipe
@@ -42,8 +45,10 @@ pub struct Args {
     /// Output directory.
     #[arg(long, default_value = "out")]
     pub out: PathBuf,
-    /// Engine computing the method images (the reference is always golden).
-    #[arg(long, value_enum, default_value = "golden")]
+    /// Engine computing the method images (the reference is always golden). `both` (the
+    /// default) renders every method through the golden model and every method the hardware has
+    /// through the simulated RTL, methods in parallel, one pipeline instance each.
+    #[arg(long, value_enum, default_value = "both")]
     pub engine: Engine,
     /// With `--engine rtl`: the Horner units `cubic` goes through — serial (fig. 2.6, one
     /// multiplier, 3 clocks per pixel) or pipelined (three multipliers, one pixel per clock).
@@ -72,13 +77,29 @@ pub enum Horner {
 /// Per-method result in `report.json`.
 #[derive(Serialize, Debug, Clone)]
 pub struct MethodReport {
-    /// Against the reference (Phong shading, exact normalization).
+    /// Against the reference (Phong shading, exact normalization): the golden image's, or
+    /// with `--engine rtl` the RTL image's.
     pub nmse: f64,
     pub band: Band,
     pub max_abs_diff: u8,
     /// With `--engine rtl`: the RTL image against the golden image of the same method.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub rtl_vs_golden: Option<RtlComparison>,
+    /// With `--engine both`, for a method the hardware has: the RTL image against the
+    /// reference, and against the golden image of the same method.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub rtl: Option<RtlReport>,
+}
+
+/// The RTL image of a method (`--engine both`).
+#[derive(Serialize, Debug, Clone)]
+pub struct RtlReport {
+    /// Against the reference.
+    pub nmse: f64,
+    pub band: Band,
+    pub max_abs_diff: u8,
+    /// Against the golden image of the same method, with the hardware's counters.
+    pub vs_golden: RtlComparison,
 }
 
 /// The RTL image of a method against its golden image.
@@ -153,6 +174,7 @@ pub fn compare(reference: &Frame, frame: &Frame) -> MethodReport {
         band: Band::of(nmse),
         max_abs_diff: nmse::max_abs_diff(&reference.rgb, &frame.rgb),
         rtl_vs_golden: None,
+        rtl: None,
     }
 }
 
@@ -167,12 +189,12 @@ fn progress_bar(methods: usize, engine: Engine) -> ProgressBar {
     bar
 }
 
-/// The frames of one render: the reference, one per method, and the hardware's clock counts
-/// when the RTL engine made them.
+/// The frames of one render: the reference, and per method the golden frame and/or the RTL
+/// frame with the hardware's counters.
 struct Frames {
     reference: Frame,
-    methods: Vec<Frame>,
-    rtl_stats: Vec<RtlStats>,
+    golden: Vec<Option<Frame>>,
+    rtl: Vec<Option<(Frame, RtlStats)>>,
 }
 
 /// The hardware's counters of one RTL method render.
@@ -182,38 +204,53 @@ struct RtlStats {
     seconds: f64,
 }
 
-/// Render the reference (always golden) and `methods` with `engine`.
-fn render_frames(
+/// Rough simulation cost of a method on the rust-hdl engine (clocks × the pipeline's size),
+/// to start the longest first.
+fn rtl_cost(m: Method) -> u32 {
+    match m {
+        Method::Cubic => 30,
+        m if pipeline::lit::LIT_METHODS.contains(&m) => 16,
+        m if pipeline::span::SPAN_METHODS.contains(&m) => 6,
+        _ => 2,
+    }
+}
+
+/// Render `methods` through the simulated hardware, in parallel: one worker per core, each
+/// taking the next method (the costliest first) with its own pipeline instance. Each frame is
+/// the one a sequential run gives (a method's triangles go through one pipeline in order).
+fn render_rtl_parallel(
     setup: &Setup,
     methods: &[Method],
-    engine: Engine,
     build: crate::rtl_engine::RtlBuild,
-    bar: &ProgressBar,
-) -> Result<Frames> {
-    match engine {
-        Engine::Golden => {
-            let (reference, frames) = render_golden(setup, methods, bar);
-            Ok(Frames {
-                reference,
-                methods: frames,
-                rtl_stats: Vec::new(),
-            })
-        }
-        Engine::Rtl => {
-            for &m in methods {
-                crate::rtl_engine::check_rtl_method(m)?;
-            }
-            let (w, h) = (setup.width, setup.height);
-            let reference = render(&setup.base, Method::Reference, &setup.ctx, w, h);
-            let mut frames = Vec::with_capacity(methods.len());
-            let mut stats = Vec::with_capacity(methods.len());
-            for (i, &m) in methods.iter().enumerate() {
+    multi: &MultiProgress,
+) -> Result<Vec<(Frame, RtlStats)>> {
+    use std::sync::atomic::{AtomicUsize, Ordering};
+    use std::sync::Mutex;
+    let mut order: Vec<usize> = (0..methods.len()).collect();
+    order.sort_by_key(|&i| std::cmp::Reverse(rtl_cost(methods[i])));
+    let next = AtomicUsize::new(0);
+    let results: Mutex<Vec<Option<Result<(Frame, RtlStats)>>>> =
+        Mutex::new((0..methods.len()).map(|_| None).collect());
+    let workers = std::thread::available_parallelism()
+        .map_or(1, |n| n.get())
+        .min(methods.len().max(1));
+    let overall = multi.add(ProgressBar::new(methods.len() as u64));
+    overall.set_style(
+        ProgressStyle::with_template("rtl methods [{bar:40}] {pos}/{len} done {elapsed}")
+            .expect("static template")
+            .progress_chars("=> "),
+    );
+    std::thread::scope(|scope| {
+        for _ in 0..workers {
+            scope.spawn(|| loop {
+                let k = next.fetch_add(1, Ordering::Relaxed);
+                let Some(&i) = order.get(k) else { break };
+                let m = methods[i];
+                let bar = multi.insert_before(&overall, ProgressBar::new(0));
                 bar.set_style(
                     ProgressStyle::with_template(&format!(
-                        "rtl {} ({}/{}) [{{bar:40}}] {{pos}}/{{len}} {} {{elapsed}} (eta {{eta}})",
+                        "  rtl {:<15} [{{bar:30}}] {{pos}}/{{len}} {} {{elapsed}} (eta {{eta}})",
                         m.name(),
-                        i + 1,
-                        methods.len(),
                         if pipeline::span::SPAN_METHODS.contains(&m) {
                             "lines"
                         } else {
@@ -224,30 +261,92 @@ fn render_frames(
                     .progress_chars("=> "),
                 );
                 let t0 = std::time::Instant::now();
-                let rtl = crate::rtl_engine::render_rtl_with(
+                let r = crate::rtl_engine::render_rtl_with(
                     &setup.tris,
                     m,
                     &setup.ctx,
-                    w,
-                    h,
-                    bar,
+                    setup.width,
+                    setup.height,
+                    &bar,
                     build,
                 )
-                .with_context(|| format!("method {m}"))?;
-                stats.push(RtlStats {
-                    pipe: rtl.stats,
-                    visibility_mismatches: rtl.visibility_mismatches,
-                    seconds: t0.elapsed().as_secs_f64(),
+                .with_context(|| format!("method {m}"))
+                .map(|rtl| {
+                    (
+                        rtl.frame,
+                        RtlStats {
+                            pipe: rtl.stats,
+                            visibility_mismatches: rtl.visibility_mismatches,
+                            seconds: t0.elapsed().as_secs_f64(),
+                        },
+                    )
                 });
-                frames.push(rtl.frame);
-            }
-            Ok(Frames {
-                reference,
-                methods: frames,
-                rtl_stats: stats,
-            })
+                bar.finish_and_clear();
+                overall.inc(1);
+                let failed = r.is_err();
+                results.lock().expect("no worker panicked")[i] = Some(r);
+                if failed {
+                    // Stop handing out work: the first error ends the run.
+                    next.store(order.len(), Ordering::Relaxed);
+                }
+            });
+        }
+    });
+    overall.finish_and_clear();
+    let mut out = Vec::with_capacity(methods.len());
+    for r in results.into_inner().expect("no worker panicked") {
+        match r {
+            Some(r) => out.push(r?),
+            None => anyhow::bail!("an RTL render stopped after another method's error"),
         }
     }
+    Ok(out)
+}
+
+/// Render the reference (always golden) and `methods` with `engine`.
+fn render_frames(
+    setup: &Setup,
+    methods: &[Method],
+    engine: Engine,
+    build: crate::rtl_engine::RtlBuild,
+) -> Result<Frames> {
+    let n = methods.len();
+    let multi = MultiProgress::new();
+    let (reference, golden) = if engine == Engine::Rtl {
+        let (w, h) = (setup.width, setup.height);
+        (
+            render(&setup.base, Method::Reference, &setup.ctx, w, h),
+            vec![None; n],
+        )
+    } else {
+        let bar = multi.add(progress_bar(n, Engine::Golden));
+        let (r, f) = render_golden(setup, methods, &bar);
+        bar.finish_and_clear();
+        (r, f.into_iter().map(Some).collect())
+    };
+    let mut rtl: Vec<Option<(Frame, RtlStats)>> = (0..n).map(|_| None).collect();
+    if engine != Engine::Golden {
+        if engine == Engine::Rtl {
+            for &m in methods {
+                crate::rtl_engine::check_rtl_method(m)?;
+            }
+        }
+        // `both`: the methods the hardware has (the others are golden only).
+        let hw = crate::rtl_engine::rtl_methods();
+        let idx: Vec<usize> = (0..n).filter(|&i| hw.contains(&methods[i])).collect();
+        let ms: Vec<Method> = idx.iter().map(|&i| methods[i]).collect();
+        for (i, f) in idx
+            .into_iter()
+            .zip(render_rtl_parallel(setup, &ms, build, &multi)?)
+        {
+            rtl[i] = Some(f);
+        }
+    }
+    Ok(Frames {
+        reference,
+        golden,
+        rtl,
+    })
 }
 
 /// For an RTL frame of method `m`: write the golden image of the same method and the
@@ -257,17 +356,25 @@ fn compare_with_golden(
     m: Method,
     frame: &Frame,
     rtl: &RtlStats,
+    golden: Option<&Frame>,
     out: &std::path::Path,
 ) -> Result<RtlComparison> {
     let stats = &rtl.pipe;
     let (w, h) = (setup.width, setup.height);
-    let golden = render(&setup.tris, m, &setup.ctx, w, h);
-    save_png(
-        &out.join(format!("{}-golden.png", m.name())),
-        w,
-        h,
-        &golden.rgb,
-    )?;
+    let rendered;
+    let golden = match golden {
+        Some(g) => g,
+        None => {
+            rendered = render(&setup.tris, m, &setup.ctx, w, h);
+            save_png(
+                &out.join(format!("{}-golden.png", m.name())),
+                w,
+                h,
+                &rendered.rgb,
+            )?;
+            &rendered
+        }
+    };
     let heat = nmse::diff_heatmap(&golden.rgb, &frame.rgb, 4);
     save_png(
         &out.join(format!("{}-rtl-vs-golden-diff.png", m.name())),
@@ -294,6 +401,12 @@ fn compare_with_golden(
 
 /// Write every image (reference, each method with its diff against the reference, the RTL
 /// comparisons, the sheet) and return the per-method reports.
+///
+/// Files: `<method>.png` and `<method>-diff.png` (against the reference) for the engine's
+/// image — the golden one, or the RTL one with `--engine rtl` (beside `<method>-golden.png`);
+/// with `--engine both` also `<method>-rtl.png` and `<method>-rtl-diff.png`; with either RTL
+/// engine `<method>-rtl-vs-golden-diff.png`. The sheet has the golden row and, under each
+/// method the hardware has, its RTL image.
 fn write_images(
     setup: &Setup,
     methods: &[Method],
@@ -304,19 +417,68 @@ fn write_images(
     let reference = &frames.reference;
     save_png(&out.join("reference.png"), w, h, &reference.rgb)?;
     let mut reports = BTreeMap::new();
-    let mut tiles: Vec<(String, &[[u8; 3]])> = vec![("reference".into(), &reference.rgb[..])];
-    for (i, (m, f)) in methods.iter().zip(&frames.methods).enumerate() {
-        let mut r = compare(reference, f);
-        if let Some(stats) = frames.rtl_stats.get(i) {
-            r.rtl_vs_golden = Some(compare_with_golden(setup, *m, f, stats, out)?);
-        }
-        save_png(&out.join(format!("{}.png", m.name())), w, h, &f.rgb)?;
-        let heat = nmse::diff_heatmap(&reference.rgb, &f.rgb, 32);
+    let mut tiles: Vec<(String, Option<&[[u8; 3]]>, Option<(String, &[[u8; 3]])>)> =
+        vec![("reference".into(), Some(&reference.rgb[..]), None)];
+    for (i, &m) in methods.iter().enumerate() {
+        let golden = frames.golden[i].as_ref();
+        let rtl = frames.rtl[i].as_ref();
+        // The engine's image for `<method>.png`: golden, or the RTL one under `--engine rtl`.
+        let main = golden.or(rtl.map(|r| &r.0)).expect("a frame per method");
+        let mut r = compare(reference, main);
+        save_png(&out.join(format!("{}.png", m.name())), w, h, &main.rgb)?;
+        let heat = nmse::diff_heatmap(&reference.rgb, &main.rgb, 32);
         save_png(&out.join(format!("{}-diff.png", m.name())), w, h, &heat)?;
-        tiles.push((format!("{} {:.2e}", m.name(), r.nmse), &f.rgb[..]));
+        let mut rtl_tile = None;
+        if let Some((f, stats)) = rtl {
+            let vs = compare_with_golden(setup, m, f, stats, golden, out)?;
+            if golden.is_some() {
+                save_png(&out.join(format!("{}-rtl.png", m.name())), w, h, &f.rgb)?;
+                let heat = nmse::diff_heatmap(&reference.rgb, &f.rgb, 32);
+                save_png(&out.join(format!("{}-rtl-diff.png", m.name())), w, h, &heat)?;
+                let c = compare(reference, f);
+                rtl_tile = Some((
+                    format!("rtl {:.2e} {}lsb", c.nmse, vs.max_abs_diff),
+                    &f.rgb[..],
+                ));
+                r.rtl = Some(RtlReport {
+                    nmse: c.nmse,
+                    band: c.band,
+                    max_abs_diff: c.max_abs_diff,
+                    vs_golden: vs,
+                });
+            } else {
+                r.rtl_vs_golden = Some(vs);
+            }
+        }
+        tiles.push((
+            format!("{} {:.2e}", m.name(), r.nmse),
+            Some(&main.rgb[..]),
+            rtl_tile,
+        ));
         reports.insert(m.name().to_string(), r);
     }
-    let s = sheet(&tiles, w, h, 5);
+    let cols = 5;
+    let grid: Vec<(String, Option<&[[u8; 3]]>)> =
+        if frames.rtl.iter().any(Option::is_some) && frames.golden.iter().any(Option::is_some) {
+            // Bands of two rows: golden images, then the RTL image under each (blank where the
+            // hardware has no such method).
+            let mut g = Vec::new();
+            for band in tiles.chunks(cols) {
+                g.extend(band.iter().map(|(l, img, _)| (l.clone(), *img)));
+                g.extend(std::iter::repeat_n(
+                    (String::new(), None),
+                    cols - band.len(),
+                ));
+                g.extend(band.iter().map(|(_, _, r)| match r {
+                    Some((l, img)) => (l.clone(), Some(*img)),
+                    None => (String::new(), None),
+                }));
+            }
+            g
+        } else {
+            tiles.iter().map(|(l, img, _)| (l.clone(), *img)).collect()
+        };
+    let s = sheet(&grid, w, h, cols as u32);
     save_png(&out.join("sheet.png"), s.width, s.height, &s.rgb)?;
     Ok(reports)
 }
@@ -339,6 +501,43 @@ fn print_table(args: &Args, setup: &Setup, methods: &[Method], report: &Report) 
         },
         args.engine
     )?;
+    if args.engine == Engine::Both {
+        crate::outln!(
+            "{:<16} {:>10} {:>10}  {:<22} {:>13} {:>9} {:>7}",
+            "method",
+            "golden",
+            "rtl",
+            "band (golden)",
+            "rtl vs golden",
+            "px/clock",
+            "rtl s"
+        )?;
+        for m in methods {
+            let r = &report.methods[m.name()];
+            match &r.rtl {
+                Some(t) => crate::outln!(
+                    "{:<16} {:>10.3e} {:>10.3e}  {:<22} {:>9} LSB {:>9.3} {:>7.1}",
+                    m.name(),
+                    r.nmse,
+                    t.nmse,
+                    r.band.label(),
+                    t.vs_golden.max_abs_diff,
+                    t.vs_golden.pixels_per_clock,
+                    t.vs_golden.seconds
+                )?,
+                None => crate::outln!(
+                    "{:<16} {:>10.3e} {:>10}  {:<22} {:>13}",
+                    m.name(),
+                    r.nmse,
+                    "-",
+                    r.band.label(),
+                    "no hardware"
+                )?,
+            }
+        }
+        crate::outln!("NMSE against the reference; \"rtl vs golden\": largest channel difference between the RTL and golden images of the same method")?;
+        return Ok(());
+    }
     crate::outln!("{:<16} {:>12} {:>6}  band", "method", "NMSE", "max Δ")?;
     for m in methods {
         let r = &report.methods[m.name()];
@@ -386,14 +585,14 @@ pub fn run(args: Args) -> Result<()> {
     }
     std::fs::create_dir_all(&args.out)
         .with_context(|| format!("creating output directory {}", args.out.display()))?;
-    let bar = progress_bar(methods.len(), args.engine);
     let build = crate::rtl_engine::RtlBuild {
         horner_pipelined: args.horner == Horner::Pipelined,
         sim: args.sim,
         address: args.address,
     };
-    let frames = render_frames(&setup, &methods, args.engine, build, &bar)?;
-    bar.finish_and_clear();
+    let t0 = std::time::Instant::now();
+    let frames = render_frames(&setup, &methods, args.engine, build)?;
+    let seconds = t0.elapsed().as_secs_f64();
     let reports = write_images(&setup, &methods, &frames, &args.out)?;
     let report = Report {
         scene: &args.scene,
@@ -405,6 +604,6 @@ pub fn run(args: Args) -> Result<()> {
     std::fs::write(args.out.join("report.json"), json + "\n")
         .with_context(|| format!("writing {}", args.out.join("report.json").display()))?;
     print_table(&args, &setup, &methods, &report)?;
-    crate::outln!("wrote {}", args.out.display())?;
+    crate::outln!("wrote {} ({seconds:.1} s)", args.out.display())?;
     Ok(())
 }
