@@ -20,8 +20,12 @@
 //! # Pipeline
 //! ```text
 //! C1 pd_c = dif_c·cos φ, ps_c = spc_c·S   UQ8.8 × UQ1.15 → UQ9.23, exact (6 multipliers)
-//! C2 sum_c = amb_c·2¹⁵ + pd_c + ps_c      34 bits, exact (< 1280·2²³); + 2²² (half LSB);
-//!    rgb_c = 255 if sum ≥ 256·2²³ (bits 33..31), else bits 30..23
+//! C2 sum_c = amb_c·2¹⁵ + pd_c + ps_c + 2²² (half LSB), exact (< 1280·2²³), formed in two
+//!    parts so no word is wider than 32 bits (the simulator's fast width; the hardware is the
+//!    same 34-bit sum, split at bit 23):
+//!      lo_c = pd_c[22:0] + ps_c[22:0] + amb_c[7:0]·2¹⁵ + 2²²        < 2²⁵
+//!      hi_c = pd_c[31:23] + ps_c[31:23] + amb_c[15:8] + lo_c[24:23]  < 2¹¹  (= ⌊sum_c / 2²³⌋)
+//!    rgb_c = 255 if hi_c ≥ 256, else hi_c[7:0]
 //! ```
 //! Latency 2 clocks, one pixel per clock, no stall.
 //!
@@ -52,13 +56,10 @@ crate::hw_block! {
         pd: [DFF<Bits<32>>; 3],
         ps: [DFF<Bits<32>>; 3],
         valid_p1: DFF<Bit>,
-        // C2
-        amb_w: [Signal<Local, Bits<34>>; 3],
-        pd_w: [Signal<Local, Bits<34>>; 3],
-        ps_w: [Signal<Local, Bits<34>>; 3],
-        sum: [Signal<Local, Bits<34>>; 3],
-        sum_rnd: [Signal<Local, Bits<34>>; 3],
-        half_lsb: Constant<Bits<34>> = Constant::new((1u64 << 22).into()),
+        // C2: the sum's bits 22..0 (with their carry) and 33..23.
+        lo: [Signal<Local, Bits<32>>; 3],
+        hi: [Signal<Local, Bits<16>>; 3],
+        half_lsb: Constant<Bits<32>> = Constant::new((1u64 << 22).into()),
         level_max: Constant<Bits<8>> = Constant::new(255.into()),
         rgb: [DFF<Bits<8>>; 3],
         valid_p2: DFF<Bit>,
@@ -83,22 +84,35 @@ impl Logic for ColourCombine {
         self.ps[2].d.next = self.spc_b.val() * self.spec.val();
         self.valid_p1.d.next = self.valid_in.val();
         // C2 (written out per channel: rust-hdl resolves no loop index inside bit_cast).
-        self.amb_w[0].next = bit_cast::<34, 16>(self.amb_r.val()) << 15;
-        self.amb_w[1].next = bit_cast::<34, 16>(self.amb_g.val()) << 15;
-        self.amb_w[2].next = bit_cast::<34, 16>(self.amb_b.val()) << 15;
-        self.pd_w[0].next = bit_cast::<34, 32>(self.pd[0].q.val());
-        self.pd_w[1].next = bit_cast::<34, 32>(self.pd[1].q.val());
-        self.pd_w[2].next = bit_cast::<34, 32>(self.pd[2].q.val());
-        self.ps_w[0].next = bit_cast::<34, 32>(self.ps[0].q.val());
-        self.ps_w[1].next = bit_cast::<34, 32>(self.ps[1].q.val());
-        self.ps_w[2].next = bit_cast::<34, 32>(self.ps[2].q.val());
+        self.lo[0].next = bit_cast::<32, 23>(self.pd[0].q.val().get_bits::<23>(0))
+            + bit_cast::<32, 23>(self.ps[0].q.val().get_bits::<23>(0))
+            + (bit_cast::<32, 8>(self.amb_r.val().get_bits::<8>(0)) << 15)
+            + self.half_lsb.val();
+        self.lo[1].next = bit_cast::<32, 23>(self.pd[1].q.val().get_bits::<23>(0))
+            + bit_cast::<32, 23>(self.ps[1].q.val().get_bits::<23>(0))
+            + (bit_cast::<32, 8>(self.amb_g.val().get_bits::<8>(0)) << 15)
+            + self.half_lsb.val();
+        self.lo[2].next = bit_cast::<32, 23>(self.pd[2].q.val().get_bits::<23>(0))
+            + bit_cast::<32, 23>(self.ps[2].q.val().get_bits::<23>(0))
+            + (bit_cast::<32, 8>(self.amb_b.val().get_bits::<8>(0)) << 15)
+            + self.half_lsb.val();
+        self.hi[0].next = bit_cast::<16, 9>(self.pd[0].q.val().get_bits::<9>(23))
+            + bit_cast::<16, 9>(self.ps[0].q.val().get_bits::<9>(23))
+            + bit_cast::<16, 8>(self.amb_r.val().get_bits::<8>(8))
+            + bit_cast::<16, 2>(self.lo[0].val().get_bits::<2>(23));
+        self.hi[1].next = bit_cast::<16, 9>(self.pd[1].q.val().get_bits::<9>(23))
+            + bit_cast::<16, 9>(self.ps[1].q.val().get_bits::<9>(23))
+            + bit_cast::<16, 8>(self.amb_g.val().get_bits::<8>(8))
+            + bit_cast::<16, 2>(self.lo[1].val().get_bits::<2>(23));
+        self.hi[2].next = bit_cast::<16, 9>(self.pd[2].q.val().get_bits::<9>(23))
+            + bit_cast::<16, 9>(self.ps[2].q.val().get_bits::<9>(23))
+            + bit_cast::<16, 8>(self.amb_b.val().get_bits::<8>(8))
+            + bit_cast::<16, 2>(self.lo[2].val().get_bits::<2>(23));
         for c in 0..3 {
-            self.sum[c].next = self.amb_w[c].val() + self.pd_w[c].val() + self.ps_w[c].val();
-            self.sum_rnd[c].next = self.sum[c].val() + self.half_lsb.val();
-            if self.sum_rnd[c].val().get_bits::<3>(31).any() {
+            if self.hi[c].val().get_bits::<8>(8).any() {
                 self.rgb[c].d.next = self.level_max.val();
             } else {
-                self.rgb[c].d.next = self.sum_rnd[c].val().get_bits::<8>(23);
+                self.rgb[c].d.next = self.hi[c].val().get_bits::<8>(0);
             }
         }
         self.valid_p2.d.next = self.valid_p1.q.val();

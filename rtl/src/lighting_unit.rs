@@ -23,9 +23,14 @@
 //! ```text
 //! N1..N9  the normalizer (`crate::normalizer::Normalizer`, coefficient set a build parameter)
 //! D1  p = nx·lx … nz·hz     six signed Q2.14 × Q2.14 → Q4.28 products, exact [MulSigned]
-//! D2  cos = Σp              three-operand sums in 34 bits (exact: |Σp| ≤ 3·2³⁰), + 2¹²
+//! D2  cos = Σp              three-operand sums, exact (|Σp| ≤ 3·2³⁰: 34 bits), + 2¹²
 //!                           (half LSB), then Q4.28 → unsigned Q1.15: negative → 0,
 //!                           ≥ 2 − 2⁻¹⁶ → 0xFFFF (2 − 2⁻¹⁵), else bits 28..13
+//!                           The sum is formed in two parts so no word is wider than 32 bits
+//!                           (the simulator's fast width; the same 34-bit sum, split at bit 16):
+//!                           lo = Σ p[15:0] + 2¹² (< 2¹⁸), hi = Σ sext(p[31:16]) + lo[17:16],
+//!                           Σp + 2¹² = hi·2¹⁶ + lo[15:0]; negative ⇔ hi < 0, ≥ 2²⁹ ⇔ hi ≥ 2¹³,
+//!                           bits 28..13 = hi[12:0] : lo[15:13]
 //! ```
 //! Latency 11 clocks (9 + 2), one pixel per clock, no stall; `valid` travels with the data.
 //! 14 multipliers: the normalizer's 8 and the six of D1.
@@ -66,14 +71,14 @@ crate::hw_block! {
         mul: [MulSigned; 6],
         prod: [DFF<Bits<32>>; 6],
         valid_p1: DFF<Bit>,
-        // D2: each product sign-extended to 34 bits, the two sums, the cosines.
-        ext: [Signal<Local, Bits<34>>; 6],
-        sum_l: Signal<Local, Bits<34>>,
-        sum_h: Signal<Local, Bits<34>>,
-        sum_l_rnd: Signal<Local, Bits<34>>,
-        sum_h_rnd: Signal<Local, Bits<34>>,
-        sign_ext: Constant<Bits<34>> = Constant::new(0x3_0000_0000u64.into()),
-        half_lsb: Constant<Bits<34>> = Constant::new((1u64 << 12).into()),
+        // D2: each product's high half sign-extended, the two sums in two parts, the cosines.
+        ext: [Signal<Local, Bits<32>>; 6],
+        lo_l: Signal<Local, Bits<32>>,
+        lo_h: Signal<Local, Bits<32>>,
+        hi_l: Signal<Local, Bits<32>>,
+        hi_h: Signal<Local, Bits<32>>,
+        sign_ext: Constant<Bits<32>> = Constant::new(0xFFFF_0000u64.into()),
+        half_lsb: Constant<Bits<32>> = Constant::new((1u64 << 12).into()),
         cos_max: Constant<Bits<16>> = Constant::new(0xFFFF.into()),
         cos_phi_q: DFF<Bits<16>>,
         cos_gamma_q: DFF<Bits<16>>,
@@ -116,56 +121,76 @@ impl Logic for LightingUnit {
         self.mul[5].a.next = self.norm.nz.val();
         self.mul[5].b.next = self.hz.val();
         self.valid_p1.d.next = self.norm.valid_out.val();
-        // D2: exact sums in 34 bits (|Σp| ≤ 3·2³⁰ needs 33 with the sign).
+        // D2: exact sums, split at bit 16 (see the header).
         // (rust-hdl resolves a loop index inside bit_cast arguments in neither backend:
         // written out.)
         if self.prod[0].q.val().get_bit(31) {
-            self.ext[0].next = bit_cast::<34, 32>(self.prod[0].q.val()) | self.sign_ext.val();
+            self.ext[0].next =
+                bit_cast::<32, 16>(self.prod[0].q.val().get_bits::<16>(16)) | self.sign_ext.val();
         } else {
-            self.ext[0].next = bit_cast::<34, 32>(self.prod[0].q.val());
+            self.ext[0].next = bit_cast::<32, 16>(self.prod[0].q.val().get_bits::<16>(16));
         }
         if self.prod[1].q.val().get_bit(31) {
-            self.ext[1].next = bit_cast::<34, 32>(self.prod[1].q.val()) | self.sign_ext.val();
+            self.ext[1].next =
+                bit_cast::<32, 16>(self.prod[1].q.val().get_bits::<16>(16)) | self.sign_ext.val();
         } else {
-            self.ext[1].next = bit_cast::<34, 32>(self.prod[1].q.val());
+            self.ext[1].next = bit_cast::<32, 16>(self.prod[1].q.val().get_bits::<16>(16));
         }
         if self.prod[2].q.val().get_bit(31) {
-            self.ext[2].next = bit_cast::<34, 32>(self.prod[2].q.val()) | self.sign_ext.val();
+            self.ext[2].next =
+                bit_cast::<32, 16>(self.prod[2].q.val().get_bits::<16>(16)) | self.sign_ext.val();
         } else {
-            self.ext[2].next = bit_cast::<34, 32>(self.prod[2].q.val());
+            self.ext[2].next = bit_cast::<32, 16>(self.prod[2].q.val().get_bits::<16>(16));
         }
         if self.prod[3].q.val().get_bit(31) {
-            self.ext[3].next = bit_cast::<34, 32>(self.prod[3].q.val()) | self.sign_ext.val();
+            self.ext[3].next =
+                bit_cast::<32, 16>(self.prod[3].q.val().get_bits::<16>(16)) | self.sign_ext.val();
         } else {
-            self.ext[3].next = bit_cast::<34, 32>(self.prod[3].q.val());
+            self.ext[3].next = bit_cast::<32, 16>(self.prod[3].q.val().get_bits::<16>(16));
         }
         if self.prod[4].q.val().get_bit(31) {
-            self.ext[4].next = bit_cast::<34, 32>(self.prod[4].q.val()) | self.sign_ext.val();
+            self.ext[4].next =
+                bit_cast::<32, 16>(self.prod[4].q.val().get_bits::<16>(16)) | self.sign_ext.val();
         } else {
-            self.ext[4].next = bit_cast::<34, 32>(self.prod[4].q.val());
+            self.ext[4].next = bit_cast::<32, 16>(self.prod[4].q.val().get_bits::<16>(16));
         }
         if self.prod[5].q.val().get_bit(31) {
-            self.ext[5].next = bit_cast::<34, 32>(self.prod[5].q.val()) | self.sign_ext.val();
+            self.ext[5].next =
+                bit_cast::<32, 16>(self.prod[5].q.val().get_bits::<16>(16)) | self.sign_ext.val();
         } else {
-            self.ext[5].next = bit_cast::<34, 32>(self.prod[5].q.val());
+            self.ext[5].next = bit_cast::<32, 16>(self.prod[5].q.val().get_bits::<16>(16));
         }
-        self.sum_l.next = self.ext[0].val() + self.ext[1].val() + self.ext[2].val();
-        self.sum_h.next = self.ext[3].val() + self.ext[4].val() + self.ext[5].val();
-        self.sum_l_rnd.next = self.sum_l.val() + self.half_lsb.val();
-        self.sum_h_rnd.next = self.sum_h.val() + self.half_lsb.val();
-        if self.sum_l_rnd.val().get_bit(33) {
+        self.lo_l.next = bit_cast::<32, 16>(self.prod[0].q.val().get_bits::<16>(0))
+            + bit_cast::<32, 16>(self.prod[1].q.val().get_bits::<16>(0))
+            + bit_cast::<32, 16>(self.prod[2].q.val().get_bits::<16>(0))
+            + self.half_lsb.val();
+        self.hi_l.next = self.ext[0].val()
+            + self.ext[1].val()
+            + self.ext[2].val()
+            + bit_cast::<32, 2>(self.lo_l.val().get_bits::<2>(16));
+        self.lo_h.next = bit_cast::<32, 16>(self.prod[3].q.val().get_bits::<16>(0))
+            + bit_cast::<32, 16>(self.prod[4].q.val().get_bits::<16>(0))
+            + bit_cast::<32, 16>(self.prod[5].q.val().get_bits::<16>(0))
+            + self.half_lsb.val();
+        self.hi_h.next = self.ext[3].val()
+            + self.ext[4].val()
+            + self.ext[5].val()
+            + bit_cast::<32, 2>(self.lo_h.val().get_bits::<2>(16));
+        if self.hi_l.val().get_bit(31) {
             self.cos_phi_q.d.next = 0.into();
-        } else if self.sum_l_rnd.val().get_bits::<4>(29).any() {
+        } else if self.hi_l.val().get_bits::<18>(13).any() {
             self.cos_phi_q.d.next = self.cos_max.val();
         } else {
-            self.cos_phi_q.d.next = self.sum_l_rnd.val().get_bits::<16>(13);
+            self.cos_phi_q.d.next = (bit_cast::<16, 13>(self.hi_l.val().get_bits::<13>(0)) << 3)
+                | bit_cast::<16, 3>(self.lo_l.val().get_bits::<3>(13));
         }
-        if self.sum_h_rnd.val().get_bit(33) {
+        if self.hi_h.val().get_bit(31) {
             self.cos_gamma_q.d.next = 0.into();
-        } else if self.sum_h_rnd.val().get_bits::<4>(29).any() {
+        } else if self.hi_h.val().get_bits::<18>(13).any() {
             self.cos_gamma_q.d.next = self.cos_max.val();
         } else {
-            self.cos_gamma_q.d.next = self.sum_h_rnd.val().get_bits::<16>(13);
+            self.cos_gamma_q.d.next = (bit_cast::<16, 13>(self.hi_h.val().get_bits::<13>(0)) << 3)
+                | bit_cast::<16, 3>(self.lo_h.val().get_bits::<3>(13));
         }
         self.valid_p2.d.next = self.valid_p1.q.val();
         self.valid_out.next = self.valid_p2.q.val();

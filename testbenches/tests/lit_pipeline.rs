@@ -27,11 +27,11 @@ fn quarter_lsb_rounding_errors_are_caught_by_the_twins() {
     }
     #[rustfmt::skip]
     check400("lighting-unit", Options::new().with("coeffs", "fit"), &[
-        Mutant { what: "cosine rounding + ¼ LSB", module: "lighting_unit", from: "localparam  half_lsb = 34'h1000;", to: "localparam  half_lsb = 34'h1800;" },
+        Mutant { what: "cosine rounding + ¼ LSB", module: "lighting_unit", from: "localparam  half_lsb = 32'h1000;", to: "localparam  half_lsb = 32'h1800;" },
     ]);
     #[rustfmt::skip]
     check400("colour-combine", Options::new(), &[
-        Mutant { what: "colour rounding + ¼ LSB", module: "colour_combine", from: "localparam  half_lsb = 34'h400000;", to: "localparam  half_lsb = 34'h600000;" },
+        Mutant { what: "colour rounding + ¼ LSB", module: "colour_combine", from: "localparam  half_lsb = 32'h400000;", to: "localparam  half_lsb = 32'h600000;" },
     ]);
     #[rustfmt::skip]
     check400("power-unit", Options::new().with("power", "exact"), &[
