@@ -76,8 +76,10 @@ pub struct SimArgs {
     #[arg(long, default_value = "normalizer")]
     pub block: String,
     /// Random items to simulate, in the block's unit (`shadecore blocks`): the block's default
-    /// (vectors, pixels, spans or triangles), at most 50 times that (the stimulus is held in
-    /// memory and the VCD of every signal grows with it).
+    /// (vectors, pixels, spans or triangles). Longer runs go in batches of the default size
+    /// through one simulation, in constant memory, with the VCD written as the clocks go; above
+    /// 20 times the default a warning gives the VCD's expected size, above 1000 times the run
+    /// is refused (the VCD of every signal grows with it: about 3 kB per normalizer vector).
     #[arg(long)]
     pub vectors: Option<usize>,
     /// Seed of the stimulus (default: the test runner's seed for "shadecore-sim";
@@ -131,8 +133,11 @@ fn spinner(what: String) -> indicatif::ProgressBar {
     p
 }
 
-/// `sim` simulates at most this many times a block's default number of items.
-pub const SIM_LIMIT_FACTOR: usize = 50;
+/// `sim` simulates at most this many times a block's default number of items (the VCD's
+/// size, not memory, is the limit: the run streams).
+pub const SIM_LIMIT_FACTOR: usize = 1000;
+/// Above this many times the default, `sim` warns about the VCD's size.
+pub const SIM_WARN_FACTOR: usize = 20;
 
 pub fn sim(a: SimArgs) -> anyhow::Result<()> {
     let block = registry::find(&a.block).map_err(|e| anyhow!(e))?;
@@ -144,7 +149,7 @@ pub fn sim(a: SimArgs) -> anyhow::Result<()> {
     let limit = SIM_LIMIT_FACTOR * block.default_items();
     if n > limit {
         bail!(
-            "--vectors {n} is above {}'s limit of {limit} {} ({SIM_LIMIT_FACTOR} × its default: the stimulus is held in memory and the VCD of every signal grows with it, about 3 kB per normalizer vector)",
+            "--vectors {n} is above {}'s limit of {limit} {} ({SIM_LIMIT_FACTOR} × its default: the VCD of every signal grows with the run, about 3 kB per normalizer vector)",
             block.name(),
             block.items()
         );
@@ -160,16 +165,53 @@ pub fn sim(a: SimArgs) -> anyhow::Result<()> {
     if let Some(dir) = vcd.parent().filter(|d| !d.as_os_str().is_empty()) {
         std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
     }
+    if n > SIM_WARN_FACTOR * block.default_items() {
+        eprintln!(
+            "warning: {n} {} is over {SIM_WARN_FACTOR} × {}'s default: the VCD at {} grows with every clock (about 3 kB per normalizer vector)",
+            block.items(),
+            block.name(),
+            vcd.display()
+        );
+    }
     let t = std::time::Instant::now();
-    let spin = spinner(format!(
-        "sim {}: {n} {}, checked against twin and golden, then the VCD",
-        block.name(),
-        block.items()
-    ));
-    let out = registry::sim_to_vcd(block, &o, n, seed, &vcd).map_err(|e| anyhow!(e));
-    spin.finish_and_clear();
+    let bar = indicatif::ProgressBar::new(n as u64).with_style(
+        indicatif::ProgressStyle::with_template(&format!(
+            "sim {} [{{bar:40}}] {{pos}}/{{len}} {} {{msg}} {{elapsed}} (eta {{eta}})",
+            block.name(),
+            block.items()
+        ))
+        .expect("static template")
+        .progress_chars("=> "),
+    );
+    let per = block.default_items().max(1) as u64;
+    let mut batches = 0u64;
+    let out = block
+        .sim_stream(&o, n, seed, Some(&vcd), &mut |clocks| {
+            batches += 1;
+            bar.set_position((batches * per).min(n as u64));
+            bar.set_message(format!("({clocks} clocks)"));
+        })
+        .map_err(|e| anyhow!(e));
+    bar.finish_and_clear();
     let out = out?;
-    crate::out!("{}", out.report)?;
+    crate::outln!(
+        "[{}] {} clocks in {} batch{}, seed {}",
+        out.name,
+        out.cycles,
+        out.batches,
+        if out.batches == 1 { "" } else { "es" },
+        out.seed
+    )?;
+    for p in &out.ports {
+        crate::outln!(
+            "  {:<12} checked {:>8}  max |err| {:.3e} (cycle {})  rms {:.3e}",
+            p.name,
+            p.checked,
+            p.max_abs,
+            p.worst_cycle,
+            p.rms()
+        )?;
+    }
     crate::outln!(
         "{}: {n} {} checked every clock against the bit-exact twin and the golden model (latency {}), seed {seed}, {:.2?}",
         block.name(),
@@ -177,7 +219,7 @@ pub fn sim(a: SimArgs) -> anyhow::Result<()> {
         block.latency(),
         t.elapsed()
     )?;
-    crate::outln!("VCD: {}", out.vcd.display())?;
+    crate::outln!("VCD: {}", vcd.display())?;
     Ok(())
 }
 

@@ -88,6 +88,18 @@ pub trait Entry: Sync {
     fn simulate(&self, o: &Options, rows: &[Vec<u64>]) -> Result<Vec<Vec<u64>>, String>;
     /// Replay `rows` writing a VCD of the whole run (every signal) to `path`.
     fn write_vcd(&self, o: &Options, rows: &[Vec<u64>], path: &Path) -> Result<(), String>;
+    /// `n` seeded items in constant memory: batches of the block's default size (batch k
+    /// seeded `seed + k`) driven back to back into one simulation, checked every clock against
+    /// the twin (exactly) and the golden model, the VCD written to `vcd` as the clocks go;
+    /// `progress(clocks)` after each batch. A failure's VCD is that file.
+    fn sim_stream(
+        &self,
+        o: &Options,
+        n: usize,
+        seed: u64,
+        vcd: Option<&Path>,
+        progress: &mut dyn FnMut(u64),
+    ) -> Result<crate::harness::StreamReport, String>;
 }
 
 /// The [`Entry`] of a block type.
@@ -197,6 +209,58 @@ impl<B: Bench> Entry for Registered<B> {
     fn write_vcd(&self, o: &Options, rows: &[Vec<u64>], path: &Path) -> Result<(), String> {
         let dut = B::build(&B::Params::from_options(o)?);
         harness::write_vcd_window(dut, rows, 0, rows.len() as u64, path)
+    }
+    fn sim_stream(
+        &self,
+        o: &Options,
+        n: usize,
+        seed: u64,
+        vcd: Option<&Path>,
+        progress: &mut dyn FnMut(u64),
+    ) -> Result<crate::harness::StreamReport, String> {
+        let p = B::Params::from_options(o)?;
+        let per = B::DEFAULT_ITEMS.max(1);
+        let batches = n.div_ceil(per);
+        let first = B::stimulus(&p, per.min(n), seed);
+        let spec = CheckSpec {
+            name: format!("sim-{}", B::NAME),
+            seed,
+            compare: first.compare.clone(),
+        };
+        let mut first = Some(first);
+        let next = |k: usize| {
+            if k >= batches {
+                return None;
+            }
+            let st = match first.take() {
+                Some(st) => st,
+                None => B::stimulus(&p, per.min(n - k * per), seed.wrapping_add(k as u64)),
+            };
+            Some(harness::Batch {
+                rows: st.rows,
+                expected: st.expected,
+            })
+        };
+        let mut twin = B::twin(&p);
+        let writer: Option<Box<dyn std::io::Write>> = match vcd {
+            Some(path) => Some(Box::new(std::io::BufWriter::new(
+                std::fs::File::create(path)
+                    .map_err(|e| format!("cannot create {}: {e}", path.display()))?,
+            ))),
+            None => None,
+        };
+        harness::run_stream(
+            B::build(&p),
+            &spec,
+            next,
+            &mut |row| twin.step(row),
+            writer,
+            progress,
+        )
+        .map_err(|mut f| {
+            f.vcd = vcd.map(Path::to_path_buf);
+            f.to_string()
+        })
     }
 }
 

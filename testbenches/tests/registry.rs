@@ -308,3 +308,45 @@ fn every_block_simulates_and_the_check_can_fail() {
         assert_eq!(f.signal, outs[port].name, "{}", b.name());
     }
 }
+
+/// `shadecore sim` streams: 2 × default + 1 items go in three batches back to back through
+/// one simulation (no reset between them), checked every clock against the twin and the
+/// golden model, the VCD written as the clocks go; only per-port statistics are kept.
+#[test]
+fn every_block_streams_batches_back_to_back() {
+    use testbenches::harness::target_dir;
+    let seed = seed_for("blocks_stream");
+    println!("[blocks_stream] seed {seed}");
+    for b in BLOCKS {
+        let n = 2 * b.default_items() + 1;
+        // The VCD of every signal is large (the pixel pipeline's three batches: about 600 MB):
+        // written for two small blocks, and removed after.
+        let vcd = ["normalizer", "address-block"]
+            .contains(&b.name())
+            .then(|| {
+                let dir = target_dir().join("sims");
+                std::fs::create_dir_all(&dir).unwrap();
+                dir.join(format!("test-stream-{}.vcd", b.name()))
+            });
+        let mut seen = 0;
+        let r = b
+            .sim_stream(&Options::new(), n, seed, vcd.as_deref(), &mut |_| seen += 1)
+            .unwrap_or_else(|e| panic!("{}: {e}", b.name()));
+        assert_eq!((r.batches, seen), (3, 3), "{}", b.name());
+        assert!(r.valid_clocks > 0, "{}: nothing valid", b.name());
+        let size = vcd.as_ref().map(|v| {
+            let size = std::fs::metadata(v).unwrap().len();
+            assert!(size > 100_000, "{}: VCD of {size} bytes", b.name());
+            let _ = std::fs::remove_file(v);
+            size
+        });
+        println!(
+            "{}: {n} {} in {} clocks, {} valid{}",
+            b.name(),
+            b.items(),
+            r.cycles,
+            r.valid_clocks,
+            size.map_or(String::new(), |s| format!("; VCD {} kB", s / 1024))
+        );
+    }
+}
