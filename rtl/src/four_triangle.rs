@@ -21,12 +21,15 @@
 //! Every sub-triangle edge is parallel to a parent edge and half as long, so its DDA
 //! increments (f, r, D) are the parent edge's: three shared triples, loaded once. The lanes
 //! differ by their start registers (b0, e0 per edge; the patent's register/counter pairs for
-//! the sub-triangles' top vertices, and RG10/RG11 for the middle one): the three corner shapes
-//! are translated by half-pixel offsets, which changes which pixel centres they cover, so they
-//! cannot share one error term (see `golden::four_triangle`). Each lane's other and third edge
-//! select the adjacent (T→M) or third (M→B) parent triple (`lK_a_third`, `lK_t_adjacent`):
-//! the middle lane, turned by 180°, takes them the other way round, and a lane whose
-//! adjacent edge holds no row starts on its third edge.
+//! the sub-triangles' top vertices): the three corner shapes are translated by half-pixel
+//! offsets, which changes which pixel centres they cover, so they cannot share one error term
+//! (see `golden::four_triangle`). Each lane's other and third edge select the adjacent (T→M)
+//! or third (M→B) parent triple (`lK_a_third`, `lK_t_adjacent`): the middle lane, turned by
+//! 180°, takes them the other way round, and a lane whose adjacent edge holds no row starts on
+//! its third edge. The patent walks the middle sub-triangle upwards from its bottom point
+//! (RG10, RG11); here it is walked downwards from its top like the others, so that all four
+//! lanes are the same address block and share the fill rule's tie-breaking (walking it
+//! upwards would need the mirrored rule to tile exactly).
 //!
 //! # Ports
 //!
