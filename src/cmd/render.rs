@@ -50,17 +50,17 @@ pub struct Args {
     /// through the simulated RTL, methods in parallel, one pipeline instance each.
     #[arg(long, value_enum, default_value = "both")]
     pub engine: Engine,
-    /// With `--engine rtl`: the Horner units `cubic` goes through — serial (fig. 2.6, one
+    /// With the RTL engine (`rtl`, `both`): the Horner units `cubic` goes through — serial (fig. 2.6, one
     /// multiplier, 3 clocks per pixel) or pipelined (three multipliers, one pixel per clock).
     /// The images are identical; the clock counts differ.
     #[arg(long, value_enum, default_value = "serial")]
     pub horner: Horner,
-    /// With `--engine rtl`: the simulator — rust-hdl (stepped by hand) or verilator (the
+    /// With the RTL engine (`rtl`, `both`): the simulator — rust-hdl (stepped by hand) or verilator (the
     /// exported Verilog, compiled once per block and cached under target/verilator-engine;
     /// the frames are bit-identical).
     #[arg(long, value_enum, default_value = "rust-hdl")]
     pub sim: crate::verilator_engine::Sim,
-    /// With `--engine rtl`: the address block — single (SPEC §5, one address per clock) or
+    /// With the RTL engine (`rtl`, `both`): the address block — single (SPEC §5, one address per clock) or
     /// four-triangle (SPEC §7, four lanes with a BVI each: gouraud and subdivision only).
     /// Default: single, four-triangle for subdivision.
     #[arg(long, value_enum, default_value = "default", hide_default_value = true)]
