@@ -496,8 +496,8 @@ pub fn run(setups: &[FourTriangleSetup]) -> (Vec<FourOutputs>, Vec<usize>) {
     while dones.iter().any(|&d| d < setups.len()) {
         let o = m.outputs();
         out.push(o);
-        for k in 0..4 {
-            dones[k] += o.lanes[k].done as usize;
+        for (d, l) in dones.iter_mut().zip(&o.lanes) {
+            *d += l.done as usize;
         }
         let load = if next < setups.len() && o.ready {
             loads.push(out.len() - 1);

@@ -204,6 +204,9 @@ struct RtlStats {
     seconds: f64,
 }
 
+/// One method's RTL render: its frame and counters, or the error that stopped it.
+type RtlResult = Result<(Frame, RtlStats)>;
+
 /// Rough simulation cost of a method on the rust-hdl engine (clocks × the pipeline's size),
 /// to start the longest first.
 fn rtl_cost(m: Method) -> u32 {
@@ -229,7 +232,7 @@ fn render_rtl_parallel(
     let mut order: Vec<usize> = (0..methods.len()).collect();
     order.sort_by_key(|&i| std::cmp::Reverse(rtl_cost(methods[i])));
     let next = AtomicUsize::new(0);
-    let results: Mutex<Vec<Option<Result<(Frame, RtlStats)>>>> =
+    let results: Mutex<Vec<Option<RtlResult>>> =
         Mutex::new((0..methods.len()).map(|_| None).collect());
     let workers = std::thread::available_parallelism()
         .map_or(1, |n| n.get())
@@ -399,6 +402,13 @@ fn compare_with_golden(
     })
 }
 
+/// A sheet column: the golden tile (label, image) and the RTL tile under it, if any.
+type SheetColumn<'a> = (
+    String,
+    Option<&'a [[u8; 3]]>,
+    Option<(String, &'a [[u8; 3]])>,
+);
+
 /// Write every image (reference, each method with its diff against the reference, the RTL
 /// comparisons, the sheet) and return the per-method reports.
 ///
@@ -417,8 +427,7 @@ fn write_images(
     let reference = &frames.reference;
     save_png(&out.join("reference.png"), w, h, &reference.rgb)?;
     let mut reports = BTreeMap::new();
-    let mut tiles: Vec<(String, Option<&[[u8; 3]]>, Option<(String, &[[u8; 3]])>)> =
-        vec![("reference".into(), Some(&reference.rgb[..]), None)];
+    let mut tiles: Vec<SheetColumn> = vec![("reference".into(), Some(&reference.rgb[..]), None)];
     for (i, &m) in methods.iter().enumerate() {
         let golden = frames.golden[i].as_ref();
         let rtl = frames.rtl[i].as_ref();
