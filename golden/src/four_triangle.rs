@@ -26,7 +26,8 @@
 //! rule is equivalent to moving the sample point by (ε, ε²) with ε → 0⁺, and a point that is in
 //! no line of the subdivision lies in exactly one sub-triangle. Hence the four sub-triangles
 //! tile the parent's pixel set ([`crate::raster::edge_function_pixels`]) exactly: no pixel
-//! twice, none lost (property-tested in `tests/four_triangle.rs` and here).
+//! twice, none lost (tested exhaustively on small triangles here, and on seeded random parents
+//! through the RTL in `testbenches/tests/four_triangle.rs`).
 //!
 //! Rows follow from the same rule: a sub-triangle owns the rows whose centre 2y + 1 lies in
 //! [Y_top, Y_bottom) (doubled), and the other side switches to the third edge on the first row
