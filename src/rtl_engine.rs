@@ -364,6 +364,24 @@ impl FrameWriter {
     }
 }
 
+/// The jobs of the triangles the golden renderer draws (those with a depth plane, i.e. non-zero
+/// area, and a set-up from `job`), in order, with each one's f64 depth plane.
+fn jobs_with_depth<J>(
+    tris: &[ScreenTriangle],
+    mut job: impl FnMut(&ScreenTriangle) -> Result<Option<J>>,
+) -> Result<(Vec<J>, Vec<Plane>)> {
+    let mut jobs = Vec::with_capacity(tris.len());
+    let mut depth = Vec::with_capacity(tris.len());
+    for t in tris {
+        let Some(d) = t.depth_plane() else { continue };
+        if let Some(j) = job(t)? {
+            jobs.push(j);
+            depth.push(d);
+        }
+    }
+    Ok((jobs, depth))
+}
+
 /// Render `tris` with Gouraud shading through the simulated address block and intensity
 /// interpolator into a `width`×`height` frame. `progress` gets its length set to the number
 /// of triangles sent to the hardware and advances as each one's `done` comes out.
@@ -391,15 +409,7 @@ pub fn render_gouraud_rtl_with(
 ) -> Result<RtlRender> {
     check_addresses(tris, width, height)?;
     // Same triangles as the golden renderer: those with a depth plane (non-zero area).
-    let mut jobs = Vec::with_capacity(tris.len());
-    let mut depth = Vec::with_capacity(tris.len());
-    for t in tris {
-        let (Some(d), Some(job)) = (t.depth_plane(), TriangleJob::gouraud(t, ctx)) else {
-            continue;
-        };
-        jobs.push(job);
-        depth.push(d);
-    }
+    let (jobs, depth) = jobs_with_depth(tris, |t| Ok(TriangleJob::gouraud(t, ctx)))?;
     progress.set_length(jobs.len() as u64);
     let mut frame = Frame::new(width, height);
     let mut pipe = match build.sim {
@@ -440,20 +450,11 @@ pub fn render_subdivision_rtl(
 ) -> Result<RtlRender> {
     use pipeline::subdivision::{clock_budget, SubJob, SubPipe};
     check_addresses(tris, width, height)?;
-    let mut jobs = Vec::with_capacity(tris.len());
-    let mut depth = Vec::with_capacity(tris.len());
-    for t in tris {
-        let job = match method {
-            Method::Gouraud => SubJob::gouraud(t, ctx),
-            Method::Subdivision => SubJob::subdivision(t, ctx),
-            m => bail!("the subdivision pipe has no set-up for method {m}"),
-        };
-        let (Some(d), Some(job)) = (t.depth_plane(), job) else {
-            continue;
-        };
-        jobs.push(job);
-        depth.push(d);
-    }
+    let (jobs, depth) = jobs_with_depth(tris, |t| match method {
+        Method::Gouraud => Ok(SubJob::gouraud(t, ctx)),
+        Method::Subdivision => Ok(SubJob::subdivision(t, ctx)),
+        m => bail!("the subdivision pipe has no set-up for method {m}"),
+    })?;
     progress.set_length(jobs.len() as u64);
     progress.set_position(0);
     let mut frame = Frame::new(width, height);

@@ -135,22 +135,12 @@ pub fn gouraud_replay(jobs: &[TriangleJob]) -> Result<Replay> {
 /// The subdivision raster pipe on `jobs`, under Verilator (loads where the four-triangle
 /// block's cycle model is ready, as the rust-hdl run loads them).
 pub fn subdivision_replay(jobs: &[pipeline::subdivision::SubJob]) -> Result<Replay> {
-    use golden::four_triangle::FourTriangleModel;
     use pipeline::subdivision::pipe_row;
-    let mut m = FourTriangleModel::new();
-    let mut rows = Vec::new();
-    let (mut next, mut dones) = (0, [0usize; 4]);
-    while dones.iter().any(|&d| d < jobs.len()) {
-        let o = m.outputs();
-        let load = (o.ready && next < jobs.len()).then(|| &jobs[next]);
-        next += load.is_some() as usize;
-        for (d, l) in dones.iter_mut().zip(&o.lanes) {
-            *d += l.done as usize;
-        }
-        rows.push(pipe_row(load));
-        m.clock(load.map(|j| &j.addr));
-    }
-    rows.extend(std::iter::repeat_n(pipe_row(None), 4));
+    let setups: Vec<_> = jobs.iter().map(|j| j.addr).collect();
+    let rows = golden::four_triangle::schedule(&setups, 4)
+        .into_iter()
+        .map(|(_, load)| pipe_row(load.map(|k| &jobs[k])))
+        .collect();
     record("subdivision-raster", &Options::new(), rows)
 }
 

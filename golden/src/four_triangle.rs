@@ -45,8 +45,8 @@
 //! (b0, e0) register pair per lane and edge, and walks all four lanes in parallel.
 
 use crate::address_block::{AddressBlockModel, AddressOutputs, AddressSetup, EdgeSetup};
-use crate::raster::orientation;
-use crate::types::{EdgeStep, Row, ScreenTriangle, StepType, Walk};
+use crate::raster::{edge_steps, orientation};
+use crate::types::{Row, ScreenTriangle, Walk};
 
 /// A point in doubled coordinates (half-pixel units).
 pub type P2 = (i64, i64);
@@ -208,7 +208,7 @@ pub fn walk(h: &HalfTriangle) -> Walk {
         };
         let edge_steps = match prev {
             None => Vec::new(),
-            Some(p) => steps(x_start - p),
+            Some(p) => edge_steps(x_start - p),
         };
         prev = Some(x_start);
         rows.push(Row {
@@ -220,28 +220,6 @@ pub fn walk(h: &HalfTriangle) -> Walk {
         });
     }
     Walk { rows }
-}
-
-fn steps(dx: i64) -> Vec<EdgeStep> {
-    if dx == 0 {
-        return vec![EdgeStep {
-            step: StepType::Vertical,
-            dx: 0,
-        }];
-    }
-    let s = dx.signum() as i8;
-    let mut v = vec![
-        EdgeStep {
-            step: StepType::Horizontal,
-            dx: s
-        };
-        (dx.unsigned_abs() - 1) as usize
-    ];
-    v.push(EdgeStep {
-        step: StepType::Diagonal,
-        dx: s,
-    });
-    v
 }
 
 /// The DDA set-up of a sub-triangle's edge `upper`→`lower` (doubled, upper.y < lower.y) on
@@ -485,31 +463,45 @@ impl FourTriangleModel {
     }
 }
 
-/// Clock-by-clock outputs of the block walking `setups` back to back (each loaded in the first
-/// clock with `ready`), from the first load to the clock in which every lane has shown its last
-/// triangle's `done`; and the cycle of each load.
-pub fn run(setups: &[FourTriangleSetup]) -> (Vec<FourOutputs>, Vec<usize>) {
+/// The block walking `setups` back to back, each loaded in the first clock with `ready`: per
+/// clock, the outputs and the index of the set-up loaded in that clock (if any), from the
+/// first load to the clock in which every lane has shown its last `done`, then `tail` more
+/// clocks without a load (for the pipelines behind the block to drain).
+pub fn schedule(setups: &[FourTriangleSetup], tail: usize) -> Vec<(FourOutputs, Option<usize>)> {
     let mut m = FourTriangleModel::new();
     let mut out = Vec::new();
-    let mut loads = Vec::new();
     let mut dones = [0usize; 4];
     let mut next = 0;
-    while dones.iter().any(|&d| d < setups.len()) {
+    let mut left = tail;
+    loop {
+        if dones.iter().all(|&d| d >= setups.len()) {
+            if left == 0 {
+                break;
+            }
+            left -= 1;
+        }
         let o = m.outputs();
-        out.push(o);
         for (d, l) in dones.iter_mut().zip(&o.lanes) {
             *d += l.done as usize;
         }
-        let load = if next < setups.len() && o.ready {
-            loads.push(out.len() - 1);
-            next += 1;
-            Some(&setups[next - 1])
-        } else {
-            None
-        };
-        m.clock(load);
+        let load = (o.ready && next < setups.len()).then_some(next);
+        next += load.is_some() as usize;
+        out.push((o, load));
+        m.clock(load.map(|k| &setups[k]));
     }
-    (out, loads)
+    out
+}
+
+/// Clock-by-clock outputs of the block walking `setups` back to back ([`schedule`] without a
+/// tail), and the cycle of each load.
+pub fn run(setups: &[FourTriangleSetup]) -> (Vec<FourOutputs>, Vec<usize>) {
+    let s = schedule(setups, 0);
+    let loads = s
+        .iter()
+        .enumerate()
+        .filter_map(|(c, (_, l))| l.map(|_| c))
+        .collect();
+    (s.into_iter().map(|(o, _)| o).collect(), loads)
 }
 
 /// The pixels of lane `k` in a clock stream, in emission order.

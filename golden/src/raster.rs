@@ -127,7 +127,7 @@ impl EdgeDda {
 
 /// Edge steps of a working-edge move by `dx` pixels: `[V]` for 0, otherwise `|dx| − 1`
 /// horizontal steps and one diagonal, all in the direction of `dx`.
-fn edge_steps(dx: i64) -> Vec<EdgeStep> {
+pub fn edge_steps(dx: i64) -> Vec<EdgeStep> {
     if dx == 0 {
         return vec![EdgeStep {
             step: StepType::Vertical,

@@ -219,14 +219,7 @@ pub fn sim(a: SimArgs) -> anyhow::Result<()> {
         out.seed
     )?;
     for p in &out.ports {
-        crate::outln!(
-            "  {:<12} checked {:>8}  max |err| {:.3e} (cycle {})  rms {:.3e}",
-            p.name,
-            p.checked,
-            p.max_abs,
-            p.worst_cycle,
-            p.rms()
-        )?;
+        crate::outln!("  {p}")?;
     }
     crate::outln!(
         "{}: {n} {} checked every clock against the bit-exact twin and the golden model (latency {}), seed {seed}, {:.2?}",

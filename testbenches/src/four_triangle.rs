@@ -63,22 +63,10 @@ pub fn row_outputs(r: &[u64]) -> FourOutputs {
 /// first clock the model is ready), up to the clock in which every lane has shown its last
 /// `done`.
 pub fn stimulus(setups: &[FourTriangleSetup]) -> (Vec<Vec<u64>>, Vec<FourOutputs>) {
-    let mut m = FourTriangleModel::new();
-    let (mut rows, mut expected) = (Vec::new(), Vec::new());
-    let mut dones = [0usize; 4];
-    let mut next = 0;
-    while dones.iter().any(|&d| d < setups.len()) {
-        let o = m.outputs();
-        let load = (o.ready && next < setups.len()).then(|| &setups[next]);
-        next += load.is_some() as usize;
-        for (d, l) in dones.iter_mut().zip(&o.lanes) {
-            *d += l.done as usize;
-        }
-        rows.push(setup_row(load));
-        expected.push(o);
-        m.clock(load);
-    }
-    (rows, expected)
+    golden::four_triangle::schedule(setups, 0)
+        .into_iter()
+        .map(|(o, load)| (setup_row(load.map(|k| &setups[k])), o))
+        .unzip()
 }
 
 /// Run the RTL on the model's stimulus, every output port compared exactly every clock.

@@ -117,17 +117,23 @@ impl std::fmt::Display for Report {
             self.name, self.cycles, self.seed
         )?;
         for p in &self.ports {
-            writeln!(
-                f,
-                "  {:<12} checked {:>8}  max |err| {:.3e} (cycle {})  rms {:.3e}",
-                p.name,
-                p.checked,
-                p.max_abs,
-                p.worst_cycle,
-                p.rms()
-            )?;
+            writeln!(f, "  {p}")?;
         }
         Ok(())
+    }
+}
+
+impl std::fmt::Display for PortStats {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "{:<12} checked {:>8}  max |err| {:.3e} (cycle {})  rms {:.3e}",
+            self.name,
+            self.checked,
+            self.max_abs,
+            self.worst_cycle,
+            self.rms()
+        )
     }
 }
 

@@ -52,26 +52,11 @@ fn zero_job(t: &ScreenTriangle) -> SubJob {
 /// Input rows (loads where the cycle model is ready) and the model's outputs per clock, up to
 /// one BVI latency past the last lane's last `done`.
 fn schedule(jobs: &[SubJob]) -> (Vec<Vec<u64>>, Vec<FourOutputs>) {
-    let mut m = FourTriangleModel::new();
-    let (mut rows, mut addr) = (Vec::new(), Vec::new());
-    let mut dones = [0usize; LANES];
-    let mut next = 0;
-    let mut tail = IntensityInterpolator::LATENCY + 1;
-    while tail > 0 {
-        if dones.iter().all(|&d| d == jobs.len()) {
-            tail -= 1;
-        }
-        let o = m.outputs();
-        let load = (o.ready && next < jobs.len()).then(|| &jobs[next]);
-        next += load.is_some() as usize;
-        for (d, l) in dones.iter_mut().zip(&o.lanes) {
-            *d += l.done as usize;
-        }
-        rows.push(pipe_row(load));
-        addr.push(o);
-        m.clock(load.map(|j| &j.addr));
-    }
-    (rows, addr)
+    let setups: Vec<_> = jobs.iter().map(|j| j.addr).collect();
+    golden::four_triangle::schedule(&setups, IntensityInterpolator::LATENCY + 1)
+        .into_iter()
+        .map(|(o, load)| (pipe_row(load.map(|k| &jobs[k])), o))
+        .unzip()
 }
 
 /// The pipe's stimulus with golden expectations (see the module doc).
