@@ -111,7 +111,6 @@ crate::hw_block! {
         in { valid_in: Bit, cos_phi: Bits<16>, cos_gamma: Bits<16>, x: Bits<12>, y: Bits<12> }
         out { valid_out: Bit, cos_phi_out: Bits<16>, cos_gamma_out: Bits<16> }
         enable: Constant<Bit> = Constant::new(p.enable),
-        one: Constant<Bits<16>> = Constant::new(0x8000.into()),
         // B1: PROM reads and the inputs carried along.
         // The PROMs hold addresses 0 .. 2^A − 1; address 2^A (cos ≥ 1 − 2^-(A+1), sin = 0)
         // is the registered `top` flag instead, which keeps SINγ at 16 block RAMs, not 32.

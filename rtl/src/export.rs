@@ -2,7 +2,9 @@
 //!
 //! rust-hdl names the top module `top` and every sub-module by its path (`top$scale$f`).
 //! [`verilog`] renames that prefix to the block's module name ([`module_name`] of [`RtlBlock::NAME`]) so the
-//! files of several blocks can be read into one tool without collisions.
+//! files of several blocks can be read into one tool without collisions, and writes the path
+//! separator `$` as `__` (`normalizer__scale__f`): module names with `$` need escaping in some
+//! tools and fail `verilator -Wall`.
 
 use std::path::{Path, PathBuf};
 
@@ -17,8 +19,9 @@ pub fn raw_verilog<B: Block>(mut uut: B) -> Result<String, String> {
     Ok(generate_verilog(&uut))
 }
 
-/// Rename the module prefix `top` (module names `top`, `top$...`) to `name`. Identifiers are
-/// matched whole, so signals that merely contain `top` are untouched.
+/// Rename the module prefix `top` (module names `top`, `top$...`) to `name`, with every `$` of a
+/// module name written `__`. Identifiers are matched whole, so signals that merely contain
+/// `top` (and signal names such as `mul$a`) are untouched.
 pub fn rename_top(verilog: &str, name: &str) -> String {
     let is_ident = |c: char| c.is_ascii_alphanumeric() || c == '_' || c == '$';
     let mut out = String::with_capacity(verilog.len() + 1024);
@@ -26,7 +29,7 @@ pub fn rename_top(verilog: &str, name: &str) -> String {
     let flush = |ident: &mut String, out: &mut String| {
         if ident == "top" || ident.starts_with("top$") {
             out.push_str(name);
-            out.push_str(&ident[3..]);
+            out.push_str(&ident[3..].replace('$', "__"));
         } else {
             out.push_str(ident);
         }
@@ -63,6 +66,23 @@ pub fn verilog<B: RtlBlock>(params: &B::Params) -> Result<String, String> {
     Ok(format!("{header}{}", rename_top(&raw, &module)))
 }
 
+/// The Verilator configuration that waives, with a reason for each, the `-Wall` warnings the
+/// exported Verilog has by design (`rtl/lint/verilator_waivers.vlt`): `verilator --lint-only
+/// -Wall <this file> <module>.v` reports nothing on any block (test `verilog_lint`).
+pub const VERILATOR_WAIVERS: &str = include_str!("../lint/verilator_waivers.vlt");
+
+/// File name [`write_waivers`] uses.
+pub const WAIVERS_FILE: &str = "shadecore_waivers.vlt";
+
+/// Write [`VERILATOR_WAIVERS`] to `<dir>/`[`WAIVERS_FILE`]; returns the path.
+pub fn write_waivers(dir: &Path) -> Result<PathBuf, String> {
+    std::fs::create_dir_all(dir).map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
+    let path = dir.join(WAIVERS_FILE);
+    std::fs::write(&path, VERILATOR_WAIVERS)
+        .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+    Ok(path)
+}
+
 /// Write `text` (the Verilog of block `name`) to `<dir>/<module>.v`; returns the path.
 pub fn write(name: &str, text: &str, dir: &Path) -> Result<PathBuf, String> {
     std::fs::create_dir_all(dir).map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
@@ -81,7 +101,7 @@ mod tests {
         let r = rename_top(v, "norm");
         assert_eq!(
             r,
-            "module norm(a);\n norm$x x(.d(top_sig));\nendmodule // norm$x\nwire stop$top;"
+            "module norm(a);\n norm__x x(.d(top_sig));\nendmodule // norm__x\nwire stop$top;"
         );
     }
 }

@@ -134,6 +134,11 @@ pub fn export(a: ExportArgs) -> anyhow::Result<()> {
             path.display()
         )?;
     }
+    let waivers = rtl::export::write_waivers(&a.out).map_err(|e| anyhow!(e))?;
+    crate::outln!(
+        "lint: verilator --lint-only -Wall {} <module>.v reports nothing (each waiver says why)",
+        waivers.display()
+    )?;
     Ok(())
 }
 

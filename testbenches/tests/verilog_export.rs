@@ -118,9 +118,9 @@ fn broken_export_is_caught() {
     #[rustfmt::skip]
     let mutants = [
         Mutant { what: "K sum: + → -", module: "", from: "k_full$d = sq_x$q + sq_y$q", to: "k_full$d = sq_x$q - sq_y$q" },
-        Mutant { what: "sign correction of Mul6 (x·f): - → +", module: "normalizer$scale$lane_x$mul", from: "p = raw - corr", to: "p = raw + corr" },
-        Mutant { what: "K rounding: + → -", module: "normalizer$scale$k_round", from: "rounded = wide + half_lsb", to: "rounded = wide - half_lsb" },
-        Mutant { what: "K saturation test: | → &", module: "normalizer$scale$k_round", from: "|wide[(32'h1d)+:(3)] | &wide[", to: "|wide[(32'h1d)+:(3)] & &wide[" },
+        Mutant { what: "sign correction of Mul6 (x·f): - → +", module: "normalizer__scale__lane_x__mul", from: "p = raw - corr", to: "p = raw + corr" },
+        Mutant { what: "K rounding: + → -", module: "normalizer__scale__k_round", from: "rounded = wide + half_lsb", to: "rounded = wide - half_lsb" },
+        Mutant { what: "K saturation test: | → &", module: "normalizer__scale__k_round", from: "|wide[(29)+:(3)] | &wide[", to: "|wide[(29)+:(3)] & &wide[" },
         Mutant { what: "halving c2·K: >> → <<", module: "", from: "c2k_half = c2k$q >> 32'h1", to: "c2k_half = c2k$q << 32'h1" },
         Mutant { what: "Horner add: + → -", module: "", from: "f_wide = c0_rnd + t1k_half", to: "f_wide = c0_rnd - t1k_half" },
     ];
@@ -162,7 +162,7 @@ fn twin_catches_a_quarter_lsb_output_bias() {
     run(&good, "quarter-lsb-control").unwrap_or_else(|e| panic!("control: {e}"));
     let mut bad = good.clone();
     for lane in ["x", "y", "z"] {
-        let module = format!("normalizer$scale$lane_{lane}$round");
+        let module = format!("normalizer__scale__lane_{lane}__round");
         let (from, to) = ("half_lsb = 32'h4000", "half_lsb = 32'h6000");
         bad = Mutant {
             what: "¼-LSB bias",

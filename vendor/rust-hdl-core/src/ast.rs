@@ -675,6 +675,14 @@ pub struct VerilogLiteral {
 }
 
 impl VerilogLiteral {
+    /// This literal's value at `bits` bits, if it is non-negative and fits (shadecore patch:
+    /// literals sized to their context, so the Verilog is lint-clean).
+    pub fn resized(&self, bits: usize) -> Option<VerilogLiteral> {
+        if bits == 0 || self.val.sign() == Sign::Minus || self.val.bits() > bits as u64 {
+            return None;
+        }
+        Some(VerilogLiteral { val: self.val.clone(), bits })
+    }
     pub fn as_usize(&self) -> usize {
         let m = self.val.to_u32_digits();
         assert!(m.0 != Sign::Minus);

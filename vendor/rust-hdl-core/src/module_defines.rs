@@ -7,7 +7,7 @@ use crate::code_writer::CodeWriter;
 use crate::named_path::NamedPath;
 use crate::probe::Probe;
 use crate::type_descriptor::{TypeDescriptor, TypeKind};
-use crate::verilog_gen::{verilog_combinatorial, verilog_link_extraction};
+use crate::verilog_gen::{verilog_combinatorial_sized, verilog_link_extraction};
 use std::collections::BTreeMap;
 
 #[derive(Clone, Debug, Default)]
@@ -415,7 +415,11 @@ impl ModuleDefines {
         match &module_details.code {
             Verilog::Combinatorial(code) => {
                 io.add("\n// Update code");
-                io.add(verilog_combinatorial(code));
+                let widths = atoms
+                    .iter()
+                    .map(|x| (x.name.clone(), x.width))
+                    .collect();
+                io.add(verilog_combinatorial_sized(code, widths));
             }
             Verilog::Custom(code) => {
                 io.add("\n// Update code (custom)");

@@ -20,6 +20,9 @@ struct VerilogCodeGenerator {
     io: CodeWriter,
     loops: Vec<LoopVariable>,
     links: Vec<VerilogLink>,
+    // shadecore patch: the declared width of every signal of the module, so that literals and
+    // casts are emitted at the width the simulation gives them (lint-clean, same semantics).
+    widths: std::collections::HashMap<String, usize>,
 }
 
 impl VerilogCodeGenerator {
@@ -83,9 +86,215 @@ pub fn verilog_link_extraction(code: &VerilogBlock) -> Vec<VerilogLink> {
 }
 
 pub fn verilog_combinatorial(code: &VerilogBlock) -> String {
-    let mut gen = VerilogCodeGenerator::default();
+    verilog_combinatorial_sized(code, Default::default())
+}
+
+/// shadecore patch: [`verilog_combinatorial`] with the widths of the module's signals, so every
+/// literal takes the width of the operand or target it meets and every cast is an explicit
+/// zero-extension (`{k'h0, e}`) or part-select, as the simulator computes them.
+pub fn verilog_combinatorial_sized(
+    code: &VerilogBlock,
+    widths: std::collections::HashMap<String, usize>,
+) -> String {
+    let mut gen = VerilogCodeGenerator {
+        widths,
+        ..Default::default()
+    };
     gen.visit_block(code);
     format!("always @(*) {}\n", gen.to_string())
+}
+
+impl VerilogCodeGenerator {
+    /// The width the simulator gives `e`, where it is fixed by a signal, a cast or the operator.
+    fn width_of(&self, e: &VerilogExpression) -> Option<usize> {
+        use VerilogExpression as E;
+        use VerilogOp as O;
+        match e {
+            E::Signal(s) => self.widths.get(&self.ident_fixup(s)).copied(),
+            E::Literal(_) => None,
+            E::Cast(_, w) => Some(*w),
+            E::Signed(a) | E::Unsigned(a) | E::Paren(a) => self.width_of(a),
+            E::Binary(l, op, r) => match op {
+                O::Add | O::Sub | O::BitXor | O::BitAnd | O::BitOr => {
+                    self.width_of(l).or_else(|| self.width_of(r))
+                }
+                O::Mul => match (self.width_of(l), self.width_of(r)) {
+                    (Some(a), Some(b)) => Some(a + b),
+                    _ => None,
+                },
+                O::Shl | O::Shr => self.width_of(l),
+                O::LogicalAnd
+                | O::LogicalOr
+                | O::Eq
+                | O::Lt
+                | O::Le
+                | O::Ne
+                | O::Ge
+                | O::Gt => Some(1),
+            },
+            E::Unary(op, r) => match op {
+                VerilogOpUnary::Not | VerilogOpUnary::Neg => self.width_of(r),
+                _ => Some(1),
+            },
+            E::Index(..) => Some(1),
+            E::Slice(_, w, _) => Some(*w),
+            E::IndexReplace(s, _, _) => self.width_of(s),
+        }
+    }
+
+    /// Emit `e` where its context has width `ctx` (None: self-determined).
+    fn emit(&mut self, e: &VerilogExpression, ctx: Option<usize>) {
+        use VerilogExpression as E;
+        use VerilogOp as O;
+        match e {
+            E::Literal(v) => match ctx.and_then(|w| v.resized(w)) {
+                Some(sized) => self.io.write(sized.to_string()),
+                None => self.io.write(v.to_string()),
+            },
+            E::Signal(s) => self.io.write(self.ident_fixup(s)),
+            E::Paren(x) => {
+                self.io.write("(");
+                self.emit(x, ctx);
+                self.io.write(")");
+            }
+            E::Signed(a) => {
+                self.io.write("$signed(");
+                self.emit(a, ctx);
+                self.io.write(")");
+            }
+            E::Unsigned(a) => {
+                self.io.write("$unsigned(");
+                self.emit(a, ctx);
+                self.io.write(")");
+            }
+            E::Cast(a, w) => self.emit_cast(a, *w),
+            E::Binary(l, op, r) => {
+                let (lc, rc) = match op {
+                    O::Add | O::Sub | O::BitXor | O::BitAnd | O::BitOr => {
+                        let w = self.width_of(l).or_else(|| self.width_of(r)).or(ctx);
+                        (w, w)
+                    }
+                    O::Mul => (
+                        self.width_of(l).or_else(|| self.width_of(r)),
+                        self.width_of(r).or_else(|| self.width_of(l)),
+                    ),
+                    O::Shl | O::Shr => (self.width_of(l).or(ctx), None),
+                    O::Eq | O::Lt | O::Le | O::Ne | O::Ge | O::Gt => {
+                        let w = self.width_of(l).or_else(|| self.width_of(r));
+                        (w, w)
+                    }
+                    O::LogicalAnd | O::LogicalOr => (Some(1), Some(1)),
+                };
+                self.emit(l, lc);
+                self.io.write(format!(" {} ", op_text(op)));
+                self.emit(r, rc);
+            }
+            E::Unary(op, r) => {
+                self.io.write(match op {
+                    VerilogOpUnary::Not => "~",
+                    VerilogOpUnary::Neg => "-",
+                    VerilogOpUnary::All => "&",
+                    VerilogOpUnary::Any => "|",
+                    VerilogOpUnary::Xor => "^",
+                });
+                match op {
+                    VerilogOpUnary::Not | VerilogOpUnary::Neg => self.emit(r, ctx),
+                    _ => self.emit(r, None),
+                }
+            }
+            E::Index(a, b) => {
+                self.emit(a, None);
+                self.io.write("[");
+                self.emit_index(b);
+                self.io.write("]");
+            }
+            E::Slice(sig, width, offset) => {
+                self.emit(sig, None);
+                self.io.write("[(");
+                self.emit_index(offset);
+                self.io.write(format!(")+:({})]", width));
+            }
+            E::IndexReplace(sig, ndx, val) => {
+                self.visit_index_replace(sig, ndx, val);
+            }
+        }
+    }
+
+    /// A bit index or part-select offset: a constant is written as a plain decimal number.
+    fn emit_index(&mut self, e: &VerilogExpression) {
+        match e {
+            VerilogExpression::Literal(v) if v.resized(32).is_some() => {
+                self.io.write(format!("{}", v.as_usize()))
+            }
+            _ => self.emit(e, None),
+        }
+    }
+
+    /// `bit_cast` to `w` bits: zero-extension by concatenation, truncation by part-select.
+    fn emit_cast(&mut self, a: &VerilogExpression, w: usize) {
+        use VerilogExpression as E;
+        match self.width_of(a) {
+            Some(x) if x == w => {
+                self.io.write("(");
+                self.emit(a, Some(x));
+                self.io.write(")");
+            }
+            Some(x) if x < w => {
+                self.io.write(format!("{{{}'h0, ", w - x));
+                self.emit(a, Some(x));
+                self.io.write("}");
+            }
+            Some(_) => match a {
+                E::Paren(inner) => self.emit_cast(inner, w),
+                E::Signal(_) => {
+                    self.emit(a, None);
+                    if w == 1 {
+                        self.io.write("[0]");
+                    } else {
+                        self.io.write(format!("[{}:0]", w - 1));
+                    }
+                }
+                E::Slice(sig, _, offset) => {
+                    self.emit(sig, None);
+                    self.io.write("[(");
+                    self.emit_index(offset);
+                    self.io.write(format!(")+:({})]", w));
+                }
+                _ => {
+                    let mask = (BigUint::from(1_u32) << w) - 1_u32;
+                    self.io.write("((");
+                    self.emit(a, None);
+                    self.io.write(format!(") & {}'h{:x})", w, mask))
+                }
+            },
+            None => {
+                self.io.write("(");
+                self.emit(a, Some(w));
+                self.io.write(")");
+            }
+        }
+    }
+}
+
+fn op_text(o: &VerilogOp) -> &'static str {
+    match o {
+        VerilogOp::Add => "+",
+        VerilogOp::Sub => "-",
+        VerilogOp::Mul => "*",
+        VerilogOp::LogicalAnd => "&&",
+        VerilogOp::LogicalOr => "||",
+        VerilogOp::BitXor => "^",
+        VerilogOp::BitAnd => "&",
+        VerilogOp::BitOr => "|",
+        VerilogOp::Shl => "<<",
+        VerilogOp::Shr => ">>",
+        VerilogOp::Eq => "==",
+        VerilogOp::Lt => "<",
+        VerilogOp::Le => "<=",
+        VerilogOp::Ne => "!=",
+        VerilogOp::Ge => ">=",
+        VerilogOp::Gt => ">",
+    }
 }
 
 impl VerilogVisitor for VerilogCodeGenerator {
@@ -121,7 +330,7 @@ impl VerilogVisitor for VerilogCodeGenerator {
         self.io.write("[(");
         self.visit_expression(offset);
         self.io.write(format!(")+:({})] = ", width));
-        self.visit_expression(replacement);
+        self.emit(replacement, Some(*width));
         self.io.writeln(";");
     }
 
@@ -226,8 +435,13 @@ impl VerilogVisitor for VerilogCodeGenerator {
     fn visit_assignment(&mut self, l: &VerilogExpression, r: &VerilogExpression) {
         self.visit_expression(l);
         self.io.write(" = ");
-        self.visit_expression(r);
+        let w = self.width_of(l);
+        self.emit(r, w);
         self.io.writeln(";");
+    }
+
+    fn visit_expression(&mut self, e: &VerilogExpression) {
+        self.emit(e, None);
     }
 
     fn visit_paren(&mut self, e: &VerilogExpression) {
