@@ -197,7 +197,10 @@ pub fn address_outputs(
         let load = (replay.ready() && next < setups.len()).then(|| &setups[next]);
         next += load.is_some() as usize;
         replay
-            .step(&pipeline::gouraud::setup_row(load), &mut row)
+            .step(
+                &testbenches::address_block::address_row(load, false),
+                &mut row,
+            )
             .map_err(|e| anyhow!(e))?;
         let o = row_outputs(&row);
         dones += o.done as usize;

@@ -287,7 +287,13 @@ impl AddressBlockModel {
 
     /// The outputs during the current clock (they depend on registers only).
     pub fn outputs(&self) -> AddressOutputs {
-        let busy = self.p_busy;
+        self.outputs_held(false)
+    }
+
+    /// The outputs during the current clock with the `hold` input at `hold`: a held clock
+    /// shows no event (the pending one is shown in the next clock without `hold`).
+    pub fn outputs_held(&self, hold: bool) -> AddressOutputs {
+        let busy = self.p_busy && !hold;
         AddressOutputs {
             ready: self.ready(),
             valid: busy && self.p_pix,
@@ -304,14 +310,23 @@ impl AddressBlockModel {
     /// One rising clock edge. `load` is sampled only when [`Self::ready`] is high (otherwise
     /// ignored, as the hardware does).
     pub fn clock(&mut self, load: Option<&AddressSetup>) {
+        self.clock_held(load, false)
+    }
+
+    /// [`Self::clock`] with the `hold` input: while held the row counter stage keeps its event
+    /// and takes no record; the edge stage may still fill an empty buffer, and a load is
+    /// accepted as usual.
+    pub fn clock_held(&mut self, load: Option<&AddressSetup>, hold: bool) {
         let p_more = self.p_busy && self.p_pix && self.p_ctr != 0;
-        let nb_take = self.nb_valid && !p_more;
+        let nb_take = self.nb_valid && !p_more && !hold;
         let e_fire = self.e_busy && (!self.nb_valid || nb_take);
         let load = load.filter(|_| self.ready());
 
         // Row counter stage (reads the buffer before E overwrites it).
         let nb = self.nb;
-        if p_more {
+        if hold {
+            // P keeps its event.
+        } else if p_more {
             self.p_x = if self.p_dir_neg {
                 self.p_x.wrapping_sub(1)
             } else {

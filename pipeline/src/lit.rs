@@ -23,8 +23,10 @@ use rtl::sim::Stepper;
 
 use crate::gouraud::{row_setup, setup_row, PipeStats};
 
-/// Input words per row: load + 19 address + 12 normal + 4 depth + 16 registers.
-pub const ROW_WIDTH: usize = 52;
+/// Input words per row: load + 19 address + 12 normal + 4 depth + 16 registers + hold.
+pub const ROW_WIDTH: usize = 53;
+/// Where `hold` (the address block's stall) is.
+pub const HOLD_AT: usize = 52;
 /// Where the normal words start in a row.
 pub const NORMAL_AT: usize = 20;
 /// Where the depth words start.
@@ -164,6 +166,7 @@ pub fn lit_row(job: Option<&LitJob>, regs: &ShadingRegs) -> Vec<u64> {
     }
     row.extend(channel(job.map_or(&z[0], |j| &j.depth)));
     row.extend(regs.row());
+    row.push(0);
     debug_assert_eq!(row.len(), ROW_WIDTH);
     row
 }

@@ -40,8 +40,9 @@
 //! | `t_b0 t_e0 t_f t_r t_d`        | same     | third edge, from row `y_switch`                 |
 //! | `y_top`, `rows`, `y_switch`    | 12 each  | first line, number of lines, switch line        |
 //! | `dir_neg`                      | 1        | lines run towards −x (working edge on the right)|
+//! | `hold`                         | 1        | stall: no event this clock, P keeps it for the next (any clock) |
 //!
-//! Outputs (all registered, i.e. functions of flip-flops only):
+//! Outputs (functions of flip-flops only, except that `hold` gates the event ports):
 //!
 //! | port         | bits | meaning                                                            |
 //! |--------------|------|--------------------------------------------------------------------|
@@ -66,7 +67,13 @@
 //! Latency load → first event: 3 clocks. Throughput: one event per clock; a triangle takes
 //! Σ max(len, 1) clocks over its rows. `ready` rises once E has produced the last row and P has
 //! taken the first record, so the next triangle's latency hides behind the current one's last
-//! rows. Overflow: none for set-up values in range (all counters are exact modulo their widths).
+//! rows. **Stall:** while `hold` is high the block shows no event (`valid`, `row_start`,
+//! `line_start`, `carry`, `done` low; `x`, `y`, `step` 0) and P keeps the event it would have
+//! shown; E still fills the one-row buffer, and a load is still accepted on `load & ready`.
+//! The event stream with stalls is the stream without them with empty clocks inserted
+//! (the fragment stream's back-pressure in `pixel-stream` uses this). `hold` reaches the
+//! event ports through one AND gate (no register): drive it from a register.
+//! Overflow: none for set-up values in range (all counters are exact modulo their widths).
 //! Error budget: exact (integer).
 
 use crate::line_interpolator::LineInterpolator;
@@ -96,7 +103,7 @@ crate::hw_block! {
         summary: "one triangle's set-up in, its pixel addresses and step types out (SPEC §5)",
         latency: 3 => "load to the first event, one address per clock",
         multipliers: 0,
-        in { load: Bit, address_setup_ports! }
+        in { load: Bit, address_setup_ports!, hold: Bit }
         out {
             ready: Bit, valid: Bit, x: Bits<12>, y: Bits<12>, step: Bits<2>,
             line_start: Bit, row_start: Bit, carry: Bit, done: Bit,
@@ -139,6 +146,8 @@ crate::hw_block! {
         rec_x: Signal<Local, Bits<12>>, rec_len: Signal<Local, Bits<12>>,
         /// nb_len ≠ 0.
         nb_nonempty: Signal<Local, Bit>,
+        /// P shows its event this clock (busy and not held).
+        p_show: Signal<Local, Bit>,
     }
 }
 
@@ -157,7 +166,9 @@ impl Logic for AddressBlock {
 
         // Handshake between the stages.
         self.p_more.next = self.p_busy.q.val() & self.p_pix.q.val() & (self.p_ctr.q.val() != 0);
-        self.nb_take.next = self.nb_valid.q.val() & !self.p_more.val();
+        // `hold`: P keeps its event (shown as no event) and takes nothing; E may still fill the
+        // one-row buffer.
+        self.nb_take.next = self.nb_valid.q.val() & !self.p_more.val() & !self.hold.val();
         self.e_fire.next = self.e_busy.q.val() & (!self.nb_valid.q.val() | self.nb_take.val());
         self.e_has_row.next = self.e_rows_left.q.val() != 0;
         self.ready_now.next = !self.e_busy.q.val() & !self.wait_first.q.val();
@@ -198,9 +209,11 @@ impl Logic for AddressBlock {
         }
         self.other.advance.next = self.e_fire.val() & self.e_has_row.val();
 
-        // P: row counter stage.
+        // P: row counter stage (frozen while `hold`).
         self.nb_nonempty.next = self.nb_len.q.val() != 0;
-        if self.p_more.val() {
+        if self.hold.val() {
+            self.p_busy.d.next = self.p_busy.q.val();
+        } else if self.p_more.val() {
             self.p_x.d.next = self.p_x.q.val() + 1;
             if self.p_dir_neg.q.val() {
                 self.p_x.d.next = self.p_x.q.val() - 1;
@@ -280,20 +293,21 @@ impl Logic for AddressBlock {
             self.t_d_q.d.next = self.t_d.val();
         }
 
-        // Outputs: registers, gated to zero when P shows no event.
+        // Outputs: registers, gated to zero when P shows no event (idle, or held).
+        self.p_show.next = self.p_busy.q.val() & !self.hold.val();
         self.ready.next = self.ready_now.val();
-        self.valid.next = self.p_busy.q.val() & self.p_pix.q.val();
+        self.valid.next = self.p_show.val() & self.p_pix.q.val();
         self.x.next = 0.into();
         self.y.next = 0.into();
         self.step.next = 0.into();
-        if self.p_busy.q.val() {
+        if self.p_show.val() {
             self.x.next = self.p_x.q.val();
             self.y.next = self.p_y.q.val();
             self.step.next = self.p_step.q.val();
         }
-        self.line_start.next = self.p_busy.q.val() & self.p_line_start.q.val();
-        self.row_start.next = self.p_busy.q.val() & self.p_row_start.q.val();
-        self.carry.next = self.p_busy.q.val() & self.p_carry.q.val();
-        self.done.next = self.p_busy.q.val() & self.p_last.q.val() & !self.p_more.val();
+        self.line_start.next = self.p_show.val() & self.p_line_start.q.val();
+        self.row_start.next = self.p_show.val() & self.p_row_start.q.val();
+        self.carry.next = self.p_show.val() & self.p_carry.q.val();
+        self.done.next = self.p_show.val() & self.p_last.q.val() & !self.p_more.val();
     }
 }

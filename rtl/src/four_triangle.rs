@@ -125,6 +125,7 @@ impl Logic for FourTriangle {
 
         // Lane 0.
         self.lane0.load.next = self.load.val() & self.all_ready.val();
+        self.lane0.hold.next = false;
         self.lane0.w_b0.next = self.l0_w_b0.val();
         self.lane0.w_e0.next = self.l0_w_e0.val();
         self.lane0.w_f.next = self.w_f.val();
@@ -167,6 +168,7 @@ impl Logic for FourTriangle {
 
         // Lane 1.
         self.lane1.load.next = self.load.val() & self.all_ready.val();
+        self.lane1.hold.next = false;
         self.lane1.w_b0.next = self.l1_w_b0.val();
         self.lane1.w_e0.next = self.l1_w_e0.val();
         self.lane1.w_f.next = self.w_f.val();
@@ -209,6 +211,7 @@ impl Logic for FourTriangle {
 
         // Lane 2.
         self.lane2.load.next = self.load.val() & self.all_ready.val();
+        self.lane2.hold.next = false;
         self.lane2.w_b0.next = self.l2_w_b0.val();
         self.lane2.w_e0.next = self.l2_w_e0.val();
         self.lane2.w_f.next = self.w_f.val();
@@ -251,6 +254,7 @@ impl Logic for FourTriangle {
 
         // Lane 3.
         self.lane3.load.next = self.load.val() & self.all_ready.val();
+        self.lane3.hold.next = false;
         self.lane3.w_b0.next = self.l3_w_b0.val();
         self.lane3.w_e0.next = self.l3_w_e0.val();
         self.lane3.w_f.next = self.w_f.val();

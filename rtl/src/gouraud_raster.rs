@@ -55,6 +55,7 @@ impl Logic for GouraudRaster {
     fn update(&mut self) {
         clock!(self, clock, addr, bvi, x_p1, y_p1, done_p1);
         self.addr.load.next = self.load.val();
+        self.addr.hold.next = false;
         self.addr.w_b0.next = self.w_b0.val();
         self.addr.w_e0.next = self.w_e0.val();
         self.addr.w_f.next = self.w_f.val();

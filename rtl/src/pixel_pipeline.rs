@@ -21,6 +21,7 @@
 //! | `lx ly lz`, `hx hy hz` | in | unit L and H, signed Q2.14 (frame registers) |
 //! | `n` | in | specular exponent, 10 bits (material register; 1..1000) |
 //! | `amb_r` … `spc_b` | in | colour weights, unsigned Q8.8 (material registers, `colour_combine`) |
+//! | `hold` | in | stall the address block (no event this clock; see `address_block`): the fragment stream gets empty clocks, nothing is lost or repeated |
 //! | `ready` | out | the address block's: a `load` is accepted this clock |
 //! | `valid` | out | a fragment this clock |
 //! | `x`, `y` | out | 12-bit pixel address |
@@ -183,7 +184,7 @@ crate::hw_block! {
         multipliers: 38,
         in {
             load: Bit, address_setup_ports!, normal_setup_ports!, depth_setup_ports!,
-            shading_registers!,
+            shading_registers!, hold: Bit,
         }
         out {
             ready: Bit, valid: Bit, x: Bits<12>, y: Bits<12>, z: Bits<32>,
@@ -231,6 +232,7 @@ impl Logic for PixelPipeline {
             done_p28
         );
         self.addr.load.next = self.load.val();
+        self.addr.hold.next = self.hold.val();
         self.addr.w_b0.next = self.w_b0.val();
         self.addr.w_e0.next = self.w_e0.val();
         self.addr.w_f.next = self.w_f.val();

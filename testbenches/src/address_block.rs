@@ -23,6 +23,16 @@ use std::io::Write;
 
 pub use pipeline::gouraud::setup_row;
 
+/// The address block's input row: `load` with a set-up (or idle), then `hold`.
+pub fn address_row(load: Option<&AddressSetup>, hold: bool) -> Vec<u64> {
+    let mut row = setup_row(load);
+    row.push(hold as u64);
+    row
+}
+
+/// Index of `hold` in [`address_row`].
+pub const HOLD_AT: usize = 20;
+
 /// The output row the model predicts (port order of the `impl_dut!` above).
 pub fn outputs_row(o: &AddressOutputs) -> Vec<u64> {
     vec![
@@ -64,6 +74,11 @@ pub struct ModelRun {
 /// The model's run of `setups`, each loaded in the first clock its `ready` is high, up to and
 /// including the clock showing the last triangle's `done`.
 pub fn stimulus(setups: &[AddressSetup]) -> ModelRun {
+    stimulus_held(setups, |_| false)
+}
+
+/// [`stimulus`] with `hold(clock)` driving the stall input in every clock.
+pub fn stimulus_held(setups: &[AddressSetup], mut hold: impl FnMut(usize) -> bool) -> ModelRun {
     let mut m = AddressBlockModel::new();
     let mut st = ModelRun {
         rows: Vec::new(),
@@ -72,16 +87,17 @@ pub fn stimulus(setups: &[AddressSetup]) -> ModelRun {
     };
     let (mut next, mut dones) = (0, 0);
     while dones < setups.len() {
-        let o = m.outputs();
+        let held = hold(st.rows.len());
+        let o = m.outputs_held(held);
         let load = (o.ready && next < setups.len()).then(|| &setups[next]);
         if load.is_some() {
             st.loads.push(st.rows.len());
             next += 1;
         }
         dones += o.done as usize;
-        st.rows.push(setup_row(load));
+        st.rows.push(address_row(load, held));
         st.expected.push(o);
-        m.clock(load);
+        m.clock_held(load, held);
     }
     st
 }
@@ -137,7 +153,7 @@ pub fn run_reactive(
         // `ready` is a register output: its value for this clock is already settled.
         let load = (s.dut().ready.val() && next < setups.len()).then(|| &setups[next]);
         next += load.is_some() as usize;
-        s.step(&setup_row(load), &mut row)?;
+        s.step(&address_row(load, false), &mut row)?;
         let o = row_outputs(&row);
         dones += o.done as usize;
         out.push(o);
@@ -231,8 +247,17 @@ pub fn triangle_run((rows, expected, compare): TriangleRun) -> registry::Stimulu
 
 /// Address block: the cycle model paces the loads and predicts every port exactly.
 pub fn address_run(jobs: &[TriangleJob]) -> TriangleRun {
+    address_run_held(jobs, &mut crate::stall::StallPattern::never())
+}
+
+/// [`address_run`] with `hold` driven by `stalls` (the registry's stimulus stalls a quarter
+/// of the clocks, and in long stretches).
+pub fn address_run_held(
+    jobs: &[TriangleJob],
+    stalls: &mut crate::stall::StallPattern,
+) -> TriangleRun {
     let setups: Vec<AddressSetup> = jobs.iter().map(|j| j.addr).collect();
-    let st = stimulus(&setups);
+    let st = stimulus_held(&setups, |_| stalls.next_stalled());
     let expected = st
         .expected
         .iter()
@@ -247,8 +272,9 @@ struct AddressRows(AddressBlockModel);
 
 impl Twin for AddressRows {
     fn step(&mut self, r: &[u64]) -> Vec<u64> {
-        let o = outputs_row(&self.0.outputs());
-        self.0.clock(row_setup(r).as_ref());
+        let hold = r[HOLD_AT] != 0;
+        let o = outputs_row(&self.0.outputs_held(hold));
+        self.0.clock_held(row_setup(r).as_ref(), hold);
         o
     }
 }
@@ -258,7 +284,8 @@ impl Bench for AddressBlock {
     const DEFAULT_ITEMS: usize = 20;
     fn stimulus(_: &NoParams, n: usize, seed: u64) -> registry::Stimulus {
         let (jobs, _) = triangle_jobs(seed, n);
-        triangle_run(address_run(&jobs))
+        let mut stalls = crate::stall::StallPattern::new(seed, 0.25);
+        triangle_run(address_run_held(&jobs, &mut stalls))
     }
     fn twin(_: &NoParams) -> Box<dyn Twin> {
         Box::new(AddressRows(AddressBlockModel::new()))

@@ -17,6 +17,7 @@ pub mod quadric_unit;
 pub mod registry;
 pub mod span;
 pub mod span_pipeline;
+pub mod stall;
 pub mod subdivision_raster;
 pub mod synth;
 pub mod tools;

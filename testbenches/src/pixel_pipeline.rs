@@ -91,7 +91,8 @@ impl PipelineTwin {
 
 impl Twin for PipelineTwin {
     fn step(&mut self, r: &[u64]) -> Vec<u64> {
-        let a = self.addr.outputs();
+        let hold = r[pipeline::lit::HOLD_AT] != 0;
+        let a = self.addr.outputs_held(hold);
         let (cv, rgb) = self.colour.outputs();
         let o = vec![
             a.ready as u64,
@@ -138,7 +139,8 @@ impl Twin for PipelineTwin {
         self.x.clock(a.x as u64);
         self.y.clock(a.y as u64);
         self.done.clock(a.done as u64);
-        self.addr.clock(accepted.as_ref().map(|j| &j.addr));
+        self.addr
+            .clock_held(accepted.as_ref().map(|j| &j.addr), hold);
         o
     }
 }
