@@ -17,4 +17,5 @@ pub mod gouraud;
 pub mod lit;
 pub mod replay;
 pub mod span;
+pub mod stream;
 pub mod subdivision;

@@ -66,7 +66,7 @@ pub fn method_options(method: Method) -> Option<Options> {
 }
 
 /// The shading registers of a frame: L, H (signed Q2.14), n, the nine colour weights.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct ShadingRegs {
     pub light: [u64; 3],
     pub half: [u64; 3],

@@ -136,6 +136,61 @@ impl<D: Synth, const N: usize> Logic for Prom<D, N> {
     }
 }
 
+/// A small RAM with synchronous write and asynchronous read (FPGA distributed RAM: ECP5
+/// TRELLIS_DPR16X4 slices, Xilinx LUTRAM): `mem[write_address] ← write_data` on the rising
+/// edge when `write_enable`; `read_data` = `mem[read_address]` at once (also the word written
+/// at the last edge). 2^N words, 0 in the rust-hdl simulation before their first write; the
+/// Verilog leaves them uninitialised, so a reader must not use a word before it is written
+/// (the FIFO in `pixel_stream` gates its output with its `valid`).
+#[derive(LogicBlock)]
+pub struct Lutram<D: Synth, const N: usize> {
+    pub clock: Signal<In, Clock>,
+    pub write_enable: Signal<In, Bit>,
+    pub write_address: Signal<In, Bits<N>>,
+    pub write_data: Signal<In, D>,
+    pub read_address: Signal<In, Bits<N>>,
+    pub read_data: Signal<Out, D>,
+    #[allow(clippy::box_collection)]
+    _mem: Box<Vec<D>>,
+}
+
+impl<D: Synth, const N: usize> Default for Lutram<D, N> {
+    fn default() -> Self {
+        assert!(N <= 8, "a distributed RAM of 2^{N} words is too deep");
+        Self {
+            clock: Signal::default(),
+            write_enable: Signal::default(),
+            write_address: Signal::default(),
+            write_data: Signal::default(),
+            read_address: Signal::default(),
+            read_data: Signal::new_with_default(D::default()),
+            _mem: Box::new(vec![D::default(); 1 << N]),
+        }
+    }
+}
+
+impl<D: Synth, const N: usize> Logic for Lutram<D, N> {
+    fn update(&mut self) {
+        if self.clock.pos_edge() && self.write_enable.val() {
+            let a = self.write_address.val().index();
+            self._mem[a] = self.write_data.val();
+        }
+        self.read_data.next = self._mem[self.read_address.val().index()];
+    }
+    fn connect(&mut self) {
+        self.read_data.connect();
+    }
+    fn hdl(&self) -> Verilog {
+        Verilog::Custom(format!(
+            "reg [{d}:0] mem [0:{last}];\n\n\
+             always @(posedge clock) begin\n   if (write_enable) mem[write_address] <= write_data;\nend\n\n\
+             always @(*) read_data = mem[read_address];",
+            d = D::BITS - 1,
+            last = (1usize << N) - 1,
+        ))
+    }
+}
+
 crate::hw_block! {
     /// Signed Q3.29 → signed Q2.14, for a word that already carries the half output LSB (2¹⁴):
     /// `narrow` = bits 30..15 of `wide` when bits 31 and 30 agree (the value fits [−2, 2)),

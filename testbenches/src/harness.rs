@@ -428,7 +428,9 @@ pub fn run_stream<D: Dut>(
     let valid_ports: Vec<usize> = ports
         .iter()
         .enumerate()
-        .filter(|(_, p)| p.name.starts_with("valid") || p.name.ends_with("_valid"))
+        .filter(|(_, p)| {
+            p.name.starts_with("valid") || p.name.ends_with("_valid") || p.name == "m_axis_tvalid"
+        })
         .map(|(k, _)| k)
         .collect();
     let mut stats: Vec<PortStats> = ports

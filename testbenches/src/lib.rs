@@ -12,6 +12,7 @@ pub mod k_recurrence;
 pub mod lighting_unit;
 pub mod normalizer;
 pub mod pixel_pipeline;
+pub mod pixel_stream;
 pub mod power_unit;
 pub mod quadric_unit;
 pub mod registry;

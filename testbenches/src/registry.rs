@@ -282,6 +282,7 @@ pub static BLOCKS: &[&dyn Entry] = &[
     &entry::<rtl::power_unit::PowerUnit>(),
     &entry::<rtl::brzssk::Brzssk>(),
     &entry::<rtl::pixel_pipeline::PixelPipeline>(),
+    &entry::<rtl::pixel_stream::PixelStream>(),
     &entry::<rtl::cos_v_accumulator::CosVAccumulator>(),
     &entry::<rtl::fast_unit::FastUnit>(),
     &entry::<rtl::span_pipeline::AngularPipeline>(),

@@ -1,0 +1,86 @@
+//! The `pixel-stream` top's streams from the driver's side: set-up records packed with the
+//! one layout table (`rtl::stream_layout`), and fragment beats read back with it.
+
+use rtl::stream_layout::{pack, unpack_fragment, REGISTERS, TRIANGLE};
+
+use crate::lit::{lit_row, LitJob, ShadingRegs, REGS_AT};
+
+/// One set-up word and its `tlast`.
+pub type Word = (u32, bool);
+
+fn with_last(words: Vec<u32>) -> Vec<Word> {
+    let n = words.len();
+    words
+        .into_iter()
+        .enumerate()
+        .map(|(i, w)| (w, i + 1 == n))
+        .collect()
+}
+
+/// The triangle record of `job` (the same field values `pixel-pipeline`'s load row carries).
+pub fn triangle_record(job: &LitJob) -> Vec<Word> {
+    let row = lit_row(Some(job), &ShadingRegs::default());
+    with_last(pack(&TRIANGLE, &row[1..REGS_AT]))
+}
+
+/// The register record of `regs`.
+pub fn register_record(regs: &ShadingRegs) -> Vec<Word> {
+    with_last(pack(&REGISTERS, &regs.row()))
+}
+
+/// A scene's set-up stream: the registers, then every triangle.
+pub fn scene_words(jobs: &[LitJob], regs: &ShadingRegs) -> Vec<Word> {
+    let mut w = register_record(regs);
+    for j in jobs {
+        w.extend(triangle_record(j));
+    }
+    w
+}
+
+/// One fragment beat read back.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Beat {
+    /// A fragment (else the beat carries only its triangle's end).
+    pub pixel: bool,
+    pub x: u32,
+    pub y: u32,
+    pub rgb: [u8; 3],
+    /// Depth word (`m_axis_tuser`), signed Q16.16.
+    pub z: i32,
+    /// The triangle's last event.
+    pub last: bool,
+}
+
+impl Beat {
+    /// The beat of `m_axis_tdata`, `m_axis_tuser`, `m_axis_tlast`.
+    pub fn read(tdata: u64, tuser: u64, tlast: bool) -> Beat {
+        let f = unpack_fragment(tdata as u128);
+        Beat {
+            x: f[0] as u32,
+            y: f[1] as u32,
+            pixel: f[2] != 0,
+            rgb: [f[3] as u8, f[4] as u8, f[5] as u8],
+            z: tuser as u32 as i32,
+            last: tlast,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rtl::stream_layout::{unpack, FRAGMENT};
+
+    #[test]
+    fn records_carry_the_load_row() {
+        let t = golden::types::ScreenTriangle::from_points([(3, 1), (40, 7), (11, 30)]);
+        let job = LitJob::new(&t).unwrap().unwrap();
+        let rec = triangle_record(&job);
+        assert_eq!(rec[0], (1, false));
+        assert!(rec.last().unwrap().1);
+        let payload: Vec<u32> = rec[1..].iter().map(|w| w.0).collect();
+        let row = lit_row(Some(&job), &ShadingRegs::default());
+        assert_eq!(unpack(&TRIANGLE, &payload), row[1..REGS_AT].to_vec());
+        assert_eq!(FRAGMENT[0].name, "x");
+    }
+}

@@ -1,0 +1,464 @@
+//! `pixel-stream`: the lit pixel pipeline (`pixel_pipeline`) behind AXI4-Stream interfaces, the
+//! top an FPGA engineer instantiates: set-up records in on a 32-bit stream, fragments out on a
+//! 64-bit stream with back-pressure. Golden: `pixel-pipeline`'s (the same fragments, in the
+//! same order, whatever the stalls).
+//!
+//! ```text
+//!  s_axis ─► header / word count ─► word bank sw0..sw24 ─┬─ triangle fields ─► PixelPipeline ─► FIFO (32) ─► m_axis
+//!  (32 bit)   (record type, errors)  (one record)         └─ register fields ─► r_* (applied      ▲   │
+//!                                                                                when drained)  hold ◄┘ (FIFO level)
+//! ```
+//!
+//! # Ports
+//! | port | dir | format |
+//! |---|---|---|
+//! | `s_axis_tdata` | in | set-up word, 32 bits (layouts: `rtl::stream_layout`, `rtl/README.md`) |
+//! | `s_axis_tvalid`, `s_axis_tlast` | in | AXI4-Stream; `tlast` on a record's last word |
+//! | `s_axis_tready` | out | a word is accepted on `tvalid & tready` |
+//! | `m_axis_tready` | in | the consumer takes the beat on `tvalid & tready`; may be low for any time |
+//! | `m_axis_tvalid` | out | a beat is offered (held, with its data, until taken) |
+//! | `m_axis_tdata` | out | 64 bits: `x`, `y`, `pixel` (1: a fragment), `red`, `green`, `blue` |
+//! | `m_axis_tuser` | out | the fragment's depth `z`, 32 bits (signed Q16.16 model units) |
+//! | `m_axis_tlast` | out | the beat is its triangle's last event (a beat with `pixel` = 0 carries only that) |
+//! | `error` | out | sticky: a record with an unknown type or the wrong length was dropped |
+//!
+//! # Records (`rtl::stream_layout`, one table for the hardware and the driver)
+//! A header word (bits 3..0: 1 triangle, 2 registers; the other bits 0), then the record's
+//! fields packed LSB first into words, a field never straddling two words: a triangle is 25
+//! payload words (the address block's set-up, the normal planes, the depth plane), the
+//! registers 8 (L, H, n, the colour weights). A record whose `tlast` comes before or after its
+//! length, or with an unknown type, is dropped whole (up to its `tlast`) and sets `error`.
+//!
+//! # Handshake, latency, throughput
+//! - One word bank: while a complete record waits in it, `s_axis_tready` is low. A triangle
+//!   waits for the address block's `ready` (which rises before the current triangle's last
+//!   rows, so the next one's set-up overlaps its walk); a register record waits until every
+//!   triangle loaded before it has left the pipeline (its `done` seen), so no fragment mixes two
+//!   register sets. Registers are 0 after reset: send a register record first.
+//! - Fragments (and triangle ends) enter a 32-entry FIFO. The address block is held (its
+//!   `hold`: no event this clock, none lost) while the FIFO holds more than 3 beats: at most
+//!   `EVENT_TO_FRAGMENT` + 1 = 29 events are then still in flight, so the FIFO never overflows
+//!   and never drops a fragment, and with `m_axis_tready` high it holds at most one beat and
+//!   the address block is never held (fragments per clock as `pixel-pipeline`'s, unless the
+//!   set-up stream is the limit: 26 words per triangle).
+//! - Latency: a triangle record's last word accepted in clock t → its first beat offered in
+//!   clock t + 33 (1 to the load, 31 through `pixel-pipeline`, 1 through the FIFO).
+//!
+//! # Overflow, error budget
+//! None of its own: the FIFO cannot overflow (above), counters are wide enough (`outstanding`
+//! 16 bits: triangles loaded and not finished, at most 2 in practice); the data are
+//! `pixel-pipeline`'s, bit for bit.
+
+use rust_hdl::prelude::*;
+
+use crate::pixel_pipeline::{PipelineParams, PixelPipeline, EVENT_TO_FRAGMENT};
+use crate::primitives::Lutram;
+
+/// FIFO depth (entries) and its address width.
+pub const FIFO_DEPTH: usize = 32;
+const FIFO_BITS: usize = 5;
+/// The FIFO level above which the address block is held.
+pub const HOLD_ABOVE: usize = FIFO_DEPTH - EVENT_TO_FRAGMENT - 1;
+
+crate::hw_block! {
+    /// The lit pixel pipeline with AXI4-Stream set-up and fragment streams (see the header).
+    pub struct PixelStream(clock) as "pixel-stream" {
+        summary: "AXI4-Stream top of the lit pixel pipeline: 32-bit set-up records in, 64-bit fragment beats out with back-pressure (a FIFO and the address block's hold)",
+        latency: 1 + PixelPipeline::LATENCY + 1
+            => "a triangle record's last word to its first fragment beat, one fragment per clock",
+        multipliers: 38,
+        in { s_axis_tdata: Bits<32>, s_axis_tvalid: Bit, s_axis_tlast: Bit, m_axis_tready: Bit }
+        out {
+            s_axis_tready: Bit, m_axis_tvalid: Bit, m_axis_tdata: Bits<64>, m_axis_tuser: Bits<32>,
+            m_axis_tlast: Bit, error: Bit,
+        }
+        pub pipe: PixelPipeline = PixelPipeline::new(p),
+        // Set-up side: words of the current record (0: expecting a header), its type, a
+        // complete record waiting, dropping to tlast, the sticky error.
+        count: DFF<Bits<6>>, rec_type: DFF<Bits<4>>, pending: DFF<Bit>, skip: DFF<Bit>,
+        err: DFF<Bit>,
+        /// Triangles loaded whose `done` has not left the pipeline.
+        outstanding: DFF<Bits<16>>,
+        tri_words: Constant<Bits<6>> =
+            Constant::new((crate::stream_layout::payload_words(&crate::stream_layout::TRIANGLE) as u64).into()),
+        reg_words: Constant<Bits<6>> =
+            Constant::new((crate::stream_layout::payload_words(&crate::stream_layout::REGISTERS) as u64).into()),
+        accept: Signal<Local, Bit>, take_word: Signal<Local, Bit>, known: Signal<Local, Bit>,
+        expected: Signal<Local, Bits<6>>, at_end: Signal<Local, Bit>,
+        load_taken: Signal<Local, Bit>, apply_regs: Signal<Local, Bit>,
+        // Fragment side: the FIFO (beat, and z with tlast), pointers, level.
+        fifo_beat: Lutram<Bits<64>, FIFO_BITS>,
+        fifo_tail: Lutram<Bits<33>, FIFO_BITS>,
+        wr_ptr: DFF<Bits<5>>, rd_ptr: DFF<Bits<5>>, level: DFF<Bits<6>>,
+        hold_above: Constant<Bits<6>> = Constant::new((HOLD_ABOVE as u64).into()),
+        ev_beat: Signal<Local, Bit>, pop: Signal<Local, Bit>, beat: Signal<Local, Bits<64>>,
+        tlast_bit: Constant<Bits<33>> = Constant::new((1u64 << 32).into()),
+        // BEGIN GENERATED by rtl::stream_layout::generated_rtl
+        // The word bank (payload words of the record being received).
+        sw0: DFF<Bits<32>>,
+        sw1: DFF<Bits<32>>,
+        sw2: DFF<Bits<32>>,
+        sw3: DFF<Bits<32>>,
+        sw4: DFF<Bits<32>>,
+        sw5: DFF<Bits<32>>,
+        sw6: DFF<Bits<32>>,
+        sw7: DFF<Bits<32>>,
+        sw8: DFF<Bits<32>>,
+        sw9: DFF<Bits<32>>,
+        sw10: DFF<Bits<32>>,
+        sw11: DFF<Bits<32>>,
+        sw12: DFF<Bits<32>>,
+        sw13: DFF<Bits<32>>,
+        sw14: DFF<Bits<32>>,
+        sw15: DFF<Bits<32>>,
+        sw16: DFF<Bits<32>>,
+        sw17: DFF<Bits<32>>,
+        sw18: DFF<Bits<32>>,
+        sw19: DFF<Bits<32>>,
+        sw20: DFF<Bits<32>>,
+        sw21: DFF<Bits<32>>,
+        sw22: DFF<Bits<32>>,
+        sw23: DFF<Bits<32>>,
+        sw24: DFF<Bits<32>>,
+        // The active frame and material registers.
+        r_lx: DFF<Bits<16>>,
+        r_ly: DFF<Bits<16>>,
+        r_lz: DFF<Bits<16>>,
+        r_hx: DFF<Bits<16>>,
+        r_hy: DFF<Bits<16>>,
+        r_hz: DFF<Bits<16>>,
+        r_n: DFF<Bits<10>>,
+        r_amb_r: DFF<Bits<16>>,
+        r_amb_g: DFF<Bits<16>>,
+        r_amb_b: DFF<Bits<16>>,
+        r_dif_r: DFF<Bits<16>>,
+        r_dif_g: DFF<Bits<16>>,
+        r_dif_b: DFF<Bits<16>>,
+        r_spc_r: DFF<Bits<16>>,
+        r_spc_g: DFF<Bits<16>>,
+        r_spc_b: DFF<Bits<16>>,
+        frag_pixel_bit: Constant<Bits<64>> = Constant::new((1u64 << 24).into()),
+        beat_data: Signal<Local, Bits<64>>,
+        // END GENERATED
+    }
+    new(p: &PipelineParams);
+}
+
+impl Logic for PixelStream {
+    #[hdl_gen]
+    fn update(&mut self) {
+        clock!(self, clock, pipe, fifo_beat, fifo_tail);
+        dff_setup!(
+            self,
+            clock,
+            count,
+            rec_type,
+            pending,
+            skip,
+            err,
+            outstanding
+        );
+        dff_setup!(self, clock, wr_ptr, rd_ptr, level);
+
+        // Set-up side.
+        self.s_axis_tready.next = !self.pending.q.val();
+        self.accept.next = self.s_axis_tvalid.val() & !self.pending.q.val();
+        self.take_word.next = self.accept.val() & !self.skip.q.val() & (self.count.q.val() != 0);
+        self.known.next = (self.rec_type.q.val() == 1) | (self.rec_type.q.val() == 2);
+        self.expected.next = self.reg_words.val();
+        if self.rec_type.q.val() == 1 {
+            self.expected.next = self.tri_words.val();
+        }
+        self.at_end.next = self.count.q.val() == self.expected.val();
+        if self.accept.val() & self.skip.q.val() {
+            // Dropping a bad record up to its tlast.
+            if self.s_axis_tlast.val() {
+                self.skip.d.next = false;
+            }
+        } else if self.accept.val() & (self.count.q.val() == 0) {
+            // Header.
+            self.rec_type.d.next = self.s_axis_tdata.val().get_bits::<4>(0);
+            self.count.d.next = 1.into();
+            if self.s_axis_tlast.val() {
+                // A record without payload.
+                self.err.d.next = true;
+                self.count.d.next = 0.into();
+            } else if (self.s_axis_tdata.val().get_bits::<4>(0) != 1)
+                & (self.s_axis_tdata.val().get_bits::<4>(0) != 2)
+            {
+                self.err.d.next = true;
+                self.skip.d.next = true;
+                self.count.d.next = 0.into();
+            }
+        } else if self.take_word.val() {
+            self.count.d.next = self.count.q.val() + 1;
+            if self.s_axis_tlast.val() {
+                self.count.d.next = 0.into();
+                if self.at_end.val() & self.known.val() {
+                    self.pending.d.next = true;
+                } else {
+                    self.err.d.next = true;
+                }
+            } else if self.at_end.val() {
+                // Longer than its type: drop the rest.
+                self.err.d.next = true;
+                self.skip.d.next = true;
+                self.count.d.next = 0.into();
+            }
+        }
+        self.error.next = self.err.q.val();
+
+        // A waiting triangle loads when the address block is ready; waiting registers apply
+        // when every earlier triangle has left the pipeline.
+        self.pipe.load.next = self.pending.q.val() & (self.rec_type.q.val() == 1);
+        self.load_taken.next =
+            self.pending.q.val() & (self.rec_type.q.val() == 1) & self.pipe.ready.val();
+        self.apply_regs.next =
+            self.pending.q.val() & (self.rec_type.q.val() == 2) & (self.outstanding.q.val() == 0);
+        if self.load_taken.val() | self.apply_regs.val() {
+            self.pending.d.next = false;
+        }
+        if self.load_taken.val() & !self.pipe.done.val() {
+            self.outstanding.d.next = self.outstanding.q.val() + 1;
+        } else if !self.load_taken.val() & self.pipe.done.val() {
+            self.outstanding.d.next = self.outstanding.q.val() - 1;
+        }
+
+        // BEGIN GENERATED by rtl::stream_layout::generated_rtl
+        dff_setup!(self, clock, sw0, sw1, sw2, sw3, sw4, sw5, sw6, sw7, sw8);
+        dff_setup!(self, clock, sw9, sw10, sw11, sw12, sw13, sw14, sw15, sw16, sw17);
+        dff_setup!(self, clock, sw18, sw19, sw20, sw21, sw22, sw23, sw24);
+        dff_setup!(self, clock, r_lx, r_ly, r_lz, r_hx, r_hy, r_hz);
+        dff_setup!(self, clock, r_n, r_amb_r, r_amb_g, r_amb_b, r_dif_r, r_dif_g);
+        dff_setup!(self, clock, r_dif_b, r_spc_r, r_spc_g, r_spc_b);
+        // Payload word k is the (k + 1)-th word of a record.
+        if self.take_word.val() & (self.count.q.val() == 1) {
+            self.sw0.d.next = self.s_axis_tdata.val();
+        }
+        if self.take_word.val() & (self.count.q.val() == 2) {
+            self.sw1.d.next = self.s_axis_tdata.val();
+        }
+        if self.take_word.val() & (self.count.q.val() == 3) {
+            self.sw2.d.next = self.s_axis_tdata.val();
+        }
+        if self.take_word.val() & (self.count.q.val() == 4) {
+            self.sw3.d.next = self.s_axis_tdata.val();
+        }
+        if self.take_word.val() & (self.count.q.val() == 5) {
+            self.sw4.d.next = self.s_axis_tdata.val();
+        }
+        if self.take_word.val() & (self.count.q.val() == 6) {
+            self.sw5.d.next = self.s_axis_tdata.val();
+        }
+        if self.take_word.val() & (self.count.q.val() == 7) {
+            self.sw6.d.next = self.s_axis_tdata.val();
+        }
+        if self.take_word.val() & (self.count.q.val() == 8) {
+            self.sw7.d.next = self.s_axis_tdata.val();
+        }
+        if self.take_word.val() & (self.count.q.val() == 9) {
+            self.sw8.d.next = self.s_axis_tdata.val();
+        }
+        if self.take_word.val() & (self.count.q.val() == 10) {
+            self.sw9.d.next = self.s_axis_tdata.val();
+        }
+        if self.take_word.val() & (self.count.q.val() == 11) {
+            self.sw10.d.next = self.s_axis_tdata.val();
+        }
+        if self.take_word.val() & (self.count.q.val() == 12) {
+            self.sw11.d.next = self.s_axis_tdata.val();
+        }
+        if self.take_word.val() & (self.count.q.val() == 13) {
+            self.sw12.d.next = self.s_axis_tdata.val();
+        }
+        if self.take_word.val() & (self.count.q.val() == 14) {
+            self.sw13.d.next = self.s_axis_tdata.val();
+        }
+        if self.take_word.val() & (self.count.q.val() == 15) {
+            self.sw14.d.next = self.s_axis_tdata.val();
+        }
+        if self.take_word.val() & (self.count.q.val() == 16) {
+            self.sw15.d.next = self.s_axis_tdata.val();
+        }
+        if self.take_word.val() & (self.count.q.val() == 17) {
+            self.sw16.d.next = self.s_axis_tdata.val();
+        }
+        if self.take_word.val() & (self.count.q.val() == 18) {
+            self.sw17.d.next = self.s_axis_tdata.val();
+        }
+        if self.take_word.val() & (self.count.q.val() == 19) {
+            self.sw18.d.next = self.s_axis_tdata.val();
+        }
+        if self.take_word.val() & (self.count.q.val() == 20) {
+            self.sw19.d.next = self.s_axis_tdata.val();
+        }
+        if self.take_word.val() & (self.count.q.val() == 21) {
+            self.sw20.d.next = self.s_axis_tdata.val();
+        }
+        if self.take_word.val() & (self.count.q.val() == 22) {
+            self.sw21.d.next = self.s_axis_tdata.val();
+        }
+        if self.take_word.val() & (self.count.q.val() == 23) {
+            self.sw22.d.next = self.s_axis_tdata.val();
+        }
+        if self.take_word.val() & (self.count.q.val() == 24) {
+            self.sw23.d.next = self.s_axis_tdata.val();
+        }
+        if self.take_word.val() & (self.count.q.val() == 25) {
+            self.sw24.d.next = self.s_axis_tdata.val();
+        }
+        // Triangle fields: the pipeline's set-up ports.
+        self.pipe.w_b0.next = self.sw0.q.val().get_bits::<12>(0);
+        self.pipe.w_e0.next = self.sw0.q.val().get_bits::<13>(12);
+        self.pipe.w_f.next = self.sw1.q.val().get_bits::<12>(0);
+        self.pipe.w_r.next = self.sw1.q.val().get_bits::<13>(12);
+        self.pipe.w_d.next = self.sw2.q.val().get_bits::<13>(0);
+        self.pipe.a_b0.next = self.sw2.q.val().get_bits::<12>(13);
+        self.pipe.a_e0.next = self.sw3.q.val().get_bits::<13>(0);
+        self.pipe.a_f.next = self.sw3.q.val().get_bits::<12>(13);
+        self.pipe.a_r.next = self.sw4.q.val().get_bits::<13>(0);
+        self.pipe.a_d.next = self.sw4.q.val().get_bits::<13>(13);
+        self.pipe.t_b0.next = self.sw5.q.val().get_bits::<12>(0);
+        self.pipe.t_e0.next = self.sw5.q.val().get_bits::<13>(12);
+        self.pipe.t_f.next = self.sw6.q.val().get_bits::<12>(0);
+        self.pipe.t_r.next = self.sw6.q.val().get_bits::<13>(12);
+        self.pipe.t_d.next = self.sw7.q.val().get_bits::<13>(0);
+        self.pipe.y_top.next = self.sw7.q.val().get_bits::<12>(13);
+        self.pipe.rows.next = self.sw8.q.val().get_bits::<12>(0);
+        self.pipe.y_switch.next = self.sw8.q.val().get_bits::<12>(12);
+        self.pipe.dir_neg.next = self.sw8.q.val().get_bit(24);
+        self.pipe.x_start.next = self.sw9.q.val();
+        self.pipe.x_short.next = self.sw10.q.val();
+        self.pipe.x_long.next = self.sw11.q.val();
+        self.pipe.x_line.next = self.sw12.q.val();
+        self.pipe.y_start.next = self.sw13.q.val();
+        self.pipe.y_short.next = self.sw14.q.val();
+        self.pipe.y_long.next = self.sw15.q.val();
+        self.pipe.y_line.next = self.sw16.q.val();
+        self.pipe.z_start.next = self.sw17.q.val();
+        self.pipe.z_short.next = self.sw18.q.val();
+        self.pipe.z_long.next = self.sw19.q.val();
+        self.pipe.z_line.next = self.sw20.q.val();
+        self.pipe.d_start.next = self.sw21.q.val();
+        self.pipe.d_short.next = self.sw22.q.val();
+        self.pipe.d_long.next = self.sw23.q.val();
+        self.pipe.d_line.next = self.sw24.q.val();
+        // Register fields: applied into the active registers.
+        if self.apply_regs.val() {
+            self.r_lx.d.next = self.sw0.q.val().get_bits::<16>(0);
+            self.r_ly.d.next = self.sw0.q.val().get_bits::<16>(16);
+            self.r_lz.d.next = self.sw1.q.val().get_bits::<16>(0);
+            self.r_hx.d.next = self.sw1.q.val().get_bits::<16>(16);
+            self.r_hy.d.next = self.sw2.q.val().get_bits::<16>(0);
+            self.r_hz.d.next = self.sw2.q.val().get_bits::<16>(16);
+            self.r_n.d.next = self.sw3.q.val().get_bits::<10>(0);
+            self.r_amb_r.d.next = self.sw3.q.val().get_bits::<16>(10);
+            self.r_amb_g.d.next = self.sw4.q.val().get_bits::<16>(0);
+            self.r_amb_b.d.next = self.sw4.q.val().get_bits::<16>(16);
+            self.r_dif_r.d.next = self.sw5.q.val().get_bits::<16>(0);
+            self.r_dif_g.d.next = self.sw5.q.val().get_bits::<16>(16);
+            self.r_dif_b.d.next = self.sw6.q.val().get_bits::<16>(0);
+            self.r_spc_r.d.next = self.sw6.q.val().get_bits::<16>(16);
+            self.r_spc_g.d.next = self.sw7.q.val().get_bits::<16>(0);
+            self.r_spc_b.d.next = self.sw7.q.val().get_bits::<16>(16);
+        }
+        self.pipe.lx.next = self.r_lx.q.val();
+        self.pipe.ly.next = self.r_ly.q.val();
+        self.pipe.lz.next = self.r_lz.q.val();
+        self.pipe.hx.next = self.r_hx.q.val();
+        self.pipe.hy.next = self.r_hy.q.val();
+        self.pipe.hz.next = self.r_hz.q.val();
+        self.pipe.n.next = self.r_n.q.val();
+        self.pipe.amb_r.next = self.r_amb_r.q.val();
+        self.pipe.amb_g.next = self.r_amb_g.q.val();
+        self.pipe.amb_b.next = self.r_amb_b.q.val();
+        self.pipe.dif_r.next = self.r_dif_r.q.val();
+        self.pipe.dif_g.next = self.r_dif_g.q.val();
+        self.pipe.dif_b.next = self.r_dif_b.q.val();
+        self.pipe.spc_r.next = self.r_spc_r.q.val();
+        self.pipe.spc_g.next = self.r_spc_g.q.val();
+        self.pipe.spc_b.next = self.r_spc_b.q.val();
+        // The fragment beat (`pixel` is the pipeline's `valid`).
+        self.beat_data.next = bit_cast::<64, 12>(self.pipe.x.val())
+            | (bit_cast::<64, 12>(self.pipe.y.val()) << 12)
+            | (bit_cast::<64, 8>(self.pipe.red.val()) << 32)
+            | (bit_cast::<64, 8>(self.pipe.green.val()) << 40)
+            | (bit_cast::<64, 8>(self.pipe.blue.val()) << 48);
+        self.beat.next = self.beat_data.val();
+        if self.pipe.valid.val() {
+            self.beat.next = self.beat_data.val() | self.frag_pixel_bit.val();
+        }
+        // END GENERATED
+
+        // Fragment side: every event with a pixel or a triangle end is one beat.
+        self.pipe.hold.next = self.level.q.val() > self.hold_above.val();
+        self.ev_beat.next = self.pipe.valid.val() | self.pipe.done.val();
+        self.pop.next = (self.level.q.val() != 0) & self.m_axis_tready.val();
+        self.fifo_beat.write_enable.next = self.ev_beat.val();
+        self.fifo_beat.write_address.next = self.wr_ptr.q.val();
+        self.fifo_beat.write_data.next = self.beat.val();
+        self.fifo_beat.read_address.next = self.rd_ptr.q.val();
+        self.fifo_tail.write_enable.next = self.ev_beat.val();
+        self.fifo_tail.write_address.next = self.wr_ptr.q.val();
+        self.fifo_tail.write_data.next = bit_cast::<33, 32>(self.pipe.z.val());
+        if self.pipe.done.val() {
+            self.fifo_tail.write_data.next =
+                bit_cast::<33, 32>(self.pipe.z.val()) | self.tlast_bit.val();
+        }
+        self.fifo_tail.read_address.next = self.rd_ptr.q.val();
+        if self.ev_beat.val() {
+            self.wr_ptr.d.next = self.wr_ptr.q.val() + 1;
+        }
+        if self.pop.val() {
+            self.rd_ptr.d.next = self.rd_ptr.q.val() + 1;
+        }
+        if self.ev_beat.val() & !self.pop.val() {
+            self.level.d.next = self.level.q.val() + 1;
+        } else if !self.ev_beat.val() & self.pop.val() {
+            self.level.d.next = self.level.q.val() - 1;
+        }
+        self.m_axis_tvalid.next = self.level.q.val() != 0;
+        self.m_axis_tdata.next = 0.into();
+        self.m_axis_tuser.next = 0.into();
+        self.m_axis_tlast.next = false;
+        if self.level.q.val() != 0 {
+            self.m_axis_tdata.next = self.fifo_beat.read_data.val();
+            self.m_axis_tuser.next = self.fifo_tail.read_data.val().get_bits::<32>(0);
+            self.m_axis_tlast.next = self.fifo_tail.read_data.val().get_bit(32);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::stream_layout::{generated_rtl, BEGIN, END};
+
+    /// The generated regions of this file are what `rtl::stream_layout` gives; with
+    /// `SHADECORE_REGENERATE=1` the test rewrites them.
+    #[test]
+    fn pixel_stream_rtl_is_generated() {
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/src/pixel_stream.rs");
+        let text = std::fs::read_to_string(path).unwrap();
+        let (decl, up) = generated_rtl();
+        let mut out = String::new();
+        let mut rest = text.as_str();
+        for body in [&decl, &up] {
+            let b = rest.find(BEGIN).expect("BEGIN marker");
+            let line_end = b + rest[b..].find('\n').unwrap() + 1;
+            let e = line_end + rest[line_end..].find(END).expect("END marker");
+            let indent_start = rest[..e].rfind('\n').unwrap() + 1;
+            out.push_str(&rest[..line_end]);
+            out.push_str(body);
+            out.push_str(&rest[indent_start..e]);
+            rest = &rest[e..];
+        }
+        out.push_str(rest);
+        if out != text {
+            if std::env::var_os("SHADECORE_REGENERATE").is_some() {
+                std::fs::write(path, &out).unwrap();
+            } else {
+                panic!("rtl/src/pixel_stream.rs is not what rtl::stream_layout generates: run with SHADECORE_REGENERATE=1");
+            }
+        }
+    }
+}

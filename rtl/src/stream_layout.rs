@@ -1,0 +1,443 @@
+//! Word layouts of the `pixel-stream` top's AXI4-Stream interfaces, defined once.
+//!
+//! The set-up stream (`s_axis_*`, 32-bit words) carries *records*: a header word, then the
+//! record's fields packed LSB first into 32-bit words (a field never straddles two words),
+//! `tlast` on the record's last word. The fragment stream (`m_axis_*`, 64-bit `tdata` and the
+//! fragment's 32-bit depth on `tuser`) carries one fragment, or one triangle end, per beat.
+//!
+//! Everything that reads or writes these words comes from the tables here:
+//! - the driver packs records with [`pack`] (`pipeline::stream`), and reads fragments with
+//!   [`unpack_fragment`];
+//! - the hardware's field selects and its fragment packing in `rtl/src/pixel_stream.rs` are
+//!   generated from the same tables by [`generated_rtl`]; the test `pixel_stream_rtl_is_generated`
+//!   fails if that file's generated regions differ from what the tables give (set
+//!   `SHADECORE_REGENERATE=1` to rewrite them);
+//! - `rtl/README.md`'s layout table is printed by [`markdown`] (checked by a test as well).
+//!
+//! Field names and widths are the `pixel-pipeline` top's input ports (checked by a test against
+//! its port list), in its port order.
+
+/// One field of a record: a port of `pixel-pipeline` (name, width in bits).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Field {
+    pub name: &'static str,
+    pub bits: u32,
+}
+
+const fn f(name: &'static str, bits: u32) -> Field {
+    Field { name, bits }
+}
+
+/// A record type of the set-up stream.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Record {
+    pub name: &'static str,
+    /// Header word: bits 3..0 hold this code; the other bits are zero.
+    pub code: u32,
+    pub fields: &'static [Field],
+}
+
+/// A triangle: the address block's set-up, the normal planes and the depth plane (loaded into
+/// the pipeline when its address block is ready; the next record streams in meanwhile).
+pub const TRIANGLE: Record = Record {
+    name: "triangle",
+    code: 1,
+    fields: &[
+        f("w_b0", 12),
+        f("w_e0", 13),
+        f("w_f", 12),
+        f("w_r", 13),
+        f("w_d", 13),
+        f("a_b0", 12),
+        f("a_e0", 13),
+        f("a_f", 12),
+        f("a_r", 13),
+        f("a_d", 13),
+        f("t_b0", 12),
+        f("t_e0", 13),
+        f("t_f", 12),
+        f("t_r", 13),
+        f("t_d", 13),
+        f("y_top", 12),
+        f("rows", 12),
+        f("y_switch", 12),
+        f("dir_neg", 1),
+        f("x_start", 32),
+        f("x_short", 32),
+        f("x_long", 32),
+        f("x_line", 32),
+        f("y_start", 32),
+        f("y_short", 32),
+        f("y_long", 32),
+        f("y_line", 32),
+        f("z_start", 32),
+        f("z_short", 32),
+        f("z_long", 32),
+        f("z_line", 32),
+        f("d_start", 32),
+        f("d_short", 32),
+        f("d_long", 32),
+        f("d_line", 32),
+    ],
+};
+
+/// The frame and material registers (L, H, n, the colour weights). Applied when every
+/// triangle loaded before it has left the pipeline, so no fragment mixes two sets.
+pub const REGISTERS: Record = Record {
+    name: "registers",
+    code: 2,
+    fields: &[
+        f("lx", 16),
+        f("ly", 16),
+        f("lz", 16),
+        f("hx", 16),
+        f("hy", 16),
+        f("hz", 16),
+        f("n", 10),
+        f("amb_r", 16),
+        f("amb_g", 16),
+        f("amb_b", 16),
+        f("dif_r", 16),
+        f("dif_g", 16),
+        f("dif_b", 16),
+        f("spc_r", 16),
+        f("spc_g", 16),
+        f("spc_b", 16),
+    ],
+};
+
+/// Both record types.
+pub const RECORDS: [Record; 2] = [TRIANGLE, REGISTERS];
+
+/// A fragment beat (`m_axis_tdata`, 64 bits); `tlast` marks a triangle's last event. A beat
+/// with `pixel` = 0 carries only that end (a triangle whose last event had no pixel). The
+/// depth travels on `m_axis_tuser` (AXI4-Stream's per-beat sideband), see [`TUSER`]: the
+/// project's simulation rows hold ports of up to 64 bits.
+pub const FRAGMENT: &[Placed] = &[
+    p("x", 12, 0),
+    p("y", 12, 12),
+    p("pixel", 1, 24),
+    p("red", 8, 32),
+    p("green", 8, 40),
+    p("blue", 8, 48),
+];
+
+/// Width of `m_axis_tdata`.
+pub const FRAGMENT_BITS: u32 = 64;
+
+/// `m_axis_tuser`: the fragment's depth `z` (signed Q16.16 model units, as `pixel-pipeline`'s
+/// `z` port), 32 bits.
+pub const TUSER: Field = Field {
+    name: "z",
+    bits: 32,
+};
+
+const fn p(name: &'static str, bits: u32, at: u32) -> Placed {
+    Placed {
+        name,
+        bits,
+        word: (at / 32) as usize,
+        offset: at % 32,
+    }
+}
+
+/// A field's place: word index within the payload (0 = the word after the header) and bit
+/// offset within the word (for [`FRAGMENT`]: 32-bit lane and offset).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Placed {
+    pub name: &'static str,
+    pub bits: u32,
+    pub word: usize,
+    pub offset: u32,
+}
+
+impl Placed {
+    /// Bit position in a multi-word beat.
+    pub fn at(&self) -> u32 {
+        self.word as u32 * 32 + self.offset
+    }
+}
+
+/// The fields of `r` placed LSB first, a field never straddling a word.
+pub fn place(r: &Record) -> Vec<Placed> {
+    let (mut word, mut used) = (0usize, 0u32);
+    r.fields
+        .iter()
+        .map(|fl| {
+            assert!(fl.bits <= 32, "{}: a field fits one word", fl.name);
+            if used + fl.bits > 32 {
+                word += 1;
+                used = 0;
+            }
+            let pl = Placed {
+                name: fl.name,
+                bits: fl.bits,
+                word,
+                offset: used,
+            };
+            used += fl.bits;
+            pl
+        })
+        .collect()
+}
+
+/// Payload words of `r` (without the header).
+pub fn payload_words(r: &Record) -> usize {
+    place(r).last().map_or(0, |p| p.word + 1)
+}
+
+/// The most payload words of any record (the hardware's word bank).
+pub fn bank_words() -> usize {
+    RECORDS.iter().map(payload_words).max().unwrap_or(0)
+}
+
+/// The header word of `r`.
+pub fn header(r: &Record) -> u32 {
+    r.code
+}
+
+/// A record's words: header, then `values` (one per field, in field order; only the field's
+/// low bits are kept) packed. `tlast` goes with the last word.
+pub fn pack(r: &Record, values: &[u64]) -> Vec<u32> {
+    assert_eq!(
+        values.len(),
+        r.fields.len(),
+        "{}: one value per field",
+        r.name
+    );
+    let placed = place(r);
+    let mut words = vec![0u32; 1 + payload_words(r)];
+    words[0] = header(r);
+    for (pl, v) in placed.iter().zip(values) {
+        let mask = if pl.bits == 32 {
+            u32::MAX
+        } else {
+            (1u32 << pl.bits) - 1
+        };
+        words[1 + pl.word] |= ((*v as u32) & mask) << pl.offset;
+    }
+    words
+}
+
+/// The inverse of [`pack`] for the payload (without the header).
+pub fn unpack(r: &Record, payload: &[u32]) -> Vec<u64> {
+    place(r)
+        .iter()
+        .map(|pl| {
+            let w = payload[pl.word] >> pl.offset;
+            (if pl.bits == 32 {
+                w
+            } else {
+                w & ((1u32 << pl.bits) - 1)
+            }) as u64
+        })
+        .collect()
+}
+
+/// A fragment beat's fields, in [`FRAGMENT`] order.
+pub fn unpack_fragment(beat: u128) -> Vec<u64> {
+    FRAGMENT
+        .iter()
+        .map(|pl| ((beat >> pl.at()) & ((1u128 << pl.bits) - 1)) as u64)
+        .collect()
+}
+
+/// A fragment beat from field values in [`FRAGMENT`] order.
+pub fn pack_fragment(values: &[u64]) -> u128 {
+    FRAGMENT
+        .iter()
+        .zip(values)
+        .map(|(pl, v)| ((*v as u128) & ((1u128 << pl.bits) - 1)) << pl.at())
+        .fold(0, |a, b| a | b)
+}
+
+/// The layout as Markdown tables (`rtl/README.md`).
+pub fn markdown() -> String {
+    let mut s = String::new();
+    for r in RECORDS {
+        s.push_str(&format!(
+            "**{}** record: header `0x{:08x}`, then {} payload words.\n\n| word | bits | field |\n|---|---|---|\n",
+            r.name,
+            header(&r),
+            payload_words(&r)
+        ));
+        for pl in place(&r) {
+            s.push_str(&format!(
+                "| {} | {}..{} | `{}` |\n",
+                pl.word + 1,
+                pl.offset + pl.bits - 1,
+                pl.offset,
+                pl.name
+            ));
+        }
+        s.push('\n');
+    }
+    s.push_str(&format!(
+        "**fragment** beat (`m_axis_tdata`, {FRAGMENT_BITS} bits; `m_axis_tuser`: `z`, 32 bits; `tlast`: the triangle's last event):\n\n| bits | field |\n|---|---|\n"
+    ));
+    for pl in FRAGMENT {
+        s.push_str(&format!(
+            "| {}..{} | `{}` |\n",
+            pl.at() + pl.bits - 1,
+            pl.at(),
+            pl.name
+        ));
+    }
+    s
+}
+
+/// Marker lines around the generated regions of `rtl/src/pixel_stream.rs`.
+pub const BEGIN: &str = "// BEGIN GENERATED by rtl::stream_layout::generated_rtl";
+pub const END: &str = "// END GENERATED";
+
+/// The two generated regions of `rtl/src/pixel_stream.rs`: (declarations inside the block's
+/// `hw_block!`, statements inside its `update`).
+pub fn generated_rtl() -> (String, String) {
+    let n = bank_words();
+    let mut decl = String::new();
+    decl.push_str("        // The word bank (payload words of the record being received).\n");
+    for k in 0..n {
+        decl.push_str(&format!("        sw{k}: DFF<Bits<32>>,\n"));
+    }
+    decl.push_str("        // The active frame and material registers.\n");
+    for fl in REGISTERS.fields {
+        decl.push_str(&format!("        r_{}: DFF<Bits<{}>>,\n", fl.name, fl.bits));
+    }
+    let mut up = String::new();
+    let banks: Vec<String> = (0..n).map(|k| format!("sw{k}")).collect();
+    for chunk in banks.chunks(9) {
+        up.push_str(&format!(
+            "        dff_setup!(self, clock, {});\n",
+            chunk.join(", ")
+        ));
+    }
+    let regs: Vec<String> = REGISTERS
+        .fields
+        .iter()
+        .map(|fl| format!("r_{}", fl.name))
+        .collect();
+    for chunk in regs.chunks(6) {
+        up.push_str(&format!(
+            "        dff_setup!(self, clock, {});\n",
+            chunk.join(", ")
+        ));
+    }
+    up.push_str("        // Payload word k is the (k + 1)-th word of a record.\n");
+    for k in 0..n {
+        up.push_str(&format!(
+            "        if self.take_word.val() & (self.count.q.val() == {}) {{\n            self.sw{k}.d.next = self.s_axis_tdata.val();\n        }}\n",
+            k + 1
+        ));
+    }
+    up.push_str("        // Triangle fields: the pipeline's set-up ports.\n");
+    for pl in place(&TRIANGLE) {
+        up.push_str(&format!(
+            "        self.pipe.{}.next = {};\n",
+            pl.name,
+            select(&pl)
+        ));
+    }
+    up.push_str("        // Register fields: applied into the active registers.\n");
+    up.push_str("        if self.apply_regs.val() {\n");
+    for pl in place(&REGISTERS) {
+        up.push_str(&format!(
+            "            self.r_{}.d.next = {};\n",
+            pl.name,
+            select(&pl)
+        ));
+    }
+    up.push_str("        }\n");
+    for fl in REGISTERS.fields {
+        up.push_str(&format!(
+            "        self.pipe.{0}.next = self.r_{0}.q.val();\n",
+            fl.name
+        ));
+    }
+    up.push_str("        // The fragment beat (`pixel` is the pipeline's `valid`).\n");
+    let terms: Vec<String> = FRAGMENT
+        .iter()
+        .filter(|pl| pl.bits > 1)
+        .map(|pl| {
+            let wide = format!(
+                "bit_cast::<{FRAGMENT_BITS}, {}>(self.pipe.{}.val())",
+                pl.bits, pl.name
+            );
+            if pl.at() == 0 {
+                wide
+            } else {
+                format!("({wide} << {})", pl.at())
+            }
+        })
+        .collect();
+    up.push_str(&format!(
+        "        self.beat_data.next = {};\n        self.beat.next = self.beat_data.val();\n",
+        terms.join("\n            | ")
+    ));
+    for pl in FRAGMENT.iter().filter(|pl| pl.bits == 1) {
+        let src = if pl.name == "pixel" { "valid" } else { pl.name };
+        up.push_str(&format!(
+            "        if self.pipe.{src}.val() {{\n            self.beat.next = self.beat_data.val() | self.frag_{}_bit.val();\n        }}\n",
+            pl.name
+        ));
+        decl.push_str(&format!(
+            "        frag_{}_bit: Constant<Bits<{FRAGMENT_BITS}>> = Constant::new((1u64 << {}).into()),\n",
+            pl.name,
+            pl.at()
+        ));
+    }
+    decl.push_str(&format!(
+        "        beat_data: Signal<Local, Bits<{FRAGMENT_BITS}>>,\n"
+    ));
+    (decl, up)
+}
+
+/// The hardware's select of a placed field from its bank word.
+fn select(pl: &Placed) -> String {
+    if pl.bits == 32 {
+        format!("self.sw{}.q.val()", pl.word)
+    } else if pl.bits == 1 {
+        format!("self.sw{}.q.val().get_bit({})", pl.word, pl.offset)
+    } else {
+        format!(
+            "self.sw{}.q.val().get_bits::<{}>({})",
+            pl.word, pl.bits, pl.offset
+        )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn records_pack_and_unpack() {
+        for r in RECORDS {
+            let values: Vec<u64> = r
+                .fields
+                .iter()
+                .enumerate()
+                .map(|(i, fl)| {
+                    (0x9E37_79B9_7F4A_7C15u64.rotate_left(i as u32 * 7)) & ((1u64 << fl.bits) - 1)
+                })
+                .collect();
+            let words = pack(&r, &values);
+            assert_eq!(words[0], r.code);
+            assert_eq!(unpack(&r, &words[1..]), values);
+        }
+        assert_eq!(payload_words(&TRIANGLE), 25);
+        assert_eq!(payload_words(&REGISTERS), 8);
+    }
+
+    #[test]
+    fn fragment_fields_do_not_overlap() {
+        let mut used = 0u128;
+        for pl in FRAGMENT {
+            let m = ((1u128 << pl.bits) - 1) << pl.at();
+            assert_eq!(used & m, 0, "{} overlaps", pl.name);
+            assert!(pl.at() + pl.bits <= FRAGMENT_BITS);
+            used |= m;
+        }
+        let v = [0xABC, 0x123, 1, 0x12, 0x34, 0x56];
+        assert_eq!(unpack_fragment(pack_fragment(&v)), v);
+    }
+}
