@@ -26,6 +26,8 @@ impl SplitMix {
 /// with probability `p`; with probability 1/400 a clock starts a long stretch of 40–300
 /// stalled clocks.
 pub struct StallPattern {
+    /// A fixed pattern instead of the random one.
+    fixed: Option<Box<dyn FnMut(usize) -> bool>>,
     rng: SplitMix,
     p: f64,
     stretch: u32,
@@ -38,11 +40,20 @@ pub struct StallPattern {
 impl StallPattern {
     pub fn new(seed: u64, p: f64) -> Self {
         StallPattern {
+            fixed: None,
             rng: SplitMix::new(seed),
             p,
             stretch: 0,
             stalled: 0,
             clocks: 0,
+        }
+    }
+
+    /// The pattern `f(clock)`.
+    pub fn from_fn(f: impl FnMut(usize) -> bool + 'static) -> Self {
+        StallPattern {
+            fixed: Some(Box::new(f)),
+            ..Self::new(0, 0.0)
         }
     }
 
@@ -54,6 +65,11 @@ impl StallPattern {
     /// Whether the next clock is stalled.
     pub fn next_stalled(&mut self) -> bool {
         self.clocks += 1;
+        if let Some(f) = self.fixed.as_mut() {
+            let s = f(self.clocks - 1);
+            self.stalled += s as usize;
+            return s;
+        }
         if self.p <= 0.0 {
             return false;
         }
