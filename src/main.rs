@@ -32,6 +32,8 @@ enum Command {
     Raster(cmd::raster::Args),
     /// List the registered RTL blocks (the table in the README) as Markdown.
     Blocks,
+    /// Write a scene as pixel-stream's AXI4-Stream set-up words, the beats its simulation delivers, and its Verilog.
+    Stream(cmd::stream::Args),
 }
 
 fn main() {
@@ -62,6 +64,7 @@ fn main() {
         Command::Synth(a) => cmd::rtl::synth(a),
         Command::Raster(a) => cmd::raster::run(a),
         Command::Blocks => cmd::rtl::blocks(),
+        Command::Stream(a) => cmd::stream::run(a),
     };
     if let Err(e) = result {
         // One line, no backtrace: the chain of causes joined by ": ".

@@ -4,4 +4,5 @@ pub mod accuracy;
 pub mod raster;
 pub mod render;
 pub mod rtl;
+pub mod stream;
 pub mod sweep;

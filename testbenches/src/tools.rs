@@ -141,3 +141,28 @@ pub fn run_in(dir: &Path, program: &str, args: &[&str], log: &str) -> Result<Out
     }
     Ok(out)
 }
+
+/// A Python with cocotb, its runner (`cocotb_tools`) and cocotbext-axi: `SHADECORE_PYTHON`,
+/// else `.venv/bin/python` at the workspace root (`.ci/run` installs them there), else
+/// `python3` on the PATH. `None` when none imports them.
+pub fn cocotb_python() -> Option<PathBuf> {
+    static FOUND: OnceLock<Option<PathBuf>> = OnceLock::new();
+    FOUND
+        .get_or_init(|| {
+            let venv = crate::harness::target_dir()
+                .parent()
+                .map(|root| root.join(".venv/bin/python"));
+            std::env::var_os("SHADECORE_PYTHON")
+                .map(PathBuf::from)
+                .into_iter()
+                .chain(venv)
+                .chain([PathBuf::from("python3")])
+                .find(|p| {
+                    Command::new(p)
+                        .args(["-c", "import cocotb, cocotb_tools.runner, cocotbext.axi"])
+                        .output()
+                        .is_ok_and(|o| o.status.success())
+                })
+        })
+        .clone()
+}

@@ -181,3 +181,36 @@ fn tready_high_never_holds_the_address_block() {
         run.rows.len()
     );
 }
+
+/// The header's latency: a triangle record's last word accepted in clock t, its first beat
+/// offered in clock t + `PixelStream::LATENCY` (the address block idle, `tready` high).
+#[test]
+fn latency_from_last_word_to_first_beat() {
+    let (p, o) = params();
+    let (jobs, regs) = scene(7, 1);
+    let words = scene_words(&jobs, &regs);
+    let run = drive(&p, &words, 7, 0.0, &mut StallPattern::never(), 8);
+    let out = find("pixel-stream")
+        .unwrap()
+        .simulate(&o, &run.rows)
+        .unwrap();
+    // The last set-up word is the triangle's tlast; it is accepted when shown with tready.
+    let last = (0..run.rows.len())
+        .rev()
+        .find(|&c| run.rows[c][1] != 0 && run.rows[c][2] != 0 && out[c][0] != 0)
+        .unwrap();
+    let first = (0..out.len()).find(|&c| out[c][1] != 0).unwrap();
+    assert_eq!(first - last, rtl::pixel_stream::PixelStream::LATENCY);
+}
+
+/// `rtl/README.md` shows the layout the table gives (`rtl::stream_layout::markdown`).
+#[test]
+fn readme_shows_the_generated_layout() {
+    let readme =
+        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../rtl/README.md")).unwrap();
+    assert!(
+        readme.contains(&rtl::stream_layout::markdown()),
+        "rtl/README.md's stream layout differs from rtl::stream_layout::markdown(): paste it\n{}",
+        rtl::stream_layout::markdown()
+    );
+}
