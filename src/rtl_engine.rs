@@ -103,6 +103,34 @@ pub struct RtlBuild {
     /// default) or the four-triangle block (four lanes, a BVI each). `subdivision` always
     /// takes the four-triangle block; the other methods only the single one.
     pub address: Address,
+    /// The top the lit methods go through (`--lit-top`).
+    pub lit_top: LitTop,
+}
+
+/// The top the lit methods' frames go through (`--lit-top`).
+#[derive(clap::ValueEnum, Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum LitTop {
+    /// `stream` under rust-hdl, `pipeline` under Verilator (whose replay drives the ports).
+    #[default]
+    Default,
+    /// `pixel-stream`: set-up records on its 32-bit AXI4-Stream, fragment beats out.
+    Stream,
+    /// `pixel-pipeline`: the set-up on its load ports, one triangle per load.
+    Pipeline,
+}
+
+impl LitTop {
+    /// The top used with simulator `sim`.
+    pub fn resolve(self, sim: Sim) -> Result<LitTop> {
+        match (self, sim) {
+            (LitTop::Default, Sim::RustHdl) => Ok(LitTop::Stream),
+            (LitTop::Default, Sim::Verilator) => Ok(LitTop::Pipeline),
+            (LitTop::Stream, Sim::Verilator) => Err(anyhow::anyhow!(
+                "--lit-top stream runs under rust-hdl only (the Verilator engine replays pixel-pipeline's ports); use --lit-top pipeline or --sim rust-hdl"
+            )),
+            (t, _) => Ok(t),
+        }
+    }
 }
 
 /// Which address block walks the triangles (`--address`).
@@ -228,7 +256,11 @@ pub fn render_lit_rtl_with(
     progress.set_length(jobs.len() as u64);
     progress.set_position(0);
     let mut writer = FrameWriter::new(width, height);
+    let top = build.lit_top.resolve(build.sim)?;
     let mut pipe = match build.sim {
+        Sim::RustHdl if top == LitTop::Stream => {
+            LitPipe::stream(method).map_err(|e| anyhow::anyhow!("RTL set-up: {e}"))?
+        }
         Sim::RustHdl => LitPipe::new(method).map_err(|e| anyhow::anyhow!("RTL set-up: {e}"))?,
         Sim::Verilator => {
             let o = pipeline::lit::method_options(method)

@@ -210,6 +210,8 @@ pub struct Fragment {
 
 enum LitSim {
     Rust(Box<Stepper<PixelPipeline>>),
+    /// The AXI4-Stream top `pixel-stream` (set-up records in, fragment beats out).
+    Stream(Box<Stepper<rtl::pixel_stream::PixelStream>>),
     Replay(crate::replay::Replay),
 }
 
@@ -233,6 +235,24 @@ impl LitPipe {
         })
     }
 
+    /// The AXI4-Stream top `pixel-stream` built for `method`: [`LitPipe::run`] sends the
+    /// register record and every triangle record on its set-up stream (one word per clock
+    /// while `s_axis_tready`) and takes every fragment beat (`m_axis_tready` high).
+    pub fn stream(method: Method) -> Result<LitPipe, String> {
+        let o = method_options(method).ok_or_else(|| {
+            format!(
+                "the RTL pixel pipeline does not compute {method} (it has: {})",
+                LIT_METHODS.map(|m| m.name()).join(", ")
+            )
+        })?;
+        let p = <PixelPipeline as RtlBlock>::Params::from_options(&o)?;
+        Ok(LitPipe {
+            sim: LitSim::Stream(Box::new(Stepper::new(
+                rtl::pixel_stream::PixelStream::new(&p),
+            )?)),
+        })
+    }
+
     /// A recorded run of the pipeline (see [`crate::replay`]).
     pub fn replay(r: crate::replay::Replay) -> LitPipe {
         LitPipe {
@@ -242,8 +262,10 @@ impl LitPipe {
 
     /// Trace every following clock into `w` (rust-hdl only).
     pub fn start_vcd(&mut self, w: Box<dyn Write>) {
-        if let LitSim::Rust(s) = &mut self.sim {
-            s.start_vcd(w);
+        match &mut self.sim {
+            LitSim::Rust(s) => s.start_vcd(w),
+            LitSim::Stream(s) => s.start_vcd(w),
+            LitSim::Replay(_) => {}
         }
     }
 
@@ -251,6 +273,7 @@ impl LitPipe {
         match &self.sim {
             LitSim::Rust(s) => s.dut().ready.val(),
             LitSim::Replay(r) => r.ready(),
+            LitSim::Stream(_) => unreachable!("the stream top is run by run_stream"),
         }
     }
 
@@ -258,7 +281,64 @@ impl LitPipe {
         match &mut self.sim {
             LitSim::Rust(s) => s.step(row, out),
             LitSim::Replay(r) => r.step(row, out),
+            LitSim::Stream(_) => unreachable!("the stream top is run by run_stream"),
         }
+    }
+
+    /// [`LitPipe::run`] through the stream top.
+    fn run_stream(
+        s: &mut Stepper<rtl::pixel_stream::PixelStream>,
+        jobs: &[LitJob],
+        regs: &ShadingRegs,
+        max_clocks: u64,
+        fragment: &mut dyn FnMut(Fragment),
+        progress: &mut dyn FnMut(u64),
+    ) -> Result<PipeStats, String> {
+        let words = crate::stream::scene_words(jobs, regs);
+        let mut st = PipeStats::default();
+        let mut out = vec![0u64; 6];
+        let mut next = 0;
+        while st.triangles < jobs.len() as u64 {
+            if st.clocks >= max_clocks {
+                return Err(format!(
+                    "pixel-stream: {} of {} triangles done after {max_clocks} clocks",
+                    st.triangles,
+                    jobs.len()
+                ));
+            }
+            // `s_axis_tready` is a register output: settled for this clock.
+            let taken = s.dut().s_axis_tready.val();
+            let row = match words.get(next) {
+                Some(&(w, last)) => [w as u64, 1, last as u64, 1],
+                None => [0, 0, 0, 1],
+            };
+            s.step(&row, &mut out)?;
+            next += (row[1] != 0 && taken) as usize;
+            st.clocks += 1;
+            if out[5] != 0 {
+                return Err("pixel-stream flagged a malformed set-up record".into());
+            }
+            if out[1] != 0 {
+                let b = crate::stream::Beat::read(out[2], out[3], out[4] != 0);
+                if b.pixel {
+                    st.pixels += 1;
+                    fragment(Fragment {
+                        job: st.triangles as usize,
+                        x: b.x,
+                        y: b.y,
+                        z: b.z,
+                        rgb: b.rgb,
+                        clock: st.clocks - 1,
+                    });
+                }
+                if b.last {
+                    st.triangles += 1;
+                    progress(st.triangles);
+                }
+            }
+        }
+        s.stop_vcd();
+        Ok(st)
     }
 
     /// Run `jobs` with registers `regs`, each job loaded as soon as `ready` is high;
@@ -272,6 +352,9 @@ impl LitPipe {
         mut fragment: impl FnMut(Fragment),
         mut progress: impl FnMut(u64),
     ) -> Result<PipeStats, String> {
+        if let LitSim::Stream(s) = &mut self.sim {
+            return Self::run_stream(s, jobs, regs, max_clocks, &mut fragment, &mut progress);
+        }
         let mut st = PipeStats::default();
         let mut out = vec![0u64; 9];
         let idle = lit_row(None, regs);

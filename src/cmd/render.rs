@@ -65,6 +65,13 @@ pub struct Args {
     /// Default: single, four-triangle for subdivision.
     #[arg(long, value_enum, default_value = "default", hide_default_value = true)]
     pub address: crate::rtl_engine::Address,
+    /// With the RTL engine: the top the lit methods (normalizer, normalizer-fit, brdf-k*,
+    /// bump) go through — stream (`pixel-stream`: AXI4-Stream set-up records and fragment
+    /// beats) or pipeline (`pixel-pipeline`: set-up on load ports). Default: stream under
+    /// rust-hdl, pipeline under verilator. The images are identical; the clock counts differ
+    /// (the set-up stream carries 26 words per triangle).
+    #[arg(long, value_enum, default_value = "default", hide_default_value = true)]
+    pub lit_top: crate::rtl_engine::LitTop,
 }
 
 /// The Horner unit variant of the cubic pipeline.
@@ -594,10 +601,12 @@ pub fn run(args: Args) -> Result<()> {
     }
     std::fs::create_dir_all(&args.out)
         .with_context(|| format!("creating output directory {}", args.out.display()))?;
+    args.lit_top.resolve(args.sim)?;
     let build = crate::rtl_engine::RtlBuild {
         horner_pipelined: args.horner == Horner::Pipelined,
         sim: args.sim,
         address: args.address,
+        lit_top: args.lit_top,
     };
     let t0 = std::time::Instant::now();
     let frames = render_frames(&setup, &methods, args.engine, build)?;
