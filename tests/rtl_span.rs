@@ -27,6 +27,7 @@ const PIPELINED: RtlBuild = RtlBuild {
     horner_pipelined: true,
     sim: shadecore::verilator_engine::Sim::RustHdl,
     address: shadecore::rtl_engine::Address::Default,
+    lit_top: shadecore::rtl_engine::LitTop::Default,
 };
 
 fn check_scene(label: &str, args: &SceneArgs, nmse_bound: &[(Method, f64)]) {
