@@ -6,7 +6,9 @@
 //!   RTL render and its simulated clocks per second, beside the Gouraud raster pipe's in the
 //!   same run (a ratio);
 //! - measured by criterion: simulated clocks per second of the whole pipeline over a slice
-//!   of the scene (throughput in elements = clocks).
+//!   of the scene (throughput in elements = clocks);
+//! - the AXI4-Stream top `pixel-stream` on the default scene with `tready` high: fragments per
+//!   clock beside `pixel-pipeline`'s (`SHADECORE_BENCH_ONLY=stream` prints only this).
 
 use std::time::Instant;
 
@@ -183,6 +185,11 @@ fn simulator_figures() {
 }
 
 fn bench(c: &mut Criterion) {
+    // `SHADECORE_BENCH_ONLY=stream` prints only the stream top's figure.
+    if std::env::var("SHADECORE_BENCH_ONLY").as_deref() == Ok("stream") {
+        stream_figures();
+        return;
+    }
     figures();
     simulator_figures();
     stream_figures();

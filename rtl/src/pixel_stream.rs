@@ -4,9 +4,9 @@
 //! same order, whatever the stalls).
 //!
 //! ```text
-//!  s_axis ─► header / word count ─► word bank sw0..sw24 ─┬─ triangle fields ─► PixelPipeline ─► FIFO (32) ─► m_axis
-//!  (32 bit)   (record type, errors)  (one record)         └─ register fields ─► r_* (applied      ▲   │
-//!                                                                                when drained)  hold ◄┘ (FIFO level)
+//!  s_axis ─► header / word count ─► receive bank ─► load bank ─┬─ triangle fields ─► PixelPipeline ─► FIFO (32) ─► m_axis
+//!  (32 bit)   (record type, errors)  sw0..sw24       lw0..lw24  └─ register fields ─► r_* (applied      ▲   │
+//!                                                                                      when drained)  hold ◄┘ (FIFO level)
 //! ```
 //!
 //! # Ports
@@ -30,19 +30,29 @@
 //! length, or with an unknown type, is dropped whole (up to its `tlast`) and sets `error`.
 //!
 //! # Handshake, latency, throughput
-//! - One word bank: while a complete record waits in it, `s_axis_tready` is low. A triangle
-//!   waits for the address block's `ready` (which rises before the current triangle's last
-//!   rows, so the next one's set-up overlaps its walk); a register record waits until every
-//!   triangle loaded before it has left the pipeline (its `done` seen), so no fragment mixes two
-//!   register sets. Registers are 0 after reset: send a register record first.
+//! - Two word banks: the receive bank takes the record being streamed in; a complete record
+//!   moves in one clock to the load bank when that is free, and the receive bank takes the
+//!   next one. `s_axis_tready` is low only while a complete record waits in the receive bank.
+//!   In the load bank a triangle waits for the address block's `ready` (which rises before the
+//!   current triangle's last rows, so the next one's set-up overlaps its walk); a register
+//!   record waits until every triangle loaded before it has left the pipeline (its `done`
+//!   seen), so no fragment mixes two register sets. Registers are 0 after reset: send a
+//!   register record first.
 //! - Fragments (and triangle ends) enter a 32-entry FIFO. The address block is held (its
 //!   `hold`: no event this clock, none lost) while the FIFO holds more than 3 beats: at most
 //!   `EVENT_TO_FRAGMENT` + 1 = 29 events are then still in flight, so the FIFO never overflows
 //!   and never drops a fragment, and with `m_axis_tready` high it holds at most one beat and
-//!   the address block is never held (fragments per clock as `pixel-pipeline`'s, unless the
-//!   set-up stream is the limit: 26 words per triangle).
+//!   the address block is never held.
+//! - Throughput: one fragment per clock along a line, as `pixel-pipeline`, but a triangle's
+//!   set-up is 26 words at one word per clock, so runs of triangles smaller than that are
+//!   set-up bound: the default scene (2 288 triangles, 49 fragments each on average) gives
+//!   0.885 fragments per clock against `pixel-pipeline`'s 0.986 (`cargo bench --bench
+//!   rtl_lit`). More buffering in front of the reader does not help (measured with input
+//!   FIFOs of 64 to 100 000 words: unchanged); only more load banks or a wider set-up word
+//!   would.
 //! - Latency: a triangle record's last word accepted in clock t → its first beat offered in
-//!   clock t + 33 (1 to the load, 31 through `pixel-pipeline`, 1 through the FIFO).
+//!   clock t + 34 (1 into the receive bank's record, 1 to the load bank and the load, 31
+//!   through `pixel-pipeline`, 1 through the FIFO).
 //!
 //! # Overflow, error budget
 //! None of its own: the FIFO cannot overflow (above), counters are wide enough (`outstanding`
@@ -64,7 +74,7 @@ crate::hw_block! {
     /// The lit pixel pipeline with AXI4-Stream set-up and fragment streams (see the header).
     pub struct PixelStream(clock) as "pixel-stream" {
         summary: "AXI4-Stream top of the lit pixel pipeline: 32-bit set-up records in, 64-bit fragment beats out with back-pressure (a FIFO and the address block's hold)",
-        latency: 1 + PixelPipeline::LATENCY + 1
+        latency: 2 + PixelPipeline::LATENCY + 1
             => "a triangle record's last word to its first fragment beat, one fragment per clock",
         multipliers: 38,
         in { s_axis_tdata: Bits<32>, s_axis_tvalid: Bit, s_axis_tlast: Bit, m_axis_tready: Bit }
@@ -77,12 +87,16 @@ crate::hw_block! {
         // complete record waiting, dropping to tlast, the sticky error.
         count: DFF<Bits<6>>, rec_type: DFF<Bits<4>>, pending: DFF<Bit>, skip: DFF<Bit>,
         err: DFF<Bit>,
+        /// A record waits in the load bank (`pend_b`), of type `type_b`.
+        pend_b: DFF<Bit>, type_b: DFF<Bits<4>>, transfer: Signal<Local, Bit>,
         /// Triangles loaded whose `done` has not left the pipeline.
         outstanding: DFF<Bits<16>>,
         tri_words: Constant<Bits<6>> =
             Constant::new((crate::stream_layout::payload_words(&crate::stream_layout::TRIANGLE) as u64).into()),
         reg_words: Constant<Bits<6>> =
             Constant::new((crate::stream_layout::payload_words(&crate::stream_layout::REGISTERS) as u64).into()),
+        /// The word the record reader takes (the set-up stream's).
+        in_word: Signal<Local, Bits<32>>, in_last: Signal<Local, Bit>,
         accept: Signal<Local, Bit>, take_word: Signal<Local, Bit>, known: Signal<Local, Bit>,
         expected: Signal<Local, Bits<6>>, at_end: Signal<Local, Bit>,
         load_taken: Signal<Local, Bit>, apply_regs: Signal<Local, Bit>,
@@ -94,7 +108,7 @@ crate::hw_block! {
         ev_beat: Signal<Local, Bit>, pop: Signal<Local, Bit>, beat: Signal<Local, Bits<64>>,
         tlast_bit: Constant<Bits<33>> = Constant::new((1u64 << 32).into()),
         // BEGIN GENERATED by rtl::stream_layout::generated_rtl
-        // The word bank (payload words of the record being received).
+        // The receive bank (payload words of the record being received).
         sw0: DFF<Bits<32>>,
         sw1: DFF<Bits<32>>,
         sw2: DFF<Bits<32>>,
@@ -120,6 +134,32 @@ crate::hw_block! {
         sw22: DFF<Bits<32>>,
         sw23: DFF<Bits<32>>,
         sw24: DFF<Bits<32>>,
+        // The load bank (the complete record waiting for the pipeline).
+        lw0: DFF<Bits<32>>,
+        lw1: DFF<Bits<32>>,
+        lw2: DFF<Bits<32>>,
+        lw3: DFF<Bits<32>>,
+        lw4: DFF<Bits<32>>,
+        lw5: DFF<Bits<32>>,
+        lw6: DFF<Bits<32>>,
+        lw7: DFF<Bits<32>>,
+        lw8: DFF<Bits<32>>,
+        lw9: DFF<Bits<32>>,
+        lw10: DFF<Bits<32>>,
+        lw11: DFF<Bits<32>>,
+        lw12: DFF<Bits<32>>,
+        lw13: DFF<Bits<32>>,
+        lw14: DFF<Bits<32>>,
+        lw15: DFF<Bits<32>>,
+        lw16: DFF<Bits<32>>,
+        lw17: DFF<Bits<32>>,
+        lw18: DFF<Bits<32>>,
+        lw19: DFF<Bits<32>>,
+        lw20: DFF<Bits<32>>,
+        lw21: DFF<Bits<32>>,
+        lw22: DFF<Bits<32>>,
+        lw23: DFF<Bits<32>>,
+        lw24: DFF<Bits<32>>,
         // The active frame and material registers.
         r_lx: DFF<Bits<16>>,
         r_ly: DFF<Bits<16>>,
@@ -148,20 +188,15 @@ impl Logic for PixelStream {
     #[hdl_gen]
     fn update(&mut self) {
         clock!(self, clock, pipe, fifo_beat, fifo_tail);
-        dff_setup!(
-            self,
-            clock,
-            count,
-            rec_type,
-            pending,
-            skip,
-            err,
-            outstanding
-        );
+        dff_setup!(self, clock, count, rec_type, pending, skip, err);
+        dff_setup!(self, clock, outstanding, pend_b, type_b);
         dff_setup!(self, clock, wr_ptr, rd_ptr, level);
 
-        // Set-up side.
+        // Set-up side: the record reader takes a word while no complete record waits in the
+        // receive bank.
         self.s_axis_tready.next = !self.pending.q.val();
+        self.in_word.next = self.s_axis_tdata.val();
+        self.in_last.next = self.s_axis_tlast.val();
         self.accept.next = self.s_axis_tvalid.val() & !self.pending.q.val();
         self.take_word.next = self.accept.val() & !self.skip.q.val() & (self.count.q.val() != 0);
         self.known.next = (self.rec_type.q.val() == 1) | (self.rec_type.q.val() == 2);
@@ -172,19 +207,19 @@ impl Logic for PixelStream {
         self.at_end.next = self.count.q.val() == self.expected.val();
         if self.accept.val() & self.skip.q.val() {
             // Dropping a bad record up to its tlast.
-            if self.s_axis_tlast.val() {
+            if self.in_last.val() {
                 self.skip.d.next = false;
             }
         } else if self.accept.val() & (self.count.q.val() == 0) {
             // Header.
-            self.rec_type.d.next = self.s_axis_tdata.val().get_bits::<4>(0);
+            self.rec_type.d.next = self.in_word.val().get_bits::<4>(0);
             self.count.d.next = 1.into();
-            if self.s_axis_tlast.val() {
+            if self.in_last.val() {
                 // A record without payload.
                 self.err.d.next = true;
                 self.count.d.next = 0.into();
-            } else if (self.s_axis_tdata.val().get_bits::<4>(0) != 1)
-                & (self.s_axis_tdata.val().get_bits::<4>(0) != 2)
+            } else if (self.in_word.val().get_bits::<4>(0) != 1)
+                & (self.in_word.val().get_bits::<4>(0) != 2)
             {
                 self.err.d.next = true;
                 self.skip.d.next = true;
@@ -192,7 +227,7 @@ impl Logic for PixelStream {
             }
         } else if self.take_word.val() {
             self.count.d.next = self.count.q.val() + 1;
-            if self.s_axis_tlast.val() {
+            if self.in_last.val() {
                 self.count.d.next = 0.into();
                 if self.at_end.val() & self.known.val() {
                     self.pending.d.next = true;
@@ -208,15 +243,22 @@ impl Logic for PixelStream {
         }
         self.error.next = self.err.q.val();
 
-        // A waiting triangle loads when the address block is ready; waiting registers apply
-        // when every earlier triangle has left the pipeline.
-        self.pipe.load.next = self.pending.q.val() & (self.rec_type.q.val() == 1);
-        self.load_taken.next =
-            self.pending.q.val() & (self.rec_type.q.val() == 1) & self.pipe.ready.val();
-        self.apply_regs.next =
-            self.pending.q.val() & (self.rec_type.q.val() == 2) & (self.outstanding.q.val() == 0);
-        if self.load_taken.val() | self.apply_regs.val() {
+        // A complete record moves to the load bank when that is free, and the receive bank
+        // takes the next record. In the load bank a triangle loads when the address block is
+        // ready; registers apply when every earlier triangle has left the pipeline.
+        self.transfer.next = self.pending.q.val() & !self.pend_b.q.val();
+        if self.transfer.val() {
             self.pending.d.next = false;
+            self.pend_b.d.next = true;
+            self.type_b.d.next = self.rec_type.q.val();
+        }
+        self.pipe.load.next = self.pend_b.q.val() & (self.type_b.q.val() == 1);
+        self.load_taken.next =
+            self.pend_b.q.val() & (self.type_b.q.val() == 1) & self.pipe.ready.val();
+        self.apply_regs.next =
+            self.pend_b.q.val() & (self.type_b.q.val() == 2) & (self.outstanding.q.val() == 0);
+        if self.load_taken.val() | self.apply_regs.val() {
+            self.pend_b.d.next = false;
         }
         if self.load_taken.val() & !self.pipe.done.val() {
             self.outstanding.d.next = self.outstanding.q.val() + 1;
@@ -227,140 +269,171 @@ impl Logic for PixelStream {
         // BEGIN GENERATED by rtl::stream_layout::generated_rtl
         dff_setup!(self, clock, sw0, sw1, sw2, sw3, sw4, sw5, sw6, sw7, sw8);
         dff_setup!(self, clock, sw9, sw10, sw11, sw12, sw13, sw14, sw15, sw16, sw17);
-        dff_setup!(self, clock, sw18, sw19, sw20, sw21, sw22, sw23, sw24);
+        dff_setup!(self, clock, sw18, sw19, sw20, sw21, sw22, sw23, sw24, lw0, lw1);
+        dff_setup!(self, clock, lw2, lw3, lw4, lw5, lw6, lw7, lw8, lw9, lw10);
+        dff_setup!(self, clock, lw11, lw12, lw13, lw14, lw15, lw16, lw17, lw18, lw19);
+        dff_setup!(self, clock, lw20, lw21, lw22, lw23, lw24);
         dff_setup!(self, clock, r_lx, r_ly, r_lz, r_hx, r_hy, r_hz);
         dff_setup!(self, clock, r_n, r_amb_r, r_amb_g, r_amb_b, r_dif_r, r_dif_g);
         dff_setup!(self, clock, r_dif_b, r_spc_r, r_spc_g, r_spc_b);
         // Payload word k is the (k + 1)-th word of a record.
         if self.take_word.val() & (self.count.q.val() == 1) {
-            self.sw0.d.next = self.s_axis_tdata.val();
+            self.sw0.d.next = self.in_word.val();
         }
         if self.take_word.val() & (self.count.q.val() == 2) {
-            self.sw1.d.next = self.s_axis_tdata.val();
+            self.sw1.d.next = self.in_word.val();
         }
         if self.take_word.val() & (self.count.q.val() == 3) {
-            self.sw2.d.next = self.s_axis_tdata.val();
+            self.sw2.d.next = self.in_word.val();
         }
         if self.take_word.val() & (self.count.q.val() == 4) {
-            self.sw3.d.next = self.s_axis_tdata.val();
+            self.sw3.d.next = self.in_word.val();
         }
         if self.take_word.val() & (self.count.q.val() == 5) {
-            self.sw4.d.next = self.s_axis_tdata.val();
+            self.sw4.d.next = self.in_word.val();
         }
         if self.take_word.val() & (self.count.q.val() == 6) {
-            self.sw5.d.next = self.s_axis_tdata.val();
+            self.sw5.d.next = self.in_word.val();
         }
         if self.take_word.val() & (self.count.q.val() == 7) {
-            self.sw6.d.next = self.s_axis_tdata.val();
+            self.sw6.d.next = self.in_word.val();
         }
         if self.take_word.val() & (self.count.q.val() == 8) {
-            self.sw7.d.next = self.s_axis_tdata.val();
+            self.sw7.d.next = self.in_word.val();
         }
         if self.take_word.val() & (self.count.q.val() == 9) {
-            self.sw8.d.next = self.s_axis_tdata.val();
+            self.sw8.d.next = self.in_word.val();
         }
         if self.take_word.val() & (self.count.q.val() == 10) {
-            self.sw9.d.next = self.s_axis_tdata.val();
+            self.sw9.d.next = self.in_word.val();
         }
         if self.take_word.val() & (self.count.q.val() == 11) {
-            self.sw10.d.next = self.s_axis_tdata.val();
+            self.sw10.d.next = self.in_word.val();
         }
         if self.take_word.val() & (self.count.q.val() == 12) {
-            self.sw11.d.next = self.s_axis_tdata.val();
+            self.sw11.d.next = self.in_word.val();
         }
         if self.take_word.val() & (self.count.q.val() == 13) {
-            self.sw12.d.next = self.s_axis_tdata.val();
+            self.sw12.d.next = self.in_word.val();
         }
         if self.take_word.val() & (self.count.q.val() == 14) {
-            self.sw13.d.next = self.s_axis_tdata.val();
+            self.sw13.d.next = self.in_word.val();
         }
         if self.take_word.val() & (self.count.q.val() == 15) {
-            self.sw14.d.next = self.s_axis_tdata.val();
+            self.sw14.d.next = self.in_word.val();
         }
         if self.take_word.val() & (self.count.q.val() == 16) {
-            self.sw15.d.next = self.s_axis_tdata.val();
+            self.sw15.d.next = self.in_word.val();
         }
         if self.take_word.val() & (self.count.q.val() == 17) {
-            self.sw16.d.next = self.s_axis_tdata.val();
+            self.sw16.d.next = self.in_word.val();
         }
         if self.take_word.val() & (self.count.q.val() == 18) {
-            self.sw17.d.next = self.s_axis_tdata.val();
+            self.sw17.d.next = self.in_word.val();
         }
         if self.take_word.val() & (self.count.q.val() == 19) {
-            self.sw18.d.next = self.s_axis_tdata.val();
+            self.sw18.d.next = self.in_word.val();
         }
         if self.take_word.val() & (self.count.q.val() == 20) {
-            self.sw19.d.next = self.s_axis_tdata.val();
+            self.sw19.d.next = self.in_word.val();
         }
         if self.take_word.val() & (self.count.q.val() == 21) {
-            self.sw20.d.next = self.s_axis_tdata.val();
+            self.sw20.d.next = self.in_word.val();
         }
         if self.take_word.val() & (self.count.q.val() == 22) {
-            self.sw21.d.next = self.s_axis_tdata.val();
+            self.sw21.d.next = self.in_word.val();
         }
         if self.take_word.val() & (self.count.q.val() == 23) {
-            self.sw22.d.next = self.s_axis_tdata.val();
+            self.sw22.d.next = self.in_word.val();
         }
         if self.take_word.val() & (self.count.q.val() == 24) {
-            self.sw23.d.next = self.s_axis_tdata.val();
+            self.sw23.d.next = self.in_word.val();
         }
         if self.take_word.val() & (self.count.q.val() == 25) {
-            self.sw24.d.next = self.s_axis_tdata.val();
+            self.sw24.d.next = self.in_word.val();
+        }
+        // A complete record moves to the load bank when that is free.
+        if self.transfer.val() {
+            self.lw0.d.next = self.sw0.q.val();
+            self.lw1.d.next = self.sw1.q.val();
+            self.lw2.d.next = self.sw2.q.val();
+            self.lw3.d.next = self.sw3.q.val();
+            self.lw4.d.next = self.sw4.q.val();
+            self.lw5.d.next = self.sw5.q.val();
+            self.lw6.d.next = self.sw6.q.val();
+            self.lw7.d.next = self.sw7.q.val();
+            self.lw8.d.next = self.sw8.q.val();
+            self.lw9.d.next = self.sw9.q.val();
+            self.lw10.d.next = self.sw10.q.val();
+            self.lw11.d.next = self.sw11.q.val();
+            self.lw12.d.next = self.sw12.q.val();
+            self.lw13.d.next = self.sw13.q.val();
+            self.lw14.d.next = self.sw14.q.val();
+            self.lw15.d.next = self.sw15.q.val();
+            self.lw16.d.next = self.sw16.q.val();
+            self.lw17.d.next = self.sw17.q.val();
+            self.lw18.d.next = self.sw18.q.val();
+            self.lw19.d.next = self.sw19.q.val();
+            self.lw20.d.next = self.sw20.q.val();
+            self.lw21.d.next = self.sw21.q.val();
+            self.lw22.d.next = self.sw22.q.val();
+            self.lw23.d.next = self.sw23.q.val();
+            self.lw24.d.next = self.sw24.q.val();
         }
         // Triangle fields: the pipeline's set-up ports.
-        self.pipe.w_b0.next = self.sw0.q.val().get_bits::<12>(0);
-        self.pipe.w_e0.next = self.sw0.q.val().get_bits::<13>(12);
-        self.pipe.w_f.next = self.sw1.q.val().get_bits::<12>(0);
-        self.pipe.w_r.next = self.sw1.q.val().get_bits::<13>(12);
-        self.pipe.w_d.next = self.sw2.q.val().get_bits::<13>(0);
-        self.pipe.a_b0.next = self.sw2.q.val().get_bits::<12>(13);
-        self.pipe.a_e0.next = self.sw3.q.val().get_bits::<13>(0);
-        self.pipe.a_f.next = self.sw3.q.val().get_bits::<12>(13);
-        self.pipe.a_r.next = self.sw4.q.val().get_bits::<13>(0);
-        self.pipe.a_d.next = self.sw4.q.val().get_bits::<13>(13);
-        self.pipe.t_b0.next = self.sw5.q.val().get_bits::<12>(0);
-        self.pipe.t_e0.next = self.sw5.q.val().get_bits::<13>(12);
-        self.pipe.t_f.next = self.sw6.q.val().get_bits::<12>(0);
-        self.pipe.t_r.next = self.sw6.q.val().get_bits::<13>(12);
-        self.pipe.t_d.next = self.sw7.q.val().get_bits::<13>(0);
-        self.pipe.y_top.next = self.sw7.q.val().get_bits::<12>(13);
-        self.pipe.rows.next = self.sw8.q.val().get_bits::<12>(0);
-        self.pipe.y_switch.next = self.sw8.q.val().get_bits::<12>(12);
-        self.pipe.dir_neg.next = self.sw8.q.val().get_bit(24);
-        self.pipe.x_start.next = self.sw9.q.val();
-        self.pipe.x_short.next = self.sw10.q.val();
-        self.pipe.x_long.next = self.sw11.q.val();
-        self.pipe.x_line.next = self.sw12.q.val();
-        self.pipe.y_start.next = self.sw13.q.val();
-        self.pipe.y_short.next = self.sw14.q.val();
-        self.pipe.y_long.next = self.sw15.q.val();
-        self.pipe.y_line.next = self.sw16.q.val();
-        self.pipe.z_start.next = self.sw17.q.val();
-        self.pipe.z_short.next = self.sw18.q.val();
-        self.pipe.z_long.next = self.sw19.q.val();
-        self.pipe.z_line.next = self.sw20.q.val();
-        self.pipe.d_start.next = self.sw21.q.val();
-        self.pipe.d_short.next = self.sw22.q.val();
-        self.pipe.d_long.next = self.sw23.q.val();
-        self.pipe.d_line.next = self.sw24.q.val();
+        self.pipe.w_b0.next = self.lw0.q.val().get_bits::<12>(0);
+        self.pipe.w_e0.next = self.lw0.q.val().get_bits::<13>(12);
+        self.pipe.w_f.next = self.lw1.q.val().get_bits::<12>(0);
+        self.pipe.w_r.next = self.lw1.q.val().get_bits::<13>(12);
+        self.pipe.w_d.next = self.lw2.q.val().get_bits::<13>(0);
+        self.pipe.a_b0.next = self.lw2.q.val().get_bits::<12>(13);
+        self.pipe.a_e0.next = self.lw3.q.val().get_bits::<13>(0);
+        self.pipe.a_f.next = self.lw3.q.val().get_bits::<12>(13);
+        self.pipe.a_r.next = self.lw4.q.val().get_bits::<13>(0);
+        self.pipe.a_d.next = self.lw4.q.val().get_bits::<13>(13);
+        self.pipe.t_b0.next = self.lw5.q.val().get_bits::<12>(0);
+        self.pipe.t_e0.next = self.lw5.q.val().get_bits::<13>(12);
+        self.pipe.t_f.next = self.lw6.q.val().get_bits::<12>(0);
+        self.pipe.t_r.next = self.lw6.q.val().get_bits::<13>(12);
+        self.pipe.t_d.next = self.lw7.q.val().get_bits::<13>(0);
+        self.pipe.y_top.next = self.lw7.q.val().get_bits::<12>(13);
+        self.pipe.rows.next = self.lw8.q.val().get_bits::<12>(0);
+        self.pipe.y_switch.next = self.lw8.q.val().get_bits::<12>(12);
+        self.pipe.dir_neg.next = self.lw8.q.val().get_bit(24);
+        self.pipe.x_start.next = self.lw9.q.val();
+        self.pipe.x_short.next = self.lw10.q.val();
+        self.pipe.x_long.next = self.lw11.q.val();
+        self.pipe.x_line.next = self.lw12.q.val();
+        self.pipe.y_start.next = self.lw13.q.val();
+        self.pipe.y_short.next = self.lw14.q.val();
+        self.pipe.y_long.next = self.lw15.q.val();
+        self.pipe.y_line.next = self.lw16.q.val();
+        self.pipe.z_start.next = self.lw17.q.val();
+        self.pipe.z_short.next = self.lw18.q.val();
+        self.pipe.z_long.next = self.lw19.q.val();
+        self.pipe.z_line.next = self.lw20.q.val();
+        self.pipe.d_start.next = self.lw21.q.val();
+        self.pipe.d_short.next = self.lw22.q.val();
+        self.pipe.d_long.next = self.lw23.q.val();
+        self.pipe.d_line.next = self.lw24.q.val();
         // Register fields: applied into the active registers.
         if self.apply_regs.val() {
-            self.r_lx.d.next = self.sw0.q.val().get_bits::<16>(0);
-            self.r_ly.d.next = self.sw0.q.val().get_bits::<16>(16);
-            self.r_lz.d.next = self.sw1.q.val().get_bits::<16>(0);
-            self.r_hx.d.next = self.sw1.q.val().get_bits::<16>(16);
-            self.r_hy.d.next = self.sw2.q.val().get_bits::<16>(0);
-            self.r_hz.d.next = self.sw2.q.val().get_bits::<16>(16);
-            self.r_n.d.next = self.sw3.q.val().get_bits::<10>(0);
-            self.r_amb_r.d.next = self.sw3.q.val().get_bits::<16>(10);
-            self.r_amb_g.d.next = self.sw4.q.val().get_bits::<16>(0);
-            self.r_amb_b.d.next = self.sw4.q.val().get_bits::<16>(16);
-            self.r_dif_r.d.next = self.sw5.q.val().get_bits::<16>(0);
-            self.r_dif_g.d.next = self.sw5.q.val().get_bits::<16>(16);
-            self.r_dif_b.d.next = self.sw6.q.val().get_bits::<16>(0);
-            self.r_spc_r.d.next = self.sw6.q.val().get_bits::<16>(16);
-            self.r_spc_g.d.next = self.sw7.q.val().get_bits::<16>(0);
-            self.r_spc_b.d.next = self.sw7.q.val().get_bits::<16>(16);
+            self.r_lx.d.next = self.lw0.q.val().get_bits::<16>(0);
+            self.r_ly.d.next = self.lw0.q.val().get_bits::<16>(16);
+            self.r_lz.d.next = self.lw1.q.val().get_bits::<16>(0);
+            self.r_hx.d.next = self.lw1.q.val().get_bits::<16>(16);
+            self.r_hy.d.next = self.lw2.q.val().get_bits::<16>(0);
+            self.r_hz.d.next = self.lw2.q.val().get_bits::<16>(16);
+            self.r_n.d.next = self.lw3.q.val().get_bits::<10>(0);
+            self.r_amb_r.d.next = self.lw3.q.val().get_bits::<16>(10);
+            self.r_amb_g.d.next = self.lw4.q.val().get_bits::<16>(0);
+            self.r_amb_b.d.next = self.lw4.q.val().get_bits::<16>(16);
+            self.r_dif_r.d.next = self.lw5.q.val().get_bits::<16>(0);
+            self.r_dif_g.d.next = self.lw5.q.val().get_bits::<16>(16);
+            self.r_dif_b.d.next = self.lw6.q.val().get_bits::<16>(0);
+            self.r_spc_r.d.next = self.lw6.q.val().get_bits::<16>(16);
+            self.r_spc_g.d.next = self.lw7.q.val().get_bits::<16>(0);
+            self.r_spc_b.d.next = self.lw7.q.val().get_bits::<16>(16);
         }
         self.pipe.lx.next = self.r_lx.q.val();
         self.pipe.ly.next = self.r_ly.q.val();

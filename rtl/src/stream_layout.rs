@@ -295,16 +295,23 @@ pub const END: &str = "// END GENERATED";
 pub fn generated_rtl() -> (String, String) {
     let n = bank_words();
     let mut decl = String::new();
-    decl.push_str("        // The word bank (payload words of the record being received).\n");
+    decl.push_str("        // The receive bank (payload words of the record being received).\n");
     for k in 0..n {
         decl.push_str(&format!("        sw{k}: DFF<Bits<32>>,\n"));
+    }
+    decl.push_str("        // The load bank (the complete record waiting for the pipeline).\n");
+    for k in 0..n {
+        decl.push_str(&format!("        lw{k}: DFF<Bits<32>>,\n"));
     }
     decl.push_str("        // The active frame and material registers.\n");
     for fl in REGISTERS.fields {
         decl.push_str(&format!("        r_{}: DFF<Bits<{}>>,\n", fl.name, fl.bits));
     }
     let mut up = String::new();
-    let banks: Vec<String> = (0..n).map(|k| format!("sw{k}")).collect();
+    let banks: Vec<String> = (0..n)
+        .map(|k| format!("sw{k}"))
+        .chain((0..n).map(|k| format!("lw{k}")))
+        .collect();
     for chunk in banks.chunks(9) {
         up.push_str(&format!(
             "        dff_setup!(self, clock, {});\n",
@@ -325,10 +332,18 @@ pub fn generated_rtl() -> (String, String) {
     up.push_str("        // Payload word k is the (k + 1)-th word of a record.\n");
     for k in 0..n {
         up.push_str(&format!(
-            "        if self.take_word.val() & (self.count.q.val() == {}) {{\n            self.sw{k}.d.next = self.s_axis_tdata.val();\n        }}\n",
+            "        if self.take_word.val() & (self.count.q.val() == {}) {{\n            self.sw{k}.d.next = self.in_word.val();\n        }}\n",
             k + 1
         ));
     }
+    up.push_str("        // A complete record moves to the load bank when that is free.\n");
+    up.push_str("        if self.transfer.val() {\n");
+    for k in 0..n {
+        up.push_str(&format!(
+            "            self.lw{k}.d.next = self.sw{k}.q.val();\n"
+        ));
+    }
+    up.push_str("        }\n");
     up.push_str("        // Triangle fields: the pipeline's set-up ports.\n");
     for pl in place(&TRIANGLE) {
         up.push_str(&format!(
@@ -391,15 +406,15 @@ pub fn generated_rtl() -> (String, String) {
     (decl, up)
 }
 
-/// The hardware's select of a placed field from its bank word.
+/// The hardware's select of a placed field from its load-bank word.
 fn select(pl: &Placed) -> String {
     if pl.bits == 32 {
-        format!("self.sw{}.q.val()", pl.word)
+        format!("self.lw{}.q.val()", pl.word)
     } else if pl.bits == 1 {
-        format!("self.sw{}.q.val().get_bit({})", pl.word, pl.offset)
+        format!("self.lw{}.q.val().get_bit({})", pl.word, pl.offset)
     } else {
         format!(
-            "self.sw{}.q.val().get_bits::<{}>({})",
+            "self.lw{}.q.val().get_bits::<{}>({})",
             pl.word, pl.bits, pl.offset
         )
     }

@@ -27,6 +27,7 @@ def main():
         test_module="test_pixel_stream",
         test_dir=here,
         build_dir=build_dir,
+        results_xml=os.path.join(build_dir, "results.xml"),
         extra_env={
             "SHADECORE_STREAM_DIR": stream_dir,
             "SHADECORE_SEED": os.environ.get("SHADECORE_SEED", "1"),

@@ -36,6 +36,10 @@ pub struct StreamTwin {
     err: bool,
     outstanding: u64,
     bank: Vec<u32>,
+    /// The load bank and its record's type, when one waits there.
+    load_bank: Vec<u32>,
+    pend_b: bool,
+    type_b: u32,
     regs: Vec<u64>,
     fifo: VecDeque<(u64, u64, bool)>,
     /// Events (fragments and triangle ends) that entered the FIFO.
@@ -55,6 +59,9 @@ impl StreamTwin {
             err: false,
             outstanding: 0,
             bank: vec![0; rtl::stream_layout::bank_words()],
+            load_bank: vec![0; rtl::stream_layout::bank_words()],
+            pend_b: false,
+            type_b: 0,
             regs: vec![0; REGISTERS.fields.len()],
             fifo: VecDeque::new(),
             beats_in: 0,
@@ -69,13 +76,17 @@ impl StreamTwin {
 
     /// Nothing waiting, nothing in flight, nothing to deliver.
     pub fn idle(&self) -> bool {
-        !self.pending && self.count == 0 && self.outstanding == 0 && self.fifo.is_empty()
+        !self.pending
+            && !self.pend_b
+            && self.count == 0
+            && self.outstanding == 0
+            && self.fifo.is_empty()
     }
 
     fn outputs(&self) -> Vec<u64> {
         let (tdata, tuser, tlast) = self.fifo.front().copied().unwrap_or((0, 0, false));
         vec![
-            !self.pending as u64,
+            self.s_ready() as u64,
             !self.fifo.is_empty() as u64,
             tdata,
             tuser,
@@ -91,8 +102,8 @@ impl Twin for StreamTwin {
         let out = self.outputs();
 
         // The pipeline's inputs this clock.
-        let mut row = vec![(self.pending && self.rec_type == 1) as u64];
-        row.extend(unpack(&TRIANGLE, &self.bank));
+        let mut row = vec![(self.pend_b && self.type_b == 1) as u64];
+        row.extend(unpack(&TRIANGLE, &self.load_bank));
         row.extend(&self.regs);
         let hold = self.fifo.len() > HOLD_ABOVE;
         row.push(hold as u64);
@@ -111,8 +122,10 @@ impl Twin for StreamTwin {
         );
 
         // This clock's decisions read the registers before the edge.
-        let load_taken = self.pending && self.rec_type == 1 && ready;
-        let apply = self.pending && self.rec_type == 2 && self.outstanding == 0;
+        let load_taken = self.pend_b && self.type_b == 1 && ready;
+        let apply = self.pend_b && self.type_b == 2 && self.outstanding == 0;
+        let transfer = self.pending && !self.pend_b;
+        let (bank0, type0) = (self.bank.clone(), self.rec_type);
 
         // Set-up side.
         let accept = tvalid && !self.pending;
@@ -155,10 +168,16 @@ impl Twin for StreamTwin {
             }
         }
         if load_taken || apply {
-            self.pending = false;
+            self.pend_b = false;
         }
         if apply {
-            self.regs = unpack(&REGISTERS, &self.bank[..payload_words(&REGISTERS)]);
+            self.regs = unpack(&REGISTERS, &self.load_bank[..payload_words(&REGISTERS)]);
+        }
+        if transfer {
+            self.pending = false;
+            self.pend_b = true;
+            self.type_b = type0;
+            self.load_bank = bank0;
         }
         self.outstanding = self.outstanding + load_taken as u64 - done as u64;
 

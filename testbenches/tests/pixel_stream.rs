@@ -183,22 +183,30 @@ fn tready_high_never_holds_the_address_block() {
 }
 
 /// The header's latency: a triangle record's last word accepted in clock t, its first beat
-/// offered in clock t + `PixelStream::LATENCY` (the address block idle, `tready` high).
+/// offered in clock t + `PixelStream::LATENCY` (both banks free, the address block idle,
+/// `tready` high).
 #[test]
 fn latency_from_last_word_to_first_beat() {
-    let (p, o) = params();
+    let (_, o) = params();
     let (jobs, regs) = scene(7, 1);
-    let words = scene_words(&jobs, &regs);
-    let run = drive(&p, &words, 7, 0.0, &mut StallPattern::never(), 8);
-    let out = find("pixel-stream")
-        .unwrap()
-        .simulate(&o, &run.rows)
-        .unwrap();
-    // The last set-up word is the triangle's tlast; it is accepted when shown with tready.
-    let last = (0..run.rows.len())
-        .rev()
-        .find(|&c| run.rows[c][1] != 0 && run.rows[c][2] != 0 && out[c][0] != 0)
-        .unwrap();
+    let mut rows: Vec<Vec<u64>> = Vec::new();
+    for (w, last) in register_record(&regs) {
+        rows.push(vec![w as u64, 1, last as u64, 1]);
+    }
+    rows.extend(std::iter::repeat_n(vec![0, 0, 0, 1], 10));
+    for (w, last) in triangle_record(&jobs[0]) {
+        rows.push(vec![w as u64, 1, last as u64, 1]);
+    }
+    let last = rows.len() - 1;
+    rows.extend(std::iter::repeat_n(vec![0, 0, 0, 1], 60));
+    let out = find("pixel-stream").unwrap().simulate(&o, &rows).unwrap();
+    assert!(
+        out[..=last]
+            .iter()
+            .zip(&rows)
+            .all(|(o, r)| r[1] == 0 || o[0] != 0),
+        "every word accepted when shown"
+    );
     let first = (0..out.len()).find(|&c| out[c][1] != 0).unwrap();
     assert_eq!(first - last, rtl::pixel_stream::PixelStream::LATENCY);
 }
