@@ -51,8 +51,8 @@
 //!   FIFOs of 64 to 100 000 words: unchanged); only more load banks or a wider set-up word
 //!   would.
 //! - Latency: a triangle record's last word accepted in clock t → its first beat offered in
-//!   clock t + 34 (1 into the receive bank's record, 1 to the load bank and the load, 31
-//!   through `pixel-pipeline`, 1 through the FIFO).
+//!   clock t + 34 (the record is complete in t + 1, moves to the load bank in t + 1, loads in
+//!   t + 2; 31 clocks through `pixel-pipeline`, 1 through the FIFO).
 //!
 //! # Overflow, error budget
 //! None of its own: the FIFO cannot overflow (above), counters are wide enough (`outstanding`
