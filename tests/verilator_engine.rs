@@ -45,6 +45,10 @@ fn verilator_frames_equal_rust_hdl_frames() {
                 RtlBuild {
                     horner_pipelined: pipelined,
                     sim,
+                    // The Verilator engine replays pixel-pipeline's ports: compare the same
+                    // top clock for clock (pixel-stream's frames are pixel-pipeline's,
+                    // tests/rtl_lit.rs).
+                    lit_top: shadecore::rtl_engine::LitTop::Pipeline,
                     ..RtlBuild::default()
                 },
             )
