@@ -65,6 +65,17 @@ pub fn method_options(method: Method) -> Option<Options> {
     )
 }
 
+/// The build parameters of `method`'s pipeline; an error names the methods it has.
+fn pipeline_params(method: Method) -> Result<<PixelPipeline as RtlBlock>::Params, String> {
+    let o = method_options(method).ok_or_else(|| {
+        format!(
+            "the RTL pixel pipeline does not compute {method} (it has: {})",
+            LIT_METHODS.map(|m| m.name()).join(", ")
+        )
+    })?;
+    <PixelPipeline as RtlBlock>::Params::from_options(&o)
+}
+
 /// The shading registers of a frame: L, H (signed Q2.14), n, the nine colour weights.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct ShadingRegs {
@@ -223,13 +234,7 @@ pub struct LitPipe {
 impl LitPipe {
     /// The pipeline built for `method` (one of [`LIT_METHODS`]).
     pub fn new(method: Method) -> Result<LitPipe, String> {
-        let o = method_options(method).ok_or_else(|| {
-            format!(
-                "the RTL pixel pipeline does not compute {method} (it has: {})",
-                LIT_METHODS.map(|m| m.name()).join(", ")
-            )
-        })?;
-        let p = <PixelPipeline as RtlBlock>::Params::from_options(&o)?;
+        let p = pipeline_params(method)?;
         Ok(LitPipe {
             sim: LitSim::Rust(Box::new(Stepper::new(PixelPipeline::new(&p))?)),
         })
@@ -239,13 +244,7 @@ impl LitPipe {
     /// register record and every triangle record on its set-up stream (one word per clock
     /// while `s_axis_tready`) and takes every fragment beat (`m_axis_tready` high).
     pub fn stream(method: Method) -> Result<LitPipe, String> {
-        let o = method_options(method).ok_or_else(|| {
-            format!(
-                "the RTL pixel pipeline does not compute {method} (it has: {})",
-                LIT_METHODS.map(|m| m.name()).join(", ")
-            )
-        })?;
-        let p = <PixelPipeline as RtlBlock>::Params::from_options(&o)?;
+        let p = pipeline_params(method)?;
         Ok(LitPipe {
             sim: LitSim::Stream(Box::new(Stepper::new(
                 rtl::pixel_stream::PixelStream::new(&p),

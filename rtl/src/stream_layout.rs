@@ -14,8 +14,11 @@
 //!   `SHADECORE_REGENERATE=1` to rewrite them);
 //! - `rtl/README.md`'s layout table is printed by [`markdown`] (checked by a test as well).
 //!
-//! Field names and widths are the `pixel-pipeline` top's input ports (checked by a test against
-//! its port list), in its port order.
+//! Field names and widths are the `pixel-pipeline` top's input ports, in its port order
+//! (checked against its port list by `testbenches/tests/pixel_stream.rs`).
+//!
+//! Not a block: no ports, no latency (the hardware that reads these words is `pixel_stream`,
+//! whose header gives them).
 
 /// One field of a record: a port of `pixel-pipeline` (name, width in bits).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -308,26 +311,18 @@ pub fn generated_rtl() -> (String, String) {
         decl.push_str(&format!("        r_{}: DFF<Bits<{}>>,\n", fl.name, fl.bits));
     }
     let mut up = String::new();
-    let banks: Vec<String> = (0..n)
+    let banks = (0..n)
         .map(|k| format!("sw{k}"))
-        .chain((0..n).map(|k| format!("lw{k}")))
-        .collect();
-    for chunk in banks.chunks(9) {
-        up.push_str(&format!(
-            "        dff_setup!(self, clock, {});\n",
-            chunk.join(", ")
-        ));
-    }
-    let regs: Vec<String> = REGISTERS
-        .fields
-        .iter()
-        .map(|fl| format!("r_{}", fl.name))
-        .collect();
-    for chunk in regs.chunks(6) {
-        up.push_str(&format!(
-            "        dff_setup!(self, clock, {});\n",
-            chunk.join(", ")
-        ));
+        .chain((0..n).map(|k| format!("lw{k}")));
+    let regs = REGISTERS.fields.iter().map(|fl| format!("r_{}", fl.name));
+    // Short enough lists that rustfmt leaves each call on one line.
+    for (names, per_call) in [(banks.collect::<Vec<_>>(), 9), (regs.collect(), 6)] {
+        for chunk in names.chunks(per_call) {
+            up.push_str(&format!(
+                "        dff_setup!(self, clock, {});\n",
+                chunk.join(", ")
+            ));
+        }
     }
     up.push_str("        // Payload word k is the (k + 1)-th word of a record.\n");
     for k in 0..n {

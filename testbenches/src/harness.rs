@@ -428,9 +428,7 @@ pub fn run_stream<D: Dut>(
     let valid_ports: Vec<usize> = ports
         .iter()
         .enumerate()
-        .filter(|(_, p)| {
-            p.name.starts_with("valid") || p.name.ends_with("_valid") || p.name == "m_axis_tvalid"
-        })
+        .filter(|(_, p)| is_valid_port(p.name))
         .map(|(k, _)| k)
         .collect();
     let mut stats: Vec<PortStats> = ports
@@ -498,6 +496,12 @@ pub fn run_stream<D: Dut>(
         valid_clocks,
         ports: stats,
     })
+}
+
+/// A port that flags a valid output: `valid*`, a lane's `*_valid`, or an AXI4-Stream
+/// master's `m_axis_tvalid`.
+pub fn is_valid_port(name: &str) -> bool {
+    name.starts_with("valid") || name.ends_with("_valid") || name == "m_axis_tvalid"
 }
 
 /// [`run`] over a fixed list: clock `c` drives `rows[c]` and checks `expected[c]`.

@@ -222,3 +222,21 @@ fn readme_shows_the_generated_layout() {
         rtl::stream_layout::markdown()
     );
 }
+
+/// The layout table's fields are `pixel-pipeline`'s set-up and register ports: the same names
+/// and widths, in port order (between `load` and `hold`).
+#[test]
+fn layout_fields_are_the_pipeline_ports() {
+    use rtl::stream_layout::{REGISTERS, TRIANGLE};
+    let (ins, _) = find("pixel-pipeline").unwrap().ports();
+    let ports: Vec<(String, usize)> = ins.iter().map(|p| (p.name.to_string(), p.width)).collect();
+    let fields: Vec<(String, usize)> = TRIANGLE
+        .fields
+        .iter()
+        .chain(REGISTERS.fields)
+        .map(|f| (f.name.to_string(), f.bits as usize))
+        .collect();
+    assert_eq!(ports.first().map(|p| p.0.as_str()), Some("load"));
+    assert_eq!(ports.last().map(|p| p.0.as_str()), Some("hold"));
+    assert_eq!(ports[1..ports.len() - 1], fields[..]);
+}

@@ -263,11 +263,7 @@ fn every_block_simulates_and_the_check_can_fail() {
         let valid = outs
             .iter()
             // A lane's flag (`l0_valid`) where the block has lanes.
-            .position(|p| {
-                p.name.starts_with("valid")
-                    || p.name.ends_with("_valid")
-                    || p.name == "m_axis_tvalid"
-            })
+            .position(|p| testbenches::harness::is_valid_port(p.name))
             .unwrap();
         let pixels = out.report.outputs.iter().filter(|o| o[valid] != 0).count();
         assert!(
