@@ -92,10 +92,13 @@ pub fn sin_address(w: u64, addr_bits: u32) -> u64 {
 /// ```text
 /// B1  sφ = SINφ[addr(cos φ)], sγ = SINγ-interpolated(cos γ), code = CODE[y₄ x₄]
 /// B2  (cd, sd) = DG[code.magnitude], TG = code.sign                        (PROM read)
-/// B3  pφ = cos φ·cd, qφ = sφ·sd, pγ = cos γ·cd, qγ = sγ·sd                 (UQ2.30, exact)
-/// B4  out = TG ? rnd(p + q) : rnd(max(p − q, 0))     rnd: + 2¹⁴, drop 15, saturate 0xFFFF
+/// B3  the same words one register on (the RTL interpolates sγ here: a pure function of
+///     the B1 words, so the twin does it at B1)
+/// B4  pφ = cos φ·cd, qφ = sφ·sd, pγ = cos γ·cd, qγ = sγ·sd                 (UQ2.30, exact)
+/// B5  sum = TG ? p + q : max(p − q, 0)
+/// B6  out = rnd(sum)                                  rnd: + 2¹⁴, drop 15, saturate 0xFFFF
 /// ```
-/// With `enable` false the cosines pass through the same four registers unchanged.
+/// With `enable` false the cosines pass through the same six registers unchanged.
 pub mod twin {
     use super::{code_rom, dgamma_rom, sin_address, sin_rom, sin_rom_interp, SIN_DELTA_BITS};
     use crate::bump::{SIN_ADDR_BITS, SIN_INTERP_BITS, SIN_PHI_ADDR_BITS};
@@ -106,16 +109,20 @@ pub mod twin {
 
     #[derive(Clone, Debug, Default)]
     struct Regs {
-        valid: [bool; 4],
-        /// (cos φ, cos γ) at B1, B2, B3.
-        cos: [[u64; 2]; 3],
+        valid: [bool; 6],
+        /// (cos φ, cos γ) at B1 .. B5.
+        cos: [[u64; 2]; 5],
         sin: [u64; 2],
         code: u64,
         sin2: [u64; 2],
         dg: u64,
         tg: bool,
-        prod: [u64; 4],
+        sin3: [u64; 2],
+        dg3: u64,
         tg3: bool,
+        prod: [u64; 4],
+        tg4: bool,
+        sum: [u64; 2],
         out: [u64; 2],
     }
 
@@ -155,7 +162,7 @@ pub mod twin {
         }
         /// (valid_out, cos φ', cos γ') shown this clock.
         pub fn outputs(&self) -> (bool, u64, u64) {
-            (self.r.valid[3], self.r.out[0], self.r.out[1])
+            (self.r.valid[5], self.r.out[0], self.r.out[1])
         }
         /// One rising edge.
         pub fn clock(&mut self, valid_in: bool, cos_phi: u64, cos_gamma: u64, x: u64, y: u64) {
@@ -167,27 +174,33 @@ pub mod twin {
             let code = self.code[(((y & 15) << 4) | (x & 15)) as usize];
             let dg = self.dg[(s.code & 0xFF) as usize];
             let n = &mut self.r;
-            // B4
+            // B6
             n.out = if self.enable {
-                std::array::from_fn(|k| {
-                    let (p, q) = (s.prod[2 * k], s.prod[2 * k + 1]);
-                    if s.tg3 {
-                        rnd(p + q)
-                    } else {
-                        rnd(p.saturating_sub(q))
-                    }
-                })
+                s.sum.map(rnd)
             } else {
-                s.cos[2]
+                s.cos[4]
             };
-            // B3
-            let (cd, sd) = (s.dg >> 16, s.dg & 0xFFFF);
+            // B5
+            n.sum = std::array::from_fn(|k| {
+                let (p, q) = (s.prod[2 * k], s.prod[2 * k + 1]);
+                if s.tg4 {
+                    p + q
+                } else {
+                    p.saturating_sub(q)
+                }
+            });
+            // B4
+            let (cd, sd) = (s.dg3 >> 16, s.dg3 & 0xFFFF);
             n.prod = [
-                s.cos[1][0] * cd,
-                s.sin2[0] * sd,
-                s.cos[1][1] * cd,
-                s.sin2[1] * sd,
+                s.cos[2][0] * cd,
+                s.sin3[0] * sd,
+                s.cos[2][1] * cd,
+                s.sin3[1] * sd,
             ];
+            n.tg4 = s.tg3;
+            // B3
+            n.sin3 = s.sin2;
+            n.dg3 = s.dg;
             n.tg3 = s.tg;
             // B2
             n.dg = dg;
@@ -196,8 +209,10 @@ pub mod twin {
             // B1
             n.sin = sin_b1;
             n.code = code;
-            n.cos = [[cos_phi, cos_gamma], s.cos[0], s.cos[1]];
-            n.valid = [valid_in, s.valid[0], s.valid[1], s.valid[2]];
+            n.cos = [[cos_phi, cos_gamma], s.cos[0], s.cos[1], s.cos[2], s.cos[3]];
+            n.valid = [
+                valid_in, s.valid[0], s.valid[1], s.valid[2], s.valid[3], s.valid[4],
+            ];
         }
     }
 }

@@ -79,8 +79,8 @@ pub fn intensity(w: &Weights, cos_phi: f64, spec: f64) -> [f64; 3] {
 ///
 /// ```text
 /// C1 pd = dif·cos φ, ps = spc·S          UQ8.8 × UQ1.15 → UQ9.23, exact (six products)
-/// C2 sum = amb·2¹⁵ + pd + ps + 2²²       UQ11.23 in 34 bits, exact; ≥ 256 → 255,
-///                                        else bits 30..23 (round to nearest, ties up)
+/// C2 sum = amb·2¹⁵ + pd + ps              UQ11.23 in 34 bits, exact, registered
+/// C3 rgb = sum + 2²²: ≥ 256 → 255, else bits 30..23 (round to nearest, ties up)
 /// ```
 /// The weights are the words present when a pixel reaches C1 (dif, spc) and C2 (amb).
 pub mod twin {
@@ -93,21 +93,24 @@ pub mod twin {
     pub struct ColourTwin {
         pd: [u64; 3],
         ps: [u64; 3],
+        /// C2: the exact sum before the half LSB.
+        sum: [u64; 3],
         rgb: [u64; 3],
-        valid: [bool; 2],
+        valid: [bool; 3],
     }
 
     impl ColourTwin {
         /// (valid_out, [r, g, b]) shown this clock.
         pub fn outputs(&self) -> (bool, [u64; 3]) {
-            (self.valid[1], self.rgb)
+            (self.valid[2], self.rgb)
         }
         /// One rising edge: cosines as UQ1.15 words, `w` the nine weight words.
         pub fn clock(&mut self, valid_in: bool, cos_phi: u64, spec: u64, w: &[u64; 9]) {
-            self.rgb = std::array::from_fn(|c| narrow((w[c] << 15) + self.pd[c] + self.ps[c]));
+            self.rgb = self.sum.map(narrow);
+            self.sum = std::array::from_fn(|c| (w[c] << 15) + self.pd[c] + self.ps[c]);
             self.pd = std::array::from_fn(|c| w[3 + c] * cos_phi);
             self.ps = std::array::from_fn(|c| w[6 + c] * spec);
-            self.valid = [valid_in, self.valid[0]];
+            self.valid = [valid_in, self.valid[0], self.valid[1]];
         }
     }
 }

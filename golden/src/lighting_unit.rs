@@ -30,14 +30,15 @@ pub fn error_bound(component: f64, u: DVec3) -> f64 {
 }
 
 /// Bit-exact integer twin of `rtl/src/lighting_unit.rs`, from its header: the normalizer
-/// ([`crate::normalizer::twin::NormalizerTwin`], latency 9), then
+/// ([`crate::normalizer::twin::NormalizerTwin`], latency 12), then
 ///
 /// ```text
-/// D1 p = N'_i·L_i, N'_i·H_i          six exact signed Q2.14 × Q2.14 → Q4.28 products
-/// D2 cos = sat(round(Σ p: Q4.28 → UQ1.15))   sum exact (34 bits), +2¹², drop 13 bits,
-///                                            negative → 0, ≥ 2 → 0xFFFF
+/// D1 p = N'_i·L_i, N'_i·H_i          six exact signed Q2.14 × Q2.14 → Q4.28 products,
+///                                    two clocks (the product is ready one register later)
+/// D2 s = Σ p                         exact (34 bits), registered
+/// D3 cos = sat(round(s: Q4.28 → UQ1.15))   +2¹², drop 13 bits, negative → 0, ≥ 2 → 0xFFFF
 /// ```
-/// L and H are the words present when the pixel reaches D1.
+/// L and H are the words present when the pixel enters D1.
 pub mod twin {
     use crate::normalizer::twin::NormalizerTwin;
     use crate::normalizer::Coeffs;
@@ -50,33 +51,40 @@ pub mod twin {
     #[derive(Clone, Debug)]
     pub struct LightingTwin {
         norm: NormalizerTwin,
+        /// D1's two registers.
+        prod_a: [i64; 6],
         prod: [i64; 6],
+        sum: [i64; 2],
         cos: [i64; 2],
-        valid: [bool; 2],
+        valid: [bool; 4],
     }
 
     impl LightingTwin {
         pub fn new(c: Coeffs) -> Self {
             Self {
                 norm: NormalizerTwin::new(c),
+                prod_a: [0; 6],
                 prod: [0; 6],
+                sum: [0; 2],
                 cos: [0; 2],
-                valid: [false; 2],
+                valid: [false; 4],
             }
         }
         /// (valid_out, cos φ, cos γ as unsigned Q1.15 integers) shown this clock.
         pub fn outputs(&self) -> (bool, i64, i64) {
-            (self.valid[1], self.cos[0], self.cos[1])
+            (self.valid[3], self.cos[0], self.cos[1])
         }
         /// One rising edge: `v` the interpolated normal, `l` and `h` the light and half
         /// vectors (signed Q2.14 integers).
         pub fn clock(&mut self, valid_in: bool, v: [i64; 3], l: [i64; 3], h: [i64; 3]) {
             let (nv, n) = self.norm.outputs();
-            self.cos = [
-                narrow(self.prod[0] + self.prod[1] + self.prod[2]),
-                narrow(self.prod[3] + self.prod[4] + self.prod[5]),
+            self.cos = [narrow(self.sum[0]), narrow(self.sum[1])];
+            self.sum = [
+                self.prod[0] + self.prod[1] + self.prod[2],
+                self.prod[3] + self.prod[4] + self.prod[5],
             ];
-            self.prod = [
+            self.prod = self.prod_a;
+            self.prod_a = [
                 n[0] * l[0],
                 n[1] * l[1],
                 n[2] * l[2],
@@ -84,7 +92,7 @@ pub mod twin {
                 n[1] * h[1],
                 n[2] * h[2],
             ];
-            self.valid = [nv, self.valid[0]];
+            self.valid = [nv, self.valid[0], self.valid[1], self.valid[2]];
             self.norm.clock(valid_in, v);
         }
     }

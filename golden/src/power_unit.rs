@@ -92,14 +92,18 @@ pub fn error_bound(mode: PowerMode, n: u32, c: f64) -> f64 {
 ///
 /// ```text
 /// rnd(p)  = min((p + 2¹⁴) >> 15, 0xFFFF)             UQ2.30 → UQ1.15, ties up, saturate
-/// exact:  E0  acc = n₀ ? c : 0x8000,  pw = rnd(c²)
-///         Ej  acc = n_j ? rnd(acc·pw) : acc,  pw = rnd(pw²)  (j = 1..9; E9 squares nothing)
+/// Every multiply-and-round takes two clocks: the exact product registered (a), then the
+/// rounding and the selection (b).
+/// exact:  E0a acc = n₀ ? c : 0x8000,  sq = c²             E0b pw = rnd(sq)
+///         Eja prod = acc·pw,  sq = pw²                    Ejb acc = n_j ? rnd(prod) : acc,
+///                                                             pw = rnd(sq)
+///         (j = 1..9; E9 squares nothing): latency 20
 /// W:      W1  a = slope word, t = |c − 0x8000|, above = c > 0x8000, zero = c == 0
 ///         W2  p = a·t                          (2^-(15+f) units)
 ///         W3a sum = zero ? 0 : above ? 2^(15+f) + p : max(2^(15+f) − p, 0)   (registered)
 ///         W3b b = min((sum + 2^(f−1)) >> f, 0xFFFF)
-///         W4..W7  b = rnd(b²) for the first log2 k stages, else b
-///         then 2 delay registers (latency 10 in both modes)
+///         W4..W7  a: sq = b²; b: b = rnd(sq) in the first log2 k stages, else b
+///         then 8 delay registers (latency 20 in both modes)
 /// ```
 /// n travels with its pixel (each stage reads the n that entered with the pixel).
 pub mod twin {
@@ -120,6 +124,9 @@ pub mod twin {
         n: u64,
         above: bool,
         zero: bool,
+        /// The raw products of an (a) stage.
+        prod: u64,
+        sq: u64,
     }
 
     #[derive(Clone, Debug)]
@@ -127,8 +134,8 @@ pub mod twin {
         mode: PowerMode,
         /// W mode: fraction bits of the slope word (8 or 9).
         frac: u32,
-        stages: [Stage; 10],
-        /// W mode: (valid, value) of the padding delay (2 registers).
+        stages: [Stage; 20],
+        /// W mode: (valid, value) of the padding delay (8 registers).
         pad: VecDeque<(bool, u64)>,
     }
 
@@ -137,15 +144,15 @@ pub mod twin {
             PowerTwin {
                 mode,
                 frac: mode.k().map_or(8, |k| slope_word(k, 0).1),
-                stages: [Stage::default(); 10],
-                pad: std::iter::repeat_n((false, 0), 2).collect(),
+                stages: [Stage::default(); 20],
+                pad: std::iter::repeat_n((false, 0), 8).collect(),
             }
         }
 
         /// (valid_out, S as a UQ1.15 word) shown this clock.
         pub fn outputs(&self) -> (bool, u64) {
             match self.mode {
-                PowerMode::Exact => (self.stages[9].valid, self.stages[9].acc),
+                PowerMode::Exact => (self.stages[19].valid, self.stages[19].acc),
                 PowerMode::W(_) => self.pad[0],
             }
         }
@@ -156,24 +163,38 @@ pub mod twin {
             let n = n & 0x3FF;
             match self.mode {
                 PowerMode::Exact => {
-                    let mut next = [Stage::default(); 10];
+                    let mut next = [Stage::default(); 20];
                     next[0] = Stage {
                         valid: valid_in,
                         acc: if n & 1 == 1 { cos } else { 0x8000 },
-                        pw: rnd(cos * cos),
+                        sq: cos * cos,
                         n,
                         ..Stage::default()
                     };
+                    next[1] = Stage {
+                        pw: rnd(s[0].sq),
+                        sq: 0,
+                        ..s[0]
+                    };
                     for j in 1..10 {
-                        let p = s[j - 1];
-                        next[j] = Stage {
+                        let p = s[2 * j - 1];
+                        next[2 * j] = Stage {
+                            valid: p.valid,
+                            acc: p.acc,
+                            prod: p.acc * p.pw,
+                            sq: if j < 9 { p.pw * p.pw } else { 0 },
+                            n: p.n,
+                            ..Stage::default()
+                        };
+                        let p = s[2 * j];
+                        next[2 * j + 1] = Stage {
                             valid: p.valid,
                             acc: if (p.n >> j) & 1 == 1 {
-                                rnd(p.acc * p.pw)
+                                rnd(p.prod)
                             } else {
                                 p.acc
                             },
-                            pw: if j < 9 { rnd(p.pw * p.pw) } else { 0 },
+                            pw: if j < 9 { rnd(p.sq) } else { 0 },
                             n: p.n,
                             ..Stage::default()
                         };
@@ -182,17 +203,23 @@ pub mod twin {
                 }
                 PowerMode::W(k) => {
                     let squarings = k.trailing_zeros() as usize;
-                    // Output of W7 (stage index 7) enters the padding delay.
+                    // Output of W7b (stage index 11) enters the padding delay.
                     self.pad.pop_front();
-                    self.pad.push_back((s[7].valid, s[7].acc));
-                    let mut next = [Stage::default(); 10];
-                    // W4..W7 (indices 4..7).
-                    for i in (4..8).rev() {
-                        let p = s[i - 1];
-                        let square = i - 4 < squarings;
-                        next[i] = Stage {
+                    self.pad.push_back((s[11].valid, s[11].acc));
+                    let mut next = [Stage::default(); 20];
+                    // W4..W7: (a) at indices 4, 6, 8, 10, (b) at 5, 7, 9, 11.
+                    for i in 0..4 {
+                        let p = s[3 + 2 * i];
+                        next[4 + 2 * i] = Stage {
                             valid: p.valid,
-                            acc: if square { rnd(p.acc * p.acc) } else { p.acc },
+                            acc: p.acc,
+                            sq: p.acc * p.acc,
+                            ..Stage::default()
+                        };
+                        let p = s[4 + 2 * i];
+                        next[5 + 2 * i] = Stage {
+                            valid: p.valid,
+                            acc: if i < squarings { rnd(p.sq) } else { p.acc },
                             ..Stage::default()
                         };
                     }
@@ -236,6 +263,7 @@ pub mod twin {
                         above: cos > 0x8000,
                         zero: cos == 0,
                         n,
+                        ..Stage::default()
                     };
                     self.stages = next;
                 }

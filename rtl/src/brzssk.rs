@@ -25,17 +25,22 @@
 //! ```text
 //! B1  sφ = SINφ[round(cos φ·2¹⁰)] (cos φ ≥ 1 − 2⁻¹¹: 0), code = CODE[y₃..₀ x₃..₀] (sign,
 //!     8-bit magnitude), (s, d) = SINγ[cos γ bits 14..4] (cos γ ≥ 1: 0), frac = bits 3..0
-//! B2  cd, sd = DG[magnitude] (Q1.15 each), TG = sign; sγ = s − (d·frac + 8) >> 4 (shift-add)
-//! B3  pφ = cos φ·cd, qφ = sφ·sd, pγ = cos γ·cd, qγ = sγ·sd   UQ1.15² → UQ2.30, exact (4 multipliers)
-//! B4  TG ? p + q : max(p − q, 0), then + 2¹⁴, drop 15 bits, saturate at 0xFFFF
+//! B2  the PROM words registered; DG read at the code's magnitude, TG = sign
+//! B3  sγ = s − (d·frac + 8) >> 4 (shift-add); cd, sd = DG word (Q1.15 each), registered
+//! B4  pφ = cos φ·cd, qφ = sφ·sd, pγ = cos γ·cd, qγ = sγ·sd   UQ1.15² → UQ2.30, exact (4 multipliers)
+//! B5  TG ? p + q : max(p − q, 0)
+//! B6  + 2¹⁴, drop 15 bits, saturate at 0xFFFF
 //! ```
+//! B2, B5 and the registered DG word are there for ECP5 timing (before: latency 4, 64 MHz):
+//! a block RAM's output takes 5.6 ns from the clock, so none feeds logic or a multiplier in the
+//! same clock, and the add/subtract and the rounding carry chains take a clock each.
 //! PROM sizes: SINγ 2048 × 27 (s in Q1.15 and the step d = s[a] − s[a+1] ≤ 1024 to the next
 //! word, linearly interpolated by the 4 bits below the address: sin γ is steep near cos γ = 1
 //! and the power after it would turn a bare PROM step into a ring), SINφ 1024 × 16 (rounded
 //! address, no interpolation: no power follows the diffuse term), CODE 256 × 9, DG 256 × 32.
 //! The word of cos = 1 (sin = 0) is a registered flag, not a PROM address.
-//! Latency 4 clocks, one pixel per clock, no stall. Build parameter `bump` (on | off): off
-//! passes the cosines through the same four registers (the pixel pipeline keeps one latency
+//! Latency 6 clocks, one pixel per clock, no stall. Build parameter `bump` (on | off): off
+//! passes the cosines through the same six registers (the pixel pipeline keeps one latency
 //! for every method; synthesis removes the unused PROMs and multipliers).
 //!
 //! # Overflow
@@ -106,7 +111,7 @@ crate::hw_block! {
     /// BRZSSK (see the module header).
     pub struct Brzssk(clock) as "brzssk" {
         summary: "cos φ, cos γ and the pixel address in, cos(φ ± dγ), cos(γ ± dγ) out: PROMs, trigger TG, four multipliers, add/subtract (SPEC §2)",
-        latency: 4 => "valid_in to valid_out, one pixel per clock",
+        latency: 6 => "valid_in to valid_out, one pixel per clock",
         multipliers: 4,
         in { valid_in: Bit, cos_phi: Bits<16>, cos_gamma: Bits<16>, x: Bits<12>, y: Bits<12> }
         out { valid_out: Bit, cos_phi_out: Bits<16>, cos_gamma_out: Bits<16> }
@@ -130,25 +135,36 @@ crate::hw_block! {
         code_addr: Signal<Local, Bits<8>>,
         cos_p1: [DFF<Bits<16>>; 2],
         valid_p1: DFF<Bit>,
-        // B2
+        // B2: the PROM words registered, the dγ PROM read.
         dg_rom: Prom<Bits<32>, 8> = rom(golden::brzssk::dgamma_rom()),
+        sg_p2: DFF<Bits<27>>,
+        frac_p2: DFF<Bits<4>>,
+        top_p2: DFF<Bit>,
         tg: DFF<Bit>,
-        sin_p2: [DFF<Bits<16>>; 2],
+        sin_p2: DFF<Bits<16>>,
         cos_p2: [DFF<Bits<16>>; 2],
         valid_p2: DFF<Bit>,
-        // B3
-        cos_d: Signal<Local, Bits<16>>,
-        sin_d: Signal<Local, Bits<16>>,
-        prod: [DFF<Bits<32>>; 4],
+        // B3: the interpolated sin γ, the DG word registered.
+        sin_p3: [DFF<Bits<16>>; 2],
+        cos_d: DFF<Bits<16>>,
+        sin_d: DFF<Bits<16>>,
         tg_p3: DFF<Bit>,
         cos_p3: [DFF<Bits<16>>; 2],
         valid_p3: DFF<Bit>,
         // B4
-        sum: [Signal<Local, Bits<32>>; 2],
+        prod: [DFF<Bits<32>>; 4],
+        tg_p4: DFF<Bit>,
+        cos_p4: [DFF<Bits<16>>; 2],
+        valid_p4: DFF<Bit>,
+        // B5
+        sum: [DFF<Bits<32>>; 2],
+        cos_p5: [DFF<Bits<16>>; 2],
+        valid_p5: DFF<Bit>,
+        // B6
         sum_rnd: [Signal<Local, Bits<32>>; 2],
         half_lsb: Constant<Bits<32>> = Constant::new((1u64 << 14).into()),
         out: [DFF<Bits<16>>; 2],
-        valid_p4: DFF<Bit>,
+        valid_p6: DFF<Bit>,
     }
     new(p: &BrzsskParams);
 }
@@ -164,19 +180,31 @@ impl Logic for Brzssk {
             code_rom,
             valid_p1,
             dg_rom,
+            sg_p2,
+            frac_p2,
+            top_p2,
             tg,
+            sin_p2,
             valid_p2,
+            cos_d,
+            sin_d,
             tg_p3,
             valid_p3,
-            valid_p4
+            tg_p4,
+            valid_p4,
+            valid_p5,
+            valid_p6
         );
+        self.frac_p1.clock.next = self.clock.val();
         for k in 0..2 {
             self.top_p1[k].clock.next = self.clock.val();
-            self.frac_p1.clock.next = self.clock.val();
             self.cos_p1[k].clock.next = self.clock.val();
-            self.sin_p2[k].clock.next = self.clock.val();
             self.cos_p2[k].clock.next = self.clock.val();
+            self.sin_p3[k].clock.next = self.clock.val();
             self.cos_p3[k].clock.next = self.clock.val();
+            self.cos_p4[k].clock.next = self.clock.val();
+            self.sum[k].clock.next = self.clock.val();
+            self.cos_p5[k].clock.next = self.clock.val();
             self.out[k].clock.next = self.clock.val();
         }
         for k in 0..4 {
@@ -197,31 +225,38 @@ impl Logic for Brzssk {
         self.cos_p1[0].d.next = self.cos_phi.val();
         self.cos_p1[1].d.next = self.cos_gamma.val();
         self.valid_p1.d.next = self.valid_in.val();
-        // B2: the dγ PROM, the trigger TG.
+        // B2: the PROM words registered; the dγ PROM, the trigger TG.
         self.dg_rom.address.next = self.code_rom.data.val().get_bits::<8>(0);
         self.tg.d.next = self.code_rom.data.val().get_bit(8);
         if self.top_p1[0].q.val() {
-            self.sin_p2[0].d.next = 0.into();
+            self.sin_p2.d.next = 0.into();
         } else {
-            self.sin_p2[0].d.next = self.sin_phi_rom.data.val();
+            self.sin_p2.d.next = self.sin_phi_rom.data.val();
         }
-        // sin γ = s − round(d·frac / 16), d·frac by four shifted adds (d ≤ 1024, frac ≤ 15).
-        self.s_word.next = self.sin_gamma_rom.data.val().get_bits::<16>(11);
-        self.d_word.next = bit_cast::<16, 11>(self.sin_gamma_rom.data.val().get_bits::<11>(0));
+        self.sg_p2.d.next = self.sin_gamma_rom.data.val();
+        self.frac_p2.d.next = self.frac_p1.q.val();
+        self.top_p2.d.next = self.top_p1[1].q.val();
+        self.cos_p2[0].d.next = self.cos_p1[0].q.val();
+        self.cos_p2[1].d.next = self.cos_p1[1].q.val();
+        self.valid_p2.d.next = self.valid_p1.q.val();
+        // B3: sin γ = s − round(d·frac / 16), d·frac by four shifted adds (d ≤ 1024,
+        // frac ≤ 15); the DG word registered.
+        self.s_word.next = self.sg_p2.q.val().get_bits::<16>(11);
+        self.d_word.next = bit_cast::<16, 11>(self.sg_p2.q.val().get_bits::<11>(0));
         self.d_frac[0].next = 0.into();
         self.d_frac[1].next = 0.into();
         self.d_frac[2].next = 0.into();
         self.d_frac[3].next = 0.into();
-        if self.frac_p1.q.val().get_bit(0) {
+        if self.frac_p2.q.val().get_bit(0) {
             self.d_frac[0].next = self.d_word.val();
         }
-        if self.frac_p1.q.val().get_bit(1) {
+        if self.frac_p2.q.val().get_bit(1) {
             self.d_frac[1].next = self.d_word.val() << 1;
         }
-        if self.frac_p1.q.val().get_bit(2) {
+        if self.frac_p2.q.val().get_bit(2) {
             self.d_frac[2].next = self.d_word.val() << 2;
         }
-        if self.frac_p1.q.val().get_bit(3) {
+        if self.frac_p2.q.val().get_bit(3) {
             self.d_frac[3].next = self.d_word.val() << 3;
         }
         self.d_prod.next = self.d_frac[0].val()
@@ -229,51 +264,57 @@ impl Logic for Brzssk {
             + self.d_frac[2].val()
             + self.d_frac[3].val();
         self.d_rnd.next = self.d_prod.val() + 8;
-        if self.top_p1[1].q.val() {
-            self.sin_p2[1].d.next = 0.into();
+        self.sin_p3[0].d.next = self.sin_p2.q.val();
+        if self.top_p2.q.val() {
+            self.sin_p3[1].d.next = 0.into();
         } else {
-            self.sin_p2[1].d.next = self.s_word.val() - (self.d_rnd.val() >> 4);
+            self.sin_p3[1].d.next = self.s_word.val() - (self.d_rnd.val() >> 4);
         }
-        self.cos_p2[0].d.next = self.cos_p1[0].q.val();
-        self.cos_p2[1].d.next = self.cos_p1[1].q.val();
-        self.valid_p2.d.next = self.valid_p1.q.val();
-        // B3: Mul1–Mul4.
-        self.cos_d.next = self.dg_rom.data.val().get_bits::<16>(16);
-        self.sin_d.next = self.dg_rom.data.val().get_bits::<16>(0);
-        self.prod[0].d.next = self.cos_p2[0].q.val() * self.cos_d.val();
-        self.prod[1].d.next = self.sin_p2[0].q.val() * self.sin_d.val();
-        self.prod[2].d.next = self.cos_p2[1].q.val() * self.cos_d.val();
-        self.prod[3].d.next = self.sin_p2[1].q.val() * self.sin_d.val();
+        self.cos_d.d.next = self.dg_rom.data.val().get_bits::<16>(16);
+        self.sin_d.d.next = self.dg_rom.data.val().get_bits::<16>(0);
         self.tg_p3.d.next = self.tg.q.val();
         self.cos_p3[0].d.next = self.cos_p2[0].q.val();
         self.cos_p3[1].d.next = self.cos_p2[1].q.val();
         self.valid_p3.d.next = self.valid_p2.q.val();
-        // B4: add (dγ < 0) or subtract (clamped at 0), round, saturate.
-        if self.tg_p3.q.val() {
-            self.sum[0].next = self.prod[0].q.val() + self.prod[1].q.val();
-            self.sum[1].next = self.prod[2].q.val() + self.prod[3].q.val();
+        // B4: Mul1–Mul4.
+        self.prod[0].d.next = self.cos_p3[0].q.val() * self.cos_d.q.val();
+        self.prod[1].d.next = self.sin_p3[0].q.val() * self.sin_d.q.val();
+        self.prod[2].d.next = self.cos_p3[1].q.val() * self.cos_d.q.val();
+        self.prod[3].d.next = self.sin_p3[1].q.val() * self.sin_d.q.val();
+        self.tg_p4.d.next = self.tg_p3.q.val();
+        self.cos_p4[0].d.next = self.cos_p3[0].q.val();
+        self.cos_p4[1].d.next = self.cos_p3[1].q.val();
+        self.valid_p4.d.next = self.valid_p3.q.val();
+        // B5: add (dγ < 0) or subtract (clamped at 0).
+        if self.tg_p4.q.val() {
+            self.sum[0].d.next = self.prod[0].q.val() + self.prod[1].q.val();
+            self.sum[1].d.next = self.prod[2].q.val() + self.prod[3].q.val();
         } else {
-            self.sum[0].next = self.prod[0].q.val() - self.prod[1].q.val();
-            self.sum[1].next = self.prod[2].q.val() - self.prod[3].q.val();
+            self.sum[0].d.next = self.prod[0].q.val() - self.prod[1].q.val();
+            self.sum[1].d.next = self.prod[2].q.val() - self.prod[3].q.val();
             if self.prod[1].q.val() > self.prod[0].q.val() {
-                self.sum[0].next = 0.into();
+                self.sum[0].d.next = 0.into();
             }
             if self.prod[3].q.val() > self.prod[2].q.val() {
-                self.sum[1].next = 0.into();
+                self.sum[1].d.next = 0.into();
             }
         }
+        self.cos_p5[0].d.next = self.cos_p4[0].q.val();
+        self.cos_p5[1].d.next = self.cos_p4[1].q.val();
+        self.valid_p5.d.next = self.valid_p4.q.val();
+        // B6: round, saturate.
         for k in 0..2 {
-            self.sum_rnd[k].next = self.sum[k].val() + self.half_lsb.val();
+            self.sum_rnd[k].next = self.sum[k].q.val() + self.half_lsb.val();
             if !self.enable.val() {
-                self.out[k].d.next = self.cos_p3[k].q.val();
+                self.out[k].d.next = self.cos_p5[k].q.val();
             } else if self.sum_rnd[k].val().get_bit(31) {
                 self.out[k].d.next = 0xFFFF.into();
             } else {
                 self.out[k].d.next = self.sum_rnd[k].val().get_bits::<16>(15);
             }
         }
-        self.valid_p4.d.next = self.valid_p3.q.val();
-        self.valid_out.next = self.valid_p4.q.val();
+        self.valid_p6.d.next = self.valid_p5.q.val();
+        self.valid_out.next = self.valid_p6.q.val();
         self.cos_phi_out.next = self.out[0].q.val();
         self.cos_gamma_out.next = self.out[1].q.val();
     }

@@ -14,7 +14,7 @@
 //! | `valid_in` | in | 1 = cos_phi, spec hold a pixel's terms |
 //! | `cos_phi`, `spec` | in | unsigned Q1.15 (cos φ ≥ 0 from the lighting unit, S from the power unit) |
 //! | `amb_r … amb_b`, `dif_r … dif_b`, `spc_r … spc_b` | in | unsigned Q8.8 weights, registers (hold them while pixels are in flight) |
-//! | `valid_out` | out | `valid_in` two clocks later |
+//! | `valid_out` | out | `valid_in` three clocks later |
 //! | `red`, `green`, `blue` | out | 8 bits, registered |
 //!
 //! # Pipeline
@@ -24,10 +24,12 @@
 //!    parts so no word is wider than 32 bits (the simulator's fast width; the hardware is the
 //!    same 34-bit sum, split at bit 23):
 //!      lo_c = pd_c[22:0] + ps_c[22:0] + amb_c[7:0]·2¹⁵ + 2²²        < 2²⁵
-//!      hi_c = pd_c[31:23] + ps_c[31:23] + amb_c[15:8] + lo_c[24:23]  < 2¹¹  (= ⌊sum_c / 2²³⌋)
+//!      hs_c = pd_c[31:23] + ps_c[31:23] + amb_c[15:8]                 < 2¹¹, both registered
+//! C3 hi_c = hs_c + lo_c[24:23] (= ⌊sum_c / 2²³⌋)
 //!    rgb_c = 255 if hi_c ≥ 256, else hi_c[7:0]
 //! ```
-//! Latency 2 clocks, one pixel per clock, no stall.
+//! Latency 3 clocks, one pixel per clock, no stall. (C2 and C3 were one clock until ECP5
+//! timing: in the pixel pipeline the sums, the carry and the clamp in one clock ran at 86 MHz.)
 //!
 //! # Overflow
 //! None wraps: products and sums are exact; the result saturates at 255 ("colours that
@@ -43,7 +45,7 @@ crate::hw_block! {
     /// The colour combine (see the module header).
     pub struct ColourCombine(clock) as "colour-combine" {
         summary: "cos φ and S in, I = amb + dif·cos φ + spc·S per channel out, 8 bits saturated (SPEC §0)",
-        latency: 2 => "valid_in to valid_out, one pixel per clock",
+        latency: 3 => "valid_in to valid_out, one pixel per clock",
         multipliers: 6,
         in {
             valid_in: Bit, cos_phi: Bits<16>, spec: Bits<16>,
@@ -56,21 +58,26 @@ crate::hw_block! {
         pd: [DFF<Bits<32>>; 3],
         ps: [DFF<Bits<32>>; 3],
         valid_p1: DFF<Bit>,
-        // C2: the sum's bits 22..0 (with their carry) and 33..23.
-        lo: [Signal<Local, Bits<32>>; 3],
-        hi: [Signal<Local, Bits<16>>; 3],
+        // C2: the sum's bits 22..0 (with their carry) and 33..23, registered.
+        lo: [DFF<Bits<32>>; 3],
+        hs: [DFF<Bits<16>>; 3],
         half_lsb: Constant<Bits<32>> = Constant::new((1u64 << 22).into()),
+        valid_p2: DFF<Bit>,
+        // C3: the carry into the high part, the clamp.
+        hi: [Signal<Local, Bits<16>>; 3],
         level_max: Constant<Bits<8>> = Constant::new(255.into()),
         rgb: [DFF<Bits<8>>; 3],
-        valid_p2: DFF<Bit>,
+        valid_p3: DFF<Bit>,
     }
 }
 
 impl Logic for ColourCombine {
     #[hdl_gen]
     fn update(&mut self) {
-        clock!(self, clock, valid_p1, valid_p2);
+        clock!(self, clock, valid_p1, valid_p2, valid_p3);
         for c in 0..3 {
+            self.lo[c].clock.next = self.clock.val();
+            self.hs[c].clock.next = self.clock.val();
             self.pd[c].clock.next = self.clock.val();
             self.ps[c].clock.next = self.clock.val();
             self.rgb[c].clock.next = self.clock.val();
@@ -84,30 +91,35 @@ impl Logic for ColourCombine {
         self.ps[2].d.next = self.spc_b.val() * self.spec.val();
         self.valid_p1.d.next = self.valid_in.val();
         // C2 (written out per channel: rust-hdl resolves no loop index inside bit_cast).
-        self.lo[0].next = bit_cast::<32, 23>(self.pd[0].q.val().get_bits::<23>(0))
+        self.lo[0].d.next = bit_cast::<32, 23>(self.pd[0].q.val().get_bits::<23>(0))
             + bit_cast::<32, 23>(self.ps[0].q.val().get_bits::<23>(0))
             + (bit_cast::<32, 8>(self.amb_r.val().get_bits::<8>(0)) << 15)
             + self.half_lsb.val();
-        self.lo[1].next = bit_cast::<32, 23>(self.pd[1].q.val().get_bits::<23>(0))
+        self.lo[1].d.next = bit_cast::<32, 23>(self.pd[1].q.val().get_bits::<23>(0))
             + bit_cast::<32, 23>(self.ps[1].q.val().get_bits::<23>(0))
             + (bit_cast::<32, 8>(self.amb_g.val().get_bits::<8>(0)) << 15)
             + self.half_lsb.val();
-        self.lo[2].next = bit_cast::<32, 23>(self.pd[2].q.val().get_bits::<23>(0))
+        self.lo[2].d.next = bit_cast::<32, 23>(self.pd[2].q.val().get_bits::<23>(0))
             + bit_cast::<32, 23>(self.ps[2].q.val().get_bits::<23>(0))
             + (bit_cast::<32, 8>(self.amb_b.val().get_bits::<8>(0)) << 15)
             + self.half_lsb.val();
-        self.hi[0].next = bit_cast::<16, 9>(self.pd[0].q.val().get_bits::<9>(23))
+        self.hs[0].d.next = bit_cast::<16, 9>(self.pd[0].q.val().get_bits::<9>(23))
             + bit_cast::<16, 9>(self.ps[0].q.val().get_bits::<9>(23))
-            + bit_cast::<16, 8>(self.amb_r.val().get_bits::<8>(8))
-            + bit_cast::<16, 2>(self.lo[0].val().get_bits::<2>(23));
-        self.hi[1].next = bit_cast::<16, 9>(self.pd[1].q.val().get_bits::<9>(23))
+            + bit_cast::<16, 8>(self.amb_r.val().get_bits::<8>(8));
+        self.hs[1].d.next = bit_cast::<16, 9>(self.pd[1].q.val().get_bits::<9>(23))
             + bit_cast::<16, 9>(self.ps[1].q.val().get_bits::<9>(23))
-            + bit_cast::<16, 8>(self.amb_g.val().get_bits::<8>(8))
-            + bit_cast::<16, 2>(self.lo[1].val().get_bits::<2>(23));
-        self.hi[2].next = bit_cast::<16, 9>(self.pd[2].q.val().get_bits::<9>(23))
+            + bit_cast::<16, 8>(self.amb_g.val().get_bits::<8>(8));
+        self.hs[2].d.next = bit_cast::<16, 9>(self.pd[2].q.val().get_bits::<9>(23))
             + bit_cast::<16, 9>(self.ps[2].q.val().get_bits::<9>(23))
-            + bit_cast::<16, 8>(self.amb_b.val().get_bits::<8>(8))
-            + bit_cast::<16, 2>(self.lo[2].val().get_bits::<2>(23));
+            + bit_cast::<16, 8>(self.amb_b.val().get_bits::<8>(8));
+        self.valid_p2.d.next = self.valid_p1.q.val();
+        // C3
+        self.hi[0].next =
+            self.hs[0].q.val() + bit_cast::<16, 2>(self.lo[0].q.val().get_bits::<2>(23));
+        self.hi[1].next =
+            self.hs[1].q.val() + bit_cast::<16, 2>(self.lo[1].q.val().get_bits::<2>(23));
+        self.hi[2].next =
+            self.hs[2].q.val() + bit_cast::<16, 2>(self.lo[2].q.val().get_bits::<2>(23));
         for c in 0..3 {
             if self.hi[c].val().get_bits::<8>(8).any() {
                 self.rgb[c].d.next = self.level_max.val();
@@ -115,8 +127,8 @@ impl Logic for ColourCombine {
                 self.rgb[c].d.next = self.hi[c].val().get_bits::<8>(0);
             }
         }
-        self.valid_p2.d.next = self.valid_p1.q.val();
-        self.valid_out.next = self.valid_p2.q.val();
+        self.valid_p3.d.next = self.valid_p2.q.val();
+        self.valid_out.next = self.valid_p3.q.val();
         self.red.next = self.rgb[0].q.val();
         self.green.next = self.rgb[1].q.val();
         self.blue.next = self.rgb[2].q.val();

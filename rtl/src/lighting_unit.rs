@@ -15,24 +15,29 @@
 //! |---|---|---|
 //! | `valid_in` | in | 1 = x, y, z hold a normal this clock |
 //! | `x`, `y`, `z` | in | signed Q2.14: the interpolated (unnormalized) normal |
-//! | `lx ly lz`, `hx hy hz` | in | signed Q2.14: unit L and H, registers of the top (sampled when a pixel reaches D1; hold them while pixels are in flight) |
+//! | `lx ly lz`, `hx hy hz` | in | signed Q2.14: unit L and H, registers of the top (sampled when a pixel enters D1, 4 clocks before its output; hold them while pixels are in flight) |
 //! | `valid_out` | out | `valid_in` delayed by the latency |
 //! | `cos_phi`, `cos_gamma` | out | unsigned Q1.15, registered |
 //!
 //! # Pipeline
 //! ```text
-//! N1..N9  the normalizer (`crate::normalizer::Normalizer`, coefficient set a build parameter)
-//! D1  p = nx·lx … nz·hz     six signed Q2.14 × Q2.14 → Q4.28 products, exact [MulSigned]
-//! D2  cos = Σp              three-operand sums, exact (|Σp| ≤ 3·2³⁰: 34 bits), + 2¹²
-//!                           (half LSB), then Q4.28 → unsigned Q1.15: negative → 0,
-//!                           ≥ 2 − 2⁻¹⁶ → 0xFFFF (2 − 2⁻¹⁵), else bits 28..13
-//!                           The sum is formed in two parts so no word is wider than 32 bits
+//! N1..N12 the normalizer (`crate::normalizer::Normalizer`, coefficient set a build parameter)
+//! D1  p = nx·lx … nz·hz     six signed Q2.14 × Q2.14 → Q4.28 products, exact, in two clocks
+//!                           [MulSignedPipe: ua·ub and the sign corrections, then their
+//!                           difference]
+//! D2  s = Σp + 2¹²          three-operand sums, exact (|Σp| ≤ 3·2³⁰: 34 bits), + 2¹²
+//!                           (half LSB), formed in two parts so no word is wider than 32 bits
 //!                           (the simulator's fast width; the same 34-bit sum, split at bit 16):
-//!                           lo = Σ p[15:0] + 2¹² (< 2¹⁸), hi = Σ sext(p[31:16]) + lo[17:16],
-//!                           Σp + 2¹² = hi·2¹⁶ + lo[15:0]; negative ⇔ hi < 0, ≥ 2²⁹ ⇔ hi ≥ 2¹³,
-//!                           bits 28..13 = hi[12:0] : lo[15:13]
+//!                           lo = Σ p[15:0] + 2¹² (< 2¹⁸), hs = Σ sext(p[31:16]); hs and
+//!                           lo[17:13] registered
+//! D3  hi = hs + lo[17:16]    Σp + 2¹² = hi·2¹⁶ + lo[15:0]; then Q4.28 → unsigned Q1.15:
+//!                           negative (hi < 0) → 0, ≥ 2 − 2⁻¹⁶ (hi ≥ 2¹³) → 0xFFFF
+//!                           (2 − 2⁻¹⁵), else bits 28..13 = hi[12:0] : lo[15:13]
 //! ```
-//! Latency 11 clocks (9 + 2), one pixel per clock, no stall; `valid` travels with the data.
+//! For ECP5 timing D1 takes two clocks and D2, D3 were one stage (latency 11 before, 72.6 MHz:
+//! the three-operand sums, the carry add and the clamp in one clock; then the multiply and its
+//! sign correction in one clock, 95 MHz).
+//! Latency 16 clocks (12 + 4), one pixel per clock, no stall; `valid` travels with the data.
 //! 14 multipliers: the normalizer's 8 and the six of D1.
 //!
 //! # Overflow
@@ -50,14 +55,14 @@
 use rust_hdl::prelude::*;
 
 use crate::normalizer::{Normalizer, NormalizerCoeffs};
-use crate::primitives::MulSigned;
+use crate::primitives::{Delay, MulSignedPipe};
 
 crate::hw_block! {
     /// The lighting unit: normalizer, then N'·L and N'·H clamped to [0, 2) (see the module
     /// header).
     pub struct LightingUnit(clock) as "lighting-unit" {
         summary: "N in, cos φ = N'·L and cos γ = N'·H out (Q1.15, clamped at 0): normalizer + two dot products (SPEC §0, §1)",
-        latency: Normalizer::LATENCY + 2 => "valid_in to valid_out, one pixel per clock",
+        latency: Normalizer::LATENCY + 4 => "valid_in to valid_out, one pixel per clock",
         multipliers: 14,
         in {
             valid_in: Bit, x: Bits<16>, y: Bits<16>, z: Bits<16>,
@@ -65,24 +70,30 @@ crate::hw_block! {
             hx: Bits<16>, hy: Bits<16>, hz: Bits<16>,
         }
         out { valid_out: Bit, cos_phi: Bits<16>, cos_gamma: Bits<16> }
-        // N1..N9
+        // N1..N12
         pub norm: Normalizer = Normalizer::new(c),
         // D1: the six products in the order nx·lx, ny·ly, nz·lz, nx·hx, ny·hy, nz·hz.
-        mul: [MulSigned; 6],
-        prod: [DFF<Bits<32>>; 6],
-        valid_p1: DFF<Bit>,
-        // D2: each product's high half sign-extended, the two sums in two parts, the cosines.
+        mul: [MulSignedPipe; 6],
+        valid_p1: Delay<Bit, 2>,
+        // D2: each product's high half sign-extended, the two sums in two parts, registered.
         ext: [Signal<Local, Bits<32>>; 6],
         lo_l: Signal<Local, Bits<32>>,
         lo_h: Signal<Local, Bits<32>>,
-        hi_l: Signal<Local, Bits<32>>,
-        hi_h: Signal<Local, Bits<32>>,
+        /// lo[17:13]: the carry into the high part and the output's three low bits.
+        lo_l_q: DFF<Bits<5>>,
+        lo_h_q: DFF<Bits<5>>,
+        hs_l: DFF<Bits<32>>,
+        hs_h: DFF<Bits<32>>,
         sign_ext: Constant<Bits<32>> = Constant::new(0xFFFF_0000u64.into()),
         half_lsb: Constant<Bits<32>> = Constant::new((1u64 << 12).into()),
+        valid_p2: DFF<Bit>,
+        // D3: the carry into the high part, the clamp.
+        hi_l: Signal<Local, Bits<32>>,
+        hi_h: Signal<Local, Bits<32>>,
         cos_max: Constant<Bits<16>> = Constant::new(0xFFFF.into()),
         cos_phi_q: DFF<Bits<16>>,
         cos_gamma_q: DFF<Bits<16>>,
-        valid_p2: DFF<Bit>,
+        valid_p3: DFF<Bit>,
     }
     new(c: &NormalizerCoeffs);
 }
@@ -95,13 +106,17 @@ impl Logic for LightingUnit {
             clock,
             norm,
             valid_p1,
+            lo_l_q,
+            lo_h_q,
+            hs_l,
+            hs_h,
+            valid_p2,
             cos_phi_q,
             cos_gamma_q,
-            valid_p2
+            valid_p3
         );
         for i in 0..6 {
-            self.prod[i].clock.next = self.clock.val();
-            self.prod[i].d.next = self.mul[i].p.val();
+            self.mul[i].clock.next = self.clock.val();
         }
         self.norm.valid_in.next = self.valid_in.val();
         self.norm.x.next = self.x.val();
@@ -124,65 +139,67 @@ impl Logic for LightingUnit {
         // D2: exact sums, split at bit 16 (see the header).
         // (rust-hdl resolves a loop index inside bit_cast arguments in neither backend:
         // written out.)
-        if self.prod[0].q.val().get_bit(31) {
+        if self.mul[0].p.val().get_bit(31) {
             self.ext[0].next =
-                bit_cast::<32, 16>(self.prod[0].q.val().get_bits::<16>(16)) | self.sign_ext.val();
+                bit_cast::<32, 16>(self.mul[0].p.val().get_bits::<16>(16)) | self.sign_ext.val();
         } else {
-            self.ext[0].next = bit_cast::<32, 16>(self.prod[0].q.val().get_bits::<16>(16));
+            self.ext[0].next = bit_cast::<32, 16>(self.mul[0].p.val().get_bits::<16>(16));
         }
-        if self.prod[1].q.val().get_bit(31) {
+        if self.mul[1].p.val().get_bit(31) {
             self.ext[1].next =
-                bit_cast::<32, 16>(self.prod[1].q.val().get_bits::<16>(16)) | self.sign_ext.val();
+                bit_cast::<32, 16>(self.mul[1].p.val().get_bits::<16>(16)) | self.sign_ext.val();
         } else {
-            self.ext[1].next = bit_cast::<32, 16>(self.prod[1].q.val().get_bits::<16>(16));
+            self.ext[1].next = bit_cast::<32, 16>(self.mul[1].p.val().get_bits::<16>(16));
         }
-        if self.prod[2].q.val().get_bit(31) {
+        if self.mul[2].p.val().get_bit(31) {
             self.ext[2].next =
-                bit_cast::<32, 16>(self.prod[2].q.val().get_bits::<16>(16)) | self.sign_ext.val();
+                bit_cast::<32, 16>(self.mul[2].p.val().get_bits::<16>(16)) | self.sign_ext.val();
         } else {
-            self.ext[2].next = bit_cast::<32, 16>(self.prod[2].q.val().get_bits::<16>(16));
+            self.ext[2].next = bit_cast::<32, 16>(self.mul[2].p.val().get_bits::<16>(16));
         }
-        if self.prod[3].q.val().get_bit(31) {
+        if self.mul[3].p.val().get_bit(31) {
             self.ext[3].next =
-                bit_cast::<32, 16>(self.prod[3].q.val().get_bits::<16>(16)) | self.sign_ext.val();
+                bit_cast::<32, 16>(self.mul[3].p.val().get_bits::<16>(16)) | self.sign_ext.val();
         } else {
-            self.ext[3].next = bit_cast::<32, 16>(self.prod[3].q.val().get_bits::<16>(16));
+            self.ext[3].next = bit_cast::<32, 16>(self.mul[3].p.val().get_bits::<16>(16));
         }
-        if self.prod[4].q.val().get_bit(31) {
+        if self.mul[4].p.val().get_bit(31) {
             self.ext[4].next =
-                bit_cast::<32, 16>(self.prod[4].q.val().get_bits::<16>(16)) | self.sign_ext.val();
+                bit_cast::<32, 16>(self.mul[4].p.val().get_bits::<16>(16)) | self.sign_ext.val();
         } else {
-            self.ext[4].next = bit_cast::<32, 16>(self.prod[4].q.val().get_bits::<16>(16));
+            self.ext[4].next = bit_cast::<32, 16>(self.mul[4].p.val().get_bits::<16>(16));
         }
-        if self.prod[5].q.val().get_bit(31) {
+        if self.mul[5].p.val().get_bit(31) {
             self.ext[5].next =
-                bit_cast::<32, 16>(self.prod[5].q.val().get_bits::<16>(16)) | self.sign_ext.val();
+                bit_cast::<32, 16>(self.mul[5].p.val().get_bits::<16>(16)) | self.sign_ext.val();
         } else {
-            self.ext[5].next = bit_cast::<32, 16>(self.prod[5].q.val().get_bits::<16>(16));
+            self.ext[5].next = bit_cast::<32, 16>(self.mul[5].p.val().get_bits::<16>(16));
         }
-        self.lo_l.next = bit_cast::<32, 16>(self.prod[0].q.val().get_bits::<16>(0))
-            + bit_cast::<32, 16>(self.prod[1].q.val().get_bits::<16>(0))
-            + bit_cast::<32, 16>(self.prod[2].q.val().get_bits::<16>(0))
+        self.lo_l.next = bit_cast::<32, 16>(self.mul[0].p.val().get_bits::<16>(0))
+            + bit_cast::<32, 16>(self.mul[1].p.val().get_bits::<16>(0))
+            + bit_cast::<32, 16>(self.mul[2].p.val().get_bits::<16>(0))
             + self.half_lsb.val();
-        self.hi_l.next = self.ext[0].val()
-            + self.ext[1].val()
-            + self.ext[2].val()
-            + bit_cast::<32, 2>(self.lo_l.val().get_bits::<2>(16));
-        self.lo_h.next = bit_cast::<32, 16>(self.prod[3].q.val().get_bits::<16>(0))
-            + bit_cast::<32, 16>(self.prod[4].q.val().get_bits::<16>(0))
-            + bit_cast::<32, 16>(self.prod[5].q.val().get_bits::<16>(0))
+        self.hs_l.d.next = self.ext[0].val() + self.ext[1].val() + self.ext[2].val();
+        self.lo_h.next = bit_cast::<32, 16>(self.mul[3].p.val().get_bits::<16>(0))
+            + bit_cast::<32, 16>(self.mul[4].p.val().get_bits::<16>(0))
+            + bit_cast::<32, 16>(self.mul[5].p.val().get_bits::<16>(0))
             + self.half_lsb.val();
-        self.hi_h.next = self.ext[3].val()
-            + self.ext[4].val()
-            + self.ext[5].val()
-            + bit_cast::<32, 2>(self.lo_h.val().get_bits::<2>(16));
+        self.hs_h.d.next = self.ext[3].val() + self.ext[4].val() + self.ext[5].val();
+        self.lo_l_q.d.next = self.lo_l.val().get_bits::<5>(13);
+        self.lo_h_q.d.next = self.lo_h.val().get_bits::<5>(13);
+        self.valid_p2.d.next = self.valid_p1.q.val();
+        // D3
+        self.hi_l.next =
+            self.hs_l.q.val() + bit_cast::<32, 2>(self.lo_l_q.q.val().get_bits::<2>(3));
+        self.hi_h.next =
+            self.hs_h.q.val() + bit_cast::<32, 2>(self.lo_h_q.q.val().get_bits::<2>(3));
         if self.hi_l.val().get_bit(31) {
             self.cos_phi_q.d.next = 0.into();
         } else if self.hi_l.val().get_bits::<18>(13).any() {
             self.cos_phi_q.d.next = self.cos_max.val();
         } else {
             self.cos_phi_q.d.next = (bit_cast::<16, 13>(self.hi_l.val().get_bits::<13>(0)) << 3)
-                | bit_cast::<16, 3>(self.lo_l.val().get_bits::<3>(13));
+                | bit_cast::<16, 3>(self.lo_l_q.q.val().get_bits::<3>(0));
         }
         if self.hi_h.val().get_bit(31) {
             self.cos_gamma_q.d.next = 0.into();
@@ -190,10 +207,10 @@ impl Logic for LightingUnit {
             self.cos_gamma_q.d.next = self.cos_max.val();
         } else {
             self.cos_gamma_q.d.next = (bit_cast::<16, 13>(self.hi_h.val().get_bits::<13>(0)) << 3)
-                | bit_cast::<16, 3>(self.lo_h.val().get_bits::<3>(13));
+                | bit_cast::<16, 3>(self.lo_h_q.q.val().get_bits::<3>(0));
         }
-        self.valid_p2.d.next = self.valid_p1.q.val();
-        self.valid_out.next = self.valid_p2.q.val();
+        self.valid_p3.d.next = self.valid_p2.q.val();
+        self.valid_out.next = self.valid_p3.q.val();
         self.cos_phi.next = self.cos_phi_q.q.val();
         self.cos_gamma.next = self.cos_gamma_q.q.val();
     }

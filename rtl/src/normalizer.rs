@@ -6,10 +6,10 @@
 //! ```
 //! Two tops share one back end:
 //! - [`Normalizer`]: N in, N' out. Three squarers (Mul1–Mul3) and the three-operand adder Sm1
-//!   form K, then [`NormalizerK`] does the rest. **Latency 9 clocks.**
+//!   form K, then [`NormalizerK`] does the rest. **Latency 12 clocks.**
 //! - [`NormalizerK`]: N and K in (K from the K recurrence, `crate::k_recurrence`), N' out.
 //!   Horner f = (c2·K + c1)·K + c0 on Mul4, Sm2, Mul5, Sm3; output scaling on Mul6–Mul8.
-//!   **Latency 7 clocks.**
+//!   **Latency 9 clocks.**
 //!
 //! 8 multipliers, 3 datapath adders (Sm1 three-operand), as in the patent's device; the only
 //! other adders are the fixed-point bookkeeping of `crate::fixed` (sign corrections of the
@@ -31,12 +31,13 @@
 //! # Pipeline (registers named after the quantity; `_pk` = delayed k clocks)
 //! The multipliers, narrowings and delay lines are the shared blocks of `crate::primitives`
 //! (named in brackets); B6–B7 form one `ScaleLane` per component (`lane_x`, `lane_y`,
-//! `lane_z`), which also delays its component by 5 clocks (`x_p5`) to meet f.
+//! `lane_z`), which also delays its component by 6 clocks (`x_p6`) to meet f.
 //! ```text
 //! Normalizer only:
-//!  S1  sq_x = x·x (Mul1-3)       Q2.14² → Q4.28 unsigned, exact [SquareSigned]
+//!  S1  sq_x = x·x (Mul1-3)       Q2.14² → Q4.28 unsigned, exact, in two clocks (ux² and the
+//!                                sign correction, then their difference) [SquareSignedPipe]
 //!  S2  k_full = sq_x+sq_y+sq_z   Sm1, Q4.28 unsigned, exact (≤ 3·2³⁰, cannot overflow);
-//!                                valid_p2, x_p2 … carry the vector alongside [Delay]
+//!                                valid_p3, x_p3 … carry the vector alongside [Delay]
 //! NormalizerK (its stage 1 follows Normalizer's S2):
 //!  B1  k_narrow = K              Q4.28 → Q1.15 unsigned: round (drop 13 LSBs), saturate at
 //!                                2 − 2⁻¹⁵ when K ≥ 2 − 2⁻¹⁶ [RoundToUQ1_15]
@@ -45,22 +46,24 @@
 //!                                overflow, checked by NormalizerCoeffs::new), then
 //!                                Q3.29 → Q2.14: round (drop 15 LSBs; the half LSB is in the
 //!                                constant c1_rnd), saturate to [−2, 2) [SatToQ2_14]
-//!  B4  t1k = t1·k_narrow_p2      Mul5, signed Q2.14 × unsigned Q1.15 → signed Q3.29, exact
-//!                                [MulSignedUnsigned]
+//!  B4  t1k = t1·k_narrow_p2      Mul5, signed Q2.14 × unsigned Q1.15 → signed Q3.29, exact,
+//!                                two clocks [MulSignedUnsignedPipe]
 //!  B5  f = c0 + t1k              Sm3 in Q4.28 (t1k halved: drops 2⁻²⁹; range [−8, 8), cannot
 //!                                overflow), then Q4.28 → Q1.15: round (drop 13 LSBs; half LSB
 //!                                in c0_rnd), saturate to [0, 2 − 2⁻¹⁵] [SatToUQ1_15]
-//!  B6  xf = x_p5·f  (Mul6-8)     signed Q2.14 × unsigned Q1.15 → signed Q3.29, exact
-//!                                [MulSignedUnsigned]
+//!  B6  xf = x_p6·f  (Mul6-8)     signed Q2.14 × unsigned Q1.15 → signed Q3.29, exact,
+//!                                two clocks [MulSignedUnsignedPipe]
 //!  B7  nx = xf                   Q3.29 → Q2.14: round (drop 15 LSBs), saturate to [−2, 2)
 //!                                [RoundToQ2_14]; valid_p7 carries valid_in [Delay]
 //! ```
 //! ```text
-//! clock      : 0    1    2    3    4    5    6    7    8    9
+//! clock      : 0    1    2    3    4    5    6    7    8    9    10   11   12
 //! valid_in   : v0   v1   v2 ...
-//! Normalizer : S1   S2   B1   B2   B3   B4   B5   B6   B7
-//! valid_out  :                                            v0   v1 ...   (sampled after edge 9)
+//! Normalizer : S1a  S1b  S2   B1   B2   B3   B4a  B4b  B5   B6a  B6b  B7
+//! valid_out  :                                                           v0   v1 ... (edge 12)
 //! ```
+//! S1, B4 and B6 took one clock each (latency 9, `NormalizerK` 7) until ECP5 timing: in the
+//! pixel pipeline a multiplier and its sign correction in one clock ran at 92–98 MHz.
 //!
 //! # Overflow
 //! Nothing wraps. K cannot overflow; K ≥ 2 saturates k_narrow (out of the formula's domain);
@@ -86,7 +89,8 @@ use rust_hdl::prelude::*;
 
 use crate::fixed::{QFormat, COEF_C0, COEF_C1, COEF_C2, HORNER_T1, K_NARROW, NORMAL, SCALE};
 use crate::primitives::{
-    Delay, MulSignedUnsigned, RoundToQ2_14, RoundToUQ1_15, SatToQ2_14, SatToUQ1_15, SquareSigned,
+    Delay, MulSignedUnsignedPipe, RoundToQ2_14, RoundToUQ1_15, SatToQ2_14, SatToUQ1_15,
+    SquareSignedPipe,
 };
 use crate::registry::{BlockParams, Options};
 
@@ -338,7 +342,7 @@ crate::hw_block! {
         // B3
         t1_sat: SatToQ2_14, t1: DFF<Bits<16>>,
         // B4
-        mul5: MulSignedUnsigned, t1k: DFF<Bits<32>>,
+        mul5: MulSignedUnsignedPipe,
         // B5
         f_sat: SatToUQ1_15, f: DFF<Bits<16>>,
         // B6, B7: one lane per component.
@@ -356,7 +360,7 @@ impl Logic for NormalizerK {
     #[hdl_gen]
     fn update(&mut self) {
         // B1..B5 registers, then the lanes (B6, B7) and the valid line.
-        clock!(self, clock, k_narrow, c2k, k_narrow_p2, t1, t1k, f);
+        clock!(self, clock, k_narrow, c2k, k_narrow_p2, t1, mul5, f);
         clock!(self, clock, lane_x, lane_y, lane_z, valid_p7);
         // B1: K (Q4.28) → Q1.15, round to nearest, saturate.
         self.k_round.wide.next = self.k.val();
@@ -379,11 +383,10 @@ impl Logic for NormalizerK {
         // B4 (Mul5): t1·K, signed Q2.14 × unsigned Q1.15 → signed Q3.29.
         self.mul5.a.next = self.t1.q.val();
         self.mul5.b.next = self.k_narrow_p2.q.val();
-        self.t1k.d.next = self.mul5.p.val();
 
         // B5 (Sm3): f = c0 + t1·K in Q4.28 (+ half LSB of Q1.15), then round/saturate to Q1.15.
-        self.t1k_half.next = self.t1k.q.val() >> 1;
-        if self.t1k.q.val().get_bit(31) {
+        self.t1k_half.next = self.mul5.p.val() >> 1;
+        if self.mul5.p.val().get_bit(31) {
             self.t1k_half.next = self.t1k_half.val() | self.sign32.val();
         }
         self.f_wide.next = self.c0_rnd.val() + self.t1k_half.val();
@@ -407,7 +410,7 @@ impl Logic for NormalizerK {
 }
 
 /// Clocks from K (B1's input) to f (B5's register): the delay a component needs to meet f.
-const F_LATENCY: usize = 5;
+const F_LATENCY: usize = 6;
 
 crate::hw_block! {
     /// One output component of [`NormalizerK`], stages B6 and B7: `n = x·f` (Mul6, Mul7 or
@@ -417,28 +420,27 @@ crate::hw_block! {
     struct ScaleLane(clock) {
         in { x: Bits<16>, f: Bits<16> }
         out { n: Bits<16> }
-        x_p5: Delay<Bits<16>, F_LATENCY>, mul: MulSignedUnsigned, xf: DFF<Bits<32>>,
+        x_p6: Delay<Bits<16>, F_LATENCY>, mul: MulSignedUnsignedPipe,
         round: RoundToQ2_14, n_q: DFF<Bits<16>>,
     }
 }
 
 impl ScaleLane {
-    /// Clocks from `f` to `n`: the product register (B6) and the output register (B7).
-    const LATENCY_FROM_F: usize = 2;
+    /// Clocks from `f` to `n`: the two product registers (B6) and the output register (B7).
+    const LATENCY_FROM_F: usize = 3;
 }
 
 impl Logic for ScaleLane {
     #[hdl_gen]
     fn update(&mut self) {
-        clock!(self, clock, x_p5, xf, n_q);
-        self.x_p5.d.next = self.x.val();
+        clock!(self, clock, x_p6, mul, n_q);
+        self.x_p6.d.next = self.x.val();
         // B6: x·f, signed Q2.14 × unsigned Q1.15 → signed Q3.29.
-        self.mul.a.next = self.x_p5.q.val();
+        self.mul.a.next = self.x_p6.q.val();
         self.mul.b.next = self.f.val();
-        self.xf.d.next = self.mul.p.val();
         // B7: Q3.29 → Q2.14, round to nearest, saturate (|xf| < 2³¹ − 2¹⁴: the rounding add
         // cannot overflow).
-        self.round.wide.next = self.xf.q.val();
+        self.round.wide.next = self.mul.p.val();
         self.n_q.d.next = self.round.narrow.val();
         self.n.next = self.n_q.q.val();
     }
@@ -448,18 +450,17 @@ crate::hw_block! {
     /// The full normalizer: N in, N' = N·f(|N|²) out. Latency [`Normalizer::LATENCY`].
     pub struct Normalizer(clock) as "normalizer" {
         summary: "N in, N·f(|N|²) out: squarers, Horner f(K), scaling; no division or root (SPEC §1)",
-        latency: 2 + NormalizerK::LATENCY => "valid_in to valid_out, one input per clock",
+        latency: 3 + NormalizerK::LATENCY => "valid_in to valid_out, one input per clock",
         multipliers: 8,
         in { valid_in: Bit, x: Bits<16>, y: Bits<16>, z: Bits<16> }
         out { valid_out: Bit, nx: Bits<16>, ny: Bits<16>, nz: Bits<16> }
-        // S1
-        mul1: SquareSigned, mul2: SquareSigned, mul3: SquareSigned,
-        sq_x: DFF<Bits<32>>, sq_y: DFF<Bits<32>>, sq_z: DFF<Bits<32>>,
+        // S1 (two clocks; the squares are the multipliers' registered outputs)
+        mul1: SquareSignedPipe, mul2: SquareSignedPipe, mul3: SquareSignedPipe,
         // S2
         k_full: DFF<Bits<32>>,
         // The vector and its valid wait for K (S1, S2).
-        valid_p2: Delay<Bit, 2>,
-        x_p2: Delay<Bits<16>, 2>, y_p2: Delay<Bits<16>, 2>, z_p2: Delay<Bits<16>, 2>,
+        valid_p3: Delay<Bit, 3>,
+        x_p3: Delay<Bits<16>, 3>, y_p3: Delay<Bits<16>, 3>, z_p3: Delay<Bits<16>, 3>,
         // B1..B7
         scale: NormalizerK = NormalizerK::new(c),
     }
@@ -469,25 +470,22 @@ crate::hw_block! {
 impl Logic for Normalizer {
     #[hdl_gen]
     fn update(&mut self) {
-        clock!(self, clock, sq_x, sq_y, sq_z, k_full, valid_p2, x_p2, y_p2, z_p2, scale);
-        // S1 (Mul1-3): signed squares, Q2.14² → Q4.28, exact.
+        clock!(self, clock, mul1, mul2, mul3, k_full, valid_p3, x_p3, y_p3, z_p3, scale);
+        // S1 (Mul1-3): signed squares, Q2.14² → Q4.28, exact, two clocks.
         self.mul1.a.next = self.x.val();
         self.mul2.a.next = self.y.val();
         self.mul3.a.next = self.z.val();
-        self.sq_x.d.next = self.mul1.p.val();
-        self.sq_y.d.next = self.mul2.p.val();
-        self.sq_z.d.next = self.mul3.p.val();
         // S2 (Sm1): K = x² + y² + z² ≤ 3·2³⁰ < 2³², exact.
-        self.k_full.d.next = self.sq_x.q.val() + self.sq_y.q.val() + self.sq_z.q.val();
-        self.valid_p2.d.next = self.valid_in.val();
-        self.x_p2.d.next = self.x.val();
-        self.y_p2.d.next = self.y.val();
-        self.z_p2.d.next = self.z.val();
+        self.k_full.d.next = self.mul1.p.val() + self.mul2.p.val() + self.mul3.p.val();
+        self.valid_p3.d.next = self.valid_in.val();
+        self.x_p3.d.next = self.x.val();
+        self.y_p3.d.next = self.y.val();
+        self.z_p3.d.next = self.z.val();
         // B1..B7
-        self.scale.valid_in.next = self.valid_p2.q.val();
-        self.scale.x.next = self.x_p2.q.val();
-        self.scale.y.next = self.y_p2.q.val();
-        self.scale.z.next = self.z_p2.q.val();
+        self.scale.valid_in.next = self.valid_p3.q.val();
+        self.scale.x.next = self.x_p3.q.val();
+        self.scale.y.next = self.y_p3.q.val();
+        self.scale.z.next = self.z_p3.q.val();
         self.scale.k.next = self.k_full.q.val();
         self.valid_out.next = self.scale.valid_out.val();
         self.nx.next = self.scale.nx.val();

@@ -35,8 +35,10 @@
 //! power unit with its pixel.
 //!
 //! # Latency, throughput
-//! Event → fragment 28 clocks (vector interpolator 1, lighting 11, BRZSSK 4, power 10,
-//! colour 2); load → first fragment 31 (the address block's 3 more). BRZSSK is in the path of
+//! Event → fragment 47 clocks (vector interpolator 1, a register on the normal 1, lighting 16,
+//! BRZSSK 6, power 20, colour 3); load → first fragment 50 (the address block's 3 more). The
+//! register on the normal is for ECP5 timing: the interpolator's output rounding feeding the
+//! normalizer's squarers was the critical path (68 MHz). BRZSSK is in the path of
 //! every build (passing through unless `bump=on`), so every method has the same latency. One fragment per clock along a line;
 //! nothing in the pipeline stalls, so the address block is the only limit (one clock per line
 //! start without pixels, as in the Gouraud pipe).
@@ -65,15 +67,20 @@ use crate::primitives::Delay;
 use crate::registry::{BlockParams, Options, RtlBlock};
 use crate::vector_interpolator::VectorInterpolator;
 
+/// The register between the vector interpolator's rounded output and the lighting unit.
+pub const NORMAL_REGISTER: usize = 1;
+
 /// Clocks from an address event to its fragment.
 pub const EVENT_TO_FRAGMENT: usize = VectorInterpolator::LATENCY
+    + NORMAL_REGISTER
     + LightingUnit::LATENCY
     + Brzssk::LATENCY
     + PowerUnit::LATENCY
     + ColourCombine::LATENCY;
 
 /// Clocks from an address event to the pixel's arrival at BRZSSK (which needs its address).
-pub const EVENT_TO_BRZSSK: usize = VectorInterpolator::LATENCY + LightingUnit::LATENCY;
+pub const EVENT_TO_BRZSSK: usize =
+    VectorInterpolator::LATENCY + NORMAL_REGISTER + LightingUnit::LATENCY;
 
 /// Build parameters of the pipeline: the normalizer's coefficient set and the power unit's mode.
 #[derive(Clone, Debug, PartialEq)]
@@ -193,19 +200,21 @@ crate::hw_block! {
         pub addr: AddressBlock,
         pub normal: VectorInterpolator,
         pub depth: IntensityChannel,
+        n_reg: [Delay<Bits<16>, NORMAL_REGISTER>; 3],
+        n_valid_reg: Delay<Bit, NORMAL_REGISTER>,
         pub light: LightingUnit = LightingUnit::new(&p.coeffs),
         pub bump: Brzssk = Brzssk::new(&p.bump),
-        x_p12: Delay<Bits<12>, { EVENT_TO_BRZSSK }>,
-        y_p12: Delay<Bits<12>, { EVENT_TO_BRZSSK }>,
+        x_to_bump: Delay<Bits<12>, { EVENT_TO_BRZSSK }>,
+        y_to_bump: Delay<Bits<12>, { EVENT_TO_BRZSSK }>,
         pub power: PowerUnit = PowerUnit::new(&p.power),
         pub colour: ColourCombine,
         accepted: Signal<Local, Bit>,
         first: Signal<Local, Bit>,
-        cos_phi_p10: Delay<Bits<16>, { PowerUnit::LATENCY }>,
-        z_p27: Delay<Bits<32>, { EVENT_TO_FRAGMENT - 1 }>,
-        x_p28: Delay<Bits<12>, { EVENT_TO_FRAGMENT }>,
-        y_p28: Delay<Bits<12>, { EVENT_TO_FRAGMENT }>,
-        done_p28: Delay<Bit, { EVENT_TO_FRAGMENT }>,
+        cos_phi_to_colour: Delay<Bits<16>, { PowerUnit::LATENCY }>,
+        z_to_out: Delay<Bits<32>, { EVENT_TO_FRAGMENT - 1 }>,
+        x_to_out: Delay<Bits<12>, { EVENT_TO_FRAGMENT }>,
+        y_to_out: Delay<Bits<12>, { EVENT_TO_FRAGMENT }>,
+        done_to_out: Delay<Bit, { EVENT_TO_FRAGMENT }>,
     }
     new(p: &PipelineParams);
 }
@@ -219,17 +228,18 @@ impl Logic for PixelPipeline {
             addr,
             normal,
             depth,
+            n_valid_reg,
             light,
             bump,
-            x_p12,
-            y_p12,
+            x_to_bump,
+            y_to_bump,
             power,
             colour,
-            cos_phi_p10,
-            z_p27,
-            x_p28,
-            y_p28,
-            done_p28
+            cos_phi_to_colour,
+            z_to_out,
+            x_to_out,
+            y_to_out,
+            done_to_out
         );
         self.addr.load.next = self.load.val();
         self.addr.hold.next = self.hold.val();
@@ -287,10 +297,17 @@ impl Logic for PixelPipeline {
         self.depth.ev_valid.next = self.addr.valid.val();
 
         // Lighting: normalizer, N'·L, N'·H.
-        self.light.valid_in.next = self.normal.valid_out.val();
-        self.light.x.next = self.normal.nx.val();
-        self.light.y.next = self.normal.ny.val();
-        self.light.z.next = self.normal.nz.val();
+        for k in 0..3 {
+            self.n_reg[k].clock.next = self.clock.val();
+        }
+        self.n_reg[0].d.next = self.normal.nx.val();
+        self.n_reg[1].d.next = self.normal.ny.val();
+        self.n_reg[2].d.next = self.normal.nz.val();
+        self.n_valid_reg.d.next = self.normal.valid_out.val();
+        self.light.valid_in.next = self.n_valid_reg.q.val();
+        self.light.x.next = self.n_reg[0].q.val();
+        self.light.y.next = self.n_reg[1].q.val();
+        self.light.z.next = self.n_reg[2].q.val();
         self.light.lx.next = self.lx.val();
         self.light.ly.next = self.ly.val();
         self.light.lz.next = self.lz.val();
@@ -299,23 +316,23 @@ impl Logic for PixelPipeline {
         self.light.hz.next = self.hz.val();
 
         // BRZSSK: both cosines perturbed by the pixel's code (or passed through).
-        self.x_p12.d.next = self.addr.x.val();
-        self.y_p12.d.next = self.addr.y.val();
+        self.x_to_bump.d.next = self.addr.x.val();
+        self.y_to_bump.d.next = self.addr.y.val();
         self.bump.valid_in.next = self.light.valid_out.val();
         self.bump.cos_phi.next = self.light.cos_phi.val();
         self.bump.cos_gamma.next = self.light.cos_gamma.val();
-        self.bump.x.next = self.x_p12.q.val();
-        self.bump.y.next = self.y_p12.q.val();
+        self.bump.x.next = self.x_to_bump.q.val();
+        self.bump.y.next = self.y_to_bump.q.val();
 
         // Specular power; cos φ waits beside it.
         self.power.valid_in.next = self.bump.valid_out.val();
         self.power.cos_gamma.next = self.bump.cos_gamma_out.val();
         self.power.n.next = self.n.val();
-        self.cos_phi_p10.d.next = self.bump.cos_phi_out.val();
+        self.cos_phi_to_colour.d.next = self.bump.cos_phi_out.val();
 
         // Colour.
         self.colour.valid_in.next = self.power.valid_out.val();
-        self.colour.cos_phi.next = self.cos_phi_p10.q.val();
+        self.colour.cos_phi.next = self.cos_phi_to_colour.q.val();
         self.colour.spec.next = self.power.spec.val();
         self.colour.amb_r.next = self.amb_r.val();
         self.colour.amb_g.next = self.amb_g.val();
@@ -328,19 +345,19 @@ impl Logic for PixelPipeline {
         self.colour.spc_b.next = self.spc_b.val();
 
         // The fragment's address, depth and triangle end travel beside it.
-        self.z_p27.d.next = self.depth.word.val();
-        self.x_p28.d.next = self.addr.x.val();
-        self.y_p28.d.next = self.addr.y.val();
-        self.done_p28.d.next = self.addr.done.val();
+        self.z_to_out.d.next = self.depth.word.val();
+        self.x_to_out.d.next = self.addr.x.val();
+        self.y_to_out.d.next = self.addr.y.val();
+        self.done_to_out.d.next = self.addr.done.val();
 
         self.ready.next = self.addr.ready.val();
         self.valid.next = self.colour.valid_out.val();
-        self.x.next = self.x_p28.q.val();
-        self.y.next = self.y_p28.q.val();
-        self.z.next = self.z_p27.q.val();
+        self.x.next = self.x_to_out.q.val();
+        self.y.next = self.y_to_out.q.val();
+        self.z.next = self.z_to_out.q.val();
         self.red.next = self.colour.red.val();
         self.green.next = self.colour.green.val();
         self.blue.next = self.colour.blue.val();
-        self.done.next = self.done_p28.q.val();
+        self.done.next = self.done_to_out.q.val();
     }
 }

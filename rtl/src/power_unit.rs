@@ -18,31 +18,37 @@
 //! | `valid_in` | in | 1 = cos_gamma holds a pixel's cosine |
 //! | `cos_gamma` | in | unsigned Q1.15, [0, 2): ≥ 0 from the lighting unit, may exceed 1 (published normalizer) |
 //! | `n` | in | specular exponent, 10 bits; travels with its pixel (a new material may follow in-flight pixels) |
-//! | `valid_out` | out | `valid_in` delayed 10 clocks |
+//! | `valid_out` | out | `valid_in` delayed 20 clocks |
 //! | `spec` | out | S, unsigned Q1.15, saturated at 0xFFFF (2 − 2⁻¹⁵) |
 //!
-//! # Pipeline (every product UQ1.15 × UQ1.15 → UQ2.30, exact, then rnd: + 2¹⁴, drop 15 bits,
-//! saturate at 0xFFFF [RoundProductToUQ1_15])
+//! # Pipeline (every product UQ1.15 × UQ1.15 → UQ2.30, exact, registered; then rnd: + 2¹⁴,
+//! drop 15 bits, saturate at 0xFFFF [RoundProductToUQ1_15] in the next clock)
 //! ```text
-//! exact  E0  acc = n₀ ? c : 1.0 (0x8000),  pw = rnd(c²)                     1 squarer
-//!        Ej  acc = n_j ? rnd(acc·pw) : acc,  pw = rnd(pw²)   j = 1..8       2 multipliers each
-//!        E9  acc = n₉ ? rnd(acc·pw) : acc                                   1 multiplier
-//!        → 18 multipliers, latency 10
+//! exact  E0a acc = n₀ ? c : 1.0 (0x8000),  sq = c²                          1 squarer
+//!        E0b pw = rnd(sq)
+//!        Eja prod = acc·pw,  sq = pw²                        j = 1..8       2 multipliers each
+//!        Ejb acc = n_j ? rnd(prod) : acc,  pw = rnd(sq)
+//!        E9a prod = acc·pw                                                  1 multiplier
+//!        E9b acc = n₉ ? rnd(prod) : acc
+//!        → 18 multipliers, latency 20
 //! W      W1  a = slope word by shifts and adds of n + 1 (16 bits, exact: ≤ 57·1024 < 2¹⁶),
 //!            t = |c − 1| (UQ1.15), above = c > 1, zero = c = 0
 //!        W2  p = a·t                        UQ8.8 (UQ7.9 for k = 8) × UQ1.15, exact, 32 bits
 //!        W3a sum = 0 if zero; 1 + p if above; max(1 − p, 0) otherwise (in p's units, 32 bits,
 //!            cannot wrap), registered
 //!        W3b b = round sum to UQ1.15 (+ half LSB, drop 8 or 9 bits), saturate
-//!        W4..W7  b = rnd(b²) in the first log2 k stages (2, 3, 4), passed through in the rest
-//!        then 2 delay registers to latency 10
+//!        W4..W7  a: sq = b² registered; b: b = rnd(sq) in the first log2 k stages (2, 3, 4),
+//!                passed through in the rest
+//!        then 8 delay registers to latency 20
 //!        → 1 + log2 k multipliers (3, 4, 5)
 //! ```
+//! The product is registered before its rounding for ECP5 timing: a multiply, the rounding
+//! carry chain and the selection in one clock (the layout before, latency 10) ran at 91 MHz.
 //! cos γ = 0 gives 0 in both modes for n ≥ 1 (W: the `zero` flag, as `golden::brdf::w_kernel`).
 //! n = 0 gives 1.0 (cos⁰) in the exact mode and [1 − a·(1 − c)]^k with a = 1/(k+1) in W;
 //! n = 1001..1023 computes as written. The set-up rejects n outside 1..1000.
 //!
-//! Latency 10 clocks in every mode, one pixel per clock, no stall; `valid` travels with the
+//! Latency 20 clocks in every mode, one pixel per clock, no stall; `valid` travels with the
 //! data. The patent's multiplexed single-multiplier arrangement (one multiplier reused over
 //! several clocks per pixel) is not built: the pipeline must take one pixel per clock.
 //!
@@ -144,7 +150,7 @@ crate::hw_block! {
     /// The power unit (see the module header).
     pub struct PowerUnit(clock) as "power-unit" {
         summary: "cos γ and n in, S = cos^n γ (square-and-multiply) or W(n, γ) for k = 4, 8, 16 out, Q1.15 (SPEC §2)",
-        latency: 10 => "valid_in to valid_out in every mode, one pixel per clock",
+        latency: 20 => "valid_in to valid_out in every mode, one pixel per clock",
         multipliers: 18,
         in { valid_in: Bit, cos_gamma: Bits<16>, n: Bits<10> }
         out { valid_out: Bit, spec: Bits<16> }
@@ -154,14 +160,15 @@ crate::hw_block! {
         k16: Constant<Bit> = bit(p.mode == PowerMode::W(16)),
         sq_on: [Constant<Bit>; 4] = std::array::from_fn(|i| bit(p.mode.k().is_some_and(|k| (i as u32) < k.trailing_zeros()))),
         one: Constant<Bits<16>> = Constant::new(0x8000.into()),
-        // Exact path: E0..E9.
-        e_valid: [DFF<Bit>; 10],
-        e_n: [DFF<Bits<10>>; 10],
-        e_acc: [DFF<Bits<16>>; 10],
+        // Exact path: E0a, E0b .. E9a, E9b (stage 2j is Eja, 2j + 1 is Ejb).
+        e_valid: [DFF<Bit>; 20],
+        e_n: [DFF<Bits<10>>; 20],
+        e_acc: [DFF<Bits<16>>; 20],
         e_pw: [DFF<Bits<16>>; 9],
-        e_prod: [Signal<Local, Bits<32>>; 10],
-        e_sq: [Signal<Local, Bits<32>>; 9],
-        e_rnd_prod: [RoundProductToUQ1_15; 10],
+        /// E1a..E9a's acc·pw (index j − 1), E0a..E8a's squares, exact.
+        e_prod: [DFF<Bits<32>>; 9],
+        e_sq: [DFF<Bits<32>>; 9],
+        e_rnd_prod: [RoundProductToUQ1_15; 9],
         e_rnd_sq: [RoundProductToUQ1_15; 9],
         // W path: W1..W7 and the padding.
         m1: Signal<Local, Bits<16>>,
@@ -179,10 +186,13 @@ crate::hw_block! {
         w_rnd: Signal<Local, Bits<32>>,
         w_b: [DFF<Bits<16>>; 5],
         w_valid: [DFF<Bit>; 5],
-        w_sq: [Signal<Local, Bits<32>>; 4],
+        /// W4a..W7a: the square and the word it squares, registered.
+        w_sq: [DFF<Bits<32>>; 4],
+        w_bp: [DFF<Bits<16>>; 4],
+        w_valid_a: [DFF<Bit>; 4],
         w_rnd_sq: [RoundProductToUQ1_15; 4],
-        w_spec_p2: Delay<Bits<16>, 2>,
-        w_valid_p2: Delay<Bit, 2>,
+        w_spec_p8: Delay<Bits<16>, 8>,
+        w_valid_p8: Delay<Bit, 8>,
     }
     new(p: &PowerParams);
 }
@@ -192,21 +202,28 @@ impl Logic for PowerUnit {
     fn update(&mut self) {
         clock!(
             self, clock, w_a, w_t, w_above, w_zero, w_valid1, w_p, w_above2, w_zero2, w_valid2,
-            w_sum_q, w_valid3, w_spec_p2, w_valid_p2
+            w_sum_q, w_valid3, w_spec_p8, w_valid_p8
         );
-        for j in 0..10 {
+        for j in 0..20 {
             self.e_valid[j].clock.next = self.clock.val();
             self.e_n[j].clock.next = self.clock.val();
             self.e_acc[j].clock.next = self.clock.val();
         }
         for j in 0..9 {
             self.e_pw[j].clock.next = self.clock.val();
+            self.e_prod[j].clock.next = self.clock.val();
+            self.e_sq[j].clock.next = self.clock.val();
         }
         for i in 0..5 {
             self.w_b[i].clock.next = self.clock.val();
             self.w_valid[i].clock.next = self.clock.val();
         }
-        // ---- exact: E0
+        for i in 0..4 {
+            self.w_sq[i].clock.next = self.clock.val();
+            self.w_bp[i].clock.next = self.clock.val();
+            self.w_valid_a[i].clock.next = self.clock.val();
+        }
+        // ---- exact: E0a
         self.e_valid[0].d.next = self.valid_in.val();
         self.e_n[0].d.next = self.n.val();
         if self.n.val().get_bit(0) {
@@ -214,124 +231,162 @@ impl Logic for PowerUnit {
         } else {
             self.e_acc[0].d.next = self.one.val();
         }
-        self.e_sq[0].next = self.cos_gamma.val() * self.cos_gamma.val();
-        self.e_rnd_sq[0].wide.next = self.e_sq[0].val();
-        self.e_pw[0].d.next = self.e_rnd_sq[0].narrow.val();
-        self.e_prod[0].next = 0.into();
-        self.e_rnd_prod[0].wide.next = 0.into();
-        // E1
+        self.e_sq[0].d.next = self.cos_gamma.val() * self.cos_gamma.val();
+        // E0b
         self.e_valid[1].d.next = self.e_valid[0].q.val();
         self.e_n[1].d.next = self.e_n[0].q.val();
-        self.e_prod[1].next = self.e_acc[0].q.val() * self.e_pw[0].q.val();
-        self.e_rnd_prod[1].wide.next = self.e_prod[1].val();
-        if self.e_n[0].q.val().get_bit(1) {
-            self.e_acc[1].d.next = self.e_rnd_prod[1].narrow.val();
-        } else {
-            self.e_acc[1].d.next = self.e_acc[0].q.val();
-        }
-        self.e_sq[1].next = self.e_pw[0].q.val() * self.e_pw[0].q.val();
-        self.e_rnd_sq[1].wide.next = self.e_sq[1].val();
-        self.e_pw[1].d.next = self.e_rnd_sq[1].narrow.val();
-        // E2
+        self.e_acc[1].d.next = self.e_acc[0].q.val();
+        self.e_rnd_sq[0].wide.next = self.e_sq[0].q.val();
+        self.e_pw[0].d.next = self.e_rnd_sq[0].narrow.val();
+        // E1a
         self.e_valid[2].d.next = self.e_valid[1].q.val();
         self.e_n[2].d.next = self.e_n[1].q.val();
-        self.e_prod[2].next = self.e_acc[1].q.val() * self.e_pw[1].q.val();
-        self.e_rnd_prod[2].wide.next = self.e_prod[2].val();
-        if self.e_n[1].q.val().get_bit(2) {
-            self.e_acc[2].d.next = self.e_rnd_prod[2].narrow.val();
-        } else {
-            self.e_acc[2].d.next = self.e_acc[1].q.val();
-        }
-        self.e_sq[2].next = self.e_pw[1].q.val() * self.e_pw[1].q.val();
-        self.e_rnd_sq[2].wide.next = self.e_sq[2].val();
-        self.e_pw[2].d.next = self.e_rnd_sq[2].narrow.val();
-        // E3
+        self.e_acc[2].d.next = self.e_acc[1].q.val();
+        self.e_prod[0].d.next = self.e_acc[1].q.val() * self.e_pw[0].q.val();
+        self.e_sq[1].d.next = self.e_pw[0].q.val() * self.e_pw[0].q.val();
+        // E1b
         self.e_valid[3].d.next = self.e_valid[2].q.val();
         self.e_n[3].d.next = self.e_n[2].q.val();
-        self.e_prod[3].next = self.e_acc[2].q.val() * self.e_pw[2].q.val();
-        self.e_rnd_prod[3].wide.next = self.e_prod[3].val();
-        if self.e_n[2].q.val().get_bit(3) {
-            self.e_acc[3].d.next = self.e_rnd_prod[3].narrow.val();
+        self.e_rnd_prod[0].wide.next = self.e_prod[0].q.val();
+        if self.e_n[2].q.val().get_bit(1) {
+            self.e_acc[3].d.next = self.e_rnd_prod[0].narrow.val();
         } else {
             self.e_acc[3].d.next = self.e_acc[2].q.val();
         }
-        self.e_sq[3].next = self.e_pw[2].q.val() * self.e_pw[2].q.val();
-        self.e_rnd_sq[3].wide.next = self.e_sq[3].val();
-        self.e_pw[3].d.next = self.e_rnd_sq[3].narrow.val();
-        // E4
+        self.e_rnd_sq[1].wide.next = self.e_sq[1].q.val();
+        self.e_pw[1].d.next = self.e_rnd_sq[1].narrow.val();
+        // E2a
         self.e_valid[4].d.next = self.e_valid[3].q.val();
         self.e_n[4].d.next = self.e_n[3].q.val();
-        self.e_prod[4].next = self.e_acc[3].q.val() * self.e_pw[3].q.val();
-        self.e_rnd_prod[4].wide.next = self.e_prod[4].val();
-        if self.e_n[3].q.val().get_bit(4) {
-            self.e_acc[4].d.next = self.e_rnd_prod[4].narrow.val();
-        } else {
-            self.e_acc[4].d.next = self.e_acc[3].q.val();
-        }
-        self.e_sq[4].next = self.e_pw[3].q.val() * self.e_pw[3].q.val();
-        self.e_rnd_sq[4].wide.next = self.e_sq[4].val();
-        self.e_pw[4].d.next = self.e_rnd_sq[4].narrow.val();
-        // E5
+        self.e_acc[4].d.next = self.e_acc[3].q.val();
+        self.e_prod[1].d.next = self.e_acc[3].q.val() * self.e_pw[1].q.val();
+        self.e_sq[2].d.next = self.e_pw[1].q.val() * self.e_pw[1].q.val();
+        // E2b
         self.e_valid[5].d.next = self.e_valid[4].q.val();
         self.e_n[5].d.next = self.e_n[4].q.val();
-        self.e_prod[5].next = self.e_acc[4].q.val() * self.e_pw[4].q.val();
-        self.e_rnd_prod[5].wide.next = self.e_prod[5].val();
-        if self.e_n[4].q.val().get_bit(5) {
-            self.e_acc[5].d.next = self.e_rnd_prod[5].narrow.val();
+        self.e_rnd_prod[1].wide.next = self.e_prod[1].q.val();
+        if self.e_n[4].q.val().get_bit(2) {
+            self.e_acc[5].d.next = self.e_rnd_prod[1].narrow.val();
         } else {
             self.e_acc[5].d.next = self.e_acc[4].q.val();
         }
-        self.e_sq[5].next = self.e_pw[4].q.val() * self.e_pw[4].q.val();
-        self.e_rnd_sq[5].wide.next = self.e_sq[5].val();
-        self.e_pw[5].d.next = self.e_rnd_sq[5].narrow.val();
-        // E6
+        self.e_rnd_sq[2].wide.next = self.e_sq[2].q.val();
+        self.e_pw[2].d.next = self.e_rnd_sq[2].narrow.val();
+        // E3a
         self.e_valid[6].d.next = self.e_valid[5].q.val();
         self.e_n[6].d.next = self.e_n[5].q.val();
-        self.e_prod[6].next = self.e_acc[5].q.val() * self.e_pw[5].q.val();
-        self.e_rnd_prod[6].wide.next = self.e_prod[6].val();
-        if self.e_n[5].q.val().get_bit(6) {
-            self.e_acc[6].d.next = self.e_rnd_prod[6].narrow.val();
-        } else {
-            self.e_acc[6].d.next = self.e_acc[5].q.val();
-        }
-        self.e_sq[6].next = self.e_pw[5].q.val() * self.e_pw[5].q.val();
-        self.e_rnd_sq[6].wide.next = self.e_sq[6].val();
-        self.e_pw[6].d.next = self.e_rnd_sq[6].narrow.val();
-        // E7
+        self.e_acc[6].d.next = self.e_acc[5].q.val();
+        self.e_prod[2].d.next = self.e_acc[5].q.val() * self.e_pw[2].q.val();
+        self.e_sq[3].d.next = self.e_pw[2].q.val() * self.e_pw[2].q.val();
+        // E3b
         self.e_valid[7].d.next = self.e_valid[6].q.val();
         self.e_n[7].d.next = self.e_n[6].q.val();
-        self.e_prod[7].next = self.e_acc[6].q.val() * self.e_pw[6].q.val();
-        self.e_rnd_prod[7].wide.next = self.e_prod[7].val();
-        if self.e_n[6].q.val().get_bit(7) {
-            self.e_acc[7].d.next = self.e_rnd_prod[7].narrow.val();
+        self.e_rnd_prod[2].wide.next = self.e_prod[2].q.val();
+        if self.e_n[6].q.val().get_bit(3) {
+            self.e_acc[7].d.next = self.e_rnd_prod[2].narrow.val();
         } else {
             self.e_acc[7].d.next = self.e_acc[6].q.val();
         }
-        self.e_sq[7].next = self.e_pw[6].q.val() * self.e_pw[6].q.val();
-        self.e_rnd_sq[7].wide.next = self.e_sq[7].val();
-        self.e_pw[7].d.next = self.e_rnd_sq[7].narrow.val();
-        // E8
+        self.e_rnd_sq[3].wide.next = self.e_sq[3].q.val();
+        self.e_pw[3].d.next = self.e_rnd_sq[3].narrow.val();
+        // E4a
         self.e_valid[8].d.next = self.e_valid[7].q.val();
         self.e_n[8].d.next = self.e_n[7].q.val();
-        self.e_prod[8].next = self.e_acc[7].q.val() * self.e_pw[7].q.val();
-        self.e_rnd_prod[8].wide.next = self.e_prod[8].val();
-        if self.e_n[7].q.val().get_bit(8) {
-            self.e_acc[8].d.next = self.e_rnd_prod[8].narrow.val();
-        } else {
-            self.e_acc[8].d.next = self.e_acc[7].q.val();
-        }
-        self.e_sq[8].next = self.e_pw[7].q.val() * self.e_pw[7].q.val();
-        self.e_rnd_sq[8].wide.next = self.e_sq[8].val();
-        self.e_pw[8].d.next = self.e_rnd_sq[8].narrow.val();
-        // E9
+        self.e_acc[8].d.next = self.e_acc[7].q.val();
+        self.e_prod[3].d.next = self.e_acc[7].q.val() * self.e_pw[3].q.val();
+        self.e_sq[4].d.next = self.e_pw[3].q.val() * self.e_pw[3].q.val();
+        // E4b
         self.e_valid[9].d.next = self.e_valid[8].q.val();
         self.e_n[9].d.next = self.e_n[8].q.val();
-        self.e_prod[9].next = self.e_acc[8].q.val() * self.e_pw[8].q.val();
-        self.e_rnd_prod[9].wide.next = self.e_prod[9].val();
-        if self.e_n[8].q.val().get_bit(9) {
-            self.e_acc[9].d.next = self.e_rnd_prod[9].narrow.val();
+        self.e_rnd_prod[3].wide.next = self.e_prod[3].q.val();
+        if self.e_n[8].q.val().get_bit(4) {
+            self.e_acc[9].d.next = self.e_rnd_prod[3].narrow.val();
         } else {
             self.e_acc[9].d.next = self.e_acc[8].q.val();
+        }
+        self.e_rnd_sq[4].wide.next = self.e_sq[4].q.val();
+        self.e_pw[4].d.next = self.e_rnd_sq[4].narrow.val();
+        // E5a
+        self.e_valid[10].d.next = self.e_valid[9].q.val();
+        self.e_n[10].d.next = self.e_n[9].q.val();
+        self.e_acc[10].d.next = self.e_acc[9].q.val();
+        self.e_prod[4].d.next = self.e_acc[9].q.val() * self.e_pw[4].q.val();
+        self.e_sq[5].d.next = self.e_pw[4].q.val() * self.e_pw[4].q.val();
+        // E5b
+        self.e_valid[11].d.next = self.e_valid[10].q.val();
+        self.e_n[11].d.next = self.e_n[10].q.val();
+        self.e_rnd_prod[4].wide.next = self.e_prod[4].q.val();
+        if self.e_n[10].q.val().get_bit(5) {
+            self.e_acc[11].d.next = self.e_rnd_prod[4].narrow.val();
+        } else {
+            self.e_acc[11].d.next = self.e_acc[10].q.val();
+        }
+        self.e_rnd_sq[5].wide.next = self.e_sq[5].q.val();
+        self.e_pw[5].d.next = self.e_rnd_sq[5].narrow.val();
+        // E6a
+        self.e_valid[12].d.next = self.e_valid[11].q.val();
+        self.e_n[12].d.next = self.e_n[11].q.val();
+        self.e_acc[12].d.next = self.e_acc[11].q.val();
+        self.e_prod[5].d.next = self.e_acc[11].q.val() * self.e_pw[5].q.val();
+        self.e_sq[6].d.next = self.e_pw[5].q.val() * self.e_pw[5].q.val();
+        // E6b
+        self.e_valid[13].d.next = self.e_valid[12].q.val();
+        self.e_n[13].d.next = self.e_n[12].q.val();
+        self.e_rnd_prod[5].wide.next = self.e_prod[5].q.val();
+        if self.e_n[12].q.val().get_bit(6) {
+            self.e_acc[13].d.next = self.e_rnd_prod[5].narrow.val();
+        } else {
+            self.e_acc[13].d.next = self.e_acc[12].q.val();
+        }
+        self.e_rnd_sq[6].wide.next = self.e_sq[6].q.val();
+        self.e_pw[6].d.next = self.e_rnd_sq[6].narrow.val();
+        // E7a
+        self.e_valid[14].d.next = self.e_valid[13].q.val();
+        self.e_n[14].d.next = self.e_n[13].q.val();
+        self.e_acc[14].d.next = self.e_acc[13].q.val();
+        self.e_prod[6].d.next = self.e_acc[13].q.val() * self.e_pw[6].q.val();
+        self.e_sq[7].d.next = self.e_pw[6].q.val() * self.e_pw[6].q.val();
+        // E7b
+        self.e_valid[15].d.next = self.e_valid[14].q.val();
+        self.e_n[15].d.next = self.e_n[14].q.val();
+        self.e_rnd_prod[6].wide.next = self.e_prod[6].q.val();
+        if self.e_n[14].q.val().get_bit(7) {
+            self.e_acc[15].d.next = self.e_rnd_prod[6].narrow.val();
+        } else {
+            self.e_acc[15].d.next = self.e_acc[14].q.val();
+        }
+        self.e_rnd_sq[7].wide.next = self.e_sq[7].q.val();
+        self.e_pw[7].d.next = self.e_rnd_sq[7].narrow.val();
+        // E8a
+        self.e_valid[16].d.next = self.e_valid[15].q.val();
+        self.e_n[16].d.next = self.e_n[15].q.val();
+        self.e_acc[16].d.next = self.e_acc[15].q.val();
+        self.e_prod[7].d.next = self.e_acc[15].q.val() * self.e_pw[7].q.val();
+        self.e_sq[8].d.next = self.e_pw[7].q.val() * self.e_pw[7].q.val();
+        // E8b
+        self.e_valid[17].d.next = self.e_valid[16].q.val();
+        self.e_n[17].d.next = self.e_n[16].q.val();
+        self.e_rnd_prod[7].wide.next = self.e_prod[7].q.val();
+        if self.e_n[16].q.val().get_bit(8) {
+            self.e_acc[17].d.next = self.e_rnd_prod[7].narrow.val();
+        } else {
+            self.e_acc[17].d.next = self.e_acc[16].q.val();
+        }
+        self.e_rnd_sq[8].wide.next = self.e_sq[8].q.val();
+        self.e_pw[8].d.next = self.e_rnd_sq[8].narrow.val();
+        // E9a
+        self.e_valid[18].d.next = self.e_valid[17].q.val();
+        self.e_n[18].d.next = self.e_n[17].q.val();
+        self.e_acc[18].d.next = self.e_acc[17].q.val();
+        self.e_prod[8].d.next = self.e_acc[17].q.val() * self.e_pw[8].q.val();
+        // E9b
+        self.e_valid[19].d.next = self.e_valid[18].q.val();
+        self.e_n[19].d.next = self.e_n[18].q.val();
+        self.e_rnd_prod[8].wide.next = self.e_prod[8].q.val();
+        if self.e_n[18].q.val().get_bit(9) {
+            self.e_acc[19].d.next = self.e_rnd_prod[8].narrow.val();
+        } else {
+            self.e_acc[19].d.next = self.e_acc[18].q.val();
         }
         // ---- W: W1 — a = (n+1)·C_k by shifts and adds (m1 = n + 1 ≤ 1024).
         self.m1.next = bit_cast::<16, 10>(self.n.val()) + 1;
@@ -387,51 +442,63 @@ impl Logic for PowerUnit {
             self.w_b[0].d.next = self.w_rnd.val().get_bits::<16>(8);
         }
         self.w_valid[0].d.next = self.w_valid3.q.val();
-        // W4
-        self.w_sq[0].next = self.w_b[0].q.val() * self.w_b[0].q.val();
-        self.w_rnd_sq[0].wide.next = self.w_sq[0].val();
+        // W4a
+        self.w_sq[0].d.next = self.w_b[0].q.val() * self.w_b[0].q.val();
+        self.w_bp[0].d.next = self.w_b[0].q.val();
+        self.w_valid_a[0].d.next = self.w_valid[0].q.val();
+        // W4b
+        self.w_rnd_sq[0].wide.next = self.w_sq[0].q.val();
         if self.sq_on[0].val() {
             self.w_b[1].d.next = self.w_rnd_sq[0].narrow.val();
         } else {
-            self.w_b[1].d.next = self.w_b[0].q.val();
+            self.w_b[1].d.next = self.w_bp[0].q.val();
         }
-        self.w_valid[1].d.next = self.w_valid[0].q.val();
-        // W5
-        self.w_sq[1].next = self.w_b[1].q.val() * self.w_b[1].q.val();
-        self.w_rnd_sq[1].wide.next = self.w_sq[1].val();
+        self.w_valid[1].d.next = self.w_valid_a[0].q.val();
+        // W5a
+        self.w_sq[1].d.next = self.w_b[1].q.val() * self.w_b[1].q.val();
+        self.w_bp[1].d.next = self.w_b[1].q.val();
+        self.w_valid_a[1].d.next = self.w_valid[1].q.val();
+        // W5b
+        self.w_rnd_sq[1].wide.next = self.w_sq[1].q.val();
         if self.sq_on[1].val() {
             self.w_b[2].d.next = self.w_rnd_sq[1].narrow.val();
         } else {
-            self.w_b[2].d.next = self.w_b[1].q.val();
+            self.w_b[2].d.next = self.w_bp[1].q.val();
         }
-        self.w_valid[2].d.next = self.w_valid[1].q.val();
-        // W6
-        self.w_sq[2].next = self.w_b[2].q.val() * self.w_b[2].q.val();
-        self.w_rnd_sq[2].wide.next = self.w_sq[2].val();
+        self.w_valid[2].d.next = self.w_valid_a[1].q.val();
+        // W6a
+        self.w_sq[2].d.next = self.w_b[2].q.val() * self.w_b[2].q.val();
+        self.w_bp[2].d.next = self.w_b[2].q.val();
+        self.w_valid_a[2].d.next = self.w_valid[2].q.val();
+        // W6b
+        self.w_rnd_sq[2].wide.next = self.w_sq[2].q.val();
         if self.sq_on[2].val() {
             self.w_b[3].d.next = self.w_rnd_sq[2].narrow.val();
         } else {
-            self.w_b[3].d.next = self.w_b[2].q.val();
+            self.w_b[3].d.next = self.w_bp[2].q.val();
         }
-        self.w_valid[3].d.next = self.w_valid[2].q.val();
-        // W7
-        self.w_sq[3].next = self.w_b[3].q.val() * self.w_b[3].q.val();
-        self.w_rnd_sq[3].wide.next = self.w_sq[3].val();
+        self.w_valid[3].d.next = self.w_valid_a[2].q.val();
+        // W7a
+        self.w_sq[3].d.next = self.w_b[3].q.val() * self.w_b[3].q.val();
+        self.w_bp[3].d.next = self.w_b[3].q.val();
+        self.w_valid_a[3].d.next = self.w_valid[3].q.val();
+        // W7b
+        self.w_rnd_sq[3].wide.next = self.w_sq[3].q.val();
         if self.sq_on[3].val() {
             self.w_b[4].d.next = self.w_rnd_sq[3].narrow.val();
         } else {
-            self.w_b[4].d.next = self.w_b[3].q.val();
+            self.w_b[4].d.next = self.w_bp[3].q.val();
         }
-        self.w_valid[4].d.next = self.w_valid[3].q.val();
-        self.w_spec_p2.d.next = self.w_b[4].q.val();
-        self.w_valid_p2.d.next = self.w_valid[4].q.val();
+        self.w_valid[4].d.next = self.w_valid_a[3].q.val();
+        self.w_spec_p8.d.next = self.w_b[4].q.val();
+        self.w_valid_p8.d.next = self.w_valid[4].q.val();
         // Output: the mode constant selects the datapath.
         if self.w_mode.val() {
-            self.valid_out.next = self.w_valid_p2.q.val();
-            self.spec.next = self.w_spec_p2.q.val();
+            self.valid_out.next = self.w_valid_p8.q.val();
+            self.spec.next = self.w_spec_p8.q.val();
         } else {
-            self.valid_out.next = self.e_valid[9].q.val();
-            self.spec.next = self.e_acc[9].q.val();
+            self.valid_out.next = self.e_valid[19].q.val();
+            self.spec.next = self.e_acc[19].q.val();
         }
     }
 }

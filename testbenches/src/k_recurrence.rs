@@ -8,6 +8,7 @@ use proptest::strategy::ValueTree;
 use proptest::test_runner::TestRunner;
 use rtl::fixed::{K_FULL, NORMAL};
 use rtl::k_recurrence::{span_setup, KRecurrence, SpanNormalizer};
+use rtl::normalizer::Normalizer;
 
 use crate::harness::{self, Expected};
 use crate::normalizer::{check_spec, seeded_runner};
@@ -286,7 +287,7 @@ pub fn normalizer_rows(spans: &[Span], sched: &[Clock]) -> Vec<Vec<u64>> {
             Clock::Idle => vec![0, JUNK16, JUNK16, JUNK16],
         })
         .collect();
-    harness::pad_rows(&mut rows, &[0, 0, 0, 0], SpanNormalizer::LATENCY);
+    harness::pad_rows(&mut rows, &[0, 0, 0, 0], Normalizer::LATENCY);
     rows
 }
 

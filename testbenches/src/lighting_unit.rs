@@ -124,15 +124,16 @@ impl Bench for LightingUnit {
             f[0] = 0;
             rows.push(f);
         }
-        // The expectation of clock t is the pixel that entered at t − 11, lit with the L, H
-        // present when it reached D1 (clock t − 2).
+        // The expectation of clock t is the pixel that entered at t − latency, lit with the
+        // L, H present when it reached D1 (the normalizer's output: clock t − 3).
+        let at_d1 = LightingUnit::LATENCY - rtl::normalizer::Normalizer::LATENCY;
         let budget = domain_budget(c);
         let mut worst: f64 = 0.0;
         let mut worst_rms: f64 = 0.0;
         let expected = (0..rows.len())
             .map(|t| match t.checked_sub(LightingUnit::LATENCY) {
                 Some(i) if rows[i][0] == 1 => {
-                    let at = &rows[t - 2];
+                    let at = &rows[t - at_d1];
                     let l = [at[4], at[5], at[6]];
                     let h = [at[7], at[8], at[9]];
                     for u in [l, h] {

@@ -54,6 +54,8 @@ impl DelayLine {
 pub struct PipelineTwin {
     addr: AddressBlockModel,
     normal: VectorTwin,
+    /// The register on the normal (valid, x, y, z) before the lighting unit.
+    n_reg: (bool, [i64; 3]),
     depth: ChannelTwin,
     light: LightingTwin,
     bump: BrzsskTwin,
@@ -73,6 +75,7 @@ impl PipelineTwin {
         PipelineTwin {
             addr: AddressBlockModel::new(),
             normal: VectorTwin::default(),
+            n_reg: (false, [0; 3]),
             depth: ChannelTwin::default(),
             light: LightingTwin::new(p.coeffs.requested),
             bump: BrzsskTwin::new(p.bump.enable),
@@ -107,7 +110,8 @@ impl Twin for PipelineTwin {
         ];
         let (job, regs) = row_job(r);
         let accepted = job.filter(|_| a.ready);
-        let (nv, n) = self.normal.outputs();
+        let (nv, n) = self.n_reg;
+        self.n_reg = self.normal.outputs();
         let (lv, cos_phi, cos_gamma) = self.light.outputs();
         let (bv, cos_phi_b, cos_gamma_b) = self.bump.outputs();
         let (pv, spec) = self.power.outputs();

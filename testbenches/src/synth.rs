@@ -354,7 +354,100 @@ pub struct Ecp5Report {
     /// place (the reason in `unplaced`).
     pub fmax: Option<f64>,
     pub unplaced: Option<String>,
+    /// The clock's critical path as nextpnr reports it, by the block's own signal names.
+    pub critical: Option<CriticalPath>,
     pub dir: PathBuf,
+}
+
+/// A register-to-register critical path: its delay and the design's signals along it (the
+/// source register, the named nets it crosses, the sink register), without the `dut.` prefix
+/// of the timing shell and without the cell names the mapping invents; `(inputs)` or
+/// `(outputs)` where it starts or ends at the shell's registers (the block's ports).
+#[derive(Clone, Debug, PartialEq)]
+pub struct CriticalPath {
+    pub ns: f64,
+    pub signals: Vec<String>,
+}
+
+impl std::fmt::Display for CriticalPath {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{:.2} ns: {}", self.ns, self.signals.join(" → "))
+    }
+}
+
+/// The signal a nextpnr cell or net name stands for: `dut.light.prod$3.q_TRELLIS_FF_Q_31.Q`
+/// → `light.prod$3.q`, `dut.d_rnd[10]` → `d_rnd`; `None` for names the mapping invented
+/// (LUTs, carry cells) and for the timing shell's own registers.
+fn design_signal(name: &str) -> Option<String> {
+    let name = name.strip_prefix("dut.")?;
+    let invented = [
+        "_LUT4", "LUT4_", "CCU2", "PFUMX", "L6MUX", "$CCU2", "$auto", "$abc",
+    ];
+    let cut = [
+        "_TRELLIS_FF",
+        "_MULT18X18D",
+        "_DP16KD",
+        "_TRELLIS_DPR16X4",
+        "$TRELLIS",
+    ];
+    let mut base = name.to_string();
+    for c in cut {
+        if let Some(i) = base.find(c) {
+            base.truncate(i);
+        }
+    }
+    if let Some(i) = base.find('[') {
+        base.truncate(i);
+    }
+    let base = base
+        .trim_end_matches(".q")
+        .trim_end_matches(".d")
+        .trim_end_matches('.')
+        .to_string();
+    if base.is_empty() || invented.iter().any(|i| base.contains(i)) {
+        return None;
+    }
+    Some(base)
+}
+
+/// The last "Critical path report for clock" of a nextpnr log: total delay and the design
+/// signals along it, in order, each once.
+pub fn parse_critical_path(log: &str) -> Option<CriticalPath> {
+    let lines: Vec<&str> = log.lines().collect();
+    let start = lines
+        .iter()
+        .rposition(|l| l.contains("Critical path report for clock"))?;
+    let mut ns = None;
+    let mut signals: Vec<String> = Vec::new();
+    let mut first = true;
+    let mut last_sink = "";
+    for l in &lines[start + 1..] {
+        let words: Vec<&str> = l.split_whitespace().collect();
+        // "Info:  <kind> <curr> <total> <Source|Net|Sink> <name>"
+        if words.len() < 6 || !matches!(words[4], "Source" | "Net" | "Sink") {
+            if l.contains("ns logic") || l.contains("Critical path report") {
+                break;
+            }
+            continue;
+        }
+        ns = words[3].parse::<f64>().ok().or(ns);
+        if first && !words[5].starts_with("dut.") {
+            signals.push("(inputs)".into());
+        }
+        first = false;
+        if words[4] == "Sink" {
+            last_sink = words[5];
+        }
+        if let Some(sig) = design_signal(words[5]) {
+            if signals.last() != Some(&sig) {
+                signals.push(sig);
+            }
+        }
+    }
+    if !last_sink.is_empty() && !last_sink.starts_with("dut.") {
+        signals.push("(outputs)".into());
+    }
+    Some(CriticalPath { ns: ns?, signals })
 }
 
 impl Ecp5Report {
@@ -394,7 +487,13 @@ impl std::fmt::Display for Ecp5Report {
             self.part.package
         )?;
         match (self.fmax, &self.unplaced) {
-            (Some(mhz), _) => write!(f, "max clock {mhz:.1} MHz"),
+            (Some(mhz), _) => {
+                write!(f, "max clock {mhz:.1} MHz")?;
+                match &self.critical {
+                    Some(c) => write!(f, "; critical path {c}"),
+                    None => Ok(()),
+                }
+            }
             (None, Some(why)) => write!(f, "not placed: {why}"),
             (None, None) => write!(f, "not placed"),
         }
@@ -433,6 +532,7 @@ pub fn ecp5(
         part: ECP5_PARTS[0],
         fmax: None,
         unplaced: None,
+        critical: None,
         dir: dir.clone(),
     };
     rep.part = match device {
@@ -501,6 +601,7 @@ pub fn ecp5(
         .and_then(|l| l.split("': ").nth(1))
         .and_then(|r| r.split_whitespace().next())
         .and_then(|n| n.parse().ok());
+    rep.critical = parse_critical_path(&text);
     if rep.fmax.is_none() {
         return Err(format!(
             "no 'Max frequency' line in nextpnr-ecp5's output (see {})",
@@ -508,4 +609,55 @@ pub fn ecp5(
         ));
     }
     Ok(rep)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A nextpnr-ecp5 critical path report (shortened from the lighting unit's): the design's
+    /// registers and nets in order, the mapping's cells and the shell's shift register left
+    /// out, the total delay of the last line.
+    #[test]
+    fn critical_path_names_the_design_signals() {
+        let log = "\
+Info: Max frequency for clock '$glbnet$clock$TRELLIS_IO_IN': 95.24 MHz (FAIL at 100.00 MHz)
+Info: Critical path report for clock '$glbnet$clock$TRELLIS_IO_IN' (posedge -> posedge):
+Info:       type curr  total name
+Info:   clk-to-q  0.52  0.52 Source shreg_TRELLIS_FF_Q_3.Q
+Info:    routing  1.57  1.57 Net shreg[39] (4,25) -> (4,7)
+Info:                          Sink dut.norm.scale.lane_x.n_q.q_TRELLIS_FF_Q_3.A
+Info:      logic  0.00  1.57 Source dut.norm.scale.lane_x.n_q.q_TRELLIS_FF_Q_3.Q
+Info:    routing  1.57  2.09 Net dut.norm.nx[12] (4,25) -> (4,7)
+Info:                          Sink dut.mul$3.raw_MULT18X18D_P0.A12
+Info:      logic  3.93  6.02 Source dut.mul$3.raw_MULT18X18D_P0.P19
+Info:    routing  1.54  7.56 Net dut.mul$3.raw[19] (4,7) -> (4,8)
+Info:      logic  0.26  7.81 Source dut.prod$3.d_CCU2C_S0_9_A0_PFUMX_Z_11_BLUT_LUT4_Z.OFX
+Info:    routing  1.28  9.09 Net dut.prod$3.d_CCU2C_S0_9_A0[19] (4,8) -> (4,9)
+Info:      logic  0.40 10.37 Source dut.prod$3.d_CCU2C_S0_3$CCU2_COMB1.F
+Info:    routing  0.13 10.50 Net dut.mul$3.p[31] (4,9) -> (4,9)
+Info:      setup  0.00 10.50 Sink dut.prod$3.q_TRELLIS_FF_Q.DI
+Info: 5.98 ns logic, 4.52 ns routing
+Info: Critical path report for cross-domain path '<async>' -> 'posedge $glbnet$clock$TRELLIS_IO_IN':
+Info:   routing  1.62  1.62 Net sin$TRELLIS_IO_IN
+";
+        let c = parse_critical_path(log).expect("a path");
+        assert_eq!(c.ns, 10.5);
+        assert_eq!(
+            c.signals,
+            [
+                "(inputs)",
+                "norm.scale.lane_x.n_q",
+                "norm.nx",
+                "mul$3.raw",
+                "mul$3.p",
+                "prod$3"
+            ]
+        );
+        assert_eq!(
+            c.to_string(),
+            "10.50 ns: (inputs) → norm.scale.lane_x.n_q → norm.nx → mul$3.raw → mul$3.p → prod$3"
+        );
+        assert_eq!(parse_critical_path("Info: no report"), None);
+    }
 }

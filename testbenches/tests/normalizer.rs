@@ -226,7 +226,9 @@ fn harness_catches_a_wrong_model_and_writes_a_vcd() {
         "VCD has the ports"
     );
     assert!(
-        f.to_string().contains("cycle 9") && f.to_string().contains(&vcd.display().to_string())
+        f.to_string()
+            .contains(&format!("cycle {}", Normalizer::LATENCY))
+            && f.to_string().contains(&vcd.display().to_string())
     );
 }
 

@@ -117,8 +117,8 @@ fn broken_export_is_caught() {
     // One flipped operator each (inside a shared primitive: the instance named).
     #[rustfmt::skip]
     let mutants = [
-        Mutant { what: "K sum: + → -", module: "", from: "k_full$d = sq_x$q + sq_y$q", to: "k_full$d = sq_x$q - sq_y$q" },
-        Mutant { what: "sign correction of Mul6 (x·f): - → +", module: "normalizer__scale__lane_x__mul", from: "p = raw - corr", to: "p = raw + corr" },
+        Mutant { what: "K sum: + → -", module: "", from: "k_full$d = mul1$p + mul2$p", to: "k_full$d = mul1$p - mul2$p" },
+        Mutant { what: "sign correction of Mul6 (x·f): - → +", module: "normalizer__scale__lane_x__mul", from: "p_q$d = raw$q - corr_w", to: "p_q$d = raw$q + corr_w" },
         Mutant { what: "K rounding: + → -", module: "normalizer__scale__k_round", from: "rounded = wide + half_lsb", to: "rounded = wide - half_lsb" },
         Mutant { what: "K saturation test: | → &", module: "normalizer__scale__k_round", from: "|wide[(29)+:(3)] | &wide[", to: "|wide[(29)+:(3)] & &wide[" },
         Mutant { what: "halving c2·K: >> → <<", module: "", from: "c2k_half = c2k$q >> 32'h1", to: "c2k_half = c2k$q << 32'h1" },
