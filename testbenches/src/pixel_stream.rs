@@ -42,6 +42,10 @@ pub struct StreamTwin {
     type_b: u32,
     regs: Vec<u64>,
     fifo: VecDeque<(u64, u64, bool)>,
+    /// The output register: the beat offered on `m_axis_*`.
+    out: Option<(u64, u64, bool)>,
+    /// The registered hold: the FIFO was above `HOLD_ABOVE` in the clock before.
+    hold_q: bool,
     /// Events (fragments and triangle ends) that entered the FIFO.
     pub beats_in: usize,
     /// Clocks the address block was held.
@@ -64,6 +68,8 @@ impl StreamTwin {
             type_b: 0,
             regs: vec![0; REGISTERS.fields.len()],
             fifo: VecDeque::new(),
+            out: None,
+            hold_q: false,
             beats_in: 0,
             held: 0,
         }
@@ -81,13 +87,14 @@ impl StreamTwin {
             && self.count == 0
             && self.outstanding == 0
             && self.fifo.is_empty()
+            && self.out.is_none()
     }
 
     fn outputs(&self) -> Vec<u64> {
-        let (tdata, tuser, tlast) = self.fifo.front().copied().unwrap_or((0, 0, false));
+        let (tdata, tuser, tlast) = self.out.unwrap_or((0, 0, false));
         vec![
             self.s_ready() as u64,
-            !self.fifo.is_empty() as u64,
+            self.out.is_some() as u64,
             tdata,
             tuser,
             tlast as u64,
@@ -105,7 +112,8 @@ impl Twin for StreamTwin {
         let mut row = vec![(self.pend_b && self.type_b == 1) as u64];
         row.extend(unpack(&TRIANGLE, &self.load_bank));
         row.extend(&self.regs);
-        let hold = self.fifo.len() > HOLD_ABOVE;
+        let hold = self.hold_q;
+        self.hold_q = self.fifo.len() > HOLD_ABOVE;
         row.push(hold as u64);
         debug_assert_eq!(row.len(), ROW_WIDTH);
         debug_assert_eq!(row.len(), HOLD_AT + 1);
@@ -182,8 +190,10 @@ impl Twin for StreamTwin {
         self.outstanding = self.outstanding + load_taken as u64 - done as u64;
 
         // Fragment side.
-        if !self.fifo.is_empty() && m_ready {
-            self.fifo.pop_front();
+        if !self.fifo.is_empty() && (self.out.is_none() || m_ready) {
+            self.out = self.fifo.pop_front();
+        } else if m_ready {
+            self.out = None;
         }
         if valid || done {
             let beat = pack_fragment(&[x, y, valid as u64, rgb[0], rgb[1], rgb[2]]) as u64;
