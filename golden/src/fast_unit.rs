@@ -134,7 +134,8 @@ pub mod twin {
         big_m: i64,
         delta: i64,
         dd: i64,
-        /// S1..S7 (index 0 = S1).
+        /// S1, S2a, S2b, S3, S4a, S4b, S5, S6a, S6b, S7 (index 0 = S1): every product takes
+        /// two clocks (the RTL registers it before its sign correction).
         pipe: VecDeque<Lane>,
     }
 
@@ -154,7 +155,7 @@ pub mod twin {
                 big_m: 0,
                 delta: 0,
                 dd: 0,
-                pipe: std::iter::repeat_n(Lane::default(), 7).collect(),
+                pipe: std::iter::repeat_n(Lane::default(), 10).collect(),
             }
         }
         fn active(&self) -> bool {
@@ -165,7 +166,7 @@ pub mod twin {
         }
         /// (ready, valid_l, x_l, cos_l, valid_r, x_r, cos_r, last) shown this clock.
         pub fn outputs(&self) -> Vec<u64> {
-            let o = self.pipe[6];
+            let o = self.pipe[9];
             vec![
                 !self.more() as u64,
                 o.vl as u64,
@@ -179,32 +180,35 @@ pub mod twin {
         }
         pub fn clock(&mut self, load: Option<&FastWords>) {
             let s: Vec<Lane> = self.pipe.iter().copied().collect();
-            let mut n = [Lane::default(); 7];
+            let mut n = [Lane::default(); 10];
             // S7: cos = clamp(round(v: Q3.29 → UQ1.15)), v = p·r.
             let out = |v: i64| ((v + (1 << 13)) >> 14).clamp(0, 0xFFFF);
-            n[6] = Lane {
-                pl: out(s[5].pl),
-                pr: out(s[5].pr),
-                ..s[5]
+            n[9] = Lane {
+                pl: out(s[8].pl),
+                pr: out(s[8].pr),
+                ..s[8]
             };
-            // S6: p·r (signed Q2.14 × UQ1.15 → Q3.29).
-            n[5] = Lane {
-                pl: s[4].pl * s[4].w,
-                pr: s[4].pr * s[4].w,
-                ..s[4]
+            // S6 (a, b): p·r (signed Q2.14 × UQ1.15 → Q3.29).
+            n[8] = s[7];
+            n[7] = Lane {
+                pl: s[6].pl * s[6].w,
+                pr: s[6].pr * s[6].w,
+                ..s[6]
             };
             // S5: r = round(c0 + t1·M: Q3.29 → UQ1.15), clamped.
-            let r = ((self.c0 + s[3].w + (1 << 13)) >> 14).clamp(0, 0xFFFF);
-            n[4] = Lane { w: r, ..s[3] };
-            // S4: t1·M (signed Q2.14 × signed Q1.15 → Q3.29).
-            n[3] = Lane {
-                w: s[2].w * s[2].mm,
-                ..s[2]
+            let r = ((self.c0 + s[5].w + (1 << 13)) >> 14).clamp(0, 0xFFFF);
+            n[6] = Lane { w: r, ..s[5] };
+            // S4 (a, b): t1·M (signed Q2.14 × signed Q1.15 → Q3.29).
+            n[5] = s[4];
+            n[4] = Lane {
+                w: s[3].w * s[3].mm,
+                ..s[3]
             };
             // S3: t1 = round(c1 + |c2|·M: Q2.30 → Q2.14), saturated.
-            let t1 = clamp16s((self.c1 + s[1].w + (1 << 15)) >> 16);
-            n[2] = Lane { w: t1, ..s[1] };
-            // S2: |c2|·M (UQ1.15 × signed Q1.15 → Q2.30).
+            let t1 = clamp16s((self.c1 + s[2].w + (1 << 15)) >> 16);
+            n[3] = Lane { w: t1, ..s[2] };
+            // S2 (a, b): |c2|·M (UQ1.15 × signed Q1.15 → Q2.30).
+            n[2] = s[1];
             n[1] = Lane {
                 w: self.c2 * s[0].mm,
                 ..s[0]

@@ -22,16 +22,20 @@
 //!
 //! # Pipeline
 //! ```text
-//! S0  state x, p_l, p_r (32), M, Δ, 2c (48); active = busy & 2x ≤ m
+//! S0  state x, p_l, p_r (32), M, Δ, 2c (48), rem = m − 2x (14-bit two's complement, −2 at
+//!     the end); active = busy & rem ≥ 0, another step follows when rem ≥ 2 (sign and bit
+//!     tests of a register, not compares: for ECP5 timing)
 //! S1  M → Q1.15 (round, saturate), p_l, p_r → Q2.14 (round, saturate)
-//! S2  |c2|·M                UQ1.15 × signed Q1.15 → Q2.30, exact         [MulSignedUnsigned]
+//! S2  |c2|·M                UQ1.15 × signed Q1.15 → Q2.30, exact, 2 clocks [MulSignedUnsignedPipe]
 //! S3  t1 = c1 + |c2|·M      Q2.30 → Q2.14, rounded
-//! S4  t1·M                  Q2.14 × Q1.15 → Q3.29, exact                  [MulSigned]
+//! S4  t1·M                  Q2.14 × Q1.15 → Q3.29, exact, 2 clocks         [MulSignedPipe]
 //! S5  f = c0 + t1·M         Q3.29 → UQ1.15, rounded, clamped to [0, 2)
-//! S6  p_l·f, p_r·f          signed Q2.14 × UQ1.15 → Q3.29, exact (2)      [MulSignedUnsigned]
+//! S6  p_l·f, p_r·f          signed Q2.14 × UQ1.15 → Q3.29, exact (2), 2 clocks [MulSignedUnsignedPipe]
 //! S7  cos = round → UQ1.15, clamped to [0, 2)
 //! ```
-//! Latency: state → pixels 7 clocks, load → first pixels 8. Throughput: two pixels per clock
+//! Each product takes two clocks (the raw product and its sign correction registered apart):
+//! for ECP5 timing, a multiplier and its correction in one clock ran at 92 MHz.
+//! Latency: state → pixels 10 clocks, load → first pixels 11. Throughput: two pixels per clock
 //! (one in the middle step of an even m); a span takes ⌊m/2⌋ + 1 clocks and the next follows
 //! at once. 4 multipliers (c2 > 0 required: every published and fitted set has it).
 //!
@@ -46,7 +50,7 @@
 use golden::normalizer::Coeffs;
 use rust_hdl::prelude::*;
 
-use crate::primitives::{MulSigned, MulSignedUnsigned};
+use crate::primitives::{MulSignedPipe, MulSignedUnsignedPipe};
 use crate::registry::{BlockParams, Options};
 
 /// The 1/√(M + 1) coefficient set, as (c2, c1, c0).
@@ -91,7 +95,7 @@ crate::hw_block! {
     /// The fast two-point unit (see the module header).
     pub struct FastUnit(clock) as "fast-unit" {
         summary: "a span's b, h, g, c + s, 2c in, p/√q for pixel x and its mirror m − x out, two pixels per clock (SPEC §3)",
-        latency: 8 => "load to the first pixels, two pixels per clock",
+        latency: 11 => "load to the first pixels, two pixels per clock",
         multipliers: 4,
         in {
             load: Bit, b: Bits<32>, h: Bits<32>, g: Bits<32>, d0: Bits<48>, dd: Bits<48>,
@@ -110,7 +114,7 @@ crate::hw_block! {
         busy: DFF<Bit>, x: DFF<Bits<12>>, m_q: DFF<Bits<12>>,
         pl: DFF<Bits<32>>, pr: DFF<Bits<32>>, g_q: DFF<Bits<32>>,
         big_m: DFF<Bits<48>>, delta: DFF<Bits<48>>, dd_q: DFF<Bits<48>>,
-        x2: Signal<Local, Bits<13>>, x2n: Signal<Local, Bits<13>>, m13: Signal<Local, Bits<13>>,
+        rem: DFF<Bits<14>>,
         act: Signal<Local, Bit>, more: Signal<Local, Bit>,
         // S1 narrowings (one extra bit so the rounding add cannot wrap)
         m49: Signal<Local, Bits<49>>, pl33: Signal<Local, Bits<33>>, pr33: Signal<Local, Bits<33>>,
@@ -118,19 +122,18 @@ crate::hw_block! {
         sx33: Constant<Bits<33>> = Constant::new((1u64 << 32).into()),
         half31: Constant<Bits<49>> = Constant::new((1u64 << 30).into()),
         half16: Constant<Bits<33>> = Constant::new((1u64 << 15).into()),
-        vl: [DFF<Bit>; 7], vr: [DFF<Bit>; 7], xl: [DFF<Bits<12>>; 7], xr: [DFF<Bits<12>>; 7],
-        lst: [DFF<Bit>; 7],
-        mm: [DFF<Bits<16>>; 3],
-        p16l: [DFF<Bits<16>>; 5], p16r: [DFF<Bits<16>>; 5],
+        vl: [DFF<Bit>; 10], vr: [DFF<Bit>; 10], xl: [DFF<Bits<12>>; 10], xr: [DFF<Bits<12>>; 10],
+        lst: [DFF<Bit>; 10],
+        mm: [DFF<Bits<16>>; 4],
+        p16l: [DFF<Bits<16>>; 7], p16r: [DFF<Bits<16>>; 7],
         // S2..S7
-        mul_c2m: MulSignedUnsigned, c2m: DFF<Bits<32>>,
+        mul_c2m: MulSignedUnsignedPipe,
         t1_sum: Signal<Local, Bits<32>>, t1_rnd: Signal<Local, Bits<32>>, t1: DFF<Bits<16>>,
         half_t1: Constant<Bits<32>> = Constant::new((1u64 << 15).into()),
-        mul_t1m: MulSigned, t1m: DFF<Bits<32>>,
+        mul_t1m: MulSignedPipe,
         f_sum: Signal<Local, Bits<32>>, f_rnd: Signal<Local, Bits<32>>, f: DFF<Bits<16>>,
         half14: Constant<Bits<32>> = Constant::new((1u64 << 13).into()),
-        mul_l: MulSignedUnsigned, mul_r: MulSignedUnsigned,
-        prod_l: DFF<Bits<32>>, prod_r: DFF<Bits<32>>,
+        mul_l: MulSignedUnsignedPipe, mul_r: MulSignedUnsignedPipe,
         out_l_rnd: Signal<Local, Bits<32>>, out_r_rnd: Signal<Local, Bits<32>>,
         cos_lq: DFF<Bits<16>>, cos_rq: DFF<Bits<16>>,
     }
@@ -140,28 +143,25 @@ crate::hw_block! {
 impl Logic for FastUnit {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, busy, x, m_q, pl, pr, g_q, big_m, delta, dd_q);
-        clock!(self, clock, c2m, t1, t1m, f, prod_l, prod_r, cos_lq, cos_rq);
-        for i in 0..7 {
+        dff_setup!(self, clock, busy, x, m_q, pl, pr, g_q, big_m, delta, dd_q, rem);
+        clock!(self, clock, mul_c2m, t1, mul_t1m, f, mul_l, mul_r, cos_lq, cos_rq);
+        for i in 0..10 {
             self.vl[i].clock.next = self.clock.val();
             self.vr[i].clock.next = self.clock.val();
             self.xl[i].clock.next = self.clock.val();
             self.xr[i].clock.next = self.clock.val();
             self.lst[i].clock.next = self.clock.val();
         }
-        for i in 0..3 {
+        for i in 0..4 {
             self.mm[i].clock.next = self.clock.val();
         }
-        for i in 0..5 {
+        for i in 0..7 {
             self.p16l[i].clock.next = self.clock.val();
             self.p16r[i].clock.next = self.clock.val();
         }
         // S0: the step of this clock, and whether another follows.
-        self.x2.next = bit_cast::<13, 12>(self.x.q.val()) << 1;
-        self.x2n.next = self.x2.val() + 2;
-        self.m13.next = bit_cast::<13, 12>(self.m_q.q.val());
-        self.act.next = self.busy.q.val() & (self.x2.val() <= self.m13.val());
-        self.more.next = self.act.val() & (self.x2n.val() <= self.m13.val());
+        self.act.next = self.busy.q.val() & !self.rem.q.val().get_bit(13);
+        self.more.next = self.act.val() & self.rem.q.val().get_bits::<12>(1).any();
         self.ready.next = !self.more.val();
         if self.act.val() {
             self.pl.d.next = self.pl.q.val() + self.g_q.q.val();
@@ -169,6 +169,7 @@ impl Logic for FastUnit {
             self.big_m.d.next = self.big_m.q.val() + self.delta.q.val();
             self.delta.d.next = self.delta.q.val() + self.dd_q.q.val();
             self.x.d.next = self.x.q.val() + 1;
+            self.rem.d.next = self.rem.q.val() - 2;
         } else {
             self.busy.d.next = false;
         }
@@ -176,6 +177,7 @@ impl Logic for FastUnit {
             self.busy.d.next = true;
             self.x.d.next = 0.into();
             self.m_q.d.next = self.m.val();
+            self.rem.d.next = bit_cast::<14, 12>(self.m.val());
             self.pl.d.next = self.b.val();
             self.pr.d.next = self.h.val();
             self.g_q.d.next = self.g.val();
@@ -185,11 +187,11 @@ impl Logic for FastUnit {
         }
         // S1: flags and indices; M → Q1.15 and p → Q2.14, rounded, saturated.
         self.vl[0].d.next = self.act.val();
-        self.vr[0].d.next = self.act.val() & (self.x2.val() != self.m13.val());
+        self.vr[0].d.next = self.act.val() & self.rem.q.val().any();
         self.xl[0].d.next = self.x.q.val();
         self.xr[0].d.next = self.m_q.q.val() - self.x.q.val();
         self.lst[0].d.next = self.act.val() & !self.more.val();
-        for i in 1..7 {
+        for i in 1..10 {
             self.vl[i].d.next = self.vl[i - 1].q.val();
             self.vr[i].d.next = self.vr[i - 1].q.val();
             self.xl[i].d.next = self.xl[i - 1].q.val();
@@ -241,27 +243,25 @@ impl Logic for FastUnit {
         } else {
             self.p16r[0].d.next = 0x7FFF.into();
         }
-        for i in 1..5 {
+        for i in 1..7 {
             self.p16l[i].d.next = self.p16l[i - 1].q.val();
             self.p16r[i].d.next = self.p16r[i - 1].q.val();
         }
-        for i in 1..3 {
+        for i in 1..4 {
             self.mm[i].d.next = self.mm[i - 1].q.val();
         }
         // S2: |c2|·M.
         self.mul_c2m.a.next = self.mm[0].q.val();
         self.mul_c2m.b.next = self.c2.val();
-        self.c2m.d.next = self.mul_c2m.p.val();
         // S3: t1 = round(c1 + |c2|·M) to Q2.14.
-        self.t1_sum.next = self.c1.val() + self.c2m.q.val();
+        self.t1_sum.next = self.c1.val() + self.mul_c2m.p.val();
         self.t1_rnd.next = self.t1_sum.val() + self.half_t1.val();
         self.t1.d.next = self.t1_rnd.val().get_bits::<16>(16);
         // S4: t1·M.
         self.mul_t1m.a.next = self.t1.q.val();
-        self.mul_t1m.b.next = self.mm[2].q.val();
-        self.t1m.d.next = self.mul_t1m.p.val();
+        self.mul_t1m.b.next = self.mm[3].q.val();
         // S5: f = c0 + t1·M, to UQ1.15, clamped to [0, 2).
-        self.f_sum.next = self.c0.val() + self.t1m.q.val();
+        self.f_sum.next = self.c0.val() + self.mul_t1m.p.val();
         self.f_rnd.next = self.f_sum.val() + self.half14.val();
         if self.f_rnd.val().get_bit(31) {
             self.f.d.next = 0.into();
@@ -271,15 +271,13 @@ impl Logic for FastUnit {
             self.f.d.next = self.f_rnd.val().get_bits::<16>(14);
         }
         // S6: p·f for both pixels.
-        self.mul_l.a.next = self.p16l[4].q.val();
+        self.mul_l.a.next = self.p16l[6].q.val();
         self.mul_l.b.next = self.f.q.val();
-        self.mul_r.a.next = self.p16r[4].q.val();
+        self.mul_r.a.next = self.p16r[6].q.val();
         self.mul_r.b.next = self.f.q.val();
-        self.prod_l.d.next = self.mul_l.p.val();
-        self.prod_r.d.next = self.mul_r.p.val();
         // S7: round to UQ1.15, clamped to [0, 2).
-        self.out_l_rnd.next = self.prod_l.q.val() + self.half14.val();
-        self.out_r_rnd.next = self.prod_r.q.val() + self.half14.val();
+        self.out_l_rnd.next = self.mul_l.p.val() + self.half14.val();
+        self.out_r_rnd.next = self.mul_r.p.val() + self.half14.val();
         if self.out_l_rnd.val().get_bit(31) {
             self.cos_lq.d.next = 0.into();
         } else if self.out_l_rnd.val().get_bit(30) {
@@ -294,12 +292,12 @@ impl Logic for FastUnit {
         } else {
             self.cos_rq.d.next = self.out_r_rnd.val().get_bits::<16>(14);
         }
-        self.valid_l.next = self.vl[6].q.val();
-        self.x_l.next = self.xl[6].q.val();
+        self.valid_l.next = self.vl[9].q.val();
+        self.x_l.next = self.xl[9].q.val();
         self.cos_l.next = self.cos_lq.q.val();
-        self.valid_r.next = self.vr[6].q.val();
-        self.x_r.next = self.xr[6].q.val();
+        self.valid_r.next = self.vr[9].q.val();
+        self.x_r.next = self.xr[9].q.val();
         self.cos_r.next = self.cos_rq.q.val();
-        self.last.next = self.lst[6].q.val();
+        self.last.next = self.lst[9].q.val();
     }
 }

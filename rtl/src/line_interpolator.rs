@@ -39,6 +39,12 @@
 //! negative brings it back to [0, D), so the modulo arithmetic is exact); `f + carry` and
 //! `B + move` are 12 bits modulo 2^12 (exact, since every boundary used is in 0..=4095).
 //!
+//! For ECP5 timing the recurrence has one carry chain per clock, not three: f + 1, D − r and
+//! the flags f = 0, f + 1 = 0 are registered at the load, so the next B is B + f or B + (f + 1)
+//! and the next e is e − r or e + (D − r), both formed beside the comparison e < r and selected
+//! by it (the same words modulo 2^12 and 2^13 as the formula; chained, the compare, the move
+//! and the boundary add ran at 94.6 MHz in the four-triangle block).
+//!
 //! Latency: outputs are registers; a load or advance in clock t shows in clock t + 1.
 //! Throughput: one line per clock. Overflow: none for in-range set-up (argued above).
 //! Error budget: exact (integer).
@@ -62,45 +68,66 @@ crate::hw_block! {
         quot_q: DFF<Bits<12>>,
         /// r, the remainder added to the error per line.
         rem_q: DFF<Bits<13>>,
-        /// D = 2Δy, the error's modulus.
-        den_q: DFF<Bits<13>>,
+        /// f + 1 (12 bits), D − r (13 bits), and whether f or f + 1 is 0 (a vertical move).
+        quot1_q: DFF<Bits<12>>,
+        den_rem_q: DFF<Bits<13>>,
+        f_zero_q: DFF<Bit>,
+        f1_zero_q: DFF<Bit>,
         step_q: DFF<Bits<2>>, carry_q: DFF<Bit>,
         /// carry of the next move: e < r.
         carry_next: Signal<Local, Bit>,
-        /// f + carry, 12 bits.
-        move_next: Signal<Local, Bits<12>>,
-        /// e − r, 13 bits modulo 2^13.
+        /// f + 1 and D − r of the words being loaded.
+        load_f1: Signal<Local, Bits<12>>,
+        load_dr: Signal<Local, Bits<13>>,
+        /// B + f and B + f + 1, 12 bits modulo 2^12.
+        bound_f: Signal<Local, Bits<12>>,
+        bound_f1: Signal<Local, Bits<12>>,
+        /// e − r and e + (D − r), 13 bits modulo 2^13.
         err_diff: Signal<Local, Bits<13>>,
+        err_wrap: Signal<Local, Bits<13>>,
     }
 }
 
 impl Logic for LineInterpolator {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, bound_q, err_q, quot_q, rem_q, den_q, step_q, carry_q);
+        dff_setup!(
+            self, clock, bound_q, err_q, quot_q, rem_q, quot1_q, den_rem_q, f_zero_q, f1_zero_q,
+            step_q, carry_q
+        );
         self.carry_next.next = self.err_q.q.val() < self.rem_q.q.val();
-        self.move_next.next = self.quot_q.q.val();
-        if self.carry_next.val() {
-            self.move_next.next = self.quot_q.q.val() + 1;
-        }
+        self.bound_f.next = self.bound_q.q.val() + self.quot_q.q.val();
+        self.bound_f1.next = self.bound_q.q.val() + self.quot1_q.q.val();
         self.err_diff.next = self.err_q.q.val() - self.rem_q.q.val();
+        self.err_wrap.next = self.err_q.q.val() + self.den_rem_q.q.val();
+        self.load_f1.next = self.load_f.val() + 1;
+        self.load_dr.next = self.load_d.val() - self.load_r.val();
         if self.load.val() {
             self.bound_q.d.next = self.load_b.val();
             self.err_q.d.next = self.load_e.val();
             self.quot_q.d.next = self.load_f.val();
             self.rem_q.d.next = self.load_r.val();
-            self.den_q.d.next = self.load_d.val();
+            self.quot1_q.d.next = self.load_f1.val();
+            self.den_rem_q.d.next = self.load_dr.val();
+            self.f_zero_q.d.next = self.load_f.val() == 0;
+            self.f1_zero_q.d.next = self.load_f1.val() == 0;
             self.step_q.d.next = 0.into();
             self.carry_q.d.next = false;
         } else if self.advance.val() {
-            self.bound_q.d.next = self.bound_q.q.val() + self.move_next.val();
-            self.err_q.d.next = self.err_diff.val();
-            if self.carry_next.val() {
-                self.err_q.d.next = self.err_diff.val() + self.den_q.q.val();
-            }
+            // carry: B + f + 1, e − r + D; else B + f, e − r; a vertical move is step V (2).
             self.step_q.d.next = 3.into();
-            if self.move_next.val() == 0 {
-                self.step_q.d.next = 2.into();
+            if self.carry_next.val() {
+                self.bound_q.d.next = self.bound_f1.val();
+                self.err_q.d.next = self.err_wrap.val();
+                if self.f1_zero_q.q.val() {
+                    self.step_q.d.next = 2.into();
+                }
+            } else {
+                self.bound_q.d.next = self.bound_f.val();
+                self.err_q.d.next = self.err_diff.val();
+                if self.f_zero_q.q.val() {
+                    self.step_q.d.next = 2.into();
+                }
             }
             self.carry_q.d.next = self.carry_next.val();
         }

@@ -84,14 +84,15 @@ impl Twin for FastRows {
 }
 
 /// Rows for `spans` back to back and every clock's expectations: step k of a span shows
-/// pixel k and (unless it is the same pixel) its mirror m − k, 7 clocks after its state.
+/// pixel k and (unless it is the same pixel) its mirror m − k, `FastUnit::LATENCY` − 1 clocks
+/// after its state (the load takes the other clock).
 fn run(spans: &[FastWords], p: &FastParams) -> (Vec<Vec<u64>>, Vec<Vec<Expected>>) {
     let values: Vec<Vec<f64>> = spans.iter().map(|w| w.values(p.coeffs)).collect();
     span_run(
         spans.len(),
         |i| spans[i].clocks(),
         |i| load_row(i.map(|i| &spans[i])),
-        7,
+        FastUnit::LATENCY - 1,
         |i, k| {
             let m = spans[i].m as usize;
             let right = (2 * k != m).then(|| ((m - k) as u64, values[i][m - k]));
