@@ -224,7 +224,7 @@ fn sample_vcd(path: &std::path::Path, names: &[&str]) -> Vec<Vec<u64>> {
 }
 
 /// `shadecore sim --vcd` writes a waveform a viewer can open: the ports are there, `valid`
-/// travels 12 clocks (the normalizer's stated latency), one vector per clock comes out, and
+/// travels 15 clocks (the normalizer's stated latency), one vector per clock comes out, and
 /// every output vector is a unit vector to the formula's 0.36 % plus quantization.
 #[test]
 fn sim_writes_a_readable_normalizer_vcd() {
@@ -250,7 +250,7 @@ fn sim_writes_a_readable_normalizer_vcd() {
         .iter()
         .position(|r| r[1] == 1)
         .expect("valid_out never high");
-    assert_eq!(first_out - first_in, 12, "latency");
+    assert_eq!(first_out - first_in, 15, "latency");
     assert_eq!(
         s.iter().filter(|r| r[1] == 1).count(),
         200,

@@ -94,11 +94,11 @@ pub fn sin_address(w: u64, addr_bits: u32) -> u64 {
 /// B2  (cd, sd) = DG[code.magnitude], TG = code.sign                        (PROM read)
 /// B3  the same words one register on (the RTL interpolates sγ here: a pure function of
 ///     the B1 words, so the twin does it at B1)
-/// B4  pφ = cos φ·cd, qφ = sφ·sd, pγ = cos γ·cd, qγ = sγ·sd                 (UQ2.30, exact)
+/// B4  pφ = cos φ·cd, qφ = sφ·sd, pγ = cos γ·cd, qγ = sγ·sd     (UQ2.30, exact; two clocks)
 /// B5  sum = TG ? p + q : max(p − q, 0)
 /// B6  out = rnd(sum)                                  rnd: + 2¹⁴, drop 15, saturate 0xFFFF
 /// ```
-/// With `enable` false the cosines pass through the same six registers unchanged.
+/// With `enable` false the cosines pass through the same seven registers unchanged.
 pub mod twin {
     use super::{code_rom, dgamma_rom, sin_address, sin_rom, sin_rom_interp, SIN_DELTA_BITS};
     use crate::bump::{SIN_ADDR_BITS, SIN_INTERP_BITS, SIN_PHI_ADDR_BITS};
@@ -109,9 +109,9 @@ pub mod twin {
 
     #[derive(Clone, Debug, Default)]
     struct Regs {
-        valid: [bool; 6],
-        /// (cos φ, cos γ) at B1 .. B5.
-        cos: [[u64; 2]; 5],
+        valid: [bool; 7],
+        /// (cos φ, cos γ) at B1 .. B6.
+        cos: [[u64; 2]; 6],
         sin: [u64; 2],
         code: u64,
         sin2: [u64; 2],
@@ -120,6 +120,9 @@ pub mod twin {
         sin3: [u64; 2],
         dg3: u64,
         tg3: bool,
+        /// B4's first register (the products one clock early), then B4's.
+        prod_a: [u64; 4],
+        tg4_a: bool,
         prod: [u64; 4],
         tg4: bool,
         sum: [u64; 2],
@@ -162,7 +165,7 @@ pub mod twin {
         }
         /// (valid_out, cos φ', cos γ') shown this clock.
         pub fn outputs(&self) -> (bool, u64, u64) {
-            (self.r.valid[5], self.r.out[0], self.r.out[1])
+            (self.r.valid[6], self.r.out[0], self.r.out[1])
         }
         /// One rising edge.
         pub fn clock(&mut self, valid_in: bool, cos_phi: u64, cos_gamma: u64, x: u64, y: u64) {
@@ -178,7 +181,7 @@ pub mod twin {
             n.out = if self.enable {
                 s.sum.map(rnd)
             } else {
-                s.cos[4]
+                s.cos[5]
             };
             // B5
             n.sum = std::array::from_fn(|k| {
@@ -189,15 +192,17 @@ pub mod twin {
                     p.saturating_sub(q)
                 }
             });
-            // B4
+            // B4 (two clocks)
+            n.prod = s.prod_a;
+            n.tg4 = s.tg4_a;
             let (cd, sd) = (s.dg3 >> 16, s.dg3 & 0xFFFF);
-            n.prod = [
+            n.prod_a = [
                 s.cos[2][0] * cd,
                 s.sin3[0] * sd,
                 s.cos[2][1] * cd,
                 s.sin3[1] * sd,
             ];
-            n.tg4 = s.tg3;
+            n.tg4_a = s.tg3;
             // B3
             n.sin3 = s.sin2;
             n.dg3 = s.dg;
@@ -209,9 +214,16 @@ pub mod twin {
             // B1
             n.sin = sin_b1;
             n.code = code;
-            n.cos = [[cos_phi, cos_gamma], s.cos[0], s.cos[1], s.cos[2], s.cos[3]];
+            n.cos = [
+                [cos_phi, cos_gamma],
+                s.cos[0],
+                s.cos[1],
+                s.cos[2],
+                s.cos[3],
+                s.cos[4],
+            ];
             n.valid = [
-                valid_in, s.valid[0], s.valid[1], s.valid[2], s.valid[3], s.valid[4],
+                valid_in, s.valid[0], s.valid[1], s.valid[2], s.valid[3], s.valid[4], s.valid[5],
             ];
         }
     }

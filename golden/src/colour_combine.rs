@@ -78,11 +78,12 @@ pub fn intensity(w: &Weights, cos_phi: f64, spec: f64) -> [f64; 3] {
 /// Bit-exact integer twin of `rtl/src/colour_combine.rs`, from its header:
 ///
 /// ```text
-/// C1 pd = dif·cos φ, ps = spc·S          UQ8.8 × UQ1.15 → UQ9.23, exact (six products)
+/// C1 pd = dif·cos φ, ps = spc·S          UQ8.8 × UQ1.15 → UQ9.23, exact (six products),
+///                                        two clocks
 /// C2 sum = amb·2¹⁵ + pd + ps              UQ11.23 in 34 bits, exact, registered
 /// C3 rgb = sum + 2²²: ≥ 256 → 255, else bits 30..23 (round to nearest, ties up)
 /// ```
-/// The weights are the words present when a pixel reaches C1 (dif, spc) and C2 (amb).
+/// The weights are the words present when a pixel enters C1 (dif, spc) and C2 (amb).
 pub mod twin {
     /// Round a UQ11.23 sum (half LSB not yet added) to 8 bits, saturating at 255.
     pub fn narrow(sum: u64) -> u64 {
@@ -91,26 +92,31 @@ pub mod twin {
 
     #[derive(Clone, Debug, Default)]
     pub struct ColourTwin {
+        /// C1's first register (the products of the words that entered a clock ago).
+        pd_a: [u64; 3],
+        ps_a: [u64; 3],
         pd: [u64; 3],
         ps: [u64; 3],
         /// C2: the exact sum before the half LSB.
         sum: [u64; 3],
         rgb: [u64; 3],
-        valid: [bool; 3],
+        valid: [bool; 4],
     }
 
     impl ColourTwin {
         /// (valid_out, [r, g, b]) shown this clock.
         pub fn outputs(&self) -> (bool, [u64; 3]) {
-            (self.valid[2], self.rgb)
+            (self.valid[3], self.rgb)
         }
         /// One rising edge: cosines as UQ1.15 words, `w` the nine weight words.
         pub fn clock(&mut self, valid_in: bool, cos_phi: u64, spec: u64, w: &[u64; 9]) {
             self.rgb = self.sum.map(narrow);
             self.sum = std::array::from_fn(|c| (w[c] << 15) + self.pd[c] + self.ps[c]);
-            self.pd = std::array::from_fn(|c| w[3 + c] * cos_phi);
-            self.ps = std::array::from_fn(|c| w[6 + c] * spec);
-            self.valid = [valid_in, self.valid[0], self.valid[1]];
+            self.pd = self.pd_a;
+            self.ps = self.ps_a;
+            self.pd_a = std::array::from_fn(|c| w[3 + c] * cos_phi);
+            self.ps_a = std::array::from_fn(|c| w[6 + c] * spec);
+            self.valid = [valid_in, self.valid[0], self.valid[1], self.valid[2]];
         }
     }
 }

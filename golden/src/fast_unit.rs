@@ -134,8 +134,8 @@ pub mod twin {
         big_m: i64,
         delta: i64,
         dd: i64,
-        /// S1, S2a, S2b, S3, S4a, S4b, S5, S6a, S6b, S7 (index 0 = S1): every product takes
-        /// two clocks (the RTL registers it before its sign correction).
+        /// S1, S2 (3), S3, S4 (3), S5, S6 (3), S7 (index 0 = S1): every product takes three
+        /// clocks (the RTL registers the operands, then the product and its sign correction).
         pipe: VecDeque<Lane>,
     }
 
@@ -155,7 +155,7 @@ pub mod twin {
                 big_m: 0,
                 delta: 0,
                 dd: 0,
-                pipe: std::iter::repeat_n(Lane::default(), 10).collect(),
+                pipe: std::iter::repeat_n(Lane::default(), 13).collect(),
             }
         }
         fn active(&self) -> bool {
@@ -166,7 +166,7 @@ pub mod twin {
         }
         /// (ready, valid_l, x_l, cos_l, valid_r, x_r, cos_r, last) shown this clock.
         pub fn outputs(&self) -> Vec<u64> {
-            let o = self.pipe[9];
+            let o = self.pipe[self.pipe.len() - 1];
             vec![
                 !self.more() as u64,
                 o.vl as u64,
@@ -180,39 +180,49 @@ pub mod twin {
         }
         pub fn clock(&mut self, load: Option<&FastWords>) {
             let s: Vec<Lane> = self.pipe.iter().copied().collect();
-            let mut n = [Lane::default(); 10];
+            const L: usize = 3; // clocks per product (the RTL's SIGNED_MUL_LATENCY)
+            let mut n = [Lane::default(); 4 + 3 * L];
+            // Stage indices: S1 0, S2 1..=L, S3 L+1, S4 L+2..=2L+1, S5 2L+2, S6 2L+3..=3L+2,
+            // S7 3L+3.
+            let (s2, s3, s4, s5, s6, s7) = (1, L + 1, L + 2, 2 * L + 2, 2 * L + 3, 3 * L + 3);
             // S7: cos = clamp(round(v: Q3.29 → UQ1.15)), v = p·r.
             let out = |v: i64| ((v + (1 << 13)) >> 14).clamp(0, 0xFFFF);
-            n[9] = Lane {
-                pl: out(s[8].pl),
-                pr: out(s[8].pr),
-                ..s[8]
+            n[s7] = Lane {
+                pl: out(s[s7 - 1].pl),
+                pr: out(s[s7 - 1].pr),
+                ..s[s7 - 1]
             };
-            // S6 (a, b): p·r (signed Q2.14 × UQ1.15 → Q3.29).
-            n[8] = s[7];
-            n[7] = Lane {
-                pl: s[6].pl * s[6].w,
-                pr: s[6].pr * s[6].w,
-                ..s[6]
+            // S6: p·r (signed Q2.14 × UQ1.15 → Q3.29), L clocks.
+            n[s6] = Lane {
+                pl: s[s6 - 1].pl * s[s6 - 1].w,
+                pr: s[s6 - 1].pr * s[s6 - 1].w,
+                ..s[s6 - 1]
             };
+            for i in s6 + 1..s7 {
+                n[i] = s[i - 1];
+            }
             // S5: r = round(c0 + t1·M: Q3.29 → UQ1.15), clamped.
-            let r = ((self.c0 + s[5].w + (1 << 13)) >> 14).clamp(0, 0xFFFF);
-            n[6] = Lane { w: r, ..s[5] };
-            // S4 (a, b): t1·M (signed Q2.14 × signed Q1.15 → Q3.29).
-            n[5] = s[4];
-            n[4] = Lane {
-                w: s[3].w * s[3].mm,
-                ..s[3]
+            let r = ((self.c0 + s[s5 - 1].w + (1 << 13)) >> 14).clamp(0, 0xFFFF);
+            n[s5] = Lane { w: r, ..s[s5 - 1] };
+            // S4: t1·M (signed Q2.14 × signed Q1.15 → Q3.29), L clocks.
+            n[s4] = Lane {
+                w: s[s4 - 1].w * s[s4 - 1].mm,
+                ..s[s4 - 1]
             };
+            for i in s4 + 1..s5 {
+                n[i] = s[i - 1];
+            }
             // S3: t1 = round(c1 + |c2|·M: Q2.30 → Q2.14), saturated.
-            let t1 = clamp16s((self.c1 + s[2].w + (1 << 15)) >> 16);
-            n[3] = Lane { w: t1, ..s[2] };
-            // S2 (a, b): |c2|·M (UQ1.15 × signed Q1.15 → Q2.30).
-            n[2] = s[1];
-            n[1] = Lane {
+            let t1 = clamp16s((self.c1 + s[s3 - 1].w + (1 << 15)) >> 16);
+            n[s3] = Lane { w: t1, ..s[s3 - 1] };
+            // S2: |c2|·M (UQ1.15 × signed Q1.15 → Q2.30), L clocks.
+            n[s2] = Lane {
                 w: self.c2 * s[0].mm,
                 ..s[0]
             };
+            for i in s2 + 1..s3 {
+                n[i] = s[i - 1];
+            }
             // S1: from the state — M rounded to Q1.15 (saturated), p rounded to Q2.14.
             let a = self.active();
             let more = self.more();

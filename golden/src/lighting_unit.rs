@@ -30,11 +30,11 @@ pub fn error_bound(component: f64, u: DVec3) -> f64 {
 }
 
 /// Bit-exact integer twin of `rtl/src/lighting_unit.rs`, from its header: the normalizer
-/// ([`crate::normalizer::twin::NormalizerTwin`], latency 12), then
+/// ([`crate::normalizer::twin::NormalizerTwin`], latency 15), then
 ///
 /// ```text
 /// D1 p = N'_i·L_i, N'_i·H_i          six exact signed Q2.14 × Q2.14 → Q4.28 products,
-///                                    two clocks (the product is ready one register later)
+///                                    three clocks (the product is ready three registers on)
 /// D2 s = Σ p                         exact (34 bits), registered
 /// D3 cos = sat(round(s: Q4.28 → UQ1.15))   +2¹², drop 13 bits, negative → 0, ≥ 2 → 0xFFFF
 /// ```
@@ -51,28 +51,28 @@ pub mod twin {
     #[derive(Clone, Debug)]
     pub struct LightingTwin {
         norm: NormalizerTwin,
-        /// D1's two registers.
-        prod_a: [i64; 6],
+        /// D1's first two registers.
+        prod_a: [[i64; 6]; 2],
         prod: [i64; 6],
         sum: [i64; 2],
         cos: [i64; 2],
-        valid: [bool; 4],
+        valid: [bool; 5],
     }
 
     impl LightingTwin {
         pub fn new(c: Coeffs) -> Self {
             Self {
                 norm: NormalizerTwin::new(c),
-                prod_a: [0; 6],
+                prod_a: [[0; 6]; 2],
                 prod: [0; 6],
                 sum: [0; 2],
                 cos: [0; 2],
-                valid: [false; 4],
+                valid: [false; 5],
             }
         }
         /// (valid_out, cos φ, cos γ as unsigned Q1.15 integers) shown this clock.
         pub fn outputs(&self) -> (bool, i64, i64) {
-            (self.valid[3], self.cos[0], self.cos[1])
+            (self.valid[4], self.cos[0], self.cos[1])
         }
         /// One rising edge: `v` the interpolated normal, `l` and `h` the light and half
         /// vectors (signed Q2.14 integers).
@@ -83,8 +83,9 @@ pub mod twin {
                 self.prod[0] + self.prod[1] + self.prod[2],
                 self.prod[3] + self.prod[4] + self.prod[5],
             ];
-            self.prod = self.prod_a;
-            self.prod_a = [
+            self.prod = self.prod_a[1];
+            self.prod_a[1] = self.prod_a[0];
+            self.prod_a[0] = [
                 n[0] * l[0],
                 n[1] * l[1],
                 n[2] * l[2],
@@ -92,7 +93,13 @@ pub mod twin {
                 n[1] * h[1],
                 n[2] * h[2],
             ];
-            self.valid = [nv, self.valid[0], self.valid[1], self.valid[2]];
+            self.valid = [
+                nv,
+                self.valid[0],
+                self.valid[1],
+                self.valid[2],
+                self.valid[3],
+            ];
             self.norm.clock(valid_in, v);
         }
     }

@@ -202,8 +202,8 @@ pub mod twin {
     const Q214_MAX: i64 = (1 << 15) - 1;
     const U16_MAX: i64 = 0xFFFF;
 
-    /// The normalizer back end (`NormalizerK`): N and K in, N·f(K) out, latency 9 (B4 and B6
-    /// take two clocks: the product is registered twice).
+    /// The normalizer back end (`NormalizerK`): N and K in, N·f(K) out, latency 11 (B4 and B6
+    /// take three clocks: the product is ready three registers on).
     ///
     /// ```text
     /// B1 k_narrow = sat(round(K: Q4.28 → Q1.15))         B2 c2k = |c2|·k_narrow (Q2.30)
@@ -223,14 +223,14 @@ pub mod twin {
         k_narrow_p1: i64,
         t1: i64,
         k_narrow_p2: i64,
-        t1k_a: i64,
+        t1k_a: [i64; 2],
         t1k: i64,
         f: i64,
-        xf_a: [i64; 3],
+        xf_a: [[i64; 3]; 2],
         xf: [i64; 3],
         n: [i64; 3],
-        valid: [bool; 9],
-        vec: [[i64; 3]; 6],
+        valid: [bool; 11],
+        vec: [[i64; 3]; 7],
     }
 
     impl NormalizerKTwin {
@@ -247,20 +247,20 @@ pub mod twin {
                 k_narrow_p1: 0,
                 t1: 0,
                 k_narrow_p2: 0,
-                t1k_a: 0,
+                t1k_a: [0; 2],
                 t1k: 0,
                 f: 0,
-                xf_a: [0; 3],
+                xf_a: [[0; 3]; 2],
                 xf: [0; 3],
                 n: [0; 3],
-                valid: [false; 9],
-                vec: [[0; 3]; 6],
+                valid: [false; 11],
+                vec: [[0; 3]; 7],
             }
         }
 
         /// What the outputs show this clock: (valid_out, [nx, ny, nz]).
         pub fn outputs(&self) -> (bool, [i64; 3]) {
-            (self.valid[8], self.n)
+            (self.valid[10], self.n)
         }
 
         /// The coefficient words this twin computes with: (|c2| in Q1.15, c2 < 0, c1 in
@@ -280,40 +280,42 @@ pub mod twin {
             let t1_wide = s.c1 + if s.c2_neg { -half } else { half };
             self.t1 = round_sat(t1_wide, 15, Q214_MIN, Q214_MAX);
             self.k_narrow_p2 = s.k_narrow_p1;
-            self.t1k_a = s.t1 * s.k_narrow_p2;
-            self.t1k = s.t1k_a;
+            self.t1k_a = [s.t1 * s.k_narrow_p2, s.t1k_a[0]];
+            self.t1k = s.t1k_a[1];
             self.f = round_sat(s.c0 + (s.t1k >> 1), 13, 0, U16_MAX);
-            self.xf_a = s.vec[5].map(|x| x * s.f);
-            self.xf = s.xf_a;
+            self.xf_a = [s.vec[6].map(|x| x * s.f), s.xf_a[0]];
+            self.xf = s.xf_a[1];
             self.n = s.xf.map(|p| round_sat(p, 15, Q214_MIN, Q214_MAX));
             self.valid = [
                 valid_in, s.valid[0], s.valid[1], s.valid[2], s.valid[3], s.valid[4], s.valid[5],
-                s.valid[6], s.valid[7],
+                s.valid[6], s.valid[7], s.valid[8], s.valid[9],
             ];
-            self.vec = [v, s.vec[0], s.vec[1], s.vec[2], s.vec[3], s.vec[4]];
+            self.vec = [
+                v, s.vec[0], s.vec[1], s.vec[2], s.vec[3], s.vec[4], s.vec[5],
+            ];
         }
     }
 
-    /// The full normalizer: three squarers (two clocks: the square is registered twice) and
-    /// Sm1 (K exact) in front of [`NormalizerKTwin`]; latency 12.
+    /// The full normalizer: three squarers (three clocks: the square is ready three registers
+    /// on) and Sm1 (K exact) in front of [`NormalizerKTwin`]; latency 15.
     #[derive(Clone, Debug)]
     pub struct NormalizerTwin {
-        sq_a: [i64; 3],
+        sq_a: [[i64; 3]; 2],
         sq: [i64; 3],
         k_full: i64,
-        valid: [bool; 3],
-        vec: [[i64; 3]; 3],
+        valid: [bool; 4],
+        vec: [[i64; 3]; 4],
         back: NormalizerKTwin,
     }
 
     impl NormalizerTwin {
         pub fn new(c: Coeffs) -> Self {
             Self {
-                sq_a: [0; 3],
+                sq_a: [[0; 3]; 2],
                 sq: [0; 3],
                 k_full: 0,
-                valid: [false; 3],
-                vec: [[0; 3]; 3],
+                valid: [false; 4],
+                vec: [[0; 3]; 4],
                 back: NormalizerKTwin::new(c),
             }
         }
@@ -321,12 +323,12 @@ pub mod twin {
             self.back.outputs()
         }
         pub fn clock(&mut self, valid_in: bool, v: [i64; 3]) {
-            self.back.clock(self.valid[2], self.vec[2], self.k_full);
+            self.back.clock(self.valid[3], self.vec[3], self.k_full);
             self.k_full = self.sq.iter().sum();
-            self.sq = self.sq_a;
-            self.sq_a = v.map(|x| x * x);
-            self.valid = [valid_in, self.valid[0], self.valid[1]];
-            self.vec = [v, self.vec[0], self.vec[1]];
+            self.sq = self.sq_a[1];
+            self.sq_a = [v.map(|x| x * x), self.sq_a[0]];
+            self.valid = [valid_in, self.valid[0], self.valid[1], self.valid[2]];
+            self.vec = [v, self.vec[0], self.vec[1], self.vec[2]];
         }
     }
 
@@ -383,7 +385,7 @@ pub mod twin {
 
     /// The span normalizer: [`KRecurrenceTwin`] beside the vector interpolator
     /// N_{i+1} = N_i + Δ (16-bit wrap-around, as the caller keeps N_i representable), both
-    /// feeding [`NormalizerKTwin`]; latency 11.
+    /// feeding [`NormalizerKTwin`]; latency 13.
     #[derive(Clone, Debug)]
     pub struct SpanNormalizerTwin {
         krec: KRecurrenceTwin,

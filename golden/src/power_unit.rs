@@ -92,18 +92,18 @@ pub fn error_bound(mode: PowerMode, n: u32, c: f64) -> f64 {
 ///
 /// ```text
 /// rnd(p)  = min((p + 2¹⁴) >> 15, 0xFFFF)             UQ2.30 → UQ1.15, ties up, saturate
-/// Every multiply-and-round takes two clocks: the exact product registered (a), then the
-/// rounding and the selection (b).
+/// Every multiply-and-round takes three clocks: the exact product two registers on (a, a'),
+/// then the rounding and the selection (b).
 /// exact:  E0a acc = n₀ ? c : 0x8000,  sq = c²             E0b pw = rnd(sq)
 ///         Eja prod = acc·pw,  sq = pw²                    Ejb acc = n_j ? rnd(prod) : acc,
 ///                                                             pw = rnd(sq)
-///         (j = 1..9; E9 squares nothing): latency 20
+///         (j = 1..9; E9 squares nothing): latency 30
 /// W:      W1  a = slope word, t = |c − 0x8000|, above = c > 0x8000, zero = c == 0
-///         W2  p = a·t                          (2^-(15+f) units)
+///         W2  p = a·t                          (2^-(15+f) units; two clocks)
 ///         W3a sum = zero ? 0 : above ? 2^(15+f) + p : max(2^(15+f) − p, 0)   (registered)
 ///         W3b b = min((sum + 2^(f−1)) >> f, 0xFFFF)
 ///         W4..W7  a: sq = b²; b: b = rnd(sq) in the first log2 k stages, else b
-///         then 8 delay registers (latency 20 in both modes)
+///         then 13 delay registers (latency 30 in both modes)
 /// ```
 /// n travels with its pixel (each stage reads the n that entered with the pixel).
 pub mod twin {
@@ -134,8 +134,8 @@ pub mod twin {
         mode: PowerMode,
         /// W mode: fraction bits of the slope word (8 or 9).
         frac: u32,
-        stages: [Stage; 20],
-        /// W mode: (valid, value) of the padding delay (8 registers).
+        stages: [Stage; 30],
+        /// W mode: (valid, value) of the padding delay (13 registers).
         pad: VecDeque<(bool, u64)>,
     }
 
@@ -144,15 +144,15 @@ pub mod twin {
             PowerTwin {
                 mode,
                 frac: mode.k().map_or(8, |k| slope_word(k, 0).1),
-                stages: [Stage::default(); 20],
-                pad: std::iter::repeat_n((false, 0), 8).collect(),
+                stages: [Stage::default(); 30],
+                pad: std::iter::repeat_n((false, 0), 13).collect(),
             }
         }
 
         /// (valid_out, S as a UQ1.15 word) shown this clock.
         pub fn outputs(&self) -> (bool, u64) {
             match self.mode {
-                PowerMode::Exact => (self.stages[19].valid, self.stages[19].acc),
+                PowerMode::Exact => (self.stages[29].valid, self.stages[29].acc),
                 PowerMode::W(_) => self.pad[0],
             }
         }
@@ -163,7 +163,7 @@ pub mod twin {
             let n = n & 0x3FF;
             match self.mode {
                 PowerMode::Exact => {
-                    let mut next = [Stage::default(); 20];
+                    let mut next = [Stage::default(); 30];
                     next[0] = Stage {
                         valid: valid_in,
                         acc: if n & 1 == 1 { cos } else { 0x8000 },
@@ -171,14 +171,15 @@ pub mod twin {
                         n,
                         ..Stage::default()
                     };
-                    next[1] = Stage {
-                        pw: rnd(s[0].sq),
+                    next[1] = s[0];
+                    next[2] = Stage {
+                        pw: rnd(s[1].sq),
                         sq: 0,
-                        ..s[0]
+                        ..s[1]
                     };
                     for j in 1..10 {
-                        let p = s[2 * j - 1];
-                        next[2 * j] = Stage {
+                        let p = s[3 * j - 1];
+                        next[3 * j] = Stage {
                             valid: p.valid,
                             acc: p.acc,
                             prod: p.acc * p.pw,
@@ -186,8 +187,9 @@ pub mod twin {
                             n: p.n,
                             ..Stage::default()
                         };
-                        let p = s[2 * j];
-                        next[2 * j + 1] = Stage {
+                        next[3 * j + 1] = s[3 * j];
+                        let p = s[3 * j + 1];
+                        next[3 * j + 2] = Stage {
                             valid: p.valid,
                             acc: if (p.n >> j) & 1 == 1 {
                                 rnd(p.prod)
@@ -203,35 +205,36 @@ pub mod twin {
                 }
                 PowerMode::W(k) => {
                     let squarings = k.trailing_zeros() as usize;
-                    // Output of W7b (stage index 11) enters the padding delay.
+                    // Output of W7b (stage index 16) enters the padding delay.
                     self.pad.pop_front();
-                    self.pad.push_back((s[11].valid, s[11].acc));
-                    let mut next = [Stage::default(); 20];
-                    // W4..W7: (a) at indices 4, 6, 8, 10, (b) at 5, 7, 9, 11.
+                    self.pad.push_back((s[16].valid, s[16].acc));
+                    let mut next = [Stage::default(); 30];
+                    // W4..W7: (a) at 5, 8, 11, 14, (a') at 6, 9, 12, 15, (b) at 7, 10, 13, 16.
                     for i in 0..4 {
-                        let p = s[3 + 2 * i];
-                        next[4 + 2 * i] = Stage {
+                        let p = s[4 + 3 * i];
+                        next[5 + 3 * i] = Stage {
                             valid: p.valid,
                             acc: p.acc,
                             sq: p.acc * p.acc,
                             ..Stage::default()
                         };
-                        let p = s[4 + 2 * i];
-                        next[5 + 2 * i] = Stage {
+                        next[6 + 3 * i] = s[5 + 3 * i];
+                        let p = s[6 + 3 * i];
+                        next[7 + 3 * i] = Stage {
                             valid: p.valid,
                             acc: if i < squarings { rnd(p.sq) } else { p.acc },
                             ..Stage::default()
                         };
                     }
-                    // W3b (index 3): the bracket rounded to UQ1.15.
+                    // W3b (index 4): the bracket rounded to UQ1.15.
                     let frac = self.frac;
-                    next[3] = Stage {
-                        valid: s[2].valid,
-                        acc: ((s[2].acc + (1 << (frac - 1))) >> frac).min(0xFFFF),
+                    next[4] = Stage {
+                        valid: s[3].valid,
+                        acc: ((s[3].acc + (1 << (frac - 1))) >> frac).min(0xFFFF),
                         ..Stage::default()
                     };
-                    // W3a (index 2): the bracket 1 ± p in p's units, clamped at 0.
-                    let p = s[1];
+                    // W3a (index 3): the bracket 1 ± p in p's units, clamped at 0.
+                    let p = s[2];
                     let one = 1u64 << (15 + frac);
                     let b = if p.zero {
                         0
@@ -240,12 +243,13 @@ pub mod twin {
                     } else {
                         one.saturating_sub(p.pw)
                     };
-                    next[2] = Stage {
+                    next[3] = Stage {
                         valid: p.valid,
                         acc: b,
                         ..Stage::default()
                     };
-                    // W2 (index 1): p = a·t.
+                    // W2 (indices 1, 2): p = a·t, two clocks.
+                    next[2] = s[1];
                     let p = s[0];
                     next[1] = Stage {
                         valid: p.valid,

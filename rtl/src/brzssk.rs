@@ -27,11 +27,13 @@
 //!     8-bit magnitude), (s, d) = SINγ[cos γ bits 14..4] (cos γ ≥ 1: 0), frac = bits 3..0
 //! B2  the PROM words registered; DG read at the code's magnitude, TG = sign
 //! B3  sγ = s − (d·frac + 8) >> 4 (shift-add); cd, sd = DG word (Q1.15 each), registered
-//! B4  pφ = cos φ·cd, qφ = sφ·sd, pγ = cos γ·cd, qγ = sγ·sd   UQ1.15² → UQ2.30, exact (4 multipliers)
+//! B4  pφ = cos φ·cd, qφ = sφ·sd, pγ = cos γ·cd, qγ = sγ·sd   UQ1.15² → UQ2.30, exact (4 multipliers),
+//!     two clocks [MulPipe: the operands registered beside each multiplier, then the product]
 //! B5  TG ? p + q : max(p − q, 0)
 //! B6  + 2¹⁴, drop 15 bits, saturate at 0xFFFF
 //! ```
-//! B2, B5 and the registered DG word are there for ECP5 timing (before: latency 4, 64 MHz):
+//! B2, B5, B4's second clock and the registered DG word are there for ECP5 timing (before:
+//! latency 4, 64 MHz):
 //! a block RAM's output takes 5.6 ns from the clock, so none feeds logic or a multiplier in the
 //! same clock, and the add/subtract and the rounding carry chains take a clock each.
 //! PROM sizes: SINγ 2048 × 27 (s in Q1.15 and the step d = s[a] − s[a+1] ≤ 1024 to the next
@@ -39,8 +41,8 @@
 //! and the power after it would turn a bare PROM step into a ring), SINφ 1024 × 16 (rounded
 //! address, no interpolation: no power follows the diffuse term), CODE 256 × 9, DG 256 × 32.
 //! The word of cos = 1 (sin = 0) is a registered flag, not a PROM address.
-//! Latency 6 clocks, one pixel per clock, no stall. Build parameter `bump` (on | off): off
-//! passes the cosines through the same six registers (the pixel pipeline keeps one latency
+//! Latency 7 clocks, one pixel per clock, no stall. Build parameter `bump` (on | off): off
+//! passes the cosines through the same seven registers (the pixel pipeline keeps one latency
 //! for every method; synthesis removes the unused PROMs and multipliers).
 //!
 //! # Overflow
@@ -56,7 +58,7 @@
 
 use rust_hdl::prelude::*;
 
-use crate::primitives::Prom;
+use crate::primitives::{Delay, MulPipe, Prom, MUL_LATENCY};
 use crate::registry::{BlockParams, Options};
 
 /// Build parameters: whether the block perturbs (bump method) or passes through.
@@ -111,7 +113,7 @@ crate::hw_block! {
     /// BRZSSK (see the module header).
     pub struct Brzssk(clock) as "brzssk" {
         summary: "cos φ, cos γ and the pixel address in, cos(φ ± dγ), cos(γ ± dγ) out: PROMs, trigger TG, four multipliers, add/subtract (SPEC §2)",
-        latency: 6 => "valid_in to valid_out, one pixel per clock",
+        latency: 7 => "valid_in to valid_out, one pixel per clock",
         multipliers: 4,
         in { valid_in: Bit, cos_phi: Bits<16>, cos_gamma: Bits<16>, x: Bits<12>, y: Bits<12> }
         out { valid_out: Bit, cos_phi_out: Bits<16>, cos_gamma_out: Bits<16> }
@@ -151,11 +153,11 @@ crate::hw_block! {
         tg_p3: DFF<Bit>,
         cos_p3: [DFF<Bits<16>>; 2],
         valid_p3: DFF<Bit>,
-        // B4
-        prod: [DFF<Bits<32>>; 4],
-        tg_p4: DFF<Bit>,
-        cos_p4: [DFF<Bits<16>>; 2],
-        valid_p4: DFF<Bit>,
+        // B4 (two clocks)
+        prod: [MulPipe; 4],
+        tg_p4: Delay<Bit, MUL_LATENCY>,
+        cos_p4: [Delay<Bits<16>, MUL_LATENCY>; 2],
+        valid_p4: Delay<Bit, MUL_LATENCY>,
         // B5
         sum: [DFF<Bits<32>>; 2],
         cos_p5: [DFF<Bits<16>>; 2],
@@ -277,25 +279,29 @@ impl Logic for Brzssk {
         self.cos_p3[1].d.next = self.cos_p2[1].q.val();
         self.valid_p3.d.next = self.valid_p2.q.val();
         // B4: Mul1–Mul4.
-        self.prod[0].d.next = self.cos_p3[0].q.val() * self.cos_d.q.val();
-        self.prod[1].d.next = self.sin_p3[0].q.val() * self.sin_d.q.val();
-        self.prod[2].d.next = self.cos_p3[1].q.val() * self.cos_d.q.val();
-        self.prod[3].d.next = self.sin_p3[1].q.val() * self.sin_d.q.val();
+        self.prod[0].a.next = self.cos_p3[0].q.val();
+        self.prod[0].b.next = self.cos_d.q.val();
+        self.prod[1].a.next = self.sin_p3[0].q.val();
+        self.prod[1].b.next = self.sin_d.q.val();
+        self.prod[2].a.next = self.cos_p3[1].q.val();
+        self.prod[2].b.next = self.cos_d.q.val();
+        self.prod[3].a.next = self.sin_p3[1].q.val();
+        self.prod[3].b.next = self.sin_d.q.val();
         self.tg_p4.d.next = self.tg_p3.q.val();
         self.cos_p4[0].d.next = self.cos_p3[0].q.val();
         self.cos_p4[1].d.next = self.cos_p3[1].q.val();
         self.valid_p4.d.next = self.valid_p3.q.val();
         // B5: add (dγ < 0) or subtract (clamped at 0).
         if self.tg_p4.q.val() {
-            self.sum[0].d.next = self.prod[0].q.val() + self.prod[1].q.val();
-            self.sum[1].d.next = self.prod[2].q.val() + self.prod[3].q.val();
+            self.sum[0].d.next = self.prod[0].p.val() + self.prod[1].p.val();
+            self.sum[1].d.next = self.prod[2].p.val() + self.prod[3].p.val();
         } else {
-            self.sum[0].d.next = self.prod[0].q.val() - self.prod[1].q.val();
-            self.sum[1].d.next = self.prod[2].q.val() - self.prod[3].q.val();
-            if self.prod[1].q.val() > self.prod[0].q.val() {
+            self.sum[0].d.next = self.prod[0].p.val() - self.prod[1].p.val();
+            self.sum[1].d.next = self.prod[2].p.val() - self.prod[3].p.val();
+            if self.prod[1].p.val() > self.prod[0].p.val() {
                 self.sum[0].d.next = 0.into();
             }
-            if self.prod[3].q.val() > self.prod[2].q.val() {
+            if self.prod[3].p.val() > self.prod[2].p.val() {
                 self.sum[1].d.next = 0.into();
             }
         }

@@ -13,13 +13,14 @@
 //! |---|---|---|
 //! | `valid_in` | in | 1 = cos_phi, spec hold a pixel's terms |
 //! | `cos_phi`, `spec` | in | unsigned Q1.15 (cos φ ≥ 0 from the lighting unit, S from the power unit) |
-//! | `amb_r … amb_b`, `dif_r … dif_b`, `spc_r … spc_b` | in | unsigned Q8.8 weights, registers (hold them while pixels are in flight) |
-//! | `valid_out` | out | `valid_in` three clocks later |
+//! | `amb_r … amb_b`, `dif_r … dif_b`, `spc_r … spc_b` | in | unsigned Q8.8 weights, registers (hold them while pixels are in flight; dif and spc are sampled with the pixel, amb two clocks later) |
+//! | `valid_out` | out | `valid_in` four clocks later |
 //! | `red`, `green`, `blue` | out | 8 bits, registered |
 //!
 //! # Pipeline
 //! ```text
-//! C1 pd_c = dif_c·cos φ, ps_c = spc_c·S   UQ8.8 × UQ1.15 → UQ9.23, exact (6 multipliers)
+//! C1 pd_c = dif_c·cos φ, ps_c = spc_c·S   UQ8.8 × UQ1.15 → UQ9.23, exact (6 multipliers),
+//!    two clocks [MulPipe: the operands registered beside each multiplier, then the product]
 //! C2 sum_c = amb_c·2¹⁵ + pd_c + ps_c + 2²² (half LSB), exact (< 1280·2²³), formed in two
 //!    parts so no word is wider than 32 bits (the simulator's fast width; the hardware is the
 //!    same 34-bit sum, split at bit 23):
@@ -28,8 +29,9 @@
 //! C3 hi_c = hs_c + lo_c[24:23] (= ⌊sum_c / 2²³⌋)
 //!    rgb_c = 255 if hi_c ≥ 256, else hi_c[7:0]
 //! ```
-//! Latency 3 clocks, one pixel per clock, no stall. (C2 and C3 were one clock until ECP5
-//! timing: in the pixel pipeline the sums, the carry and the clamp in one clock ran at 86 MHz.)
+//! Latency 4 clocks, one pixel per clock, no stall. (C1 and C2 + C3 were one clock each until
+//! ECP5 timing: in the pixel pipeline the sums, the carry and the clamp in one clock ran at
+//! 86 MHz; see `crate::primitives` for the operand registers.)
 //!
 //! # Overflow
 //! None wraps: products and sums are exact; the result saturates at 255 ("colours that
@@ -41,11 +43,13 @@
 
 use rust_hdl::prelude::*;
 
+use crate::primitives::{Delay, MulPipe, MUL_LATENCY};
+
 crate::hw_block! {
     /// The colour combine (see the module header).
     pub struct ColourCombine(clock) as "colour-combine" {
         summary: "cos φ and S in, I = amb + dif·cos φ + spc·S per channel out, 8 bits saturated (SPEC §0)",
-        latency: 3 => "valid_in to valid_out, one pixel per clock",
+        latency: 4 => "valid_in to valid_out, one pixel per clock",
         multipliers: 6,
         in {
             valid_in: Bit, cos_phi: Bits<16>, spec: Bits<16>,
@@ -55,9 +59,9 @@ crate::hw_block! {
         }
         out { valid_out: Bit, red: Bits<8>, green: Bits<8>, blue: Bits<8> }
         // C1
-        pd: [DFF<Bits<32>>; 3],
-        ps: [DFF<Bits<32>>; 3],
-        valid_p1: DFF<Bit>,
+        pd: [MulPipe; 3],
+        ps: [MulPipe; 3],
+        valid_p1: Delay<Bit, MUL_LATENCY>,
         // C2: the sum's bits 22..0 (with their carry) and 33..23, registered.
         lo: [DFF<Bits<32>>; 3],
         hs: [DFF<Bits<16>>; 3],
@@ -83,34 +87,38 @@ impl Logic for ColourCombine {
             self.rgb[c].clock.next = self.clock.val();
         }
         // C1
-        self.pd[0].d.next = self.dif_r.val() * self.cos_phi.val();
-        self.pd[1].d.next = self.dif_g.val() * self.cos_phi.val();
-        self.pd[2].d.next = self.dif_b.val() * self.cos_phi.val();
-        self.ps[0].d.next = self.spc_r.val() * self.spec.val();
-        self.ps[1].d.next = self.spc_g.val() * self.spec.val();
-        self.ps[2].d.next = self.spc_b.val() * self.spec.val();
+        self.pd[0].a.next = self.dif_r.val();
+        self.pd[1].a.next = self.dif_g.val();
+        self.pd[2].a.next = self.dif_b.val();
+        self.ps[0].a.next = self.spc_r.val();
+        self.ps[1].a.next = self.spc_g.val();
+        self.ps[2].a.next = self.spc_b.val();
+        for c in 0..3 {
+            self.pd[c].b.next = self.cos_phi.val();
+            self.ps[c].b.next = self.spec.val();
+        }
         self.valid_p1.d.next = self.valid_in.val();
         // C2 (written out per channel: rust-hdl resolves no loop index inside bit_cast).
-        self.lo[0].d.next = bit_cast::<32, 23>(self.pd[0].q.val().get_bits::<23>(0))
-            + bit_cast::<32, 23>(self.ps[0].q.val().get_bits::<23>(0))
+        self.lo[0].d.next = bit_cast::<32, 23>(self.pd[0].p.val().get_bits::<23>(0))
+            + bit_cast::<32, 23>(self.ps[0].p.val().get_bits::<23>(0))
             + (bit_cast::<32, 8>(self.amb_r.val().get_bits::<8>(0)) << 15)
             + self.half_lsb.val();
-        self.lo[1].d.next = bit_cast::<32, 23>(self.pd[1].q.val().get_bits::<23>(0))
-            + bit_cast::<32, 23>(self.ps[1].q.val().get_bits::<23>(0))
+        self.lo[1].d.next = bit_cast::<32, 23>(self.pd[1].p.val().get_bits::<23>(0))
+            + bit_cast::<32, 23>(self.ps[1].p.val().get_bits::<23>(0))
             + (bit_cast::<32, 8>(self.amb_g.val().get_bits::<8>(0)) << 15)
             + self.half_lsb.val();
-        self.lo[2].d.next = bit_cast::<32, 23>(self.pd[2].q.val().get_bits::<23>(0))
-            + bit_cast::<32, 23>(self.ps[2].q.val().get_bits::<23>(0))
+        self.lo[2].d.next = bit_cast::<32, 23>(self.pd[2].p.val().get_bits::<23>(0))
+            + bit_cast::<32, 23>(self.ps[2].p.val().get_bits::<23>(0))
             + (bit_cast::<32, 8>(self.amb_b.val().get_bits::<8>(0)) << 15)
             + self.half_lsb.val();
-        self.hs[0].d.next = bit_cast::<16, 9>(self.pd[0].q.val().get_bits::<9>(23))
-            + bit_cast::<16, 9>(self.ps[0].q.val().get_bits::<9>(23))
+        self.hs[0].d.next = bit_cast::<16, 9>(self.pd[0].p.val().get_bits::<9>(23))
+            + bit_cast::<16, 9>(self.ps[0].p.val().get_bits::<9>(23))
             + bit_cast::<16, 8>(self.amb_r.val().get_bits::<8>(8));
-        self.hs[1].d.next = bit_cast::<16, 9>(self.pd[1].q.val().get_bits::<9>(23))
-            + bit_cast::<16, 9>(self.ps[1].q.val().get_bits::<9>(23))
+        self.hs[1].d.next = bit_cast::<16, 9>(self.pd[1].p.val().get_bits::<9>(23))
+            + bit_cast::<16, 9>(self.ps[1].p.val().get_bits::<9>(23))
             + bit_cast::<16, 8>(self.amb_g.val().get_bits::<8>(8));
-        self.hs[2].d.next = bit_cast::<16, 9>(self.pd[2].q.val().get_bits::<9>(23))
-            + bit_cast::<16, 9>(self.ps[2].q.val().get_bits::<9>(23))
+        self.hs[2].d.next = bit_cast::<16, 9>(self.pd[2].p.val().get_bits::<9>(23))
+            + bit_cast::<16, 9>(self.ps[2].p.val().get_bits::<9>(23))
             + bit_cast::<16, 8>(self.amb_b.val().get_bits::<8>(8));
         self.valid_p2.d.next = self.valid_p1.q.val();
         // C3

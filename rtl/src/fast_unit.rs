@@ -26,16 +26,17 @@
 //!     the end); active = busy & rem ≥ 0, another step follows when rem ≥ 2 (sign and bit
 //!     tests of a register, not compares: for ECP5 timing)
 //! S1  M → Q1.15 (round, saturate), p_l, p_r → Q2.14 (round, saturate)
-//! S2  |c2|·M                UQ1.15 × signed Q1.15 → Q2.30, exact, 2 clocks [MulSignedUnsignedPipe]
+//! S2  |c2|·M                UQ1.15 × signed Q1.15 → Q2.30, exact, 3 clocks [MulSignedUnsignedPipe]
 //! S3  t1 = c1 + |c2|·M      Q2.30 → Q2.14, rounded
-//! S4  t1·M                  Q2.14 × Q1.15 → Q3.29, exact, 2 clocks         [MulSignedPipe]
+//! S4  t1·M                  Q2.14 × Q1.15 → Q3.29, exact, 3 clocks         [MulSignedPipe]
 //! S5  f = c0 + t1·M         Q3.29 → UQ1.15, rounded, clamped to [0, 2)
-//! S6  p_l·f, p_r·f          signed Q2.14 × UQ1.15 → Q3.29, exact (2), 2 clocks [MulSignedUnsignedPipe]
+//! S6  p_l·f, p_r·f          signed Q2.14 × UQ1.15 → Q3.29, exact (2), 3 clocks [MulSignedUnsignedPipe]
 //! S7  cos = round → UQ1.15, clamped to [0, 2)
 //! ```
-//! Each product takes two clocks (the raw product and its sign correction registered apart):
-//! for ECP5 timing, a multiplier and its correction in one clock ran at 92 MHz.
-//! Latency: state → pixels 10 clocks, load → first pixels 11. Throughput: two pixels per clock
+//! Each product takes three clocks (operands, raw product and sign correction, difference
+//! registered apart): for ECP5 timing, a multiplier and its correction in one clock ran at
+//! 92 MHz (see `crate::primitives`).
+//! Latency: state → pixels 13 clocks, load → first pixels 14. Throughput: two pixels per clock
 //! (one in the middle step of an even m); a span takes ⌊m/2⌋ + 1 clocks and the next follows
 //! at once. 4 multipliers (c2 > 0 required: every published and fitted set has it).
 //!
@@ -50,7 +51,15 @@
 use golden::normalizer::Coeffs;
 use rust_hdl::prelude::*;
 
-use crate::primitives::{MulSignedPipe, MulSignedUnsignedPipe};
+use crate::primitives::{MulSignedPipe, MulSignedUnsignedPipe, SIGNED_MUL_LATENCY};
+
+/// Clocks from the state (S0) to the pixels: S1, three products, S3, S5, S7.
+const STATE_TO_PIXELS: usize = 4 + 3 * SIGNED_MUL_LATENCY;
+/// M's delay line (to S4's multiplier) and p's (to S6's).
+const MM_LEN: usize = SIGNED_MUL_LATENCY + 2;
+const P16_LEN: usize = 2 * SIGNED_MUL_LATENCY + 3;
+// `#[hdl_gen]` takes only literal indices and loop bounds: `update` writes these lengths out.
+const _: () = assert!(STATE_TO_PIXELS == 13 && MM_LEN == 5 && P16_LEN == 9);
 use crate::registry::{BlockParams, Options};
 
 /// The 1/√(M + 1) coefficient set, as (c2, c1, c0).
@@ -95,7 +104,7 @@ crate::hw_block! {
     /// The fast two-point unit (see the module header).
     pub struct FastUnit(clock) as "fast-unit" {
         summary: "a span's b, h, g, c + s, 2c in, p/√q for pixel x and its mirror m − x out, two pixels per clock (SPEC §3)",
-        latency: 11 => "load to the first pixels, two pixels per clock",
+        latency: STATE_TO_PIXELS + 1 => "load to the first pixels, two pixels per clock",
         multipliers: 4,
         in {
             load: Bit, b: Bits<32>, h: Bits<32>, g: Bits<32>, d0: Bits<48>, dd: Bits<48>,
@@ -122,10 +131,12 @@ crate::hw_block! {
         sx33: Constant<Bits<33>> = Constant::new((1u64 << 32).into()),
         half31: Constant<Bits<49>> = Constant::new((1u64 << 30).into()),
         half16: Constant<Bits<33>> = Constant::new((1u64 << 15).into()),
-        vl: [DFF<Bit>; 10], vr: [DFF<Bit>; 10], xl: [DFF<Bits<12>>; 10], xr: [DFF<Bits<12>>; 10],
-        lst: [DFF<Bit>; 10],
-        mm: [DFF<Bits<16>>; 4],
-        p16l: [DFF<Bits<16>>; 7], p16r: [DFF<Bits<16>>; 7],
+        vl: [DFF<Bit>; STATE_TO_PIXELS], vr: [DFF<Bit>; STATE_TO_PIXELS],
+        xl: [DFF<Bits<12>>; STATE_TO_PIXELS], xr: [DFF<Bits<12>>; STATE_TO_PIXELS],
+        lst: [DFF<Bit>; STATE_TO_PIXELS],
+        mm: [DFF<Bits<16>>; MM_LEN],
+        p16l: [DFF<Bits<16>>; P16_LEN],
+        p16r: [DFF<Bits<16>>; P16_LEN],
         // S2..S7
         mul_c2m: MulSignedUnsignedPipe,
         t1_sum: Signal<Local, Bits<32>>, t1_rnd: Signal<Local, Bits<32>>, t1: DFF<Bits<16>>,
@@ -145,17 +156,17 @@ impl Logic for FastUnit {
     fn update(&mut self) {
         dff_setup!(self, clock, busy, x, m_q, pl, pr, g_q, big_m, delta, dd_q, rem);
         clock!(self, clock, mul_c2m, t1, mul_t1m, f, mul_l, mul_r, cos_lq, cos_rq);
-        for i in 0..10 {
+        for i in 0..13 {
             self.vl[i].clock.next = self.clock.val();
             self.vr[i].clock.next = self.clock.val();
             self.xl[i].clock.next = self.clock.val();
             self.xr[i].clock.next = self.clock.val();
             self.lst[i].clock.next = self.clock.val();
         }
-        for i in 0..4 {
+        for i in 0..5 {
             self.mm[i].clock.next = self.clock.val();
         }
-        for i in 0..7 {
+        for i in 0..9 {
             self.p16l[i].clock.next = self.clock.val();
             self.p16r[i].clock.next = self.clock.val();
         }
@@ -191,7 +202,7 @@ impl Logic for FastUnit {
         self.xl[0].d.next = self.x.q.val();
         self.xr[0].d.next = self.m_q.q.val() - self.x.q.val();
         self.lst[0].d.next = self.act.val() & !self.more.val();
-        for i in 1..10 {
+        for i in 1..13 {
             self.vl[i].d.next = self.vl[i - 1].q.val();
             self.vr[i].d.next = self.vr[i - 1].q.val();
             self.xl[i].d.next = self.xl[i - 1].q.val();
@@ -243,11 +254,11 @@ impl Logic for FastUnit {
         } else {
             self.p16r[0].d.next = 0x7FFF.into();
         }
-        for i in 1..7 {
+        for i in 1..9 {
             self.p16l[i].d.next = self.p16l[i - 1].q.val();
             self.p16r[i].d.next = self.p16r[i - 1].q.val();
         }
-        for i in 1..4 {
+        for i in 1..5 {
             self.mm[i].d.next = self.mm[i - 1].q.val();
         }
         // S2: |c2|·M.
@@ -259,7 +270,7 @@ impl Logic for FastUnit {
         self.t1.d.next = self.t1_rnd.val().get_bits::<16>(16);
         // S4: t1·M.
         self.mul_t1m.a.next = self.t1.q.val();
-        self.mul_t1m.b.next = self.mm[3].q.val();
+        self.mul_t1m.b.next = self.mm[4].q.val();
         // S5: f = c0 + t1·M, to UQ1.15, clamped to [0, 2).
         self.f_sum.next = self.c0.val() + self.mul_t1m.p.val();
         self.f_rnd.next = self.f_sum.val() + self.half14.val();
@@ -271,9 +282,9 @@ impl Logic for FastUnit {
             self.f.d.next = self.f_rnd.val().get_bits::<16>(14);
         }
         // S6: p·f for both pixels.
-        self.mul_l.a.next = self.p16l[6].q.val();
+        self.mul_l.a.next = self.p16l[8].q.val();
         self.mul_l.b.next = self.f.q.val();
-        self.mul_r.a.next = self.p16r[6].q.val();
+        self.mul_r.a.next = self.p16r[8].q.val();
         self.mul_r.b.next = self.f.q.val();
         // S7: round to UQ1.15, clamped to [0, 2).
         self.out_l_rnd.next = self.mul_l.p.val() + self.half14.val();
@@ -292,12 +303,12 @@ impl Logic for FastUnit {
         } else {
             self.cos_rq.d.next = self.out_r_rnd.val().get_bits::<16>(14);
         }
-        self.valid_l.next = self.vl[9].q.val();
-        self.x_l.next = self.xl[9].q.val();
+        self.valid_l.next = self.vl[12].q.val();
+        self.x_l.next = self.xl[12].q.val();
         self.cos_l.next = self.cos_lq.q.val();
-        self.valid_r.next = self.vr[9].q.val();
-        self.x_r.next = self.xr[9].q.val();
+        self.valid_r.next = self.vr[12].q.val();
+        self.x_r.next = self.xr[12].q.val();
         self.cos_r.next = self.cos_rq.q.val();
-        self.last.next = self.lst[9].q.val();
+        self.last.next = self.lst[12].q.val();
     }
 }

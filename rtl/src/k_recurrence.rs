@@ -8,7 +8,7 @@
 //! - [`KRecurrence`]: K_0, α, β in (from the per-line set-up, [`span_setup`]), K_i out, one
 //!   per pixel. **Latency 2 clocks.**
 //! - [`SpanNormalizer`]: the same recurrence beside the vector interpolation N_{i+1} = N_i + Δ,
-//!   feeding [`NormalizerK`] in place of the three squarers. **Latency 2 + 9 = 11 clocks.**
+//!   feeding [`NormalizerK`] in place of the three squarers. **Latency 2 + 11 = 13 clocks.**
 //!
 //! # Exactness
 //! N₀ and Δ are integers in units of the Q2.14 LSB (N_i = N₀ + i·Δ exactly, the vector

@@ -15,16 +15,16 @@
 //! |---|---|---|
 //! | `valid_in` | in | 1 = x, y, z hold a normal this clock |
 //! | `x`, `y`, `z` | in | signed Q2.14: the interpolated (unnormalized) normal |
-//! | `lx ly lz`, `hx hy hz` | in | signed Q2.14: unit L and H, registers of the top (sampled when a pixel enters D1, 4 clocks before its output; hold them while pixels are in flight) |
+//! | `lx ly lz`, `hx hy hz` | in | signed Q2.14: unit L and H, registers of the top (sampled when a pixel enters D1, 5 clocks before its output; hold them while pixels are in flight) |
 //! | `valid_out` | out | `valid_in` delayed by the latency |
 //! | `cos_phi`, `cos_gamma` | out | unsigned Q1.15, registered |
 //!
 //! # Pipeline
 //! ```text
-//! N1..N12 the normalizer (`crate::normalizer::Normalizer`, coefficient set a build parameter)
-//! D1  p = nx·lx … nz·hz     six signed Q2.14 × Q2.14 → Q4.28 products, exact, in two clocks
-//!                           [MulSignedPipe: ua·ub and the sign corrections, then their
-//!                           difference]
+//! N1..N15 the normalizer (`crate::normalizer::Normalizer`, coefficient set a build parameter)
+//! D1  p = nx·lx … nz·hz     six signed Q2.14 × Q2.14 → Q4.28 products, exact, in three
+//!                           clocks [MulSignedPipe: the operands; ua·ub and the sign
+//!                           corrections; their difference]
 //! D2  s = Σp + 2¹²          three-operand sums, exact (|Σp| ≤ 3·2³⁰: 34 bits), + 2¹²
 //!                           (half LSB), formed in two parts so no word is wider than 32 bits
 //!                           (the simulator's fast width; the same 34-bit sum, split at bit 16):
@@ -34,10 +34,10 @@
 //!                           negative (hi < 0) → 0, ≥ 2 − 2⁻¹⁶ (hi ≥ 2¹³) → 0xFFFF
 //!                           (2 − 2⁻¹⁵), else bits 28..13 = hi[12:0] : lo[15:13]
 //! ```
-//! For ECP5 timing D1 takes two clocks and D2, D3 were one stage (latency 11 before, 72.6 MHz:
+//! For ECP5 timing D1 takes three clocks and D2, D3 were one stage (latency 11 before, 72.6 MHz:
 //! the three-operand sums, the carry add and the clamp in one clock; then the multiply and its
 //! sign correction in one clock, 95 MHz).
-//! Latency 16 clocks (12 + 4), one pixel per clock, no stall; `valid` travels with the data.
+//! Latency 20 clocks (15 + 5), one pixel per clock, no stall; `valid` travels with the data.
 //! 14 multipliers: the normalizer's 8 and the six of D1.
 //!
 //! # Overflow
@@ -55,14 +55,14 @@
 use rust_hdl::prelude::*;
 
 use crate::normalizer::{Normalizer, NormalizerCoeffs};
-use crate::primitives::{Delay, MulSignedPipe};
+use crate::primitives::{Delay, MulSignedPipe, SIGNED_MUL_LATENCY};
 
 crate::hw_block! {
     /// The lighting unit: normalizer, then N'·L and N'·H clamped to [0, 2) (see the module
     /// header).
     pub struct LightingUnit(clock) as "lighting-unit" {
         summary: "N in, cos φ = N'·L and cos γ = N'·H out (Q1.15, clamped at 0): normalizer + two dot products (SPEC §0, §1)",
-        latency: Normalizer::LATENCY + 4 => "valid_in to valid_out, one pixel per clock",
+        latency: Normalizer::LATENCY + SIGNED_MUL_LATENCY + 2 => "valid_in to valid_out, one pixel per clock",
         multipliers: 14,
         in {
             valid_in: Bit, x: Bits<16>, y: Bits<16>, z: Bits<16>,
@@ -70,11 +70,11 @@ crate::hw_block! {
             hx: Bits<16>, hy: Bits<16>, hz: Bits<16>,
         }
         out { valid_out: Bit, cos_phi: Bits<16>, cos_gamma: Bits<16> }
-        // N1..N12
+        // N1..N15
         pub norm: Normalizer = Normalizer::new(c),
         // D1: the six products in the order nx·lx, ny·ly, nz·lz, nx·hx, ny·hy, nz·hz.
         mul: [MulSignedPipe; 6],
-        valid_p1: Delay<Bit, 2>,
+        valid_p1: Delay<Bit, SIGNED_MUL_LATENCY>,
         // D2: each product's high half sign-extended, the two sums in two parts, registered.
         ext: [Signal<Local, Bits<32>>; 6],
         lo_l: Signal<Local, Bits<32>>,

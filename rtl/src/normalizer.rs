@@ -6,10 +6,10 @@
 //! ```
 //! Two tops share one back end:
 //! - [`Normalizer`]: N in, N' out. Three squarers (Mul1–Mul3) and the three-operand adder Sm1
-//!   form K, then [`NormalizerK`] does the rest. **Latency 12 clocks.**
+//!   form K, then [`NormalizerK`] does the rest. **Latency 15 clocks.**
 //! - [`NormalizerK`]: N and K in (K from the K recurrence, `crate::k_recurrence`), N' out.
 //!   Horner f = (c2·K + c1)·K + c0 on Mul4, Sm2, Mul5, Sm3; output scaling on Mul6–Mul8.
-//!   **Latency 9 clocks.**
+//!   **Latency 11 clocks.**
 //!
 //! 8 multipliers, 3 datapath adders (Sm1 three-operand), as in the patent's device; the only
 //! other adders are the fixed-point bookkeeping of `crate::fixed` (sign corrections of the
@@ -31,13 +31,14 @@
 //! # Pipeline (registers named after the quantity; `_pk` = delayed k clocks)
 //! The multipliers, narrowings and delay lines are the shared blocks of `crate::primitives`
 //! (named in brackets); B6–B7 form one `ScaleLane` per component (`lane_x`, `lane_y`,
-//! `lane_z`), which also delays its component by 6 clocks (`x_p6`) to meet f.
+//! `lane_z`), which also delays its component by 7 clocks (`x_to_f`) to meet f.
 //! ```text
 //! Normalizer only:
-//!  S1  sq_x = x·x (Mul1-3)       Q2.14² → Q4.28 unsigned, exact, in two clocks (ux² and the
-//!                                sign correction, then their difference) [SquareSignedPipe]
+//!  S1  sq_x = x·x (Mul1-3)       Q2.14² → Q4.28 unsigned, exact, in three clocks (x
+//!                                registered; ux² and the sign correction; their difference)
+//!                                [SquareSignedPipe]
 //!  S2  k_full = sq_x+sq_y+sq_z   Sm1, Q4.28 unsigned, exact (≤ 3·2³⁰, cannot overflow);
-//!                                valid_p3, x_p3 … carry the vector alongside [Delay]
+//!                                valid_p4, x_p4 … carry the vector alongside [Delay]
 //! NormalizerK (its stage 1 follows Normalizer's S2):
 //!  B1  k_narrow = K              Q4.28 → Q1.15 unsigned: round (drop 13 LSBs), saturate at
 //!                                2 − 2⁻¹⁵ when K ≥ 2 − 2⁻¹⁶ [RoundToUQ1_15]
@@ -47,23 +48,24 @@
 //!                                Q3.29 → Q2.14: round (drop 15 LSBs; the half LSB is in the
 //!                                constant c1_rnd), saturate to [−2, 2) [SatToQ2_14]
 //!  B4  t1k = t1·k_narrow_p2      Mul5, signed Q2.14 × unsigned Q1.15 → signed Q3.29, exact,
-//!                                two clocks [MulSignedUnsignedPipe]
+//!                                three clocks [MulSignedUnsignedPipe]
 //!  B5  f = c0 + t1k              Sm3 in Q4.28 (t1k halved: drops 2⁻²⁹; range [−8, 8), cannot
 //!                                overflow), then Q4.28 → Q1.15: round (drop 13 LSBs; half LSB
 //!                                in c0_rnd), saturate to [0, 2 − 2⁻¹⁵] [SatToUQ1_15]
-//!  B6  xf = x_p6·f  (Mul6-8)     signed Q2.14 × unsigned Q1.15 → signed Q3.29, exact,
-//!                                two clocks [MulSignedUnsignedPipe]
+//!  B6  xf = x_to_f·f (Mul6-8)    signed Q2.14 × unsigned Q1.15 → signed Q3.29, exact,
+//!                                three clocks [MulSignedUnsignedPipe]
 //!  B7  nx = xf                   Q3.29 → Q2.14: round (drop 15 LSBs), saturate to [−2, 2)
 //!                                [RoundToQ2_14]; valid_p7 carries valid_in [Delay]
 //! ```
 //! ```text
-//! clock      : 0    1    2    3    4    5    6    7    8    9    10   11   12
+//! clock      : 0    1    2    3    4    5    6    7    8    9    10   11   12   13   14   15
 //! valid_in   : v0   v1   v2 ...
-//! Normalizer : S1a  S1b  S2   B1   B2   B3   B4a  B4b  B5   B6a  B6b  B7
-//! valid_out  :                                                           v0   v1 ... (edge 12)
+//! Normalizer : S1a  S1b  S1c  S2   B1   B2   B3   B4a  B4b  B4c  B5   B6a  B6b  B6c  B7
+//! valid_out  :                                                                          v0 (edge 15)
 //! ```
 //! S1, B4 and B6 took one clock each (latency 9, `NormalizerK` 7) until ECP5 timing: in the
-//! pixel pipeline a multiplier and its sign correction in one clock ran at 92–98 MHz.
+//! pixel pipeline a multiplier and its sign correction in one clock ran at 92–98 MHz, and a
+//! multiplier fed from registers placed by other logic, 94 MHz (see `crate::primitives`).
 //!
 //! # Overflow
 //! Nothing wraps. K cannot overflow; K ≥ 2 saturates k_narrow (out of the formula's domain);
@@ -90,7 +92,7 @@ use rust_hdl::prelude::*;
 use crate::fixed::{QFormat, COEF_C0, COEF_C1, COEF_C2, HORNER_T1, K_NARROW, NORMAL, SCALE};
 use crate::primitives::{
     Delay, MulSignedUnsignedPipe, RoundToQ2_14, RoundToUQ1_15, SatToQ2_14, SatToUQ1_15,
-    SquareSignedPipe,
+    SquareSignedPipe, SIGNED_MUL_LATENCY,
 };
 use crate::registry::{BlockParams, Options};
 
@@ -410,7 +412,7 @@ impl Logic for NormalizerK {
 }
 
 /// Clocks from K (B1's input) to f (B5's register): the delay a component needs to meet f.
-const F_LATENCY: usize = 6;
+const F_LATENCY: usize = 4 + SIGNED_MUL_LATENCY;
 
 crate::hw_block! {
     /// One output component of [`NormalizerK`], stages B6 and B7: `n = x·f` (Mul6, Mul7 or
@@ -420,23 +422,23 @@ crate::hw_block! {
     struct ScaleLane(clock) {
         in { x: Bits<16>, f: Bits<16> }
         out { n: Bits<16> }
-        x_p6: Delay<Bits<16>, F_LATENCY>, mul: MulSignedUnsignedPipe,
+        x_to_f: Delay<Bits<16>, F_LATENCY>, mul: MulSignedUnsignedPipe,
         round: RoundToQ2_14, n_q: DFF<Bits<16>>,
     }
 }
 
 impl ScaleLane {
-    /// Clocks from `f` to `n`: the two product registers (B6) and the output register (B7).
-    const LATENCY_FROM_F: usize = 3;
+    /// Clocks from `f` to `n`: the product's registers (B6) and the output register (B7).
+    const LATENCY_FROM_F: usize = SIGNED_MUL_LATENCY + 1;
 }
 
 impl Logic for ScaleLane {
     #[hdl_gen]
     fn update(&mut self) {
-        clock!(self, clock, x_p6, mul, n_q);
-        self.x_p6.d.next = self.x.val();
+        clock!(self, clock, x_to_f, mul, n_q);
+        self.x_to_f.d.next = self.x.val();
         // B6: x·f, signed Q2.14 × unsigned Q1.15 → signed Q3.29.
-        self.mul.a.next = self.x_p6.q.val();
+        self.mul.a.next = self.x_to_f.q.val();
         self.mul.b.next = self.f.val();
         // B7: Q3.29 → Q2.14, round to nearest, saturate (|xf| < 2³¹ − 2¹⁴: the rounding add
         // cannot overflow).
@@ -450,17 +452,19 @@ crate::hw_block! {
     /// The full normalizer: N in, N' = N·f(|N|²) out. Latency [`Normalizer::LATENCY`].
     pub struct Normalizer(clock) as "normalizer" {
         summary: "N in, N·f(|N|²) out: squarers, Horner f(K), scaling; no division or root (SPEC §1)",
-        latency: 3 + NormalizerK::LATENCY => "valid_in to valid_out, one input per clock",
+        latency: SIGNED_MUL_LATENCY + 1 + NormalizerK::LATENCY => "valid_in to valid_out, one input per clock",
         multipliers: 8,
         in { valid_in: Bit, x: Bits<16>, y: Bits<16>, z: Bits<16> }
         out { valid_out: Bit, nx: Bits<16>, ny: Bits<16>, nz: Bits<16> }
-        // S1 (two clocks; the squares are the multipliers' registered outputs)
+        // S1 (the squares are the multipliers' registered outputs)
         mul1: SquareSignedPipe, mul2: SquareSignedPipe, mul3: SquareSignedPipe,
         // S2
         k_full: DFF<Bits<32>>,
         // The vector and its valid wait for K (S1, S2).
-        valid_p3: Delay<Bit, 3>,
-        x_p3: Delay<Bits<16>, 3>, y_p3: Delay<Bits<16>, 3>, z_p3: Delay<Bits<16>, 3>,
+        valid_p4: Delay<Bit, { SIGNED_MUL_LATENCY + 1 }>,
+        x_p4: Delay<Bits<16>, { SIGNED_MUL_LATENCY + 1 }>,
+        y_p4: Delay<Bits<16>, { SIGNED_MUL_LATENCY + 1 }>,
+        z_p4: Delay<Bits<16>, { SIGNED_MUL_LATENCY + 1 }>,
         // B1..B7
         scale: NormalizerK = NormalizerK::new(c),
     }
@@ -470,22 +474,22 @@ crate::hw_block! {
 impl Logic for Normalizer {
     #[hdl_gen]
     fn update(&mut self) {
-        clock!(self, clock, mul1, mul2, mul3, k_full, valid_p3, x_p3, y_p3, z_p3, scale);
-        // S1 (Mul1-3): signed squares, Q2.14² → Q4.28, exact, two clocks.
+        clock!(self, clock, mul1, mul2, mul3, k_full, valid_p4, x_p4, y_p4, z_p4, scale);
+        // S1 (Mul1-3): signed squares, Q2.14² → Q4.28, exact.
         self.mul1.a.next = self.x.val();
         self.mul2.a.next = self.y.val();
         self.mul3.a.next = self.z.val();
         // S2 (Sm1): K = x² + y² + z² ≤ 3·2³⁰ < 2³², exact.
         self.k_full.d.next = self.mul1.p.val() + self.mul2.p.val() + self.mul3.p.val();
-        self.valid_p3.d.next = self.valid_in.val();
-        self.x_p3.d.next = self.x.val();
-        self.y_p3.d.next = self.y.val();
-        self.z_p3.d.next = self.z.val();
+        self.valid_p4.d.next = self.valid_in.val();
+        self.x_p4.d.next = self.x.val();
+        self.y_p4.d.next = self.y.val();
+        self.z_p4.d.next = self.z.val();
         // B1..B7
-        self.scale.valid_in.next = self.valid_p3.q.val();
-        self.scale.x.next = self.x_p3.q.val();
-        self.scale.y.next = self.y_p3.q.val();
-        self.scale.z.next = self.z_p3.q.val();
+        self.scale.valid_in.next = self.valid_p4.q.val();
+        self.scale.x.next = self.x_p4.q.val();
+        self.scale.y.next = self.y_p4.q.val();
+        self.scale.z.next = self.z_p4.q.val();
         self.scale.k.next = self.k_full.q.val();
         self.valid_out.next = self.scale.valid_out.val();
         self.nx.next = self.scale.nx.val();

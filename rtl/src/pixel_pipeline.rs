@@ -35,8 +35,8 @@
 //! power unit with its pixel.
 //!
 //! # Latency, throughput
-//! Event → fragment 47 clocks (vector interpolator 1, a register on the normal 1, lighting 16,
-//! BRZSSK 6, power 20, colour 3); load → first fragment 50 (the address block's 3 more). The
+//! Event → fragment 63 clocks (vector interpolator 1, a register on the normal 1, lighting 20,
+//! BRZSSK 7, power 30, colour 4); load → first fragment 66 (the address block's 3 more). The
 //! register on the normal is for ECP5 timing: the interpolator's output rounding feeding the
 //! normalizer's squarers was the critical path (68 MHz). BRZSSK is in the path of
 //! every build (passing through unless `bump=on`), so every method has the same latency. One fragment per clock along a line;

@@ -4,7 +4,7 @@
 //! same order, whatever the stalls).
 //!
 //! ```text
-//!  s_axis ─► header / word count ─► receive bank ─► load bank ─┬─ triangle fields ─► PixelPipeline ─► FIFO (64) ─► m_axis
+//!  s_axis ─► header / word count ─► receive bank ─► load bank ─┬─ triangle fields ─► PixelPipeline ─► FIFO (128) ─► m_axis
 //!  (32 bit)   (record type, errors)  sw0..sw24       lw0..lw24  └─ register fields ─► r_* (applied      ▲   │
 //!                                                                                      when drained)  hold ◄┘ (FIFO level)
 //! ```
@@ -38,10 +38,10 @@
 //!   record waits until every triangle loaded before it has left the pipeline (its `done`
 //!   seen), so no fragment mixes two register sets. Registers are 0 after reset: send a
 //!   register record first.
-//! - Fragments (and triangle ends) enter a 64-entry FIFO. The address block is held (its
+//! - Fragments (and triangle ends) enter a 128-entry FIFO. The address block is held (its
 //!   `hold`: no event this clock, none lost) in the clock after the FIFO held
-//!   more than 15 beats (the hold is registered, for ECP5 timing): at most
-//!   `EVENT_TO_FRAGMENT` + 2 = 49 events are then still in flight, so the FIFO never
+//!   more than 63 beats (the hold is registered, for ECP5 timing): at most
+//!   `EVENT_TO_FRAGMENT` + 2 = 65 events are then still in flight, so the FIFO never
 //!   overflows and never drops a fragment, and with `m_axis_tready` high it holds at most one beat and
 //!   the address block is never held.
 //! - Throughput: one fragment per clock along a line, as `pixel-pipeline`, but a triangle's
@@ -52,8 +52,8 @@
 //!   FIFOs of 64 to 100 000 words: unchanged); only more load banks or a wider set-up word
 //!   would.
 //! - Latency: a triangle record's last word accepted in clock t → its first beat offered in
-//!   clock t + 54 (the record is complete in t + 1, moves to the load bank in t + 1, loads in
-//!   t + 2; 50 clocks through `pixel-pipeline`, 2 through the FIFO and its output register).
+//!   clock t + 70 (the record is complete in t + 1, moves to the load bank in t + 1, loads in
+//!   t + 2; 66 clocks through `pixel-pipeline`, 2 through the FIFO and its output register).
 //! - The fragment stream comes from an output register (`m_axis_t*` are register outputs):
 //!   it is loaded from the FIFO when empty or when its beat is taken, so a beat per clock
 //!   still flows with `m_axis_tready` high. (The FIFO's read port maps to block RAM on ECP5,
@@ -71,7 +71,7 @@ use crate::primitives::Lutram;
 
 /// FIFO depth (entries) and its address width.
 pub const FIFO_DEPTH: usize = 1 << FIFO_BITS;
-const FIFO_BITS: usize = 6;
+const FIFO_BITS: usize = 7;
 /// The FIFO level above which the address block is held (the clock after: `hold` is
 /// registered).
 pub const HOLD_ABOVE: usize = FIFO_DEPTH - EVENT_TO_FRAGMENT - 2;
@@ -109,8 +109,8 @@ crate::hw_block! {
         // Fragment side: the FIFO (beat, and z with tlast), pointers, level.
         fifo_beat: Lutram<Bits<64>, FIFO_BITS>,
         fifo_tail: Lutram<Bits<33>, FIFO_BITS>,
-        wr_ptr: DFF<Bits<FIFO_BITS>>, rd_ptr: DFF<Bits<FIFO_BITS>>, level: DFF<Bits<7>>,
-        hold_above: Constant<Bits<7>> = Constant::new((HOLD_ABOVE as u64).into()),
+        wr_ptr: DFF<Bits<FIFO_BITS>>, rd_ptr: DFF<Bits<FIFO_BITS>>, level: DFF<Bits<8>>,
+        hold_above: Constant<Bits<8>> = Constant::new((HOLD_ABOVE as u64).into()),
         /// The hold, registered (the comparator, the address block's gating and the depth
         /// channel's adder in one clock ran at 79.8 MHz on ECP5).
         hold_q: DFF<Bit>,
@@ -536,7 +536,7 @@ mod tests {
         let pipe = include_str!("pixel_pipeline.rs").replace("\n//! ", " ");
         let lat = <PixelPipeline as RtlBlock>::LATENCY;
         for (text, want) in [
-            (&stream, format!("64-entry FIFO")),
+            (&stream, format!("{}-entry FIFO", super::FIFO_DEPTH)),
             (&stream, format!("more than {} beats", super::HOLD_ABOVE)),
             (
                 &stream,
@@ -555,7 +555,6 @@ mod tests {
         ] {
             assert!(text.contains(&want), "header lacks {want:?}");
         }
-        assert_eq!(super::FIFO_DEPTH, 64);
     }
 
     /// The generated regions of this file are what `rtl::stream_layout` gives; with

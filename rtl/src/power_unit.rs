@@ -18,37 +18,41 @@
 //! | `valid_in` | in | 1 = cos_gamma holds a pixel's cosine |
 //! | `cos_gamma` | in | unsigned Q1.15, [0, 2): ≥ 0 from the lighting unit, may exceed 1 (published normalizer) |
 //! | `n` | in | specular exponent, 10 bits; travels with its pixel (a new material may follow in-flight pixels) |
-//! | `valid_out` | out | `valid_in` delayed 20 clocks |
+//! | `valid_out` | out | `valid_in` delayed 30 clocks |
 //! | `spec` | out | S, unsigned Q1.15, saturated at 0xFFFF (2 − 2⁻¹⁵) |
 //!
-//! # Pipeline (every product UQ1.15 × UQ1.15 → UQ2.30, exact, registered; then rnd: + 2¹⁴,
-//! drop 15 bits, saturate at 0xFFFF [RoundProductToUQ1_15] in the next clock)
+//! # Pipeline (every product UQ1.15 × UQ1.15 → UQ2.30, exact, in two clocks [MulPipe: the
+//! operands registered beside the multiplier, then the product]; then rnd: + 2¹⁴, drop 15
+//! bits, saturate at 0xFFFF [RoundProductToUQ1_15] in the next clock)
 //! ```text
-//! exact  E0a acc = n₀ ? c : 1.0 (0x8000),  sq = c²                          1 squarer
-//!        E0b pw = rnd(sq)
-//!        Eja prod = acc·pw,  sq = pw²                        j = 1..8       2 multipliers each
-//!        Ejb acc = n_j ? rnd(prod) : acc,  pw = rnd(sq)
-//!        E9a prod = acc·pw                                                  1 multiplier
-//!        E9b acc = n₉ ? rnd(prod) : acc
-//!        → 18 multipliers, latency 20
+//! exact  E0a,a' acc = n₀ ? c : 1.0 (0x8000),  sq = c²                       1 squarer
+//!        E0b    pw = rnd(sq)
+//!        Eja,a' prod = acc·pw,  sq = pw²                     j = 1..8       2 multipliers each
+//!        Ejb    acc = n_j ? rnd(prod) : acc,  pw = rnd(sq)
+//!        E9a,a' prod = acc·pw                                               1 multiplier
+//!        E9b    acc = n₉ ? rnd(prod) : acc
+//!        → 18 multipliers, latency 30
 //! W      W1  a = slope word by shifts and adds of n + 1 (16 bits, exact: ≤ 57·1024 < 2¹⁶),
 //!            t = |c − 1| (UQ1.15), above = c > 1, zero = c = 0
-//!        W2  p = a·t                        UQ8.8 (UQ7.9 for k = 8) × UQ1.15, exact, 32 bits
+//!        W2  p = a·t                        UQ8.8 (UQ7.9 for k = 8) × UQ1.15, exact, 32 bits,
+//!            two clocks [MulPipe]
 //!        W3a sum = 0 if zero; 1 + p if above; max(1 − p, 0) otherwise (in p's units, 32 bits,
 //!            cannot wrap), registered
 //!        W3b b = round sum to UQ1.15 (+ half LSB, drop 8 or 9 bits), saturate
-//!        W4..W7  a: sq = b² registered; b: b = rnd(sq) in the first log2 k stages (2, 3, 4),
-//!                passed through in the rest
-//!        then 8 delay registers to latency 20
+//!        W4..W7  a, a': sq = b² [MulPipe]; b: b = rnd(sq) in the first log2 k stages (2, 3,
+//!                4), passed through in the rest
+//!        then 13 delay registers to latency 30
 //!        → 1 + log2 k multipliers (3, 4, 5)
 //! ```
 //! The product is registered before its rounding for ECP5 timing: a multiply, the rounding
-//! carry chain and the selection in one clock (the layout before, latency 10) ran at 91 MHz.
+//! carry chain and the selection in one clock (the layout before, latency 10) ran at 91 MHz;
+//! the operand registers beside each multiplier are for the pixel pipeline, where the route
+//! to a multiplier and back took over 10 ns (see `crate::primitives`).
 //! cos γ = 0 gives 0 in both modes for n ≥ 1 (W: the `zero` flag, as `golden::brdf::w_kernel`).
 //! n = 0 gives 1.0 (cos⁰) in the exact mode and [1 − a·(1 − c)]^k with a = 1/(k+1) in W;
 //! n = 1001..1023 computes as written. The set-up rejects n outside 1..1000.
 //!
-//! Latency 20 clocks in every mode, one pixel per clock, no stall; `valid` travels with the
+//! Latency 30 clocks in every mode, one pixel per clock, no stall; `valid` travels with the
 //! data. The patent's multiplexed single-multiplier arrangement (one multiplier reused over
 //! several clocks per pixel) is not built: the pipeline must take one pixel per clock.
 //!
@@ -72,7 +76,7 @@
 use golden::power_unit::PowerMode;
 use rust_hdl::prelude::*;
 
-use crate::primitives::{Delay, RoundProductToUQ1_15};
+use crate::primitives::{Delay, MulPipe, RoundProductToUQ1_15, MUL_LATENCY};
 use crate::registry::{BlockParams, Options};
 
 /// Build parameters: which specular value the unit computes.
@@ -150,7 +154,7 @@ crate::hw_block! {
     /// The power unit (see the module header).
     pub struct PowerUnit(clock) as "power-unit" {
         summary: "cos γ and n in, S = cos^n γ (square-and-multiply) or W(n, γ) for k = 4, 8, 16 out, Q1.15 (SPEC §2)",
-        latency: 20 => "valid_in to valid_out in every mode, one pixel per clock",
+        latency: 30 => "valid_in to valid_out in every mode, one pixel per clock",
         multipliers: 18,
         in { valid_in: Bit, cos_gamma: Bits<16>, n: Bits<10> }
         out { valid_out: Bit, spec: Bits<16> }
@@ -160,14 +164,14 @@ crate::hw_block! {
         k16: Constant<Bit> = bit(p.mode == PowerMode::W(16)),
         sq_on: [Constant<Bit>; 4] = std::array::from_fn(|i| bit(p.mode.k().is_some_and(|k| (i as u32) < k.trailing_zeros()))),
         one: Constant<Bits<16>> = Constant::new(0x8000.into()),
-        // Exact path: E0a, E0b .. E9a, E9b (stage 2j is Eja, 2j + 1 is Ejb).
-        e_valid: [DFF<Bit>; 20],
-        e_n: [DFF<Bits<10>>; 20],
-        e_acc: [DFF<Bits<16>>; 20],
+        // Exact path: stage 3j is Eja, 3j + 1 Eja', 3j + 2 Ejb (j = 0..9).
+        e_valid: [DFF<Bit>; 30],
+        e_n: [DFF<Bits<10>>; 30],
+        e_acc: [DFF<Bits<16>>; 30],
         e_pw: [DFF<Bits<16>>; 9],
-        /// E1a..E9a's acc·pw (index j − 1), E0a..E8a's squares, exact.
-        e_prod: [DFF<Bits<32>>; 9],
-        e_sq: [DFF<Bits<32>>; 9],
+        /// E1..E9's acc·pw (index j − 1), E0..E8's squares, exact.
+        e_prod: [MulPipe; 9],
+        e_sq: [MulPipe; 9],
         e_rnd_prod: [RoundProductToUQ1_15; 9],
         e_rnd_sq: [RoundProductToUQ1_15; 9],
         // W path: W1..W7 and the padding.
@@ -175,7 +179,8 @@ crate::hw_block! {
         a4: Signal<Local, Bits<16>>, a8: Signal<Local, Bits<16>>, a16: Signal<Local, Bits<16>>,
         w_a: DFF<Bits<16>>, w_t: DFF<Bits<16>>, w_above: DFF<Bit>, w_zero: DFF<Bit>,
         w_valid1: DFF<Bit>,
-        w_p: DFF<Bits<32>>, w_above2: DFF<Bit>, w_zero2: DFF<Bit>, w_valid2: DFF<Bit>,
+        w_p: MulPipe, w_above2: Delay<Bit, MUL_LATENCY>, w_zero2: Delay<Bit, MUL_LATENCY>,
+        w_valid2: Delay<Bit, MUL_LATENCY>,
         /// 1.0 and half an output LSB in p's units (2^-(15+f), f = 9 for k = 8, else 8).
         w_one: Constant<Bits<32>> = Constant::new((1u64 << (15 + slope_frac(p))).into()),
         w_half: Constant<Bits<32>> = Constant::new((1u64 << (slope_frac(p) - 1)).into()),
@@ -186,13 +191,13 @@ crate::hw_block! {
         w_rnd: Signal<Local, Bits<32>>,
         w_b: [DFF<Bits<16>>; 5],
         w_valid: [DFF<Bit>; 5],
-        /// W4a..W7a: the square and the word it squares, registered.
-        w_sq: [DFF<Bits<32>>; 4],
-        w_bp: [DFF<Bits<16>>; 4],
-        w_valid_a: [DFF<Bit>; 4],
+        /// W4a..W7a: the square, and the word it squares carried beside it.
+        w_sq: [MulPipe; 4],
+        w_bp: [Delay<Bits<16>, MUL_LATENCY>; 4],
+        w_valid_a: [Delay<Bit, MUL_LATENCY>; 4],
         w_rnd_sq: [RoundProductToUQ1_15; 4],
-        w_spec_p8: Delay<Bits<16>, 8>,
-        w_valid_p8: Delay<Bit, 8>,
+        w_spec_pad: Delay<Bits<16>, 13>,
+        w_valid_pad: Delay<Bit, 13>,
     }
     new(p: &PowerParams);
 }
@@ -201,10 +206,23 @@ impl Logic for PowerUnit {
     #[hdl_gen]
     fn update(&mut self) {
         clock!(
-            self, clock, w_a, w_t, w_above, w_zero, w_valid1, w_p, w_above2, w_zero2, w_valid2,
-            w_sum_q, w_valid3, w_spec_p8, w_valid_p8
+            self,
+            clock,
+            w_a,
+            w_t,
+            w_above,
+            w_zero,
+            w_valid1,
+            w_p,
+            w_above2,
+            w_zero2,
+            w_valid2,
+            w_sum_q,
+            w_valid3,
+            w_spec_pad,
+            w_valid_pad
         );
-        for j in 0..20 {
+        for j in 0..30 {
             self.e_valid[j].clock.next = self.clock.val();
             self.e_n[j].clock.next = self.clock.val();
             self.e_acc[j].clock.next = self.clock.val();
@@ -223,7 +241,7 @@ impl Logic for PowerUnit {
             self.w_bp[i].clock.next = self.clock.val();
             self.w_valid_a[i].clock.next = self.clock.val();
         }
-        // ---- exact: E0a
+        // ---- exact: E0a, E0a' (the square in MulPipe)
         self.e_valid[0].d.next = self.valid_in.val();
         self.e_n[0].d.next = self.n.val();
         if self.n.val().get_bit(0) {
@@ -231,162 +249,210 @@ impl Logic for PowerUnit {
         } else {
             self.e_acc[0].d.next = self.one.val();
         }
-        self.e_sq[0].d.next = self.cos_gamma.val() * self.cos_gamma.val();
-        // E0b
+        self.e_sq[0].a.next = self.cos_gamma.val();
+        self.e_sq[0].b.next = self.cos_gamma.val();
         self.e_valid[1].d.next = self.e_valid[0].q.val();
         self.e_n[1].d.next = self.e_n[0].q.val();
         self.e_acc[1].d.next = self.e_acc[0].q.val();
-        self.e_rnd_sq[0].wide.next = self.e_sq[0].q.val();
-        self.e_pw[0].d.next = self.e_rnd_sq[0].narrow.val();
-        // E1a
+        // E0b
         self.e_valid[2].d.next = self.e_valid[1].q.val();
         self.e_n[2].d.next = self.e_n[1].q.val();
         self.e_acc[2].d.next = self.e_acc[1].q.val();
-        self.e_prod[0].d.next = self.e_acc[1].q.val() * self.e_pw[0].q.val();
-        self.e_sq[1].d.next = self.e_pw[0].q.val() * self.e_pw[0].q.val();
-        // E1b
+        self.e_rnd_sq[0].wide.next = self.e_sq[0].p.val();
+        self.e_pw[0].d.next = self.e_rnd_sq[0].narrow.val();
+        // E1a, E1a'
         self.e_valid[3].d.next = self.e_valid[2].q.val();
         self.e_n[3].d.next = self.e_n[2].q.val();
-        self.e_rnd_prod[0].wide.next = self.e_prod[0].q.val();
-        if self.e_n[2].q.val().get_bit(1) {
-            self.e_acc[3].d.next = self.e_rnd_prod[0].narrow.val();
-        } else {
-            self.e_acc[3].d.next = self.e_acc[2].q.val();
-        }
-        self.e_rnd_sq[1].wide.next = self.e_sq[1].q.val();
-        self.e_pw[1].d.next = self.e_rnd_sq[1].narrow.val();
-        // E2a
+        self.e_acc[3].d.next = self.e_acc[2].q.val();
+        self.e_prod[0].a.next = self.e_acc[2].q.val();
+        self.e_prod[0].b.next = self.e_pw[0].q.val();
+        self.e_sq[1].a.next = self.e_pw[0].q.val();
+        self.e_sq[1].b.next = self.e_pw[0].q.val();
         self.e_valid[4].d.next = self.e_valid[3].q.val();
         self.e_n[4].d.next = self.e_n[3].q.val();
         self.e_acc[4].d.next = self.e_acc[3].q.val();
-        self.e_prod[1].d.next = self.e_acc[3].q.val() * self.e_pw[1].q.val();
-        self.e_sq[2].d.next = self.e_pw[1].q.val() * self.e_pw[1].q.val();
-        // E2b
+        // E1b
         self.e_valid[5].d.next = self.e_valid[4].q.val();
         self.e_n[5].d.next = self.e_n[4].q.val();
-        self.e_rnd_prod[1].wide.next = self.e_prod[1].q.val();
-        if self.e_n[4].q.val().get_bit(2) {
-            self.e_acc[5].d.next = self.e_rnd_prod[1].narrow.val();
+        self.e_rnd_prod[0].wide.next = self.e_prod[0].p.val();
+        if self.e_n[4].q.val().get_bit(1) {
+            self.e_acc[5].d.next = self.e_rnd_prod[0].narrow.val();
         } else {
             self.e_acc[5].d.next = self.e_acc[4].q.val();
         }
-        self.e_rnd_sq[2].wide.next = self.e_sq[2].q.val();
-        self.e_pw[2].d.next = self.e_rnd_sq[2].narrow.val();
-        // E3a
+        self.e_rnd_sq[1].wide.next = self.e_sq[1].p.val();
+        self.e_pw[1].d.next = self.e_rnd_sq[1].narrow.val();
+        // E2a, E2a'
         self.e_valid[6].d.next = self.e_valid[5].q.val();
         self.e_n[6].d.next = self.e_n[5].q.val();
         self.e_acc[6].d.next = self.e_acc[5].q.val();
-        self.e_prod[2].d.next = self.e_acc[5].q.val() * self.e_pw[2].q.val();
-        self.e_sq[3].d.next = self.e_pw[2].q.val() * self.e_pw[2].q.val();
-        // E3b
+        self.e_prod[1].a.next = self.e_acc[5].q.val();
+        self.e_prod[1].b.next = self.e_pw[1].q.val();
+        self.e_sq[2].a.next = self.e_pw[1].q.val();
+        self.e_sq[2].b.next = self.e_pw[1].q.val();
         self.e_valid[7].d.next = self.e_valid[6].q.val();
         self.e_n[7].d.next = self.e_n[6].q.val();
-        self.e_rnd_prod[2].wide.next = self.e_prod[2].q.val();
-        if self.e_n[6].q.val().get_bit(3) {
-            self.e_acc[7].d.next = self.e_rnd_prod[2].narrow.val();
-        } else {
-            self.e_acc[7].d.next = self.e_acc[6].q.val();
-        }
-        self.e_rnd_sq[3].wide.next = self.e_sq[3].q.val();
-        self.e_pw[3].d.next = self.e_rnd_sq[3].narrow.val();
-        // E4a
+        self.e_acc[7].d.next = self.e_acc[6].q.val();
+        // E2b
         self.e_valid[8].d.next = self.e_valid[7].q.val();
         self.e_n[8].d.next = self.e_n[7].q.val();
-        self.e_acc[8].d.next = self.e_acc[7].q.val();
-        self.e_prod[3].d.next = self.e_acc[7].q.val() * self.e_pw[3].q.val();
-        self.e_sq[4].d.next = self.e_pw[3].q.val() * self.e_pw[3].q.val();
-        // E4b
+        self.e_rnd_prod[1].wide.next = self.e_prod[1].p.val();
+        if self.e_n[7].q.val().get_bit(2) {
+            self.e_acc[8].d.next = self.e_rnd_prod[1].narrow.val();
+        } else {
+            self.e_acc[8].d.next = self.e_acc[7].q.val();
+        }
+        self.e_rnd_sq[2].wide.next = self.e_sq[2].p.val();
+        self.e_pw[2].d.next = self.e_rnd_sq[2].narrow.val();
+        // E3a, E3a'
         self.e_valid[9].d.next = self.e_valid[8].q.val();
         self.e_n[9].d.next = self.e_n[8].q.val();
-        self.e_rnd_prod[3].wide.next = self.e_prod[3].q.val();
-        if self.e_n[8].q.val().get_bit(4) {
-            self.e_acc[9].d.next = self.e_rnd_prod[3].narrow.val();
-        } else {
-            self.e_acc[9].d.next = self.e_acc[8].q.val();
-        }
-        self.e_rnd_sq[4].wide.next = self.e_sq[4].q.val();
-        self.e_pw[4].d.next = self.e_rnd_sq[4].narrow.val();
-        // E5a
+        self.e_acc[9].d.next = self.e_acc[8].q.val();
+        self.e_prod[2].a.next = self.e_acc[8].q.val();
+        self.e_prod[2].b.next = self.e_pw[2].q.val();
+        self.e_sq[3].a.next = self.e_pw[2].q.val();
+        self.e_sq[3].b.next = self.e_pw[2].q.val();
         self.e_valid[10].d.next = self.e_valid[9].q.val();
         self.e_n[10].d.next = self.e_n[9].q.val();
         self.e_acc[10].d.next = self.e_acc[9].q.val();
-        self.e_prod[4].d.next = self.e_acc[9].q.val() * self.e_pw[4].q.val();
-        self.e_sq[5].d.next = self.e_pw[4].q.val() * self.e_pw[4].q.val();
-        // E5b
+        // E3b
         self.e_valid[11].d.next = self.e_valid[10].q.val();
         self.e_n[11].d.next = self.e_n[10].q.val();
-        self.e_rnd_prod[4].wide.next = self.e_prod[4].q.val();
-        if self.e_n[10].q.val().get_bit(5) {
-            self.e_acc[11].d.next = self.e_rnd_prod[4].narrow.val();
+        self.e_rnd_prod[2].wide.next = self.e_prod[2].p.val();
+        if self.e_n[10].q.val().get_bit(3) {
+            self.e_acc[11].d.next = self.e_rnd_prod[2].narrow.val();
         } else {
             self.e_acc[11].d.next = self.e_acc[10].q.val();
         }
-        self.e_rnd_sq[5].wide.next = self.e_sq[5].q.val();
-        self.e_pw[5].d.next = self.e_rnd_sq[5].narrow.val();
-        // E6a
+        self.e_rnd_sq[3].wide.next = self.e_sq[3].p.val();
+        self.e_pw[3].d.next = self.e_rnd_sq[3].narrow.val();
+        // E4a, E4a'
         self.e_valid[12].d.next = self.e_valid[11].q.val();
         self.e_n[12].d.next = self.e_n[11].q.val();
         self.e_acc[12].d.next = self.e_acc[11].q.val();
-        self.e_prod[5].d.next = self.e_acc[11].q.val() * self.e_pw[5].q.val();
-        self.e_sq[6].d.next = self.e_pw[5].q.val() * self.e_pw[5].q.val();
-        // E6b
+        self.e_prod[3].a.next = self.e_acc[11].q.val();
+        self.e_prod[3].b.next = self.e_pw[3].q.val();
+        self.e_sq[4].a.next = self.e_pw[3].q.val();
+        self.e_sq[4].b.next = self.e_pw[3].q.val();
         self.e_valid[13].d.next = self.e_valid[12].q.val();
         self.e_n[13].d.next = self.e_n[12].q.val();
-        self.e_rnd_prod[5].wide.next = self.e_prod[5].q.val();
-        if self.e_n[12].q.val().get_bit(6) {
-            self.e_acc[13].d.next = self.e_rnd_prod[5].narrow.val();
-        } else {
-            self.e_acc[13].d.next = self.e_acc[12].q.val();
-        }
-        self.e_rnd_sq[6].wide.next = self.e_sq[6].q.val();
-        self.e_pw[6].d.next = self.e_rnd_sq[6].narrow.val();
-        // E7a
+        self.e_acc[13].d.next = self.e_acc[12].q.val();
+        // E4b
         self.e_valid[14].d.next = self.e_valid[13].q.val();
         self.e_n[14].d.next = self.e_n[13].q.val();
-        self.e_acc[14].d.next = self.e_acc[13].q.val();
-        self.e_prod[6].d.next = self.e_acc[13].q.val() * self.e_pw[6].q.val();
-        self.e_sq[7].d.next = self.e_pw[6].q.val() * self.e_pw[6].q.val();
-        // E7b
+        self.e_rnd_prod[3].wide.next = self.e_prod[3].p.val();
+        if self.e_n[13].q.val().get_bit(4) {
+            self.e_acc[14].d.next = self.e_rnd_prod[3].narrow.val();
+        } else {
+            self.e_acc[14].d.next = self.e_acc[13].q.val();
+        }
+        self.e_rnd_sq[4].wide.next = self.e_sq[4].p.val();
+        self.e_pw[4].d.next = self.e_rnd_sq[4].narrow.val();
+        // E5a, E5a'
         self.e_valid[15].d.next = self.e_valid[14].q.val();
         self.e_n[15].d.next = self.e_n[14].q.val();
-        self.e_rnd_prod[6].wide.next = self.e_prod[6].q.val();
-        if self.e_n[14].q.val().get_bit(7) {
-            self.e_acc[15].d.next = self.e_rnd_prod[6].narrow.val();
-        } else {
-            self.e_acc[15].d.next = self.e_acc[14].q.val();
-        }
-        self.e_rnd_sq[7].wide.next = self.e_sq[7].q.val();
-        self.e_pw[7].d.next = self.e_rnd_sq[7].narrow.val();
-        // E8a
+        self.e_acc[15].d.next = self.e_acc[14].q.val();
+        self.e_prod[4].a.next = self.e_acc[14].q.val();
+        self.e_prod[4].b.next = self.e_pw[4].q.val();
+        self.e_sq[5].a.next = self.e_pw[4].q.val();
+        self.e_sq[5].b.next = self.e_pw[4].q.val();
         self.e_valid[16].d.next = self.e_valid[15].q.val();
         self.e_n[16].d.next = self.e_n[15].q.val();
         self.e_acc[16].d.next = self.e_acc[15].q.val();
-        self.e_prod[7].d.next = self.e_acc[15].q.val() * self.e_pw[7].q.val();
-        self.e_sq[8].d.next = self.e_pw[7].q.val() * self.e_pw[7].q.val();
-        // E8b
+        // E5b
         self.e_valid[17].d.next = self.e_valid[16].q.val();
         self.e_n[17].d.next = self.e_n[16].q.val();
-        self.e_rnd_prod[7].wide.next = self.e_prod[7].q.val();
-        if self.e_n[16].q.val().get_bit(8) {
-            self.e_acc[17].d.next = self.e_rnd_prod[7].narrow.val();
+        self.e_rnd_prod[4].wide.next = self.e_prod[4].p.val();
+        if self.e_n[16].q.val().get_bit(5) {
+            self.e_acc[17].d.next = self.e_rnd_prod[4].narrow.val();
         } else {
             self.e_acc[17].d.next = self.e_acc[16].q.val();
         }
-        self.e_rnd_sq[8].wide.next = self.e_sq[8].q.val();
-        self.e_pw[8].d.next = self.e_rnd_sq[8].narrow.val();
-        // E9a
+        self.e_rnd_sq[5].wide.next = self.e_sq[5].p.val();
+        self.e_pw[5].d.next = self.e_rnd_sq[5].narrow.val();
+        // E6a, E6a'
         self.e_valid[18].d.next = self.e_valid[17].q.val();
         self.e_n[18].d.next = self.e_n[17].q.val();
         self.e_acc[18].d.next = self.e_acc[17].q.val();
-        self.e_prod[8].d.next = self.e_acc[17].q.val() * self.e_pw[8].q.val();
-        // E9b
+        self.e_prod[5].a.next = self.e_acc[17].q.val();
+        self.e_prod[5].b.next = self.e_pw[5].q.val();
+        self.e_sq[6].a.next = self.e_pw[5].q.val();
+        self.e_sq[6].b.next = self.e_pw[5].q.val();
         self.e_valid[19].d.next = self.e_valid[18].q.val();
         self.e_n[19].d.next = self.e_n[18].q.val();
-        self.e_rnd_prod[8].wide.next = self.e_prod[8].q.val();
-        if self.e_n[18].q.val().get_bit(9) {
-            self.e_acc[19].d.next = self.e_rnd_prod[8].narrow.val();
+        self.e_acc[19].d.next = self.e_acc[18].q.val();
+        // E6b
+        self.e_valid[20].d.next = self.e_valid[19].q.val();
+        self.e_n[20].d.next = self.e_n[19].q.val();
+        self.e_rnd_prod[5].wide.next = self.e_prod[5].p.val();
+        if self.e_n[19].q.val().get_bit(6) {
+            self.e_acc[20].d.next = self.e_rnd_prod[5].narrow.val();
         } else {
-            self.e_acc[19].d.next = self.e_acc[18].q.val();
+            self.e_acc[20].d.next = self.e_acc[19].q.val();
+        }
+        self.e_rnd_sq[6].wide.next = self.e_sq[6].p.val();
+        self.e_pw[6].d.next = self.e_rnd_sq[6].narrow.val();
+        // E7a, E7a'
+        self.e_valid[21].d.next = self.e_valid[20].q.val();
+        self.e_n[21].d.next = self.e_n[20].q.val();
+        self.e_acc[21].d.next = self.e_acc[20].q.val();
+        self.e_prod[6].a.next = self.e_acc[20].q.val();
+        self.e_prod[6].b.next = self.e_pw[6].q.val();
+        self.e_sq[7].a.next = self.e_pw[6].q.val();
+        self.e_sq[7].b.next = self.e_pw[6].q.val();
+        self.e_valid[22].d.next = self.e_valid[21].q.val();
+        self.e_n[22].d.next = self.e_n[21].q.val();
+        self.e_acc[22].d.next = self.e_acc[21].q.val();
+        // E7b
+        self.e_valid[23].d.next = self.e_valid[22].q.val();
+        self.e_n[23].d.next = self.e_n[22].q.val();
+        self.e_rnd_prod[6].wide.next = self.e_prod[6].p.val();
+        if self.e_n[22].q.val().get_bit(7) {
+            self.e_acc[23].d.next = self.e_rnd_prod[6].narrow.val();
+        } else {
+            self.e_acc[23].d.next = self.e_acc[22].q.val();
+        }
+        self.e_rnd_sq[7].wide.next = self.e_sq[7].p.val();
+        self.e_pw[7].d.next = self.e_rnd_sq[7].narrow.val();
+        // E8a, E8a'
+        self.e_valid[24].d.next = self.e_valid[23].q.val();
+        self.e_n[24].d.next = self.e_n[23].q.val();
+        self.e_acc[24].d.next = self.e_acc[23].q.val();
+        self.e_prod[7].a.next = self.e_acc[23].q.val();
+        self.e_prod[7].b.next = self.e_pw[7].q.val();
+        self.e_sq[8].a.next = self.e_pw[7].q.val();
+        self.e_sq[8].b.next = self.e_pw[7].q.val();
+        self.e_valid[25].d.next = self.e_valid[24].q.val();
+        self.e_n[25].d.next = self.e_n[24].q.val();
+        self.e_acc[25].d.next = self.e_acc[24].q.val();
+        // E8b
+        self.e_valid[26].d.next = self.e_valid[25].q.val();
+        self.e_n[26].d.next = self.e_n[25].q.val();
+        self.e_rnd_prod[7].wide.next = self.e_prod[7].p.val();
+        if self.e_n[25].q.val().get_bit(8) {
+            self.e_acc[26].d.next = self.e_rnd_prod[7].narrow.val();
+        } else {
+            self.e_acc[26].d.next = self.e_acc[25].q.val();
+        }
+        self.e_rnd_sq[8].wide.next = self.e_sq[8].p.val();
+        self.e_pw[8].d.next = self.e_rnd_sq[8].narrow.val();
+        // E9a, E9a'
+        self.e_valid[27].d.next = self.e_valid[26].q.val();
+        self.e_n[27].d.next = self.e_n[26].q.val();
+        self.e_acc[27].d.next = self.e_acc[26].q.val();
+        self.e_prod[8].a.next = self.e_acc[26].q.val();
+        self.e_prod[8].b.next = self.e_pw[8].q.val();
+        self.e_valid[28].d.next = self.e_valid[27].q.val();
+        self.e_n[28].d.next = self.e_n[27].q.val();
+        self.e_acc[28].d.next = self.e_acc[27].q.val();
+        // E9b
+        self.e_valid[29].d.next = self.e_valid[28].q.val();
+        self.e_n[29].d.next = self.e_n[28].q.val();
+        self.e_rnd_prod[8].wide.next = self.e_prod[8].p.val();
+        if self.e_n[28].q.val().get_bit(9) {
+            self.e_acc[29].d.next = self.e_rnd_prod[8].narrow.val();
+        } else {
+            self.e_acc[29].d.next = self.e_acc[28].q.val();
         }
         // ---- W: W1 — a = (n+1)·C_k by shifts and adds (m1 = n + 1 ≤ 1024).
         self.m1.next = bit_cast::<16, 10>(self.n.val()) + 1;
@@ -411,8 +477,9 @@ impl Logic for PowerUnit {
         }
         self.w_zero.d.next = self.cos_gamma.val() == 0;
         self.w_valid1.d.next = self.valid_in.val();
-        // W2: p = a·t, exact.
-        self.w_p.d.next = self.w_a.q.val() * self.w_t.q.val();
+        // W2: p = a·t, exact, two clocks.
+        self.w_p.a.next = self.w_a.q.val();
+        self.w_p.b.next = self.w_t.q.val();
         self.w_above2.d.next = self.w_above.q.val();
         self.w_zero2.d.next = self.w_zero.q.val();
         self.w_valid2.d.next = self.w_valid1.q.val();
@@ -420,11 +487,11 @@ impl Logic for PowerUnit {
         if self.w_zero2.q.val() {
             self.w_sum.next = 0.into();
         } else if self.w_above2.q.val() {
-            self.w_sum.next = self.w_one.val() + self.w_p.q.val();
-        } else if self.w_p.q.val() > self.w_one.val() {
+            self.w_sum.next = self.w_one.val() + self.w_p.p.val();
+        } else if self.w_p.p.val() > self.w_one.val() {
             self.w_sum.next = 0.into();
         } else {
-            self.w_sum.next = self.w_one.val() - self.w_p.q.val();
+            self.w_sum.next = self.w_one.val() - self.w_p.p.val();
         }
         self.w_sum_q.d.next = self.w_sum.val();
         self.w_valid3.d.next = self.w_valid2.q.val();
@@ -442,63 +509,67 @@ impl Logic for PowerUnit {
             self.w_b[0].d.next = self.w_rnd.val().get_bits::<16>(8);
         }
         self.w_valid[0].d.next = self.w_valid3.q.val();
-        // W4a
-        self.w_sq[0].d.next = self.w_b[0].q.val() * self.w_b[0].q.val();
+        // W4a, W4a'
+        self.w_sq[0].a.next = self.w_b[0].q.val();
+        self.w_sq[0].b.next = self.w_b[0].q.val();
         self.w_bp[0].d.next = self.w_b[0].q.val();
         self.w_valid_a[0].d.next = self.w_valid[0].q.val();
         // W4b
-        self.w_rnd_sq[0].wide.next = self.w_sq[0].q.val();
+        self.w_rnd_sq[0].wide.next = self.w_sq[0].p.val();
         if self.sq_on[0].val() {
             self.w_b[1].d.next = self.w_rnd_sq[0].narrow.val();
         } else {
             self.w_b[1].d.next = self.w_bp[0].q.val();
         }
         self.w_valid[1].d.next = self.w_valid_a[0].q.val();
-        // W5a
-        self.w_sq[1].d.next = self.w_b[1].q.val() * self.w_b[1].q.val();
+        // W5a, W5a'
+        self.w_sq[1].a.next = self.w_b[1].q.val();
+        self.w_sq[1].b.next = self.w_b[1].q.val();
         self.w_bp[1].d.next = self.w_b[1].q.val();
         self.w_valid_a[1].d.next = self.w_valid[1].q.val();
         // W5b
-        self.w_rnd_sq[1].wide.next = self.w_sq[1].q.val();
+        self.w_rnd_sq[1].wide.next = self.w_sq[1].p.val();
         if self.sq_on[1].val() {
             self.w_b[2].d.next = self.w_rnd_sq[1].narrow.val();
         } else {
             self.w_b[2].d.next = self.w_bp[1].q.val();
         }
         self.w_valid[2].d.next = self.w_valid_a[1].q.val();
-        // W6a
-        self.w_sq[2].d.next = self.w_b[2].q.val() * self.w_b[2].q.val();
+        // W6a, W6a'
+        self.w_sq[2].a.next = self.w_b[2].q.val();
+        self.w_sq[2].b.next = self.w_b[2].q.val();
         self.w_bp[2].d.next = self.w_b[2].q.val();
         self.w_valid_a[2].d.next = self.w_valid[2].q.val();
         // W6b
-        self.w_rnd_sq[2].wide.next = self.w_sq[2].q.val();
+        self.w_rnd_sq[2].wide.next = self.w_sq[2].p.val();
         if self.sq_on[2].val() {
             self.w_b[3].d.next = self.w_rnd_sq[2].narrow.val();
         } else {
             self.w_b[3].d.next = self.w_bp[2].q.val();
         }
         self.w_valid[3].d.next = self.w_valid_a[2].q.val();
-        // W7a
-        self.w_sq[3].d.next = self.w_b[3].q.val() * self.w_b[3].q.val();
+        // W7a, W7a'
+        self.w_sq[3].a.next = self.w_b[3].q.val();
+        self.w_sq[3].b.next = self.w_b[3].q.val();
         self.w_bp[3].d.next = self.w_b[3].q.val();
         self.w_valid_a[3].d.next = self.w_valid[3].q.val();
         // W7b
-        self.w_rnd_sq[3].wide.next = self.w_sq[3].q.val();
+        self.w_rnd_sq[3].wide.next = self.w_sq[3].p.val();
         if self.sq_on[3].val() {
             self.w_b[4].d.next = self.w_rnd_sq[3].narrow.val();
         } else {
             self.w_b[4].d.next = self.w_bp[3].q.val();
         }
         self.w_valid[4].d.next = self.w_valid_a[3].q.val();
-        self.w_spec_p8.d.next = self.w_b[4].q.val();
-        self.w_valid_p8.d.next = self.w_valid[4].q.val();
+        self.w_spec_pad.d.next = self.w_b[4].q.val();
+        self.w_valid_pad.d.next = self.w_valid[4].q.val();
         // Output: the mode constant selects the datapath.
         if self.w_mode.val() {
-            self.valid_out.next = self.w_valid_p8.q.val();
-            self.spec.next = self.w_spec_p8.q.val();
+            self.valid_out.next = self.w_valid_pad.q.val();
+            self.spec.next = self.w_spec_pad.q.val();
         } else {
-            self.valid_out.next = self.e_valid[19].q.val();
-            self.spec.next = self.e_acc[19].q.val();
+            self.valid_out.next = self.e_valid[29].q.val();
+            self.spec.next = self.e_acc[29].q.val();
         }
     }
 }

@@ -14,9 +14,10 @@
 //! | [`RoundToUQ1_15`]      | `wide` (32) → `narrow` (16) | unsigned Q4.28 → unsigned Q1.15: add ½ LSB (2¹²), drop 13 LSBs, saturate | 0 |
 //! | [`MulSignedUnsigned`]  | `a` (16), `b` (16) → `p` (32) | `a·b = ua·ub − [a<0]·(ub ≪ 16)` mod 2³² (one multiplier) | 0 |
 //! | [`SquareSigned`]       | `a` (16) → `p` (32)      | `a² = ua² − [a<0]·(ua ≪ 17)` mod 2³² (one multiplier) | 0 |
-//! | [`MulSignedUnsignedPipe`] | `a` (16), `b` (16) → `p` (32) | as [`MulSignedUnsigned`], pipelined: ua·ub and the correction registered, then their difference registered | 2 |
-//! | [`SquareSignedPipe`]   | `a` (16) → `p` (32)      | as [`SquareSigned`], pipelined: ua² and the correction registered, then their difference registered | 2 |
-//! | [`MulSignedPipe`]      | `a` (16), `b` (16) → `p` (32) | as [`MulSigned`], pipelined: ua·ub and the corrections registered, then their difference registered | 2 |
+//! | [`MulPipe`]            | `a` (16), `b` (16) → `p` (32) | a·b unsigned, exact: operands registered, product registered | 2 |
+//! | [`MulSignedUnsignedPipe`] | `a` (16), `b` (16) → `p` (32) | as [`MulSignedUnsigned`], pipelined: operands registered; ua·ub and the correction registered; their difference registered | 3 |
+//! | [`SquareSignedPipe`]   | `a` (16) → `p` (32)      | as [`SquareSigned`], pipelined the same way | 3 |
+//! | [`MulSignedPipe`]      | `a` (16), `b` (16) → `p` (32) | as [`MulSigned`], pipelined the same way | 3 |
 //! | [`RoundProductToUQ1_15`] | `wide` (32) → `narrow` (16) | unsigned Q2.30 → unsigned Q1.15: add ½ LSB (2¹⁴), drop 15 LSBs, saturate | 0 |
 //! | [`MulSigned`]          | `a` (16), `b` (16) → `p` (32) | `a·b = ua·ub − [a<0]·(ub ≪ 16) − [b<0]·(ua ≪ 16)` mod 2³² (one multiplier) | 0 |
 //!
@@ -408,14 +409,51 @@ impl Logic for MulSigned {
     }
 }
 
+/// Latency of [`MulPipe`]: the operands registered beside the multiplier, then the product.
+pub const MUL_LATENCY: usize = 2;
+/// Latency of [`MulSignedPipe`], [`MulSignedUnsignedPipe`] and [`SquareSignedPipe`]: the
+/// operands registered, the unsigned product and the sign correction registered, then their
+/// difference.
+pub const SIGNED_MUL_LATENCY: usize = 3;
+
+// Why the operand registers: on ECP5 a MULT18X18D sits in a fixed column; with its operands
+// coming from registers placed by the logic that forms them, the route to the multiplier, the
+// multiplier and the route back took over 10 ns in the pixel pipeline (94 MHz). Registers that
+// feed only the multiplier are placed beside it (one copy per multiplier, even where the words
+// are shared), so each clock has one long route.
+
 crate::hw_block! {
-    /// [`MulSignedUnsigned`] in two clocks, for ECP5 timing (the normalizer's Mul5–Mul8: a
-    /// multiplier and the correction subtract in one clock took 10.9 ns in the pixel
-    /// pipeline): clock 1 registers ua·ub and `[a<0]·ub`, clock 2 registers
-    /// `p = ua·ub − ([a<0]·ub ≪ 16)  (mod 2³²)`. Latency 2, one product per clock, exact.
+    /// Unsigned 16×16 → 32 in two clocks: `a`, `b` registered, then `p = a·b` registered
+    /// (exact). Latency [`MUL_LATENCY`], one product per clock.
+    pub struct MulPipe(clock) {
+        in { a: Bits<16>, b: Bits<16> }
+        out { p: Bits<32> }
+        a_q: DFF<Bits<16>>,
+        b_q: DFF<Bits<16>>,
+        p_q: DFF<Bits<32>>,
+    }
+}
+
+impl Logic for MulPipe {
+    #[hdl_gen]
+    fn update(&mut self) {
+        clock!(self, clock, a_q, b_q, p_q);
+        self.a_q.d.next = self.a.val();
+        self.b_q.d.next = self.b.val();
+        self.p_q.d.next = self.a_q.q.val() * self.b_q.q.val();
+        self.p.next = self.p_q.q.val();
+    }
+}
+
+crate::hw_block! {
+    /// [`MulSignedUnsigned`] in three clocks: the operands registered; ua·ub and `[a<0]·ub`
+    /// registered; `p = ua·ub − ([a<0]·ub ≪ 16)  (mod 2³²)` registered. Latency
+    /// [`SIGNED_MUL_LATENCY`], one product per clock, exact.
     pub struct MulSignedUnsignedPipe(clock) {
         in { a: Bits<16>, b: Bits<16> }
         out { p: Bits<32> }
+        a_q: DFF<Bits<16>>,
+        b_q: DFF<Bits<16>>,
         raw: DFF<Bits<32>>,
         corr: DFF<Bits<16>>,
         corr_w: Signal<Local, Bits<32>>,
@@ -426,10 +464,12 @@ crate::hw_block! {
 impl Logic for MulSignedUnsignedPipe {
     #[hdl_gen]
     fn update(&mut self) {
-        clock!(self, clock, raw, corr, p_q);
-        self.raw.d.next = self.a.val() * self.b.val();
-        if self.a.val().get_bit(15) {
-            self.corr.d.next = self.b.val();
+        clock!(self, clock, a_q, b_q, raw, corr, p_q);
+        self.a_q.d.next = self.a.val();
+        self.b_q.d.next = self.b.val();
+        self.raw.d.next = self.a_q.q.val() * self.b_q.q.val();
+        if self.a_q.q.val().get_bit(15) {
+            self.corr.d.next = self.b_q.q.val();
         } else {
             self.corr.d.next = 0.into();
         }
@@ -440,13 +480,13 @@ impl Logic for MulSignedUnsignedPipe {
 }
 
 crate::hw_block! {
-    /// [`SquareSigned`] in two clocks, for ECP5 timing (the normalizer's squarers behind the
-    /// vector interpolator: a multiplier and the correction subtract in one clock took 10.2 ns
-    /// in the pixel pipeline): clock 1 registers ua² and `[a<0]·ua`, clock 2 registers
-    /// `p = ua² − ([a<0]·ua ≪ 17)  (mod 2³²)`. Latency 2, one square per clock, exact.
+    /// [`SquareSigned`] in three clocks: the operand registered; ua² and `[a<0]·ua`
+    /// registered; `p = ua² − ([a<0]·ua ≪ 17)  (mod 2³²)` registered. Latency
+    /// [`SIGNED_MUL_LATENCY`], one square per clock, exact.
     pub struct SquareSignedPipe(clock) {
         in { a: Bits<16> }
         out { p: Bits<32> }
+        a_q: DFF<Bits<16>>,
         raw: DFF<Bits<32>>,
         corr: DFF<Bits<16>>,
         corr_w: Signal<Local, Bits<32>>,
@@ -457,10 +497,11 @@ crate::hw_block! {
 impl Logic for SquareSignedPipe {
     #[hdl_gen]
     fn update(&mut self) {
-        clock!(self, clock, raw, corr, p_q);
-        self.raw.d.next = self.a.val() * self.a.val();
-        if self.a.val().get_bit(15) {
-            self.corr.d.next = self.a.val();
+        clock!(self, clock, a_q, raw, corr, p_q);
+        self.a_q.d.next = self.a.val();
+        self.raw.d.next = self.a_q.q.val() * self.a_q.q.val();
+        if self.a_q.q.val().get_bit(15) {
+            self.corr.d.next = self.a_q.q.val();
         } else {
             self.corr.d.next = 0.into();
         }
@@ -471,13 +512,15 @@ impl Logic for SquareSignedPipe {
 }
 
 crate::hw_block! {
-    /// [`MulSigned`] in two clocks, for ECP5 timing (a multiplier and the correction subtract
-    /// in one clock take 10.5 ns): clock 1 registers ua·ub and the sum of the corrections
-    /// `([a<0]·ub + [b<0]·ua) mod 2¹⁶` (only the high half of the product sees them), clock 2
-    /// registers `p = ua·ub − corr ≪ 16  (mod 2³²)`. Latency 2, one product per clock, exact.
+    /// [`MulSigned`] in three clocks: the operands registered; ua·ub and the sum of the
+    /// corrections `([a<0]·ub + [b<0]·ua) mod 2¹⁶` registered (only the high half of the
+    /// product sees them); `p = ua·ub − corr ≪ 16  (mod 2³²)` registered. Latency
+    /// [`SIGNED_MUL_LATENCY`], one product per clock, exact.
     pub struct MulSignedPipe(clock) {
         in { a: Bits<16>, b: Bits<16> }
         out { p: Bits<32> }
+        a_q: DFF<Bits<16>>,
+        b_q: DFF<Bits<16>>,
         raw: DFF<Bits<32>>,
         corr_a: Signal<Local, Bits<16>>,
         corr_b: Signal<Local, Bits<16>>,
@@ -490,15 +533,17 @@ crate::hw_block! {
 impl Logic for MulSignedPipe {
     #[hdl_gen]
     fn update(&mut self) {
-        clock!(self, clock, raw, corr, p_q);
-        self.raw.d.next = self.a.val() * self.b.val();
-        if self.a.val().get_bit(15) {
-            self.corr_a.next = self.b.val();
+        clock!(self, clock, a_q, b_q, raw, corr, p_q);
+        self.a_q.d.next = self.a.val();
+        self.b_q.d.next = self.b.val();
+        self.raw.d.next = self.a_q.q.val() * self.b_q.q.val();
+        if self.a_q.q.val().get_bit(15) {
+            self.corr_a.next = self.b_q.q.val();
         } else {
             self.corr_a.next = 0.into();
         }
-        if self.b.val().get_bit(15) {
-            self.corr_b.next = self.a.val();
+        if self.b_q.q.val().get_bit(15) {
+            self.corr_b.next = self.a_q.q.val();
         } else {
             self.corr_b.next = 0.into();
         }
@@ -655,16 +700,18 @@ mod tests {
         }
     }
 
-    /// The pipelined signed multiply and square: the product of the words presented two clocks
-    /// earlier, exact, one per clock.
+    /// The pipelined multiplies: the product of the words presented `SIGNED_MUL_LATENCY`
+    /// (`MUL_LATENCY` unsigned) clocks earlier, exact, one per clock.
     #[test]
-    fn pipelined_signed_multiply_is_exact_two_clocks_later() {
+    fn pipelined_multiplies_are_exact_after_their_latency() {
         let mut m = MulSignedPipe::default();
         let mut sq = SquareSignedPipe::default();
         let mut su = MulSignedUnsignedPipe::default();
+        let mut mu = MulPipe::default();
         m.connect_all();
         sq.connect_all();
         su.connect_all();
+        mu.connect_all();
         let edges = [
             0u64, 1, 0x3FFF, 0x4000, 0x7FFF, 0x8000, 0x8001, 0xC000, 0xFFFF,
         ];
@@ -674,21 +721,25 @@ mod tests {
             .collect();
         pairs.extend((0..3000u64).map(|i| ((i * 40503) & 0xFFFF, (i * 9973 + 7) & 0xFFFF)));
         let mut sent: Vec<(u64, u64)> = vec![];
-        for c in 0..pairs.len() + 2 {
+        for c in 0..pairs.len() + SIGNED_MUL_LATENCY {
             let (a, b) = pairs.get(c).copied().unwrap_or((0, 0));
             m.a.next = a.into();
             m.b.next = b.into();
             sq.a.next = a.into();
             su.a.next = a.into();
             su.b.next = b.into();
+            mu.a.next = a.into();
+            mu.b.next = b.into();
             m.clock.next = Clock { clk: false };
             sq.clock.next = Clock { clk: false };
             su.clock.next = Clock { clk: false };
+            mu.clock.next = Clock { clk: false };
             settle(&mut m);
             settle(&mut sq);
             settle(&mut su);
-            if c >= 2 {
-                let (a, b) = sent[c - 2];
+            settle(&mut mu);
+            if c >= SIGNED_MUL_LATENCY {
+                let (a, b) = sent[c - SIGNED_MUL_LATENCY];
                 let want = PRODUCT.from_int(NORMAL.to_int(a) * NORMAL.to_int(b));
                 assert_eq!(m.p.val().to_u64(), want, "{a:#x}·{b:#x}");
                 let want = (NORMAL.to_int(a) * NORMAL.to_int(a)) as u64;
@@ -696,13 +747,19 @@ mod tests {
                 let want = PRODUCT.from_int(NORMAL.to_int(a) * b as i64);
                 assert_eq!(su.p.val().to_u64(), want, "{a:#x}·{b:#x} unsigned b");
             }
+            if c >= MUL_LATENCY {
+                let (a, b) = sent[c - MUL_LATENCY];
+                assert_eq!(mu.p.val().to_u64(), a * b, "unsigned {a:#x}·{b:#x}");
+            }
             sent.push((a, b));
             m.clock.next = Clock { clk: true };
             sq.clock.next = Clock { clk: true };
             su.clock.next = Clock { clk: true };
+            mu.clock.next = Clock { clk: true };
             settle(&mut m);
             settle(&mut sq);
             settle(&mut su);
+            settle(&mut mu);
         }
     }
 

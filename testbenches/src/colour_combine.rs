@@ -92,12 +92,12 @@ impl Bench for ColourCombine {
             rows.push(flush.clone());
         }
         // Pixel of clock t entered at i = t − latency; dif and spc are the words of i (C1),
-        // amb those of i + 1 (C2).
+        // amb those of C2, two clocks before the output.
         let expected = (0..rows.len())
             .map(|t| match t.checked_sub(ColourCombine::LATENCY) {
                 Some(i) if rows[i][0] == 1 => {
                     let mut words: [u64; 9] = std::array::from_fn(|k| rows[i][3 + k]);
-                    words[..3].copy_from_slice(&rows[i + 1][3..6]);
+                    words[..3].copy_from_slice(&rows[t - 2][3..6]);
                     let q = |x: u64| x as f64 / ONE as f64;
                     let v = intensity(&Weights::from_words(&words), q(rows[i][1]), q(rows[i][2]));
                     std::iter::once(Expected::Word(1))

@@ -198,7 +198,8 @@ fn latency_from_last_word_to_first_beat() {
         rows.push(vec![w as u64, 1, last as u64, 1]);
     }
     let last = rows.len() - 1;
-    rows.extend(std::iter::repeat_n(vec![0, 0, 0, 1], 60));
+    let latency = rtl::pixel_stream::PixelStream::LATENCY;
+    rows.extend(std::iter::repeat_n(vec![0, 0, 0, 1], latency + 10));
     let out = find("pixel-stream").unwrap().simulate(&o, &rows).unwrap();
     assert!(
         out[..=last]
@@ -208,7 +209,7 @@ fn latency_from_last_word_to_first_beat() {
         "every word accepted when shown"
     );
     let first = (0..out.len()).find(|&c| out[c][1] != 0).unwrap();
-    assert_eq!(first - last, rtl::pixel_stream::PixelStream::LATENCY);
+    assert_eq!(first - last, latency);
 }
 
 /// `rtl/README.md` shows the layout the table gives (`rtl::stream_layout::markdown`).

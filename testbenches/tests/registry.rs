@@ -401,7 +401,10 @@ fn ecp5_places_and_times_blocks() {
             .unwrap_or_else(|| panic!("{name}: not placed: {:?}", r.unplaced));
         assert!(mhz > 20.0 && mhz < 500.0, "{name}: {mhz} MHz");
         if closed.contains(&name) {
-            assert!(mhz >= 100.0, "{name}: {mhz} MHz, below the 100 MHz bar: {r}");
+            assert!(
+                mhz >= 100.0,
+                "{name}: {mhz} MHz, below the 100 MHz bar: {r}"
+            );
         }
         let path = r.critical.as_ref().expect("critical path parsed");
         assert!(
