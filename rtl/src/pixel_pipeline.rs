@@ -35,10 +35,11 @@
 //! power unit with its pixel.
 //!
 //! # Latency, throughput
-//! Event → fragment 63 clocks (vector interpolator 1, a register on the normal 1, lighting 20,
-//! BRZSSK 7, power 30, colour 4); load → first fragment 66 (the address block's 3 more). The
-//! register on the normal is for ECP5 timing: the interpolator's output rounding feeding the
-//! normalizer's squarers was the critical path (68 MHz). BRZSSK is in the path of
+//! Event → fragment 64 clocks (a register on the event 1, vector interpolator 1, a register
+//! on the normal 1, lighting 20, BRZSSK 7, power 30, colour 4); load → first fragment 67 (the
+//! address block's 3 more). The two registers are for ECP5 timing: the interpolator's output
+//! rounding feeding the normalizer's squarers was the critical path (68 MHz), and `hold`
+//! gating the event into the interpolators' adders (`EVENT_REGISTER`). BRZSSK is in the path of
 //! every build (passing through unless `bump=on`), so every method has the same latency. One fragment per clock along a line;
 //! nothing in the pipeline stalls, so the address block is the only limit (one clock per line
 //! start without pixels, as in the Gouraud pipe).
@@ -70,8 +71,17 @@ use crate::vector_interpolator::VectorInterpolator;
 /// The register between the vector interpolator's rounded output and the lighting unit.
 pub const NORMAL_REGISTER: usize = 1;
 
+/// The register on the address block's event (valid, row start, step, carry, first) before
+/// the interpolators: `hold` gates the event, so without it the hold, the gating, the
+/// channels' adder select and their adders were one path (pixel-stream: 87.9 MHz on ECP5).
+/// The load into the interpolators' shadow banks (and its words) is registered with it, so a
+/// bank is written no earlier, relative to the copy at a triangle's first event, than without
+/// the register.
+pub const EVENT_REGISTER: usize = 1;
+
 /// Clocks from an address event to its fragment.
-pub const EVENT_TO_FRAGMENT: usize = VectorInterpolator::LATENCY
+pub const EVENT_TO_FRAGMENT: usize = EVENT_REGISTER
+    + VectorInterpolator::LATENCY
     + NORMAL_REGISTER
     + LightingUnit::LATENCY
     + Brzssk::LATENCY
@@ -80,7 +90,7 @@ pub const EVENT_TO_FRAGMENT: usize = VectorInterpolator::LATENCY
 
 /// Clocks from an address event to the pixel's arrival at BRZSSK (which needs its address).
 pub const EVENT_TO_BRZSSK: usize =
-    VectorInterpolator::LATENCY + NORMAL_REGISTER + LightingUnit::LATENCY;
+    EVENT_REGISTER + VectorInterpolator::LATENCY + NORMAL_REGISTER + LightingUnit::LATENCY;
 
 /// Build parameters of the pipeline: the normalizer's coefficient set and the power unit's mode.
 #[derive(Clone, Debug, PartialEq)]
@@ -210,8 +220,13 @@ crate::hw_block! {
         pub colour: ColourCombine,
         accepted: Signal<Local, Bit>,
         first: Signal<Local, Bit>,
+        ev_valid: DFF<Bit>, ev_row_start: DFF<Bit>, ev_step: DFF<Bits<2>>, ev_carry: DFF<Bit>,
+        ev_first: DFF<Bit>,
+        /// The accepted load and its 16 words (x, y, z planes, then depth), registered.
+        ld_q: DFF<Bit>,
+        sw: [DFF<Bits<32>>; 16],
         cos_phi_to_colour: Delay<Bits<16>, { PowerUnit::LATENCY }>,
-        z_to_out: Delay<Bits<32>, { EVENT_TO_FRAGMENT - 1 }>,
+        z_to_out: Delay<Bits<32>, { EVENT_TO_FRAGMENT - EVENT_REGISTER - 1 }>,
         x_to_out: Delay<Bits<12>, { EVENT_TO_FRAGMENT }>,
         y_to_out: Delay<Bits<12>, { EVENT_TO_FRAGMENT }>,
         done_to_out: Delay<Bit, { EVENT_TO_FRAGMENT }>,
@@ -239,8 +254,17 @@ impl Logic for PixelPipeline {
             z_to_out,
             x_to_out,
             y_to_out,
-            done_to_out
+            done_to_out,
+            ev_valid,
+            ev_row_start,
+            ev_step,
+            ev_carry,
+            ev_first,
+            ld_q
         );
+        for i in 0..16 {
+            self.sw[i].clock.next = self.clock.val();
+        }
         self.addr.load.next = self.load.val();
         self.addr.hold.next = self.hold.val();
         self.addr.w_b0.next = self.w_b0.val();
@@ -266,35 +290,58 @@ impl Logic for PixelPipeline {
         self.accepted.next = self.load.val() & self.addr.ready.val();
 
         // Normal planes.
-        self.normal.load.next = self.accepted.val();
-        self.normal.x_start.next = self.x_start.val();
-        self.normal.x_short.next = self.x_short.val();
-        self.normal.x_long.next = self.x_long.val();
-        self.normal.x_line.next = self.x_line.val();
-        self.normal.y_start.next = self.y_start.val();
-        self.normal.y_short.next = self.y_short.val();
-        self.normal.y_long.next = self.y_long.val();
-        self.normal.y_line.next = self.y_line.val();
-        self.normal.z_start.next = self.z_start.val();
-        self.normal.z_short.next = self.z_short.val();
-        self.normal.z_long.next = self.z_long.val();
-        self.normal.z_line.next = self.z_line.val();
-        self.normal.valid_in.next = self.addr.valid.val();
-        self.normal.row_start_in.next = self.addr.row_start.val();
-        self.normal.step_in.next = self.addr.step.val();
-        self.normal.carry_in.next = self.addr.carry.val();
+        self.ld_q.d.next = self.accepted.val();
+        self.sw[0].d.next = self.x_start.val();
+        self.sw[1].d.next = self.x_short.val();
+        self.sw[2].d.next = self.x_long.val();
+        self.sw[3].d.next = self.x_line.val();
+        self.sw[4].d.next = self.y_start.val();
+        self.sw[5].d.next = self.y_short.val();
+        self.sw[6].d.next = self.y_long.val();
+        self.sw[7].d.next = self.y_line.val();
+        self.sw[8].d.next = self.z_start.val();
+        self.sw[9].d.next = self.z_short.val();
+        self.sw[10].d.next = self.z_long.val();
+        self.sw[11].d.next = self.z_line.val();
+        self.sw[12].d.next = self.d_start.val();
+        self.sw[13].d.next = self.d_short.val();
+        self.sw[14].d.next = self.d_long.val();
+        self.sw[15].d.next = self.d_line.val();
+        self.normal.load.next = self.ld_q.q.val();
+        self.normal.x_start.next = self.sw[0].q.val();
+        self.normal.x_short.next = self.sw[1].q.val();
+        self.normal.x_long.next = self.sw[2].q.val();
+        self.normal.x_line.next = self.sw[3].q.val();
+        self.normal.y_start.next = self.sw[4].q.val();
+        self.normal.y_short.next = self.sw[5].q.val();
+        self.normal.y_long.next = self.sw[6].q.val();
+        self.normal.y_line.next = self.sw[7].q.val();
+        self.normal.z_start.next = self.sw[8].q.val();
+        self.normal.z_short.next = self.sw[9].q.val();
+        self.normal.z_long.next = self.sw[10].q.val();
+        self.normal.z_line.next = self.sw[11].q.val();
+        // The event, registered (see EVENT_REGISTER).
+        self.first.next = self.addr.row_start.val() & (self.addr.step.val() == 0);
+        self.ev_valid.d.next = self.addr.valid.val();
+        self.ev_row_start.d.next = self.addr.row_start.val();
+        self.ev_step.d.next = self.addr.step.val();
+        self.ev_carry.d.next = self.addr.carry.val();
+        self.ev_first.d.next = self.first.val();
+        self.normal.valid_in.next = self.ev_valid.q.val();
+        self.normal.row_start_in.next = self.ev_row_start.q.val();
+        self.normal.step_in.next = self.ev_step.q.val();
+        self.normal.carry_in.next = self.ev_carry.q.val();
 
         // Depth plane: one more BVI channel on the same events.
-        self.first.next = self.addr.row_start.val() & (self.addr.step.val() == 0);
-        self.depth.load.next = self.accepted.val();
-        self.depth.set_start.next = self.d_start.val();
-        self.depth.set_short.next = self.d_short.val();
-        self.depth.set_long.next = self.d_long.val();
-        self.depth.set_line.next = self.d_line.val();
-        self.depth.ev_first.next = self.first.val();
-        self.depth.ev_row_start.next = self.addr.row_start.val();
-        self.depth.ev_carry.next = self.addr.carry.val();
-        self.depth.ev_valid.next = self.addr.valid.val();
+        self.depth.load.next = self.ld_q.q.val();
+        self.depth.set_start.next = self.sw[12].q.val();
+        self.depth.set_short.next = self.sw[13].q.val();
+        self.depth.set_long.next = self.sw[14].q.val();
+        self.depth.set_line.next = self.sw[15].q.val();
+        self.depth.ev_first.next = self.ev_first.q.val();
+        self.depth.ev_row_start.next = self.ev_row_start.q.val();
+        self.depth.ev_carry.next = self.ev_carry.q.val();
+        self.depth.ev_valid.next = self.ev_valid.q.val();
 
         // Lighting: normalizer, N'·L, N'·H.
         for k in 0..3 {

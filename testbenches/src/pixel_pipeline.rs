@@ -53,6 +53,10 @@ impl DelayLine {
 /// Twin of the whole pipeline.
 pub struct PipelineTwin {
     addr: AddressBlockModel,
+    /// The register on the address block's event before the interpolators.
+    ev: AddressOutputs,
+    /// The accepted load's interpolator words, registered with the event.
+    ld: Option<LitJob>,
     normal: VectorTwin,
     /// The register on the normal (valid, x, y, z) before the lighting unit.
     n_reg: (bool, [i64; 3]),
@@ -74,6 +78,8 @@ impl PipelineTwin {
     pub fn new(p: &PipelineParams) -> Self {
         PipelineTwin {
             addr: AddressBlockModel::new(),
+            ev: AddressOutputs::default(),
+            ld: None,
             normal: VectorTwin::default(),
             n_reg: (false, [0; 3]),
             depth: ChannelTwin::default(),
@@ -84,7 +90,7 @@ impl PipelineTwin {
             power: PowerTwin::new(p.power.mode),
             colour: ColourTwin::default(),
             cos_phi: DelayLine::new(rtl::power_unit::PowerUnit::LATENCY),
-            z: DelayLine::new(EVENT_TO_FRAGMENT - 1),
+            z: DelayLine::new(EVENT_TO_FRAGMENT - rtl::pixel_pipeline::EVENT_REGISTER - 1),
             x: DelayLine::new(EVENT_TO_FRAGMENT),
             y: DelayLine::new(EVENT_TO_FRAGMENT),
             done: DelayLine::new(EVENT_TO_FRAGMENT),
@@ -131,14 +137,16 @@ impl Twin for PipelineTwin {
         let s = |w: [u64; 3]| w.map(|x| NORMAL.to_int(x));
         self.light.clock(nv, n, s(regs.light), s(regs.half));
         self.z.clock(self.depth.word() as u64);
-        self.normal.clock(accepted.as_ref().map(|j| &j.normal), &a);
-        let first = a.row_start && a.step == 0;
+        let ev = std::mem::replace(&mut self.ev, a);
+        let ld = std::mem::replace(&mut self.ld, accepted);
+        self.normal.clock(ld.as_ref().map(|j| &j.normal), &ev);
+        let first = ev.row_start && ev.step == 0;
         self.depth.clock(
-            accepted.as_ref().map(|j| &j.depth),
+            ld.as_ref().map(|j| &j.depth),
             first,
-            a.row_start,
-            a.carry,
-            a.valid,
+            ev.row_start,
+            ev.carry,
+            ev.valid,
         );
         self.x.clock(a.x as u64);
         self.y.clock(a.y as u64);
