@@ -136,7 +136,9 @@ pub mod twin {
         s1: [(bool, u32, u64, bool); 2],
         cb1: u64,
         last1: bool,
-        // S2: outputs.
+        // S2 .. S4: the outputs, formed from S1 and carried three registers (the RTL
+        // registers the PROM word, then the product twice, then rounds: the same value).
+        pipe: std::collections::VecDeque<([(bool, u32, u64); 2], bool)>,
         out: [(bool, u32, u64); 2],
         last2: bool,
     }
@@ -158,6 +160,7 @@ pub mod twin {
                 s1: [(false, 0, 0, false); 2],
                 cb1: 0,
                 last1: false,
+                pipe: std::iter::repeat_n(([(false, 0, 0); 2], false), 3).collect(),
                 out: [(false, 0, 0); 2],
                 last2: false,
             }
@@ -199,11 +202,13 @@ pub mod twin {
         }
         /// One rising edge with `load` (taken only when ready) and the span's words.
         pub fn clock(&mut self, load: Option<&SpanWords>) {
-            // S2 ← S1
-            self.out = self
-                .s1
-                .map(|(v, i, w, top)| (v, i, if top { 0 } else { rnd(self.cb1 * w) }));
-            self.last2 = self.last1;
+            // S4 ← S2, S3 ← S1
+            (self.out, self.last2) = self.pipe.pop_front().expect("three stages");
+            self.pipe.push_back((
+                self.s1
+                    .map(|(v, i, w, top)| (v, i, if top { 0 } else { rnd(self.cb1 * w) })),
+                self.last1,
+            ));
             // S1 ← S0
             let (a, b) = self.active();
             let read = |arg: i64| match addr(arg) {

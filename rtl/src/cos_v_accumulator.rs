@@ -37,9 +37,13 @@
 //!     A active = busy & t < h; B active = busy & u ≥ h;
 //!     address = (|arg| + 2¹⁷) bits 28..18, "top" (read 0) when bits 31..29 ≠ 0
 //! S1  PROM[address] (synchronous, one copy per run), flags, indices, cos β carried
-//! S2  cos = top ? 0 : round(cos β · PROM)   UQ1.15 × UQ1.15 → UQ2.30, + 2¹⁴, drop 15, saturate
+//! S2  the PROM word registered (a block RAM's output is 5.6 ns from the clock on ECP5)
+//! S3  cos β · PROM                        UQ1.15 × UQ1.15 → UQ2.30, exact, two clocks [MulPipe]
+//! S4  cos = top ? 0 : round(product)      + 2¹⁴, drop 15, saturate
 //! ```
-//! Latency: load → first pixels 3 clocks; results 2 clocks after their state. Throughput: two
+//! S2, S3's second clock and S4 are there for ECP5 timing: the PROM word, the multiplier and
+//! the rounding in one clock ran at 62 MHz (latency 3 before).
+//! Latency: load → first pixels 6 clocks; results 5 clocks after their state. Throughput: two
 //! pixels per clock (one in the last clock of an odd-length span); a span takes ⌈(m + 1)/2⌉
 //! clocks and the next one follows at once (`ready` rises in the last clock), so the per-span
 //! overhead is zero clocks in the block.
@@ -55,7 +59,7 @@
 
 use rust_hdl::prelude::*;
 
-use crate::primitives::{Prom, RoundProductToUQ1_15};
+use crate::primitives::{Delay, MulPipe, Prom, RoundProductToUQ1_15, MUL_LATENCY};
 
 fn cos_prom() -> Prom<Bits<16>, 11> {
     Prom::new(
@@ -69,7 +73,7 @@ crate::hw_block! {
     /// The cos v accumulator (see the module header).
     pub struct CosVAccumulator(clock) as "cos-v-accumulator" {
         summary: "a span's ψ, Δφ, cos β in, cos v = cos β·cos(ψ − tΔφ) out from both ends, two pixels per clock (SPEC §4)",
-        latency: 3 => "load to the first pixels, up to two pixels per clock",
+        latency: 6 => "load to the first pixels, up to two pixels per clock",
         multipliers: 2,
         in { load: Bit, p: Bits<32>, q: Bits<32>, d: Bits<32>, cos_beta: Bits<16>, m: Bits<12> }
         out {
@@ -100,9 +104,15 @@ crate::hw_block! {
         prom_b: Prom<Bits<16>, 11> = cos_prom(),
         valid1: [DFF<Bit>; 2], idx1: [DFF<Bits<12>>; 2], top1: [DFF<Bit>; 2],
         cb1: DFF<Bits<16>>, last1: DFF<Bit>,
-        // S2
+        // S2: the PROM words and cos β registered; S3 the products; the flags carried.
+        word2: [DFF<Bits<16>>; 2], cb2: DFF<Bits<16>>,
+        prod: [MulPipe; 2],
+        valid_d: [Delay<Bit, { 1 + MUL_LATENCY }>; 2],
+        idx_d: [Delay<Bits<12>, { 1 + MUL_LATENCY }>; 2],
+        top_d: [Delay<Bit, { 1 + MUL_LATENCY }>; 2],
+        last_d: Delay<Bit, { 1 + MUL_LATENCY }>,
+        // S4
         mul: [RoundProductToUQ1_15; 2],
-        prod: [Signal<Local, Bits<32>>; 2],
         valid2: [DFF<Bit>; 2], idx2: [DFF<Bits<12>>; 2], cos2: [DFF<Bits<16>>; 2],
         last2: DFF<Bit>,
     }
@@ -113,8 +123,13 @@ impl Logic for CosVAccumulator {
     fn update(&mut self) {
         // State registers hold unless assigned (dff_setup!: d = q), the rest load every clock.
         dff_setup!(self, clock, busy_a, busy_b, arg_a, arg_b, t_q, u_q, d_q, cb, h_q);
-        clock!(self, clock, prom_a, prom_b, cb1, last1, last2);
+        clock!(self, clock, prom_a, prom_b, cb1, last1, last2, cb2, last_d);
         for k in 0..2 {
+            self.word2[k].clock.next = self.clock.val();
+            self.prod[k].clock.next = self.clock.val();
+            self.valid_d[k].clock.next = self.clock.val();
+            self.idx_d[k].clock.next = self.clock.val();
+            self.top_d[k].clock.next = self.clock.val();
             self.valid1[k].clock.next = self.clock.val();
             self.idx1[k].clock.next = self.clock.val();
             self.top1[k].clock.next = self.clock.val();
@@ -185,20 +200,30 @@ impl Logic for CosVAccumulator {
         self.top1[1].d.next = self.rnd_b.val().get_bits::<3>(29).any();
         self.cb1.d.next = self.cb.q.val();
         self.last1.d.next = (self.act_a.val() | self.act_b.val()) & !self.more.val();
-        // S2
-        self.prod[0].next = self.cb1.q.val() * self.prom_a.data.val();
-        self.prod[1].next = self.cb1.q.val() * self.prom_b.data.val();
+        // S2, S3
+        self.word2[0].d.next = self.prom_a.data.val();
+        self.word2[1].d.next = self.prom_b.data.val();
+        self.cb2.d.next = self.cb1.q.val();
         for k in 0..2 {
-            self.mul[k].wide.next = self.prod[k].val();
-            self.valid2[k].d.next = self.valid1[k].q.val();
-            self.idx2[k].d.next = self.idx1[k].q.val();
-            if self.top1[k].q.val() {
+            self.prod[k].a.next = self.cb2.q.val();
+            self.prod[k].b.next = self.word2[k].q.val();
+            self.valid_d[k].d.next = self.valid1[k].q.val();
+            self.idx_d[k].d.next = self.idx1[k].q.val();
+            self.top_d[k].d.next = self.top1[k].q.val();
+        }
+        self.last_d.d.next = self.last1.q.val();
+        // S4
+        for k in 0..2 {
+            self.mul[k].wide.next = self.prod[k].p.val();
+            self.valid2[k].d.next = self.valid_d[k].q.val();
+            self.idx2[k].d.next = self.idx_d[k].q.val();
+            if self.top_d[k].q.val() {
                 self.cos2[k].d.next = 0.into();
             } else {
                 self.cos2[k].d.next = self.mul[k].narrow.val();
             }
         }
-        self.last2.d.next = self.last1.q.val();
+        self.last2.d.next = self.last_d.q.val();
         self.valid_a.next = self.valid2[0].q.val();
         self.t.next = self.idx2[0].q.val();
         self.cos_a.next = self.cos2[0].q.val();

@@ -94,14 +94,14 @@ impl Twin for CosVRows {
 }
 
 /// Rows for `spans` back to back and every clock's expectations: clock k of a span shows run
-/// A's k-th and run B's k-th pixel, 2 clocks after its state.
+/// A's k-th and run B's k-th pixel, `CosVAccumulator::LATENCY` − 1 clocks after its state.
 fn run(spans: &[SpanWords]) -> (Vec<Vec<u64>>, Vec<Vec<Expected>>) {
     let runs: Vec<(Vec<u32>, Vec<u32>)> = spans.iter().map(|w| (w.run_a(), w.run_b())).collect();
     span_run(
         spans.len(),
         |i| spans[i].clocks(),
         |i| load_row(i.map(|i| &spans[i])),
-        2,
+        CosVAccumulator::LATENCY - 1,
         |i, k| {
             let lane = |r: &Vec<u32>| r.get(k).map(|&t| (t as u64, cos_v(&spans[i], t)));
             [lane(&runs[i].0), lane(&runs[i].1)]
