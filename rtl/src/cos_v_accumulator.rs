@@ -34,7 +34,10 @@
 //! # Pipeline
 //! ```text
 //! S0  state: arg_a, arg_b (32 bits), t (13), u (12), h = (m + 2) >> 1, busy flags, d, cos β;
-//!     A active = busy & t < h; B active = busy & u ≥ h;
+//!     A active = busy & t < h; B active = busy & u ≥ h — kept as the counts ra = h − t and
+//!     rb = u − h (14-bit two's complement, loaded with the span and stepped with the runs),
+//!     so the tests are sign and bit tests of registers, not compares (ECP5 timing: the
+//!     compares, the next-span decision and the argument load in one clock ran at 97 MHz);
 //!     address = (|arg| + 2¹⁷) bits 28..18, "top" (read 0) when bits 31..29 ≠ 0
 //! S1  PROM[address] (synchronous, one copy per run), flags, indices, cos β carried
 //! S2  the PROM word registered (a block RAM's output is 5.6 ns from the clock on ECP5)
@@ -87,11 +90,12 @@ crate::hw_block! {
         arg_a: DFF<Bits<32>>, arg_b: DFF<Bits<32>>,
         t_q: DFF<Bits<13>>, u_q: DFF<Bits<12>>,
         d_q: DFF<Bits<32>>, cb: DFF<Bits<16>>,
-        /// h = ⌈(m + 1)/2⌉: run A takes t < h, run B u ≥ h.
-        h_q: DFF<Bits<13>>,
+        // h = ⌈(m + 1)/2⌉: run A takes t < h, run B u ≥ h (as ra, rb below).
         m_plus2: Signal<Local, Bits<13>>,
+        /// h − t and u − h, two's complement.
+        ra: DFF<Bits<14>>, rb: DFF<Bits<14>>,
+        h_new: Signal<Local, Bits<14>>,
         t_plus1: Signal<Local, Bits<13>>,
-        u13: Signal<Local, Bits<13>>,
         act_a: Signal<Local, Bit>, act_b: Signal<Local, Bit>,
         next_a: Signal<Local, Bits<32>>, next_b: Signal<Local, Bits<32>>,
         more: Signal<Local, Bit>,
@@ -122,7 +126,7 @@ impl Logic for CosVAccumulator {
     #[hdl_gen]
     fn update(&mut self) {
         // State registers hold unless assigned (dff_setup!: d = q), the rest load every clock.
-        dff_setup!(self, clock, busy_a, busy_b, arg_a, arg_b, t_q, u_q, d_q, cb, h_q);
+        dff_setup!(self, clock, busy_a, busy_b, arg_a, arg_b, t_q, u_q, d_q, cb, ra, rb);
         clock!(self, clock, prom_a, prom_b, cb1, last1, last2, cb2, last_d);
         for k in 0..2 {
             self.word2[k].clock.next = self.clock.val();
@@ -139,24 +143,27 @@ impl Logic for CosVAccumulator {
         }
         // S0: which runs emit this clock, and whether any emits after it.
         self.m_plus2.next = bit_cast::<13, 12>(self.m.val()) + 2;
-        self.u13.next = bit_cast::<13, 12>(self.u_q.q.val());
+        self.h_new.next = bit_cast::<14, 13>(self.m_plus2.val() >> 1);
         self.t_plus1.next = self.t_q.q.val() + 1;
-        self.act_a.next = self.busy_a.q.val() & (self.t_q.q.val() < self.h_q.q.val());
-        self.act_b.next = self.busy_b.q.val() & (self.u13.val() >= self.h_q.q.val());
+        self.act_a.next =
+            self.busy_a.q.val() & !self.ra.q.val().get_bit(13) & self.ra.q.val().any();
+        self.act_b.next = self.busy_b.q.val() & !self.rb.q.val().get_bit(13);
         self.next_a.next = self.arg_a.q.val() - self.d_q.q.val();
         self.next_b.next = self.arg_b.q.val() - self.d_q.q.val();
-        self.more.next = (self.act_a.val() & (self.t_plus1.val() < self.h_q.q.val()))
-            | (self.act_b.val() & (self.u13.val() > self.h_q.q.val()));
+        self.more.next = (self.act_a.val() & self.ra.q.val().get_bits::<13>(1).any())
+            | (self.act_b.val() & self.rb.q.val().any());
         self.ready.next = !self.more.val();
         // The runs advance, or stop for good.
         if self.act_a.val() {
             self.arg_a.d.next = self.next_a.val();
             self.t_q.d.next = self.t_plus1.val();
+            self.ra.d.next = self.ra.q.val() - 1;
         } else {
             self.busy_a.d.next = false;
         }
         if self.act_b.val() {
             self.arg_b.d.next = self.next_b.val();
+            self.rb.d.next = self.rb.q.val() - 1;
             if self.u_q.q.val().any() {
                 self.u_q.d.next = self.u_q.q.val() - 1;
             } else {
@@ -172,7 +179,8 @@ impl Logic for CosVAccumulator {
             self.arg_b.d.next = self.q.val();
             self.t_q.d.next = 0.into();
             self.u_q.d.next = self.m.val();
-            self.h_q.d.next = self.m_plus2.val() >> 1;
+            self.ra.d.next = self.h_new.val();
+            self.rb.d.next = bit_cast::<14, 12>(self.m.val()) - self.h_new.val();
             self.d_q.d.next = self.d.val();
             self.cb.d.next = self.cos_beta.val();
         }
