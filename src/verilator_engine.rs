@@ -157,18 +157,6 @@ pub fn span_replay(kind: SpanKind, spans: &[SpanJob], regs: &ShadingRegs) -> Res
             })
             .collect(),
     };
-    // Past the last line's last fragment: its take (quadric: its hand-over), its clocks, the
-    // latency (≤ 20) and a margin.
-    let last_start = match kind {
-        SpanKind::Quadric => quadric_timing(spans).last().map_or(0, |&(_, h)| h),
-        _ => takes.last().copied().unwrap_or(0),
-    };
-    let end = last_start + spans.last().map_or(0, |s| s.clocks()) + 32;
-    let n = end as usize;
-    let mut rows = vec![span_row(kind, None, regs); n];
-    for (s, &t) in spans.iter().zip(&takes) {
-        rows[t as usize] = span_row(kind, Some(s), regs);
-    }
     let (block, o) = match kind {
         SpanKind::Angular => ("angular-pipeline", Options::new()),
         SpanKind::Fast(set) => ("fast-pipeline", Options::new().with("inv-sqrt", set)),
@@ -178,6 +166,20 @@ pub fn span_replay(kind: SpanKind, spans: &[SpanJob], regs: &ShadingRegs) -> Res
         ),
         SpanKind::Quadric => ("quadric-unit", Options::new()),
     };
+    // Past the last line's last fragment: its take (quadric: its hand-over), its clocks, the
+    // block's latency and a margin.
+    let latency = testbenches::registry::find(block)
+        .map_or(64, |b| b.latency()) as u64;
+    let last_start = match kind {
+        SpanKind::Quadric => quadric_timing(spans).last().map_or(0, |&(_, h)| h),
+        _ => takes.last().copied().unwrap_or(0),
+    };
+    let end = last_start + spans.last().map_or(0, |s| s.clocks()) + latency + 12;
+    let n = end as usize;
+    let mut rows = vec![span_row(kind, None, regs); n];
+    for (s, &t) in spans.iter().zip(&takes) {
+        rows[t as usize] = span_row(kind, Some(s), regs);
+    }
     record(block, &o, rows)
 }
 

@@ -81,8 +81,8 @@ fn cocotb_drives_the_exported_pixel_stream_with_back_pressure() {
     for (what, from, to) in [
         (
             "FIFO read pointer: + 1 → + 2",
-            "rd_ptr$d = rd_ptr$q + 6'b1;",
-            "rd_ptr$d = rd_ptr$q + 6'b10;",
+            "rd_ptr$d = rd_ptr$q + 7'b1;",
+            "rd_ptr$d = rd_ptr$q + 7'b10;",
         ),
         (
             "red channel rounding: + half LSB → − half LSB",
