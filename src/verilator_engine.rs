@@ -168,8 +168,7 @@ pub fn span_replay(kind: SpanKind, spans: &[SpanJob], regs: &ShadingRegs) -> Res
     };
     // Past the last line's last fragment: its take (quadric: its hand-over), its clocks, the
     // block's latency and a margin.
-    let latency = testbenches::registry::find(block)
-        .map_or(64, |b| b.latency()) as u64;
+    let latency = testbenches::registry::find(block).map_or(64, |b| b.latency()) as u64;
     let last_start = match kind {
         SpanKind::Quadric => quadric_timing(spans).last().map_or(0, |&(_, h)| h),
         _ => takes.last().copied().unwrap_or(0),
