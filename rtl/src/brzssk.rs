@@ -36,7 +36,7 @@
 //! latency 4, 64 MHz):
 //! a block RAM's output takes 5.6 ns from the clock, so none feeds logic or a multiplier in the
 //! same clock, and the add/subtract and the rounding carry chains take a clock each.
-//! PROM sizes: SINγ 2048 × 27 (s in Q1.15 and the step d = s[a] − s[a+1] ≤ 1024 to the next
+//! PROM sizes: SINγ 2048 × 27 (s in Q1.15 and the step `d = s[a] − s[a+1]` ≤ 1024 to the next
 //! word, linearly interpolated by the 4 bits below the address: sin γ is steep near cos γ = 1
 //! and the power after it would turn a bare PROM step into a ring), SINφ 1024 × 16 (rounded
 //! address, no interpolation: no power follows the diffuse term), CODE 256 × 9, DG 256 × 32.

@@ -51,7 +51,7 @@
 //!
 //! The multiplies and narrowings above are built once, in [`crate::primitives`]
 //! ([`MulSignedUnsigned`](crate::primitives::MulSignedUnsigned),
-//! [`SquareSigned`](crate::primitives::SquareSigned), [`SatToQ2_14`](crate::primitives::SatToQ2_14),
+//! [`MulSignedPipe`](crate::primitives::MulSignedPipe), [`SatToQ2_14`](crate::primitives::SatToQ2_14),
 //! [`RoundToQ2_14`](crate::primitives::RoundToQ2_14), [`SatToUQ1_15`](crate::primitives::SatToUQ1_15),
 //! [`RoundToUQ1_15`](crate::primitives::RoundToUQ1_15)), and the blocks use those.
 //!

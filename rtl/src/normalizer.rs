@@ -36,7 +36,7 @@
 //! Normalizer only:
 //!  S1  sq_x = x·x (Mul1-3)       Q2.14² → Q4.28 unsigned, exact, in three clocks (x
 //!                                registered; ux² and the sign correction; their difference)
-//!                                [SquareSignedPipe]
+//!                                [MulSignedPipe, both operands x]
 //!  S2  k_full = sq_x+sq_y+sq_z   Sm1, Q4.28 unsigned, exact (≤ 3·2³⁰, cannot overflow);
 //!                                valid_p4, x_p4 … carry the vector alongside [Delay]
 //! NormalizerK (its stage 1 follows Normalizer's S2):
@@ -91,8 +91,8 @@ use rust_hdl::prelude::*;
 
 use crate::fixed::{QFormat, COEF_C0, COEF_C1, COEF_C2, HORNER_T1, K_NARROW, NORMAL, SCALE};
 use crate::primitives::{
-    Delay, MulSignedUnsignedPipe, RoundToQ2_14, RoundToUQ1_15, SatToQ2_14, SatToUQ1_15,
-    SquareSignedPipe, SIGNED_MUL_LATENCY,
+    Delay, MulSignedPipe, MulSignedUnsignedPipe, RoundToQ2_14, RoundToUQ1_15, SatToQ2_14,
+    SatToUQ1_15, SIGNED_MUL_LATENCY,
 };
 use crate::registry::{BlockParams, Options};
 
@@ -457,7 +457,7 @@ crate::hw_block! {
         in { valid_in: Bit, x: Bits<16>, y: Bits<16>, z: Bits<16> }
         out { valid_out: Bit, nx: Bits<16>, ny: Bits<16>, nz: Bits<16> }
         // S1 (the squares are the multipliers' registered outputs)
-        mul1: SquareSignedPipe, mul2: SquareSignedPipe, mul3: SquareSignedPipe,
+        mul1: MulSignedPipe, mul2: MulSignedPipe, mul3: MulSignedPipe,
         // S2
         k_full: DFF<Bits<32>>,
         // The vector and its valid wait for K (S1, S2).
@@ -477,8 +477,11 @@ impl Logic for Normalizer {
         clock!(self, clock, mul1, mul2, mul3, k_full, valid_p4, x_p4, y_p4, z_p4, scale);
         // S1 (Mul1-3): signed squares, Q2.14² → Q4.28, exact.
         self.mul1.a.next = self.x.val();
+        self.mul1.b.next = self.x.val();
         self.mul2.a.next = self.y.val();
+        self.mul2.b.next = self.y.val();
         self.mul3.a.next = self.z.val();
+        self.mul3.b.next = self.z.val();
         // S2 (Sm1): K = x² + y² + z² ≤ 3·2³⁰ < 2³², exact.
         self.k_full.d.next = self.mul1.p.val() + self.mul2.p.val() + self.mul3.p.val();
         self.valid_p4.d.next = self.valid_in.val();

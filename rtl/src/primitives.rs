@@ -13,13 +13,10 @@
 //! | [`SatToUQ1_15`]        | `wide` (32) → `narrow` (16) | signed Q4.28 + ½ LSB → unsigned Q1.15: drop 13 LSBs, clamp to [0, 2 − 2⁻¹⁵] | 0 |
 //! | [`RoundToUQ1_15`]      | `wide` (32) → `narrow` (16) | unsigned Q4.28 → unsigned Q1.15: add ½ LSB (2¹²), drop 13 LSBs, saturate | 0 |
 //! | [`MulSignedUnsigned`]  | `a` (16), `b` (16) → `p` (32) | `a·b = ua·ub − [a<0]·(ub ≪ 16)` mod 2³² (one multiplier) | 0 |
-//! | [`SquareSigned`]       | `a` (16) → `p` (32)      | `a² = ua² − [a<0]·(ua ≪ 17)` mod 2³² (one multiplier) | 0 |
 //! | [`MulPipe`]            | `a` (16), `b` (16) → `p` (32) | a·b unsigned, exact: operands registered, product registered | 2 |
 //! | [`MulSignedUnsignedPipe`] | `a` (16), `b` (16) → `p` (32) | as [`MulSignedUnsigned`], pipelined: operands registered; ua·ub and the correction registered; their difference registered | 3 |
-//! | [`SquareSignedPipe`]   | `a` (16) → `p` (32)      | as [`SquareSigned`], pipelined the same way | 3 |
-//! | [`MulSignedPipe`]      | `a` (16), `b` (16) → `p` (32) | as [`MulSigned`], pipelined the same way | 3 |
+//! | [`MulSignedPipe`]      | `a` (16), `b` (16) → `p` (32) | `a·b = ua·ub − ([a<0]·ub + [b<0]·ua) ≪ 16` mod 2³², pipelined the same way; with `b = a` the signed square | 3 |
 //! | [`RoundProductToUQ1_15`] | `wide` (32) → `narrow` (16) | unsigned Q2.30 → unsigned Q1.15: add ½ LSB (2¹⁴), drop 15 LSBs, saturate | 0 |
-//! | [`MulSigned`]          | `a` (16), `b` (16) → `p` (32) | `a·b = ua·ub − [a<0]·(ub ≪ 16) − [b<0]·(ua ≪ 16)` mod 2³² (one multiplier) | 0 |
 //!
 //! Rounding is to nearest with ties toward +∞ (add half an output LSB, then drop the LSBs), the
 //! rule of [`crate::fixed`]. The `Sat…` narrowings take a word that already carries the half LSB
@@ -321,33 +318,6 @@ impl Logic for MulSignedUnsigned {
 }
 
 crate::hw_block! {
-    /// Signed square 16 → 32 on one unsigned multiplier (one DSP slice):
-    /// `p = ua² − [a<0]·(ua ≪ 17)  (mod 2³²)`, exact (a² ≤ 2³⁰). Formats: `a` signed Qm.n →
-    /// `p` unsigned Q2m.2n (signed Q2.14 → unsigned Q4.28). Combinational.
-    pub struct SquareSigned {
-        in { a: Bits<16> }
-        out { p: Bits<32> }
-        /// ua², the unsigned square.
-        raw: Signal<Local, Bits<32>>,
-        /// [a<0]·(ua ≪ 17), the sign correction.
-        corr: Signal<Local, Bits<32>>,
-    }
-}
-
-impl Logic for SquareSigned {
-    #[hdl_gen]
-    fn update(&mut self) {
-        self.raw.next = self.a.val() * self.a.val();
-        if self.a.val().get_bit(15) {
-            self.corr.next = bit_cast::<32, 16>(self.a.val()) << 17;
-        } else {
-            self.corr.next = 0.into();
-        }
-        self.p.next = self.raw.val() - self.corr.val();
-    }
-}
-
-crate::hw_block! {
     /// Unsigned Q2.30 → unsigned Q1.15, rounded to nearest (ties toward +∞) and saturated:
     /// `rounded = wide + 2¹⁴` (cannot wrap: a 16×16 product is ≤ (2¹⁶ − 1)²), then bits
     /// 30..15, or 0xFFFF (2 − 2⁻¹⁵) when bit 31 of `rounded` is set (the value rounds to ≥ 2).
@@ -373,45 +343,9 @@ impl Logic for RoundProductToUQ1_15 {
     }
 }
 
-crate::hw_block! {
-    /// Signed × signed 16×16 → signed 32 on one unsigned multiplier (one DSP slice):
-    /// `p = ua·ub − [a<0]·(ub ≪ 16) − [b<0]·(ua ≪ 16)  (mod 2³²)`, exact since the true
-    /// product fits 32 bits (|p| ≤ 2³⁰). Formats: signed Qm.n × signed Qk.l → signed
-    /// Q(m+k).(n+l) (Q2.14 × Q2.14 → Q4.28). Combinational.
-    pub struct MulSigned {
-        in { a: Bits<16>, b: Bits<16> }
-        out { p: Bits<32> }
-        /// ua·ub, the unsigned product.
-        raw: Signal<Local, Bits<32>>,
-        /// [a<0]·(ub ≪ 16) and [b<0]·(ua ≪ 16), the sign corrections.
-        corr_a: Signal<Local, Bits<32>>,
-        corr_b: Signal<Local, Bits<32>>,
-        part: Signal<Local, Bits<32>>,
-    }
-}
-
-impl Logic for MulSigned {
-    #[hdl_gen]
-    fn update(&mut self) {
-        self.raw.next = self.a.val() * self.b.val();
-        if self.a.val().get_bit(15) {
-            self.corr_a.next = bit_cast::<32, 16>(self.b.val()) << 16;
-        } else {
-            self.corr_a.next = 0.into();
-        }
-        if self.b.val().get_bit(15) {
-            self.corr_b.next = bit_cast::<32, 16>(self.a.val()) << 16;
-        } else {
-            self.corr_b.next = 0.into();
-        }
-        self.part.next = self.raw.val() - self.corr_a.val();
-        self.p.next = self.part.val() - self.corr_b.val();
-    }
-}
-
 /// Latency of [`MulPipe`]: the operands registered beside the multiplier, then the product.
 pub const MUL_LATENCY: usize = 2;
-/// Latency of [`MulSignedPipe`], [`MulSignedUnsignedPipe`] and [`SquareSignedPipe`]: the
+/// Latency of [`MulSignedPipe`] and [`MulSignedUnsignedPipe`]: the
 /// operands registered, the unsigned product and the sign correction registered, then their
 /// difference.
 pub const SIGNED_MUL_LATENCY: usize = 3;
@@ -480,42 +414,13 @@ impl Logic for MulSignedUnsignedPipe {
 }
 
 crate::hw_block! {
-    /// [`SquareSigned`] in three clocks: the operand registered; ua² and `[a<0]·ua`
-    /// registered; `p = ua² − ([a<0]·ua ≪ 17)  (mod 2³²)` registered. Latency
-    /// [`SIGNED_MUL_LATENCY`], one square per clock, exact.
-    pub struct SquareSignedPipe(clock) {
-        in { a: Bits<16> }
-        out { p: Bits<32> }
-        a_q: DFF<Bits<16>>,
-        raw: DFF<Bits<32>>,
-        corr: DFF<Bits<16>>,
-        corr_w: Signal<Local, Bits<32>>,
-        p_q: DFF<Bits<32>>,
-    }
-}
-
-impl Logic for SquareSignedPipe {
-    #[hdl_gen]
-    fn update(&mut self) {
-        clock!(self, clock, a_q, raw, corr, p_q);
-        self.a_q.d.next = self.a.val();
-        self.raw.d.next = self.a_q.q.val() * self.a_q.q.val();
-        if self.a_q.q.val().get_bit(15) {
-            self.corr.d.next = self.a_q.q.val();
-        } else {
-            self.corr.d.next = 0.into();
-        }
-        self.corr_w.next = bit_cast::<32, 16>(self.corr.q.val()) << 17;
-        self.p_q.d.next = self.raw.q.val() - self.corr_w.val();
-        self.p.next = self.p_q.q.val();
-    }
-}
-
-crate::hw_block! {
-    /// [`MulSigned`] in three clocks: the operands registered; ua·ub and the sum of the
-    /// corrections `([a<0]·ub + [b<0]·ua) mod 2¹⁶` registered (only the high half of the
-    /// product sees them); `p = ua·ub − corr ≪ 16  (mod 2³²)` registered. Latency
-    /// [`SIGNED_MUL_LATENCY`], one product per clock, exact.
+    /// Signed × signed 16×16 → signed 32 on one unsigned multiplier, in three clocks: the
+    /// operands registered; ua·ub and the sum of the corrections `([a<0]·ub + [b<0]·ua) mod
+    /// 2¹⁶` registered (only the high half of the product sees them); `p = ua·ub − corr ≪ 16
+    /// (mod 2³²)` registered. Exact, since the true product fits 32 bits (|p| ≤ 2³⁰). Formats:
+    /// signed Qm.n × signed Qk.l → signed Q(m+k).(n+l). With `b = a` it is the signed square
+    /// (the corrections sum to 2·ua, i.e. `ua ≪ 17`). Latency [`SIGNED_MUL_LATENCY`], one
+    /// product per clock.
     pub struct MulSignedPipe(clock) {
         in { a: Bits<16>, b: Bits<16> }
         out { p: Bits<32> }
@@ -663,21 +568,14 @@ mod tests {
     #[test]
     fn multiplies_are_exact() {
         let mut mul = MulSignedUnsigned::default();
-        let mut sq = SquareSigned::default();
-        let mut ss = MulSigned::default();
         mul.connect_all();
-        sq.connect_all();
-        ss.connect_all();
         let edges = [
             0u32, 1, 2, 0x3FFF, 0x4000, 0x7FFE, 0x7FFF, 0x8000, 0x8001, 0xC000, 0xFFFF,
         ];
         let mut words: Vec<u32> = (0..=0xFFFF).step_by(251).collect();
         words.extend(edges);
         for &a in &words {
-            sq.a.next = (a as u64).into();
-            settle(&mut sq);
             let sa = NORMAL.to_int(a as u64);
-            assert_eq!(sq.p.val().to_u64(), (sa * sa) as u64, "square {a:#x}");
             for &b in &words {
                 mul.a.next = (a as u64).into();
                 mul.b.next = (b as u64).into();
@@ -686,15 +584,6 @@ mod tests {
                     mul.p.val().to_u64(),
                     PRODUCT.from_int(sa * b as i64),
                     "{a:#x}·{b:#x}"
-                );
-                ss.a.next = (a as u64).into();
-                ss.b.next = (b as u64).into();
-                settle(&mut ss);
-                let sb = NORMAL.to_int(b as u64);
-                assert_eq!(
-                    ss.p.val().to_u64(),
-                    PRODUCT.from_int(sa * sb),
-                    "signed {a:#x}·{b:#x}"
                 );
             }
         }
@@ -705,7 +594,7 @@ mod tests {
     #[test]
     fn pipelined_multiplies_are_exact_after_their_latency() {
         let mut m = MulSignedPipe::default();
-        let mut sq = SquareSignedPipe::default();
+        let mut sq = MulSignedPipe::default();
         let mut su = MulSignedUnsignedPipe::default();
         let mut mu = MulPipe::default();
         m.connect_all();
@@ -726,6 +615,7 @@ mod tests {
             m.a.next = a.into();
             m.b.next = b.into();
             sq.a.next = a.into();
+            sq.b.next = a.into();
             su.a.next = a.into();
             su.b.next = b.into();
             mu.a.next = a.into();
