@@ -8,7 +8,8 @@
 //! - measured by criterion: simulated clocks per second of the whole pipeline over a slice
 //!   of the scene (throughput in elements = clocks);
 //! - the AXI4-Stream top `pixel-stream` on the default scene with `tready` high: fragments per
-//!   clock beside `pixel-pipeline`'s (`SHADECORE_BENCH_ONLY=stream` prints only this).
+//!   clock beside `pixel-pipeline`'s, in mesh order and in the driver's balanced order
+//!   (`SHADECORE_BENCH_ONLY=stream` prints only this).
 
 use std::time::Instant;
 
@@ -101,49 +102,55 @@ fn figures() {
 }
 
 /// The AXI4-Stream top on the default scene with `m_axis_tready` always high: fragments per
-/// clock beside `pixel-pipeline`'s in the same run (the set-up stream's 26 words per triangle
-/// are the difference), from the rust-hdl simulation (checked clock for clock against the
-/// twin that paces the producer).
+/// clock beside `pixel-pipeline`'s in the same run, with the triangles in mesh order and in the
+/// driver's balanced order (`pipeline::stream::balanced_order`, the default of `render`), from
+/// the rust-hdl simulation (checked clock for clock against the twin that paces the producer).
 fn stream_figures() {
     use rtl::registry::BlockParams;
     let (tris, ctx) = default_scene();
-    let jobs = lit_jobs(&tris);
+    let mesh = lit_jobs(&tris);
     let regs = ShadingRegs::of(&ctx).unwrap();
     let o = pipeline::lit::method_options(Method::NormalizerFit).unwrap();
     let p = rtl::pixel_pipeline::PipelineParams::from_options(&o).unwrap();
-    let words = pipeline::stream::scene_words(&jobs, &regs);
-    let run = testbenches::pixel_stream::drive(
-        &p,
-        &words,
-        1,
-        0.0,
-        &mut testbenches::stall::StallPattern::never(),
-        1,
-    );
-    let t0 = Instant::now();
-    let out = testbenches::registry::find("pixel-stream")
-        .unwrap()
-        .simulate(&o, &run.rows)
-        .unwrap();
-    let secs = t0.elapsed().as_secs_f64();
-    assert!(out == run.outputs, "rust-hdl and the twin agree");
-    let fragments = run.beats.iter().filter(|b| b.pixel).count();
-    // From the first word to the last beat.
-    let last = out.iter().rposition(|r| r[1] != 0).unwrap() + 1;
-    let plain = run_plain(&jobs, &regs);
-    println!(
-        "pixel-stream normalizer-fit, default scene, tready high: {fragments} fragments in {last} clocks \
-         ({:.4} fragments/clock; pixel-pipeline {:.4} in {} clocks, ratio {:.3}); {} set-up words \
-         for {} triangles; address block held {} clocks; {:.0} clocks/s",
-        fragments as f64 / last as f64,
-        plain.pixels_per_clock(),
-        plain.clocks,
-        (fragments as f64 / last as f64) / plain.pixels_per_clock(),
-        words.len(),
-        jobs.len(),
-        run.held,
-        out.len() as f64 / secs
-    );
+    let balanced: Vec<LitJob> = pipeline::stream::balanced_order(&mesh)
+        .iter()
+        .map(|&i| mesh[i])
+        .collect();
+    for (label, jobs) in [("mesh order", &mesh), ("balanced order", &balanced)] {
+        let words = pipeline::stream::scene_words(jobs, &regs);
+        let run = testbenches::pixel_stream::drive(
+            &p,
+            &words,
+            1,
+            0.0,
+            &mut testbenches::stall::StallPattern::never(),
+            1,
+        );
+        let t0 = Instant::now();
+        let out = testbenches::registry::find("pixel-stream")
+            .unwrap()
+            .simulate(&o, &run.rows)
+            .unwrap();
+        let secs = t0.elapsed().as_secs_f64();
+        assert!(out == run.outputs, "rust-hdl and the twin agree");
+        let fragments = run.beats.iter().filter(|b| b.pixel).count();
+        // From the first word to the last beat.
+        let last = out.iter().rposition(|r| r[1] != 0).unwrap() + 1;
+        let plain = run_plain(jobs, &regs);
+        println!(
+            "pixel-stream normalizer-fit, default scene, {label}, tready high: {fragments} fragments in {last} clocks \
+             ({:.4} fragments/clock; pixel-pipeline in the same order {:.4} in {} clocks, ratio {:.3}); {} set-up words \
+             for {} triangles; address block held {} clocks; {:.0} clocks/s",
+            fragments as f64 / last as f64,
+            plain.pixels_per_clock(),
+            plain.clocks,
+            (fragments as f64 / last as f64) / plain.pixels_per_clock(),
+            words.len(),
+            jobs.len(),
+            run.held,
+            out.len() as f64 / secs
+        );
+    }
 }
 
 fn run_plain(jobs: &[LitJob], regs: &ShadingRegs) -> pipeline::gouraud::PipeStats {

@@ -105,6 +105,31 @@ pub struct RtlBuild {
     pub address: Address,
     /// The top the lit methods go through (`--lit-top`).
     pub lit_top: LitTop,
+    /// The order the lit methods' triangles are sent in (`--setup-order`).
+    pub setup_order: SetupOrder,
+}
+
+/// The order in which the driver sends the lit methods' triangles (`--setup-order`). The
+/// images do not depend on it (the frame writer's tie rule, [`render_lit_rtl`]); the clock
+/// counts do.
+#[derive(clap::ValueEnum, Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum SetupOrder {
+    /// Large and small walks alternately (`pipeline::stream::balanced_order`), so the 26-word
+    /// set-up records of small triangles stream in while large ones are walked.
+    #[default]
+    Balanced,
+    /// The mesh's order.
+    Mesh,
+}
+
+impl SetupOrder {
+    /// The indices of `jobs` in sending order.
+    pub fn of(self, jobs: &[LitJob]) -> Vec<usize> {
+        match self {
+            SetupOrder::Balanced => pipeline::stream::balanced_order(jobs),
+            SetupOrder::Mesh => (0..jobs.len()).collect(),
+        }
+    }
 }
 
 /// The top the lit methods' frames go through (`--lit-top`).
@@ -203,8 +228,10 @@ pub fn render_rtl_with(
 }
 
 /// Render `tris` with a lit method through the pixel pipeline (`rtl::pixel_pipeline`) built
-/// for it. Depth is the hardware's: each fragment's z word is tested against a z-buffer here
-/// (the frame writer, memory outside the pipeline; nearer wins, ties keep the first writer).
+/// for it. The triangles are sent in the build's [`SetupOrder`] (balanced by default). Depth
+/// is the hardware's: each fragment's z word is tested against a z-buffer here (the frame
+/// writer, memory outside the pipeline; nearer wins, and at equal depth the lower triangle
+/// index, i.e. the mesh-order first writer, so the image does not depend on the order sent).
 /// Beside it the f64 depth planes pick a visible triangle per pixel as the golden renderer
 /// does; pixels where the two disagree are counted in
 /// [`RtlRender::visibility_mismatches`].
@@ -255,6 +282,8 @@ pub fn render_lit_rtl_with(
     }
     progress.set_length(jobs.len() as u64);
     progress.set_position(0);
+    let order = build.setup_order.of(&jobs);
+    let sent: Vec<LitJob> = order.iter().map(|&i| jobs[i]).collect();
     let mut writer = FrameWriter::new(width, height);
     let top = build.lit_top.resolve(build.sim)?;
     let mut pipe = match build.sim {
@@ -265,15 +294,18 @@ pub fn render_lit_rtl_with(
         Sim::Verilator => {
             let o = pipeline::lit::method_options(method)
                 .ok_or_else(|| anyhow::anyhow!("no lit pipeline build for {method}"))?;
-            LitPipe::replay(crate::verilator_engine::lit_replay(&o, &jobs, &regs)?)
+            LitPipe::replay(crate::verilator_engine::lit_replay(&o, &sent, &regs)?)
         }
     };
     let stats = pipe
         .run(
-            &jobs,
+            &sent,
             &regs,
-            lit_clock_budget(&jobs),
-            |f| writer.put(f.job, f.x, f.y, f.z, f.rgb, &depth[f.job]),
+            lit_clock_budget(&sent),
+            |f| {
+                let k = order[f.job];
+                writer.put(k, f.x, f.y, f.z, f.rgb, &depth[k])
+            },
             |done| progress.set_position(done),
         )
         .map_err(|e| anyhow::anyhow!("RTL simulation: {e}"))?;
@@ -365,16 +397,22 @@ impl FrameWriter {
     }
 
     /// A fragment of triangle `k` (whose f64 depth plane is `plane`) with depth word `z`.
+    /// Nearer wins; at equal depth the lower `k` (the first writer in mesh order), whatever
+    /// order the fragments arrive in.
     fn put(&mut self, k: usize, x: u32, y: u32, z: i32, rgb: [u8; 3], plane: &Plane) {
         let (w, h) = (self.frame.width, self.frame.height);
         let (xi, yi) = (x as i32, y as i32);
+        let at = (x < w && y < h).then(|| y as usize * w as usize + x as usize);
+        let tie_won = at.is_some_and(|i| z as f64 == self.frame.depth[i] && k < self.hw_winner[i]);
         if self.frame.put(xi, yi, z as f64, rgb) {
             self.hw_winner[y as usize * w as usize + x as usize] = k;
+        } else if let (true, Some(i)) = (tie_won, at) {
+            self.frame.rgb[i] = rgb;
+            self.hw_winner[i] = k;
         }
-        if x < w && y < h {
-            let i = y as usize * w as usize + x as usize;
+        if let Some(i) = at {
             let zf = plane.at_pixel(xi, yi);
-            if zf < self.golden_z[i] {
+            if zf < self.golden_z[i] || (zf == self.golden_z[i] && k < self.golden_winner[i]) {
                 self.golden_z[i] = zf;
                 self.golden_winner[i] = k;
             }
@@ -534,6 +572,38 @@ pub fn max_channel_diff(a: &Frame, b: &Frame) -> (u8, usize) {
 mod tests {
     use super::*;
     use golden::methods::Method;
+
+    /// The frame writer's tie rule: at equal depth the lower triangle index wins, in whichever
+    /// order the fragments arrive (so the set-up order cannot change an image); nearer still
+    /// wins over a lower index.
+    #[test]
+    fn frame_writer_ties_go_to_the_lower_triangle() {
+        let flat = Plane {
+            a: 0.0,
+            b: 0.0,
+            c: 1.0,
+        };
+        let near = Plane { c: 0.5, ..flat };
+        let stats = PipeStats::default();
+        for order in [[0usize, 1, 2], [2, 1, 0], [1, 2, 0]] {
+            let mut w = FrameWriter::new(4, 4);
+            for &k in &order {
+                let (z, plane) = if k == 2 { (100, &near) } else { (200, &flat) };
+                // Pixel (1, 1): triangles 0 and 1 tie (z = 200). Pixel (2, 1): all three, and
+                // triangle 2 is nearer.
+                w.put(k, 1, 1, 200, [k as u8 + 1; 3], &flat);
+                w.put(k, 2, 1, z, [k as u8 + 1; 3], plane);
+            }
+            let r = w.finish(stats);
+            assert_eq!(r.frame.rgb[4 + 1], [1; 3], "tie, arrival order {order:?}");
+            assert_eq!(
+                r.frame.rgb[4 + 2],
+                [3; 3],
+                "nearer, arrival order {order:?}"
+            );
+            assert_eq!(r.visibility_mismatches, 0, "arrival order {order:?}");
+        }
+    }
 
     /// The default scene (sphere rez 50, 400×400, light 90°) through the RTL: same coverage and
     /// fragment counts as the golden Gouraud render, every colour within 1 LSB.

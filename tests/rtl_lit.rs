@@ -274,10 +274,12 @@ fn lambert_lighting_through_the_rtl() {
 }
 
 /// The AXI4-Stream top (`pixel-stream`, the default under rust-hdl) and the port-level top
-/// (`pixel-pipeline`) render the same frames; the stream's extra clocks are its set-up words.
+/// (`pixel-pipeline`) render the same frames, and so do the two set-up orders (balanced, the
+/// default, and mesh): the frame writer's tie rule makes the order invisible. The stream's
+/// extra clocks are its set-up words.
 #[test]
 fn stream_and_port_tops_render_the_same_frames() {
-    use shadecore::rtl_engine::{render_lit_rtl_with, LitTop, RtlBuild};
+    use shadecore::rtl_engine::{render_lit_rtl_with, LitTop, RtlBuild, SetupOrder};
     let args = SceneArgs {
         rez: 16,
         size: (160, 160),
@@ -285,9 +287,10 @@ fn stream_and_port_tops_render_the_same_frames() {
     };
     let s = build(&args).unwrap();
     for m in [Method::NormalizerFit, Method::BrdfK8] {
-        let run = |top| {
+        let run = |top, setup_order| {
             let b = RtlBuild {
                 lit_top: top,
+                setup_order,
                 ..RtlBuild::default()
             };
             render_lit_rtl_with(
@@ -301,13 +304,28 @@ fn stream_and_port_tops_render_the_same_frames() {
             )
             .unwrap()
         };
-        let (st, pp) = (run(LitTop::Stream), run(LitTop::Pipeline));
-        assert!(st.frame.rgb == pp.frame.rgb, "{m}: frames differ");
-        assert_eq!(st.stats.pixels, pp.stats.pixels);
+        let st = run(LitTop::Stream, SetupOrder::Balanced);
+        let pp = run(LitTop::Pipeline, SetupOrder::Balanced);
+        let sm = run(LitTop::Stream, SetupOrder::Mesh);
+        for (label, other) in [("pixel-pipeline", &pp), ("mesh order", &sm)] {
+            assert!(
+                st.frame.rgb == other.frame.rgb,
+                "{m}: pixel-stream's frame and {label}'s differ"
+            );
+            assert!(
+                st.frame.depth == other.frame.depth,
+                "{m}: depth differs from {label}'s"
+            );
+            assert_eq!(st.stats.pixels, other.stats.pixels);
+            assert_eq!(other.visibility_mismatches, st.visibility_mismatches);
+        }
         println!(
-            "{m}: pixel-stream {} clocks ({:.3}/clock), pixel-pipeline {} clocks ({:.3}/clock)",
+            "{m}: pixel-stream {} clocks ({:.3}/clock; mesh order {} clocks, {:.3}/clock), \
+             pixel-pipeline {} clocks ({:.3}/clock)",
             st.stats.clocks,
             st.stats.pixels_per_clock(),
+            sm.stats.clocks,
+            sm.stats.pixels_per_clock(),
             pp.stats.clocks,
             pp.stats.pixels_per_clock()
         );

@@ -28,6 +28,7 @@ const PIPELINED: RtlBuild = RtlBuild {
     sim: shadecore::verilator_engine::Sim::RustHdl,
     address: shadecore::rtl_engine::Address::Default,
     lit_top: shadecore::rtl_engine::LitTop::Default,
+    setup_order: shadecore::rtl_engine::SetupOrder::Balanced,
 };
 
 fn check_scene(label: &str, args: &SceneArgs, nmse_bound: &[(Method, f64)]) {

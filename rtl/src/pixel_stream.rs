@@ -44,13 +44,15 @@
 //!   `EVENT_TO_FRAGMENT` + 2 = 66 events are then still in flight, so the FIFO never
 //!   overflows and never drops a fragment, and with `m_axis_tready` high it holds at most one beat and
 //!   the address block is never held.
-//! - Throughput: one fragment per clock along a line, as `pixel-pipeline`, but a triangle's
-//!   set-up is 26 words at one word per clock, so runs of triangles smaller than that are
-//!   set-up bound: the default scene (2 288 triangles, 49 fragments each on average) gives
-//!   0.885 fragments per clock against `pixel-pipeline`'s 0.986 (`cargo bench --bench
-//!   rtl_lit`). More buffering in front of the reader does not help (measured with input
-//!   FIFOs of 64 to 100 000 words: unchanged); only more load banks or a wider set-up word
-//!   would.
+//! - Throughput: one fragment per clock along a line, as `pixel-pipeline`, as long as the
+//!   set-up words keep ahead of the walk: a triangle's set-up is 26 words at one word per
+//!   clock, so a run of triangles smaller than that is set-up bound. In mesh order the default
+//!   scene (2 288 triangles, 49 fragments each on average, small ones in runs along the
+//!   silhouette) gives 0.885 fragments per clock against `pixel-pipeline`'s 0.986; more
+//!   buffering does not help (input FIFOs of 64 to 100 000 words measured: unchanged). The
+//!   driver therefore sends large and small triangles alternately
+//!   (`pipeline::stream::balanced_order`): 0.985, 114 847 clocks against `pixel-pipeline`'s
+//!   114 808 (`cargo bench --bench rtl_lit`, both orders printed).
 //! - Latency: a triangle record's last word accepted in clock t → its first beat offered in
 //!   clock t + 71 (the record is complete in t + 1, moves to the load bank in t + 1, loads in
 //!   t + 2; 67 clocks through `pixel-pipeline`, 2 through the FIFO and its output register).

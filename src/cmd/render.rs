@@ -72,6 +72,12 @@ pub struct Args {
     /// (the set-up stream carries 26 words per triangle).
     #[arg(long, value_enum, default_value = "default", hide_default_value = true)]
     pub lit_top: crate::rtl_engine::LitTop,
+    /// With the RTL engine: the order the lit methods' triangles are sent in — balanced (large
+    /// and small walks alternately, so small triangles' set-up words stream in while large
+    /// ones are walked) or mesh. The images are identical (at equal depth the lower triangle
+    /// index wins); the clock counts differ.
+    #[arg(long, value_enum, default_value = "balanced")]
+    pub setup_order: crate::rtl_engine::SetupOrder,
 }
 
 /// The Horner unit variant of the cubic pipeline.
@@ -607,6 +613,7 @@ pub fn run(args: Args) -> Result<()> {
         sim: args.sim,
         address: args.address,
         lit_top: args.lit_top,
+        setup_order: args.setup_order,
     };
     let t0 = std::time::Instant::now();
     let frames = render_frames(&setup, &methods, args.engine, build)?;

@@ -23,6 +23,10 @@ pub struct Args {
     /// brdf-k8, brdf-k16 or bump.
     #[arg(long, default_value = "normalizer-fit")]
     pub method: String,
+    /// The order the triangles are sent in: balanced (large and small walks alternately, as
+    /// `render` sends them) or mesh.
+    #[arg(long, value_enum, default_value = "balanced")]
+    pub setup_order: crate::rtl_engine::SetupOrder,
     /// Output directory: setup.txt, beats.txt, pixel_stream.v.
     #[arg(long, default_value = "target/stream")]
     pub out: PathBuf,
@@ -44,6 +48,7 @@ pub fn run(a: Args) -> Result<()> {
             jobs.push(j);
         }
     }
+    let jobs: Vec<LitJob> = a.setup_order.of(&jobs).iter().map(|&i| jobs[i]).collect();
     let p = PipelineParams::from_options(&o).map_err(|e| anyhow!(e))?;
     let words = scene_words(&jobs, &regs);
     // The producer and consumer never pause here: the rows are the twin's; the beats are the
@@ -61,7 +66,11 @@ pub fn run(a: Args) -> Result<()> {
         .collect();
 
     std::fs::create_dir_all(&a.out).with_context(|| format!("creating {}", a.out.display()))?;
-    let mut setup = String::from("# pixel-stream set-up words: hex word, tlast\n");
+    let mut setup = format!(
+        "# pixel-stream set-up words ({:?} order): hex word, tlast\n",
+        a.setup_order
+    )
+    .to_lowercase();
     for (w, last) in &words {
         setup.push_str(&format!("{w:08x} {}\n", *last as u8));
     }
