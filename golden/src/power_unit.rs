@@ -92,18 +92,19 @@ pub fn error_bound(mode: PowerMode, n: u32, c: f64) -> f64 {
 ///
 /// ```text
 /// rnd(p)  = min((p + 2¹⁴) >> 15, 0xFFFF)             UQ2.30 → UQ1.15, ties up, saturate
-/// Every multiply-and-round takes three clocks: the exact product two registers on (a, a'),
-/// then the rounding and the selection (b).
-/// exact:  E0a acc = n₀ ? c : 0x8000,  sq = c²             E0b pw = rnd(sq)
+/// exact:  every multiply-and-round takes five clocks: the exact product four registers on
+///         (a), then the rounding and the selection (b).
+///         E0a acc = n₀ ? c : 0x8000,  sq = c²             E0b pw = rnd(sq)
 ///         Eja prod = acc·pw,  sq = pw²                    Ejb acc = n_j ? rnd(prod) : acc,
 ///                                                             pw = rnd(sq)
-///         (j = 1..9; E9 squares nothing): latency 30
+///         (j = 1..9; E9 squares nothing): latency 50
+/// W:      every multiply takes two clocks (a, a'), the rounding one more (b).
 /// W:      W1  a = slope word, t = |c − 0x8000|, above = c > 0x8000, zero = c == 0
 ///         W2  p = a·t                          (2^-(15+f) units; two clocks)
 ///         W3a sum = zero ? 0 : above ? 2^(15+f) + p : max(2^(15+f) − p, 0)   (registered)
 ///         W3b b = min((sum + 2^(f−1)) >> f, 0xFFFF)
 ///         W4..W7  a: sq = b²; b: b = rnd(sq) in the first log2 k stages, else b
-///         then 13 delay registers (latency 30 in both modes)
+///         then 33 delay registers (latency 50 in both modes)
 /// ```
 /// n travels with its pixel (each stage reads the n that entered with the pixel).
 pub mod twin {
@@ -114,6 +115,11 @@ pub mod twin {
     pub fn rnd(p: u64) -> u64 {
         ((p + (1 << 14)) >> 15).min(0xFFFF)
     }
+
+    /// Exact mode: clocks per square-and-multiply step (the product four, the rounding one).
+    const STEP: usize = 5;
+    /// Pipeline stages (exact: ten steps; W uses the first 17, then its padding).
+    const STAGES: usize = 10 * STEP;
 
     /// One pixel in flight: (valid, value, pow or a, n).
     #[derive(Clone, Copy, Debug, Default)]
@@ -134,8 +140,8 @@ pub mod twin {
         mode: PowerMode,
         /// W mode: fraction bits of the slope word (8 or 9).
         frac: u32,
-        stages: [Stage; 30],
-        /// W mode: (valid, value) of the padding delay (13 registers).
+        stages: [Stage; STAGES],
+        /// W mode: (valid, value) of the padding delay (33 registers).
         pad: VecDeque<(bool, u64)>,
     }
 
@@ -144,15 +150,15 @@ pub mod twin {
             PowerTwin {
                 mode,
                 frac: mode.k().map_or(8, |k| slope_word(k, 0).1),
-                stages: [Stage::default(); 30],
-                pad: std::iter::repeat_n((false, 0), 13).collect(),
+                stages: [Stage::default(); STAGES],
+                pad: std::iter::repeat_n((false, 0), 33).collect(),
             }
         }
 
         /// (valid_out, S as a UQ1.15 word) shown this clock.
         pub fn outputs(&self) -> (bool, u64) {
             match self.mode {
-                PowerMode::Exact => (self.stages[29].valid, self.stages[29].acc),
+                PowerMode::Exact => (self.stages[STAGES - 1].valid, self.stages[STAGES - 1].acc),
                 PowerMode::W(_) => self.pad[0],
             }
         }
@@ -163,7 +169,7 @@ pub mod twin {
             let n = n & 0x3FF;
             match self.mode {
                 PowerMode::Exact => {
-                    let mut next = [Stage::default(); 30];
+                    let mut next = [Stage::default(); STAGES];
                     next[0] = Stage {
                         valid: valid_in,
                         acc: if n & 1 == 1 { cos } else { 0x8000 },
@@ -171,15 +177,15 @@ pub mod twin {
                         n,
                         ..Stage::default()
                     };
-                    next[1] = s[0];
-                    next[2] = Stage {
-                        pw: rnd(s[1].sq),
+                    next[1..STEP - 1].copy_from_slice(&s[..STEP - 2]);
+                    next[STEP - 1] = Stage {
+                        pw: rnd(s[STEP - 2].sq),
                         sq: 0,
-                        ..s[1]
+                        ..s[STEP - 2]
                     };
                     for j in 1..10 {
-                        let p = s[3 * j - 1];
-                        next[3 * j] = Stage {
+                        let p = s[STEP * j - 1];
+                        next[STEP * j] = Stage {
                             valid: p.valid,
                             acc: p.acc,
                             prod: p.acc * p.pw,
@@ -187,9 +193,10 @@ pub mod twin {
                             n: p.n,
                             ..Stage::default()
                         };
-                        next[3 * j + 1] = s[3 * j];
-                        let p = s[3 * j + 1];
-                        next[3 * j + 2] = Stage {
+                        next[STEP * j + 1..STEP * j + STEP - 1]
+                            .copy_from_slice(&s[STEP * j..STEP * j + STEP - 2]);
+                        let p = s[STEP * j + STEP - 2];
+                        next[STEP * j + STEP - 1] = Stage {
                             valid: p.valid,
                             acc: if (p.n >> j) & 1 == 1 {
                                 rnd(p.prod)
@@ -208,7 +215,7 @@ pub mod twin {
                     // Output of W7b (stage index 16) enters the padding delay.
                     self.pad.pop_front();
                     self.pad.push_back((s[16].valid, s[16].acc));
-                    let mut next = [Stage::default(); 30];
+                    let mut next = [Stage::default(); STAGES];
                     // W4..W7: (a) at 5, 8, 11, 14, (a') at 6, 9, 12, 15, (b) at 7, 10, 13, 16.
                     for i in 0..4 {
                         let p = s[4 + 3 * i];

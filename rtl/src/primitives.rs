@@ -14,6 +14,7 @@
 //! | [`RoundToUQ1_15`]      | `wide` (32) → `narrow` (16) | unsigned Q4.28 → unsigned Q1.15: add ½ LSB (2¹²), drop 13 LSBs, saturate | 0 |
 //! | [`MulSignedUnsigned`]  | `a` (16), `b` (16) → `p` (32) | `a·b = ua·ub − [a<0]·(ub ≪ 16)` mod 2³² (one multiplier) | 0 |
 //! | [`MulPipe`]            | `a` (16), `b` (16) → `p` (32) | a·b unsigned, exact: operands registered, product registered | 2 |
+//! | [`MulPipeDeep`]        | `a` (16), `b` (16) → `p` (32) | as [`MulPipe`] with each side registered twice (a multiplier placed far from its logic) | 4 |
 //! | [`MulSignedUnsignedPipe`] | `a` (16), `b` (16) → `p` (32) | as [`MulSignedUnsigned`], pipelined: operands registered; ua·ub and the correction registered; their difference registered | 3 |
 //! | [`MulSignedPipe`]      | `a` (16), `b` (16) → `p` (32) | `a·b = ua·ub − ([a<0]·ub + [b<0]·ua) ≪ 16` mod 2³², pipelined the same way; with `b = a` the signed square | 3 |
 //! | [`RoundProductToUQ1_15`] | `wide` (32) → `narrow` (16) | unsigned Q2.30 → unsigned Q1.15: add ½ LSB (2¹⁴), drop 15 LSBs, saturate | 0 |
@@ -379,6 +380,41 @@ impl Logic for MulPipe {
     }
 }
 
+/// Latency of [`MulPipeDeep`]: the operands registered twice, the product registered twice.
+pub const MUL_DEEP_LATENCY: usize = 4;
+
+crate::hw_block! {
+    /// Unsigned 16×16 → 32 in four clocks, for a multiplier that may be placed far from the
+    /// logic around it: `a`, `b` registered twice, the product registered twice (exact).
+    /// The register next to the multiplier on each side has it as its only neighbour there, so
+    /// the placer can put it beside the multiplier's site and the long routes get a clock of
+    /// their own. Latency [`MUL_DEEP_LATENCY`], one product per clock.
+    pub struct MulPipeDeep(clock) {
+        in { a: Bits<16>, b: Bits<16> }
+        out { p: Bits<32> }
+        a_q: DFF<Bits<16>>,
+        b_q: DFF<Bits<16>>,
+        a_q2: DFF<Bits<16>>,
+        b_q2: DFF<Bits<16>>,
+        p_q: DFF<Bits<32>>,
+        p_q2: DFF<Bits<32>>,
+    }
+}
+
+impl Logic for MulPipeDeep {
+    #[hdl_gen]
+    fn update(&mut self) {
+        clock!(self, clock, a_q, b_q, a_q2, b_q2, p_q, p_q2);
+        self.a_q.d.next = self.a.val();
+        self.b_q.d.next = self.b.val();
+        self.a_q2.d.next = self.a_q.q.val();
+        self.b_q2.d.next = self.b_q.q.val();
+        self.p_q.d.next = self.a_q2.q.val() * self.b_q2.q.val();
+        self.p_q2.d.next = self.p_q.q.val();
+        self.p.next = self.p_q2.q.val();
+    }
+}
+
 crate::hw_block! {
     /// [`MulSignedUnsigned`] in three clocks: the operands registered; ua·ub and `[a<0]·ub`
     /// registered; `p = ua·ub − ([a<0]·ub ≪ 16)  (mod 2³²)` registered. Latency
@@ -597,6 +633,8 @@ mod tests {
         let mut sq = MulSignedPipe::default();
         let mut su = MulSignedUnsignedPipe::default();
         let mut mu = MulPipe::default();
+        let mut md = MulPipeDeep::default();
+        md.connect_all();
         m.connect_all();
         sq.connect_all();
         su.connect_all();
@@ -610,7 +648,7 @@ mod tests {
             .collect();
         pairs.extend((0..3000u64).map(|i| ((i * 40503) & 0xFFFF, (i * 9973 + 7) & 0xFFFF)));
         let mut sent: Vec<(u64, u64)> = vec![];
-        for c in 0..pairs.len() + SIGNED_MUL_LATENCY {
+        for c in 0..pairs.len() + MUL_DEEP_LATENCY {
             let (a, b) = pairs.get(c).copied().unwrap_or((0, 0));
             m.a.next = a.into();
             m.b.next = b.into();
@@ -620,6 +658,10 @@ mod tests {
             su.b.next = b.into();
             mu.a.next = a.into();
             mu.b.next = b.into();
+            md.a.next = a.into();
+            md.b.next = b.into();
+            md.clock.next = Clock { clk: false };
+            settle(&mut md);
             m.clock.next = Clock { clk: false };
             sq.clock.next = Clock { clk: false };
             su.clock.next = Clock { clk: false };
@@ -641,11 +683,17 @@ mod tests {
                 let (a, b) = sent[c - MUL_LATENCY];
                 assert_eq!(mu.p.val().to_u64(), a * b, "unsigned {a:#x}·{b:#x}");
             }
+            if c >= MUL_DEEP_LATENCY {
+                let (a, b) = sent[c - MUL_DEEP_LATENCY];
+                assert_eq!(md.p.val().to_u64(), a * b, "deep {a:#x}·{b:#x}");
+            }
             sent.push((a, b));
             m.clock.next = Clock { clk: true };
             sq.clock.next = Clock { clk: true };
             su.clock.next = Clock { clk: true };
             mu.clock.next = Clock { clk: true };
+            md.clock.next = Clock { clk: true };
+            settle(&mut md);
             settle(&mut m);
             settle(&mut sq);
             settle(&mut su);

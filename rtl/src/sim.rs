@@ -120,7 +120,9 @@ pub const CLOCK_PERIOD_PS: u64 = 10;
 
 /// Hand-stepped simulation of a [`Dut`], optionally writing a VCD.
 pub struct Stepper<D: Dut> {
-    dut: D,
+    /// Boxed: a top is hundreds of kB (the fast pipeline 390 kB), and each by-value move of it
+    /// in a caller's frame would sit on a thread's stack (2 MB for test and worker threads).
+    dut: Box<D>,
     cycle: u64,
     vcd: Option<VCDProbe<Box<dyn Write>>>,
 }
@@ -130,11 +132,16 @@ type VCDProbe<W> = rust_hdl::core::vcd_probe::VCDProbe<W>;
 
 impl<D: Dut> Stepper<D> {
     /// Connect, check (open signals, loops) and settle `dut` with the clock low.
-    pub fn new(mut dut: D) -> Result<Self, String> {
+    pub fn new(dut: D) -> Result<Self, String> {
+        Self::new_boxed(Box::new(dut))
+    }
+
+    /// [`Stepper::new`] of a DUT already on the heap.
+    pub fn new_boxed(mut dut: Box<D>) -> Result<Self, String> {
         dut.connect_all();
-        check_all(&dut).map_err(|e| format!("rust-hdl check failed: {e:?}"))?;
+        check_all(dut.as_ref()).map_err(|e| format!("rust-hdl check failed: {e:?}"))?;
         dut.clock_mut().next = Clock { clk: false };
-        settle(&mut dut)?;
+        settle(dut.as_mut())?;
         Ok(Self {
             dut,
             cycle: 0,
@@ -144,8 +151,8 @@ impl<D: Dut> Stepper<D> {
 
     /// Start writing a VCD of every signal from the current cycle on.
     pub fn start_vcd(&mut self, w: Box<dyn Write>) {
-        let probe = write_vcd_header(w, &self.dut);
-        let mut probe = write_vcd_dump(probe, &self.dut);
+        let probe = write_vcd_header(w, self.dut.as_ref());
+        let mut probe = write_vcd_dump(probe, self.dut.as_ref());
         let _ = probe.timestamp(self.cycle * CLOCK_PERIOD_PS);
         self.vcd = Some(probe);
     }
@@ -159,7 +166,7 @@ impl<D: Dut> Stepper<D> {
         if let Some(probe) = self.vcd.take() {
             let mut probe = probe;
             let _ = probe.timestamp(t);
-            self.vcd = Some(write_vcd_change(probe, &self.dut));
+            self.vcd = Some(write_vcd_change(probe, self.dut.as_ref()));
         }
     }
 
@@ -168,11 +175,11 @@ impl<D: Dut> Stepper<D> {
         let t0 = self.cycle * CLOCK_PERIOD_PS;
         self.dut.drive(inputs);
         self.dut.clock_mut().next = Clock { clk: false };
-        settle(&mut self.dut)?;
+        settle(self.dut.as_mut())?;
         self.trace(t0);
         self.dut.sample(outputs);
         self.dut.clock_mut().next = Clock { clk: true };
-        settle(&mut self.dut)?;
+        settle(self.dut.as_mut())?;
         self.trace(t0 + CLOCK_PERIOD_PS / 2);
         self.cycle += 1;
         Ok(())
