@@ -356,6 +356,10 @@ pub struct Ecp5Report {
     pub unplaced: Option<String>,
     /// The clock's critical path as nextpnr reports it, by the block's own signal names.
     pub critical: Option<CriticalPath>,
+    /// LUT4 (two per CCU2C) of the timing shell as Yosys maps it for placement: the block's
+    /// logic can map larger there than alone (the quadric unit: 16 248 alone, 25 971 in the
+    /// shell), and the part is chosen to hold the larger of the two.
+    pub placed_luts: Option<u64>,
     pub dir: PathBuf,
 }
 
@@ -486,6 +490,9 @@ impl std::fmt::Display for Ecp5Report {
             self.part.name,
             self.part.package
         )?;
+        if let Some(l) = self.placed_luts.filter(|&l| l * 20 > self.luts() * 21) {
+            write!(f, "{l} LUT4 as mapped in the timing shell; ")?;
+        }
         match (self.fmax, &self.unplaced) {
             (Some(mhz), _) => {
                 write!(f, "max clock {mhz:.1} MHz")?;
@@ -533,8 +540,26 @@ pub fn ecp5(
         fmax: None,
         unplaced: None,
         critical: None,
+        placed_luts: None,
         dir: dir.clone(),
     };
+    let shell_log = yosys(
+        &dir,
+        "read_verilog dut.v shell.v\nsynth_ecp5 -top timing_shell -json shell.json\nstat\n",
+        "shell",
+    )
+    .map_err(|e| format!("Yosys synth_ecp5 of the timing shell failed: {e}"))?;
+    let (_, shell_cells) = parse_stat(&shell_log);
+    let count = |k: &str| {
+        shell_cells
+            .iter()
+            .filter(|(n, _)| n.as_str() == k)
+            .map(|(_, v)| v)
+            .sum::<u64>()
+    };
+    let placed = count("LUT4") + 2 * count("CCU2C");
+    rep.placed_luts = Some(placed);
+    let luts = rep.luts().max(placed);
     rep.part = match device {
         Some(d) => *ECP5_PARTS
             .iter()
@@ -542,7 +567,7 @@ pub fn ecp5(
             .ok_or_else(|| format!("unknown ECP5 device {d:?} (expected 25k, 45k or 85k)"))?,
         None => match ECP5_PARTS
             .iter()
-            .find(|p| rep.luts() <= p.luts && rep.mult18() <= p.mult18 && rep.dp16kd() <= p.dp16kd)
+            .find(|p| luts <= p.luts && rep.mult18() <= p.mult18 && rep.dp16kd() <= p.dp16kd)
         {
             Some(p) => *p,
             None => {
@@ -552,12 +577,6 @@ pub fn ecp5(
             }
         },
     };
-    yosys(
-        &dir,
-        "read_verilog dut.v shell.v\nsynth_ecp5 -top timing_shell -json shell.json\n",
-        "shell",
-    )
-    .map_err(|e| format!("Yosys synth_ecp5 of the timing shell failed: {e}"))?;
     let device_flag = format!("--{}", rep.part.device);
     let out = std::process::Command::new(&nextpnr)
         .args([
