@@ -40,7 +40,7 @@
 //! | `last` | out | the span's last clock |
 //!
 //! # Latency, throughput
-//! Load → first fragments: U + 34 (power 30, colour 4): 40 (angular), 48 (fast). A span of
+//! Load → first fragments: U + 54 (power 50, colour 4): 60 (angular), 68 (fast). A span of
 //! m + 1 pixels takes ⌊m/2⌋ + 1 clocks and the next span's load is taken in its last clock, so
 //! the pipeline adds no clock per span: two pixels per clock, one in the last clock of an
 //! odd-length span (m even). A one-pixel span (m = 0) costs a whole clock for one pixel — the
@@ -83,7 +83,7 @@ impl BlockParams for FastPipelineParams {
     }
 }
 
-/// Clocks from the span units' pixels to the fragments (power 30, colour 4).
+/// Clocks from the span units' pixels to the fragments (power 50, colour 4).
 pub const SHADE_LATENCY: usize = PowerUnit::LATENCY + ColourCombine::LATENCY;
 
 /// The material registers (n, the nine colour weights).
