@@ -123,20 +123,28 @@ pub mod twin {
         ((v + (1 << 11)) >> 12).clamp(0, 255) as u64
     }
 
+    /// A value in the serial loop: (valid, t, last, p, value, c, d).
+    type Item = (bool, u32, bool, u64, i64, i64, i64);
+
     #[derive(Clone, Debug, Default)]
     pub struct HornerTwin {
         pipelined: bool,
         busy: bool,
+        /// Runs free from reset: 1 issues step 0 of the walk's pixel, 2 step 1, 0 step 2.
         phase: u8,
         t: u32,
         m: u32,
         acc: u64,
         step: u64,
         k: [i64; 4],
-        rg: i64,
+        /// Serial: the loop's four registers (OP, PR, PT, RG), each value already the result
+        /// its step will have in RG.
+        ring: std::collections::VecDeque<Item>,
         // pipelined stages: (valid, t, last, p, x, c, d)
         s1: (bool, u32, bool, u64, i64, i64, i64),
         s2: (bool, u32, bool, u64, i64, i64),
+        /// Pipelined: the ten registers padding its output to the serial latency.
+        pad: std::collections::VecDeque<(bool, u32, u64, bool)>,
         // output register
         out: (bool, u32, u64, bool),
     }
@@ -145,14 +153,16 @@ pub mod twin {
         pub fn new(pipelined: bool) -> Self {
             HornerTwin {
                 pipelined,
+                ring: std::iter::repeat_n(Item::default(), 4).collect(),
+                pad: std::iter::repeat_n((false, 0, 0, false), 10).collect(),
                 ..Default::default()
             }
         }
         fn adv(&self) -> bool {
-            self.pipelined || self.phase == 2
+            self.pipelined || self.phase == 0
         }
         pub fn ready(&self) -> bool {
-            !self.busy || (self.adv() && self.t == self.m)
+            self.adv() && (!self.busy || self.t == self.m)
         }
         /// ready, valid, t, value, last.
         pub fn outputs(&self) -> Vec<u64> {
@@ -164,22 +174,37 @@ pub mod twin {
             let last = self.t == self.m;
             if self.pipelined {
                 let (v2, t2, l2, p2, x2, d2) = self.s2;
-                self.out = (v2, t2, out8(mul_round(x2, p2) + d2), v2 && l2);
+                self.out = self.pad.pop_front().unwrap();
+                self.pad
+                    .push_back((v2, t2, out8(mul_round(x2, p2) + d2), v2 && l2));
                 let (v1, t1, l1, p1, x1, c1, d1) = self.s1;
                 self.s2 = (v1, t1, l1, p1, mul_round(x1, p1) + c1, d1);
                 let [a, b, c, d] = self.k;
                 self.s1 = (self.busy, self.t, last, p, mul_round(a, p) + b, c, d);
             } else {
                 let [a, b, c, d] = self.k;
-                let x = if self.phase == 0 { a } else { self.rg };
-                let add = [b, c, d][self.phase as usize];
-                let prod = if self.busy { mul_round(x, p) } else { 0 };
-                let sum = prod + add;
-                let fin = self.busy && self.phase == 2;
-                self.out = (fin, self.t, out8(sum), fin && last);
-                if self.phase < 2 {
-                    self.rg = sum;
+                let rg = *self.ring.back().unwrap();
+                let (rv, rt, rl, rp, rval, rc, rd) = rg;
+                if self.phase == 1 {
+                    self.out = (
+                        rv,
+                        if rv { rt } else { self.out.1 },
+                        if rv { out8(rval) } else { self.out.2 },
+                        rv && rl,
+                    );
+                } else {
+                    self.out.0 = false;
+                    self.out.3 = false;
                 }
+                // Issue: the value RG will hold four clocks on, wrapped to the 32-bit word.
+                let wrap = |v: i64| v as i32 as i64;
+                let issued = match self.phase {
+                    1 => (self.busy, self.t, last, p, wrap(mul_round(a, p) + b), c, d),
+                    2 => (rv, rt, rl, rp, wrap(mul_round(rval, rp) + rc), rc, rd),
+                    _ => (rv, rt, rl, rp, wrap(mul_round(rval, rp) + rd), rc, rd),
+                };
+                self.ring.pop_back();
+                self.ring.push_front(issued);
             }
             let ready = self.ready();
             if self.busy && self.adv() {
@@ -190,20 +215,14 @@ pub mod twin {
                     self.acc = (self.acc + self.step) & ((1 << 29) - 1);
                 }
             }
-            if self.busy && !self.pipelined {
-                self.phase = if self.phase == 2 { 0 } else { self.phase + 1 };
-            }
+            self.phase = if self.phase == 2 { 0 } else { self.phase + 1 };
             if let Some(w) = load.filter(|_| ready) {
                 self.busy = true;
-                self.phase = 0;
                 self.t = 0;
                 self.acc = 0;
                 self.m = w.m;
                 self.step = w.step;
                 self.k = coefficient_words(w.i);
-            }
-            if !self.busy {
-                self.phase = 0;
             }
         }
     }

@@ -27,8 +27,10 @@
 //! | `y_out`, `last` | out | its line; the line's last pixel |
 //!
 //! # Latency, throughput
-//! Load → first fragment 5 clocks (the units' 4, the output register 1). Serial: 3 clocks per
-//! pixel; pipelined: one pixel per clock. Lines follow without a gap (0 clocks per line).
+//! Load → first fragment 15 clocks (the units' 14, the output register 1; 5 before the serial
+//! unit's MUL–Sm loop was split into four registers). Serial: 3 clocks per pixel, and an idle
+//! pipeline takes a line every third clock (the units' free-running phase); pipelined: one
+//! pixel per clock. Lines follow without a gap (0 clocks per line).
 //!
 //! # Overflow, error budget
 //! The units': nothing wraps, the colours saturate. Depth: the z run adds dz per pixel from z0

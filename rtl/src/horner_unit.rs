@@ -11,15 +11,23 @@
 //! `golden::cubic`). Two variants, a build parameter (`horner=serial|pipelined`):
 //!
 //! - **serial** (fig. 2.6): register RG, MX1 (A or RG into the multiplier), MX2 (B, C or D into
-//!   the adder), one multiplier MUL, one adder Sm, and BK in front of the adder; phase 0:
-//!   RG ← A·p + B, phase 1: RG ← RG·p + C, phase 2: out ← RG·p + D. Three clocks per pixel.
-//!   BK passes the product while a span is in the unit and zeroes it otherwise (the idle adder
-//!   then only passes a coefficient; the SPEC names BK without saying when it zeroes).
+//!   the adder), one multiplier MUL, one adder Sm; step 0: A·p + B, step 1: RG·p + C, step 2:
+//!   out ← RG·p + D. Three clocks per pixel. The MUL–Sm loop is four registers deep (OP: the
+//!   operands; PR: the two 16×16 products and, beside them, the addend k·2¹⁵ + 2¹⁴ − [x<0]·p·2³²;
+//!   PT: the 48-bit partial sum; RG), so three pixels are in the loop at once, interleaved: a
+//!   free-running phase (1, 2, 0) issues the walk's next pixel's step 0 in phase 1 and the
+//!   recirculated RG in phases 2 and 0, RG always holding the same pixel's previous step. This
+//!   is the register placement, not a different computation: every pixel still takes its three
+//!   steps through the one multiplier pair and one adder. (Until 2026-11 the loop was a single
+//!   register, MUL and Sm in one clock: 44.1 MHz on ECP5; fig. 2.6's BK, which zeroed the
+//!   product of an idle unit, is the item's valid bit now.)
 //! - **pipelined**: three multipliers, one per Horner step, C and D travelling with their
-//!   pixel; one pixel per clock.
+//!   pixel; one pixel per clock. Its result is delayed 10 clocks to the serial latency, so
+//!   both variants have one latency (the build parameter changes no timing seen at the ports
+//!   except the clocks per pixel).
 //!
-//! MUL is a signed 32 × UQ1.15 multiplier, `MulS32U16Round`: two 16×16 DSP slices (so serial 2,
-//! pipelined 6 SB_MAC16).
+//! Serial MUL is two 16×16 DSP slices formed in the loop as above; pipelined MUL is
+//! `MulS32U16Round` (two slices each: serial 2, pipelined 6 SB_MAC16).
 //!
 //! # Ports
 //! | port | dir | format |
@@ -34,12 +42,15 @@
 //! # Pipeline, latency, throughput
 //! ```text
 //! load   coefficient block (combinational) → A, B, C, D registers; t = 0, p accumulator = 0
-//! state  p = min((acc + 2¹¹) >> 12, 1.0) (UQ1.15); serial: phases 0, 1, 2; pipelined: stage 1
-//!        (A·p + B), stage 2 (·p + C), output (·p + D)
+//! state  p = min((acc + 2¹¹) >> 12, 1.0) (UQ1.15), advanced once per pixel
+//! serial     OP → PR → PT → RG, three times round the loop per pixel, then RoundSat8 → output
+//! pipelined  stage 1 (A·p + B), stage 2 (·p + C), (·p + D) → RoundSat8 → 10-clock pad → output
 //! ```
-//! Load → first pixel 4 clocks in both variants (state → pixel 3). Serial: 3(m + 1) clocks per
-//! span; pipelined: m + 1. The next span's load is taken in the clock forming the last pixel, so
-//! spans follow without a gap.
+//! Load → first pixel 14 clocks in both variants. Serial: 3(m + 1) clocks per span, and a span
+//! is taken only in phase 0 (idle: `ready` every third clock; busy: in the clock its last pixel
+//! is issued, so spans follow without a gap); pipelined: m + 1 clocks per span, `ready`
+//! whenever idle or on the last pixel. Serial, the output register is loaded when a pixel
+//! leaves RG (phase 1) and holds between pixels.
 //!
 //! # Overflow
 //! None can occur: |A|, |B| < 2²⁹, |C| < 2²⁷ for any sample words (units 2⁻¹²), so every
@@ -53,7 +64,7 @@
 
 use rust_hdl::prelude::*;
 
-use crate::primitives::MulS32U16Round;
+use crate::primitives::{Delay, MulS32U16Round};
 use crate::registry::{BlockParams, Options};
 
 /// The variant (`horner=serial|pipelined`).
@@ -125,7 +136,7 @@ crate::hw_block! {
     /// The Horner unit (see the module header).
     pub struct HornerUnit(clock) as "horner-unit" {
         summary: "a span's I(0), I(1), I(1/2), I(1/4) in, the cubic I(t/m) per pixel out: shift-and-add coefficient block, Horner by fig. 2.6 (serial) or pipelined (SPEC §9)",
-        latency: 4 => "load to the first pixel; serial 3 clocks per pixel, pipelined 1",
+        latency: 14 => "load to the first pixel; serial 3 clocks per pixel, pipelined 1",
         multipliers: 2,
         in { load: Bit, i1: Bits<16>, i2: Bits<16>, i3: Bits<16>, i4: Bits<16>, step: Bits<28>, m: Bits<12> }
         out { ready: Bit, valid: Bit, t: Bits<12>, value: Bits<8>, last: Bit }
@@ -141,13 +152,32 @@ crate::hw_block! {
         busy: DFF<Bit>, phase: DFF<Bits<2>>, t_q: DFF<Bits<12>>, m_q: DFF<Bits<12>>,
         acc: DFF<Bits<29>>, step_q: DFF<Bits<28>>,
         ka: DFF<Bits<32>>, kb: DFF<Bits<32>>, kc: DFF<Bits<32>>, kd: DFF<Bits<32>>,
-        rg: DFF<Bits<32>>,
+        /// Serial: N_a and N_c registered at load, T(·) formed after the register (the path inputs →
+        /// N → T → register was 12.9 ns on ECP5); A and C are first used a
+        /// clock later.
+        na_q: DFF<Bits<32>>, nc_q: DFF<Bits<32>>,
+        ta_q: Signal<Local, Bits<32>>, tc_q: Signal<Local, Bits<32>>,
         p_rnd: Signal<Local, Bits<29>>, p: Signal<Local, Bits<16>>,
         is_last: Signal<Local, Bit>, adv: Signal<Local, Bit>, rdy: Signal<Local, Bit>,
-        // Serial datapath (fig. 2.6).
-        mx1: Signal<Local, Bits<32>>, mx2: Signal<Local, Bits<32>>,
-        mul: MulS32U16Round, bk: Signal<Local, Bits<32>>, sm: Signal<Local, Bits<32>>,
+        // Serial datapath (fig. 2.6, the MUL–Sm loop in four registers: OP, PR, PT, RG).
+        // C and D travel with their pixel (a pixel is in the loop for 12 clocks, so up to four
+        // spans of one pixel each can be in it at once).
+        op_v: DFF<Bit>, op_t: DFF<Bits<12>>, op_l: DFF<Bit>, op_x: DFF<Bits<32>>,
+        op_p: DFF<Bits<16>>, op_k: DFF<Bits<32>>, op_c: DFF<Bits<32>>, op_d: DFF<Bits<32>>,
+        pr_v: DFF<Bit>, pr_t: DFF<Bits<12>>, pr_l: DFF<Bit>, pr_p: DFF<Bits<16>>, pr_c: DFF<Bits<32>>, pr_d: DFF<Bits<32>>,
+        pr_lo: DFF<Bits<32>>, pr_hi: DFF<Bits<32>>, pr_kk: DFF<Bits<48>>,
+        kk_k: Signal<Local, Bits<48>>, kk_corr: Signal<Local, Bits<48>>,
+        pt_v: DFF<Bit>, pt_t: DFF<Bits<12>>, pt_l: DFF<Bit>, pt_p: DFF<Bits<16>>, pt_c: DFF<Bits<32>>, pt_d: DFF<Bits<32>>,
+        pt_s: DFF<Bits<48>>, pt_kk: DFF<Bits<48>>,
+        rg_v: DFF<Bit>, rg_t: DFF<Bits<12>>, rg_l: DFF<Bit>, rg_p: DFF<Bits<16>>, rg_c: DFF<Bits<32>>, rg_d: DFF<Bits<32>>,
+        rg_val: DFF<Bits<32>>,
+        rg_sum: Signal<Local, Bits<48>>,
+        sext48: Constant<Bits<48>> = Constant::new(0xFFFF_0000_0000u64.into()),
+        half48: Constant<Bits<48>> = Constant::new((1u64 << 14).into()),
         out_s: RoundSat8,
+        /// The pipelined variant's outputs, padded to the serial latency.
+        pd_v: Delay<Bit, 10>, pd_t: Delay<Bits<12>, 10>, pd_val: Delay<Bits<8>, 10>,
+        pd_l: Delay<Bit, 10>,
         // Pipelined datapath.
         mul1: MulS32U16Round, mul2: MulS32U16Round, mul3: MulS32U16Round,
         s1_v: DFF<Bit>, s1_t: DFF<Bits<12>>, s1_l: DFF<Bit>, s1_p: DFF<Bits<16>>,
@@ -164,10 +194,14 @@ crate::hw_block! {
 impl Logic for HornerUnit {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, busy, phase, t_q, m_q, acc, step_q, ka, kb, kc, kd, rg);
+        dff_setup!(
+            self, clock, busy, t_q, m_q, acc, step_q, ka, kb, kc, kd, nc_q, na_q, o_t, o_val
+        );
         clock!(
-            self, clock, s1_v, s1_t, s1_l, s1_p, s1_x, s1_c, s1_d, s2_v, s2_t, s2_l, s2_p, s2_x,
-            s2_d, o_v, o_t, o_val, o_l
+            self, clock, phase, s1_v, s1_t, s1_l, s1_p, s1_x, s1_c, s1_d, s2_v, s2_t, s2_l, s2_p,
+            s2_x, s2_d, o_v, o_l, op_v, op_t, op_l, op_x, op_p, op_k, op_c, op_d, pr_v, pr_t, pr_l,
+            pr_p, pr_c, pr_d, pr_lo, pr_hi, pr_kk, pt_v, pt_t, pt_l, pt_p, pt_c, pt_d, pt_s, pt_kk,
+            rg_v, rg_t, rg_l, rg_p, rg_c, rg_d, rg_val, pd_v, pd_t, pd_val, pd_l
         );
 
         // Coefficient block: the samples sign-extended, then shifts and adds.
@@ -212,31 +246,82 @@ impl Logic for HornerUnit {
             self.p.next = self.p_one.val();
         }
         self.is_last.next = self.t_q.q.val() == self.m_q.q.val();
-        self.adv.next = self.pipelined.val() | (self.phase.q.val() == 2);
-        self.rdy.next = !self.busy.q.val() | (self.adv.val() & self.is_last.val());
+        self.adv.next = self.pipelined.val() | (self.phase.q.val() == 0);
+        self.rdy.next = self.adv.val() & (!self.busy.q.val() | self.is_last.val());
 
-        // Serial datapath: MX1, MUL, BK, MX2, Sm.
-        self.mx1.next = self.rg.q.val();
-        if self.phase.q.val() == 0 {
-            self.mx1.next = self.ka.q.val();
+        self.ta_q.next = (self.na_q.q.val() << 6)
+            - (self.na_q.q.val() << 4)
+            - (self.na_q.q.val() << 2)
+            - self.na_q.q.val();
+        self.tc_q.next = (self.nc_q.q.val() << 6)
+            - (self.nc_q.q.val() << 4)
+            - (self.nc_q.q.val() << 2)
+            - self.nc_q.q.val();
+
+        // Serial datapath. The phase runs free (1: step 0 of the walk's pixel, A·p + B;
+        // 2: step 1, RG·p + C; 0: step 2, RG·p + D); RG holds the value issued four clocks
+        // before, i.e. the same pixel's previous step, so three pixels are in the loop at once.
+        if self.phase.q.val() == 1 {
+            self.op_v.d.next = self.busy.q.val();
+            self.op_t.d.next = self.t_q.q.val();
+            self.op_l.d.next = self.is_last.val();
+            self.op_x.d.next = self.ta_q.val() << 3;
+            self.op_p.d.next = self.p.val();
+            self.op_k.d.next = self.kb.q.val();
+            self.op_c.d.next = self.tc_q.val();
+            self.op_d.d.next = self.kd.q.val();
+        } else {
+            self.op_v.d.next = self.rg_v.q.val();
+            self.op_t.d.next = self.rg_t.q.val();
+            self.op_l.d.next = self.rg_l.q.val();
+            self.op_x.d.next = self.rg_val.q.val();
+            self.op_p.d.next = self.rg_p.q.val();
+            self.op_c.d.next = self.rg_c.q.val();
+            self.op_d.d.next = self.rg_d.q.val();
+            if self.phase.q.val() == 2 {
+                self.op_k.d.next = self.rg_c.q.val();
+            } else {
+                self.op_k.d.next = self.rg_d.q.val();
+            }
         }
-        self.mx2.next = self.kd.q.val();
-        if self.phase.q.val() == 0 {
-            self.mx2.next = self.kb.q.val();
-        } else if self.phase.q.val() == 1 {
-            self.mx2.next = self.kc.q.val();
+        // PR: the two 16×16 products; beside them kk = k·2¹⁵ + 2¹⁴ − [x < 0]·p·2³² (48 bits).
+        self.pr_v.d.next = self.op_v.q.val();
+        self.pr_t.d.next = self.op_t.q.val();
+        self.pr_l.d.next = self.op_l.q.val();
+        self.pr_p.d.next = self.op_p.q.val();
+        self.pr_c.d.next = self.op_c.q.val();
+        self.pr_d.d.next = self.op_d.q.val();
+        self.pr_lo.d.next = self.op_x.q.val().get_bits::<16>(0) * self.op_p.q.val();
+        self.pr_hi.d.next = self.op_x.q.val().get_bits::<16>(16) * self.op_p.q.val();
+        self.kk_k.next = bit_cast::<48, 32>(self.op_k.q.val());
+        if self.op_k.q.val().get_bit(31) {
+            self.kk_k.next = bit_cast::<48, 32>(self.op_k.q.val()) | self.sext48.val();
         }
-        self.mul.x.next = self.mx1.val();
-        self.mul.p.next = self.p.val();
-        self.bk.next = 0.into();
-        if self.busy.q.val() {
-            self.bk.next = self.mul.r.val().get_bits::<32>(0);
+        self.kk_corr.next = 0.into();
+        if self.op_x.q.val().get_bit(31) {
+            self.kk_corr.next = bit_cast::<48, 16>(self.op_p.q.val()) << 32;
         }
-        self.sm.next = self.bk.val() + self.mx2.val();
-        if self.phase.q.val() != 2 {
-            self.rg.d.next = self.sm.val();
-        }
-        self.out_s.v.next = self.sm.val();
+        self.pr_kk.d.next = ((self.kk_k.val() << 15) | self.half48.val()) - self.kk_corr.val();
+        // PT: the unsigned partial product (x_hi·p·2¹⁶ + x_lo·p, mod 2⁴⁸).
+        self.pt_v.d.next = self.pr_v.q.val();
+        self.pt_t.d.next = self.pr_t.q.val();
+        self.pt_l.d.next = self.pr_l.q.val();
+        self.pt_p.d.next = self.pr_p.q.val();
+        self.pt_c.d.next = self.pr_c.q.val();
+        self.pt_d.d.next = self.pr_d.q.val();
+        self.pt_s.d.next =
+            (bit_cast::<48, 32>(self.pr_hi.q.val()) << 16) + bit_cast::<48, 32>(self.pr_lo.q.val());
+        self.pt_kk.d.next = self.pr_kk.q.val();
+        // RG: (x·p + 2¹⁴ + k·2¹⁵) >> 15 = mul_round(x, p) + k (mod 2³²).
+        self.rg_v.d.next = self.pt_v.q.val();
+        self.rg_t.d.next = self.pt_t.q.val();
+        self.rg_l.d.next = self.pt_l.q.val();
+        self.rg_p.d.next = self.pt_p.q.val();
+        self.rg_c.d.next = self.pt_c.q.val();
+        self.rg_d.d.next = self.pt_d.q.val();
+        self.rg_sum.next = self.pt_s.q.val() + self.pt_kk.q.val();
+        self.rg_val.d.next = self.rg_sum.val().get_bits::<32>(15);
+        self.out_s.v.next = self.rg_val.q.val();
 
         // Pipelined datapath.
         self.mul1.x.next = self.ka.q.val();
@@ -261,17 +346,24 @@ impl Logic for HornerUnit {
         self.x3.next = self.mul3.r.val().get_bits::<32>(0) + self.s2_d.q.val();
         self.out_p.v.next = self.x3.val();
 
-        // Output register.
+        self.pd_v.d.next = self.s2_v.q.val();
+        self.pd_t.d.next = self.s2_t.q.val();
+        self.pd_val.d.next = self.out_p.q.val();
+        self.pd_l.d.next = self.s2_v.q.val() & self.s2_l.q.val();
+
+        // Output register (serial: loaded with a finished pixel, held otherwise).
         if self.pipelined.val() {
-            self.o_v.d.next = self.s2_v.q.val();
-            self.o_t.d.next = self.s2_t.q.val();
-            self.o_val.d.next = self.out_p.q.val();
-            self.o_l.d.next = self.s2_v.q.val() & self.s2_l.q.val();
+            self.o_v.d.next = self.pd_v.q.val();
+            self.o_t.d.next = self.pd_t.q.val();
+            self.o_val.d.next = self.pd_val.q.val();
+            self.o_l.d.next = self.pd_l.q.val();
         } else {
-            self.o_v.d.next = self.busy.q.val() & (self.phase.q.val() == 2);
-            self.o_t.d.next = self.t_q.q.val();
-            self.o_val.d.next = self.out_s.q.val();
-            self.o_l.d.next = self.busy.q.val() & (self.phase.q.val() == 2) & self.is_last.val();
+            self.o_v.d.next = (self.phase.q.val() == 1) & self.rg_v.q.val();
+            self.o_l.d.next = (self.phase.q.val() == 1) & self.rg_v.q.val() & self.rg_l.q.val();
+            if (self.phase.q.val() == 1) & self.rg_v.q.val() {
+                self.o_t.d.next = self.rg_t.q.val();
+                self.o_val.d.next = self.out_s.q.val();
+            }
         }
 
         // Walk along the span.
@@ -283,16 +375,13 @@ impl Logic for HornerUnit {
                 self.acc.d.next = self.acc.q.val() + bit_cast::<29, 28>(self.step_q.q.val());
             }
         }
-        if self.busy.q.val() & !self.pipelined.val() {
-            if self.phase.q.val() == 2 {
-                self.phase.d.next = 0.into();
-            } else {
-                self.phase.d.next = self.phase.q.val() + 1;
-            }
+        if self.phase.q.val() == 2 {
+            self.phase.d.next = 0.into();
+        } else {
+            self.phase.d.next = self.phase.q.val() + 1;
         }
         if self.load.val() & self.rdy.val() {
             self.busy.d.next = true;
-            self.phase.d.next = 0.into();
             self.t_q.d.next = 0.into();
             self.acc.d.next = 0.into();
             self.m_q.d.next = self.m.val();
@@ -301,6 +390,8 @@ impl Logic for HornerUnit {
             self.kb.d.next = self.nb.val() << 8;
             self.kc.d.next = self.tc.val();
             self.kd.d.next = self.s[0].val() << 7;
+            self.na_q.d.next = self.na.val();
+            self.nc_q.d.next = self.nc.val();
         }
 
         self.ready.next = self.rdy.val();

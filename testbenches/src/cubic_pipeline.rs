@@ -92,7 +92,14 @@ fn stimulus(p: &CubicParams, tris: &[ScreenTriangle]) -> Stimulus {
     };
     let g = GoldenSpans::new(kind, tris);
     let (spans, regs) = (&g.spans, &g.regs);
-    let (per_pixel, delay) = if p.0.pipelined { (1, 4) } else { (3, 2) };
+    // A pixel's last clock to its fragment: the units' latency less their first clock
+    // (pipelined) or less a pixel's three clocks (serial), plus the output register.
+    let lat = <rtl::horner_unit::HornerUnit as rtl::registry::RtlBlock>::LATENCY;
+    let (per_pixel, delay) = if p.0.pipelined {
+        (1, lat)
+    } else {
+        (3, lat - 2)
+    };
     let mut rows = vec![span_row(kind, spans.first(), regs)];
     let mut state: Vec<Option<(usize, u64)>> = vec![None];
     for (i, s) in spans.iter().enumerate() {
@@ -102,13 +109,21 @@ fn stimulus(p: &CubicParams, tris: &[ScreenTriangle]) -> Stimulus {
             rows.push(span_row(kind, next, regs));
         }
     }
-    for _ in 0..=delay + 1 {
+    // Serial: idle to a multiple of three clocks, so a batch that follows in the same
+    // simulation (`shadecore sim` streams) starts in the first clock of a slot.
+    let end = rows.len() + delay + 2;
+    while rows.len() < end || (!p.0.pipelined && rows.len() % 3 != 0) {
         rows.push(span_row(kind, None, regs));
         state.push(None);
     }
     let expected = (0..rows.len())
         .map(|c| {
-            let ready = state[c].is_none_or(|(i, k)| k + 1 == spans[i].clocks());
+            // Serial units take a line only in the last clock of a three-clock slot (their
+            // phase runs free from reset): idle, every third clock.
+            let ready = match state[c] {
+                None => p.0.pipelined || c % 3 == 0,
+                Some((i, k)) => k + 1 == spans[i].clocks(),
+            };
             let shown = c
                 .checked_sub(delay)
                 .and_then(|s| state[s])

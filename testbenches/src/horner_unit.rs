@@ -91,8 +91,14 @@ impl Twin for HornerRows {
 
 /// Rows and every clock's expectations for `spans` back to back.
 fn run(p: &HornerParams, spans: &[HornerWords]) -> (Vec<Vec<u64>>, Vec<Vec<Expected>>, f64) {
+    // A pixel's last clock to its output: the latency less the load clock (pipelined), or
+    // less the load clock and a pixel's first two clocks (serial).
     let per_pixel = if p.pipelined { 1 } else { 3 };
-    let delay = if p.pipelined { 3 } else { 1 };
+    let delay = if p.pipelined {
+        HornerUnit::LATENCY - 1
+    } else {
+        HornerUnit::LATENCY - 3
+    };
     let clocks = |i: usize| (spans[i].m as usize + 1) * per_pixel;
     let mut rows = vec![load_row(spans.first())];
     let mut state: Vec<Option<(usize, usize)>> = vec![None];
@@ -103,7 +109,10 @@ fn run(p: &HornerParams, spans: &[HornerWords]) -> (Vec<Vec<u64>>, Vec<Vec<Expec
             rows.push(load_row(next));
         }
     }
-    for _ in 0..=delay + 1 {
+    // Serial: idle to a multiple of three clocks, so a batch that follows in the same
+    // simulation (`shadecore sim` streams) starts in the first clock of a slot.
+    let end = rows.len() + delay + 2;
+    while rows.len() < end || (!p.pipelined && rows.len() % 3 != 0) {
         rows.push(load_row(None));
         state.push(None);
     }
@@ -112,7 +121,12 @@ fn run(p: &HornerParams, spans: &[HornerWords]) -> (Vec<Vec<u64>>, Vec<Vec<Expec
     let w = Expected::Word;
     let expected = (0..rows.len())
         .map(|c| {
-            let ready = state[c].is_none_or(|(i, k)| k + 1 == clocks(i));
+            // Serial: a span is taken only in the last clock of a three-clock slot (the phase
+            // runs free from reset), so when idle, every third clock.
+            let ready = match state[c] {
+                None => p.pipelined || c % 3 == 0,
+                Some((i, k)) => k + 1 == clocks(i),
+            };
             let shown = c
                 .checked_sub(delay)
                 .and_then(|s| state[s])

@@ -59,7 +59,7 @@ fn quarter_lsb_rounding_errors_are_caught_by_the_twins() {
     // The Horner unit and the quadric unit (issue 11).
     #[rustfmt::skip]
     check("horner-unit", &Options::new().with("horner", "serial"), 60, &[
-        Mutant { what: "MUL product rounding + ¼ LSB", module: "horner_unit__mul", from: "localparam  half = 48'h4000;", to: "localparam  half = 48'h6000;" },
+        Mutant { what: "MUL product rounding (the loop's kk term) + ¼ LSB", module: "horner_unit", from: "localparam  half48 = 48'h4000;", to: "localparam  half48 = 48'h6000;" },
         Mutant { what: "output rounding + ¼ LSB", module: "horner_unit__out_s", from: "localparam  half = 32'h800;", to: "localparam  half = 32'hc00;" },
         Mutant { what: "p rounding + ¼ LSB", module: "horner_unit", from: "localparam  p_half = 29'h800;", to: "localparam  p_half = 29'hc00;" },
     ]);

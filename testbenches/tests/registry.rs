@@ -382,6 +382,7 @@ fn ecp5_places_and_times_blocks() {
         "brzssk",
         "power-unit",
         "colour-combine",
+        "horner-unit",
     ];
     for name in ["address-block"].into_iter().chain(closed) {
         let b = registry::find(name).unwrap();
