@@ -176,7 +176,7 @@ crate::hw_block! {
         one: Constant<Bits<16>> = Constant::new(0x8000.into()),
         // Exact path: stage 3j is Eja, 3j + 1 Eja', 3j + 2 Ejb (j = 0..9).
         e_valid: [DFF<Bit>; 50] = std::array::from_fn(|_| Default::default()),
-        e_n: [DFF<Bits<10>>; 50] = std::array::from_fn(|_| Default::default()),
+        e_n: [DFF<Bits<10>>; 49] = std::array::from_fn(|_| Default::default()),
         e_acc: [DFF<Bits<16>>; 50] = std::array::from_fn(|_| Default::default()),
         e_pw: [DFF<Bits<16>>; 9],
         /// E1..E9's acc·pw (index j − 1), E0..E8's squares, exact.
@@ -234,8 +234,10 @@ impl Logic for PowerUnit {
         );
         for j in 0..50 {
             self.e_valid[j].clock.next = self.clock.val();
-            self.e_n[j].clock.next = self.clock.val();
             self.e_acc[j].clock.next = self.clock.val();
+        }
+        for j in 0..49 {
+            self.e_n[j].clock.next = self.clock.val();
         }
         for j in 0..9 {
             self.e_pw[j].clock.next = self.clock.val();
@@ -562,7 +564,6 @@ impl Logic for PowerUnit {
         self.e_acc[48].d.next = self.e_acc[47].q.val();
         // E9b
         self.e_valid[49].d.next = self.e_valid[48].q.val();
-        self.e_n[49].d.next = self.e_n[48].q.val();
         self.e_rnd_prod[8].wide.next = self.e_prod[8].p.val();
         if self.e_n[48].q.val().get_bit(9) {
             self.e_acc[49].d.next = self.e_rnd_prod[8].narrow.val();
