@@ -14,7 +14,7 @@ use rtl::registry::Options;
 use testbenches::k_recurrence::{krec_rows, span_rows, spans_and_schedule};
 use testbenches::normalizer::*;
 use testbenches::registry::{self, assert_mutants_caught, differential};
-use testbenches::synth::check_and_synth;
+use testbenches::synth::{check_and_map_ice40, check_and_synth};
 use testbenches::tools::{self, Tool};
 use testbenches::verilog::{self as verilog, DiffError, Mutant, Simulator};
 
@@ -51,6 +51,13 @@ fn yosys_check_rejects_a_latch() {
     println!("{e}");
     let undriven = "module undriven(input clock, output [3:0] q);\n  wire [3:0] w;\n  assign q = w;\nendmodule\n";
     let e = check_and_synth(undriven, "undriven", "yosys-undriven")
+        .expect_err("an undriven wire must be rejected");
+    println!("{e}");
+    // The same checks without the generic synth (the registry test's path).
+    let e =
+        check_and_map_ice40(v, "latchy", "yosys-latch-map").expect_err("a latch must be rejected");
+    println!("{e}");
+    let e = check_and_map_ice40(undriven, "undriven", "yosys-undriven-map")
         .expect_err("an undriven wire must be rejected");
     println!("{e}");
 }
