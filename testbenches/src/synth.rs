@@ -52,7 +52,9 @@ pub fn parse_stat(log: &str) -> (u64, CellCounts) {
 #[derive(Clone, Debug, Default)]
 pub struct SynthReport {
     pub top: String,
-    /// Generic `synth` cell count and table.
+    /// Whether the generic `synth` ran ([`check_and_synth`]) or not ([`check_and_map_ice40`]).
+    pub generic_run: bool,
+    /// Generic `synth` cell count and table (empty when it did not run).
     pub generic_total: u64,
     pub generic: CellCounts,
     /// `synth_ice40 -dsp` cell count and table.
@@ -89,7 +91,7 @@ impl SynthReport {
 
 impl std::fmt::Display for SynthReport {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        if self.generic.is_empty() {
+        if !self.generic_run {
             writeln!(
                 f,
                 "{}: Yosys checks passed (generic synth not run)",
@@ -207,6 +209,7 @@ fn check_and_synth_with(
     let (ice40_total, ice40_cells) = parse_stat(&stat);
     Ok(SynthReport {
         top: top.into(),
+        generic_run: generic_synth,
         generic_total,
         generic: generic_cells,
         ice40_total,
