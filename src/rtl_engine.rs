@@ -103,7 +103,7 @@ pub struct RtlBuild {
     /// default) or the four-triangle block (four lanes, a BVI each). `subdivision` always
     /// takes the four-triangle block; the other methods only the single one.
     pub address: Address,
-    /// The top the lit methods go through (`--lit-top`).
+    /// The top the lit methods and `gouraud` (single address block) go through (`--lit-top`).
     pub lit_top: LitTop,
     /// The order the lit methods' triangles are sent in (`--setup-order`).
     pub setup_order: SetupOrder,
@@ -125,22 +125,28 @@ pub enum SetupOrder {
 impl SetupOrder {
     /// The indices of `jobs` in sending order.
     pub fn of(self, jobs: &[LitJob]) -> Vec<usize> {
+        self.of_addrs(&jobs.iter().map(|j| j.addr).collect::<Vec<_>>())
+    }
+
+    /// The order of triangles given by their address set-ups.
+    pub fn of_addrs(self, addrs: &[golden::address_block::AddressSetup]) -> Vec<usize> {
         match self {
-            SetupOrder::Balanced => pipeline::stream::balanced_order(jobs),
-            SetupOrder::Mesh => (0..jobs.len()).collect(),
+            SetupOrder::Balanced => pipeline::stream::balanced_order_of(addrs),
+            SetupOrder::Mesh => (0..addrs.len()).collect(),
         }
     }
 }
 
-/// The top the lit methods' frames go through (`--lit-top`).
+/// The top the lit methods' and `gouraud`'s frames go through (`--lit-top`).
 #[derive(clap::ValueEnum, Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum LitTop {
     /// `stream` under rust-hdl, `pipeline` under Verilator (whose replay drives the ports).
     #[default]
     Default,
-    /// `pixel-stream`: set-up records on its 32-bit AXI4-Stream, fragment beats out.
+    /// `pixel-stream` / `gouraud-stream`: set-up records on a 32-bit AXI4-Stream, fragment
+    /// beats out.
     Stream,
-    /// `pixel-pipeline`: the set-up on its load ports, one triangle per load.
+    /// `pixel-pipeline` / `gouraud-raster`: the set-up on load ports, one triangle per load.
     Pipeline,
 }
 
@@ -151,7 +157,7 @@ impl LitTop {
             (LitTop::Default, Sim::RustHdl) => Ok(LitTop::Stream),
             (LitTop::Default, Sim::Verilator) => Ok(LitTop::Pipeline),
             (LitTop::Stream, Sim::Verilator) => Err(anyhow::anyhow!(
-                "--lit-top stream runs under rust-hdl only (the Verilator engine replays pixel-pipeline's ports); use --lit-top pipeline or --sim rust-hdl"
+                "--lit-top stream runs under rust-hdl only (the Verilator engine replays pixel-pipeline's and gouraud-raster's ports); use --lit-top pipeline or --sim rust-hdl"
             )),
             (t, _) => Ok(t),
         }
@@ -482,17 +488,41 @@ pub fn render_gouraud_rtl_with(
     let (jobs, depth) = jobs_with_depth(tris, |t| Ok(TriangleJob::gouraud(t, ctx)))?;
     progress.set_length(jobs.len() as u64);
     let mut frame = Frame::new(width, height);
+    // The triangles are sent in the set-up order (balanced by default: a 22-word record per
+    // triangle streams in while a larger one is walked); the frame keeps, at equal depth, the
+    // lower mesh index, so the image does not depend on the order.
+    let order = build
+        .setup_order
+        .of_addrs(&jobs.iter().map(|j| j.addr).collect::<Vec<_>>());
+    let sent: Vec<TriangleJob> = order.iter().map(|&i| jobs[i]).collect();
+    let top = build.lit_top.resolve(build.sim)?;
     let mut pipe = match build.sim {
+        Sim::RustHdl if top == LitTop::Stream => {
+            Pipe::stream().map_err(|e| anyhow::anyhow!("RTL set-up: {e}"))?
+        }
         Sim::RustHdl => Pipe::new().map_err(|e| anyhow::anyhow!("RTL set-up: {e}"))?,
-        Sim::Verilator => Pipe::replay(crate::verilator_engine::gouraud_replay(&jobs)?),
+        Sim::Verilator => Pipe::replay(crate::verilator_engine::gouraud_replay(&sent)?),
     };
+    let mut winner = vec![usize::MAX; width as usize * height as usize];
     let stats = pipe
         .run(
-            &jobs,
-            clock_budget(&jobs),
+            &sent,
+            clock_budget(&sent),
             |k, x, y, rgb| {
+                let k = order[k];
+                let at =
+                    (x < width && y < height).then(|| y as usize * width as usize + x as usize);
                 let (x, y) = (x as i32, y as i32);
-                frame.put(x, y, depth[k].at_pixel(x, y), rgb);
+                let z = depth[k].at_pixel(x, y);
+                let tie_won = at.is_some_and(|i| z == frame.depth[i] && k < winner[i]);
+                if frame.put(x, y, z, rgb) {
+                    if let Some(i) = at {
+                        winner[i] = k;
+                    }
+                } else if let (true, Some(i)) = (tie_won, at) {
+                    frame.rgb[i] = rgb;
+                    winner[i] = k;
+                }
             },
             |done| progress.set_position(done),
         )
@@ -622,6 +652,48 @@ mod tests {
             rtl.stats.pixels_per_clock()
         );
         assert!(max <= 1, "RTL differs from golden Gouraud by {max} LSB");
+    }
+
+    /// Gouraud through `gouraud-stream` (set-up records, fragment beats) and through
+    /// `gouraud-raster`'s ports gives the same frame, bit for bit, on the default scene, in
+    /// either set-up order.
+    #[test]
+    fn gouraud_stream_and_ports_render_the_same_frame() {
+        let s = crate::setup::build(&crate::setup::SceneArgs::default()).unwrap();
+        let run = |top, setup_order| {
+            let build = RtlBuild {
+                lit_top: top,
+                setup_order,
+                ..RtlBuild::default()
+            };
+            render_gouraud_rtl_with(
+                &s.tris,
+                &s.ctx,
+                s.width,
+                s.height,
+                &ProgressBar::hidden(),
+                build,
+            )
+            .unwrap()
+        };
+        let stream = run(LitTop::Stream, SetupOrder::Balanced);
+        let mesh = run(LitTop::Stream, SetupOrder::Mesh);
+        let ports = run(LitTop::Pipeline, SetupOrder::Mesh);
+        for (label, r) in [("balanced", &stream), ("mesh order", &mesh)] {
+            assert_eq!(r.stats.pixels, ports.stats.pixels, "{label}");
+            assert_eq!(r.stats.triangles, ports.stats.triangles, "{label}");
+            assert!(r.frame.rgb == ports.frame.rgb, "{label}: frames differ");
+        }
+        println!(
+            "gouraud-stream {} clocks ({:.3} px/clock; mesh order {}, {:.3}), gouraud-raster {} ({:.3}), ratio {:.3}",
+            stream.stats.clocks,
+            stream.stats.pixels_per_clock(),
+            mesh.stats.clocks,
+            mesh.stats.pixels_per_clock(),
+            ports.stats.clocks,
+            ports.stats.pixels_per_clock(),
+            ports.stats.clocks as f64 / stream.stats.clocks as f64
+        );
     }
 
     #[test]

@@ -112,12 +112,16 @@ pub fn row_words(row: &[u64], at: usize) -> [ChannelWords; 3] {
     })
 }
 
-/// The pipe's input row: `load`, the address set-up, the twelve BVI words.
+/// The pipe's input row: `load`, the address set-up, the twelve BVI words, `hold` (0).
 pub fn pipe_row(job: Option<&TriangleJob>) -> Vec<u64> {
     let mut row = setup_row(job.map(|j| &j.addr));
     row.extend(words_row(job.map(|j| &j.words)));
+    row.push(0);
     row
 }
+
+/// Index of `hold` in a [`pipe_row`].
+pub const PIPE_HOLD_AT: usize = 32;
 
 /// Counters of one pipe run.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -136,6 +140,8 @@ impl PipeStats {
 
 enum PipeSim {
     Rust(Box<Stepper<GouraudRaster>>),
+    /// The AXI4-Stream top `gouraud-stream` (triangle records in, fragment beats out).
+    Stream(Box<Stepper<rtl::gouraud_stream::GouraudStream>>),
     Replay(crate::replay::Replay),
 }
 
@@ -151,6 +157,17 @@ impl Pipe {
         })
     }
 
+    /// The AXI4-Stream top `gouraud-stream`: [`Pipe::run`] sends every triangle record on its
+    /// set-up stream (one word per clock while `s_axis_tready`) and takes every fragment beat
+    /// (`m_axis_tready` high).
+    pub fn stream() -> Result<Pipe, String> {
+        Ok(Pipe {
+            sim: PipeSim::Stream(Box::new(Stepper::new(
+                rtl::gouraud_stream::GouraudStream::default(),
+            )?)),
+        })
+    }
+
     /// A recorded run of the pipe (see [`crate::replay`]).
     pub fn replay(r: crate::replay::Replay) -> Pipe {
         Pipe {
@@ -160,8 +177,10 @@ impl Pipe {
 
     /// Trace every following clock into `w` (rust-hdl only).
     pub fn start_vcd(&mut self, w: Box<dyn Write>) {
-        if let PipeSim::Rust(s) = &mut self.sim {
-            s.start_vcd(w);
+        match &mut self.sim {
+            PipeSim::Rust(s) => s.start_vcd(w),
+            PipeSim::Stream(s) => s.start_vcd(w),
+            PipeSim::Replay(_) => {}
         }
     }
 
@@ -169,6 +188,7 @@ impl Pipe {
         match &self.sim {
             PipeSim::Rust(s) => s.dut().ready.val(),
             PipeSim::Replay(r) => r.ready(),
+            PipeSim::Stream(_) => unreachable!("the stream top is run by run_stream"),
         }
     }
 
@@ -176,7 +196,56 @@ impl Pipe {
         match &mut self.sim {
             PipeSim::Rust(s) => s.step(row, out),
             PipeSim::Replay(r) => r.step(row, out),
+            PipeSim::Stream(_) => unreachable!("the stream top is run by run_stream"),
         }
+    }
+
+    /// [`Pipe::run`] through the stream top.
+    fn run_stream(
+        s: &mut Stepper<rtl::gouraud_stream::GouraudStream>,
+        jobs: &[TriangleJob],
+        max_clocks: u64,
+        pixel: &mut dyn FnMut(usize, u32, u32, [u8; 3]),
+        progress: &mut dyn FnMut(u64),
+    ) -> Result<PipeStats, String> {
+        let words = crate::stream::gouraud_words(jobs);
+        let mut st = PipeStats::default();
+        let mut out = vec![0u64; 5];
+        let mut next = 0;
+        while st.triangles < jobs.len() as u64 {
+            if st.clocks >= max_clocks {
+                return Err(format!(
+                    "gouraud-stream: {} of {} triangles done after {max_clocks} clocks",
+                    st.triangles,
+                    jobs.len()
+                ));
+            }
+            // `s_axis_tready` is a register output: settled for this clock.
+            let taken = s.dut().s_axis_tready.val();
+            let row = match words.get(next) {
+                Some(&(w, last)) => [w as u64, 1, last as u64, 1],
+                None => [0, 0, 0, 1],
+            };
+            s.step(&row, &mut out)?;
+            next += (row[1] != 0 && taken) as usize;
+            st.clocks += 1;
+            if out[4] != 0 {
+                return Err("gouraud-stream flagged a malformed set-up record".into());
+            }
+            if out[1] != 0 {
+                let b = crate::stream::Beat::read(out[2], 0, out[3] != 0);
+                if b.pixel {
+                    st.pixels += 1;
+                    pixel(st.triangles as usize, b.x, b.y, b.rgb);
+                }
+                if b.last {
+                    st.triangles += 1;
+                    progress(st.triangles);
+                }
+            }
+        }
+        s.stop_vcd();
+        Ok(st)
     }
 
     /// Run `jobs` through the pipe, each loaded as soon as `ready` is high;
@@ -191,6 +260,9 @@ impl Pipe {
         mut pixel: impl FnMut(usize, u32, u32, [u8; 3]),
         mut progress: impl FnMut(u64),
     ) -> Result<PipeStats, String> {
+        if let PipeSim::Stream(s) = &mut self.sim {
+            return Self::run_stream(s, jobs, max_clocks, &mut pixel, &mut progress);
+        }
         let mut st = PipeStats::default();
         let mut out = vec![0u64; 8];
         let idle = pipe_row(None);

@@ -1,7 +1,10 @@
-//! The `pixel-stream` top's streams from the driver's side: set-up records packed with the
-//! one layout table (`rtl::stream_layout`), and fragment beats read back with it.
+//! The stream tops' streams (`pixel-stream`, `gouraud-stream`) from the driver's side: set-up
+//! records packed with the one layout table (`rtl::stream_layout`), and fragment beats read
+//! back with it.
 
-use rtl::stream_layout::{pack, unpack_fragment, REGISTERS, TRIANGLE};
+use rtl::stream_layout::{pack, unpack_fragment, GOURAUD_TRIANGLE, REGISTERS, TRIANGLE};
+
+use crate::gouraud::{pipe_row, TriangleJob, PIPE_HOLD_AT};
 
 use crate::lit::{lit_row, LitJob, ShadingRegs, REGS_AT};
 
@@ -37,6 +40,18 @@ pub fn scene_words(jobs: &[LitJob], regs: &ShadingRegs) -> Vec<Word> {
     w
 }
 
+/// The `gouraud-stream` record of `job` (the same field values `gouraud-raster`'s load row
+/// carries).
+pub fn gouraud_record(job: &TriangleJob) -> Vec<Word> {
+    let row = pipe_row(Some(job));
+    with_last(pack(&GOURAUD_TRIANGLE, &row[1..PIPE_HOLD_AT]))
+}
+
+/// A Gouraud scene's set-up stream: every triangle, in order.
+pub fn gouraud_words(jobs: &[TriangleJob]) -> Vec<Word> {
+    jobs.iter().flat_map(gouraud_record).collect()
+}
+
 /// The order in which the driver sends `jobs` on the set-up stream (indices into `jobs`):
 /// largest walk first, then smallest, then the second largest, the second smallest, and so
 /// on.
@@ -55,17 +70,18 @@ pub fn scene_words(jobs: &[LitJob], regs: &ShadingRegs) -> Vec<Word> {
 /// (`golden::address_block::run`, the cycle model), so the order is set-up software only.
 /// Ties keep mesh order (a stable sort), so the order is deterministic.
 pub fn balanced_order(jobs: &[LitJob]) -> Vec<usize> {
-    let walk: Vec<usize> = jobs
+    balanced_order_of(&jobs.iter().map(|j| j.addr).collect::<Vec<_>>())
+}
+
+/// [`balanced_order`] of triangles given by their address set-ups (the Gouraud jobs' too).
+pub fn balanced_order_of(addrs: &[golden::address_block::AddressSetup]) -> Vec<usize> {
+    let walk: Vec<usize> = addrs
         .iter()
-        .map(|j| {
-            golden::address_block::run(std::slice::from_ref(&j.addr))
-                .0
-                .len()
-        })
+        .map(|a| golden::address_block::run(std::slice::from_ref(a)).0.len())
         .collect();
-    let mut by_size: Vec<usize> = (0..jobs.len()).collect();
+    let mut by_size: Vec<usize> = (0..addrs.len()).collect();
     by_size.sort_by_key(|&i| std::cmp::Reverse(walk[i]));
-    let mut order = Vec::with_capacity(jobs.len());
+    let mut order = Vec::with_capacity(addrs.len());
     let (mut lo, mut hi) = (0, by_size.len());
     while lo < hi {
         order.push(by_size[lo]);
@@ -123,6 +139,25 @@ mod tests {
         let row = lit_row(Some(&job), &ShadingRegs::default());
         assert_eq!(unpack(&TRIANGLE, &payload), row[1..REGS_AT].to_vec());
         assert_eq!(FRAGMENT[0].name, "x");
+    }
+
+    #[test]
+    fn gouraud_records_carry_the_load_row() {
+        let t = golden::types::ScreenTriangle::from_points([(3, 1), (40, 7), (11, 30)]);
+        let ctx = golden::shade::ShadeContext::default();
+        let job = TriangleJob::gouraud(&t, &ctx).unwrap();
+        let rec = gouraud_record(&job);
+        assert_eq!(rec.len(), 22);
+        assert_eq!(rec[0], (1, false));
+        assert!(rec.last().unwrap().1);
+        assert!(rec[..21].iter().all(|w| !w.1));
+        let payload: Vec<u32> = rec[1..].iter().map(|w| w.0).collect();
+        let row = pipe_row(Some(&job));
+        assert_eq!(
+            unpack(&GOURAUD_TRIANGLE, &payload),
+            row[1..PIPE_HOLD_AT].to_vec()
+        );
+        assert_eq!(gouraud_words(&[job, job]).len(), 44);
     }
 
     #[test]

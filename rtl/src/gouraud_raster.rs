@@ -10,7 +10,9 @@
 //!
 //! Ports: the address block's set-up inputs (same names, see `address_block`) and the BVI's
 //! twelve signed Q16.16 set-up words (`r_start` … `b_line`, see `intensity_interpolator`), all
-//! sampled on the one `load` strobe, which is accepted when `ready` is high. Outputs:
+//! sampled on the one `load` strobe, which is accepted when `ready` is high, and `hold` (the
+//! address block's: no event in a clock with `hold` high, none lost; `gouraud-stream` holds
+//! the walk while its fragment FIFO fills; 0 for a free-running pipe). Outputs:
 //! `valid`, `x`, `y` (12 bits), `red`, `green`, `blue` (8 bits, saturated), `done` (last event
 //! of a triangle), `ready`. Every output is a register or a function of registers. The set-up
 //! ports are the children's own port bundles (`address_setup_ports!`,
@@ -36,7 +38,7 @@ crate::hw_block! {
         latency: AddressBlock::LATENCY + IntensityInterpolator::LATENCY
             => "load to the first pixel, one pixel per clock",
         multipliers: 0,
-        in { load: Bit, address_setup_ports!, intensity_setup_ports! }
+        in { load: Bit, address_setup_ports!, intensity_setup_ports!, hold: Bit }
         out {
             ready: Bit, valid: Bit, x: Bits<12>, y: Bits<12>,
             red: Bits<8>, green: Bits<8>, blue: Bits<8>, done: Bit,
@@ -55,7 +57,7 @@ impl Logic for GouraudRaster {
     fn update(&mut self) {
         clock!(self, clock, addr, bvi, x_p1, y_p1, done_p1);
         self.addr.load.next = self.load.val();
-        self.addr.hold.next = false;
+        self.addr.hold.next = self.hold.val();
         self.addr.w_b0.next = self.w_b0.val();
         self.addr.w_e0.next = self.w_e0.val();
         self.addr.w_f.next = self.w_f.val();

@@ -9,6 +9,7 @@ pub mod fast_unit;
 pub mod fixed;
 pub mod four_triangle;
 pub mod gouraud_raster;
+pub mod gouraud_stream;
 pub mod horner_unit;
 pub mod intensity_interpolator;
 pub mod k_recurrence;

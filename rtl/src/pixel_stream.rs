@@ -528,7 +528,6 @@ impl Logic for PixelStream {
 mod tests {
     use crate::pixel_pipeline::{PixelPipeline, EVENT_TO_FRAGMENT};
     use crate::registry::RtlBlock;
-    use crate::stream_layout::{generated_rtl, BEGIN, END};
 
     /// The headers' latency and FIFO figures are the constants' (they move whenever a block
     /// is pipelined further).
@@ -563,28 +562,6 @@ mod tests {
     /// `SHADECORE_REGENERATE=1` the test rewrites them.
     #[test]
     fn pixel_stream_rtl_is_generated() {
-        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/src/pixel_stream.rs");
-        let text = std::fs::read_to_string(path).unwrap();
-        let (decl, up) = generated_rtl();
-        let mut out = String::new();
-        let mut rest = text.as_str();
-        for body in [&decl, &up] {
-            let b = rest.find(BEGIN).expect("BEGIN marker");
-            let line_end = b + rest[b..].find('\n').unwrap() + 1;
-            let e = line_end + rest[line_end..].find(END).expect("END marker");
-            let indent_start = rest[..e].rfind('\n').unwrap() + 1;
-            out.push_str(&rest[..line_end]);
-            out.push_str(body);
-            out.push_str(&rest[indent_start..e]);
-            rest = &rest[e..];
-        }
-        out.push_str(rest);
-        if out != text {
-            if std::env::var_os("SHADECORE_REGENERATE").is_some() {
-                std::fs::write(path, &out).unwrap();
-            } else {
-                panic!("rtl/src/pixel_stream.rs is not what rtl::stream_layout generates: run with SHADECORE_REGENERATE=1");
-            }
-        }
+        crate::stream_layout::check_generated(&crate::stream_layout::PIXEL_STREAM).unwrap();
     }
 }

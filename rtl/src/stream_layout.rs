@@ -1,4 +1,4 @@
-//! Word layouts of the `pixel-stream` top's AXI4-Stream interfaces, defined once.
+//! Word layouts of the AXI4-Stream tops (`pixel-stream`, `gouraud-stream`), defined once.
 //!
 //! The set-up stream (`s_axis_*`, 32-bit words) carries *records*: a header word, then the
 //! record's fields packed LSB first into 32-bit words (a field never straddles two words),
@@ -8,17 +8,18 @@
 //! Everything that reads or writes these words comes from the tables here:
 //! - the driver packs records with [`pack`] (`pipeline::stream`), and reads fragments with
 //!   [`unpack_fragment`];
-//! - the hardware's field selects and its fragment packing in `rtl/src/pixel_stream.rs` are
-//!   generated from the same tables by [`generated_rtl`]; the test `pixel_stream_rtl_is_generated`
-//!   fails if that file's generated regions differ from what the tables give (set
-//!   `SHADECORE_REGENERATE=1` to rewrite them);
+//! - each top's field selects and fragment packing (`rtl/src/pixel_stream.rs`,
+//!   `rtl/src/gouraud_stream.rs`) are generated from the same tables by [`generated_rtl`]; the
+//!   tests `*_rtl_is_generated` fail if a file's generated regions differ from what the tables
+//!   give (set `SHADECORE_REGENERATE=1` to rewrite them);
 //! - `rtl/README.md`'s layout table is printed by [`markdown`] (checked by a test as well).
 //!
-//! Field names and widths are the `pixel-pipeline` top's input ports, in its port order
-//! (checked against its port list by `testbenches/tests/pixel_stream.rs`).
+//! Field names and widths are the wrapped top's input ports (`pixel-pipeline`'s,
+//! `gouraud-raster`'s), in its port order (checked against its port list by
+//! `testbenches/tests/pixel_stream.rs` and `testbenches/tests/gouraud_stream.rs`).
 //!
-//! Not a block: no ports, no latency (the hardware that reads these words is `pixel_stream`,
-//! whose header gives them).
+//! Not a block: no ports, no latency (the hardware that reads these words is `pixel_stream`
+//! and `gouraud_stream`, whose headers give them).
 
 /// One field of a record: a port of `pixel-pipeline` (name, width in bits).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -109,8 +110,101 @@ pub const REGISTERS: Record = Record {
     ],
 };
 
-/// Both record types.
+/// Both record types of `pixel-stream`.
 pub const RECORDS: [Record; 2] = [TRIANGLE, REGISTERS];
+
+/// A Gouraud triangle (`gouraud-stream`): the address block's set-up and the BVI's twelve
+/// signed Q16.16 words (`gouraud-raster`'s set-up ports).
+pub const GOURAUD_TRIANGLE: Record = Record {
+    name: "gouraud triangle",
+    code: 1,
+    fields: &[
+        f("w_b0", 12),
+        f("w_e0", 13),
+        f("w_f", 12),
+        f("w_r", 13),
+        f("w_d", 13),
+        f("a_b0", 12),
+        f("a_e0", 13),
+        f("a_f", 12),
+        f("a_r", 13),
+        f("a_d", 13),
+        f("t_b0", 12),
+        f("t_e0", 13),
+        f("t_f", 12),
+        f("t_r", 13),
+        f("t_d", 13),
+        f("y_top", 12),
+        f("rows", 12),
+        f("y_switch", 12),
+        f("dir_neg", 1),
+        f("r_start", 32),
+        f("r_short", 32),
+        f("r_long", 32),
+        f("r_line", 32),
+        f("g_start", 32),
+        f("g_short", 32),
+        f("g_long", 32),
+        f("g_line", 32),
+        f("b_start", 32),
+        f("b_short", 32),
+        f("b_long", 32),
+        f("b_line", 32),
+    ],
+};
+
+/// An AXI4-Stream top: the record that loads a triangle, the register record if it has one,
+/// the fragment beat's sideband. The fragment beat is [`FRAGMENT`] for every top.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct StreamTop {
+    /// The block's registry name.
+    pub block: &'static str,
+    /// Its source file under `rtl/src`.
+    pub file: &'static str,
+    /// The wrapped top's registry name.
+    pub wraps: &'static str,
+    pub triangle: Record,
+    pub registers: Option<Record>,
+    /// `m_axis_tuser`, when the top has one.
+    pub tuser: Option<Field>,
+}
+
+impl StreamTop {
+    /// The record types, triangle first.
+    pub fn records(&self) -> Vec<Record> {
+        std::iter::once(self.triangle)
+            .chain(self.registers)
+            .collect()
+    }
+
+    /// The most payload words of any record (the hardware's word bank).
+    pub fn bank_words(&self) -> usize {
+        self.records().iter().map(payload_words).max().unwrap_or(0)
+    }
+}
+
+/// The lit pixel pipeline's stream top.
+pub const PIXEL_STREAM: StreamTop = StreamTop {
+    block: "pixel-stream",
+    file: "pixel_stream.rs",
+    wraps: "pixel-pipeline",
+    triangle: TRIANGLE,
+    registers: Some(REGISTERS),
+    tuser: Some(TUSER),
+};
+
+/// The Gouraud raster pipe's stream top.
+pub const GOURAUD_STREAM: StreamTop = StreamTop {
+    block: "gouraud-stream",
+    file: "gouraud_stream.rs",
+    wraps: "gouraud-raster",
+    triangle: GOURAUD_TRIANGLE,
+    registers: None,
+    tuser: None,
+};
+
+/// Every stream top.
+pub const TOPS: [StreamTop; 2] = [PIXEL_STREAM, GOURAUD_STREAM];
 
 /// A fragment beat (`m_axis_tdata`, 64 bits); `tlast` marks a triangle's last event. A beat
 /// with `pixel` = 0 carries only that end (a triangle whose last event had no pixel). The
@@ -189,9 +283,9 @@ pub fn payload_words(r: &Record) -> usize {
     place(r).last().map_or(0, |p| p.word + 1)
 }
 
-/// The most payload words of any record (the hardware's word bank).
+/// The most payload words of any `pixel-stream` record (its word bank).
 pub fn bank_words() -> usize {
-    RECORDS.iter().map(payload_words).max().unwrap_or(0)
+    PIXEL_STREAM.bank_words()
 }
 
 /// The header word of `r`.
@@ -254,49 +348,63 @@ pub fn pack_fragment(values: &[u64]) -> u128 {
         .fold(0, |a, b| a | b)
 }
 
-/// The layout as Markdown tables (`rtl/README.md`).
+/// The layouts as Markdown tables (`rtl/README.md`), every top.
 pub fn markdown() -> String {
     let mut s = String::new();
-    for r in RECORDS {
-        s.push_str(&format!(
-            "**{}** record: header `0x{:08x}`, then {} payload words.\n\n| word | bits | field |\n|---|---|---|\n",
-            r.name,
-            header(&r),
-            payload_words(&r)
-        ));
-        for pl in place(&r) {
+    for top in TOPS {
+        s.push_str(&format!("#### `{}` (wraps `{}`)\n\n", top.block, top.wraps));
+        for r in top.records() {
             s.push_str(&format!(
-                "| {} | {}..{} | `{}` |\n",
-                pl.word + 1,
-                pl.offset + pl.bits - 1,
-                pl.offset,
+                "**{}** record: header `0x{:08x}`, then {} payload words.\n\n| word | bits | field |\n|---|---|---|\n",
+                r.name,
+                header(&r),
+                payload_words(&r)
+            ));
+            for pl in place(&r) {
+                s.push_str(&format!(
+                    "| {} | {}..{} | `{}` |\n",
+                    pl.word + 1,
+                    pl.offset + pl.bits - 1,
+                    pl.offset,
+                    pl.name
+                ));
+            }
+            s.push('\n');
+        }
+        let tuser = match top.tuser {
+            Some(t) => format!("`m_axis_tuser`: `{}`, {} bits", t.name, t.bits),
+            None => "no `m_axis_tuser`".to_string(),
+        };
+        s.push_str(&format!(
+            "**fragment** beat (`m_axis_tdata`, {FRAGMENT_BITS} bits; {tuser}; `tlast`: the triangle's last event):\n\n| bits | field |\n|---|---|\n"
+        ));
+        for pl in FRAGMENT {
+            s.push_str(&format!(
+                "| {}..{} | `{}` |\n",
+                pl.at() + pl.bits - 1,
+                pl.at(),
                 pl.name
             ));
         }
         s.push('\n');
     }
-    s.push_str(&format!(
-        "**fragment** beat (`m_axis_tdata`, {FRAGMENT_BITS} bits; `m_axis_tuser`: `z`, 32 bits; `tlast`: the triangle's last event):\n\n| bits | field |\n|---|---|\n"
-    ));
-    for pl in FRAGMENT {
-        s.push_str(&format!(
-            "| {}..{} | `{}` |\n",
-            pl.at() + pl.bits - 1,
-            pl.at(),
-            pl.name
-        ));
-    }
     s
 }
 
-/// Marker lines around the generated regions of `rtl/src/pixel_stream.rs`.
+/// Marker lines around the generated regions of a stream top's source.
 pub const BEGIN: &str = "// BEGIN GENERATED by rtl::stream_layout::generated_rtl";
 pub const END: &str = "// END GENERATED";
 
-/// The two generated regions of `rtl/src/pixel_stream.rs`: (declarations inside the block's
-/// `hw_block!`, statements inside its `update`).
-pub fn generated_rtl() -> (String, String) {
-    let n = bank_words();
+/// The two generated regions of `top`'s source (`rtl/src/<file>`): (declarations inside the
+/// block's `hw_block!`, statements inside its `update`).
+pub fn generated_rtl(top: &StreamTop) -> (String, String) {
+    let n = top.bank_words();
+    let no_regs = Record {
+        name: "",
+        code: 0,
+        fields: &[],
+    };
+    let regs_rec = top.registers.unwrap_or(no_regs);
     let mut decl = String::new();
     decl.push_str("        // The receive bank (payload words of the record being received).\n");
     for k in 0..n {
@@ -306,15 +414,17 @@ pub fn generated_rtl() -> (String, String) {
     for k in 0..n {
         decl.push_str(&format!("        lw{k}: DFF<Bits<32>>,\n"));
     }
-    decl.push_str("        // The active frame and material registers.\n");
-    for fl in REGISTERS.fields {
+    if top.registers.is_some() {
+        decl.push_str("        // The active frame and material registers.\n");
+    }
+    for fl in regs_rec.fields {
         decl.push_str(&format!("        r_{}: DFF<Bits<{}>>,\n", fl.name, fl.bits));
     }
     let mut up = String::new();
     let banks = (0..n)
         .map(|k| format!("sw{k}"))
         .chain((0..n).map(|k| format!("lw{k}")));
-    let regs = REGISTERS.fields.iter().map(|fl| format!("r_{}", fl.name));
+    let regs = regs_rec.fields.iter().map(|fl| format!("r_{}", fl.name));
     // Short enough lists that rustfmt leaves each call on one line.
     for (names, per_call) in [(banks.collect::<Vec<_>>(), 9), (regs.collect(), 6)] {
         for chunk in names.chunks(per_call) {
@@ -340,24 +450,26 @@ pub fn generated_rtl() -> (String, String) {
     }
     up.push_str("        }\n");
     up.push_str("        // Triangle fields: the pipeline's set-up ports.\n");
-    for pl in place(&TRIANGLE) {
+    for pl in place(&top.triangle) {
         up.push_str(&format!(
             "        self.pipe.{}.next = {};\n",
             pl.name,
             select(&pl)
         ));
     }
-    up.push_str("        // Register fields: applied into the active registers.\n");
-    up.push_str("        if self.apply_regs.val() {\n");
-    for pl in place(&REGISTERS) {
-        up.push_str(&format!(
-            "            self.r_{}.d.next = {};\n",
-            pl.name,
-            select(&pl)
-        ));
+    if top.registers.is_some() {
+        up.push_str("        // Register fields: applied into the active registers.\n");
+        up.push_str("        if self.apply_regs.val() {\n");
+        for pl in place(&regs_rec) {
+            up.push_str(&format!(
+                "            self.r_{}.d.next = {};\n",
+                pl.name,
+                select(&pl)
+            ));
+        }
+        up.push_str("        }\n");
     }
-    up.push_str("        }\n");
-    for fl in REGISTERS.fields {
+    for fl in regs_rec.fields {
         up.push_str(&format!(
             "        self.pipe.{0}.next = self.r_{0}.q.val();\n",
             fl.name
@@ -401,6 +513,44 @@ pub fn generated_rtl() -> (String, String) {
     (decl, up)
 }
 
+/// `text` (a stream top's source) with its two generated regions replaced by what
+/// [`generated_rtl`] gives for `top`.
+pub fn with_generated(text: &str, top: &StreamTop) -> String {
+    let (decl, up) = generated_rtl(top);
+    let mut out = String::new();
+    let mut rest = text;
+    for body in [&decl, &up] {
+        let b = rest.find(BEGIN).expect("BEGIN marker");
+        let line_end = b + rest[b..].find('\n').unwrap() + 1;
+        let e = line_end + rest[line_end..].find(END).expect("END marker");
+        let indent_start = rest[..e].rfind('\n').unwrap() + 1;
+        out.push_str(&rest[..line_end]);
+        out.push_str(body);
+        out.push_str(&rest[indent_start..e]);
+        rest = &rest[e..];
+    }
+    out.push_str(rest);
+    out
+}
+
+/// Check `top`'s source file against the tables: `Err` naming the file when its generated
+/// regions differ (with `SHADECORE_REGENERATE` set, the file is rewritten instead).
+pub fn check_generated(top: &StreamTop) -> Result<(), String> {
+    let path = format!("{}/src/{}", env!("CARGO_MANIFEST_DIR"), top.file);
+    let text = std::fs::read_to_string(&path).map_err(|e| format!("{path}: {e}"))?;
+    let out = with_generated(&text, top);
+    if out == text {
+        Ok(())
+    } else if std::env::var_os("SHADECORE_REGENERATE").is_some() {
+        std::fs::write(&path, &out).map_err(|e| format!("{path}: {e}"))
+    } else {
+        Err(format!(
+            "rtl/src/{} is not what rtl::stream_layout generates: run with SHADECORE_REGENERATE=1",
+            top.file
+        ))
+    }
+}
+
 /// The hardware's select of a placed field from its load-bank word.
 fn select(pl: &Placed) -> String {
     if pl.bits == 32 {
@@ -421,7 +571,7 @@ mod tests {
 
     #[test]
     fn records_pack_and_unpack() {
-        for r in RECORDS {
+        for r in TOPS.iter().flat_map(|t| t.records()) {
             let values: Vec<u64> = r
                 .fields
                 .iter()
@@ -436,6 +586,7 @@ mod tests {
         }
         assert_eq!(payload_words(&TRIANGLE), 25);
         assert_eq!(payload_words(&REGISTERS), 8);
+        assert_eq!(payload_words(&GOURAUD_TRIANGLE), 21);
     }
 
     #[test]

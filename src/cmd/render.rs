@@ -66,13 +66,14 @@ pub struct Args {
     #[arg(long, value_enum, default_value = "default", hide_default_value = true)]
     pub address: crate::rtl_engine::Address,
     /// With the RTL engine: the top the lit methods (normalizer, normalizer-fit, brdf-k*,
-    /// bump) go through — stream (`pixel-stream`: AXI4-Stream set-up records and fragment
-    /// beats) or pipeline (`pixel-pipeline`: set-up on load ports). Default: stream under
+    /// bump) and gouraud (single address block) go through — stream (`pixel-stream`,
+    /// `gouraud-stream`: AXI4-Stream set-up records and fragment beats) or pipeline
+    /// (`pixel-pipeline`, `gouraud-raster`: set-up on load ports). Default: stream under
     /// rust-hdl, pipeline under verilator. The images are identical; the clock counts differ
-    /// (the set-up stream carries 26 words per triangle).
+    /// (the set-up stream carries 26 words per lit triangle, 22 per Gouraud one).
     #[arg(long, value_enum, default_value = "default", hide_default_value = true)]
     pub lit_top: crate::rtl_engine::LitTop,
-    /// With the RTL engine: the order the lit methods' triangles are sent in — balanced (large
+    /// With the RTL engine: the order the lit methods' and gouraud's triangles are sent in — balanced (large
     /// and small walks alternately, so small triangles' set-up words stream in while large
     /// ones are walked) or mesh. The images are identical (at equal depth the lower triangle
     /// index wins); the clock counts differ.

@@ -20,7 +20,7 @@ use crate::registry::{Bench, Stimulus, Twin};
 use golden::address_block::{AddressBlockModel, AddressOutputs, AddressSetup};
 use golden::intensity_interpolator::{error_bound, saturate, BviTwin, ChannelWords};
 use golden::shade::to_u8;
-use pipeline::gouraud::{pipe_row, row_setup, row_words, words_row, TriangleJob};
+use pipeline::gouraud::{pipe_row, row_setup, row_words, words_row, TriangleJob, PIPE_HOLD_AT};
 use rtl::gouraud_raster::GouraudRaster;
 use rtl::intensity_interpolator::IntensityInterpolator;
 use rtl::registry::NoParams;
@@ -273,10 +273,11 @@ impl Twin for BviRows {
     }
 }
 
-/// Twin of the raster pipe: the address block's cycle model feeding [`BviTwin`] (loaded on the
-/// accepted load), with x, y and done delayed one clock beside the BVI.
+/// Twin of the raster pipe: the address block's cycle model (with its `hold`) feeding
+/// [`BviTwin`] (loaded on the accepted load), with x, y and done delayed one clock beside the
+/// BVI.
 #[derive(Default)]
-struct PipeRows {
+pub struct PipeRows {
     addr: AddressBlockModel,
     bvi: BviTwin,
     xy_done: (u32, u32, bool),
@@ -284,7 +285,8 @@ struct PipeRows {
 
 impl Twin for PipeRows {
     fn step(&mut self, r: &[u64]) -> Vec<u64> {
-        let a = self.addr.outputs();
+        let hold = r[PIPE_HOLD_AT] != 0;
+        let a = self.addr.outputs_held(hold);
         let (valid, levels, _) = self.bvi.outputs();
         let (x, y, done) = self.xy_done;
         let mut o = vec![a.ready as u64, valid as u64, x as u64, y as u64];
@@ -295,7 +297,7 @@ impl Twin for PipeRows {
         let accepted = setup.is_some() && a.ready;
         self.bvi.clock(accepted.then_some(&words), &a);
         self.xy_done = (a.x, a.y, a.done);
-        self.addr.clock(setup.as_ref());
+        self.addr.clock_held(setup.as_ref(), hold);
         o
     }
 }

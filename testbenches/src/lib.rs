@@ -5,6 +5,7 @@ pub mod cos_v_accumulator;
 pub mod cubic_pipeline;
 pub mod fast_unit;
 pub mod four_triangle;
+pub mod gouraud_stream;
 pub mod harness;
 pub mod horner_unit;
 pub mod intensity_interpolator;

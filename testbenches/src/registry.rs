@@ -274,6 +274,7 @@ pub static BLOCKS: &[&dyn Entry] = &[
     &entry::<rtl::address_block::AddressBlock>(),
     &entry::<rtl::intensity_interpolator::IntensityInterpolator>(),
     &entry::<rtl::gouraud_raster::GouraudRaster>(),
+    &entry::<rtl::gouraud_stream::GouraudStream>(),
     &entry::<rtl::four_triangle::FourTriangle>(),
     &entry::<rtl::subdivision_raster::SubdivisionRaster>(),
     &entry::<rtl::vector_interpolator::VectorInterpolator>(),

