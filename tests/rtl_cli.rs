@@ -318,3 +318,26 @@ fn readme_block_table_is_the_registry() {
         "README block table differs from `shadecore blocks`: paste its output between the markers"
     );
 }
+
+/// `synth --pins` and `--device` name ECP5 placements: with the iCE40 target each is a
+/// one-line error and a non-zero exit, before any tool runs.
+#[test]
+fn synth_ecp5_only_flags_are_one_line_errors() {
+    for (args, word) in [
+        (
+            &["synth", "--block", "gouraud-stream", "--pins"][..],
+            "--pins",
+        ),
+        (
+            &["synth", "--block", "gouraud-stream", "--device", "25k"][..],
+            "--device",
+        ),
+    ] {
+        let out = shadecore(args);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(
+            !out.status.success() && err.trim().lines().count() == 1 && err.contains(word),
+            "{args:?}: {err}"
+        );
+    }
+}

@@ -112,6 +112,11 @@ pub struct SynthArgs {
     /// (CABGA381); default the smallest that holds the block.
     #[arg(long, value_parser = ["25k", "45k", "85k"])]
     pub device: Option<String>,
+    /// With `--target ecp5`: also place and route the block as the top of a board design, its
+    /// ports on the package's own pins (no timing shell) — whether its interface fits the
+    /// package (the stream tops do; tops with flat set-up ports have hundreds of pins).
+    #[arg(long)]
+    pub pins: bool,
 }
 
 /// `synth --target`.
@@ -260,12 +265,47 @@ pub fn synth(a: SynthArgs) -> anyhow::Result<()> {
                 .map_err(|e| anyhow!(e))
             });
             spin.finish_and_clear();
-            crate::outln!("{}", rep?)?;
+            let rep = rep?;
+            crate::outln!("{rep}")?;
+            if a.pins {
+                let spin = spinner(format!(
+                    "synth {}: on its own pins of the {} ({})",
+                    b.name(),
+                    rep.part.name,
+                    rep.part.package
+                ));
+                let v = b.verilog(&o).map_err(|e| anyhow!(e))?;
+                let pins = testbenches::synth::ecp5_on_pins(
+                    &v,
+                    &b.module_name(),
+                    &b.ports(),
+                    rep.part,
+                    &format!("pins-{}", b.name()),
+                )
+                .map_err(|e| anyhow!(e));
+                spin.finish_and_clear();
+                let pins = pins?;
+                let what = match (pins.fmax, &pins.unplaced) {
+                    (Some(f), _) => format!("placed and routed, max clock {f:.1} MHz"),
+                    (None, Some(why)) => format!("not placed: {why}"),
+                    (None, None) => "placed, no clock figure in nextpnr's log".to_string(),
+                };
+                crate::outln!(
+                    "{}: on its own {} pins (clock included) of the {} ({}): {what}",
+                    b.name(),
+                    pins.pins,
+                    pins.part.name,
+                    pins.part.package
+                )?;
+            }
         }
         return Ok(());
     }
     if a.device.is_some() {
         bail!("--device names an ECP5 part: use it with --target ecp5");
+    }
+    if a.pins {
+        bail!("--pins places on an ECP5 package: use it with --target ecp5");
     }
     for b in blocks {
         let spin = spinner(format!(
