@@ -32,7 +32,7 @@ enum Command {
     Raster(cmd::raster::Args),
     /// List the registered RTL blocks (the table in the README) as Markdown.
     Blocks,
-    /// Write a scene as pixel-stream's AXI4-Stream set-up words, the beats its simulation delivers, and its Verilog.
+    /// Write a scene as a stream top's AXI4-Stream set-up words (pixel-stream, or gouraud-stream for gouraud), the beats its simulation delivers, and its Verilog.
     Stream(cmd::stream::Args),
 }
 

@@ -1,6 +1,6 @@
-//! The cocotb test of the exported `pixel-stream` top (testbenches/cocotb/): `shadecore stream`
-//! writes a small scene's set-up words, the rust-hdl simulation's fragment beats and the
-//! Verilog; cocotb with cocotbext-axi drives the Verilog under Icarus with random gaps on the
+//! The cocotb tests of the exported stream tops `pixel-stream` and `gouraud-stream`
+//! (testbenches/cocotb/): `shadecore stream` writes a small scene's set-up words, the rust-hdl
+//! simulation's fragment beats and the Verilog; cocotb with cocotbext-axi drives the Verilog under Icarus with random gaps on the
 //! set-up stream and random back-pressure (long stretches included) on the fragment stream,
 //! and requires the same beats in the same order. The same test fails on the Verilog with one
 //! operator flipped (shown for two).
@@ -14,13 +14,14 @@ use std::process::Command;
 
 use testbenches::tools::{self, Tool};
 
-fn cocotb(python: &Path, dir: &Path, verilog: &Path, build: &str) -> (bool, String) {
+fn cocotb(python: &Path, dir: &Path, verilog: &Path, build: &str, top: &str) -> (bool, String) {
     let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("testbenches/cocotb/run.py");
     let out = Command::new(python)
         .arg(&script)
         .arg(dir)
         .arg(verilog)
         .arg(dir.join(build))
+        .arg(top)
         .env("SHADECORE_SEED", "20261123")
         .output()
         .expect("python runs (probed)");
@@ -63,7 +64,7 @@ fn cocotb_drives_the_exported_pixel_stream_with_back_pressure() {
     );
     println!("{}", String::from_utf8_lossy(&st.stdout).trim());
     let verilog = dir.join("pixel_stream.v");
-    let (ok, text) = cocotb(&python, &dir, &verilog, "build-good");
+    let (ok, text) = cocotb(&python, &dir, &verilog, "build-good", "pixel_stream");
     assert!(
         ok,
         "cocotb test failed on the exported Verilog:\n{}",
@@ -97,7 +98,98 @@ fn cocotb_drives_the_exported_pixel_stream_with_back_pressure() {
         );
         let path = dir.join(format!("mutant-{}.v", what.len()));
         std::fs::write(&path, good.replacen(from, to, 1)).unwrap();
-        let (ok, text) = cocotb(&python, &dir, &path, &format!("build-{}", what.len()));
+        let (ok, text) = cocotb(
+            &python,
+            &dir,
+            &path,
+            &format!("build-{}", what.len()),
+            "pixel_stream",
+        );
+        assert!(!ok, "{what}: the cocotb test passed on the broken Verilog");
+        let why = text
+            .lines()
+            .find(|l| l.contains("Error:") || l.contains("beat "))
+            .unwrap_or("failed")
+            .trim()
+            .to_string();
+        println!("mutant {what}: caught ({why})");
+    }
+}
+
+/// The same cocotb test on `gouraud-stream` (`shadecore stream --method gouraud`): the
+/// exported Verilog under random gaps and back-pressure delivers the rust-hdl simulation's
+/// beats, and fails with one operator flipped (shown for two).
+#[test]
+fn cocotb_drives_the_exported_gouraud_stream_with_back_pressure() {
+    if !tools::require(
+        &[Tool::Iverilog, Tool::Vvp],
+        "cocotb test of gouraud-stream",
+    ) {
+        return;
+    }
+    let Some(python) = tools::cocotb_python() else {
+        assert!(
+            !tools::in_ci(),
+            "cocotb test: no Python with cocotb and cocotbext-axi (CI is set)"
+        );
+        println!("SKIPPED cocotb test of gouraud-stream: no Python with cocotb, cocotb_tools and cocotbext-axi (pip install cocotb cocotbext-axi; .ci/run installs them into .venv/)");
+        return;
+    };
+    let dir = tools::unique_dir("cocotb-gouraud-stream").unwrap();
+    let st = Command::new(env!("CARGO_BIN_EXE_shadecore"))
+        .args([
+            "stream", "--method", "gouraud", "--rez", "6", "--size", "48x48", "--out",
+        ])
+        .arg(&dir)
+        .output()
+        .unwrap();
+    assert!(
+        st.status.success(),
+        "{}",
+        String::from_utf8_lossy(&st.stderr)
+    );
+    println!("{}", String::from_utf8_lossy(&st.stdout).trim());
+    let verilog = dir.join("gouraud_stream.v");
+    let (ok, text) = cocotb(&python, &dir, &verilog, "build-good", "gouraud_stream");
+    assert!(
+        ok,
+        "cocotb test failed on the exported Verilog:\n{}",
+        tail(&text, 30)
+    );
+    let summary = text
+        .lines()
+        .find(|l| l.contains("beats equal"))
+        .unwrap_or("")
+        .trim()
+        .to_string();
+    println!("cocotb (Icarus): {summary}");
+    let good = std::fs::read_to_string(&verilog).unwrap();
+    for (what, from, to) in [
+        (
+            "FIFO read pointer: + 1 → + 2",
+            "rd_ptr$d = rd_ptr$q + 4'h1;",
+            "rd_ptr$d = rd_ptr$q + 4'h2;",
+        ),
+        (
+            "address block x step: + 1 → + 2",
+            "p_x$d = p_x$q + 12'h1;",
+            "p_x$d = p_x$q + 12'h2;",
+        ),
+    ] {
+        assert_eq!(
+            good.matches(from).count(),
+            1,
+            "{what}: anchor {from:?} once"
+        );
+        let path = dir.join(format!("mutant-{}.v", what.len()));
+        std::fs::write(&path, good.replacen(from, to, 1)).unwrap();
+        let (ok, text) = cocotb(
+            &python,
+            &dir,
+            &path,
+            &format!("build-{}", what.len()),
+            "gouraud_stream",
+        );
         assert!(!ok, "{what}: the cocotb test passed on the broken Verilog");
         let why = text
             .lines()

@@ -341,3 +341,39 @@ fn synth_ecp5_only_flags_are_one_line_errors() {
         );
     }
 }
+
+/// `stream --method` with a method no stream top builds is a one-line error naming the ones
+/// each top has; `--method gouraud` writes `gouraud-stream`'s files.
+#[test]
+fn stream_methods_are_the_stream_tops() {
+    let out = shadecore(&["stream", "--method", "quadric", "--out", "target/never"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        !out.status.success()
+            && err.trim().lines().count() == 1
+            && err.contains("quadric")
+            && err.contains("gouraud-stream has gouraud"),
+        "{err}"
+    );
+    let dir = tempfile::tempdir().unwrap();
+    let out = shadecore_ok(&[
+        "stream",
+        "--method",
+        "gouraud",
+        "--rez",
+        "4",
+        "--size",
+        "32x32",
+        "--out",
+        dir.path().to_str().unwrap(),
+    ]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(text.contains("gouraud-stream:"), "{text}");
+    for f in ["setup.txt", "beats.txt", "gouraud_stream.v"] {
+        assert!(dir.path().join(f).exists(), "{f}");
+    }
+    let setup = std::fs::read_to_string(dir.path().join("setup.txt")).unwrap();
+    let words = setup.lines().filter(|l| !l.starts_with('#')).count();
+    let records = setup.lines().filter(|l| l.ends_with(" 1")).count();
+    assert_eq!(words, 22 * records, "22 words per Gouraud triangle record");
+}

@@ -1,6 +1,7 @@
-//! `shadecore stream`: a scene as the `pixel-stream` top's AXI4-Stream set-up words, with the
-//! fragment beats the rust-hdl simulation of that top delivers for them and its Verilog — what
-//! an external testbench (the cocotb test in `testbenches/cocotb/`) drives and checks.
+//! `shadecore stream`: a scene as a stream top's AXI4-Stream set-up words (`pixel-stream` for
+//! the lit methods, `gouraud-stream` for `gouraud`), with the fragment beats the rust-hdl
+//! simulation of that top delivers for them and its Verilog — what an external testbench (the
+//! cocotb test in `testbenches/cocotb/`) drives and checks.
 
 use std::io::Write;
 use std::path::PathBuf;
@@ -19,24 +20,28 @@ use crate::setup::SceneArgs;
 pub struct Args {
     #[command(flatten)]
     pub scene: SceneArgs,
-    /// The lit method whose `pixel-stream` build runs: normalizer, normalizer-fit, brdf-k4,
-    /// brdf-k8, brdf-k16 or bump.
+    /// The method: a lit one runs its `pixel-stream` build (normalizer, normalizer-fit,
+    /// brdf-k4, brdf-k8, brdf-k16, bump); gouraud runs `gouraud-stream`.
     #[arg(long, default_value = "normalizer-fit")]
     pub method: String,
     /// The order the triangles are sent in: balanced (large and small walks alternately, as
     /// `render` sends them) or mesh.
     #[arg(long, value_enum, default_value = "balanced")]
     pub setup_order: crate::rtl_engine::SetupOrder,
-    /// Output directory: setup.txt, beats.txt, pixel_stream.v.
+    /// Output directory: setup.txt, beats.txt, and the top's Verilog (pixel_stream.v or
+    /// gouraud_stream.v).
     #[arg(long, default_value = "target/stream")]
     pub out: PathBuf,
 }
 
 pub fn run(a: Args) -> Result<()> {
     let method = crate::cmd::render::parse_methods(std::slice::from_ref(&a.method))?[0];
+    if method == golden::methods::Method::Gouraud {
+        return run_gouraud(&a);
+    }
     let Some(o) = method_options(method) else {
         bail!(
-            "method {} is not built by pixel-stream (it has normalizer, normalizer-fit, brdf-k4, brdf-k8, brdf-k16, bump)",
+            "method {} has no stream top (pixel-stream has normalizer, normalizer-fit, brdf-k4, brdf-k8, brdf-k16, bump; gouraud-stream has gouraud)",
             a.method
         );
     };
@@ -65,7 +70,6 @@ pub fn run(a: Args) -> Result<()> {
         .map(|r| Beat::read(r[2], r[3], r[4] != 0))
         .collect();
 
-    std::fs::create_dir_all(&a.out).with_context(|| format!("creating {}", a.out.display()))?;
     let mut setup = format!(
         "# pixel-stream set-up words ({:?} order): hex word, tlast\n",
         a.setup_order
@@ -83,19 +87,93 @@ pub fn run(a: Args) -> Result<()> {
         ));
     }
     let verilog = b.verilog(&o).map_err(|e| anyhow!(e))?;
-    for (name, body) in [
-        ("setup.txt", setup.as_str()),
-        ("beats.txt", text.as_str()),
-        ("pixel_stream.v", verilog.as_str()),
-    ] {
-        let path = a.out.join(name);
+    write_files(
+        &a.out,
+        &[
+            ("setup.txt", setup.as_str()),
+            ("beats.txt", text.as_str()),
+            ("pixel_stream.v", verilog.as_str()),
+        ],
+    )?;
+    crate::outln!(
+        "pixel-stream ({}): {} triangles, {} set-up words, {} beats ({} fragments) in {} clocks -> {}",
+        a.method,
+        jobs.len(),
+        words.len(),
+        beats.len(),
+        beats.iter().filter(|b| b.pixel).count(),
+        run.rows.len(),
+        a.out.display()
+    )?;
+    Ok(())
+}
+
+fn write_files(dir: &std::path::Path, files: &[(&str, &str)]) -> Result<()> {
+    std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
+    for (name, body) in files {
+        let path = dir.join(name);
         std::fs::File::create(&path)
             .and_then(|mut f| f.write_all(body.as_bytes()))
             .with_context(|| format!("writing {}", path.display()))?;
     }
+    Ok(())
+}
+
+/// `stream --method gouraud`: the scene through `gouraud-stream` (beats.txt's `z` column is 0:
+/// the top has no `tuser`).
+fn run_gouraud(a: &Args) -> Result<()> {
+    use pipeline::gouraud::TriangleJob;
+    let s = crate::setup::build(&a.scene)?;
+    let jobs: Vec<TriangleJob> = s
+        .tris
+        .iter()
+        .filter_map(|t| TriangleJob::gouraud(t, &s.ctx))
+        .collect();
+    let order = a
+        .setup_order
+        .of_addrs(&jobs.iter().map(|j| j.addr).collect::<Vec<_>>());
+    let jobs: Vec<TriangleJob> = order.iter().map(|&i| jobs[i]).collect();
+    let words = pipeline::stream::gouraud_words(&jobs);
+    let run = testbenches::gouraud_stream::drive(&words, 1, 0.0, &mut StallPattern::never(), 8);
+    let b = testbenches::registry::find("gouraud-stream").map_err(|e| anyhow!(e))?;
+    let o = rtl::registry::Options::new();
+    let out = b.simulate(&o, &run.rows).map_err(|e| anyhow!(e))?;
+    if out != run.outputs {
+        bail!("the rust-hdl simulation of gouraud-stream disagrees with its twin");
+    }
+    let beats: Vec<Beat> = out
+        .iter()
+        .filter(|r| r[1] != 0)
+        .map(|r| Beat::read(r[2], 0, r[3] != 0))
+        .collect();
+    let mut setup = format!(
+        "# gouraud-stream set-up words ({:?} order): hex word, tlast\n",
+        a.setup_order
+    )
+    .to_lowercase();
+    for (w, last) in &words {
+        setup.push_str(&format!("{w:08x} {}\n", *last as u8));
+    }
+    let mut text = String::from(
+        "# gouraud-stream fragment beats: x y pixel red green blue z tlast (z: 0, no tuser)\n",
+    );
+    for bt in &beats {
+        text.push_str(&format!(
+            "{} {} {} {} {} {} 0 {}\n",
+            bt.x, bt.y, bt.pixel as u8, bt.rgb[0], bt.rgb[1], bt.rgb[2], bt.last as u8
+        ));
+    }
+    let verilog = b.verilog(&o).map_err(|e| anyhow!(e))?;
+    write_files(
+        &a.out,
+        &[
+            ("setup.txt", setup.as_str()),
+            ("beats.txt", text.as_str()),
+            ("gouraud_stream.v", verilog.as_str()),
+        ],
+    )?;
     crate::outln!(
-        "pixel-stream ({}): {} triangles, {} set-up words, {} beats ({} fragments) in {} clocks -> {}",
-        a.method,
+        "gouraud-stream: {} triangles, {} set-up words, {} beats ({} fragments) in {} clocks -> {}",
         jobs.len(),
         words.len(),
         beats.len(),

@@ -1,7 +1,8 @@
-"""Build the exported `pixel-stream` Verilog with Icarus and run test_pixel_stream.py (cocotb).
+"""Build an exported stream top's Verilog with Icarus and run test_pixel_stream.py (cocotb).
 
-Usage: python run.py <stream dir> <verilog file> <build dir>
-Exit status 0 when the cocotb test passes, 1 when it fails.
+Usage: python run.py <stream dir> <verilog file> <build dir> [<top module>]
+The top module is pixel_stream unless given (gouraud_stream: the same AXI4-Stream ports
+without m_axis_tuser). Exit status 0 when the cocotb test passes, 1 when it fails.
 """
 
 import os
@@ -13,17 +14,18 @@ from cocotb_tools.runner import get_runner
 
 def main():
     stream_dir, verilog, build_dir = (os.path.abspath(a) for a in sys.argv[1:4])
+    top = sys.argv[4] if len(sys.argv) > 4 else "pixel_stream"
     here = os.path.dirname(os.path.abspath(__file__))
     runner = get_runner("icarus")
     runner.build(
         sources=[verilog],
-        hdl_toplevel="pixel_stream",
+        hdl_toplevel=top,
         build_dir=build_dir,
         always=True,
         timescale=("1ns", "1ps"),
     )
     results = runner.test(
-        hdl_toplevel="pixel_stream",
+        hdl_toplevel=top,
         test_module="test_pixel_stream",
         test_dir=here,
         build_dir=build_dir,

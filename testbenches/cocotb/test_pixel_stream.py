@@ -1,4 +1,5 @@
-"""cocotb test of the exported `pixel-stream` top (cocotbext-axi drives its AXI4-Stream ports).
+"""cocotb test of an exported stream top, `pixel-stream` or `gouraud-stream` (cocotbext-axi
+drives its AXI4-Stream ports; `gouraud-stream` has no `m_axis_tuser`, its beats' z is 0).
 
 Reads the set-up words and the expected fragment beats that `shadecore stream` wrote (the
 rust-hdl simulation's beats), sends the words as one AXI4-Stream frame per record with random
@@ -45,7 +46,8 @@ def read_beats(path):
 
 
 def unpack(tdata, tuser, tlast):
-    # The layout of rtl::stream_layout::FRAGMENT (rtl/README.md).
+    # The layout of rtl::stream_layout::FRAGMENT (rtl/README.md); no tuser: z = 0.
+    tuser = 0 if tuser is None else tuser
     return (
         tdata & 0xFFF,
         (tdata >> 12) & 0xFFF,
