@@ -8,14 +8,17 @@
 //! triangles skipped as `golden::render::render` skips them) gets its set-up in software —
 //! `golden::address_block::AddressSetup` for the address block, `golden::gouraud::setup` planes
 //! quantized by `golden::intensity_interpolator` for the BVI — and is fed to the rust-hdl
-//! raster pipe (`rtl::gouraud_raster`: address block + BVI), stepped clock by clock. Each pixel
-//! the pipe emits goes into a `golden::render::Frame`.
+//! raster pipe (`rtl::gouraud_raster`: address block + BVI), stepped clock by clock: by default
+//! through its AXI4-Stream top `rtl::gouraud_stream` (set-up records in, fragment beats out),
+//! with `--lit-top pipeline` through its ports. Each pixel the pipe emits goes into a
+//! `golden::render::Frame`.
 //!
 //! **Depth** is resolved in this driver exactly as in the golden renderer: the triangle's
 //! screen-space depth plane (`ScreenTriangle::depth_plane`) is evaluated in f64 at the pixel
-//! centre and offered to `Frame::put` (nearer wins, ties keep the first writer). So both
-//! engines see identical visibility, and the colours are the only difference: the RTL's are
-//! within 1 LSB per channel of the golden Gouraud image (the BVI's error budget).
+//! centre and offered to `Frame::put` (nearer wins; at equal depth the lower mesh index, the
+//! golden renderer's first writer, whatever order the set-up order sent the triangles in). So
+//! both engines see identical visibility, and the colours are the only difference: the RTL's
+//! are within 1 LSB per channel of the golden Gouraud image (the BVI's error budget).
 
 use anyhow::{bail, Result};
 use golden::methods::Method;

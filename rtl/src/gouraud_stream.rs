@@ -1,8 +1,8 @@
 //! `gouraud-stream`: the Gouraud raster pipe (`gouraud_raster`: address block + BVI, SPEC §5–§6)
 //! behind AXI4-Stream interfaces, the top an FPGA engineer places instead of `gouraud-raster`'s
-//! 400 flat set-up pins: triangle records in on a 32-bit stream, fragments out on a 64-bit
-//! stream with back-pressure. Golden: `gouraud-raster`'s (the same fragments, in the same
-//! order, whatever the stalls).
+//! 610 flat set-up pins (664 ports in all): triangle records in on a 32-bit stream, fragments
+//! out on a 64-bit stream with back-pressure. Golden: `gouraud-raster`'s (the same fragments,
+//! in the same order, whatever the stalls).
 //!
 //! ```text
 //!  s_axis ─► header / word count ─► receive bank ─► load bank ─► GouraudRaster ─► FIFO (16) ─► m_axis
