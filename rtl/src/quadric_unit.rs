@@ -40,18 +40,25 @@
 //! two pixels per clock on lines longer than their start's move. Load → first pixels of a
 //! triangle's first line: 3 clocks (load, hand-over, output register).
 //!
-//! Timing: an x-step's four outcomes (+1, +2, −1, −2 pixels) of I, Dx and Dy are formed in
-//! parallel from registers (3·2A is a register loaded with 2A), and the step's direction and
-//! size, from the 13-bit distance to the line start, only select among them. Selecting the
-//! operands first (the layout before) put that compare, the operand muxes and two 64-bit adds
-//! in series: 55 MHz on ECP5. The decisions themselves come from registers: the distance to
-//! the line start is formed from the next tx and lx0 and registered as three flags (zero,
-//! negative, two or more pixels), as are ty = ly, the generator's last clock and the hand-over,
-//! so the compares no longer precede the 576 word multiplexers they steer. Each flag's next
-//! value is formed per case (a load, an x-step, a y-step, the generator's step or hand-over)
-//! from registers and inputs, and the control only selects. ECP5: 55.7 → 88.1 MHz (and
-//! 16 248 → 11 566 LUT4); the critical path is now the +2 x-step's three-operand 64-bit add
-//! (I + 2·Dx + 2A) into I, 11.35 ns.
+//! Timing: the decisions come from registers: the distance to the line start (lx0 − tx) is
+//! a register, and three flags (zero, negative, two or more pixels) of it, as are ty = ly, the
+//! generator's last clock and the hand-over, so no compare precedes the 576 word multiplexers
+//! they steer. Each flag's next value is formed per case (a load, an x-step, a y-step, the
+//! generator's step or hand-over) and the control only selects; after an x-step the flags
+//! follow from compares on the distance register (a 1-pixel step reaches the start, a 2-pixel
+//! one leaves d ∓ 2), without a carry chain. Every three-operand add is one carry-save level
+//! (full adders bit by bit; a subtraction's +1 in the carry word's free bit 0) and one carry
+//! chain: the x-step of I is a single such add, I + T1 + T2 with the terms (Dx, 2·Dx + 2A,
+//! −Dx + 2A, −2·Dx + 3·2A) selected by the registered flags, so the word multiplexer after the
+//! chain chooses only among the x-step, the y-step and the load; Dx and Dy, two-operand, form
+//! their four outcomes in parallel and select after the chain. The generator keeps the pair's
+//! difference e = q − p and 3·2A as registers, so p' = q + e + 2A and q' = q + 2e + 3·2A are
+//! three-operand adds too (they were 3q − 2p + 3·2A, a five-operand sum).
+//! ECP5: 55.7 MHz (operands selected before two chained 64-bit adds) → 88.1 (registered flags;
+//! 11 566 LUT4; path: the +2 x-step's I + 2·Dx + 2A, two carry chains) → 93.6 MHz (placer seeds
+//! 2, 3: 92.0, 90.1; 11 013 LUT4); what is left is routing — 6.6 ns of the 10.68 ns path
+//! f_neg → term selects → carry chain → I: the flag's fan-out to the 3 × 192 term selects, and
+//! from the chain to I's word multiplexer.
 //!
 //! # Overflow
 //! Every update is an exact integer add modulo 2⁶⁴ (nothing may saturate: each word feeds the
@@ -126,20 +133,29 @@ crate::hw_block! {
         f_zero: DFF<Bit>, f_neg: DFF<Bit>, f_big: DFF<Bit>, f_yat: DFF<Bit>, f_glast: DFF<Bit>,
         /// The hand-over (tracker at its line's start, generator free), also a flag.
         f_hand: DFF<Bit>,
-        cur: Signal<Local, Bits<13>>, nxt: Signal<Local, Bits<13>>, d_step: Signal<Local, Bits<13>>,
+        /// The distance to the line start, lx0 − tx (13 bits), as a register: the flags' next
+        /// values after an x-step come from compares on it, without a carry chain.
+        tdist: DFF<Bits<13>>, nxt: Signal<Local, Bits<13>>, d_step: Signal<Local, Bits<13>>,
         ty1: Signal<Local, Bits<12>>, t4: Signal<Local, Bits<13>>,
         n_zero: Signal<Local, Bit>, n_neg: Signal<Local, Bit>, n_big: Signal<Local, Bit>,
         a_zero: Signal<Local, Bit>, a_neg: Signal<Local, Bit>, a_big: Signal<Local, Bit>,
         /// 3·2A, registered with 2A (the −2 x-step's term).
         ta3: [DFF<Bits<64>>; 3],
-        /// The x-step's four outcomes (+1, +2, −1, −2) of I, Dx and Dy, formed in parallel from
-        /// registers; the step's direction and size only select among them.
-        i_p1: [Signal<Local, Bits<64>>; 3], i_p2: [Signal<Local, Bits<64>>; 3],
-        i_m1: [Signal<Local, Bits<64>>; 3], i_m2: [Signal<Local, Bits<64>>; 3],
+        /// The x-step of I, Dx and Dy as one add each: the step's terms are selected by the
+        /// registered flags (direction, size) before one carry-save level and one carry chain,
+        /// and the word multiplexer after the chain chooses only among the x-step, the y-step
+        /// and the load. −x = !x + 1, the +1 entering as the carry word's free bit 0.
+        xt1: [Signal<Local, Bits<64>>; 3], xt2: [Signal<Local, Bits<64>>; 3],
+        xi_s: [Signal<Local, Bits<64>>; 3], xi_k: [Signal<Local, Bits<64>>; 3], xi: [Signal<Local, Bits<64>>; 3],
         dx_p1: [Signal<Local, Bits<64>>; 3], dx_p2: [Signal<Local, Bits<64>>; 3],
         dx_m1: [Signal<Local, Bits<64>>; 3], dx_m2: [Signal<Local, Bits<64>>; 3],
         dy_p1: [Signal<Local, Bits<64>>; 3], dy_p2: [Signal<Local, Bits<64>>; 3],
         dy_m1: [Signal<Local, Bits<64>>; 3], dy_m2: [Signal<Local, Bits<64>>; 3],
+        xdx: [Signal<Local, Bits<64>>; 3], xdy: [Signal<Local, Bits<64>>; 3],
+        /// The hand-over's first difference along the line: I + Dx (rightward), I − Dx + 2A
+        /// (leftward, carry-save as above).
+        i_p1: [Signal<Local, Bits<64>>; 3], i_m1: [Signal<Local, Bits<64>>; 3],
+        cs_m1: [Signal<Local, Bits<64>>; 3], ck_m1: [Signal<Local, Bits<64>>; 3], n_dx: [Signal<Local, Bits<64>>; 3],
         step: Signal<Local, Bits<12>>,
         handover: Signal<Local, Bit>, can_take: Signal<Local, Bit>,
         accept: Signal<Local, Bit>, y_move: Signal<Local, Bit>, x_move: Signal<Local, Bit>,
@@ -147,6 +163,12 @@ crate::hw_block! {
         gbusy: DFF<Bit>, t_q: DFF<Bits<13>>, gm: DFF<Bits<13>>, gx0: DFF<Bits<12>>,
         gy: DFF<Bits<12>>, gdir: DFF<Bit>, gdz: DFF<Bits<32>>,
         p: [DFF<Bits<64>>; 3], q: [DFF<Bits<64>>; 3], ga2: [DFF<Bits<64>>; 3],
+        /// The pair's difference e = q − p and 3·2A: the pair's step as three-operand adds,
+        /// each one carry-save level and one carry chain (p' = q + e + 2A,
+        /// q' = q + 2e + 3·2A, e' = e + 2·2A).
+        ge: [DFF<Bits<64>>; 3], ga3: [DFF<Bits<64>>; 3],
+        gp_s: [Signal<Local, Bits<64>>; 3], gp_k: [Signal<Local, Bits<64>>; 3],
+        gq_s: [Signal<Local, Bits<64>>; 3], gq_k: [Signal<Local, Bits<64>>; 3], ge2: [Signal<Local, Bits<64>>; 3],
         za: DFF<Bits<32>>, zb: DFF<Bits<32>>,
         t2: Signal<Local, Bits<13>>, t1: Signal<Local, Bits<13>>,
         glast: Signal<Local, Bit>, vb: Signal<Local, Bit>,
@@ -164,7 +186,7 @@ impl Logic for QuadricUnit {
     fn update(&mut self) {
         dff_setup!(
             self, clock, tbusy, tx, ty, ly, lx0, ldir, lm, lz0, ldz, gbusy, t_q, gm, gx0, gy, gdir,
-            gdz, za, zb, f_zero, f_neg, f_big, f_yat, f_glast, f_hand
+            gdz, za, zb, f_zero, f_neg, f_big, f_yat, f_glast, f_hand, tdist
         );
         clock!(self, clock, o_va, o_xa, o_za, o_vb, o_xb, o_zb, o_y, o_l);
         for c in 0..3 {
@@ -188,6 +210,10 @@ impl Logic for QuadricUnit {
             self.p[c].d.next = self.p[c].q.val();
             self.q[c].d.next = self.q[c].q.val();
             self.ga2[c].d.next = self.ga2[c].q.val();
+            self.ge[c].clock.next = self.clock.val();
+            self.ga3[c].clock.next = self.clock.val();
+            self.ge[c].d.next = self.ge[c].q.val();
+            self.ga3[c].d.next = self.ga3[c].q.val();
             self.o_ca[c].clock.next = self.clock.val();
             self.o_cb[c].clock.next = self.clock.val();
         }
@@ -231,14 +257,48 @@ impl Logic for QuadricUnit {
             self.step.next = 2.into();
         }
         for c in 0..3 {
-            // I: +1: I + Dx; +2: I + 2Dx + 2A; −1: I − Dx + 2A; −2: I − 2Dx + 3·2A.
+            // The hand-over's pair: I + Dx, I − Dx + 2A.
             self.i_p1[c].next = self.ti[c].q.val() + self.tdx[c].q.val();
-            self.i_p2[c].next =
-                self.ti[c].q.val() + (self.tdx[c].q.val() << 1) + self.ta2[c].q.val();
-            self.i_m1[c].next = self.ti[c].q.val() - self.tdx[c].q.val() + self.ta2[c].q.val();
-            self.i_m2[c].next =
-                self.ti[c].q.val() - (self.tdx[c].q.val() << 1) + self.ta3[c].q.val();
+            self.n_dx[c].next = !self.tdx[c].q.val();
+            self.cs_m1[c].next = self.ti[c].q.val() ^ self.n_dx[c].val() ^ self.ta2[c].q.val();
+            self.ck_m1[c].next = (((self.ti[c].q.val() & self.n_dx[c].val())
+                | (self.ti[c].q.val() & self.ta2[c].q.val())
+                | (self.n_dx[c].val() & self.ta2[c].q.val()))
+                << 1)
+                | 1;
+            self.i_m1[c].next = self.cs_m1[c].val() + self.ck_m1[c].val();
+            // The x-step's terms: I + (Dx | 2·Dx + 2A | −Dx + 2A | −2·Dx + 3·2A),
             // Dx ± 2A·step, Dy ± C·step.
+            if self.neg.val() {
+                if self.big.val() {
+                    self.xt1[c].next = !(self.tdx[c].q.val() << 1);
+                    self.xt2[c].next = self.ta3[c].q.val();
+                } else {
+                    self.xt1[c].next = !self.tdx[c].q.val();
+                    self.xt2[c].next = self.ta2[c].q.val();
+                }
+            } else if self.big.val() {
+                self.xt1[c].next = self.tdx[c].q.val() << 1;
+                self.xt2[c].next = self.ta2[c].q.val();
+            } else {
+                self.xt1[c].next = self.tdx[c].q.val();
+                self.xt2[c].next = 0.into();
+            }
+            self.xi_s[c].next = self.ti[c].q.val() ^ self.xt1[c].val() ^ self.xt2[c].val();
+            self.xi_k[c].next = ((self.ti[c].q.val() & self.xt1[c].val())
+                | (self.ti[c].q.val() & self.xt2[c].val())
+                | (self.xt1[c].val() & self.xt2[c].val()))
+                << 1;
+            if self.neg.val() {
+                self.xi_k[c].next = (((self.ti[c].q.val() & self.xt1[c].val())
+                    | (self.ti[c].q.val() & self.xt2[c].val())
+                    | (self.xt1[c].val() & self.xt2[c].val()))
+                    << 1)
+                    | 1;
+            }
+            self.xi[c].next = self.xi_s[c].val() + self.xi_k[c].val();
+            // Dx ± 2A·step, Dy ± C·step: two-operand adds from registers, the flags selecting
+            // after the carry chains.
             self.dx_p1[c].next = self.tdx[c].q.val() + self.ta2[c].q.val();
             self.dx_p2[c].next = self.tdx[c].q.val() + (self.ta2[c].q.val() << 1);
             self.dx_m1[c].next = self.tdx[c].q.val() - self.ta2[c].q.val();
@@ -247,6 +307,21 @@ impl Logic for QuadricUnit {
             self.dy_p2[c].next = self.tdy[c].q.val() + (self.tc[c].q.val() << 1);
             self.dy_m1[c].next = self.tdy[c].q.val() - self.tc[c].q.val();
             self.dy_m2[c].next = self.tdy[c].q.val() - (self.tc[c].q.val() << 1);
+            if self.neg.val() {
+                if self.big.val() {
+                    self.xdx[c].next = self.dx_m2[c].val();
+                    self.xdy[c].next = self.dy_m2[c].val();
+                } else {
+                    self.xdx[c].next = self.dx_m1[c].val();
+                    self.xdy[c].next = self.dy_m1[c].val();
+                }
+            } else if self.big.val() {
+                self.xdx[c].next = self.dx_p2[c].val();
+                self.xdy[c].next = self.dy_p2[c].val();
+            } else {
+                self.xdx[c].next = self.dx_p1[c].val();
+                self.xdy[c].next = self.dy_p1[c].val();
+            }
         }
         if self.y_move.val()
             | (self.accept.val() & !self.first.val() & (self.ty.q.val() != self.y.val()))
@@ -259,32 +334,14 @@ impl Logic for QuadricUnit {
             }
         }
         if self.x_move.val() {
+            self.tx.d.next = self.tx.q.val() + self.step.val();
             if self.neg.val() {
                 self.tx.d.next = self.tx.q.val() - self.step.val();
-                for c in 0..3 {
-                    if self.big.val() {
-                        self.ti[c].d.next = self.i_m2[c].val();
-                        self.tdx[c].d.next = self.dx_m2[c].val();
-                        self.tdy[c].d.next = self.dy_m2[c].val();
-                    } else {
-                        self.ti[c].d.next = self.i_m1[c].val();
-                        self.tdx[c].d.next = self.dx_m1[c].val();
-                        self.tdy[c].d.next = self.dy_m1[c].val();
-                    }
-                }
-            } else {
-                self.tx.d.next = self.tx.q.val() + self.step.val();
-                for c in 0..3 {
-                    if self.big.val() {
-                        self.ti[c].d.next = self.i_p2[c].val();
-                        self.tdx[c].d.next = self.dx_p2[c].val();
-                        self.tdy[c].d.next = self.dy_p2[c].val();
-                    } else {
-                        self.ti[c].d.next = self.i_p1[c].val();
-                        self.tdx[c].d.next = self.dx_p1[c].val();
-                        self.tdy[c].d.next = self.dy_p1[c].val();
-                    }
-                }
+            }
+            for c in 0..3 {
+                self.ti[c].d.next = self.xi[c].val();
+                self.tdx[c].d.next = self.xdx[c].val();
+                self.tdy[c].d.next = self.xdy[c].val();
             }
         }
         if self.handover.val() {
@@ -335,18 +392,30 @@ impl Logic for QuadricUnit {
         self.o_y.d.next = self.gy.q.val();
         self.o_l.d.next = self.gbusy.q.val() & self.glast.val();
 
+        // Generator: the pair's step, p' = q + e + 2A, q' = q + 2e + 3·2A (carry-save, then
+        // one carry chain each), computed every clock and taken while the line runs.
+        for c in 0..3 {
+            self.ge2[c].next = self.ge[c].q.val() << 1;
+            self.gp_s[c].next = self.q[c].q.val() ^ self.ge[c].q.val() ^ self.ga2[c].q.val();
+            self.gp_k[c].next = ((self.q[c].q.val() & self.ge[c].q.val())
+                | (self.q[c].q.val() & self.ga2[c].q.val())
+                | (self.ge[c].q.val() & self.ga2[c].q.val()))
+                << 1;
+            self.gq_s[c].next = self.q[c].q.val() ^ self.ge2[c].val() ^ self.ga3[c].q.val();
+            self.gq_k[c].next = ((self.q[c].q.val() & self.ge2[c].val())
+                | (self.q[c].q.val() & self.ga3[c].q.val())
+                | (self.ge2[c].val() & self.ga3[c].q.val()))
+                << 1;
+        }
         // Generator: step the pairs, or take the tracker's line.
         if self.gbusy.q.val() {
             if self.glast.val() {
                 self.gbusy.d.next = false;
             } else {
                 for c in 0..3 {
-                    self.p[c].d.next =
-                        (self.q[c].q.val() << 1) - self.p[c].q.val() + self.ga2[c].q.val();
-                    self.q[c].d.next = (self.q[c].q.val() << 1) + self.q[c].q.val()
-                        - (self.p[c].q.val() << 1)
-                        + (self.ga2[c].q.val() << 1)
-                        + self.ga2[c].q.val();
+                    self.p[c].d.next = self.gp_s[c].val() + self.gp_k[c].val();
+                    self.q[c].d.next = self.gq_s[c].val() + self.gq_k[c].val();
+                    self.ge[c].d.next = self.ge[c].q.val() + (self.ga2[c].q.val() << 1);
                 }
                 self.t_q.d.next = self.t2.val();
                 self.za.d.next = self.za.q.val() + (self.gdz.q.val() << 1);
@@ -366,11 +435,13 @@ impl Logic for QuadricUnit {
             for c in 0..3 {
                 self.p[c].d.next = self.ti[c].q.val();
                 self.ga2[c].d.next = self.ta2[c].q.val();
+                self.ga3[c].d.next = self.ta3[c].q.val();
                 if self.ldir.q.val() {
-                    self.q[c].d.next =
-                        self.ti[c].q.val() - self.tdx[c].q.val() + self.ta2[c].q.val();
+                    self.q[c].d.next = self.i_m1[c].val();
+                    self.ge[c].d.next = self.ta2[c].q.val() - self.tdx[c].q.val();
                 } else {
-                    self.q[c].d.next = self.ti[c].q.val() + self.tdx[c].q.val();
+                    self.q[c].d.next = self.i_p1[c].val();
+                    self.ge[c].d.next = self.tdx[c].q.val();
                 }
             }
         }
@@ -394,8 +465,9 @@ impl Logic for QuadricUnit {
         // tests (a load, an x-step, a y-step, the generator's step or hand-over), formed in
         // parallel from registers and inputs; the control only selects. Last in `update`: the
         // hand-over flag reads the others' next values.
-        self.cur.next = bit_cast::<13, 12>(self.lx0.q.val()) - bit_cast::<13, 12>(self.tx.q.val());
-        // x-step: tx moves by the step towards lx0 (distance + step when negative).
+        // x-step: tx moves by the step towards lx0 (distance + step when negative). The flags
+        // of the distance after it, from the distance before: a 1-pixel step reaches the line
+        // start; a 2-pixel one leaves d − 2 (d ≥ 2) or d + 2 (d ≤ −2).
         self.d_step.next = 0x1FFF.into();
         if self.f_neg.q.val() & self.f_big.q.val() {
             self.d_step.next = 2.into();
@@ -404,12 +476,19 @@ impl Logic for QuadricUnit {
         } else if self.f_big.q.val() {
             self.d_step.next = 0x1FFE.into();
         }
-        self.nxt.next = self.cur.val() + self.d_step.val();
-        self.n_zero.next = self.nxt.val() == 0;
-        self.n_neg.next = self.nxt.val().get_bit(12);
-        self.n_big.next = self.nxt.val().get_bits::<11>(1).any();
-        if self.nxt.val().get_bit(12) {
-            self.n_big.next = self.nxt.val() != 0x1FFF;
+        self.nxt.next = self.tdist.q.val() + self.d_step.val();
+        self.n_zero.next = true;
+        self.n_neg.next = false;
+        self.n_big.next = false;
+        if self.f_big.q.val() {
+            if self.f_neg.q.val() {
+                self.n_zero.next = self.tdist.q.val() == 0x1FFE;
+                self.n_neg.next = self.tdist.q.val() != 0x1FFE;
+                self.n_big.next = (self.tdist.q.val() != 0x1FFE) & (self.tdist.q.val() != 0x1FFD);
+            } else {
+                self.n_zero.next = self.tdist.q.val() == 2;
+                self.n_big.next = self.tdist.q.val().get_bits::<10>(2).any();
+            }
         }
         // A later line's load: lx0 = x0, tx stays.
         self.diff.next = bit_cast::<13, 12>(self.x0.val()) - bit_cast::<13, 12>(self.tx.q.val());
@@ -435,7 +514,14 @@ impl Logic for QuadricUnit {
                     (self.ty.q.val() == self.y.val()) | (self.ty1.val() == self.y.val());
             }
         }
+        if self.accept.val() {
+            self.tdist.d.next = self.diff.val();
+            if self.first.val() {
+                self.tdist.d.next = 0.into();
+            }
+        }
         if self.x_move.val() {
+            self.tdist.d.next = self.nxt.val();
             self.f_zero.d.next = self.n_zero.val();
             self.f_neg.d.next = self.n_neg.val();
             self.f_big.d.next = self.n_big.val();

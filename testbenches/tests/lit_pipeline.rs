@@ -69,7 +69,15 @@ fn quarter_lsb_rounding_errors_are_caught_by_the_twins() {
         Mutant { what: "output rounding + ¼ LSB", module: "horner_unit__out_p", from: "localparam  half = 32'h800;", to: "localparam  half = 32'hc00;" },
     ]);
     #[rustfmt::skip]
-    check("quadric-unit", &Options::new(), 6, &[
+    check("quadric-unit", &Options::new(), 12, &[
         Mutant { what: "lane B red rounding + ¼ LSB", module: "quadric_unit__sat_b__0", from: "localparam  half = 64'h20000000;", to: "localparam  half = 64'h30000000;" },
+        // The carry-save adds and the flags from the distance register (not roundings: one
+        // operator each, which the twin must catch as well).
+        // (A subtraction's +1 in the carry word is 2⁻³⁰ LSB: below what the 8-bit outputs
+        // resolve, so it is not among them.)
+        Mutant { what: "−2 x-step of I: −Dx in place of −2·Dx (red)", module: "quadric_unit", from: "xt1$0 = ~(tdx$0$q << 32'h1);", to: "xt1$0 = ~tdx$0$q;" },
+        Mutant { what: "generator difference e' = e + 2A instead of e + 2·2A (green)", module: "quadric_unit", from: "ge$1$d = ge$1$q + (ga2$1$q << 32'h1);", to: "ge$1$d = ge$1$q + ga2$1$q;" },
+        Mutant { what: "leftward hand-over e = 2A + Dx instead of 2A − Dx (green)", module: "quadric_unit", from: "ge$1$d = ta2$1$q - tdx$1$q;", to: "ge$1$d = ta2$1$q + tdx$1$q;" },
+        Mutant { what: "a +2 x-step from d = 3 taken as reaching the line start (d = 2)", module: "quadric_unit", from: "n_zero = tdist$q == 13'b10;", to: "n_zero = tdist$q == 13'b11;" },
     ]);
 }
