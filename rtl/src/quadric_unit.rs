@@ -125,10 +125,10 @@ crate::hw_block! {
         ta2: [DFF<Bits<64>>; 3], tb2: [DFF<Bits<64>>; 3], tc: [DFF<Bits<64>>; 3],
         w_i: [Signal<Local, Bits<64>>; 3], w_dx: [Signal<Local, Bits<64>>; 3], w_dy: [Signal<Local, Bits<64>>; 3],
         w_a2: [Signal<Local, Bits<64>>; 3], w_b2: [Signal<Local, Bits<64>>; 3], w_c: [Signal<Local, Bits<64>>; 3],
-        /// The tracker's decisions from registers: the distance to the line start
-        /// (lx0 − tx, 13 bits) is formed from the next tx and lx0 and registered as flags
-        /// (zero, negative, two or more pixels), as are ty = ly and the generator's last clock —
-        /// the compares no longer precede the 576 word multiplexers they steer.
+        /// The tracker's decisions from registers: flags of the distance to the line start
+        /// (zero, negative, two or more pixels; `diff` is a load's distance x0 − tx), of
+        /// ty = ly and of the generator's last clock — no compare precedes the 576 word
+        /// multiplexers they steer.
         diff: Signal<Local, Bits<13>>, neg: Signal<Local, Bit>, big: Signal<Local, Bit>,
         f_zero: DFF<Bit>, f_neg: DFF<Bit>, f_big: DFF<Bit>, f_yat: DFF<Bit>, f_glast: DFF<Bit>,
         /// The hand-over (tracker at its line's start, generator free), also a flag.
@@ -141,10 +141,12 @@ crate::hw_block! {
         a_zero: Signal<Local, Bit>, a_neg: Signal<Local, Bit>, a_big: Signal<Local, Bit>,
         /// 3·2A, registered with 2A (the −2 x-step's term).
         ta3: [DFF<Bits<64>>; 3],
-        /// The x-step of I, Dx and Dy as one add each: the step's terms are selected by the
-        /// registered flags (direction, size) before one carry-save level and one carry chain,
-        /// and the word multiplexer after the chain chooses only among the x-step, the y-step
-        /// and the load. −x = !x + 1, the +1 entering as the carry word's free bit 0.
+        /// The x-step of I as one add: its terms are selected by the registered flags
+        /// (direction, size) before one carry-save level and one carry chain, and the word
+        /// multiplexer after the chain chooses only among the x-step, the y-step and the load
+        /// (−x = !x + 1, the +1 entering as the carry word's free bit 0). Dx and Dy, two-operand,
+        /// form their four outcomes (±1, ±2 pixels) from registers; the flags select after the
+        /// chains (`xdx`, `xdy`).
         xt1: [Signal<Local, Bits<64>>; 3], xt2: [Signal<Local, Bits<64>>; 3],
         xi_s: [Signal<Local, Bits<64>>; 3], xi_k: [Signal<Local, Bits<64>>; 3], xi: [Signal<Local, Bits<64>>; 3],
         dx_p1: [Signal<Local, Bits<64>>; 3], dx_p2: [Signal<Local, Bits<64>>; 3],
