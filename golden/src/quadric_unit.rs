@@ -185,15 +185,29 @@ pub mod twin {
             positioned && (!self.gbusy || self.glast())
         }
         pub fn ready(&self) -> bool {
-            !self.tbusy || self.handover()
+            self.ready_held(false)
+        }
+        /// `ready` with the `hold` input at `hold` (a held hand-over takes no line).
+        pub fn ready_held(&self, hold: bool) -> bool {
+            !self.tbusy || (self.handover() && !hold)
         }
         /// ready, lane A (valid x z r g b), lane B (valid x z r g b), y, last.
         pub fn outputs(&self) -> Vec<u64> {
-            let mut o = vec![self.ready() as u64];
+            self.outputs_held(false)
+        }
+        /// [`Self::outputs`] with the `hold` input at `hold`.
+        pub fn outputs_held(&self, hold: bool) -> Vec<u64> {
+            let mut o = vec![self.ready_held(hold) as u64];
             o.extend(&self.out);
             o
         }
+        /// One clock without `hold`.
         pub fn clock(&mut self, load: Option<&QuadricLine>) {
+            self.clock_held(load, false);
+        }
+        /// One clock; `hold`: the generator stands still (no step, no hand-over) and the next
+        /// clock's outputs carry no pixel.
+        pub fn clock_held(&mut self, load: Option<&QuadricLine>, hold: bool) {
             let l = &self.gline;
             let x = |t: u32| {
                 if l.leftward {
@@ -202,17 +216,18 @@ pub mod twin {
                     (l.x0 + t as u64) & 0xfff
                 }
             };
-            let vb = self.gbusy && self.t < l.m;
-            let mut o = vec![self.gbusy as u64, x(self.t), self.za];
+            let shown = self.gbusy && !hold;
+            let vb = shown && self.t < l.m;
+            let mut o = vec![shown as u64, x(self.t), self.za];
             o.extend(self.p.map(out8));
             o.extend([vb as u64, x(self.t + 1), self.zb]);
             o.extend(self.q.map(out8));
-            o.extend([l.y, (self.gbusy && self.glast()) as u64]);
+            o.extend([l.y, (shown && self.glast()) as u64]);
             self.out = o;
-            let handover = self.handover();
-            let ready = self.ready();
+            let handover = self.handover() && !hold;
+            let ready = !self.tbusy || handover;
             // Generator.
-            if self.gbusy {
+            if shown {
                 if self.glast() {
                     self.gbusy = false;
                 } else {
@@ -245,8 +260,9 @@ pub mod twin {
                 self.za = l.z0;
                 self.zb = l.z0.wrapping_add(l.dz) & 0xffff_ffff;
                 self.tbusy = false;
-            } else if self.tbusy {
-                // Move one step toward the line start: down first, then across.
+            } else if self.tbusy && !self.handover() {
+                // Move one step toward the line start: down first, then across (nothing to do
+                // when positioned: a held hand-over waits).
                 if self.ty != self.line.y {
                     self.tr.iter_mut().for_each(Track::y_step);
                     self.ty = (self.ty + 1) & 0xfff;

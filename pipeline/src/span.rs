@@ -272,7 +272,7 @@ pub fn span_jobs(
 }
 
 /// The top's input row: `load` with a span (or idle), then (angular, fast) the material
-/// registers.
+/// registers, or (quadric) `hold` low.
 pub fn span_row(kind: SpanKind, job: Option<&SpanJob>, regs: &ShadingRegs) -> Vec<u64> {
     let mut row = match job {
         Some(j) => vec![1, j.y as u64, j.x0 as u64, j.leftward as u64, j.m as u64],
@@ -289,6 +289,7 @@ pub fn span_row(kind: SpanKind, job: Option<&SpanJob>, regs: &ShadingRegs) -> Ve
             _ => row.extend([0; 19]),
         }
         row.extend(job.map_or([0; 2], |j| [j.z0, j.dz]).map(u64::from));
+        row.push(0); // hold: a stream top's back-pressure; never here
         return row;
     }
     if let SpanKind::Cubic { .. } = kind {
@@ -584,10 +585,10 @@ mod tests {
             let per = if pipelined { 1 } else { 3 };
             assert!(jobs.iter().all(|j| j.clocks() == per * (j.m as u64 + 1)));
         }
-        // Quadric: base, first, 18 words, z0, dz; the first line carries the words.
+        // Quadric: base, first, 18 words, z0, dz, hold; the first line carries the words.
         let jobs = span_jobs(&t, 0, SpanKind::Quadric, &ctx).unwrap();
-        assert_eq!(span_row(SpanKind::Quadric, Some(&jobs[0]), &regs).len(), 26);
-        assert_eq!(span_row(SpanKind::Quadric, None, &regs).len(), 26);
+        assert_eq!(span_row(SpanKind::Quadric, Some(&jobs[0]), &regs).len(), 27);
+        assert_eq!(span_row(SpanKind::Quadric, None, &regs).len(), 27);
         assert_eq!(span_row(SpanKind::Quadric, Some(&jobs[0]), &regs)[5], 1);
         assert_eq!(span_row(SpanKind::Quadric, Some(&jobs[1]), &regs)[5], 0);
         let mut far = t;

@@ -28,6 +28,7 @@
 //! | `first` | in | the triangle's first line: the words below are loaded into the tracker |
 //! | `ri rdx rdy ra rb rc`, `g…`, `b…` | in | per channel I, Dx, Dy at that line's first pixel, 2A, 2B, C: signed Q34.30 (64 bits), LSB units |
 //! | `z0`, `dz` | in | depth at the line's pixel 0 and per pixel step, signed Q16.16 |
+//! | `hold` | in | 1: the generator stands still this clock (no step, no hand-over, so a tracker waiting to hand over keeps `ready` low) and the next clock's outputs carry no pixel; nothing is lost or repeated — the pixels come one clock per clock without `hold` (a stream top's back-pressure) |
 //! | `ready` | out | the tracker takes a line this clock |
 //! | `valid_a`, `x_a`, `z_a`, `red_a` … | out | lane A: pixel 2j in the line's clock j |
 //! | `valid_b`, `x_b`, `z_b`, `red_b` … | out | lane B: pixel 2j + 1 (when ≤ m) |
@@ -38,7 +39,9 @@
 //! its start after ⌈|Δx0|/2⌉ clocks of x-steps (the y-step rides on the load), and is handed to
 //! the generator when that finishes its line: per line max(⌊m/2⌋ + 1, 1 + ⌈|Δx0|/2⌉) clocks,
 //! two pixels per clock on lines longer than their start's move. Load → first pixels of a
-//! triangle's first line: 3 clocks (load, hand-over, output register).
+//! triangle's first line: 3 clocks (load, hand-over, output register). Each clock with `hold`
+//! high delays everything the generator has yet to show by one clock; the tracker still moves
+//! to its line's start meanwhile.
 //!
 //! Timing: the decisions come from registers: the distance to the line start (lx0 − tx) is
 //! a register, and three flags (zero, negative, two or more pixels) of it, as are ty = ly, the
@@ -109,7 +112,7 @@ crate::hw_block! {
             ri: Bits<64>, rdx: Bits<64>, rdy: Bits<64>, ra: Bits<64>, rb: Bits<64>, rc: Bits<64>,
             gi: Bits<64>, gdx: Bits<64>, gdy: Bits<64>, ga: Bits<64>, gb: Bits<64>, gc: Bits<64>,
             bi: Bits<64>, bdx: Bits<64>, bdy: Bits<64>, ba: Bits<64>, bb: Bits<64>, bc: Bits<64>,
-            z0: Bits<32>, dz: Bits<32>,
+            z0: Bits<32>, dz: Bits<32>, hold: Bit,
         }
         out {
             ready: Bit,
@@ -159,7 +162,8 @@ crate::hw_block! {
         i_p1: [Signal<Local, Bits<64>>; 3], i_m1: [Signal<Local, Bits<64>>; 3],
         cs_m1: [Signal<Local, Bits<64>>; 3], ck_m1: [Signal<Local, Bits<64>>; 3], n_dx: [Signal<Local, Bits<64>>; 3],
         step: Signal<Local, Bits<12>>,
-        handover: Signal<Local, Bit>, can_take: Signal<Local, Bit>,
+        /// `handover`: the hand-over happens this clock (`f_hand` and no `hold`).
+        handover: Signal<Local, Bit>, can_take: Signal<Local, Bit>, gstep: Signal<Local, Bit>,
         accept: Signal<Local, Bit>, y_move: Signal<Local, Bit>, x_move: Signal<Local, Bit>,
         // Generator: the line being emitted.
         gbusy: DFF<Bit>, t_q: DFF<Bits<13>>, gm: DFF<Bits<13>>, gx0: DFF<Bits<12>>,
@@ -246,12 +250,16 @@ impl Logic for QuadricUnit {
         self.vb.next = self.gbusy.q.val() & (self.t_q.q.val() < self.gm.q.val());
 
         // Tracker status and moves.
-        self.handover.next = self.f_hand.q.val();
+        // `hold` stops the generator (no step, no hand-over) and empties the outputs of the
+        // next clock; the tracker's moves do not depend on it (it has none left once `f_hand`
+        // is set), so they use `f_hand` itself.
+        self.handover.next = self.f_hand.q.val() & !self.hold.val();
+        self.gstep.next = self.gbusy.q.val() & !self.hold.val();
         self.can_take.next = !self.tbusy.q.val() | self.handover.val();
         self.accept.next = self.load.val() & self.can_take.val();
-        self.y_move.next = self.tbusy.q.val() & !self.handover.val() & !self.f_yat.q.val();
+        self.y_move.next = self.tbusy.q.val() & !self.f_hand.q.val() & !self.f_yat.q.val();
         self.x_move.next =
-            self.tbusy.q.val() & !self.handover.val() & self.f_yat.q.val() & !self.f_zero.q.val();
+            self.tbusy.q.val() & !self.f_hand.q.val() & self.f_yat.q.val() & !self.f_zero.q.val();
         self.neg.next = self.f_neg.q.val();
         self.big.next = self.f_big.q.val();
         self.step.next = 1.into();
@@ -385,14 +393,14 @@ impl Logic for QuadricUnit {
             self.o_ca[c].d.next = self.sat_a[c].q.val();
             self.o_cb[c].d.next = self.sat_b[c].q.val();
         }
-        self.o_va.d.next = self.gbusy.q.val();
+        self.o_va.d.next = self.gstep.val();
         self.o_xa.d.next = self.xa.val();
         self.o_za.d.next = self.za.q.val();
-        self.o_vb.d.next = self.vb.val();
+        self.o_vb.d.next = self.vb.val() & !self.hold.val();
         self.o_xb.d.next = self.xb.val();
         self.o_zb.d.next = self.zb.q.val();
         self.o_y.d.next = self.gy.q.val();
-        self.o_l.d.next = self.gbusy.q.val() & self.glast.val();
+        self.o_l.d.next = self.gstep.val() & self.glast.val();
 
         // Generator: the pair's step, p' = q + e + 2A, q' = q + 2e + 3·2A (carry-save, then
         // one carry chain each), computed every clock and taken while the line runs.
@@ -410,7 +418,7 @@ impl Logic for QuadricUnit {
                 << 1;
         }
         // Generator: step the pairs, or take the tracker's line.
-        if self.gbusy.q.val() {
+        if self.gstep.val() {
             if self.glast.val() {
                 self.gbusy.d.next = false;
             } else {
@@ -531,7 +539,7 @@ impl Logic for QuadricUnit {
         if self.y_move.val() {
             self.f_yat.d.next = self.ty1.val() == self.ly.q.val();
         }
-        if self.gbusy.q.val() & !self.glast.val() {
+        if self.gstep.val() & !self.glast.val() {
             self.f_glast.d.next = self.t4.val() > self.gm.q.val();
         }
         if self.handover.val() {

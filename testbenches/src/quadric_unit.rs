@@ -75,12 +75,13 @@ pub fn named_triangles() -> Vec<(&'static str, ScreenTriangle)> {
     ]
 }
 
-/// Twin on the top's rows: load y x0 dir m first (i dx dy a2 b2 c per channel) z0 dz.
-struct QuadricRows(QuadricTwin);
+/// Twin on the top's rows: load y x0 dir m first (i dx dy a2 b2 c per channel) z0 dz hold.
+pub struct QuadricRows(pub QuadricTwin);
 
 impl Twin for QuadricRows {
     fn step(&mut self, r: &[u64]) -> Vec<u64> {
-        let o = self.0.outputs();
+        let hold = r[26] != 0;
+        let o = self.0.outputs_held(hold);
         let w = |k: usize| r[k] as i64;
         let line = QuadricLine {
             y: r[1],
@@ -102,7 +103,7 @@ impl Twin for QuadricRows {
             z0: r[24],
             dz: r[25],
         };
-        self.0.clock((r[0] != 0).then_some(&line));
+        self.0.clock_held((r[0] != 0).then_some(&line), hold);
         o
     }
 }
@@ -157,21 +158,77 @@ fn stimulus(tris: &[ScreenTriangle]) -> Stimulus {
     }
 }
 
+/// The triangles of the bench: the named ones, then `n` seeded random ones whose quadric stays
+/// in the unit's range.
+pub fn triangles(n: usize, seed: u64) -> Vec<ScreenTriangle> {
+    let mut tris: Vec<ScreenTriangle> = named_triangles().into_iter().map(|(_, t)| t).collect();
+    let ctx = ShadeContext::default();
+    tris.extend(
+        lit_triangles(seed, 4 * n + 8)
+            .into_iter()
+            .filter(|t| span_jobs(t, 0, SpanKind::Quadric, &ctx).is_ok())
+            .take(n),
+    );
+    tris
+}
+
+/// A run of the quadric unit under `hold`: the input rows (each line loaded as soon as `ready`
+/// takes it, `hold` from the pattern in every clock), the lines and the held clocks.
+pub struct HeldRun {
+    pub rows: Vec<Vec<u64>>,
+    pub lines: usize,
+    pub pixels: usize,
+    pub held: usize,
+}
+
+/// Index of `hold` in the unit's input row.
+pub const HOLD: usize = 26;
+
+/// Drive the lines of `tris` into the unit, `hold` from `stalls` every clock: the next line is
+/// presented with `load` high until a clock whose `ready` (the twin's, which the RTL must
+/// equal every clock) takes it; the run ends 4 clocks after the last pixel shows.
+pub fn held_run(tris: &[ScreenTriangle], stalls: &mut crate::stall::StallPattern) -> HeldRun {
+    let ctx = ShadeContext::default();
+    let regs = pipeline::lit::ShadingRegs::of(&ctx).expect("default context fits");
+    let jobs: Vec<_> = tris
+        .iter()
+        .enumerate()
+        .flat_map(|(i, t)| span_jobs(t, i, SpanKind::Quadric, &ctx).expect("in range"))
+        .collect();
+    let pixels: usize = jobs.iter().map(|j| j.m as usize + 1).sum();
+    let mut twin = QuadricRows(QuadricTwin::new());
+    let (mut rows, mut next, mut shown, mut held, mut after) = (Vec::new(), 0, 0, 0, 0);
+    while after < 4 {
+        let hold = stalls.next_stalled();
+        let mut row = span_row(SpanKind::Quadric, jobs.get(next), &regs);
+        row[HOLD] = hold as u64;
+        held += hold as usize;
+        let out = twin.step(&row);
+        if out[0] != 0 && next < jobs.len() {
+            next += 1;
+        }
+        shown += (out[1] + out[7]) as usize;
+        if shown == pixels && next == jobs.len() {
+            after += 1;
+        }
+        rows.push(row);
+        assert!(rows.len() < 50 * pixels + 10_000, "the run does not end");
+    }
+    HeldRun {
+        rows,
+        lines: jobs.len(),
+        pixels,
+        held,
+    }
+}
+
 impl Bench for QuadricUnit {
     const ITEMS: &'static str = "triangles";
     const DEFAULT_ITEMS: usize = 12;
     /// Random triangles whose quadric leaves the unit's range on some line (slivers; the
     /// front end rejects them with a one-line error) are replaced by the next ones.
     fn stimulus(_: &NoParams, n: usize, seed: u64) -> Stimulus {
-        let mut tris: Vec<ScreenTriangle> = named_triangles().into_iter().map(|(_, t)| t).collect();
-        let ctx = ShadeContext::default();
-        tris.extend(
-            lit_triangles(seed, 4 * n + 8)
-                .into_iter()
-                .filter(|t| span_jobs(t, 0, SpanKind::Quadric, &ctx).is_ok())
-                .take(n),
-        );
-        stimulus(&tris)
+        stimulus(&triangles(n, seed))
     }
     fn twin(_: &NoParams) -> Box<dyn Twin> {
         Box::new(QuadricRows(QuadricTwin::new()))
