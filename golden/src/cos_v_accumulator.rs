@@ -189,8 +189,12 @@ pub mod twin {
         }
         /// (ready, [valid, index, cos] for A and B, last) shown this clock.
         pub fn outputs(&self) -> Vec<u64> {
+            self.outputs_held(false)
+        }
+        /// [`Self::outputs`] with the `hold` input at `hold` (`ready` is low while held).
+        pub fn outputs_held(&self, hold: bool) -> Vec<u64> {
             vec![
-                self.ready() as u64,
+                (self.ready() && !hold) as u64,
                 self.out[0].0 as u64,
                 self.out[0].1 as u64,
                 self.out[0].2,
@@ -202,6 +206,10 @@ pub mod twin {
         }
         /// One rising edge with `load` (taken only when ready) and the span's words.
         pub fn clock(&mut self, load: Option<&SpanWords>) {
+            self.clock_held(load, false);
+        }
+        /// One clock; `hold`: the runs stand still, emit nothing and take no span.
+        pub fn clock_held(&mut self, load: Option<&SpanWords>, hold: bool) {
             // S4 ← S2, S3 ← S1
             (self.out, self.last2) = self.pipe.pop_front().expect("three stages");
             self.pipe.push_back((
@@ -210,15 +218,16 @@ pub mod twin {
                 self.last1,
             ));
             // S1 ← S0
-            let (a, b) = self.active();
+            let (act_a, act_b) = self.active();
+            let (a, b) = (act_a && !hold, act_b && !hold);
             let read = |arg: i64| match addr(arg) {
                 Some(x) => (self.prom[x], false),
                 None => (0, true),
             };
             let (wa, ta) = read(self.arg_a);
             let (wb, tb) = read(self.arg_b);
-            let last = self.last_now();
-            let ready = self.ready();
+            let last = self.last_now() && !hold;
+            let ready = self.ready() && !hold;
             self.s1 = [(a, self.t & 0xFFF, wa, ta), (b, self.u, wb, tb)];
             self.cb1 = self.cb;
             self.last1 = last;
@@ -226,7 +235,7 @@ pub mod twin {
             if a {
                 self.arg_a = (self.arg_a - self.d) & MASK;
                 self.t += 1;
-            } else {
+            } else if !act_a {
                 self.busy_a = false;
             }
             if b {
@@ -236,7 +245,7 @@ pub mod twin {
                 } else {
                     self.u -= 1;
                 }
-            } else {
+            } else if !act_b {
                 self.busy_b = false;
             }
             if let (Some(w), true) = (load, ready) {

@@ -166,9 +166,13 @@ pub mod twin {
         }
         /// (ready, valid_l, x_l, cos_l, valid_r, x_r, cos_r, last) shown this clock.
         pub fn outputs(&self) -> Vec<u64> {
+            self.outputs_held(false)
+        }
+        /// [`Self::outputs`] with the `hold` input at `hold` (`ready` is low while held).
+        pub fn outputs_held(&self, hold: bool) -> Vec<u64> {
             let o = self.pipe[self.pipe.len() - 1];
             vec![
-                !self.more() as u64,
+                (!self.more() && !hold) as u64,
                 o.vl as u64,
                 o.xl,
                 o.pl as u64,
@@ -179,6 +183,10 @@ pub mod twin {
             ]
         }
         pub fn clock(&mut self, load: Option<&FastWords>) {
+            self.clock_held(load, false);
+        }
+        /// One clock; `hold`: the step stands still, emits nothing and takes no span.
+        pub fn clock_held(&mut self, load: Option<&FastWords>, hold: bool) {
             let s: Vec<Lane> = self.pipe.iter().copied().collect();
             const L: usize = 3; // clocks per product (the RTL's SIGNED_MUL_LATENCY)
             let mut n = [Lane::default(); 4 + 3 * L];
@@ -224,7 +232,8 @@ pub mod twin {
                 n[i] = s[i - 1];
             }
             // S1: from the state — M rounded to Q1.15 (saturated), p rounded to Q2.14.
-            let a = self.active();
+            let act = self.active();
+            let a = act && !hold;
             let more = self.more();
             let m16 = clamp16s((sx(self.big_m, 48) + (1 << 30)) >> 31);
             let p16 = |p: i64| clamp16s((sx(p, 32) + (1 << 15)) >> 16);
@@ -247,10 +256,10 @@ pub mod twin {
                 self.big_m = (self.big_m + self.delta) & M48;
                 self.delta = (self.delta + self.dd) & M48;
                 self.x += 1;
-            } else {
+            } else if !act {
                 self.busy = false;
             }
-            if let (Some(w), false) = (load, more) {
+            if let (Some(w), false) = (load, more || hold) {
                 self.busy = true;
                 self.x = 0;
                 self.m = w.m as u64;

@@ -272,7 +272,7 @@ pub fn span_jobs(
 }
 
 /// The top's input row: `load` with a span (or idle), then (angular, fast) the material
-/// registers, or (quadric) `hold` low.
+/// registers, then `hold` low (angular, fast, quadric).
 pub fn span_row(kind: SpanKind, job: Option<&SpanJob>, regs: &ShadingRegs) -> Vec<u64> {
     let mut row = match job {
         Some(j) => vec![1, j.y as u64, j.x0 as u64, j.leftward as u64, j.m as u64],
@@ -315,6 +315,7 @@ pub fn span_row(kind: SpanKind, job: Option<&SpanJob>, regs: &ShadingRegs) -> Ve
     row.extend(job.map_or([0; 3], |j| [j.z0, j.zm, j.dz]).map(u64::from));
     row.push(regs.n);
     row.extend(regs.weights);
+    row.push(0); // hold: a stream top's back-pressure; never here
     row
 }
 
@@ -573,7 +574,7 @@ mod tests {
                 walk(&t).pixel_count()
             );
             let row = span_row(kind, Some(&jobs[0]), &regs);
-            assert_eq!(row.len(), 5 + 2 * words + 3 + 10);
+            assert_eq!(row.len(), 5 + 2 * words + 3 + 10 + 1);
             assert_eq!(span_row(kind, None, &regs).len(), row.len());
         }
         // Cubic: base, step, 12 samples, z0, dz.

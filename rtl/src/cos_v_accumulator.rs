@@ -26,7 +26,8 @@
 //! | `d` | in | Δφ ≥ 0, Q4.28 |
 //! | `cos_beta` | in | unsigned Q1.15 |
 //! | `m` | in | span length − 1, 12 bits |
-//! | `ready` | out | no pixel after this clock: a `load` now starts the next span without a gap |
+//! | `hold` | in | 1: the runs stand still this clock — no pixel enters the pipeline, no span is taken (`ready` low); nothing is lost (a stream top's back-pressure) |
+//! | `ready` | out | no pixel after this clock and no `hold`: a `load` now starts the next span without a gap |
 //! | `valid_a`, `t`, `cos_a` | out | run A's pixel: index (12 bits) and cos v (unsigned Q1.15) |
 //! | `valid_b`, `u`, `cos_b` | out | run B's pixel |
 //! | `last` | out | the span's last pixel(s) |
@@ -78,7 +79,7 @@ crate::hw_block! {
         summary: "a span's ψ, Δφ, cos β in, cos v = cos β·cos(ψ − tΔφ) out from both ends, two pixels per clock (SPEC §4)",
         latency: 6 => "load to the first pixels, up to two pixels per clock",
         multipliers: 2,
-        in { load: Bit, p: Bits<32>, q: Bits<32>, d: Bits<32>, cos_beta: Bits<16>, m: Bits<12> }
+        in { load: Bit, p: Bits<32>, q: Bits<32>, d: Bits<32>, cos_beta: Bits<16>, m: Bits<12>, hold: Bit }
         out {
             ready: Bit,
             valid_a: Bit, t: Bits<12>, cos_a: Bits<16>,
@@ -97,6 +98,8 @@ crate::hw_block! {
         h_new: Signal<Local, Bits<14>>,
         t_plus1: Signal<Local, Bits<13>>,
         act_a: Signal<Local, Bit>, act_b: Signal<Local, Bit>,
+        /// The runs emit this clock (active and not held).
+        go_a: Signal<Local, Bit>, go_b: Signal<Local, Bit>,
         next_a: Signal<Local, Bits<32>>, next_b: Signal<Local, Bits<32>>,
         more: Signal<Local, Bit>,
         mag_a: Signal<Local, Bits<32>>, mag_b: Signal<Local, Bits<32>>,
@@ -152,16 +155,19 @@ impl Logic for CosVAccumulator {
         self.next_b.next = self.arg_b.q.val() - self.d_q.q.val();
         self.more.next = (self.act_a.val() & self.ra.q.val().get_bits::<13>(1).any())
             | (self.act_b.val() & self.rb.q.val().any());
-        self.ready.next = !self.more.val();
+        // `hold`: the runs stand still and emit nothing this clock, no span is taken.
+        self.ready.next = !self.more.val() & !self.hold.val();
+        self.go_a.next = self.act_a.val() & !self.hold.val();
+        self.go_b.next = self.act_b.val() & !self.hold.val();
         // The runs advance, or stop for good.
-        if self.act_a.val() {
+        if self.go_a.val() {
             self.arg_a.d.next = self.next_a.val();
             self.t_q.d.next = self.t_plus1.val();
             self.ra.d.next = self.ra.q.val() - 1;
-        } else {
+        } else if !self.act_a.val() {
             self.busy_a.d.next = false;
         }
-        if self.act_b.val() {
+        if self.go_b.val() {
             self.arg_b.d.next = self.next_b.val();
             self.rb.d.next = self.rb.q.val() - 1;
             if self.u_q.q.val().any() {
@@ -169,10 +175,10 @@ impl Logic for CosVAccumulator {
             } else {
                 self.busy_b.d.next = false;
             }
-        } else {
+        } else if !self.act_b.val() {
             self.busy_b.d.next = false;
         }
-        if self.load.val() & !self.more.val() {
+        if self.load.val() & self.ready.val() {
             self.busy_a.d.next = true;
             self.busy_b.d.next = true;
             self.arg_a.d.next = self.p.val();
@@ -200,14 +206,14 @@ impl Logic for CosVAccumulator {
         self.prom_a.address.next = self.rnd_a.val().get_bits::<11>(18);
         self.prom_b.address.next = self.rnd_b.val().get_bits::<11>(18);
         // S1
-        self.valid1[0].d.next = self.act_a.val();
-        self.valid1[1].d.next = self.act_b.val();
+        self.valid1[0].d.next = self.go_a.val();
+        self.valid1[1].d.next = self.go_b.val();
         self.idx1[0].d.next = self.t_q.q.val().get_bits::<12>(0);
         self.idx1[1].d.next = self.u_q.q.val();
         self.top1[0].d.next = self.rnd_a.val().get_bits::<3>(29).any();
         self.top1[1].d.next = self.rnd_b.val().get_bits::<3>(29).any();
         self.cb1.d.next = self.cb.q.val();
-        self.last1.d.next = (self.act_a.val() | self.act_b.val()) & !self.more.val();
+        self.last1.d.next = (self.go_a.val() | self.go_b.val()) & !self.more.val();
         // S2, S3
         self.word2[0].d.next = self.prom_a.data.val();
         self.word2[1].d.next = self.prom_b.data.val();

@@ -15,7 +15,8 @@
 //! | `b`, `h`, `g` | in | signed Q2.30 |
 //! | `d0` (= c + s), `dd` (= 2c) | in | signed Q2.46 (48 bits) |
 //! | `m` | in | span length − 1, 12 bits |
-//! | `ready` | out | no step after this clock: a `load` now follows without a gap |
+//! | `hold` | in | 1: the step stands still this clock — no pixel enters the pipeline, no span is taken (`ready` low); nothing is lost (a stream top's back-pressure) |
+//! | `ready` | out | no step after this clock and no `hold`: a `load` now follows without a gap |
 //! | `valid_l`, `x_l`, `cos_l` | out | left pixel: index, cos (unsigned Q1.15, clamped at 0) |
 //! | `valid_r`, `x_r`, `cos_r` | out | mirror pixel m − x (not when it is the left pixel itself) |
 //! | `last` | out | the span's last step |
@@ -108,7 +109,7 @@ crate::hw_block! {
         multipliers: 4,
         in {
             load: Bit, b: Bits<32>, h: Bits<32>, g: Bits<32>, d0: Bits<48>, dd: Bits<48>,
-            m: Bits<12>,
+            m: Bits<12>, hold: Bit,
         }
         out {
             ready: Bit,
@@ -125,6 +126,8 @@ crate::hw_block! {
         big_m: DFF<Bits<48>>, delta: DFF<Bits<48>>, dd_q: DFF<Bits<48>>,
         rem: DFF<Bits<14>>,
         act: Signal<Local, Bit>, more: Signal<Local, Bit>,
+        /// The step is taken this clock (active and not held).
+        go: Signal<Local, Bit>,
         // S1 narrowings (one extra bit so the rounding add cannot wrap)
         m49: Signal<Local, Bits<49>>, pl33: Signal<Local, Bits<33>>, pr33: Signal<Local, Bits<33>>,
         sx49: Constant<Bits<49>> = Constant::new((1u64 << 48).into()),
@@ -173,18 +176,20 @@ impl Logic for FastUnit {
         // S0: the step of this clock, and whether another follows.
         self.act.next = self.busy.q.val() & !self.rem.q.val().get_bit(13);
         self.more.next = self.act.val() & self.rem.q.val().get_bits::<12>(1).any();
-        self.ready.next = !self.more.val();
-        if self.act.val() {
+        // `hold`: the step stands still and emits nothing this clock, no span is taken.
+        self.ready.next = !self.more.val() & !self.hold.val();
+        self.go.next = self.act.val() & !self.hold.val();
+        if self.go.val() {
             self.pl.d.next = self.pl.q.val() + self.g_q.q.val();
             self.pr.d.next = self.pr.q.val() - self.g_q.q.val();
             self.big_m.d.next = self.big_m.q.val() + self.delta.q.val();
             self.delta.d.next = self.delta.q.val() + self.dd_q.q.val();
             self.x.d.next = self.x.q.val() + 1;
             self.rem.d.next = self.rem.q.val() - 2;
-        } else {
+        } else if !self.act.val() {
             self.busy.d.next = false;
         }
-        if self.load.val() & !self.more.val() {
+        if self.load.val() & self.ready.val() {
             self.busy.d.next = true;
             self.x.d.next = 0.into();
             self.m_q.d.next = self.m.val();
@@ -197,11 +202,11 @@ impl Logic for FastUnit {
             self.dd_q.d.next = self.dd.val();
         }
         // S1: flags and indices; M → Q1.15 and p → Q2.14, rounded, saturated.
-        self.vl[0].d.next = self.act.val();
-        self.vr[0].d.next = self.act.val() & self.rem.q.val().any();
+        self.vl[0].d.next = self.go.val();
+        self.vr[0].d.next = self.go.val() & self.rem.q.val().any();
         self.xl[0].d.next = self.x.q.val();
         self.xr[0].d.next = self.m_q.q.val() - self.x.q.val();
-        self.lst[0].d.next = self.act.val() & !self.more.val();
+        self.lst[0].d.next = self.go.val() & !self.more.val();
         for i in 1..13 {
             self.vl[i].d.next = self.vl[i - 1].q.val();
             self.vr[i].d.next = self.vr[i - 1].q.val();

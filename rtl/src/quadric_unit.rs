@@ -59,7 +59,8 @@
 //! three-operand adds too (they were 3q − 2p + 3·2A, a five-operand sum).
 //! ECP5: 55.7 MHz (operands selected before two chained 64-bit adds) → 88.1 (registered flags;
 //! 11 566 LUT4; path: the +2 x-step's I + 2·Dx + 2A, two carry chains) → 93.6 MHz (placer seeds
-//! 2, 3: 92.0, 90.1; 11 013 LUT4); what is left is routing — 6.6 ns of the 10.68 ns path
+//! 2, 3: 92.0, 90.1; 11 013 LUT4; with `hold`: 97.5, seeds 2, 3: 92.4, 91.8, 11 080 LUT4);
+//! what is left is routing — 6.6 ns of the 10.68 ns path
 //! f_neg → term selects → carry chain → I: the flag's fan-out to the 3 × 192 term selects, and
 //! from the chain to I's word multiplexer.
 //!

@@ -33,7 +33,8 @@
 //! | L words, H words | in | the span unit's words for X = L and X = H (`cos_v_accumulator`, `fast_unit`) |
 //! | `z0`, `zm`, `dz` | in | depth at pixel 0 and pixel m, step per pixel; signed Q16.16 model units |
 //! | `n`, `amb_r` … `spc_b` | in | material registers: exponent (10 bits), colour weights UQ8.8 |
-//! | `ready` | out | the span units': a `load` now follows the current span without a gap |
+//! | `hold` | in | 1: both span units and the depth runs stand still this clock (no pixel enters the shading, no span is taken); the stages after the units run on, so a stream top holding on its FIFO's level loses nothing |
+//! | `ready` | out | the span units': a `load` now follows the current span without a gap (low while held) |
 //! | `valid_a`, `x_a`, `z_a`, `red_a`, `green_a`, `blue_a` | out | lane A: pixel t = k in the span's clock k |
 //! | `valid_b`, `x_b`, … `blue_b` | out | lane B: pixel m − k (when m − k > k) |
 //! | `y_out` | out | the line of both lanes' pixels (`y` is taken by the input) |
@@ -122,6 +123,8 @@ pub struct SpanShader<const U1: usize> {
     pub clock: Signal<In, Clock>,
     /// The span's load was taken this clock (its base words are on the ports below).
     pub take: Signal<In, Bit>,
+    /// The units stand still this clock (`hold`): so do the depth runs.
+    pub hold: Signal<In, Bit>,
     pub x0: Signal<In, Bits<12>>,
     pub y_in: Signal<In, Bits<12>>,
     pub dir: Signal<In, Bit>,
@@ -184,6 +187,7 @@ impl<const U1: usize> Default for SpanShader<U1> {
         SpanShader {
             clock: Default::default(),
             take: Default::default(),
+            hold: Default::default(),
             x0: Default::default(),
             y_in: Default::default(),
             dir: Default::default(),
@@ -247,9 +251,11 @@ impl<const U1: usize> Logic for SpanShader<U1> {
             colour_b, xa_p, xb_p, za_p, zb_p, y_p, last_p
         );
         // The depth runs advance with the units' state: pixel k from the start, m − k from
-        // the end (every clock; a load restarts them).
-        self.za.d.next = self.za.q.val() + self.dz_q.q.val();
-        self.zb.d.next = self.zb.q.val() - self.dz_q.q.val();
+        // the end (every clock but a held one; a load restarts them).
+        if !self.hold.val() {
+            self.za.d.next = self.za.q.val() + self.dz_q.q.val();
+            self.zb.d.next = self.zb.q.val() - self.dz_q.q.val();
+        }
         if self.take.val() {
             self.x0_q.d.next = self.x0.val();
             self.y_q.d.next = self.y_in.val();
@@ -346,7 +352,7 @@ crate::hw_block! {
             lp: Bits<32>, lq: Bits<32>, ld: Bits<32>, lcb: Bits<16>,
             hp: Bits<32>, hq: Bits<32>, hd: Bits<32>, hcb: Bits<16>,
             z0: Bits<32>, zm: Bits<32>, dz: Bits<32>,
-            material_registers!,
+            material_registers!, hold: Bit,
         }
         out {
             ready: Bit,
@@ -366,6 +372,9 @@ impl Logic for AngularPipeline {
     fn update(&mut self) {
         clock!(self, clock, unit_l, unit_h, shader);
         self.take.next = self.load.val() & self.unit_l.ready.val();
+        self.unit_l.hold.next = self.hold.val();
+        self.unit_h.hold.next = self.hold.val();
+        self.shader.hold.next = self.hold.val();
         self.unit_l.load.next = self.load.val();
         self.unit_l.p.next = self.lp.val();
         self.unit_l.q.next = self.lq.val();
@@ -436,7 +445,7 @@ crate::hw_block! {
             lb: Bits<32>, lh: Bits<32>, lg: Bits<32>, ld0: Bits<48>, ldd: Bits<48>,
             hb: Bits<32>, hh: Bits<32>, hg: Bits<32>, hd0: Bits<48>, hdd: Bits<48>,
             z0: Bits<32>, zm: Bits<32>, dz: Bits<32>,
-            material_registers!,
+            material_registers!, hold: Bit,
         }
         out {
             ready: Bit,
@@ -457,6 +466,9 @@ impl Logic for FastPipeline {
     fn update(&mut self) {
         clock!(self, clock, unit_l, unit_h, shader);
         self.take.next = self.load.val() & self.unit_l.ready.val();
+        self.unit_l.hold.next = self.hold.val();
+        self.unit_h.hold.next = self.hold.val();
+        self.shader.hold.next = self.hold.val();
         self.unit_l.load.next = self.load.val();
         self.unit_l.b.next = self.lb.val();
         self.unit_l.h.next = self.lh.val();

@@ -70,8 +70,9 @@ fn load_row(w: Option<&SpanWords>) -> Vec<u64> {
             (w.d & MASK) as u64,
             w.cos_beta,
             w.m as u64,
+            0,
         ],
-        None => vec![0; 6],
+        None => vec![0; 7],
     }
 }
 
@@ -79,7 +80,8 @@ struct CosVRows(CosVTwin);
 
 impl Twin for CosVRows {
     fn step(&mut self, r: &[u64]) -> Vec<u64> {
-        let o = self.0.outputs();
+        let hold = r[6] != 0;
+        let o = self.0.outputs_held(hold);
         let signed = |x: u64| ((x as i64) << 32) >> 32;
         let w = SpanWords {
             p: signed(r[1]),
@@ -88,7 +90,7 @@ impl Twin for CosVRows {
             cos_beta: r[4],
             m: r[5] as u32,
         };
-        self.0.clock((r[0] != 0).then_some(&w));
+        self.0.clock_held((r[0] != 0).then_some(&w), hold);
         o
     }
 }
@@ -141,7 +143,8 @@ impl Bench for CosVAccumulator {
     fn twin(_: &NoParams) -> Box<dyn Twin> {
         Box::new(CosVRows(CosVTwin::default()))
     }
-    /// Loads in clocks where `ready` is low (ignored), idle gaps, raw words.
+    /// Loads in clocks where `ready` is low (ignored), idle gaps, raw words, `hold` in a quarter
+    /// of the clocks.
     fn edge_rows(_: &NoParams, seed: u64) -> Vec<Vec<u64>> {
         let mut r = seeded_runner(seed ^ 0xc05);
         let st = (
@@ -162,6 +165,7 @@ impl Bench for CosVAccumulator {
                     d as u64,
                     cb as u64,
                     m,
+                    (v >> 4 & 3 == 0) as u64,
                 ]
             })
             .collect()

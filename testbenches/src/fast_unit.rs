@@ -59,8 +59,9 @@ fn load_row(w: Option<&FastWords>) -> Vec<u64> {
             (w.d0 & M48) as u64,
             (w.dd & M48) as u64,
             w.m as u64,
+            0,
         ],
-        None => vec![0; 7],
+        None => vec![0; 8],
     }
 }
 
@@ -68,7 +69,8 @@ struct FastRows(FastTwin);
 
 impl Twin for FastRows {
     fn step(&mut self, r: &[u64]) -> Vec<u64> {
-        let o = self.0.outputs();
+        let hold = r[7] != 0;
+        let o = self.0.outputs_held(hold);
         let sx = |v: u64, bits: u32| ((v as i64) << (64 - bits)) >> (64 - bits);
         let w = FastWords {
             b: sx(r[1], 32),
@@ -78,7 +80,7 @@ impl Twin for FastRows {
             dd: sx(r[5], 48),
             m: r[6] as u32,
         };
-        self.0.clock((r[0] != 0).then_some(&w));
+        self.0.clock_held((r[0] != 0).then_some(&w), hold);
         o
     }
 }
@@ -131,7 +133,7 @@ impl Bench for FastUnit {
     fn twin(p: &FastParams) -> Box<dyn Twin> {
         Box::new(FastRows(FastTwin::new(p.coeffs)))
     }
-    /// Raw words anywhere (every saturation), loads at random.
+    /// Raw words anywhere (every saturation), loads at random, `hold` in a quarter of the clocks.
     fn edge_rows(_: &FastParams, seed: u64) -> Vec<Vec<u64>> {
         let mut r = seeded_runner(seed ^ 0xfa57);
         let st = (
@@ -154,6 +156,7 @@ impl Bench for FastUnit {
                     d0 & 0xFFFF_FFFF_FFFF,
                     dd & 0xFFFF_FFFF_FFFF,
                     m,
+                    (v >> 4 & 3 == 0) as u64,
                 ]
             })
             .collect()

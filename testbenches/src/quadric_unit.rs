@@ -172,56 +172,6 @@ pub fn triangles(n: usize, seed: u64) -> Vec<ScreenTriangle> {
     tris
 }
 
-/// A run of the quadric unit under `hold`: the input rows (each line loaded as soon as `ready`
-/// takes it, `hold` from the pattern in every clock), the lines and the held clocks.
-pub struct HeldRun {
-    pub rows: Vec<Vec<u64>>,
-    pub lines: usize,
-    pub pixels: usize,
-    pub held: usize,
-}
-
-/// Index of `hold` in the unit's input row.
-pub const HOLD: usize = 26;
-
-/// Drive the lines of `tris` into the unit, `hold` from `stalls` every clock: the next line is
-/// presented with `load` high until a clock whose `ready` (the twin's, which the RTL must
-/// equal every clock) takes it; the run ends 4 clocks after the last pixel shows.
-pub fn held_run(tris: &[ScreenTriangle], stalls: &mut crate::stall::StallPattern) -> HeldRun {
-    let ctx = ShadeContext::default();
-    let regs = pipeline::lit::ShadingRegs::of(&ctx).expect("default context fits");
-    let jobs: Vec<_> = tris
-        .iter()
-        .enumerate()
-        .flat_map(|(i, t)| span_jobs(t, i, SpanKind::Quadric, &ctx).expect("in range"))
-        .collect();
-    let pixels: usize = jobs.iter().map(|j| j.m as usize + 1).sum();
-    let mut twin = QuadricRows(QuadricTwin::new());
-    let (mut rows, mut next, mut shown, mut held, mut after) = (Vec::new(), 0, 0, 0, 0);
-    while after < 4 {
-        let hold = stalls.next_stalled();
-        let mut row = span_row(SpanKind::Quadric, jobs.get(next), &regs);
-        row[HOLD] = hold as u64;
-        held += hold as usize;
-        let out = twin.step(&row);
-        if out[0] != 0 && next < jobs.len() {
-            next += 1;
-        }
-        shown += (out[1] + out[7]) as usize;
-        if shown == pixels && next == jobs.len() {
-            after += 1;
-        }
-        rows.push(row);
-        assert!(rows.len() < 50 * pixels + 10_000, "the run does not end");
-    }
-    HeldRun {
-        rows,
-        lines: jobs.len(),
-        pixels,
-        held,
-    }
-}
-
 impl Bench for QuadricUnit {
     const ITEMS: &'static str = "triangles";
     const DEFAULT_ITEMS: usize = 12;

@@ -47,18 +47,18 @@ enum UnitTwin {
 
 impl UnitTwin {
     /// ready, valid_a, index_a, cos_a, valid_b, index_b, cos_b, last.
-    fn outputs(&self) -> Vec<u64> {
+    fn outputs(&self, hold: bool) -> Vec<u64> {
         match self {
-            UnitTwin::Angular(t) => t.outputs(),
-            UnitTwin::Fast(t) => t.outputs(),
+            UnitTwin::Angular(t) => t.outputs_held(hold),
+            UnitTwin::Fast(t) => t.outputs_held(hold),
         }
     }
-    fn clock(&mut self, load: Option<&UnitWords>) {
+    fn clock(&mut self, load: Option<&UnitWords>, hold: bool) {
         match (self, load) {
-            (UnitTwin::Angular(t), Some(UnitWords::Angular(w))) => t.clock(Some(w)),
-            (UnitTwin::Angular(t), _) => t.clock(None),
-            (UnitTwin::Fast(t), Some(UnitWords::Fast(w))) => t.clock(Some(w)),
-            (UnitTwin::Fast(t), _) => t.clock(None),
+            (UnitTwin::Angular(t), Some(UnitWords::Angular(w))) => t.clock_held(Some(w), hold),
+            (UnitTwin::Angular(t), _) => t.clock_held(None, hold),
+            (UnitTwin::Fast(t), Some(UnitWords::Fast(w))) => t.clock_held(Some(w), hold),
+            (UnitTwin::Fast(t), _) => t.clock_held(None, hold),
         }
     }
 }
@@ -109,9 +109,13 @@ fn coeffs(kind: SpanKind) -> Coeffs {
     kind.fast_params().0.coeffs
 }
 
-/// The span a row loads (if `load`): its base and unit words, from the row layout of
-/// `pipeline::span::span_row`.
-fn row_span(kind: SpanKind, r: &[u64]) -> (bool, [u64; 6], UnitWords, UnitWords, u64, [u64; 9]) {
+/// The span a row loads (if `load`): its base and unit words, n, the weights and `hold`, from
+/// the row layout of `pipeline::span::span_row`.
+#[allow(clippy::type_complexity)]
+fn row_span(
+    kind: SpanKind,
+    r: &[u64],
+) -> (bool, [u64; 6], UnitWords, UnitWords, u64, [u64; 9], bool) {
     let sx = |x: u64, bits: u32| ((x << (64 - bits)) as i64) >> (64 - bits);
     let m = r[4] as u32;
     let (l, h, at) = match kind {
@@ -145,13 +149,14 @@ fn row_span(kind: SpanKind, r: &[u64]) -> (bool, [u64; 6], UnitWords, UnitWords,
     // base: x0, y, dir, dz, z0, zm
     let base = [r[2], r[1], r[3], r[at + 2], r[at], r[at + 1]];
     let weights = std::array::from_fn(|i| r[at + 4 + i]);
-    (r[0] != 0, base, l, h, r[at + 3], weights)
+    (r[0] != 0, base, l, h, r[at + 3], weights, r[at + 13] != 0)
 }
 
 impl Twin for SpanPipelineTwin {
     fn step(&mut self, r: &[u64]) -> Vec<u64> {
-        let ul = self.unit_l.outputs();
-        let uh = self.unit_h.outputs();
+        let (load, base, l, h, n, w, hold) = row_span(self.kind, r);
+        let ul = self.unit_l.outputs(hold);
+        let uh = self.unit_h.outputs(hold);
         let lane = |k: usize, this: &Self| {
             let (v, rgb) = this.colour[k].outputs();
             vec![
@@ -169,7 +174,6 @@ impl Twin for SpanPipelineTwin {
         o.push(self.out_d[4].out());
         o.push(self.out_d[5].out());
 
-        let (load, base, l, h, n, w) = row_span(self.kind, r);
         let take = load && ul[0] != 0;
         for k in 0..2 {
             let (pv, spec) = self.power[k].outputs();
@@ -208,6 +212,8 @@ impl Twin for SpanPipelineTwin {
         self.base = if take {
             let [x0, y, dir, dz, z0, zm] = base;
             [x0, y, dir, dz, z0, zm]
+        } else if hold {
+            self.base
         } else {
             [
                 bx,
@@ -219,8 +225,8 @@ impl Twin for SpanPipelineTwin {
             ]
         };
         let (wl, wh) = (load.then_some(&l), load.then_some(&h));
-        self.unit_l.clock(wl);
-        self.unit_h.clock(wh);
+        self.unit_l.clock(wl, hold);
+        self.unit_h.clock(wh, hold);
         o
     }
 }
@@ -478,5 +484,62 @@ impl Bench for FastPipeline {
     }
     fn edge_rows(p: &FastPipelineParams, seed: u64) -> Vec<Vec<u64>> {
         span_edge_rows(fast_kind(p), seed)
+    }
+}
+
+/// A run of a two-lane span top (`angular-pipeline`, `fast-pipeline`, `quadric-unit`) under
+/// `hold`: the input rows (each line loaded as soon as `ready` takes it, `hold` from the
+/// pattern in every clock), the lines, pixels and held clocks.
+pub struct HeldRun {
+    pub rows: Vec<Vec<u64>>,
+    pub lines: usize,
+    pub pixels: usize,
+    pub held: usize,
+}
+
+/// Drive the lines of `tris` (default context, `kind`'s front end) into its top, `hold` (the
+/// row's last input) from `stalls` every clock: the next line is presented with `load` high
+/// until a clock whose `ready` (the twin's, which the RTL must equal every clock) takes it;
+/// the run ends 4 clocks after the last pixel shows.
+pub fn held_run(
+    kind: SpanKind,
+    tris: &[ScreenTriangle],
+    stalls: &mut crate::stall::StallPattern,
+) -> HeldRun {
+    let ctx = ShadeContext::default();
+    let regs = ShadingRegs::of(&ctx).expect("default context fits");
+    let jobs: Vec<SpanJob> = tris
+        .iter()
+        .enumerate()
+        .flat_map(|(i, t)| span_jobs(t, i, kind, &ctx).expect("in range"))
+        .collect();
+    let pixels: usize = jobs.iter().map(|j| j.m as usize + 1).sum();
+    let mut twin: Box<dyn Twin> = match kind {
+        SpanKind::Quadric => <rtl::quadric_unit::QuadricUnit as Bench>::twin(&NoParams),
+        SpanKind::Angular | SpanKind::Fast(_) => Box::new(SpanPipelineTwin::new(kind)),
+        SpanKind::Cubic { .. } => unreachable!("the cubic pipeline has no hold"),
+    };
+    let (mut rows, mut next, mut shown, mut held, mut after) = (Vec::new(), 0, 0, 0, 0);
+    while after < 4 {
+        let hold = stalls.next_stalled();
+        let mut row = span_row(kind, jobs.get(next), &regs);
+        *row.last_mut().expect("a row") = hold as u64;
+        held += hold as usize;
+        let out = twin.step(&row);
+        if out[0] != 0 && next < jobs.len() {
+            next += 1;
+        }
+        shown += (out[1] + out[7]) as usize;
+        if shown == pixels && next == jobs.len() {
+            after += 1;
+        }
+        rows.push(row);
+        assert!(rows.len() < 50 * pixels + 10_000, "the run does not end");
+    }
+    HeldRun {
+        rows,
+        lines: jobs.len(),
+        pixels,
+        held,
     }
 }

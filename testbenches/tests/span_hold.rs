@@ -1,0 +1,164 @@
+//! `hold` on the two-lane span tops (`quadric-unit`, `angular-pipeline`, `fast-pipeline`): the
+//! back-pressure a stream top gives them. Under random and long holds the RTL equals its
+//! bit-exact twin every clock and shows exactly the pixels of the unheld run, in the same
+//! order; the exported Verilog is bit-exact with the rust-hdl simulation under holds. The
+//! quadric unit shows no pixel in the clock after a held one (its only stage after the
+//! generator is the output register); the span pipelines' shading stages run on through a
+//! hold, so pixels already in them keep coming out. (The generic tests — golden every clock,
+//! twin, Icarus, Verilator, lint — are the registry's; the span units' edge rows hold in a
+//! quarter of their clocks.)
+
+use golden::testing::seed_for;
+use pipeline::span::SpanKind;
+use rtl::registry::Options;
+use testbenches::quadric_unit::triangles;
+use testbenches::registry::{differential, find};
+use testbenches::span_pipeline::{held_run, HeldRun};
+use testbenches::stall::StallPattern;
+use testbenches::verilog::Simulator;
+
+/// A pixel shown: (line number, x, y, z, r, g, b).
+type Pixel = (usize, u64, u64, u64, [u64; 3]);
+
+/// The block and build of a span kind.
+fn block(kind: SpanKind) -> (&'static str, Options) {
+    match kind {
+        SpanKind::Quadric => ("quadric-unit", Options::new()),
+        SpanKind::Angular => ("angular-pipeline", Options::new()),
+        SpanKind::Fast(c) => ("fast-pipeline", Options::new().with("inv-sqrt", c)),
+        SpanKind::Cubic { .. } => unreachable!(),
+    }
+}
+
+/// The pixels the RTL (rust-hdl) shows for the run, in order (lane A before lane B in a
+/// clock), each with the number of `last` flags before it (its line).
+fn rtl_pixels(kind: SpanKind, run: &HeldRun) -> Vec<Pixel> {
+    let (name, o) = block(kind);
+    let out = find(name).unwrap().simulate(&o, &run.rows).unwrap();
+    let mut px = Vec::new();
+    let mut line = 0;
+    for (c, o) in out.iter().enumerate() {
+        if kind == SpanKind::Quadric && c > 0 && *run.rows[c - 1].last().unwrap() != 0 {
+            assert!(
+                o[1] == 0 && o[7] == 0 && o[14] == 0,
+                "clock {c}: a pixel shown after a held clock"
+            );
+        }
+        for lane in [1, 7] {
+            if o[lane] != 0 {
+                let rgb = [o[lane + 3], o[lane + 4], o[lane + 5]];
+                px.push((line, o[lane + 1], o[13], o[lane + 2], rgb));
+            }
+        }
+        line += o[14] as usize;
+    }
+    assert_eq!(line, run.lines, "{name}: lines ended");
+    px
+}
+
+/// Random holds (probability 0.3, in stretches) and two long ones — over the first lines'
+/// loads and hand-overs, and mid-walk: the RTL equals the twin every clock and shows the
+/// unheld run's pixels in order.
+fn hold_keeps_every_pixel(kind: SpanKind, test: &str, n: usize) {
+    let seed = seed_for(test);
+    println!("seed {seed} (SHADECORE_SEED overrides)");
+    let tris = triangles(n, seed);
+    let free = held_run(kind, &tris, &mut StallPattern::never());
+    let reference = rtl_pixels(kind, &free);
+    assert_eq!(
+        reference.len(),
+        free.pixels,
+        "the unheld run shows every pixel once"
+    );
+    let mut random = StallPattern::new(seed, 0.3);
+    let mut stalls = StallPattern::from_fn(move |c| {
+        let r = random.next_stalled();
+        (2..40).contains(&c) || (300..900).contains(&c) || r
+    });
+    let run = held_run(kind, &tris, &mut stalls);
+    assert!(run.held > 800, "held {} clocks", run.held);
+    let (name, o) = block(kind);
+    find(name)
+        .unwrap()
+        .run_twin(&o, &run.rows, &format!("{name}-hold"), seed)
+        .unwrap_or_else(|f| panic!("{f}"));
+    let pixels = rtl_pixels(kind, &run);
+    assert!(
+        pixels == reference,
+        "{name}: the held run's pixels differ from the unheld run's"
+    );
+    println!(
+        "{name}: {} lines, {} pixels: {} clocks unheld, {} with {} held clocks",
+        run.lines,
+        run.pixels,
+        free.rows.len(),
+        run.rows.len(),
+        run.held
+    );
+    assert!(run.rows.len() > free.rows.len() + 600);
+}
+
+#[test]
+fn quadric_hold_loses_no_pixel_and_matches_the_twin() {
+    hold_keeps_every_pixel(
+        SpanKind::Quadric,
+        "quadric_hold_loses_no_pixel_and_matches_the_twin",
+        8,
+    );
+}
+
+#[test]
+fn angular_hold_loses_no_pixel_and_matches_the_twin() {
+    hold_keeps_every_pixel(
+        SpanKind::Angular,
+        "angular_hold_loses_no_pixel_and_matches_the_twin",
+        3,
+    );
+}
+
+#[test]
+fn fast_hold_loses_no_pixel_and_matches_the_twin() {
+    hold_keeps_every_pixel(
+        SpanKind::Fast("fit"),
+        "fast_hold_loses_no_pixel_and_matches_the_twin",
+        3,
+    );
+}
+
+/// The exported Verilog of each top under a 40 % random hold pattern: bit-exact with the
+/// rust-hdl simulation every clock (Verilator; Icarus on the quadric unit, whose run is short
+/// enough for it).
+#[test]
+fn held_verilog_is_bit_exact() {
+    let seed = seed_for("held_verilog_is_bit_exact");
+    println!("seed {seed} (SHADECORE_SEED overrides)");
+    let tris = triangles(2, seed);
+    for (kind, sims) in [
+        (
+            SpanKind::Quadric,
+            &[Simulator::Verilator, Simulator::Icarus][..],
+        ),
+        (SpanKind::Angular, &[Simulator::Verilator][..]),
+        (SpanKind::Fast("chebyshev"), &[Simulator::Verilator][..]),
+    ] {
+        let run = held_run(kind, &tris, &mut StallPattern::new(seed, 0.4));
+        let (name, o) = block(kind);
+        for &sim in sims {
+            if !sim.require("held_verilog_is_bit_exact") {
+                continue;
+            }
+            let rep = differential(
+                find(name).unwrap(),
+                &o,
+                &run.rows,
+                sim,
+                &format!("{name}-hold-{sim:?}"),
+            )
+            .unwrap_or_else(|e| panic!("{e}"));
+            println!(
+                "{name} {sim:?} bit-exact: {} clocks × {} ports, {} held",
+                rep.cycles, rep.ports, run.held
+            );
+        }
+    }
+}
