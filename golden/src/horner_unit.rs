@@ -132,6 +132,8 @@ pub mod twin {
         busy: bool,
         /// Runs free from reset: 1 issues step 0 of the walk's pixel, 2 step 1, 0 step 2.
         phase: u8,
+        /// Serial: the walk's pixel went into the loop in the last phase 1 (not held).
+        issued: bool,
         t: u32,
         m: u32,
         acc: u64,
@@ -162,16 +164,32 @@ pub mod twin {
             self.pipelined || self.phase == 0
         }
         pub fn ready(&self) -> bool {
-            self.adv() && (!self.busy || self.t == self.m)
+            self.ready_held(false)
+        }
+        /// `ready` with the `hold` input of this clock: low under `hold`; busy, only once the
+        /// span's last pixel is issued (serial: it went into the loop in the last slot).
+        pub fn ready_held(&self, hold: bool) -> bool {
+            let fin = self.t == self.m && (self.pipelined || self.issued);
+            self.adv() && !hold && (!self.busy || fin)
         }
         /// ready, valid, t, value, last.
         pub fn outputs(&self) -> Vec<u64> {
+            self.outputs_held(false)
+        }
+        /// [`Self::outputs`] with the `hold` input of this clock (it reaches only `ready`).
+        pub fn outputs_held(&self, hold: bool) -> Vec<u64> {
             let (v, t, val, last) = self.out;
-            vec![self.ready() as u64, v as u64, t as u64, val, last as u64]
+            vec![self.ready_held(hold) as u64, v as u64, t as u64, val, last as u64]
         }
         pub fn clock(&mut self, load: Option<&HornerWords>) {
+            self.clock_held(load, false)
+        }
+        /// One clock with `hold`: pipelined, no pixel issued and t stays; serial, a held phase 1
+        /// issues an empty slot and the walk does not move on at the next phase 0; no load.
+        pub fn clock_held(&mut self, load: Option<&HornerWords>, hold: bool) {
             let p = p_word(self.acc);
             let last = self.t == self.m;
+            let go = self.busy && !hold;
             if self.pipelined {
                 let (v2, t2, l2, p2, x2, d2) = self.s2;
                 self.out = self.pad.pop_front().unwrap();
@@ -180,7 +198,7 @@ pub mod twin {
                 let (v1, t1, l1, p1, x1, c1, d1) = self.s1;
                 self.s2 = (v1, t1, l1, p1, mul_round(x1, p1) + c1, d1);
                 let [a, b, c, d] = self.k;
-                self.s1 = (self.busy, self.t, last, p, mul_round(a, p) + b, c, d);
+                self.s1 = (go, self.t, last, p, mul_round(a, p) + b, c, d);
             } else {
                 let [a, b, c, d] = self.k;
                 let rg = *self.ring.back().unwrap();
@@ -199,15 +217,23 @@ pub mod twin {
                 // Issue: the value RG will hold four clocks on, wrapped to the 32-bit word.
                 let wrap = |v: i64| v as i32 as i64;
                 let issued = match self.phase {
-                    1 => (self.busy, self.t, last, p, wrap(mul_round(a, p) + b), c, d),
+                    1 => (go, self.t, last, p, wrap(mul_round(a, p) + b), c, d),
                     2 => (rv, rt, rl, rp, wrap(mul_round(rval, rp) + rc), rc, rd),
                     _ => (rv, rt, rl, rp, wrap(mul_round(rval, rp) + rd), rc, rd),
                 };
                 self.ring.pop_back();
                 self.ring.push_front(issued);
             }
-            let ready = self.ready();
-            if self.busy && self.adv() {
+            let ready = self.ready_held(hold);
+            let walk = if self.pipelined {
+                go
+            } else {
+                self.phase == 0 && self.busy && self.issued
+            };
+            if self.phase == 1 {
+                self.issued = go;
+            }
+            if walk {
                 if last {
                     self.busy = false;
                 } else {

@@ -272,7 +272,7 @@ pub fn span_jobs(
 }
 
 /// The top's input row: `load` with a span (or idle), then (angular, fast) the material
-/// registers, then `hold` low (angular, fast, quadric).
+/// registers, then `hold` low (every span top).
 pub fn span_row(kind: SpanKind, job: Option<&SpanJob>, regs: &ShadingRegs) -> Vec<u64> {
     let mut row = match job {
         Some(j) => vec![1, j.y as u64, j.x0 as u64, j.leftward as u64, j.m as u64],
@@ -303,6 +303,7 @@ pub fn span_row(kind: SpanKind, job: Option<&SpanJob>, regs: &ShadingRegs) -> Ve
             _ => row.extend([0; 13]),
         }
         row.extend(job.map_or([0; 2], |j| [j.z0, j.dz]).map(u64::from));
+        row.push(0); // hold: a stream top's back-pressure; never here
         return row;
     }
     let z = UnitWords::zero(kind);
@@ -577,12 +578,12 @@ mod tests {
             assert_eq!(row.len(), 5 + 2 * words + 3 + 10 + 1);
             assert_eq!(span_row(kind, None, &regs).len(), row.len());
         }
-        // Cubic: base, step, 12 samples, z0, dz.
+        // Cubic: base, step, 12 samples, z0, dz, hold.
         for pipelined in [false, true] {
             let kind = SpanKind::Cubic { pipelined };
             let jobs = span_jobs(&t, 0, kind, &ctx).unwrap();
-            assert_eq!(span_row(kind, Some(&jobs[0]), &regs).len(), 20);
-            assert_eq!(span_row(kind, None, &regs).len(), 20);
+            assert_eq!(span_row(kind, Some(&jobs[0]), &regs).len(), 21);
+            assert_eq!(span_row(kind, None, &regs).len(), 21);
             let per = if pipelined { 1 } else { 3 };
             assert!(jobs.iter().all(|j| j.clocks() == per * (j.m as u64 + 1)));
         }

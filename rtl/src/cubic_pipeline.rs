@@ -22,6 +22,7 @@
 //! | `step` | in | round(2²⁷/m), UQ1.27 (28 bits) |
 //! | `r1` … `r4`, `g1` … `g4`, `b1` … `b4` | in | I(0), I(1), I(½), I(¼) per channel, signed Q11.5 |
 //! | `z0`, `dz` | in | depth at pixel 0 and per pixel step, signed Q16.16 model units |
+//! | `hold` | in | back-pressure from a stream top, to the three units: no pixel enters them this clock, the walk does not move on, no line is taken (see `horner_unit`); pixels already issued run on |
 //! | `ready` | out | the units': a `load` now follows the current line without a gap |
 //! | `valid`, `x`, `z`, `red`, `green`, `blue` | out | one fragment |
 //! | `y_out`, `last` | out | its line; the line's last pixel |
@@ -31,6 +32,11 @@
 //! unit's MUL–Sm loop was split into four registers). Serial: 3 clocks per pixel, and an idle
 //! pipeline takes a line every third clock (the units' free-running phase); pipelined: one
 //! pixel per clock. Lines follow without a gap (0 clocks per line).
+//!
+//! Under `hold` (0 in every use without a stream top) the depth run needs no freezing: it
+//! advances on the units' output pixels, which come in order whatever the holds; a line's base
+//! is taken only with the line (`ready` is low under `hold`), at least as late as without holds
+//! after its previous line's last pixel, so the delayed base still meets its first pixel.
 //!
 //! # Overflow, error budget
 //! The units': nothing wraps, the colours saturate. Depth: the z run adds dz per pixel from z0
@@ -81,7 +87,7 @@ crate::hw_block! {
             r1: Bits<16>, r2: Bits<16>, r3: Bits<16>, r4: Bits<16>,
             g1: Bits<16>, g2: Bits<16>, g3: Bits<16>, g4: Bits<16>,
             b1: Bits<16>, b2: Bits<16>, b3: Bits<16>, b4: Bits<16>,
-            z0: Bits<32>, dz: Bits<32>,
+            z0: Bits<32>, dz: Bits<32>, hold: Bit,
         }
         out {
             ready: Bit, valid: Bit, x: Bits<12>, z: Bits<32>,
@@ -116,6 +122,7 @@ impl Logic for CubicPipeline {
         self.unit_r.i4.next = self.r4.val();
         self.unit_r.step.next = self.step.val();
         self.unit_r.m.next = self.m.val();
+        self.unit_r.hold.next = self.hold.val();
         self.unit_g.load.next = self.load.val();
         self.unit_g.i1.next = self.g1.val();
         self.unit_g.i2.next = self.g2.val();
@@ -123,6 +130,7 @@ impl Logic for CubicPipeline {
         self.unit_g.i4.next = self.g4.val();
         self.unit_g.step.next = self.step.val();
         self.unit_g.m.next = self.m.val();
+        self.unit_g.hold.next = self.hold.val();
         self.unit_b.load.next = self.load.val();
         self.unit_b.i1.next = self.b1.val();
         self.unit_b.i2.next = self.b2.val();
@@ -130,6 +138,7 @@ impl Logic for CubicPipeline {
         self.unit_b.i4.next = self.b4.val();
         self.unit_b.step.next = self.step.val();
         self.unit_b.m.next = self.m.val();
+        self.unit_b.hold.next = self.hold.val();
 
         // The line's base, held from its load, delayed to meet its first pixel.
         if self.take.val() {

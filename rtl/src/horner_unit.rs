@@ -36,7 +36,8 @@
 //! | `i1` … `i4` | in | I(0), I(1), I(1/2), I(1/4): signed Q11.5, LSB units of the 8-bit channel |
 //! | `step` | in | round(2²⁷/m), UQ1.27 (28 bits; 0 for m = 0) |
 //! | `m` | in | pixels − 1 (12 bits) |
-//! | `ready` | out | a `load` now is taken (idle, or the span's last pixel is being formed) |
+//! | `hold` | in | back-pressure from a stream top: no pixel enters the datapath this clock, the walk does not move on, no span is taken (`ready` low); pixels already in it run on |
+//! | `ready` | out | a `load` now is taken (idle, or the span's last pixel is being formed; low under `hold`) |
 //! | `valid`, `t`, `value`, `last` | out | pixel t of the span, 8 bits (rounded, saturated 0..=255); `last` with pixel m |
 //!
 //! # Pipeline, latency, throughput
@@ -51,6 +52,13 @@
 //! is issued, so spans follow without a gap); pipelined: m + 1 clocks per span, `ready`
 //! whenever idle or on the last pixel. Serial, the output register is loaded when a pixel
 //! leaves RG (phase 1) and holds between pixels.
+//!
+//! `hold` (0 in every use without a stream top) makes the walk stand still: pipelined, the
+//! clock issues no pixel and t does not advance; serial, it matters in the issue clock (phase
+//! 1): the slot carries no pixel, the register `issued` stays low and phase 0 does not move on,
+//! so the same pixel is issued in the next slot (a held phase 0 only blocks a load). Nothing is
+//! lost or repeated; each held slot delays the rest of the span by one slot (3 clocks serial,
+//! 1 pipelined). Up to 14 clocks of pixels already issued still come out after `hold` rises.
 //!
 //! # Overflow
 //! None can occur: |A|, |B| < 2²⁹, |C| < 2²⁷ for any sample words (units 2⁻¹²), so every
@@ -138,7 +146,7 @@ crate::hw_block! {
         summary: "a span's I(0), I(1), I(1/2), I(1/4) in, the cubic I(t/m) per pixel out: shift-and-add coefficient block, Horner by fig. 2.6 (serial) or pipelined (SPEC §9)",
         latency: 14 => "load to the first pixel; serial 3 clocks per pixel, pipelined 1",
         multipliers: 2,
-        in { load: Bit, i1: Bits<16>, i2: Bits<16>, i3: Bits<16>, i4: Bits<16>, step: Bits<28>, m: Bits<12> }
+        in { load: Bit, i1: Bits<16>, i2: Bits<16>, i3: Bits<16>, i4: Bits<16>, step: Bits<28>, m: Bits<12>, hold: Bit }
         out { ready: Bit, valid: Bit, t: Bits<12>, value: Bits<8>, last: Bit }
         pipelined: Constant<Bit> = Constant::new(p.pipelined),
         sext: Constant<Bits<32>> = Constant::new(0xFFFF_0000u64.into()),
@@ -159,6 +167,12 @@ crate::hw_block! {
         ta_q: Signal<Local, Bits<32>>, tc_q: Signal<Local, Bits<32>>,
         p_rnd: Signal<Local, Bits<29>>, p: Signal<Local, Bits<16>>,
         is_last: Signal<Local, Bit>, adv: Signal<Local, Bit>, rdy: Signal<Local, Bit>,
+        /// Serial: the walk's pixel went into the loop in the last issue clock (phase 1), so
+        /// phase 0 moves on to the next pixel; a held issue clock leaves it low and the same
+        /// pixel is issued in the next slot.
+        issued: DFF<Bit>,
+        /// The pixel now issued goes into the datapath (busy, not held); the walk moves on.
+        go: Signal<Local, Bit>, walk: Signal<Local, Bit>, fin: Signal<Local, Bit>,
         // Serial datapath (fig. 2.6, the MUL–Sm loop in four registers: OP, PR, PT, RG).
         // C and D travel with their pixel (a pixel is in the loop for 12 clocks, so up to four
         // spans of one pixel each can be in it at once).
@@ -195,7 +209,7 @@ impl Logic for HornerUnit {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(
-            self, clock, busy, t_q, m_q, acc, step_q, ka, kb, kc, kd, nc_q, na_q, o_t, o_val
+            self, clock, busy, t_q, m_q, acc, step_q, ka, kb, kc, kd, nc_q, na_q, o_t, o_val, issued
         );
         clock!(
             self, clock, phase, s1_v, s1_t, s1_l, s1_p, s1_x, s1_c, s1_d, s2_v, s2_t, s2_l, s2_p,
@@ -247,7 +261,21 @@ impl Logic for HornerUnit {
         }
         self.is_last.next = self.t_q.q.val() == self.m_q.q.val();
         self.adv.next = self.pipelined.val() | (self.phase.q.val() == 0);
-        self.rdy.next = self.adv.val() & (!self.busy.q.val() | self.is_last.val());
+        // hold: no pixel enters the datapath (serial: in an issue clock, phase 1), the walk
+        // does not move on, no span is taken.
+        self.go.next = self.busy.q.val() & !self.hold.val();
+        if self.pipelined.val() {
+            self.walk.next = self.go.val();
+        } else {
+            self.walk.next =
+                (self.phase.q.val() == 0) & self.busy.q.val() & self.issued.q.val();
+        }
+        self.fin.next = self.is_last.val() & (self.pipelined.val() | self.issued.q.val());
+        self.rdy.next =
+            self.adv.val() & !self.hold.val() & (!self.busy.q.val() | self.fin.val());
+        if self.phase.q.val() == 1 {
+            self.issued.d.next = self.go.val();
+        }
 
         self.ta_q.next = (self.na_q.q.val() << 6)
             - (self.na_q.q.val() << 4)
@@ -262,7 +290,7 @@ impl Logic for HornerUnit {
         // 2: step 1, RG·p + C; 0: step 2, RG·p + D); RG holds the value issued four clocks
         // before, i.e. the same pixel's previous step, so three pixels are in the loop at once.
         if self.phase.q.val() == 1 {
-            self.op_v.d.next = self.busy.q.val();
+            self.op_v.d.next = self.go.val();
             self.op_t.d.next = self.t_q.q.val();
             self.op_l.d.next = self.is_last.val();
             self.op_x.d.next = self.ta_q.val() << 3;
@@ -326,7 +354,7 @@ impl Logic for HornerUnit {
         // Pipelined datapath.
         self.mul1.x.next = self.ka.q.val();
         self.mul1.p.next = self.p.val();
-        self.s1_v.d.next = self.busy.q.val();
+        self.s1_v.d.next = self.go.val();
         self.s1_t.d.next = self.t_q.q.val();
         self.s1_l.d.next = self.is_last.val();
         self.s1_p.d.next = self.p.val();
@@ -367,7 +395,7 @@ impl Logic for HornerUnit {
         }
 
         // Walk along the span.
-        if self.busy.q.val() & self.adv.val() {
+        if self.walk.val() {
             if self.is_last.val() {
                 self.busy.d.next = false;
             } else {

@@ -47,10 +47,11 @@ impl CubicPipelineTwin {
 
 impl Twin for CubicPipelineTwin {
     fn step(&mut self, r: &[u64]) -> Vec<u64> {
-        let u: Vec<Vec<u64>> = self.units.iter().map(|t| t.outputs()).collect();
+        // Row: load y x0 dir m step r1..r4 g1..g4 b1..b4 z0 dz hold.
+        let hold = r[20] != 0;
+        let u: Vec<Vec<u64>> = self.units.iter().map(|t| t.outputs_held(hold)).collect();
         let mut o = vec![u[0][0]];
         o.extend(self.out);
-        // Row: load y x0 dir m step r1..r4 g1..g4 b1..b4 z0 dz.
         let load = r[0] != 0;
         let take = load && u[0][0] != 0;
         let [x0, y, dir, z0, dz] = std::array::from_fn(|k| self.base_d[k].out());
@@ -80,7 +81,7 @@ impl Twin for CubicPipelineTwin {
                 step: r[5],
                 m: r[4] as u32,
             };
-            unit.clock(load.then_some(&w));
+            unit.clock_held(load.then_some(&w), hold);
         }
         o
     }

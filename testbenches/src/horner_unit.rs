@@ -67,10 +67,10 @@ fn load_row(w: Option<&HornerWords>) -> Vec<u64> {
         Some(w) => {
             let mut r = vec![1];
             r.extend(w.i.map(|v| (v as u64) & 0xFFFF));
-            r.extend([w.step, w.m as u64]);
+            r.extend([w.step, w.m as u64, 0]);
             r
         }
-        None => vec![0; 7],
+        None => vec![0; 8],
     }
 }
 
@@ -78,13 +78,15 @@ struct HornerRows(HornerTwin);
 
 impl Twin for HornerRows {
     fn step(&mut self, r: &[u64]) -> Vec<u64> {
-        let o = self.0.outputs();
+        // Row: load i1..i4 step m hold.
+        let hold = r[7] != 0;
+        let o = self.0.outputs_held(hold);
         let w = HornerWords {
             i: std::array::from_fn(|k| r[1 + k] as u16 as i16 as i64),
             step: r[5],
             m: r[6] as u32,
         };
-        self.0.clock((r[0] != 0).then_some(&w));
+        self.0.clock_held((r[0] != 0).then_some(&w), hold);
         o
     }
 }
@@ -187,7 +189,7 @@ impl Bench for HornerUnit {
         Box::new(HornerRows(HornerTwin::new(p.pipelined)))
     }
     /// Loads in clocks where `ready` is low (ignored), idle gaps, raw words (any samples, any
-    /// step: the p accumulator wraps and p clamps).
+    /// step: the p accumulator wraps and p clamps), `hold` in a quarter of the clocks.
     fn edge_rows(_: &HornerParams, seed: u64) -> Vec<Vec<u64>> {
         let mut r = seeded_runner(seed ^ 0x4042);
         let st = (
@@ -201,7 +203,7 @@ impl Bench for HornerUnit {
                 let (i, step, m, v) = st.new_tree(&mut r).expect("no rejection").current();
                 let mut row = vec![(v & 3 == 0) as u64];
                 row.extend(i.map(u64::from));
-                row.extend([step, m]);
+                row.extend([step, m, ((v >> 2) & 3 == 0) as u64]);
                 row
             })
             .collect()

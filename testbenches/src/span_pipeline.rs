@@ -487,7 +487,7 @@ impl Bench for FastPipeline {
     }
 }
 
-/// A run of a two-lane span top (`angular-pipeline`, `fast-pipeline`, `quadric-unit`) under
+/// A run of a span top (`angular-pipeline`, `fast-pipeline`, `quadric-unit`, `cubic-pipeline`) under
 /// `hold`: the input rows (each line loaded as soon as `ready` takes it, `hold` from the
 /// pattern in every clock), the lines, pixels and held clocks.
 pub struct HeldRun {
@@ -517,7 +517,14 @@ pub fn held_run(
     let mut twin: Box<dyn Twin> = match kind {
         SpanKind::Quadric => <rtl::quadric_unit::QuadricUnit as Bench>::twin(&NoParams),
         SpanKind::Angular | SpanKind::Fast(_) => Box::new(SpanPipelineTwin::new(kind)),
-        SpanKind::Cubic { .. } => unreachable!("the cubic pipeline has no hold"),
+        SpanKind::Cubic { pipelined } => Box::new(crate::cubic_pipeline::CubicPipelineTwin::new(
+            &rtl::cubic_pipeline::CubicParams(rtl::horner_unit::HornerParams { pipelined }),
+        )),
+    };
+    // Where the pixel flags are in a clock's outputs: one lane (cubic) or two.
+    let lanes: &[usize] = match kind {
+        SpanKind::Cubic { .. } => &[1],
+        _ => &[1, 7],
     };
     let (mut rows, mut next, mut shown, mut held, mut after) = (Vec::new(), 0, 0, 0, 0);
     while after < 4 {
@@ -529,7 +536,7 @@ pub fn held_run(
         if out[0] != 0 && next < jobs.len() {
             next += 1;
         }
-        shown += (out[1] + out[7]) as usize;
+        shown += lanes.iter().map(|&k| out[k] as usize).sum::<usize>();
         if shown == pixels && next == jobs.len() {
             after += 1;
         }

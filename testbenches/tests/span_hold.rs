@@ -1,10 +1,11 @@
-//! `hold` on the two-lane span tops (`quadric-unit`, `angular-pipeline`, `fast-pipeline`): the
-//! back-pressure a stream top gives them. Under random and long holds the RTL equals its
+//! `hold` on the span tops (the two-lane `quadric-unit`, `angular-pipeline`, `fast-pipeline`;
+//! `cubic-pipeline` in both Horner variants): the back-pressure a stream top gives them. Under random and long holds the RTL equals its
 //! bit-exact twin every clock and shows exactly the pixels of the unheld run, in the same
 //! order; the exported Verilog is bit-exact with the rust-hdl simulation under holds. The
 //! quadric unit shows no pixel in the clock after a held one (its only stage after the
-//! generator is the output register); the span pipelines' shading stages run on through a
-//! hold, so pixels already in them keep coming out. (The generic tests — golden every clock,
+//! generator is the output register); the span pipelines' shading stages (and the Horner
+//! units' pixels already issued) run on through a hold, so pixels already in them keep coming
+//! out. (The generic tests — golden every clock,
 //! twin, Icarus, Verilator, lint — are the registry's; the span units' edge rows hold in a
 //! quarter of their clocks.)
 
@@ -26,7 +27,10 @@ fn block(kind: SpanKind) -> (&'static str, Options) {
         SpanKind::Quadric => ("quadric-unit", Options::new()),
         SpanKind::Angular => ("angular-pipeline", Options::new()),
         SpanKind::Fast(c) => ("fast-pipeline", Options::new().with("inv-sqrt", c)),
-        SpanKind::Cubic { .. } => unreachable!(),
+        SpanKind::Cubic { pipelined } => (
+            "cubic-pipeline",
+            Options::new().with("horner", if pipelined { "pipelined" } else { "serial" }),
+        ),
     }
 }
 
@@ -37,6 +41,11 @@ fn rtl_pixels(kind: SpanKind, run: &HeldRun) -> Vec<Pixel> {
     let out = find(name).unwrap().simulate(&o, &run.rows).unwrap();
     let mut px = Vec::new();
     let mut line = 0;
+    // Output columns: the lanes' valid flags (x, z, r, g, b follow each), y, last.
+    let (lanes, y, last): (&[usize], usize, usize) = match kind {
+        SpanKind::Cubic { .. } => (&[1], 7, 8),
+        _ => (&[1, 7], 13, 14),
+    };
     for (c, o) in out.iter().enumerate() {
         if kind == SpanKind::Quadric && c > 0 && *run.rows[c - 1].last().unwrap() != 0 {
             assert!(
@@ -44,13 +53,13 @@ fn rtl_pixels(kind: SpanKind, run: &HeldRun) -> Vec<Pixel> {
                 "clock {c}: a pixel shown after a held clock"
             );
         }
-        for lane in [1, 7] {
+        for &lane in lanes {
             if o[lane] != 0 {
                 let rgb = [o[lane + 3], o[lane + 4], o[lane + 5]];
-                px.push((line, o[lane + 1], o[13], o[lane + 2], rgb));
+                px.push((line, o[lane + 1], o[y], o[lane + 2], rgb));
             }
         }
-        line += o[14] as usize;
+        line += o[last] as usize;
     }
     assert_eq!(line, run.lines, "{name}: lines ended");
     px
@@ -117,6 +126,17 @@ fn angular_hold_loses_no_pixel_and_matches_the_twin() {
 }
 
 #[test]
+fn cubic_hold_loses_no_pixel_and_matches_the_twin() {
+    for pipelined in [false, true] {
+        hold_keeps_every_pixel(
+            SpanKind::Cubic { pipelined },
+            "cubic_hold_loses_no_pixel_and_matches_the_twin",
+            2,
+        );
+    }
+}
+
+#[test]
 fn fast_hold_loses_no_pixel_and_matches_the_twin() {
     hold_keeps_every_pixel(
         SpanKind::Fast("fit"),
@@ -127,7 +147,7 @@ fn fast_hold_loses_no_pixel_and_matches_the_twin() {
 
 /// The exported Verilog of each top under a 40 % random hold pattern: bit-exact with the
 /// rust-hdl simulation every clock (Verilator; Icarus on the quadric unit, whose run is short
-/// enough for it).
+/// enough for it). The cubic pipeline in both Horner variants.
 #[test]
 fn held_verilog_is_bit_exact() {
     let seed = seed_for("held_verilog_is_bit_exact");
@@ -140,6 +160,11 @@ fn held_verilog_is_bit_exact() {
         ),
         (SpanKind::Angular, &[Simulator::Verilator][..]),
         (SpanKind::Fast("chebyshev"), &[Simulator::Verilator][..]),
+        (
+            SpanKind::Cubic { pipelined: false },
+            &[Simulator::Verilator][..],
+        ),
+        (SpanKind::Cubic { pipelined: true }, &[Simulator::Verilator][..]),
     ] {
         let run = held_run(kind, &tris, &mut StallPattern::new(seed, 0.4));
         let (name, o) = block(kind);
