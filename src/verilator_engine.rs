@@ -225,7 +225,7 @@ pub fn four_triangle_outputs(
         let load = (replay.ready() && next < setups.len()).then(|| &setups[next]);
         next += load.is_some() as usize;
         replay
-            .step(&pipeline::subdivision::setup_row(load), &mut row)
+            .step(&testbenches::four_triangle::four_row(load, false), &mut row)
             .map_err(|e| anyhow!(e))?;
         let o = row_outputs(&row);
         for (d, l) in dones.iter_mut().zip(&o.lanes) {

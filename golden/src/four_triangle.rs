@@ -444,10 +444,15 @@ impl FourTriangleModel {
         self.lanes.iter().all(|l| l.ready())
     }
     pub fn outputs(&self) -> FourOutputs {
+        self.outputs_held(false)
+    }
+    /// The outputs with the `hold` input at `hold`: every lane's address-block outputs under
+    /// it (a held clock shows no event on any lane; `ready` does not depend on it).
+    pub fn outputs_held(&self, hold: bool) -> FourOutputs {
         FourOutputs {
             ready: self.ready(),
             lanes: std::array::from_fn(|k| {
-                let mut o = self.lanes[k].outputs();
+                let mut o = self.lanes[k].outputs_held(hold);
                 o.ready = self.ready();
                 o
             }),
@@ -455,10 +460,14 @@ impl FourTriangleModel {
     }
     /// One rising edge; `load` is taken only when [`Self::ready`].
     pub fn clock(&mut self, load: Option<&FourTriangleSetup>) {
+        self.clock_held(load, false)
+    }
+    /// [`Self::clock`] with the `hold` input, which every lane's address block receives.
+    pub fn clock_held(&mut self, load: Option<&FourTriangleSetup>, hold: bool) {
         let load = load.filter(|_| self.ready());
         for (k, l) in self.lanes.iter_mut().enumerate() {
             let s = load.map(|s| s.lane(k));
-            l.clock(s.as_ref());
+            l.clock_held(s.as_ref(), hold);
         }
     }
 }

@@ -117,14 +117,19 @@ pub fn row_setup(r: &[u64]) -> Option<FourTriangleSetup> {
     })
 }
 
-/// The pipe's input row: the four-triangle set-up, then each lane's twelve BVI words.
+/// The pipe's input row: the four-triangle set-up, then each lane's twelve BVI words, then
+/// `hold` low (a stream top's back-pressure; never here).
 pub fn pipe_row(job: Option<&SubJob>) -> Vec<u64> {
     let mut row = setup_row(job.map(|j| &j.addr));
     for k in 0..LANES {
         row.extend(words_row(job.map(|j| &j.words[k])));
     }
+    row.push(0);
     row
 }
+
+/// Index of `hold` in [`pipe_row`].
+pub const PIPE_HOLD_AT: usize = SETUP_ROW + 12 * LANES;
 
 /// The inverse of [`pipe_row`].
 pub fn row_job(row: &[u64]) -> Option<SubJob> {
@@ -255,7 +260,8 @@ mod tests {
         let mut tri = ScreenTriangle::from_points([(3, 1), (40, 7), (11, 30)]);
         tri.v[1].normal = glam::DVec3::new(0.3, 0.1, 1.0).normalize();
         let j = SubJob::subdivision(&tri, &ShadeContext::default()).unwrap();
-        assert_eq!(pipe_row(Some(&j)).len(), SETUP_ROW + 48);
+        assert_eq!(pipe_row(Some(&j)).len(), SETUP_ROW + 48 + 1);
+        assert_eq!(pipe_row(Some(&j))[PIPE_HOLD_AT], 0);
         assert_eq!(row_job(&pipe_row(Some(&j))), Some(j));
         assert_eq!(row_job(&pipe_row(None)), None);
     }

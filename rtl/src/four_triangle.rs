@@ -45,6 +45,7 @@
 //! | `lK_t_b0 lK_t_e0`, `lK_t_adjacent` | 12, 13, 1     | its third edge; uses the adjacent-edge triple |
 //! | `lK_y_top lK_rows lK_y_switch`     | 12 each       | first line, number of lines, switch line  |
 //! | `lK_dir_neg`                       | 1             | lane K's lines run towards −x             |
+//! | `hold`                             | 1             | stall, to every lane (any clock; see below) |
 //!
 //! Outputs: `ready` (a load is accepted in this clock: all four lanes are ready), and per lane
 //! K (= sub-triangle index K: 0 corner at T, 1 at m_tm, 2 at m_tb, 3 middle) the address
@@ -59,6 +60,11 @@
 //! rows (the sub-triangles are congruent, so the lanes are nearly balanced). The next parent is
 //! accepted when every lane has produced its last row and taken its first record, so a lane
 //! that finishes early idles (valid = 0) until then.
+//! **Stall:** `hold` goes to the four lanes' `hold` (the address block's stall: a held clock
+//! shows no event on any lane, each lane keeps the event it would have shown, a load is still
+//! accepted on `load & ready`), so each lane's event stream under holds is its stream without
+//! them with empty clocks inserted; 0 in every use without a stream top. It reaches the event
+//! ports through one AND gate: drive it from a register.
 //! Overflow: none for set-ups in range (every counter exact modulo its width). Error budget:
 //! exact (integer).
 
@@ -88,6 +94,7 @@ crate::hw_block! {
             l3_w_b0: Bits<12>, l3_w_e0: Bits<13>, l3_a_b0: Bits<12>, l3_a_e0: Bits<13>, l3_a_third: Bit,
             l3_t_b0: Bits<12>, l3_t_e0: Bits<13>, l3_t_adjacent: Bit,
             l3_y_top: Bits<12>, l3_rows: Bits<12>, l3_y_switch: Bits<12>, l3_dir_neg: Bit,
+            hold: Bit,
         }
         out {
             ready: Bit,
@@ -125,7 +132,7 @@ impl Logic for FourTriangle {
 
         // Lane 0.
         self.lane0.load.next = self.load.val() & self.all_ready.val();
-        self.lane0.hold.next = false;
+        self.lane0.hold.next = self.hold.val();
         self.lane0.w_b0.next = self.l0_w_b0.val();
         self.lane0.w_e0.next = self.l0_w_e0.val();
         self.lane0.w_f.next = self.w_f.val();
@@ -168,7 +175,7 @@ impl Logic for FourTriangle {
 
         // Lane 1.
         self.lane1.load.next = self.load.val() & self.all_ready.val();
-        self.lane1.hold.next = false;
+        self.lane1.hold.next = self.hold.val();
         self.lane1.w_b0.next = self.l1_w_b0.val();
         self.lane1.w_e0.next = self.l1_w_e0.val();
         self.lane1.w_f.next = self.w_f.val();
@@ -211,7 +218,7 @@ impl Logic for FourTriangle {
 
         // Lane 2.
         self.lane2.load.next = self.load.val() & self.all_ready.val();
-        self.lane2.hold.next = false;
+        self.lane2.hold.next = self.hold.val();
         self.lane2.w_b0.next = self.l2_w_b0.val();
         self.lane2.w_e0.next = self.l2_w_e0.val();
         self.lane2.w_f.next = self.w_f.val();
@@ -254,7 +261,7 @@ impl Logic for FourTriangle {
 
         // Lane 3.
         self.lane3.load.next = self.load.val() & self.all_ready.val();
-        self.lane3.hold.next = false;
+        self.lane3.hold.next = self.hold.val();
         self.lane3.w_b0.next = self.l3_w_b0.val();
         self.lane3.w_e0.next = self.l3_w_e0.val();
         self.lane3.w_f.next = self.w_f.val();

@@ -15,7 +15,10 @@
 //!
 //! Ports: the four-triangle block's set-up inputs (same names, see `four_triangle`) and each
 //! lane's twelve signed Q16.16 BVI words `lK_r_start` … `lK_b_line` (see
-//! `intensity_interpolator`), all sampled on the one `load` strobe, accepted when `ready`.
+//! `intensity_interpolator`), all sampled on the one `load` strobe, accepted when `ready`;
+//! `hold`, the four-triangle block's stall (a held clock shows no event on any lane, so no BVI
+//! steps and the next clock shows no pixel; each lane's pixels under holds are its pixels
+//! without them with empty clocks inserted; 0 in every use without a stream top).
 //! Outputs per lane K: `lK_valid`, `lK_x`, `lK_y` (12 bits), `lK_red`, `lK_green`, `lK_blue`
 //! (8 bits, saturated), `lK_done` (the lane's last event of the parent); and `ready`.
 //!
@@ -106,6 +109,7 @@ crate::hw_block! {
             l3_r_start: Bits<32>, l3_r_short: Bits<32>, l3_r_long: Bits<32>, l3_r_line: Bits<32>,
             l3_g_start: Bits<32>, l3_g_short: Bits<32>, l3_g_long: Bits<32>, l3_g_line: Bits<32>,
             l3_b_start: Bits<32>, l3_b_short: Bits<32>, l3_b_long: Bits<32>, l3_b_line: Bits<32>,
+            hold: Bit,
         }
         out {
             ready: Bit,
@@ -146,6 +150,7 @@ impl Logic for SubdivisionRaster {
             done1_p1, x2_p1, y2_p1, done2_p1, x3_p1, y3_p1, done3_p1
         );
         self.addr.load.next = self.load.val();
+        self.addr.hold.next = self.hold.val();
         self.addr.w_f.next = self.w_f.val();
         self.addr.w_r.next = self.w_r.val();
         self.addr.w_d.next = self.w_d.val();

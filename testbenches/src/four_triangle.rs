@@ -18,7 +18,17 @@ use std::io::Write;
 /// Output ports: `ready`, then eight per lane.
 pub const OUTPUTS: usize = 1 + 4 * 8;
 
-pub use pipeline::subdivision::{row_setup, setup_row};
+pub use pipeline::subdivision::{row_setup, setup_row, SETUP_ROW};
+
+/// The block's input row: `load` with a parent's set-up (or idle), then `hold`.
+pub fn four_row(load: Option<&FourTriangleSetup>, hold: bool) -> Vec<u64> {
+    let mut row = setup_row(load);
+    row.push(hold as u64);
+    row
+}
+
+/// Index of `hold` in [`four_row`].
+pub const HOLD_AT: usize = SETUP_ROW;
 
 /// The output row the model predicts.
 pub fn outputs_row(o: &FourOutputs) -> Vec<u64> {
@@ -65,7 +75,7 @@ pub fn row_outputs(r: &[u64]) -> FourOutputs {
 pub fn stimulus(setups: &[FourTriangleSetup]) -> (Vec<Vec<u64>>, Vec<FourOutputs>) {
     golden::four_triangle::schedule(setups, 0)
         .into_iter()
-        .map(|(o, load)| (setup_row(load.map(|k| &setups[k])), o))
+        .map(|(o, load)| (four_row(load.map(|k| &setups[k]), false), o))
         .unzip()
 }
 
@@ -98,11 +108,21 @@ pub fn run_reactive(
     max_clocks: usize,
     vcd: Option<Box<dyn Write>>,
 ) -> Result<Vec<FourOutputs>, String> {
+    run_reactive_held(setups, max_clocks, vcd, |_| false).map(|(_, o)| o)
+}
+
+/// [`run_reactive`] with `hold(clock)` on the stall input: the input rows and the outputs.
+pub fn run_reactive_held(
+    setups: &[FourTriangleSetup],
+    max_clocks: usize,
+    vcd: Option<Box<dyn Write>>,
+    mut hold: impl FnMut(usize) -> bool,
+) -> Result<(Vec<Vec<u64>>, Vec<FourOutputs>), String> {
     let mut s = Stepper::new(FourTriangle::default())?;
     if let Some(w) = vcd {
         s.start_vcd(w);
     }
-    let mut out = Vec::new();
+    let (mut out, mut rows) = (Vec::new(), Vec::new());
     let mut row = vec![0u64; OUTPUTS];
     let (mut next, mut dones) = (0, [0usize; 4]);
     while dones.iter().any(|&d| d < setups.len()) {
@@ -111,7 +131,9 @@ pub fn run_reactive(
         }
         let load = (s.dut().ready.val() && next < setups.len()).then(|| &setups[next]);
         next += load.is_some() as usize;
-        s.step(&setup_row(load), &mut row)?;
+        let input = four_row(load, hold(out.len()));
+        s.step(&input, &mut row)?;
+        rows.push(input);
         let o = row_outputs(&row);
         for (d, l) in dones.iter_mut().zip(&o.lanes) {
             *d += l.done as usize;
@@ -119,7 +141,7 @@ pub fn run_reactive(
         out.push(o);
     }
     s.stop_vcd();
-    Ok(out)
+    Ok((rows, out))
 }
 
 /// `n` seeded random parents from the address block's triangle families
@@ -139,8 +161,9 @@ struct FourRows(FourTriangleModel);
 
 impl Twin for FourRows {
     fn step(&mut self, r: &[u64]) -> Vec<u64> {
-        let o = outputs_row(&self.0.outputs());
-        self.0.clock(row_setup(r).as_ref());
+        let hold = r[HOLD_AT] != 0;
+        let o = outputs_row(&self.0.outputs_held(hold));
+        self.0.clock_held(row_setup(r).as_ref(), hold);
         o
     }
 }
@@ -166,4 +189,33 @@ impl Bench for FourTriangle {
     fn twin(_: &NoParams) -> Box<dyn Twin> {
         Box::new(FourRows(FourTriangleModel::new()))
     }
+    /// Parents presented in half the clocks (taken when `ready`), `hold` in a quarter.
+    fn edge_rows(_: &NoParams, seed: u64) -> Vec<Vec<u64>> {
+        let setups: Vec<FourTriangleSetup> = random_triangles(seed ^ 0x4e1d, 12)
+            .iter()
+            .map(FourTriangleSetup::new)
+            .collect();
+        held_edge_rows(seed, 1500, |k, hold| four_row(k.map(|k| &setups[k % setups.len()]), hold))
+    }
+}
+
+/// `n` rows for a twin comparison under stalls: in half the clocks a load of item `k` (the
+/// next one each time; the block ignores it unless `ready`), `hold` in a quarter.
+pub fn held_edge_rows(
+    seed: u64,
+    n: usize,
+    mut row: impl FnMut(Option<usize>, bool) -> Vec<u64>,
+) -> Vec<Vec<u64>> {
+    let mut r = seeded_runner(seed ^ 0x401d);
+    let mut next = 0;
+    (0..n)
+        .map(|_| {
+            let v = (0u8..8).new_tree(&mut r).expect("no rejection").current();
+            let load = (v & 1 == 0).then(|| {
+                next += 1;
+                next - 1
+            });
+            row(load, v >> 1 == 0 || v >> 1 == 3)
+        })
+        .collect()
 }

@@ -15,7 +15,7 @@ use golden::intensity_interpolator::BviTwin;
 use golden::shade::{to_u8, ShadeContext};
 use golden::subdivision::SubdivisionSetup;
 use golden::types::ScreenTriangle;
-use pipeline::subdivision::{pipe_row, row_job, SubJob, OUTPUTS};
+use pipeline::subdivision::{pipe_row, row_job, SubJob, OUTPUTS, PIPE_HOLD_AT};
 use proptest::prelude::*;
 use proptest::strategy::ValueTree;
 use rtl::intensity_interpolator::IntensityInterpolator;
@@ -113,7 +113,8 @@ struct SubRows {
 
 impl Twin for SubRows {
     fn step(&mut self, r: &[u64]) -> Vec<u64> {
-        let a = self.addr.outputs();
+        let hold = r[PIPE_HOLD_AT] != 0;
+        let a = self.addr.outputs_held(hold);
         let mut o = vec![a.ready as u64];
         for k in 0..LANES {
             let (valid, levels, _) = self.bvi[k].outputs();
@@ -132,7 +133,7 @@ impl Twin for SubRows {
             let l = a.lanes[k];
             self.xy_done[k] = (l.x, l.y, l.done);
         }
-        self.addr.clock(job.as_ref().map(|j| &j.addr));
+        self.addr.clock_held(job.as_ref().map(|j| &j.addr), hold);
         o
     }
 }
@@ -145,5 +146,14 @@ impl Bench for SubdivisionRaster {
     }
     fn twin(_: &NoParams) -> Box<dyn Twin> {
         Box::new(SubRows::default())
+    }
+    /// Parents presented in half the clocks (taken when `ready`), `hold` in a quarter.
+    fn edge_rows(_: &NoParams, seed: u64) -> Vec<Vec<u64>> {
+        let jobs: Vec<SubJob> = random_jobs(seed ^ 0x5d1d, 8).into_iter().map(|j| j.0).collect();
+        crate::four_triangle::held_edge_rows(seed, 1500, |k, hold| {
+            let mut row = pipe_row(k.map(|k| &jobs[k % jobs.len()]));
+            row[PIPE_HOLD_AT] = hold as u64;
+            row
+        })
     }
 }
