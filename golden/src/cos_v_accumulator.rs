@@ -118,6 +118,9 @@ pub mod twin {
         ((p + (1 << 14)) >> 15).min(0xFFFF)
     }
 
+    /// Both lanes' outputs in a clock: (valid, index, cosine word) each.
+    type LaneOuts = [(bool, u32, u64); 2];
+
     #[derive(Clone, Debug)]
     pub struct CosVTwin {
         prom: Vec<u64>,
@@ -138,7 +141,7 @@ pub mod twin {
         last1: bool,
         // S2 .. S4: the outputs, formed from S1 and carried three registers (the RTL
         // registers the PROM word, then the product twice, then rounds: the same value).
-        pipe: std::collections::VecDeque<([(bool, u32, u64); 2], bool)>,
+        pipe: std::collections::VecDeque<(LaneOuts, bool)>,
         out: [(bool, u32, u64); 2],
         last2: bool,
     }

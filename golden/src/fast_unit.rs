@@ -206,9 +206,7 @@ pub mod twin {
                 pr: s[s6 - 1].pr * s[s6 - 1].w,
                 ..s[s6 - 1]
             };
-            for i in s6 + 1..s7 {
-                n[i] = s[i - 1];
-            }
+            n[s6 + 1..s7].copy_from_slice(&s[s6..s7 - 1]);
             // S5: r = round(c0 + t1·M: Q3.29 → UQ1.15), clamped.
             let r = ((self.c0 + s[s5 - 1].w + (1 << 13)) >> 14).clamp(0, 0xFFFF);
             n[s5] = Lane { w: r, ..s[s5 - 1] };
@@ -217,9 +215,7 @@ pub mod twin {
                 w: s[s4 - 1].w * s[s4 - 1].mm,
                 ..s[s4 - 1]
             };
-            for i in s4 + 1..s5 {
-                n[i] = s[i - 1];
-            }
+            n[s4 + 1..s5].copy_from_slice(&s[s4..s5 - 1]);
             // S3: t1 = round(c1 + |c2|·M: Q2.30 → Q2.14), saturated.
             let t1 = clamp16s((self.c1 + s[s3 - 1].w + (1 << 15)) >> 16);
             n[s3] = Lane { w: t1, ..s[s3 - 1] };
@@ -228,9 +224,7 @@ pub mod twin {
                 w: self.c2 * s[0].mm,
                 ..s[0]
             };
-            for i in s2 + 1..s3 {
-                n[i] = s[i - 1];
-            }
+            n[s2 + 1..s3].copy_from_slice(&s[s2..s3 - 1]);
             // S1: from the state — M rounded to Q1.15 (saturated), p rounded to Q2.14.
             let act = self.active();
             let a = act && !hold;
