@@ -215,7 +215,7 @@ pub fn held_edge_rows(
                 next += 1;
                 next - 1
             });
-            row(load, v >> 1 == 0 || v >> 1 == 3)
+            row(load, v >> 1 == 3)
         })
         .collect()
 }
