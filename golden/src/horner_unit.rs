@@ -179,7 +179,13 @@ pub mod twin {
         /// [`Self::outputs`] with the `hold` input of this clock (it reaches only `ready`).
         pub fn outputs_held(&self, hold: bool) -> Vec<u64> {
             let (v, t, val, last) = self.out;
-            vec![self.ready_held(hold) as u64, v as u64, t as u64, val, last as u64]
+            vec![
+                self.ready_held(hold) as u64,
+                v as u64,
+                t as u64,
+                val,
+                last as u64,
+            ]
         }
         pub fn clock(&mut self, load: Option<&HornerWords>) {
             self.clock_held(load, false)

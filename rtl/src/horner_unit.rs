@@ -209,7 +209,8 @@ impl Logic for HornerUnit {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(
-            self, clock, busy, t_q, m_q, acc, step_q, ka, kb, kc, kd, nc_q, na_q, o_t, o_val, issued
+            self, clock, busy, t_q, m_q, acc, step_q, ka, kb, kc, kd, nc_q, na_q, o_t, o_val,
+            issued
         );
         clock!(
             self, clock, phase, s1_v, s1_t, s1_l, s1_p, s1_x, s1_c, s1_d, s2_v, s2_t, s2_l, s2_p,
@@ -267,12 +268,10 @@ impl Logic for HornerUnit {
         if self.pipelined.val() {
             self.walk.next = self.go.val();
         } else {
-            self.walk.next =
-                (self.phase.q.val() == 0) & self.busy.q.val() & self.issued.q.val();
+            self.walk.next = (self.phase.q.val() == 0) & self.busy.q.val() & self.issued.q.val();
         }
         self.fin.next = self.is_last.val() & (self.pipelined.val() | self.issued.q.val());
-        self.rdy.next =
-            self.adv.val() & !self.hold.val() & (!self.busy.q.val() | self.fin.val());
+        self.rdy.next = self.adv.val() & !self.hold.val() & (!self.busy.q.val() | self.fin.val());
         if self.phase.q.val() == 1 {
             self.issued.d.next = self.go.val();
         }

@@ -195,7 +195,9 @@ impl Bench for FourTriangle {
             .iter()
             .map(FourTriangleSetup::new)
             .collect();
-        held_edge_rows(seed, 1500, |k, hold| four_row(k.map(|k| &setups[k % setups.len()]), hold))
+        held_edge_rows(seed, 1500, |k, hold| {
+            four_row(k.map(|k| &setups[k % setups.len()]), hold)
+        })
     }
 }
 

@@ -149,7 +149,10 @@ impl Bench for SubdivisionRaster {
     }
     /// Parents presented in half the clocks (taken when `ready`), `hold` in a quarter.
     fn edge_rows(_: &NoParams, seed: u64) -> Vec<Vec<u64>> {
-        let jobs: Vec<SubJob> = random_jobs(seed ^ 0x5d1d, 8).into_iter().map(|j| j.0).collect();
+        let jobs: Vec<SubJob> = random_jobs(seed ^ 0x5d1d, 8)
+            .into_iter()
+            .map(|j| j.0)
+            .collect();
         crate::four_triangle::held_edge_rows(seed, 1500, |k, hold| {
             let mut row = pipe_row(k.map(|k| &jobs[k % jobs.len()]));
             row[PIPE_HOLD_AT] = hold as u64;

@@ -73,7 +73,10 @@ fn four_triangle_hold_keeps_every_event_and_matches_the_twin() {
     for k in 0..LANES {
         let (a, b) = (events(&free, k), events(&out, k));
         assert!(!a.is_empty(), "lane {k} shows events");
-        assert!(a == b, "lane {k}: the held run's events differ from the unheld run's");
+        assert!(
+            a == b,
+            "lane {k}: the held run's events differ from the unheld run's"
+        );
         total += a.len();
     }
     println!(

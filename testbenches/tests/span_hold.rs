@@ -164,7 +164,10 @@ fn held_verilog_is_bit_exact() {
             SpanKind::Cubic { pipelined: false },
             &[Simulator::Verilator][..],
         ),
-        (SpanKind::Cubic { pipelined: true }, &[Simulator::Verilator][..]),
+        (
+            SpanKind::Cubic { pipelined: true },
+            &[Simulator::Verilator][..],
+        ),
     ] {
         let run = held_run(kind, &tris, &mut StallPattern::new(seed, 0.4));
         let (name, o) = block(kind);
