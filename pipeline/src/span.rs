@@ -44,6 +44,15 @@ pub const SPAN_METHODS: [Method; 5] = [
 /// top has one lane: ready, valid x z r g b, y, last.
 pub const OUTPUTS: usize = 15;
 
+/// Where a span top's outputs are: the lanes' `valid` columns (x, z, r, g, b follow each), then
+/// the line's `y` and `last` columns. One lane for the cubic pipeline, two for the others.
+pub fn output_columns(kind: SpanKind) -> (&'static [usize], usize, usize) {
+    match kind {
+        SpanKind::Cubic { .. } => (&[1], 7, 8),
+        _ => (&[1, 7], 13, 14),
+    }
+}
+
 /// Which span unit a method uses.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum SpanKind {
@@ -476,11 +485,8 @@ impl SpanPipe {
             st.clocks += 1;
             let triangle = in_flight.front().copied().unwrap_or(usize::MAX);
             // Lane A: valid x z r g b from port 1; lane B (two-lane tops) from port 7.
-            let (lanes, y_at, last_at): (&[(bool, usize)], usize, usize) = match self.kind {
-                SpanKind::Cubic { .. } => (&[(false, 1)], 7, 8),
-                _ => (&[(false, 1), (true, 7)], 13, 14),
-            };
-            for &(lane, at) in lanes {
+            let (lanes, y_at, last_at) = output_columns(self.kind);
+            for (lane, &at) in lanes.iter().enumerate() {
                 if out[at] != 0 {
                     st.pixels += 1;
                     fragment(SpanFragment {
@@ -490,7 +496,7 @@ impl SpanPipe {
                         z: out[at + 2] as u32 as i32,
                         rgb: [out[at + 3] as u8, out[at + 4] as u8, out[at + 5] as u8],
                         clock: st.clocks - 1,
-                        lane_b: lane,
+                        lane_b: lane == 1,
                     });
                 }
             }

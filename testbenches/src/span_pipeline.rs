@@ -521,11 +521,7 @@ pub fn held_run(
             &rtl::cubic_pipeline::CubicParams(rtl::horner_unit::HornerParams { pipelined }),
         )),
     };
-    // Where the pixel flags are in a clock's outputs: one lane (cubic) or two.
-    let lanes: &[usize] = match kind {
-        SpanKind::Cubic { .. } => &[1],
-        _ => &[1, 7],
-    };
+    let (lanes, _, _) = pipeline::span::output_columns(kind);
     let (mut rows, mut next, mut shown, mut held, mut after) = (Vec::new(), 0, 0, 0, 0);
     while after < 4 {
         let hold = stalls.next_stalled();

@@ -11,7 +11,7 @@ use golden::testing::seed_for;
 use pipeline::subdivision::{pipe_row, SubJob, OUTPUTS, PIPE_HOLD_AT};
 use rtl::registry::{NoParams, Options};
 use rtl::subdivision_raster::SubdivisionRaster;
-use testbenches::four_triangle::{random_triangles, run_reactive_held};
+use testbenches::four_triangle::{random_triangles, run_reactive_held, HOLD_AT};
 use testbenches::registry::{find, Bench};
 use testbenches::stall::StallPattern;
 use testbenches::subdivision_raster::random_jobs;
@@ -35,15 +35,9 @@ fn four_triangle_hold_keeps_every_event_and_matches_the_twin() {
         .map(FourTriangleSetup::new)
         .collect();
     let (free_rows, free) = run_reactive_held(&setups, 1_000_000, None, |_| false).unwrap();
-    let mut hold = stalls(seed);
-    let mut held_at = Vec::new();
-    let (rows, out) = run_reactive_held(&setups, 1_000_000, None, |c| {
-        let h = hold(c);
-        held_at.push(h);
-        h
-    })
-    .unwrap();
-    let held = held_at.iter().filter(|&&h| h).count();
+    let (rows, out) = run_reactive_held(&setups, 1_000_000, None, stalls(seed)).unwrap();
+    let held_at = |c: usize| rows[c][HOLD_AT] != 0;
+    let held = (0..rows.len()).filter(|&c| held_at(c)).count();
     assert!(held > 800, "held {held} clocks");
     find("four-triangle")
         .unwrap()
@@ -51,7 +45,7 @@ fn four_triangle_hold_keeps_every_event_and_matches_the_twin() {
         .unwrap_or_else(|f| panic!("{f}"));
     let quiet = AddressOutputs::default();
     for (c, o) in out.iter().enumerate() {
-        if held_at[c] {
+        if held_at(c) {
             for (k, l) in o.lanes.iter().enumerate() {
                 let mut l = *l;
                 l.ready = false;

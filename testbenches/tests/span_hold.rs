@@ -41,11 +41,7 @@ fn rtl_pixels(kind: SpanKind, run: &HeldRun) -> Vec<Pixel> {
     let out = find(name).unwrap().simulate(&o, &run.rows).unwrap();
     let mut px = Vec::new();
     let mut line = 0;
-    // Output columns: the lanes' valid flags (x, z, r, g, b follow each), y, last.
-    let (lanes, y, last): (&[usize], usize, usize) = match kind {
-        SpanKind::Cubic { .. } => (&[1], 7, 8),
-        _ => (&[1, 7], 13, 14),
-    };
+    let (lanes, y, last) = pipeline::span::output_columns(kind);
     for (c, o) in out.iter().enumerate() {
         if kind == SpanKind::Quadric && c > 0 && *run.rows[c - 1].last().unwrap() != 0 {
             assert!(
