@@ -106,7 +106,8 @@ pub struct RtlBuild {
     /// default) or the four-triangle block (four lanes, a BVI each). `subdivision` always
     /// takes the four-triangle block; the other methods only the single one.
     pub address: Address,
-    /// The top the lit methods and `gouraud` (single address block) go through (`--lit-top`).
+    /// The top the lit methods, `gouraud` (single address block) and `cubic` go through
+    /// (`--lit-top`; `cubic` takes its stream top only when `Stream` is asked for).
     pub lit_top: LitTop,
     /// The order the lit methods' triangles are sent in (`--setup-order`).
     pub setup_order: SetupOrder,
@@ -146,10 +147,11 @@ pub enum LitTop {
     /// `stream` under rust-hdl, `pipeline` under Verilator (whose replay drives the ports).
     #[default]
     Default,
-    /// `pixel-stream` / `gouraud-stream`: set-up records on a 32-bit AXI4-Stream, fragment
-    /// beats out.
+    /// `pixel-stream` / `gouraud-stream` / `cubic-stream`: set-up records on a 32-bit
+    /// AXI4-Stream, fragment beats out.
     Stream,
-    /// `pixel-pipeline` / `gouraud-raster`: the set-up on load ports, one triangle per load.
+    /// `pixel-pipeline` / `gouraud-raster` / `cubic-pipeline`: the set-up on load ports, one
+    /// triangle (cubic: one line) per load.
     Pipeline,
 }
 
@@ -349,8 +351,17 @@ pub fn render_span_rtl(
     } else {
         ShadingRegs::of(ctx).map_err(|e| anyhow::anyhow!("RTL set-up: {e}"))?
     };
-    let mut pipe = SpanPipe::with_horner(method, build.horner_pipelined)
-        .map_err(|e| anyhow::anyhow!("RTL set-up: {e}"))?;
+    // `cubic` goes through its stream top `cubic-stream` only when asked (`--lit-top
+    // stream`, rust-hdl): a line's record is 12 set-up words, so on meshes whose triangles
+    // give lines of a few pixels the stream is set-up bound (the default scene: see the
+    // README) and the main job keeps `cubic-pipeline`'s ports.
+    build.lit_top.resolve(build.sim)?;
+    let mut pipe = if method == Method::Cubic && build.lit_top == LitTop::Stream {
+        SpanPipe::cubic_stream(build.horner_pipelined)
+    } else {
+        SpanPipe::with_horner(method, build.horner_pipelined)
+    }
+    .map_err(|e| anyhow::anyhow!("RTL set-up: {e}"))?;
     let kind = pipe.kind();
     let mut spans = Vec::new();
     let mut depth = Vec::with_capacity(tris.len());
@@ -655,6 +666,58 @@ mod tests {
             rtl.stats.pixels_per_clock()
         );
         assert!(max <= 1, "RTL differs from golden Gouraud by {max} LSB");
+    }
+
+    /// Cubic through `cubic-stream` (line records, fragment beats) and through
+    /// `cubic-pipeline`'s ports gives the same frame, bit for bit, on the torus at 200×200 (both Horner
+    /// variants); the clocks of both are printed (lines shorter than a 12-word record are
+    /// set-up bound).
+    #[test]
+    fn cubic_stream_and_ports_render_the_same_frame() {
+        let s = crate::setup::build(&crate::setup::SceneArgs {
+            scene: "torus".into(),
+            size: (200, 200),
+            ..crate::setup::SceneArgs::default()
+        })
+        .unwrap();
+        for pipelined in [false, true] {
+            let run = |top| {
+                let build = RtlBuild {
+                    lit_top: top,
+                    horner_pipelined: pipelined,
+                    ..RtlBuild::default()
+                };
+                render_span_rtl(
+                    &s.tris,
+                    Method::Cubic,
+                    &s.ctx,
+                    s.width,
+                    s.height,
+                    &ProgressBar::hidden(),
+                    build,
+                )
+                .unwrap()
+            };
+            let stream = run(LitTop::Stream);
+            let ports = run(LitTop::Pipeline);
+            assert_eq!(
+                stream.stats.pixels, ports.stats.pixels,
+                "pipelined {pipelined}"
+            );
+            assert_eq!(stream.stats.triangles, ports.stats.triangles);
+            assert!(
+                stream.frame.rgb == ports.frame.rgb,
+                "pipelined {pipelined}: frames differ"
+            );
+            println!(
+                "cubic (pipelined {pipelined}): cubic-stream {} clocks ({:.3} px/clock), cubic-pipeline {} ({:.3}), ratio {:.3}",
+                stream.stats.clocks,
+                stream.stats.pixels_per_clock(),
+                ports.stats.clocks,
+                ports.stats.pixels_per_clock(),
+                ports.stats.clocks as f64 / stream.stats.clocks as f64
+            );
+        }
     }
 
     /// Gouraud through `gouraud-stream` (set-up records, fragment beats) and through

@@ -22,6 +22,7 @@ use golden::raster::walk;
 use golden::shade::ShadeContext;
 use golden::types::ScreenTriangle;
 use rtl::cubic_pipeline::{CubicParams, CubicPipeline};
+use rtl::cubic_stream::CubicStream;
 use rtl::horner_unit::HornerParams;
 use rtl::quadric_unit::QuadricUnit;
 use rtl::registry::{BlockParams, Options, RtlBlock};
@@ -348,6 +349,8 @@ enum Top {
     Angular(Box<Stepper<AngularPipeline>>),
     Fast(Box<Stepper<FastPipeline>>),
     Cubic(Box<Stepper<CubicPipeline>>),
+    /// The cubic pipeline's AXI4-Stream top (line records in, fragment beats out).
+    CubicStream(Box<Stepper<CubicStream>>),
     Quadric(Box<Stepper<QuadricUnit>>),
     Replay(crate::replay::Replay),
 }
@@ -388,6 +391,19 @@ impl SpanPipe {
         Ok(SpanPipe { kind, top })
     }
 
+    /// `cubic` through its AXI4-Stream top `cubic-stream` (pipelined Horner units if
+    /// `pipelined`): [`SpanPipe::run`] sends every line's record on the set-up stream (one
+    /// word per clock while `s_axis_tready`) and takes every fragment beat (`m_axis_tready`
+    /// high).
+    pub fn cubic_stream(pipelined: bool) -> Result<SpanPipe, String> {
+        Ok(SpanPipe {
+            kind: SpanKind::Cubic { pipelined },
+            top: Top::CubicStream(Box::new(Stepper::new(CubicStream::new(&CubicParams(
+                HornerParams { pipelined },
+            )))?)),
+        })
+    }
+
     pub fn kind(&self) -> SpanKind {
         self.kind
     }
@@ -406,6 +422,7 @@ impl SpanPipe {
             Top::Angular(_) => AngularPipeline::LATENCY,
             Top::Fast(_) => <FastPipeline as RtlBlock>::LATENCY,
             Top::Cubic(_) => <CubicPipeline as RtlBlock>::LATENCY,
+            Top::CubicStream(_) => <CubicStream as RtlBlock>::LATENCY,
             Top::Quadric(_) => QuadricUnit::LATENCY,
             Top::Replay(_) => match self.kind {
                 SpanKind::Angular => AngularPipeline::LATENCY,
@@ -422,6 +439,7 @@ impl SpanPipe {
             Top::Angular(s) => s.start_vcd(w),
             Top::Fast(s) => s.start_vcd(w),
             Top::Cubic(s) => s.start_vcd(w),
+            Top::CubicStream(s) => s.start_vcd(w),
             Top::Quadric(s) => s.start_vcd(w),
             Top::Replay(_) => {}
         }
@@ -432,6 +450,7 @@ impl SpanPipe {
             Top::Angular(s) => s.dut().ready.val(),
             Top::Fast(s) => s.dut().ready.val(),
             Top::Cubic(s) => s.dut().ready.val(),
+            Top::CubicStream(_) => unreachable!("the stream top is run by run_stream"),
             Top::Quadric(s) => s.dut().ready.val(),
             Top::Replay(r) => r.ready(),
         }
@@ -442,6 +461,7 @@ impl SpanPipe {
             Top::Angular(s) => s.step(row, out),
             Top::Fast(s) => s.step(row, out),
             Top::Cubic(s) => s.step(row, out),
+            Top::CubicStream(_) => unreachable!("the stream top is run by run_stream"),
             Top::Quadric(s) => s.step(row, out),
             Top::Replay(r) => r.step(row, out),
         }
@@ -459,6 +479,9 @@ impl SpanPipe {
         mut fragment: impl FnMut(SpanFragment),
         mut progress: impl FnMut(u64),
     ) -> Result<PipeStats, String> {
+        if let Top::CubicStream(s) = &mut self.top {
+            return run_cubic_stream(s, spans, max_clocks, &mut fragment, &mut progress);
+        }
         let mut st = PipeStats::default();
         let mut out = vec![0u64; OUTPUTS];
         let idle = span_row(self.kind, None, regs);
@@ -512,6 +535,7 @@ impl SpanPipe {
             Top::Angular(s) => s.stop_vcd(),
             Top::Fast(s) => s.stop_vcd(),
             Top::Cubic(s) => s.stop_vcd(),
+            Top::CubicStream(s) => s.stop_vcd(),
             Top::Quadric(s) => s.stop_vcd(),
             Top::Replay(_) => {}
         }
@@ -519,12 +543,75 @@ impl SpanPipe {
     }
 }
 
+/// [`SpanPipe::run`] through `cubic-stream`: the lines' records on the set-up stream, every
+/// beat taken; a line ends with its `tlast`.
+fn run_cubic_stream(
+    s: &mut Stepper<CubicStream>,
+    spans: &[SpanJob],
+    max_clocks: u64,
+    fragment: &mut dyn FnMut(SpanFragment),
+    progress: &mut dyn FnMut(u64),
+) -> Result<PipeStats, String> {
+    let words = crate::stream::cubic_words(spans);
+    let mut st = PipeStats::default();
+    let mut out = vec![0u64; 6];
+    let mut next = 0;
+    while st.triangles < spans.len() as u64 {
+        if st.clocks >= max_clocks {
+            return Err(format!(
+                "cubic-stream: {} of {} lines done after {max_clocks} clocks",
+                st.triangles,
+                spans.len()
+            ));
+        }
+        // `s_axis_tready` is a register output: settled for this clock.
+        let taken = s.dut().s_axis_tready.val();
+        let row = match words.get(next) {
+            Some(&(w, last)) => [w as u64, 1, last as u64, 1],
+            None => [0, 0, 0, 1],
+        };
+        s.step(&row, &mut out)?;
+        next += (row[1] != 0 && taken) as usize;
+        st.clocks += 1;
+        if out[5] != 0 {
+            return Err("cubic-stream flagged a malformed set-up record".into());
+        }
+        if out[1] != 0 {
+            let b = crate::stream::Beat::read(out[2], out[3], out[4] != 0);
+            st.pixels += 1;
+            fragment(SpanFragment {
+                triangle: spans[st.triangles as usize].triangle,
+                x: b.x,
+                y: b.y,
+                z: b.z,
+                rgb: b.rgb,
+                clock: st.clocks - 1,
+                lane_b: false,
+            });
+            if b.last {
+                st.triangles += 1;
+                if st.triangles % 256 == 0 || st.triangles == spans.len() as u64 {
+                    progress(st.triangles);
+                }
+            }
+        }
+    }
+    s.stop_vcd();
+    Ok(st)
+}
+
 /// A clock budget for `spans`: their clocks plus the pipeline's latency and margin (and for
 /// the quadric unit every line start's move).
 pub fn span_clock_budget(spans: &[SpanJob]) -> u64 {
+    // A cubic line through `cubic-stream` takes at least its record's words (one per clock).
+    let words = 1 + rtl::stream_layout::payload_words(&rtl::stream_layout::CUBIC_LINE) as u64;
     spans
         .iter()
-        .map(|s| s.clocks() + 2 + 4096 / 2 * matches!(s.words, JobWords::Quadric { .. }) as u64)
+        .map(|s| match s.words {
+            JobWords::Quadric { .. } => s.clocks() + 2 + 4096 / 2,
+            JobWords::Cubic { .. } => s.clocks().max(words) + 2,
+            JobWords::Pair { .. } => s.clocks() + 2,
+        })
         .sum::<u64>()
         + 64
 }

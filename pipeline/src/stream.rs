@@ -1,12 +1,16 @@
-//! The stream tops' streams (`pixel-stream`, `gouraud-stream`) from the driver's side: set-up
+//! The stream tops' streams (`pixel-stream`, `gouraud-stream`, `cubic-stream`) from the
+//! driver's side: set-up
 //! records packed with the one layout table (`rtl::stream_layout`), and fragment beats read
 //! back with it.
 
-use rtl::stream_layout::{pack, unpack_fragment, GOURAUD_TRIANGLE, REGISTERS, TRIANGLE};
+use rtl::stream_layout::{
+    pack, unpack_fragment, CUBIC_LINE, GOURAUD_TRIANGLE, REGISTERS, TRIANGLE,
+};
 
 use crate::gouraud::{pipe_row, TriangleJob, PIPE_HOLD_AT};
 
 use crate::lit::{lit_row, LitJob, ShadingRegs, REGS_AT};
+use crate::span::{span_row, JobWords, SpanJob, SpanKind};
 
 /// One set-up word and its `tlast`.
 pub type Word = (u32, bool);
@@ -50,6 +54,24 @@ pub fn gouraud_record(job: &TriangleJob) -> Vec<Word> {
 /// A Gouraud scene's set-up stream: every triangle, in order.
 pub fn gouraud_words(jobs: &[TriangleJob]) -> Vec<Word> {
     jobs.iter().flat_map(gouraud_record).collect()
+}
+
+/// The `cubic-stream` record of a cubic line (`span` from `crate::span::span_jobs` with a
+/// cubic kind): the same field values `cubic-pipeline`'s load row carries.
+pub fn cubic_record(span: &SpanJob) -> Vec<Word> {
+    let kind = match span.words {
+        JobWords::Cubic { pipelined, .. } => SpanKind::Cubic { pipelined },
+        _ => panic!("cubic_record: not a cubic line"),
+    };
+    let row = span_row(kind, Some(span), &ShadingRegs::default());
+    let fields = CUBIC_LINE.fields.len();
+    debug_assert_eq!(row.len(), fields + 2, "load, the fields, hold");
+    with_last(pack(&CUBIC_LINE, &row[1..=fields]))
+}
+
+/// A cubic scene's set-up stream: every line, in walk order.
+pub fn cubic_words(spans: &[SpanJob]) -> Vec<Word> {
+    spans.iter().flat_map(cubic_record).collect()
 }
 
 /// The order in which the driver sends `jobs` on the set-up stream (indices into `jobs`):
@@ -158,6 +180,25 @@ mod tests {
             row[1..PIPE_HOLD_AT].to_vec()
         );
         assert_eq!(gouraud_words(&[job, job]).len(), 44);
+    }
+
+    #[test]
+    fn cubic_records_carry_the_load_row() {
+        let t = golden::types::ScreenTriangle::from_points([(3, 1), (40, 7), (11, 30)]);
+        let ctx = golden::shade::ShadeContext::default();
+        let kind = SpanKind::Cubic { pipelined: true };
+        let spans = crate::span::span_jobs(&t, 0, kind, &ctx).unwrap();
+        let rec = cubic_record(&spans[3]);
+        assert_eq!(rec.len(), 12);
+        assert_eq!(rec[0], (1, false));
+        assert!(rec[..11].iter().all(|w| !w.1) && rec[11].1);
+        let payload: Vec<u32> = rec[1..].iter().map(|w| w.0).collect();
+        let row = span_row(kind, Some(&spans[3]), &ShadingRegs::default());
+        assert_eq!(
+            unpack(&CUBIC_LINE, &payload),
+            row[1..row.len() - 1].to_vec()
+        );
+        assert_eq!(cubic_words(&spans).len(), 12 * spans.len());
     }
 
     #[test]

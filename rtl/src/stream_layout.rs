@@ -1,4 +1,5 @@
-//! Word layouts of the AXI4-Stream tops (`pixel-stream`, `gouraud-stream`), defined once.
+//! Word layouts of the AXI4-Stream tops (`pixel-stream`, `gouraud-stream`, `cubic-stream`),
+//! defined once.
 //!
 //! The set-up stream (`s_axis_*`, 32-bit words) carries *records*: a header word, then the
 //! record's fields packed LSB first into 32-bit words (a field never straddles two words),
@@ -9,17 +10,17 @@
 //! - the driver packs records with [`pack`] (`pipeline::stream`), and reads fragments with
 //!   [`unpack_fragment`];
 //! - each top's field selects and fragment packing (`rtl/src/pixel_stream.rs`,
-//!   `rtl/src/gouraud_stream.rs`) are generated from the same tables by [`generated_rtl`]; the
+//!   `rtl/src/gouraud_stream.rs`, `rtl/src/cubic_stream.rs`) are generated from the same tables by [`generated_rtl`]; the
 //!   tests `*_rtl_is_generated` fail if a file's generated regions differ from what the tables
 //!   give (set `SHADECORE_REGENERATE=1` to rewrite them);
 //! - `rtl/README.md`'s layout table is printed by [`markdown`] (checked by a test as well).
 //!
 //! Field names and widths are the wrapped top's input ports (`pixel-pipeline`'s,
-//! `gouraud-raster`'s), in its port order (checked against its port list by
-//! `testbenches/tests/pixel_stream.rs` and `testbenches/tests/gouraud_stream.rs`).
+//! `gouraud-raster`'s, `cubic-pipeline`'s), in its port order (checked against its port list
+//! by `testbenches/tests/pixel_stream.rs`, `gouraud_stream.rs` and `cubic_stream.rs`).
 //!
-//! Not a block: no ports, no latency (the hardware that reads these words is `pixel_stream`
-//! and `gouraud_stream`, whose headers give them).
+//! Not a block: no ports, no latency (the hardware that reads these words is `pixel_stream`,
+//! `gouraud_stream` and `cubic_stream`, whose headers give them).
 
 /// One field of a record: a port of `pixel-pipeline` (name, width in bits).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -153,7 +154,36 @@ pub const GOURAUD_TRIANGLE: Record = Record {
     ],
 };
 
-/// An AXI4-Stream top: the record that loads a triangle, the register record if it has one,
+/// A raster line of the cubic method (`cubic-stream`): `cubic-pipeline`'s load ports — the
+/// line's base (y, first pixel's x, direction, pixels − 1), round(2²⁷/m), the four Q11.5
+/// samples per channel, the depth at pixel 0 and per pixel.
+pub const CUBIC_LINE: Record = Record {
+    name: "cubic line",
+    code: 1,
+    fields: &[
+        f("y", 12),
+        f("x0", 12),
+        f("dir", 1),
+        f("m", 12),
+        f("step", 28),
+        f("r1", 16),
+        f("r2", 16),
+        f("r3", 16),
+        f("r4", 16),
+        f("g1", 16),
+        f("g2", 16),
+        f("g3", 16),
+        f("g4", 16),
+        f("b1", 16),
+        f("b2", 16),
+        f("b3", 16),
+        f("b4", 16),
+        f("z0", 32),
+        f("dz", 32),
+    ],
+};
+
+/// An AXI4-Stream top: the record that loads a triangle (or a line), the register record if it has one,
 /// the fragment beat's sideband. The fragment beat is [`FRAGMENT`] for every top.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct StreamTop {
@@ -167,6 +197,11 @@ pub struct StreamTop {
     pub registers: Option<Record>,
     /// `m_axis_tuser`, when the top has one.
     pub tuser: Option<Field>,
+    /// The wrapped top's output port for a fragment field, where it is not the field's name
+    /// (`pixel` is `valid` unless given here).
+    pub ports: &'static [(&'static str, &'static str)],
+    /// What `m_axis_tlast` marks.
+    pub tlast: &'static str,
 }
 
 impl StreamTop {
@@ -181,6 +216,15 @@ impl StreamTop {
     pub fn bank_words(&self) -> usize {
         self.records().iter().map(payload_words).max().unwrap_or(0)
     }
+
+    /// The wrapped top's output port that fragment field `field` comes from.
+    pub fn port(&self, field: &'static str) -> &'static str {
+        match self.ports.iter().find(|(f, _)| *f == field) {
+            Some((_, p)) => p,
+            None if field == "pixel" => "valid",
+            None => field,
+        }
+    }
 }
 
 /// The lit pixel pipeline's stream top.
@@ -191,6 +235,8 @@ pub const PIXEL_STREAM: StreamTop = StreamTop {
     triangle: TRIANGLE,
     registers: Some(REGISTERS),
     tuser: Some(TUSER),
+    ports: &[],
+    tlast: "the triangle's last event",
 };
 
 /// The Gouraud raster pipe's stream top.
@@ -201,10 +247,24 @@ pub const GOURAUD_STREAM: StreamTop = StreamTop {
     triangle: GOURAUD_TRIANGLE,
     registers: None,
     tuser: None,
+    ports: &[],
+    tlast: "the triangle's last event",
+};
+
+/// The cubic span pipeline's stream top: one record per raster line.
+pub const CUBIC_STREAM: StreamTop = StreamTop {
+    block: "cubic-stream",
+    file: "cubic_stream.rs",
+    wraps: "cubic-pipeline",
+    triangle: CUBIC_LINE,
+    registers: None,
+    tuser: Some(TUSER),
+    ports: &[("y", "y_out")],
+    tlast: "the line's last pixel",
 };
 
 /// Every stream top.
-pub const TOPS: [StreamTop; 2] = [PIXEL_STREAM, GOURAUD_STREAM];
+pub const TOPS: [StreamTop; 3] = [PIXEL_STREAM, GOURAUD_STREAM, CUBIC_STREAM];
 
 /// A fragment beat (`m_axis_tdata`, 64 bits); `tlast` marks a triangle's last event. A beat
 /// with `pixel` = 0 carries only that end (a triangle whose last event had no pixel). The
@@ -376,7 +436,8 @@ pub fn markdown() -> String {
             None => "no `m_axis_tuser`".to_string(),
         };
         s.push_str(&format!(
-            "**fragment** beat (`m_axis_tdata`, {FRAGMENT_BITS} bits; {tuser}; `tlast`: the triangle's last event):\n\n| bits | field |\n|---|---|\n"
+            "**fragment** beat (`m_axis_tdata`, {FRAGMENT_BITS} bits; {tuser}; `tlast`: {}):\n\n| bits | field |\n|---|---|\n",
+            top.tlast
         ));
         for pl in FRAGMENT {
             s.push_str(&format!(
@@ -482,7 +543,8 @@ pub fn generated_rtl(top: &StreamTop) -> (String, String) {
         .map(|pl| {
             let wide = format!(
                 "bit_cast::<{FRAGMENT_BITS}, {}>(self.pipe.{}.val())",
-                pl.bits, pl.name
+                pl.bits,
+                top.port(pl.name)
             );
             if pl.at() == 0 {
                 wide
@@ -496,7 +558,7 @@ pub fn generated_rtl(top: &StreamTop) -> (String, String) {
         terms.join("\n            | ")
     ));
     for pl in FRAGMENT.iter().filter(|pl| pl.bits == 1) {
-        let src = if pl.name == "pixel" { "valid" } else { pl.name };
+        let src = top.port(pl.name);
         up.push_str(&format!(
             "        if self.pipe.{src}.val() {{\n            self.beat.next = self.beat_data.val() | self.frag_{}_bit.val();\n        }}\n",
             pl.name
@@ -587,6 +649,7 @@ mod tests {
         assert_eq!(payload_words(&TRIANGLE), 25);
         assert_eq!(payload_words(&REGISTERS), 8);
         assert_eq!(payload_words(&GOURAUD_TRIANGLE), 21);
+        assert_eq!(payload_words(&CUBIC_LINE), 11);
     }
 
     #[test]

@@ -66,11 +66,13 @@ pub struct Args {
     #[arg(long, value_enum, default_value = "default", hide_default_value = true)]
     pub address: crate::rtl_engine::Address,
     /// With the RTL engine: the top the lit methods (normalizer, normalizer-fit, brdf-k*,
-    /// bump) and gouraud (single address block) go through — stream (`pixel-stream`,
-    /// `gouraud-stream`: AXI4-Stream set-up records and fragment beats) or pipeline
-    /// (`pixel-pipeline`, `gouraud-raster`: set-up on load ports). Default: stream under
-    /// rust-hdl, pipeline under verilator. The images are identical; the clock counts differ
-    /// (the set-up stream carries 26 words per lit triangle, 22 per Gouraud one).
+    /// bump), gouraud (single address block) and cubic go through — stream (`pixel-stream`,
+    /// `gouraud-stream`, `cubic-stream`: AXI4-Stream set-up records and fragment beats) or
+    /// pipeline (`pixel-pipeline`, `gouraud-raster`, `cubic-pipeline`: set-up on load ports).
+    /// Default: stream under rust-hdl (cubic: pipeline, as its 12-word line records make the
+    /// stream set-up bound on short lines), pipeline under verilator. The images are
+    /// identical; the clock counts differ (the set-up stream carries 26 words per lit
+    /// triangle, 22 per Gouraud one, 12 per cubic line).
     #[arg(long, value_enum, default_value = "default", hide_default_value = true)]
     pub lit_top: crate::rtl_engine::LitTop,
     /// With the RTL engine: the order the lit methods' and gouraud's triangles are sent in — balanced (large

@@ -3,6 +3,7 @@ pub mod brzssk;
 pub mod colour_combine;
 pub mod cos_v_accumulator;
 pub mod cubic_pipeline;
+pub mod cubic_stream;
 pub mod fast_unit;
 pub mod four_triangle;
 pub mod gouraud_stream;

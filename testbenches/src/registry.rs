@@ -290,6 +290,7 @@ pub static BLOCKS: &[&dyn Entry] = &[
     &entry::<rtl::span_pipeline::FastPipeline>(),
     &entry::<rtl::horner_unit::HornerUnit>(),
     &entry::<rtl::cubic_pipeline::CubicPipeline>(),
+    &entry::<rtl::cubic_stream::CubicStream>(),
     &entry::<rtl::quadric_unit::QuadricUnit>(),
 ];
 
