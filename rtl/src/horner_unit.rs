@@ -22,12 +22,15 @@
 //!   register, MUL and Sm in one clock: 44.1 MHz on ECP5; fig. 2.6's BK, which zeroed the
 //!   product of an idle unit, is the item's valid bit now.)
 //! - **pipelined**: three multipliers, one per Horner step, C and D travelling with their
-//!   pixel; one pixel per clock. Its result is delayed 10 clocks to the serial latency, so
-//!   both variants have one latency (the build parameter changes no timing seen at the ports
-//!   except the clocks per pixel).
+//!   pixel; one pixel per clock. Each step is the serial loop's PR, PT and R registers
+//!   without the loop (`HornerStep`, 3 clocks), after a register Q holding the issued pixel's
+//!   p and its span's A..D; the result is delayed 2 clocks to the serial latency, so both
+//!   variants have one latency (the build parameter changes no timing seen at the ports
+//!   except the clocks per pixel). Until 2026-11-25 each step was one clock (the 32×16
+//!   product and both adds): 50.3 MHz on ECP5 in `cubic-stream`, and a 10-clock pad.
 //!
-//! Serial MUL is two 16×16 DSP slices formed in the loop as above; pipelined MUL is
-//! `MulS32U16Round` (two slices each: serial 2, pipelined 6 SB_MAC16).
+//! Serial MUL is two 16×16 DSP slices formed in the loop as above; each pipelined step has its
+//! own two (serial 2, pipelined 6 SB_MAC16).
 //!
 //! # Ports
 //! | port | dir | format |
@@ -45,7 +48,8 @@
 //! load   coefficient block (combinational) → A, B, C, D registers; t = 0, p accumulator = 0
 //! state  p = min((acc + 2¹¹) >> 12, 1.0) (UQ1.15), advanced once per pixel
 //! serial     OP → PR → PT → RG, three times round the loop per pixel, then RoundSat8 → output
-//! pipelined  stage 1 (A·p + B), stage 2 (·p + C), (·p + D) → RoundSat8 → 10-clock pad → output
+//! pipelined  Q → step 1 (A·p + B) → step 2 (·p + C) → step 3 (·p + D), 3 clocks each (PR → PT → R)
+//!            → RoundSat8 → 2-clock pad → output
 //! ```
 //! Load → first pixel 14 clocks in both variants. Serial: 3(m + 1) clocks per span, and a span
 //! is taken only in phase 0 (idle: `ready` every third clock; busy: in the clock its last pixel
@@ -72,7 +76,7 @@
 
 use rust_hdl::prelude::*;
 
-use crate::primitives::{Delay, MulS32U16Round};
+use crate::primitives::Delay;
 use crate::registry::{BlockParams, Options};
 
 /// The variant (`horner=serial|pipelined`).
@@ -140,6 +144,56 @@ impl Logic for RoundSat8 {
     }
 }
 
+/// Clocks of one pipelined Horner step ([`HornerStep`]).
+pub const STEP_CLOCKS: usize = 3;
+/// The pipelined variant's pad to the serial latency: from a pixel's issue to the output
+/// register's input is 12 clocks in both variants; the pipelined datapath takes Q (1) and
+/// three steps.
+const PIPE_PAD: usize = 12 - 1 - 3 * STEP_CLOCKS;
+
+crate::hw_block! {
+    /// One Horner step of the pipelined variant, `r = ((x·p + 2¹⁴) >> 15) + k (mod 2³²)` —
+    /// `MulS32U16Round(x, p) + k`, bit for bit — in [`STEP_CLOCKS`] clocks, the serial loop's
+    /// registers without the loop: PR (the two unsigned 16×16 products x_lo·p, x_hi·p and
+    /// beside them kk = k·2¹⁵ + 2¹⁴ − [x < 0]·p·2³², 48 bits), PT (x_hi·p·2¹⁶ + x_lo·p, mod
+    /// 2⁴⁸), R ((PT + kk) >> 15). Inputs from registers; `x` signed Q-format, `p` UQ1.15,
+    /// `k` and `r` signed, 32 bits. Exact mod 2³² (|x·p| < 2⁴⁷). One step per clock.
+    pub struct HornerStep(clock) {
+        in { x: Bits<32>, p: Bits<16>, k: Bits<32> }
+        out { r: Bits<32> }
+        pr_lo: DFF<Bits<32>>, pr_hi: DFF<Bits<32>>, pr_kk: DFF<Bits<48>>,
+        kk_k: Signal<Local, Bits<48>>, kk_corr: Signal<Local, Bits<48>>,
+        pt_s: DFF<Bits<48>>, pt_kk: DFF<Bits<48>>,
+        r_q: DFF<Bits<32>>, rg_sum: Signal<Local, Bits<48>>,
+        sext48: Constant<Bits<48>> = Constant::new(0xFFFF_0000_0000u64.into()),
+        half48: Constant<Bits<48>> = Constant::new((1u64 << 14).into()),
+    }
+}
+
+impl Logic for HornerStep {
+    #[hdl_gen]
+    fn update(&mut self) {
+        dff_setup!(self, clock, pr_lo, pr_hi, pr_kk, pt_s, pt_kk, r_q);
+        self.pr_lo.d.next = self.x.val().get_bits::<16>(0) * self.p.val();
+        self.pr_hi.d.next = self.x.val().get_bits::<16>(16) * self.p.val();
+        self.kk_k.next = bit_cast::<48, 32>(self.k.val());
+        if self.k.val().get_bit(31) {
+            self.kk_k.next = bit_cast::<48, 32>(self.k.val()) | self.sext48.val();
+        }
+        self.kk_corr.next = 0.into();
+        if self.x.val().get_bit(31) {
+            self.kk_corr.next = bit_cast::<48, 16>(self.p.val()) << 32;
+        }
+        self.pr_kk.d.next = ((self.kk_k.val() << 15) | self.half48.val()) - self.kk_corr.val();
+        self.pt_s.d.next =
+            (bit_cast::<48, 32>(self.pr_hi.q.val()) << 16) + bit_cast::<48, 32>(self.pr_lo.q.val());
+        self.pt_kk.d.next = self.pr_kk.q.val();
+        self.rg_sum.next = self.pt_s.q.val() + self.pt_kk.q.val();
+        self.r_q.d.next = self.rg_sum.val().get_bits::<32>(15);
+        self.r.next = self.r_q.q.val();
+    }
+}
+
 crate::hw_block! {
     /// The Horner unit (see the module header).
     pub struct HornerUnit(clock) as "horner-unit" {
@@ -155,14 +209,13 @@ crate::hw_block! {
         // Coefficient block.
         s: [Signal<Local, Bits<32>>; 4],
         na: Signal<Local, Bits<32>>, nb: Signal<Local, Bits<32>>, nc: Signal<Local, Bits<32>>,
-        ta: Signal<Local, Bits<32>>, tc: Signal<Local, Bits<32>>,
         // State.
         busy: DFF<Bit>, phase: DFF<Bits<2>>, t_q: DFF<Bits<12>>, m_q: DFF<Bits<12>>,
         acc: DFF<Bits<29>>, step_q: DFF<Bits<28>>,
-        ka: DFF<Bits<32>>, kb: DFF<Bits<32>>, kc: DFF<Bits<32>>, kd: DFF<Bits<32>>,
-        /// Serial: N_a and N_c registered at load, T(·) formed after the register (the path inputs →
-        /// N → T → register was 12.9 ns on ECP5); A and C are first used a
-        /// clock later.
+        kb: DFF<Bits<32>>, kd: DFF<Bits<32>>,
+        /// N_a and N_c registered at load, T(·) formed after the register (the path inputs →
+        /// N → T → register was 12.9 ns on ECP5 in the serial variant, 12.3 in the pipelined
+        /// one); A and C are first used a clock later (an issue clock follows its load).
         na_q: DFF<Bits<32>>, nc_q: DFF<Bits<32>>,
         ta_q: Signal<Local, Bits<32>>, tc_q: Signal<Local, Bits<32>>,
         p_rnd: Signal<Local, Bits<29>>, p: Signal<Local, Bits<16>>,
@@ -190,15 +243,18 @@ crate::hw_block! {
         half48: Constant<Bits<48>> = Constant::new((1u64 << 14).into()),
         out_s: RoundSat8,
         /// The pipelined variant's outputs, padded to the serial latency.
-        pd_v: Delay<Bit, 10>, pd_t: Delay<Bits<12>, 10>, pd_val: Delay<Bits<8>, 10>,
-        pd_l: Delay<Bit, 10>,
-        // Pipelined datapath.
-        mul1: MulS32U16Round, mul2: MulS32U16Round, mul3: MulS32U16Round,
-        s1_v: DFF<Bit>, s1_t: DFF<Bits<12>>, s1_l: DFF<Bit>, s1_p: DFF<Bits<16>>,
-        s1_x: DFF<Bits<32>>, s1_c: DFF<Bits<32>>, s1_d: DFF<Bits<32>>,
-        s2_v: DFF<Bit>, s2_t: DFF<Bits<12>>, s2_l: DFF<Bit>, s2_p: DFF<Bits<16>>,
-        s2_x: DFF<Bits<32>>, s2_d: DFF<Bits<32>>,
-        x3: Signal<Local, Bits<32>>, out_p: RoundSat8,
+        pd_v: Delay<Bit, PIPE_PAD>, pd_t: Delay<Bits<12>, PIPE_PAD>,
+        pd_val: Delay<Bits<8>, PIPE_PAD>, pd_l: Delay<Bit, PIPE_PAD>,
+        // Pipelined datapath: the issued pixel's operands registered (Q), then three Horner
+        // steps of STEP_CLOCKS each; p, C, D and the pixel's tags travel beside them.
+        q_v: DFF<Bit>, q_t: DFF<Bits<12>>, q_l: DFF<Bit>, q_p: DFF<Bits<16>>,
+        q_a: DFF<Bits<32>>, q_b: DFF<Bits<32>>, q_c: DFF<Bits<32>>, q_d: DFF<Bits<32>>,
+        step1: HornerStep, step2: HornerStep, step3: HornerStep,
+        p_d1: Delay<Bits<16>, STEP_CLOCKS>, p_d2: Delay<Bits<16>, STEP_CLOCKS>,
+        c_d1: Delay<Bits<32>, STEP_CLOCKS>, d_d2: Delay<Bits<32>, { 2 * STEP_CLOCKS }>,
+        v_d3: Delay<Bit, { 3 * STEP_CLOCKS }>, t_d3: Delay<Bits<12>, { 3 * STEP_CLOCKS }>,
+        l_d3: Delay<Bit, { 3 * STEP_CLOCKS }>,
+        out_p: RoundSat8,
         // Output register.
         o_v: DFF<Bit>, o_t: DFF<Bits<12>>, o_val: DFF<Bits<8>>, o_l: DFF<Bit>,
     }
@@ -209,14 +265,15 @@ impl Logic for HornerUnit {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(
-            self, clock, busy, t_q, m_q, acc, step_q, ka, kb, kc, kd, nc_q, na_q, o_t, o_val,
+            self, clock, busy, t_q, m_q, acc, step_q, kb, kd, nc_q, na_q, o_t, o_val,
             issued
         );
         clock!(
-            self, clock, phase, s1_v, s1_t, s1_l, s1_p, s1_x, s1_c, s1_d, s2_v, s2_t, s2_l, s2_p,
-            s2_x, s2_d, o_v, o_l, op_v, op_t, op_l, op_x, op_p, op_k, op_c, op_d, pr_v, pr_t, pr_l,
-            pr_p, pr_c, pr_d, pr_lo, pr_hi, pr_kk, pt_v, pt_t, pt_l, pt_p, pt_c, pt_d, pt_s, pt_kk,
-            rg_v, rg_t, rg_l, rg_p, rg_c, rg_d, rg_val, pd_v, pd_t, pd_val, pd_l
+            self, clock, phase, q_v, q_t, q_l, q_p, q_a, q_b, q_c, q_d, step1, step2, step3, p_d1,
+            p_d2, c_d1, d_d2, v_d3, t_d3, l_d3, o_v, o_l, op_v, op_t, op_l, op_x, op_p, op_k, op_c,
+            op_d, pr_v, pr_t, pr_l, pr_p, pr_c, pr_d, pr_lo, pr_hi, pr_kk, pt_v, pt_t, pt_l, pt_p,
+            pt_c, pt_d, pt_s, pt_kk, rg_v, rg_t, rg_l, rg_p, rg_c, rg_d, rg_val, pd_v, pd_t,
+            pd_val, pd_l
         );
 
         // Coefficient block: the samples sign-extended, then shifts and adds.
@@ -248,11 +305,6 @@ impl Logic for HornerUnit {
         self.nc.next = self.s[1].val() + (self.s[3].val() << 5)
             - ((self.s[0].val() << 4) + (self.s[0].val() << 2) + self.s[0].val())
             - ((self.s[2].val() << 3) + (self.s[2].val() << 2));
-        // T(v) = 64v − 16v − 4v − v (128·(1/2 − 1/8 − 1/32 − 1/128)·v)
-        self.ta.next =
-            (self.na.val() << 6) - (self.na.val() << 4) - (self.na.val() << 2) - self.na.val();
-        self.tc.next =
-            (self.nc.val() << 6) - (self.nc.val() << 4) - (self.nc.val() << 2) - self.nc.val();
 
         // p = t·step rounded to UQ1.15, clamped at 1.0.
         self.p_rnd.next = self.acc.q.val() + self.p_half.val();
@@ -276,6 +328,7 @@ impl Logic for HornerUnit {
             self.issued.d.next = self.go.val();
         }
 
+        // T(v) = 64v − 16v − 4v − v (128·(1/2 − 1/8 − 1/32 − 1/128)·v), after the N registers.
         self.ta_q.next = (self.na_q.q.val() << 6)
             - (self.na_q.q.val() << 4)
             - (self.na_q.q.val() << 2)
@@ -350,33 +403,39 @@ impl Logic for HornerUnit {
         self.rg_val.d.next = self.rg_sum.val().get_bits::<32>(15);
         self.out_s.v.next = self.rg_val.q.val();
 
-        // Pipelined datapath.
-        self.mul1.x.next = self.ka.q.val();
-        self.mul1.p.next = self.p.val();
-        self.s1_v.d.next = self.go.val();
-        self.s1_t.d.next = self.t_q.q.val();
-        self.s1_l.d.next = self.is_last.val();
-        self.s1_p.d.next = self.p.val();
-        self.s1_x.d.next = self.mul1.r.val().get_bits::<32>(0) + self.kb.q.val();
-        self.s1_c.d.next = self.kc.q.val();
-        self.s1_d.d.next = self.kd.q.val();
-        self.mul2.x.next = self.s1_x.q.val();
-        self.mul2.p.next = self.s1_p.q.val();
-        self.s2_v.d.next = self.s1_v.q.val();
-        self.s2_t.d.next = self.s1_t.q.val();
-        self.s2_l.d.next = self.s1_l.q.val();
-        self.s2_p.d.next = self.s1_p.q.val();
-        self.s2_x.d.next = self.mul2.r.val().get_bits::<32>(0) + self.s1_c.q.val();
-        self.s2_d.d.next = self.s1_d.q.val();
-        self.mul3.x.next = self.s2_x.q.val();
-        self.mul3.p.next = self.s2_p.q.val();
-        self.x3.next = self.mul3.r.val().get_bits::<32>(0) + self.s2_d.q.val();
-        self.out_p.v.next = self.x3.val();
+        // Pipelined datapath: Q holds the issued pixel's p, t, last and its span's A..D (the
+        // span registers change at the next load); step 1 A·p + B, step 2 ·p + C, step 3
+        // ·p + D, each STEP_CLOCKS deep.
+        self.q_v.d.next = self.go.val();
+        self.q_t.d.next = self.t_q.q.val();
+        self.q_l.d.next = self.is_last.val();
+        self.q_p.d.next = self.p.val();
+        self.q_a.d.next = self.ta_q.val() << 3;
+        self.q_b.d.next = self.kb.q.val();
+        self.q_c.d.next = self.tc_q.val();
+        self.q_d.d.next = self.kd.q.val();
+        self.step1.x.next = self.q_a.q.val();
+        self.step1.p.next = self.q_p.q.val();
+        self.step1.k.next = self.q_b.q.val();
+        self.p_d1.d.next = self.q_p.q.val();
+        self.c_d1.d.next = self.q_c.q.val();
+        self.step2.x.next = self.step1.r.val();
+        self.step2.p.next = self.p_d1.q.val();
+        self.step2.k.next = self.c_d1.q.val();
+        self.p_d2.d.next = self.p_d1.q.val();
+        self.d_d2.d.next = self.q_d.q.val();
+        self.step3.x.next = self.step2.r.val();
+        self.step3.p.next = self.p_d2.q.val();
+        self.step3.k.next = self.d_d2.q.val();
+        self.v_d3.d.next = self.q_v.q.val();
+        self.t_d3.d.next = self.q_t.q.val();
+        self.l_d3.d.next = self.q_l.q.val();
+        self.out_p.v.next = self.step3.r.val();
 
-        self.pd_v.d.next = self.s2_v.q.val();
-        self.pd_t.d.next = self.s2_t.q.val();
+        self.pd_v.d.next = self.v_d3.q.val();
+        self.pd_t.d.next = self.t_d3.q.val();
         self.pd_val.d.next = self.out_p.q.val();
-        self.pd_l.d.next = self.s2_v.q.val() & self.s2_l.q.val();
+        self.pd_l.d.next = self.v_d3.q.val() & self.l_d3.q.val();
 
         // Output register (serial: loaded with a finished pixel, held otherwise).
         if self.pipelined.val() {
@@ -413,9 +472,7 @@ impl Logic for HornerUnit {
             self.acc.d.next = 0.into();
             self.m_q.d.next = self.m.val();
             self.step_q.d.next = self.step.val();
-            self.ka.d.next = self.ta.val() << 3;
             self.kb.d.next = self.nb.val() << 8;
-            self.kc.d.next = self.tc.val();
             self.kd.d.next = self.s[0].val() << 7;
             self.na_q.d.next = self.na.val();
             self.nc_q.d.next = self.nc.val();
