@@ -265,8 +265,7 @@ impl Logic for HornerUnit {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(
-            self, clock, busy, t_q, m_q, acc, step_q, kb, kd, nc_q, na_q, o_t, o_val,
-            issued
+            self, clock, busy, t_q, m_q, acc, step_q, kb, kd, nc_q, na_q, o_t, o_val, issued
         );
         clock!(
             self, clock, phase, q_v, q_t, q_l, q_p, q_a, q_b, q_c, q_d, step1, step2, step3, p_d1,
