@@ -75,7 +75,7 @@ pub fn check_rtl_method(m: Method) -> Result<()> {
 }
 
 /// Check the canvas and the vertex addresses against the hardware's 12 bits.
-fn check_addresses(tris: &[ScreenTriangle], width: u32, height: u32) -> Result<()> {
+pub(crate) fn check_addresses(tris: &[ScreenTriangle], width: u32, height: u32) -> Result<()> {
     let limit = MAX_ADDRESS as u32 + 1;
     if width == 0 || height == 0 || width > limit || height > limit {
         bail!("canvas {width}x{height}: each side must be 1..={limit} (12-bit addresses)");

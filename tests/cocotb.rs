@@ -1,9 +1,10 @@
-//! The cocotb tests of the exported stream tops `pixel-stream` and `gouraud-stream`
-//! (testbenches/cocotb/): `shadecore stream` writes a small scene's set-up words, the rust-hdl
-//! simulation's fragment beats and the Verilog; cocotb with cocotbext-axi drives the Verilog under Icarus with random gaps on the
-//! set-up stream and random back-pressure (long stretches included) on the fragment stream,
-//! and requires the same beats in the same order. The same test fails on the Verilog with one
-//! operator flipped (shown for two).
+//! The cocotb tests of the exported stream tops `pixel-stream`, `gouraud-stream` and
+//! `cubic-stream` (testbenches/cocotb/): `shadecore stream` writes a small scene's set-up
+//! words, the rust-hdl simulation's fragment beats and the Verilog; cocotb with cocotbext-axi
+//! drives the Verilog under Icarus with random gaps on the set-up stream and random
+//! back-pressure (long stretches included) on the fragment stream, and requires the same beats
+//! in the same order. The same test fails on the Verilog with one operator flipped (shown for
+//! two per top).
 //!
 //! Needs Icarus and a Python with cocotb, cocotb_tools and cocotbext-axi (`.ci/run` installs
 //! them into `.venv/`; `SHADECORE_PYTHON` names another): skips with a notice without them,
@@ -116,15 +117,12 @@ fn cocotb_drives_the_exported_pixel_stream_with_back_pressure() {
     }
 }
 
-/// The same cocotb test on `gouraud-stream` (`shadecore stream --method gouraud`): the
+/// The cocotb test on the stream top `top` (`shadecore stream --method <method> <extra>`): the
 /// exported Verilog under random gaps and back-pressure delivers the rust-hdl simulation's
-/// beats, and fails with one operator flipped (shown for two).
-#[test]
-fn cocotb_drives_the_exported_gouraud_stream_with_back_pressure() {
-    if !tools::require(
-        &[Tool::Iverilog, Tool::Vvp],
-        "cocotb test of gouraud-stream",
-    ) {
+/// beats, and fails with each of `mutants` (what, anchor found once, replacement).
+fn drive_stream_top(method: &str, extra: &[&str], top: &str, mutants: &[(&str, &str, &str)]) {
+    let what_test = format!("cocotb test of {}", top.replace('_', "-"));
+    if !tools::require(&[Tool::Iverilog, Tool::Vvp], &what_test) {
         return;
     }
     let Some(python) = tools::cocotb_python() else {
@@ -132,14 +130,14 @@ fn cocotb_drives_the_exported_gouraud_stream_with_back_pressure() {
             !tools::in_ci(),
             "cocotb test: no Python with cocotb and cocotbext-axi (CI is set)"
         );
-        println!("SKIPPED cocotb test of gouraud-stream: no Python with cocotb, cocotb_tools and cocotbext-axi (pip install cocotb cocotbext-axi; .ci/run installs them into .venv/)");
+        println!("SKIPPED {what_test}: no Python with cocotb, cocotb_tools and cocotbext-axi (pip install cocotb cocotbext-axi; .ci/run installs them into .venv/)");
         return;
     };
-    let dir = tools::unique_dir("cocotb-gouraud-stream").unwrap();
+    let dir = tools::unique_dir(&format!("cocotb-{top}")).unwrap();
     let st = Command::new(env!("CARGO_BIN_EXE_shadecore"))
-        .args([
-            "stream", "--method", "gouraud", "--rez", "6", "--size", "48x48", "--out",
-        ])
+        .args(["stream", "--method", method])
+        .args(extra)
+        .args(["--rez", "6", "--size", "48x48", "--out"])
         .arg(&dir)
         .output()
         .unwrap();
@@ -149,8 +147,8 @@ fn cocotb_drives_the_exported_gouraud_stream_with_back_pressure() {
         String::from_utf8_lossy(&st.stderr)
     );
     println!("{}", String::from_utf8_lossy(&st.stdout).trim());
-    let verilog = dir.join("gouraud_stream.v");
-    let (ok, text) = cocotb(&python, &dir, &verilog, "build-good", "gouraud_stream");
+    let verilog = dir.join(format!("{top}.v"));
+    let (ok, text) = cocotb(&python, &dir, &verilog, "build-good", top);
     assert!(
         ok,
         "cocotb test failed on the exported Verilog:\n{}",
@@ -164,32 +162,15 @@ fn cocotb_drives_the_exported_gouraud_stream_with_back_pressure() {
         .to_string();
     println!("cocotb (Icarus): {summary}");
     let good = std::fs::read_to_string(&verilog).unwrap();
-    for (what, from, to) in [
-        (
-            "FIFO read pointer: + 1 → + 2",
-            "rd_ptr$d = rd_ptr$q + 4'h1;",
-            "rd_ptr$d = rd_ptr$q + 4'h2;",
-        ),
-        (
-            "address block x step: + 1 → + 2",
-            "p_x$d = p_x$q + 12'h1;",
-            "p_x$d = p_x$q + 12'h2;",
-        ),
-    ] {
+    for (k, (what, from, to)) in mutants.iter().enumerate() {
         assert_eq!(
             good.matches(from).count(),
             1,
             "{what}: anchor {from:?} once"
         );
-        let path = dir.join(format!("mutant-{}.v", what.len()));
+        let path = dir.join(format!("mutant-{k}.v"));
         std::fs::write(&path, good.replacen(from, to, 1)).unwrap();
-        let (ok, text) = cocotb(
-            &python,
-            &dir,
-            &path,
-            &format!("build-{}", what.len()),
-            "gouraud_stream",
-        );
+        let (ok, text) = cocotb(&python, &dir, &path, &format!("build-{k}"), top);
         assert!(!ok, "{what}: the cocotb test passed on the broken Verilog");
         let why = text
             .lines()
@@ -199,4 +180,51 @@ fn cocotb_drives_the_exported_gouraud_stream_with_back_pressure() {
             .to_string();
         println!("mutant {what}: caught ({why})");
     }
+}
+
+/// The same cocotb test on `gouraud-stream` (`shadecore stream --method gouraud`), two
+/// operators flipped.
+#[test]
+fn cocotb_drives_the_exported_gouraud_stream_with_back_pressure() {
+    drive_stream_top(
+        "gouraud",
+        &[],
+        "gouraud_stream",
+        &[
+            (
+                "FIFO read pointer: + 1 → + 2",
+                "rd_ptr$d = rd_ptr$q + 4'h1;",
+                "rd_ptr$d = rd_ptr$q + 4'h2;",
+            ),
+            (
+                "address block x step: + 1 → + 2",
+                "p_x$d = p_x$q + 12'h1;",
+                "p_x$d = p_x$q + 12'h2;",
+            ),
+        ],
+    );
+}
+
+/// The same cocotb test on `cubic-stream` (`shadecore stream --method cubic`, both Horner
+/// variants), two operators flipped in the serial build.
+#[test]
+fn cocotb_drives_the_exported_cubic_stream_with_back_pressure() {
+    drive_stream_top(
+        "cubic",
+        &["--horner", "serial"],
+        "cubic_stream",
+        &[
+            (
+                "FIFO read pointer: + 1 → + 2",
+                "rd_ptr$d = rd_ptr$q + 5'b1;",
+                "rd_ptr$d = rd_ptr$q + 5'b10;",
+            ),
+            (
+                "depth run: + dz → − dz",
+                "o_z$d = o_z$q + dz_d$q;",
+                "o_z$d = o_z$q - dz_d$q;",
+            ),
+        ],
+    );
+    drive_stream_top("cubic", &["--horner", "pipelined"], "cubic_stream", &[]);
 }

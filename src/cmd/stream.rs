@@ -1,5 +1,5 @@
 //! `shadecore stream`: a scene as a stream top's AXI4-Stream set-up words (`pixel-stream` for
-//! the lit methods, `gouraud-stream` for `gouraud`), with the fragment beats the rust-hdl
+//! the lit methods, `gouraud-stream` for `gouraud`, `cubic-stream` for `cubic`), with the fragment beats the rust-hdl
 //! simulation of that top delivers for them and its Verilog — what an external testbench (the
 //! cocotb test in `testbenches/cocotb/`) drives and checks.
 
@@ -21,15 +21,20 @@ pub struct Args {
     #[command(flatten)]
     pub scene: SceneArgs,
     /// The method: a lit one runs its `pixel-stream` build (normalizer, normalizer-fit,
-    /// brdf-k4, brdf-k8, brdf-k16, bump); gouraud runs `gouraud-stream`.
+    /// brdf-k4, brdf-k8, brdf-k16, bump); gouraud runs `gouraud-stream`; cubic runs
+    /// `cubic-stream` (one record per raster line, in walk order).
     #[arg(long, default_value = "normalizer-fit")]
     pub method: String,
     /// The order the triangles are sent in: balanced (large and small walks alternately, as
     /// `render` sends them) or mesh.
     #[arg(long, value_enum, default_value = "balanced")]
     pub setup_order: crate::rtl_engine::SetupOrder,
-    /// Output directory: setup.txt, beats.txt, and the top's Verilog (pixel_stream.v or
-    /// gouraud_stream.v).
+    /// With `--method cubic`: the Horner units of `cubic-stream` — serial (fig. 2.6, 3 clocks
+    /// per pixel) or pipelined (one pixel per clock).
+    #[arg(long, value_enum, default_value = "serial")]
+    pub horner: crate::cmd::render::Horner,
+    /// Output directory: setup.txt, beats.txt, and the top's Verilog (pixel_stream.v,
+    /// gouraud_stream.v or cubic_stream.v).
     #[arg(long, default_value = "target/stream")]
     pub out: PathBuf,
 }
@@ -39,9 +44,12 @@ pub fn run(a: Args) -> Result<()> {
     if method == golden::methods::Method::Gouraud {
         return run_gouraud(&a);
     }
+    if method == golden::methods::Method::Cubic {
+        return run_cubic(&a);
+    }
     let Some(o) = method_options(method) else {
         bail!(
-            "method {} has no stream top (pixel-stream has normalizer, normalizer-fit, brdf-k4, brdf-k8, brdf-k16, bump; gouraud-stream has gouraud)",
+            "method {} has no stream top (pixel-stream has normalizer, normalizer-fit, brdf-k4, brdf-k8, brdf-k16, bump; gouraud-stream has gouraud; cubic-stream has cubic)",
             a.method
         );
     };
@@ -102,6 +110,67 @@ pub fn run(a: Args) -> Result<()> {
         words.len(),
         beats.len(),
         beats.iter().filter(|b| b.pixel).count(),
+        run.rows.len(),
+        a.out.display()
+    )?;
+    Ok(())
+}
+
+/// `stream --method cubic`: the scene's raster lines through `cubic-stream` (the cubic set-up
+/// per line, `pipeline::span::span_jobs`, in walk order).
+fn run_cubic(a: &Args) -> Result<()> {
+    use pipeline::span::{span_jobs, SpanKind};
+    let pipelined = a.horner == crate::cmd::render::Horner::Pipelined;
+    let s = crate::setup::build(&a.scene)?;
+    crate::rtl_engine::check_addresses(&s.tris, s.width, s.height)?;
+    let kind = SpanKind::Cubic { pipelined };
+    let mut spans = Vec::new();
+    for (i, t) in s.tris.iter().enumerate() {
+        spans.extend(span_jobs(t, i, kind, &s.ctx).map_err(|e| anyhow!("triangle {i}: {e}"))?);
+    }
+    let words = pipeline::stream::cubic_words(&spans);
+    let p = rtl::cubic_pipeline::CubicParams(rtl::horner_unit::HornerParams { pipelined });
+    let run = testbenches::cubic_stream::drive(&p, &words, 1, 0.0, &mut StallPattern::never(), 8);
+    let b = testbenches::registry::find("cubic-stream").map_err(|e| anyhow!(e))?;
+    let o = rtl::registry::Options::new()
+        .with("horner", if pipelined { "pipelined" } else { "serial" });
+    let out = b.simulate(&o, &run.rows).map_err(|e| anyhow!(e))?;
+    if out != run.outputs {
+        bail!("the rust-hdl simulation of cubic-stream disagrees with its twin");
+    }
+    let beats: Vec<Beat> = out
+        .iter()
+        .filter(|r| r[1] != 0)
+        .map(|r| Beat::read(r[2], r[3], r[4] != 0))
+        .collect();
+    let mut setup = String::from("# cubic-stream set-up words (walk order): hex word, tlast\n");
+    for (w, last) in &words {
+        setup.push_str(&format!("{w:08x} {}\n", *last as u8));
+    }
+    let mut text = String::from(
+        "# cubic-stream fragment beats: x y pixel red green blue z tlast (tlast: the line's last pixel)\n",
+    );
+    for bt in &beats {
+        text.push_str(&format!(
+            "{} {} {} {} {} {} {} {}\n",
+            bt.x, bt.y, bt.pixel as u8, bt.rgb[0], bt.rgb[1], bt.rgb[2], bt.z, bt.last as u8
+        ));
+    }
+    let verilog = b.verilog(&o).map_err(|e| anyhow!(e))?;
+    write_files(
+        &a.out,
+        &[
+            ("setup.txt", setup.as_str()),
+            ("beats.txt", text.as_str()),
+            ("cubic_stream.v", verilog.as_str()),
+        ],
+    )?;
+    crate::outln!(
+        "cubic-stream ({}): {} lines, {} set-up words, {} beats in {} clocks -> {}",
+        if pipelined { "pipelined" } else { "serial" },
+        spans.len(),
+        words.len(),
+        beats.len(),
         run.rows.len(),
         a.out.display()
     )?;

@@ -2,7 +2,7 @@
 
 Usage: python run.py <stream dir> <verilog file> <build dir> [<top module>]
 The top module is pixel_stream unless given (gouraud_stream: the same AXI4-Stream ports
-without m_axis_tuser). Exit status 0 when the cocotb test passes, 1 when it fails.
+without m_axis_tuser; cubic_stream: the same ports as pixel_stream). Exit status 0 when the cocotb test passes, 1 when it fails.
 """
 
 import os

@@ -1,5 +1,6 @@
-"""cocotb test of an exported stream top, `pixel-stream` or `gouraud-stream` (cocotbext-axi
-drives its AXI4-Stream ports; `gouraud-stream` has no `m_axis_tuser`, its beats' z is 0).
+"""cocotb test of an exported stream top, `pixel-stream`, `gouraud-stream` or `cubic-stream`
+(cocotbext-axi drives its AXI4-Stream ports; `gouraud-stream` has no `m_axis_tuser`, its
+beats' z is 0).
 
 Reads the set-up words and the expected fragment beats that `shadecore stream` wrote (the
 rust-hdl simulation's beats), sends the words as one AXI4-Stream frame per record with random
