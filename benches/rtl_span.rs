@@ -13,7 +13,9 @@
 //!   the clocks beyond Σ(⌊m/2⌋ + 1) per line (the per-line overhead), and the rate on the
 //!   lines of ≥ 16 pixels inside that stream (each line's clocks counted from the previous
 //!   line's last fragment, so whatever the hardware spends between lines is included);
-//! - the cubic pipeline's clocks per pixel with each Horner variant;
+//! - the cubic pipeline's clocks per pixel with each Horner variant, through its ports and
+//!   through its stream top `cubic-stream` (`tready` high: the same fragments, the clocks of a
+//!   12-word record per line), in one run;
 //! - the thesis' average triangle (SPEC §11; both the 78-pixel triangle the deltas give and the
 //!   100-pixel scaled one): clocks from its load to its last fragment and its steady-state
 //!   clocks, through each span top and through the one-pixel-per-clock lit pipeline and the
@@ -378,11 +380,46 @@ fn average_triangle_table() {
     }
 }
 
-/// The Horner unit's clocks per pixel (fig. 2.6 serial, pipelined) over the default scene.
+/// The Horner unit's clocks per pixel (fig. 2.6 serial, pipelined) over the default scene,
+/// through `cubic-pipeline`'s ports and through `cubic-stream`.
 fn horner_figures() {
     let (tris, ctx) = default_scene();
     for pipelined in [false, true] {
         let (c, p, n, sc, _) = run_top_with(Method::Cubic, pipelined, &tris, &ctx, |_| true);
+        let mut stream = SpanPipe::cubic_stream(pipelined).unwrap();
+        let spans: Vec<SpanJob> = tris
+            .iter()
+            .filter(|t| t.depth_plane().is_some())
+            .enumerate()
+            .flat_map(|(i, t)| span_jobs(t, i, stream.kind(), &ctx).unwrap())
+            .collect();
+        let st = stream
+            .run(
+                &spans,
+                &ShadingRegs::default(),
+                span_clock_budget(&spans),
+                |_| {},
+                |_| {},
+            )
+            .unwrap();
+        assert_eq!(st.pixels, p);
+        let short = spans
+            .iter()
+            .filter(|s| {
+                s.clocks()
+                    < 1 + rtl::stream_layout::payload_words(&rtl::stream_layout::CUBIC_LINE) as u64
+            })
+            .count();
+        println!(
+            "cubic-stream ({} Horner), default scene, tready high: {} fragments in {} clocks ({:.3} fragments/clock; the ports {:.3}; ratio {:.3}); {short} of {} lines take fewer clocks than their 12-word record",
+            if pipelined { "pipelined" } else { "serial" },
+            st.pixels,
+            st.clocks,
+            st.pixels as f64 / st.clocks as f64,
+            p as f64 / c as f64,
+            c as f64 / st.clocks as f64,
+            spans.len()
+        );
         println!(
             "cubic pipeline ({} Horner), default scene: {p} fragments in {c} clocks ({:.3} clocks \
              per pixel; {n} lines, {sc} line clocks + {} tail)",

@@ -65,7 +65,7 @@ fn quarter_lsb_rounding_errors_are_caught_by_the_twins() {
     ]);
     #[rustfmt::skip]
     check("horner-unit", &Options::new().with("horner", "pipelined"), 60, &[
-        Mutant { what: "second MUL's rounding + ¼ LSB", module: "horner_unit__mul2", from: "localparam  half = 48'h4000;", to: "localparam  half = 48'h6000;" },
+        Mutant { what: "second step's product rounding + ¼ LSB", module: "horner_unit__step2", from: "localparam  half48 = 48'h4000;", to: "localparam  half48 = 48'h6000;" },
         Mutant { what: "output rounding + ¼ LSB", module: "horner_unit__out_p", from: "localparam  half = 32'h800;", to: "localparam  half = 32'hc00;" },
     ]);
     #[rustfmt::skip]
