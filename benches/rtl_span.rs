@@ -92,9 +92,10 @@ fn run_fast(spans: &[FastWords]) -> (u64, u64) {
                 w.d0 as u64 & m48,
                 w.dd as u64 & m48,
                 w.m as u64,
+                0, // hold: never here
             ]
         } else {
-            vec![0; 7]
+            vec![0; 8]
         };
         st.step(&row, &mut out).unwrap();
         clocks += 1;
@@ -138,9 +139,10 @@ fn run(spans: &[SpanWords]) -> (u64, u64) {
                 w.d as u64,
                 w.cos_beta,
                 w.m as u64,
+                0, // hold: never here
             ]
         } else {
-            vec![0; 6]
+            vec![0; 7]
         };
         st.step(&row, &mut out).unwrap();
         clocks += 1;
