@@ -10,13 +10,11 @@
 //! bench checks against the golden `cubic` method and the f64 depth plane every clock (and
 //! `tests/cubic_stream.rs` against its RTL run through its own ports).
 
-use std::collections::VecDeque;
-
 use pipeline::span::{span_row, SpanJob, SpanKind};
 use pipeline::stream::{cubic_words, Beat, Word};
 use rtl::cubic_pipeline::CubicParams;
 use rtl::cubic_stream::{CubicStream, FIFO_DEPTH, HOLD_ABOVE};
-use rtl::stream_layout::{pack_fragment, payload_words, unpack, CUBIC_LINE, CUBIC_STREAM};
+use rtl::stream_layout::{pack_fragment, unpack, CUBIC_LINE, CUBIC_STREAM};
 
 use crate::cubic_pipeline::CubicPipelineTwin;
 use crate::harness::{Compare, Expected};
@@ -24,6 +22,7 @@ use crate::pixel_pipeline::lit_triangles;
 use crate::registry::{Bench, Stimulus, Twin};
 use crate::span_pipeline::GoldenSpans;
 use crate::stall::{SplitMix, StallPattern};
+use crate::stream_twin::{BeatFifo, RecordReader};
 
 /// Output ports in row order: s_axis_tready, m_axis_tvalid, tdata, tuser, tlast, error.
 pub const OUTPUTS: usize = 6;
@@ -31,71 +30,42 @@ pub const OUTPUTS: usize = 6;
 /// Twin of `cubic-stream`.
 pub struct CubicStreamTwin {
     inner: CubicPipelineTwin,
-    count: usize,
-    rec_type: u32,
-    pending: bool,
-    skip: bool,
-    err: bool,
-    bank: Vec<u32>,
-    load_bank: Vec<u32>,
-    pend_b: bool,
+    reader: RecordReader,
     /// Beats: tdata, tuser (z), tlast.
-    fifo: VecDeque<(u64, u64, bool)>,
-    out: Option<(u64, u64, bool)>,
-    hold_q: bool,
+    fifo: BeatFifo<(u64, u64, bool)>,
     /// Lines loaded whose last pixel has not been seen.
     outstanding: usize,
-    /// Clocks the pipeline was held.
-    pub held: usize,
-    /// The most beats the FIFO held.
-    pub max_level: usize,
 }
 
 impl CubicStreamTwin {
     pub fn new(p: &CubicParams) -> Self {
         CubicStreamTwin {
             inner: CubicPipelineTwin::new(p),
-            count: 0,
-            rec_type: 0,
-            pending: false,
-            skip: false,
-            err: false,
-            bank: vec![0; CUBIC_STREAM.bank_words()],
-            load_bank: vec![0; CUBIC_STREAM.bank_words()],
-            pend_b: false,
-            fifo: VecDeque::new(),
-            out: None,
-            hold_q: false,
+            reader: RecordReader::new(&CUBIC_STREAM.records()),
+            fifo: BeatFifo::new(FIFO_DEPTH, HOLD_ABOVE),
             outstanding: 0,
-            held: 0,
-            max_level: 0,
         }
     }
 
     /// `s_axis_tready` in the current clock.
     pub fn s_ready(&self) -> bool {
-        !self.pending
+        self.reader.s_ready()
     }
 
     /// Nothing waiting, nothing in flight, nothing to deliver.
     pub fn idle(&self) -> bool {
-        !self.pending
-            && !self.pend_b
-            && self.count == 0
-            && self.outstanding == 0
-            && self.fifo.is_empty()
-            && self.out.is_none()
+        self.reader.idle() && self.outstanding == 0 && self.fifo.is_empty()
     }
 
     fn outputs(&self) -> Vec<u64> {
-        let (tdata, tuser, tlast) = self.out.unwrap_or((0, 0, false));
+        let (tdata, tuser, tlast) = self.fifo.out.unwrap_or((0, 0, false));
         vec![
             self.s_ready() as u64,
-            self.out.is_some() as u64,
+            self.fifo.out.is_some() as u64,
             tdata,
             tuser,
             tlast as u64,
-            self.err as u64,
+            self.reader.err as u64,
         ]
     }
 }
@@ -106,79 +76,19 @@ impl Twin for CubicStreamTwin {
         let out = self.outputs();
 
         // The pipeline's inputs this clock: load, the load bank's fields, hold.
-        let mut row = vec![self.pend_b as u64];
-        row.extend(unpack(&CUBIC_LINE, &self.load_bank));
-        let hold = self.hold_q;
-        self.hold_q = self.fifo.len() > HOLD_ABOVE;
-        row.push(hold as u64);
-        self.held += hold as usize;
+        let mut row = vec![self.reader.pend_b as u64];
+        row.extend(unpack(&CUBIC_LINE, &self.reader.load_bank));
+        row.push(self.fifo.hold() as u64);
         // Outputs: ready, valid, x, z, r, g, b, y, last.
         let o = self.inner.step(&row);
         let (ready, valid, last) = (o[0] != 0, o[1] != 0, o[8] != 0);
 
-        // This clock's decisions read the registers before the edge.
-        let load_taken = self.pend_b && ready;
-        let transfer = self.pending && !self.pend_b;
-        let bank0 = self.bank.clone();
-
-        // Set-up side: the record reader.
-        let accept = tvalid && !self.pending;
-        let expected = payload_words(&CUBIC_LINE);
-        let known = self.rec_type == 1;
-        if accept && self.skip {
-            if tlast {
-                self.skip = false;
-            }
-        } else if accept && self.count == 0 {
-            self.rec_type = tdata & 0xF;
-            self.count = 1;
-            if tlast {
-                self.err = true;
-                self.count = 0;
-            } else if self.rec_type != 1 {
-                self.err = true;
-                self.skip = true;
-                self.count = 0;
-            }
-        } else if accept {
-            self.bank[self.count - 1] = tdata;
-            let at_end = self.count == expected;
-            self.count += 1;
-            if tlast {
-                self.count = 0;
-                if at_end && known {
-                    self.pending = true;
-                } else {
-                    self.err = true;
-                }
-            } else if at_end {
-                self.err = true;
-                self.skip = true;
-                self.count = 0;
-            }
-        }
-        if load_taken {
-            self.pend_b = false;
-        }
-        if transfer {
-            self.pending = false;
-            self.pend_b = true;
-            self.load_bank = bank0;
-        }
+        let load_taken = self.reader.pend_b && ready;
+        self.reader.clock(tdata, tvalid, tlast, load_taken);
         self.outstanding = self.outstanding + load_taken as usize - (valid && last) as usize;
-
-        // Fragment side.
-        if !self.fifo.is_empty() && (self.out.is_none() || m_ready) {
-            self.out = self.fifo.pop_front();
-        } else if m_ready {
-            self.out = None;
-        }
-        if valid {
-            let beat = pack_fragment(&[o[2], o[7], 1, o[4], o[5], o[6]]) as u64;
-            self.fifo.push_back((beat, o[3], last));
-            assert!(self.fifo.len() <= FIFO_DEPTH, "twin FIFO overflow");
-            self.max_level = self.max_level.max(self.fifo.len());
-        }
+        let beat = pack_fragment(&[o[2], o[7], 1, o[4], o[5], o[6]]) as u64;
+        self.fifo
+            .clock(m_ready, valid.then_some((beat, o[3], last)));
         out
     }
 }
@@ -246,8 +156,8 @@ pub fn drive(
             idle_clocks += 1;
         }
     }
-    run.held = twin.held;
-    run.max_level = twin.max_level;
+    run.held = twin.fifo.held;
+    run.max_level = twin.fifo.max_level;
     run
 }
 

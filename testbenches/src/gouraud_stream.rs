@@ -9,79 +9,71 @@
 //! `gouraud-raster`'s events without stalls, whose colours `tests/gouraud_stream.rs` checks
 //! against the golden f64 Gouraud planes (within 1 LSB, addresses exact).
 
-use std::collections::VecDeque;
-
 use pipeline::gouraud::{TriangleJob, PIPE_HOLD_AT};
 use pipeline::stream::{gouraud_words, Beat, Word};
 use rtl::gouraud_stream::{GouraudStream, FIFO_DEPTH, HOLD_ABOVE};
 use rtl::registry::NoParams;
-use rtl::stream_layout::{pack_fragment, payload_words, unpack, GOURAUD_STREAM, GOURAUD_TRIANGLE};
+use rtl::stream_layout::{pack_fragment, unpack, GOURAUD_STREAM, GOURAUD_TRIANGLE};
 
 use crate::address_block::{triangle_jobs, GoldenPixel};
 use crate::harness::{Compare, Expected};
 use crate::intensity_interpolator::PipeRows;
 use crate::registry::{Bench, Stimulus, Twin};
 use crate::stall::{SplitMix, StallPattern};
+use crate::stream_twin::{BeatFifo, RecordReader};
 
 /// Output ports in row order.
 pub const OUTPUTS: usize = 5;
 
 /// Twin of `gouraud-stream`.
-#[derive(Default)]
 pub struct GouraudStreamTwin {
     inner: PipeRows,
-    count: usize,
-    rec_type: u32,
-    pending: bool,
-    skip: bool,
-    err: bool,
-    bank: Vec<u32>,
-    /// The load bank, when a triangle waits there.
-    load_bank: Vec<u32>,
-    pend_b: bool,
-    fifo: VecDeque<(u64, bool)>,
-    /// The output register: the beat offered on `m_axis_*`.
-    out: Option<(u64, bool)>,
-    /// The registered hold: the FIFO was above `HOLD_ABOVE` in the clock before.
-    hold_q: bool,
+    reader: RecordReader,
+    /// Beats: tdata, tlast.
+    fifo: BeatFifo<(u64, bool)>,
     /// Triangles loaded whose `done` has not been seen.
     outstanding: usize,
-    /// Clocks the address block was held.
-    pub held: usize,
+}
+
+impl Default for GouraudStreamTwin {
+    fn default() -> Self {
+        Self::new()
+    }
 }
 
 impl GouraudStreamTwin {
     pub fn new() -> Self {
         GouraudStreamTwin {
-            bank: vec![0; GOURAUD_STREAM.bank_words()],
-            load_bank: vec![0; GOURAUD_STREAM.bank_words()],
-            ..Default::default()
+            inner: PipeRows::default(),
+            reader: RecordReader::new(&GOURAUD_STREAM.records()),
+            fifo: BeatFifo::new(FIFO_DEPTH, HOLD_ABOVE),
+            outstanding: 0,
         }
     }
 
     /// `s_axis_tready` in the current clock.
     pub fn s_ready(&self) -> bool {
-        !self.pending
+        self.reader.s_ready()
     }
 
     /// Nothing waiting, nothing in flight, nothing to deliver.
     pub fn idle(&self) -> bool {
-        !self.pending
-            && !self.pend_b
-            && self.count == 0
-            && self.outstanding == 0
-            && self.fifo.is_empty()
-            && self.out.is_none()
+        self.reader.idle() && self.outstanding == 0 && self.fifo.is_empty()
+    }
+
+    /// Clocks the address block was held.
+    pub fn held(&self) -> usize {
+        self.fifo.held
     }
 
     fn outputs(&self) -> Vec<u64> {
-        let (tdata, tlast) = self.out.unwrap_or((0, false));
+        let (tdata, tlast) = self.fifo.out.unwrap_or((0, false));
         vec![
             self.s_ready() as u64,
-            self.out.is_some() as u64,
+            self.fifo.out.is_some() as u64,
             tdata,
             tlast as u64,
-            self.err as u64,
+            self.reader.err as u64,
         ]
     }
 }
@@ -92,13 +84,10 @@ impl Twin for GouraudStreamTwin {
         let out = self.outputs();
 
         // The raster pipe's inputs this clock.
-        let mut row = vec![self.pend_b as u64];
-        row.extend(unpack(&GOURAUD_TRIANGLE, &self.load_bank));
+        let mut row = vec![self.reader.pend_b as u64];
+        row.extend(unpack(&GOURAUD_TRIANGLE, &self.reader.load_bank));
         debug_assert_eq!(row.len(), PIPE_HOLD_AT);
-        let hold = self.hold_q;
-        self.hold_q = self.fifo.len() > HOLD_ABOVE;
-        row.push(hold as u64);
-        self.held += hold as usize;
+        row.push(self.fifo.hold() as u64);
         let o = self.inner.step(&row);
         let (ready, valid, x, y, rgb, done) = (
             o[0] != 0,
@@ -109,68 +98,12 @@ impl Twin for GouraudStreamTwin {
             o[7] != 0,
         );
 
-        // This clock's decisions read the registers before the edge.
-        let load_taken = self.pend_b && ready;
-        let transfer = self.pending && !self.pend_b;
-        let bank0 = self.bank.clone();
-
-        // Set-up side.
-        let accept = tvalid && !self.pending;
-        let expected = payload_words(&GOURAUD_TRIANGLE);
-        let known = self.rec_type == 1;
-        if accept && self.skip {
-            if tlast {
-                self.skip = false;
-            }
-        } else if accept && self.count == 0 {
-            self.rec_type = tdata & 0xF;
-            self.count = 1;
-            if tlast {
-                self.err = true;
-                self.count = 0;
-            } else if self.rec_type != 1 {
-                self.err = true;
-                self.skip = true;
-                self.count = 0;
-            }
-        } else if accept {
-            self.bank[self.count - 1] = tdata;
-            let at_end = self.count == expected;
-            self.count += 1;
-            if tlast {
-                self.count = 0;
-                if at_end && known {
-                    self.pending = true;
-                } else {
-                    self.err = true;
-                }
-            } else if at_end {
-                self.err = true;
-                self.skip = true;
-                self.count = 0;
-            }
-        }
-        if load_taken {
-            self.pend_b = false;
-        }
-        if transfer {
-            self.pending = false;
-            self.pend_b = true;
-            self.load_bank = bank0;
-        }
+        let load_taken = self.reader.pend_b && ready;
+        self.reader.clock(tdata, tvalid, tlast, load_taken);
         self.outstanding = self.outstanding + load_taken as usize - done as usize;
-
-        // Fragment side.
-        if !self.fifo.is_empty() && (self.out.is_none() || m_ready) {
-            self.out = self.fifo.pop_front();
-        } else if m_ready {
-            self.out = None;
-        }
-        if valid || done {
-            let beat = pack_fragment(&[x, y, valid as u64, rgb[0], rgb[1], rgb[2]]) as u64;
-            self.fifo.push_back((beat, done));
-            assert!(self.fifo.len() <= FIFO_DEPTH, "twin FIFO overflow");
-        }
+        let beat = pack_fragment(&[x, y, valid as u64, rgb[0], rgb[1], rgb[2]]) as u64;
+        self.fifo
+            .clock(m_ready, (valid || done).then_some((beat, done)));
         out
     }
 }
@@ -230,7 +163,7 @@ pub fn drive(
             idle_clocks += 1;
         }
     }
-    run.held = twin.held;
+    run.held = twin.held();
     run
 }
 

@@ -21,6 +21,7 @@ pub mod registry;
 pub mod span;
 pub mod span_pipeline;
 pub mod stall;
+pub mod stream_twin;
 pub mod subdivision_raster;
 pub mod synth;
 pub mod tools;

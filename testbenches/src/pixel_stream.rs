@@ -9,19 +9,18 @@
 //! `pixel-pipeline`'s fragments without stalls (whose colours and depths its own bench checks
 //! against the golden methods): [`reference_beats`], compared by `tests/pixel_stream.rs`.
 
-use std::collections::VecDeque;
-
 use golden::shade::ShadeContext;
 use pipeline::lit::{LitJob, ShadingRegs, HOLD_AT, ROW_WIDTH};
 use pipeline::stream::{scene_words, Beat, Word};
 use rtl::pixel_pipeline::PipelineParams;
 use rtl::pixel_stream::{PixelStream, FIFO_DEPTH, HOLD_ABOVE};
-use rtl::stream_layout::{pack_fragment, payload_words, unpack, REGISTERS, TRIANGLE};
+use rtl::stream_layout::{pack_fragment, payload_words, unpack, PIXEL_STREAM, REGISTERS, TRIANGLE};
 
 use crate::harness::{Compare, Expected};
 use crate::pixel_pipeline::{lit_triangles, PipelineTwin};
 use crate::registry::{Bench, Stimulus, Twin};
 use crate::stall::{SplitMix, StallPattern};
+use crate::stream_twin::{BeatFifo, RecordReader};
 
 /// Output ports in row order.
 pub const OUTPUTS: usize = 6;
@@ -29,76 +28,45 @@ pub const OUTPUTS: usize = 6;
 /// Twin of `pixel-stream`.
 pub struct StreamTwin {
     inner: PipelineTwin,
-    count: usize,
-    rec_type: u32,
-    pending: bool,
-    skip: bool,
-    err: bool,
+    reader: RecordReader,
+    /// Triangles loaded whose `done` has not left the pipeline.
     outstanding: u64,
-    bank: Vec<u32>,
-    /// The load bank and its record's type, when one waits there.
-    load_bank: Vec<u32>,
-    pend_b: bool,
-    type_b: u32,
+    /// The active frame and material registers.
     regs: Vec<u64>,
-    fifo: VecDeque<(u64, u64, bool)>,
-    /// The output register: the beat offered on `m_axis_*`.
-    out: Option<(u64, u64, bool)>,
-    /// The registered hold: the FIFO was above `HOLD_ABOVE` in the clock before.
-    hold_q: bool,
-    /// Events (fragments and triangle ends) that entered the FIFO.
-    pub beats_in: usize,
-    /// Clocks the address block was held.
-    pub held: usize,
+    /// Beats: tdata, tuser (z), tlast.
+    fifo: BeatFifo<(u64, u64, bool)>,
 }
 
 impl StreamTwin {
     pub fn new(p: &PipelineParams) -> Self {
         StreamTwin {
             inner: PipelineTwin::new(p),
-            count: 0,
-            rec_type: 0,
-            pending: false,
-            skip: false,
-            err: false,
+            reader: RecordReader::new(&PIXEL_STREAM.records()),
             outstanding: 0,
-            bank: vec![0; rtl::stream_layout::bank_words()],
-            load_bank: vec![0; rtl::stream_layout::bank_words()],
-            pend_b: false,
-            type_b: 0,
             regs: vec![0; REGISTERS.fields.len()],
-            fifo: VecDeque::new(),
-            out: None,
-            hold_q: false,
-            beats_in: 0,
-            held: 0,
+            fifo: BeatFifo::new(FIFO_DEPTH, HOLD_ABOVE),
         }
     }
 
     /// `s_axis_tready` in the current clock.
     pub fn s_ready(&self) -> bool {
-        !self.pending
+        self.reader.s_ready()
     }
 
     /// Nothing waiting, nothing in flight, nothing to deliver.
     pub fn idle(&self) -> bool {
-        !self.pending
-            && !self.pend_b
-            && self.count == 0
-            && self.outstanding == 0
-            && self.fifo.is_empty()
-            && self.out.is_none()
+        self.reader.idle() && self.outstanding == 0 && self.fifo.is_empty()
     }
 
     fn outputs(&self) -> Vec<u64> {
-        let (tdata, tuser, tlast) = self.out.unwrap_or((0, 0, false));
+        let (tdata, tuser, tlast) = self.fifo.out.unwrap_or((0, 0, false));
         vec![
             self.s_ready() as u64,
-            self.out.is_some() as u64,
+            self.fifo.out.is_some() as u64,
             tdata,
             tuser,
             tlast as u64,
-            self.err as u64,
+            self.reader.err as u64,
         ]
     }
 }
@@ -109,15 +77,13 @@ impl Twin for StreamTwin {
         let out = self.outputs();
 
         // The pipeline's inputs this clock.
-        let mut row = vec![(self.pend_b && self.type_b == 1) as u64];
-        row.extend(unpack(&TRIANGLE, &self.load_bank));
+        let (pend_b, type_b) = (self.reader.pend_b, self.reader.type_b);
+        let mut row = vec![(pend_b && type_b == TRIANGLE.code) as u64];
+        row.extend(unpack(&TRIANGLE, &self.reader.load_bank));
         row.extend(&self.regs);
-        let hold = self.hold_q;
-        self.hold_q = self.fifo.len() > HOLD_ABOVE;
-        row.push(hold as u64);
+        row.push(self.fifo.hold() as u64);
         debug_assert_eq!(row.len(), ROW_WIDTH);
         debug_assert_eq!(row.len(), HOLD_AT + 1);
-        self.held += hold as usize;
         let o = self.inner.step(&row);
         let (ready, valid, x, y, z, rgb, done) = (
             o[0] != 0,
@@ -129,78 +95,21 @@ impl Twin for StreamTwin {
             o[8] != 0,
         );
 
-        // This clock's decisions read the registers before the edge.
-        let load_taken = self.pend_b && self.type_b == 1 && ready;
-        let apply = self.pend_b && self.type_b == 2 && self.outstanding == 0;
-        let transfer = self.pending && !self.pend_b;
-        let (bank0, type0) = (self.bank.clone(), self.rec_type);
-
-        // Set-up side.
-        let accept = tvalid && !self.pending;
-        let expected = if self.rec_type == 1 {
-            payload_words(&TRIANGLE)
-        } else {
-            payload_words(&REGISTERS)
-        };
-        let known = self.rec_type == 1 || self.rec_type == 2;
-        if accept && self.skip {
-            if tlast {
-                self.skip = false;
-            }
-        } else if accept && self.count == 0 {
-            self.rec_type = tdata & 0xF;
-            self.count = 1;
-            if tlast {
-                self.err = true;
-                self.count = 0;
-            } else if self.rec_type != 1 && self.rec_type != 2 {
-                self.err = true;
-                self.skip = true;
-                self.count = 0;
-            }
-        } else if accept {
-            self.bank[self.count - 1] = tdata;
-            let at_end = self.count == expected;
-            self.count += 1;
-            if tlast {
-                self.count = 0;
-                if at_end && known {
-                    self.pending = true;
-                } else {
-                    self.err = true;
-                }
-            } else if at_end {
-                self.err = true;
-                self.skip = true;
-                self.count = 0;
-            }
-        }
-        if load_taken || apply {
-            self.pend_b = false;
-        }
+        // A triangle loads when the address block is ready; registers apply when every
+        // triangle loaded before them has left the pipeline.
+        let load_taken = pend_b && type_b == TRIANGLE.code && ready;
+        let apply = pend_b && type_b == REGISTERS.code && self.outstanding == 0;
         if apply {
-            self.regs = unpack(&REGISTERS, &self.load_bank[..payload_words(&REGISTERS)]);
+            self.regs = unpack(
+                &REGISTERS,
+                &self.reader.load_bank[..payload_words(&REGISTERS)],
+            );
         }
-        if transfer {
-            self.pending = false;
-            self.pend_b = true;
-            self.type_b = type0;
-            self.load_bank = bank0;
-        }
+        self.reader.clock(tdata, tvalid, tlast, load_taken || apply);
         self.outstanding = self.outstanding + load_taken as u64 - done as u64;
-
-        // Fragment side.
-        if !self.fifo.is_empty() && (self.out.is_none() || m_ready) {
-            self.out = self.fifo.pop_front();
-        } else if m_ready {
-            self.out = None;
-        }
-        if valid || done {
-            let beat = pack_fragment(&[x, y, valid as u64, rgb[0], rgb[1], rgb[2]]) as u64;
-            self.fifo.push_back((beat, z, done));
-            self.beats_in += 1;
-            assert!(self.fifo.len() <= FIFO_DEPTH, "twin FIFO overflow");
-        }
+        let beat = pack_fragment(&[x, y, valid as u64, rgb[0], rgb[1], rgb[2]]) as u64;
+        self.fifo
+            .clock(m_ready, (valid || done).then_some((beat, z, done)));
         out
     }
 }
@@ -262,7 +171,7 @@ pub fn drive(
             idle_clocks += 1;
         }
     }
-    run.held = twin.held;
+    run.held = twin.fifo.held;
     run
 }
 

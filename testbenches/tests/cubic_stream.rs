@@ -32,6 +32,14 @@ fn options(pipelined: bool) -> Options {
 fn rtl_beats(pipelined: bool, run: &CubicStreamRun) -> (Vec<Beat>, bool) {
     let b = find("cubic-stream").unwrap();
     let out = b.simulate(&options(pipelined), &run.rows).unwrap();
+    // The twin that made the rows (record reader, banks, FIFO, hold) agrees every clock,
+    // bad records and stalls included.
+    if let Some(c) = (0..out.len()).find(|&c| out[c] != run.outputs[c]) {
+        panic!(
+            "the RTL differs from the twin at clock {c}: {:?} against {:?}",
+            out[c], run.outputs[c]
+        );
+    }
     let beats = out
         .iter()
         .zip(&run.rows)
@@ -241,11 +249,16 @@ fn bad_records_are_dropped_with_error() {
     let mut long: Vec<Word> = t.clone();
     long.last_mut().unwrap().1 = false;
     long.extend([(0x1234, false), (0x5678, true)]);
+    // Longer by a whole well-formed record: dropped with the rest, not taken.
+    let mut long_record: Vec<Word> = t.clone();
+    long_record.last_mut().unwrap().1 = false;
+    long_record.extend(t.iter().copied());
     let header_only: Vec<Word> = vec![(1, true)];
     for (label, bad) in [
         ("unknown type", &unknown),
         ("short", &short),
         ("long", &long),
+        ("long by a whole record", &long_record),
         ("header only", &header_only),
     ] {
         let mut words = bad.clone();

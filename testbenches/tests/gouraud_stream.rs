@@ -19,6 +19,14 @@ use testbenches::verilog::Simulator;
 fn rtl_beats(run: &GouraudStreamRun) -> (Vec<Beat>, bool) {
     let b = find("gouraud-stream").unwrap();
     let out = b.simulate(&Options::new(), &run.rows).unwrap();
+    // The twin that made the rows (record reader, banks, FIFO, hold) agrees every clock,
+    // bad records and stalls included.
+    if let Some(c) = (0..out.len()).find(|&c| out[c] != run.outputs[c]) {
+        panic!(
+            "the RTL differs from the twin at clock {c}: {:?} against {:?}",
+            out[c], run.outputs[c]
+        );
+    }
     let beats = out
         .iter()
         .zip(&run.rows)
@@ -191,11 +199,16 @@ fn bad_records_are_dropped_with_error() {
     let mut long: Vec<Word> = t.clone();
     long.last_mut().unwrap().1 = false;
     long.extend([(0x1234, false), (0x5678, true)]);
+    // Longer by a whole well-formed record: dropped with the rest, not taken.
+    let mut long_record: Vec<Word> = t.clone();
+    long_record.last_mut().unwrap().1 = false;
+    long_record.extend(t.iter().copied());
     let header_only: Vec<Word> = vec![(1, true)];
     for (label, bad) in [
         ("unknown type", &unknown),
         ("short", &short),
         ("long", &long),
+        ("long by a whole record", &long_record),
         ("header only", &header_only),
     ] {
         let mut words = bad.clone();

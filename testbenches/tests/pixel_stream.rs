@@ -21,6 +21,14 @@ fn params() -> (PipelineParams, Options) {
 fn rtl_beats(run: &StreamRun, o: &Options) -> (Vec<Beat>, bool) {
     let b = find("pixel-stream").unwrap();
     let out = b.simulate(o, &run.rows).unwrap();
+    // The twin that made the rows (record reader, banks, FIFO, hold) agrees every clock,
+    // bad records and stalls included.
+    if let Some(c) = (0..out.len()).find(|&c| out[c] != run.outputs[c]) {
+        panic!(
+            "the RTL differs from the twin at clock {c}: {:?} against {:?}",
+            out[c], run.outputs[c]
+        );
+    }
     let beats = out
         .iter()
         .zip(&run.rows)
@@ -135,11 +143,16 @@ fn bad_records_are_dropped_with_error() {
     let mut long: Vec<Word> = t.clone();
     long.last_mut().unwrap().1 = false;
     long.extend([(0x1234, false), (0x5678, true)]);
+    // Longer by a whole well-formed record: dropped with the rest, not taken.
+    let mut long_record: Vec<Word> = t.clone();
+    long_record.last_mut().unwrap().1 = false;
+    long_record.extend(t.iter().copied());
     let header_only: Vec<Word> = vec![(1, true)];
     for (label, bad) in [
         ("unknown type", &mut unknown),
         ("short", &mut short),
         ("long", &mut long),
+        ("long by a whole record", &mut long_record),
         ("header only", &mut header_only.clone()),
     ] {
         let mut words = register_record(&regs);

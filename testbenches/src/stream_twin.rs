@@ -1,0 +1,165 @@
+//! The parts every stream top's twin shares (`pixel_stream`, `gouraud_stream`, `cubic_stream`):
+//! the record reader with its two word banks, and the fragment FIFO with its output register
+//! and the registered hold — written once, as the hardware's are the same in each top
+//! (`rtl/src/*_stream.rs`).
+
+use std::collections::VecDeque;
+
+use rtl::stream_layout::{payload_words, Record};
+
+/// The set-up side: header / word count, the receive bank, the load bank.
+pub struct RecordReader {
+    /// (header code, payload words) of each record type.
+    types: Vec<(u32, usize)>,
+    count: usize,
+    rec_type: u32,
+    /// A complete record waits in the receive bank (`s_axis_tready` low).
+    pending: bool,
+    skip: bool,
+    /// Sticky: a record was dropped.
+    pub err: bool,
+    bank: Vec<u32>,
+    /// The load bank and its record's type, valid while `pend_b`.
+    pub load_bank: Vec<u32>,
+    pub pend_b: bool,
+    pub type_b: u32,
+}
+
+impl RecordReader {
+    pub fn new(records: &[Record]) -> Self {
+        let types: Vec<(u32, usize)> = records.iter().map(|r| (r.code, payload_words(r))).collect();
+        let n = types.iter().map(|t| t.1).max().unwrap_or(0);
+        RecordReader {
+            types,
+            count: 0,
+            rec_type: 0,
+            pending: false,
+            skip: false,
+            err: false,
+            bank: vec![0; n],
+            load_bank: vec![0; n],
+            pend_b: false,
+            type_b: 0,
+        }
+    }
+
+    /// `s_axis_tready` in the current clock.
+    pub fn s_ready(&self) -> bool {
+        !self.pending
+    }
+
+    /// No record being received or waiting in either bank.
+    pub fn idle(&self) -> bool {
+        !self.pending && !self.pend_b && self.count == 0
+    }
+
+    /// One clock edge: the set-up stream's word, and whether the load bank's record was used
+    /// this clock (loaded or applied; decided from the registers before the edge).
+    pub fn clock(&mut self, tdata: u32, tvalid: bool, tlast: bool, consumed: bool) {
+        let transfer = self.pending && !self.pend_b;
+        let (bank0, type0) = (self.bank.clone(), self.rec_type);
+        let accept = tvalid && !self.pending;
+        let size = |t: u32| self.types.iter().find(|k| k.0 == t).map(|k| k.1);
+        let expected = size(self.rec_type);
+        if accept && self.skip {
+            if tlast {
+                self.skip = false;
+            }
+        } else if accept && self.count == 0 {
+            self.rec_type = tdata & 0xF;
+            self.count = 1;
+            if tlast {
+                // A record without payload.
+                self.err = true;
+                self.count = 0;
+            } else if size(self.rec_type).is_none() {
+                self.err = true;
+                self.skip = true;
+                self.count = 0;
+            }
+        } else if accept {
+            self.bank[self.count - 1] = tdata;
+            let at_end = Some(self.count) == expected;
+            self.count += 1;
+            if tlast {
+                self.count = 0;
+                if at_end {
+                    self.pending = true;
+                } else {
+                    self.err = true;
+                }
+            } else if at_end {
+                // Longer than its type: drop the rest.
+                self.err = true;
+                self.skip = true;
+                self.count = 0;
+            }
+        }
+        if consumed {
+            self.pend_b = false;
+        }
+        if transfer {
+            self.pending = false;
+            self.pend_b = true;
+            self.type_b = type0;
+            self.load_bank = bank0;
+        }
+    }
+}
+
+/// The fragment side: the FIFO of beats `T`, the output register offering one on `m_axis_*`,
+/// and the hold registered from the FIFO's level.
+pub struct BeatFifo<T> {
+    depth: usize,
+    hold_above: usize,
+    fifo: VecDeque<T>,
+    /// The output register: the beat offered.
+    pub out: Option<T>,
+    hold_q: bool,
+    /// Clocks the pipeline was held.
+    pub held: usize,
+    /// The most beats the FIFO held.
+    pub max_level: usize,
+}
+
+impl<T: Copy> BeatFifo<T> {
+    pub fn new(depth: usize, hold_above: usize) -> Self {
+        BeatFifo {
+            depth,
+            hold_above,
+            fifo: VecDeque::new(),
+            out: None,
+            hold_q: false,
+            held: 0,
+            max_level: 0,
+        }
+    }
+
+    /// The pipeline's `hold` this clock (the level register above `hold_above` in the clock
+    /// before); registers the next one.
+    pub fn hold(&mut self) -> bool {
+        let h = self.hold_q;
+        self.hold_q = self.fifo.len() > self.hold_above;
+        self.held += h as usize;
+        h
+    }
+
+    /// Nothing in the FIFO or the output register.
+    pub fn is_empty(&self) -> bool {
+        self.fifo.is_empty() && self.out.is_none()
+    }
+
+    /// One clock edge: the consumer's `tready`, and the beat the pipeline gives this clock.
+    pub fn clock(&mut self, m_ready: bool, push: Option<T>) {
+        if !self.fifo.is_empty() && (self.out.is_none() || m_ready) {
+            self.out = self.fifo.pop_front();
+        } else if m_ready {
+            self.out = None;
+        }
+        if let Some(b) = push {
+            self.fifo.push_back(b);
+            assert!(self.fifo.len() <= self.depth, "twin FIFO overflow");
+            self.max_level = self.max_level.max(self.fifo.len());
+        }
+    }
+}
