@@ -8,7 +8,7 @@ use std::path::PathBuf;
 
 use anyhow::{anyhow, bail, Context, Result};
 use pipeline::lit::{method_options, LitJob, ShadingRegs};
-use pipeline::stream::{scene_words, Beat};
+use pipeline::stream::{scene_words, Beat, Word};
 use rtl::pixel_pipeline::PipelineParams;
 use rtl::registry::BlockParams;
 use testbenches::pixel_stream::drive;
@@ -67,41 +67,15 @@ pub fn run(a: Args) -> Result<()> {
     // The producer and consumer never pause here: the rows are the twin's; the beats are the
     // rust-hdl simulation's, which must agree with the twin's clock for clock.
     let run = drive(&p, &words, 1, 0.0, &mut StallPattern::never(), 8);
-    let b = testbenches::registry::find("pixel-stream").map_err(|e| anyhow!(e))?;
-    let out = b.simulate(&o, &run.rows).map_err(|e| anyhow!(e))?;
-    if out != run.outputs {
-        bail!("the rust-hdl simulation of pixel-stream disagrees with its twin");
-    }
-    let beats: Vec<Beat> = out
-        .iter()
-        .filter(|r| r[1] != 0)
-        .map(|r| Beat::read(r[2], r[3], r[4] != 0))
-        .collect();
-
-    let mut setup = format!(
-        "# pixel-stream set-up words ({:?} order): hex word, tlast\n",
-        a.setup_order
-    )
-    .to_lowercase();
-    for (w, last) in &words {
-        setup.push_str(&format!("{w:08x} {}\n", *last as u8));
-    }
-    let mut text =
-        String::from("# pixel-stream fragment beats: x y pixel red green blue z tlast\n");
-    for bt in &beats {
-        text.push_str(&format!(
-            "{} {} {} {} {} {} {} {}\n",
-            bt.x, bt.y, bt.pixel as u8, bt.rgb[0], bt.rgb[1], bt.rgb[2], bt.z, bt.last as u8
-        ));
-    }
-    let verilog = b.verilog(&o).map_err(|e| anyhow!(e))?;
-    write_files(
+    let order = format!("{:?}", a.setup_order).to_lowercase();
+    let beats = simulate_and_write(
         &a.out,
-        &[
-            ("setup.txt", setup.as_str()),
-            ("beats.txt", text.as_str()),
-            ("pixel_stream.v", verilog.as_str()),
-        ],
+        "pixel-stream",
+        &o,
+        &run.rows,
+        &run.outputs,
+        &words,
+        &order,
     )?;
     crate::outln!(
         "pixel-stream ({}): {} triangles, {} set-up words, {} beats ({} fragments) in {} clocks -> {}",
@@ -131,39 +105,16 @@ fn run_cubic(a: &Args) -> Result<()> {
     let words = pipeline::stream::cubic_words(&spans);
     let p = rtl::cubic_pipeline::CubicParams(rtl::horner_unit::HornerParams { pipelined });
     let run = testbenches::cubic_stream::drive(&p, &words, 1, 0.0, &mut StallPattern::never(), 8);
-    let b = testbenches::registry::find("cubic-stream").map_err(|e| anyhow!(e))?;
     let o = rtl::registry::Options::new()
         .with("horner", if pipelined { "pipelined" } else { "serial" });
-    let out = b.simulate(&o, &run.rows).map_err(|e| anyhow!(e))?;
-    if out != run.outputs {
-        bail!("the rust-hdl simulation of cubic-stream disagrees with its twin");
-    }
-    let beats: Vec<Beat> = out
-        .iter()
-        .filter(|r| r[1] != 0)
-        .map(|r| Beat::read(r[2], r[3], r[4] != 0))
-        .collect();
-    let mut setup = String::from("# cubic-stream set-up words (walk order): hex word, tlast\n");
-    for (w, last) in &words {
-        setup.push_str(&format!("{w:08x} {}\n", *last as u8));
-    }
-    let mut text = String::from(
-        "# cubic-stream fragment beats: x y pixel red green blue z tlast (tlast: the line's last pixel)\n",
-    );
-    for bt in &beats {
-        text.push_str(&format!(
-            "{} {} {} {} {} {} {} {}\n",
-            bt.x, bt.y, bt.pixel as u8, bt.rgb[0], bt.rgb[1], bt.rgb[2], bt.z, bt.last as u8
-        ));
-    }
-    let verilog = b.verilog(&o).map_err(|e| anyhow!(e))?;
-    write_files(
+    let beats = simulate_and_write(
         &a.out,
-        &[
-            ("setup.txt", setup.as_str()),
-            ("beats.txt", text.as_str()),
-            ("cubic_stream.v", verilog.as_str()),
-        ],
+        "cubic-stream",
+        &o,
+        &run.rows,
+        &run.outputs,
+        &words,
+        "walk",
     )?;
     crate::outln!(
         "cubic-stream ({}): {} lines, {} set-up words, {} beats in {} clocks -> {}",
@@ -175,6 +126,68 @@ fn run_cubic(a: &Args) -> Result<()> {
         a.out.display()
     )?;
     Ok(())
+}
+
+/// What every `stream --method` writes: the rust-hdl simulation of stream top `block` on the
+/// twin's input rows (it must agree with the twin's outputs clock for clock), then `setup.txt` (the words, sent
+/// in `order`), `beats.txt` (the beats the simulation delivers; z = 0 for a top without
+/// `m_axis_tuser`) and the top's Verilog. Returns the beats.
+fn simulate_and_write(
+    dir: &std::path::Path,
+    block: &str,
+    o: &rtl::registry::Options,
+    rows: &[Vec<u64>],
+    twin: &[Vec<u64>],
+    words: &[Word],
+    order: &str,
+) -> Result<Vec<Beat>> {
+    let top = rtl::stream_layout::TOPS
+        .iter()
+        .find(|t| t.block == block)
+        .ok_or_else(|| anyhow!("{block} is not a stream top"))?;
+    let b = testbenches::registry::find(block).map_err(|e| anyhow!(e))?;
+    let out = b.simulate(o, rows).map_err(|e| anyhow!(e))?;
+    if out != twin {
+        bail!("the rust-hdl simulation of {block} disagrees with its twin");
+    }
+    // Outputs: s_axis_tready, m_axis_tvalid, tdata, [tuser,] tlast, error.
+    let tuser = top.tuser.is_some();
+    let beats: Vec<Beat> = out
+        .iter()
+        .filter(|r| r[1] != 0)
+        .map(|r| {
+            if tuser {
+                Beat::read(r[2], r[3], r[4] != 0)
+            } else {
+                Beat::read(r[2], 0, r[3] != 0)
+            }
+        })
+        .collect();
+    let mut setup = format!("# {block} set-up words ({order} order): hex word, tlast\n");
+    for (w, last) in words {
+        setup.push_str(&format!("{w:08x} {}\n", *last as u8));
+    }
+    let mut text = format!(
+        "# {block} fragment beats: x y pixel red green blue z tlast (tlast: {}{})\n",
+        top.tlast,
+        if tuser { "" } else { "; z: 0, no tuser" }
+    );
+    for bt in &beats {
+        text.push_str(&format!(
+            "{} {} {} {} {} {} {} {}\n",
+            bt.x, bt.y, bt.pixel as u8, bt.rgb[0], bt.rgb[1], bt.rgb[2], bt.z, bt.last as u8
+        ));
+    }
+    let verilog = b.verilog(o).map_err(|e| anyhow!(e))?;
+    write_files(
+        dir,
+        &[
+            ("setup.txt", setup.as_str()),
+            ("beats.txt", text.as_str()),
+            (&format!("{}.v", b.module_name()), verilog.as_str()),
+        ],
+    )?;
+    Ok(beats)
 }
 
 fn write_files(dir: &std::path::Path, files: &[(&str, &str)]) -> Result<()> {
@@ -204,42 +217,16 @@ fn run_gouraud(a: &Args) -> Result<()> {
     let jobs: Vec<TriangleJob> = order.iter().map(|&i| jobs[i]).collect();
     let words = pipeline::stream::gouraud_words(&jobs);
     let run = testbenches::gouraud_stream::drive(&words, 1, 0.0, &mut StallPattern::never(), 8);
-    let b = testbenches::registry::find("gouraud-stream").map_err(|e| anyhow!(e))?;
+    let order = format!("{:?}", a.setup_order).to_lowercase();
     let o = rtl::registry::Options::new();
-    let out = b.simulate(&o, &run.rows).map_err(|e| anyhow!(e))?;
-    if out != run.outputs {
-        bail!("the rust-hdl simulation of gouraud-stream disagrees with its twin");
-    }
-    let beats: Vec<Beat> = out
-        .iter()
-        .filter(|r| r[1] != 0)
-        .map(|r| Beat::read(r[2], 0, r[3] != 0))
-        .collect();
-    let mut setup = format!(
-        "# gouraud-stream set-up words ({:?} order): hex word, tlast\n",
-        a.setup_order
-    )
-    .to_lowercase();
-    for (w, last) in &words {
-        setup.push_str(&format!("{w:08x} {}\n", *last as u8));
-    }
-    let mut text = String::from(
-        "# gouraud-stream fragment beats: x y pixel red green blue z tlast (z: 0, no tuser)\n",
-    );
-    for bt in &beats {
-        text.push_str(&format!(
-            "{} {} {} {} {} {} 0 {}\n",
-            bt.x, bt.y, bt.pixel as u8, bt.rgb[0], bt.rgb[1], bt.rgb[2], bt.last as u8
-        ));
-    }
-    let verilog = b.verilog(&o).map_err(|e| anyhow!(e))?;
-    write_files(
+    let beats = simulate_and_write(
         &a.out,
-        &[
-            ("setup.txt", setup.as_str()),
-            ("beats.txt", text.as_str()),
-            ("gouraud_stream.v", verilog.as_str()),
-        ],
+        "gouraud-stream",
+        &o,
+        &run.rows,
+        &run.outputs,
+        &words,
+        &order,
     )?;
     crate::outln!(
         "gouraud-stream: {} triangles, {} set-up words, {} beats ({} fragments) in {} clocks -> {}",
