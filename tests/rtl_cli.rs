@@ -293,6 +293,34 @@ fn export_verilog_writes_modules() {
     );
 }
 
+/// `export-verilog --ecp5-dsp` writes what the ECP5 flow reads: the power unit's registered
+/// products as MULT18X18D instances (none left as a `*` between registers), the model beside
+/// it; the default export has no vendor cell.
+#[test]
+fn export_verilog_ecp5_dsp_maps_products_and_writes_the_model() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().to_str().unwrap();
+    let plain = shadecore_ok(&["export-verilog", "--block", "power-unit", "--out", out]);
+    assert!(!String::from_utf8_lossy(&plain.stdout).contains("MULT18X18D"));
+    let text = std::fs::read_to_string(dir.path().join("power_unit.v")).unwrap();
+    assert!(!text.contains("MULT18X18D") && text.contains("$q * "));
+    let run = shadecore_ok(&[
+        "export-verilog",
+        "--block",
+        "power-unit",
+        "--ecp5-dsp",
+        "--out",
+        out,
+    ]);
+    let said = String::from_utf8_lossy(&run.stdout);
+    assert!(said.contains("23 products on registered MULT18X18D"), "{said}");
+    let text = std::fs::read_to_string(dir.path().join("power_unit.v")).unwrap();
+    assert_eq!(text.matches("MULT18X18D #(").count(), 23);
+    assert!(!text.contains("$q * "), "a product left to Yosys");
+    let model = std::fs::read_to_string(dir.path().join("MULT18X18D_model.v")).unwrap();
+    assert!(model.contains("module MULT18X18D("));
+}
+
 /// The README's block table is the registry's (`shadecore blocks`): adding a block without
 /// updating the README fails here.
 #[test]
@@ -335,6 +363,10 @@ fn synth_ecp5_only_flags_are_one_line_errors() {
         (
             &["synth", "--block", "gouraud-stream", "--seed", "2"][..],
             "--seed",
+        ),
+        (
+            &["synth", "--block", "power-unit", "--mult-regs", "fabric"][..],
+            "--mult-regs",
         ),
     ] {
         let out = shadecore(args);

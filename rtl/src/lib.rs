@@ -5,6 +5,7 @@ pub mod cos_v_accumulator;
 pub mod cubic_pipeline;
 pub mod cubic_stream;
 pub mod declare;
+pub mod ecp5_dsp;
 pub mod export;
 pub mod fast_unit;
 pub mod fixed;

