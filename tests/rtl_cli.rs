@@ -313,7 +313,10 @@ fn export_verilog_ecp5_dsp_maps_products_and_writes_the_model() {
         out,
     ]);
     let said = String::from_utf8_lossy(&run.stdout);
-    assert!(said.contains("23 products on registered MULT18X18D"), "{said}");
+    assert!(
+        said.contains("23 products on registered MULT18X18D"),
+        "{said}"
+    );
     let text = std::fs::read_to_string(dir.path().join("power_unit.v")).unwrap();
     assert_eq!(text.matches("MULT18X18D #(").count(), 23);
     assert!(!text.contains("$q * "), "a product left to Yosys");

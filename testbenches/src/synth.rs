@@ -4,7 +4,7 @@
 
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use crate::harness::Port;
 use crate::tools;
@@ -711,33 +711,7 @@ pub fn ecp5_with(
             }
         },
     };
-    let device_flag = format!("--{}", rep.part.device);
-    let seed_arg = seed.to_string();
-    let out = std::process::Command::new(&nextpnr)
-        .args([
-            device_flag.as_str(),
-            "--package",
-            rep.part.package,
-            "--speed",
-            "6",
-            "--json",
-            "shell.json",
-            "--lpf-allow-unconstrained",
-            "--freq",
-            "100",
-            "--timing-allow-fail",
-            "--seed",
-            seed_arg.as_str(),
-        ])
-        .current_dir(&dir)
-        .output()
-        .map_err(|e| format!("cannot run {}: {e}", nextpnr.display()))?;
-    let text = format!(
-        "{}{}",
-        String::from_utf8_lossy(&out.stdout),
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let _ = std::fs::write(dir.join("nextpnr-ecp5.log"), &text);
+    let (out, text) = run_nextpnr_ecp5(&nextpnr, &dir, rep.part, "shell.json", seed)?;
     if !out.status.success() {
         if text.contains("Unable to place") || text.contains("no BELs remaining") {
             rep.unplaced = Some(format!("nextpnr-ecp5 ran out of {}'s cells", rep.part.name));
@@ -763,6 +737,46 @@ pub fn ecp5_with(
         ));
     }
     Ok(rep)
+}
+
+/// Place and route `json` (in `dir`) on `part` at speed grade 6, constrained at 100 MHz (the
+/// issue's bar; a failing clock is reported, not an error), with the placer's `seed`; the
+/// output is kept as `nextpnr-ecp5.log` and returned with the exit status.
+fn run_nextpnr_ecp5(
+    nextpnr: &Path,
+    dir: &Path,
+    part: Ecp5Part,
+    json: &str,
+    seed: u64,
+) -> Result<(std::process::Output, String), String> {
+    let device_flag = format!("--{}", part.device);
+    let seed_arg = seed.to_string();
+    let out = std::process::Command::new(nextpnr)
+        .args([
+            device_flag.as_str(),
+            "--package",
+            part.package,
+            "--speed",
+            "6",
+            "--json",
+            json,
+            "--lpf-allow-unconstrained",
+            "--freq",
+            "100",
+            "--timing-allow-fail",
+            "--seed",
+            seed_arg.as_str(),
+        ])
+        .current_dir(dir)
+        .output()
+        .map_err(|e| format!("cannot run {}: {e}", nextpnr.display()))?;
+    let text = format!(
+        "{}{}",
+        String::from_utf8_lossy(&out.stdout),
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let _ = std::fs::write(dir.join("nextpnr-ecp5.log"), &text);
+    Ok((out, text))
 }
 
 /// A top placed on its own pins (no timing shell): whether nextpnr-ecp5 could place it, and
@@ -832,33 +846,7 @@ pub fn ecp5_on_pins_with(
         .chain(&ports.1)
         .map(|p| p.width)
         .sum::<usize>();
-    let device_flag = format!("--{}", part.device);
-    let seed_arg = seed.to_string();
-    let out = std::process::Command::new(&nextpnr)
-        .args([
-            device_flag.as_str(),
-            "--package",
-            part.package,
-            "--speed",
-            "6",
-            "--json",
-            "top.json",
-            "--lpf-allow-unconstrained",
-            "--freq",
-            "100",
-            "--timing-allow-fail",
-            "--seed",
-            seed_arg.as_str(),
-        ])
-        .current_dir(&dir)
-        .output()
-        .map_err(|e| format!("cannot run {}: {e}", nextpnr.display()))?;
-    let text = format!(
-        "{}{}",
-        String::from_utf8_lossy(&out.stdout),
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let _ = std::fs::write(dir.join("nextpnr-ecp5.log"), &text);
+    let (out, text) = run_nextpnr_ecp5(&nextpnr, &dir, part, "top.json", seed)?;
     let mut rep = PinsReport {
         part,
         pins,
