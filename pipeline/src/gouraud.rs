@@ -208,44 +208,16 @@ impl Pipe {
         pixel: &mut dyn FnMut(usize, u32, u32, [u8; 3]),
         progress: &mut dyn FnMut(u64),
     ) -> Result<PipeStats, String> {
-        let words = crate::stream::gouraud_words(jobs);
-        let mut st = PipeStats::default();
-        let mut out = vec![0u64; 5];
-        let mut next = 0;
-        while st.triangles < jobs.len() as u64 {
-            if st.clocks >= max_clocks {
-                return Err(format!(
-                    "gouraud-stream: {} of {} triangles done after {max_clocks} clocks",
-                    st.triangles,
-                    jobs.len()
-                ));
-            }
-            // `s_axis_tready` is a register output: settled for this clock.
-            let taken = s.dut().s_axis_tready.val();
-            let row = match words.get(next) {
-                Some(&(w, last)) => [w as u64, 1, last as u64, 1],
-                None => [0, 0, 0, 1],
-            };
-            s.step(&row, &mut out)?;
-            next += (row[1] != 0 && taken) as usize;
-            st.clocks += 1;
-            if out[4] != 0 {
-                return Err("gouraud-stream flagged a malformed set-up record".into());
-            }
-            if out[1] != 0 {
-                let b = crate::stream::Beat::read(out[2], 0, out[3] != 0);
-                if b.pixel {
-                    st.pixels += 1;
-                    pixel(st.triangles as usize, b.x, b.y, b.rgb);
-                }
-                if b.last {
-                    st.triangles += 1;
-                    progress(st.triangles);
-                }
-            }
-        }
-        s.stop_vcd();
-        Ok(st)
+        crate::stream::drive(
+            s,
+            "gouraud-stream",
+            "triangles",
+            &crate::stream::gouraud_words(jobs),
+            jobs.len() as u64,
+            max_clocks,
+            &mut |job, b, _| pixel(job, b.x, b.y, b.rgb),
+            progress,
+        )
     }
 
     /// Run `jobs` through the pipe, each loaded as soon as `ready` is high;

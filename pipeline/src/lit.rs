@@ -293,51 +293,25 @@ impl LitPipe {
         fragment: &mut dyn FnMut(Fragment),
         progress: &mut dyn FnMut(u64),
     ) -> Result<PipeStats, String> {
-        let words = crate::stream::scene_words(jobs, regs);
-        let mut st = PipeStats::default();
-        let mut out = vec![0u64; 6];
-        let mut next = 0;
-        while st.triangles < jobs.len() as u64 {
-            if st.clocks >= max_clocks {
-                return Err(format!(
-                    "pixel-stream: {} of {} triangles done after {max_clocks} clocks",
-                    st.triangles,
-                    jobs.len()
-                ));
-            }
-            // `s_axis_tready` is a register output: settled for this clock.
-            let taken = s.dut().s_axis_tready.val();
-            let row = match words.get(next) {
-                Some(&(w, last)) => [w as u64, 1, last as u64, 1],
-                None => [0, 0, 0, 1],
-            };
-            s.step(&row, &mut out)?;
-            next += (row[1] != 0 && taken) as usize;
-            st.clocks += 1;
-            if out[5] != 0 {
-                return Err("pixel-stream flagged a malformed set-up record".into());
-            }
-            if out[1] != 0 {
-                let b = crate::stream::Beat::read(out[2], out[3], out[4] != 0);
-                if b.pixel {
-                    st.pixels += 1;
-                    fragment(Fragment {
-                        job: st.triangles as usize,
-                        x: b.x,
-                        y: b.y,
-                        z: b.z,
-                        rgb: b.rgb,
-                        clock: st.clocks - 1,
-                    });
-                }
-                if b.last {
-                    st.triangles += 1;
-                    progress(st.triangles);
-                }
-            }
-        }
-        s.stop_vcd();
-        Ok(st)
+        crate::stream::drive(
+            s,
+            "pixel-stream",
+            "triangles",
+            &crate::stream::scene_words(jobs, regs),
+            jobs.len() as u64,
+            max_clocks,
+            &mut |job, b, clock| {
+                fragment(Fragment {
+                    job,
+                    x: b.x,
+                    y: b.y,
+                    z: b.z,
+                    rgb: b.rgb,
+                    clock,
+                })
+            },
+            progress,
+        )
     }
 
     /// Run `jobs` with registers `regs`, each job loaded as soon as `ready` is high;

@@ -552,52 +552,31 @@ fn run_cubic_stream(
     fragment: &mut dyn FnMut(SpanFragment),
     progress: &mut dyn FnMut(u64),
 ) -> Result<PipeStats, String> {
-    let words = crate::stream::cubic_words(spans);
-    let mut st = PipeStats::default();
-    let mut out = vec![0u64; 6];
-    let mut next = 0;
-    while st.triangles < spans.len() as u64 {
-        if st.clocks >= max_clocks {
-            return Err(format!(
-                "cubic-stream: {} of {} lines done after {max_clocks} clocks",
-                st.triangles,
-                spans.len()
-            ));
-        }
-        // `s_axis_tready` is a register output: settled for this clock.
-        let taken = s.dut().s_axis_tready.val();
-        let row = match words.get(next) {
-            Some(&(w, last)) => [w as u64, 1, last as u64, 1],
-            None => [0, 0, 0, 1],
-        };
-        s.step(&row, &mut out)?;
-        next += (row[1] != 0 && taken) as usize;
-        st.clocks += 1;
-        if out[5] != 0 {
-            return Err("cubic-stream flagged a malformed set-up record".into());
-        }
-        if out[1] != 0 {
-            let b = crate::stream::Beat::read(out[2], out[3], out[4] != 0);
-            st.pixels += 1;
+    let n = spans.len() as u64;
+    crate::stream::drive(
+        s,
+        "cubic-stream",
+        "lines",
+        &crate::stream::cubic_words(spans),
+        n,
+        max_clocks,
+        &mut |line, b, clock| {
             fragment(SpanFragment {
-                triangle: spans[st.triangles as usize].triangle,
+                triangle: spans[line].triangle,
                 x: b.x,
                 y: b.y,
                 z: b.z,
                 rgb: b.rgb,
-                clock: st.clocks - 1,
+                clock,
                 lane_b: false,
-            });
-            if b.last {
-                st.triangles += 1;
-                if st.triangles % 256 == 0 || st.triangles == spans.len() as u64 {
-                    progress(st.triangles);
-                }
+            })
+        },
+        &mut |done| {
+            if done % 256 == 0 || done == n {
+                progress(done);
             }
-        }
-    }
-    s.stop_vcd();
-    Ok(st)
+        },
+    )
 }
 
 /// A clock budget for `spans`: their clocks plus the pipeline's latency and margin (and for

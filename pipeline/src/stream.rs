@@ -145,6 +145,94 @@ impl Beat {
     }
 }
 
+/// The set-up side's `s_axis_tready` of a stream top (a register output: settled before the
+/// clock's step), for [`drive`].
+pub trait StreamTop: rtl::sim::Dut {
+    fn s_axis_tready(&self) -> bool;
+    /// Whether the fragment beat has `m_axis_tuser` (the depth) among the outputs.
+    const TUSER: bool = true;
+}
+
+impl StreamTop for rtl::pixel_stream::PixelStream {
+    fn s_axis_tready(&self) -> bool {
+        self.s_axis_tready.val()
+    }
+}
+
+impl StreamTop for rtl::gouraud_stream::GouraudStream {
+    fn s_axis_tready(&self) -> bool {
+        self.s_axis_tready.val()
+    }
+    const TUSER: bool = false;
+}
+
+impl StreamTop for rtl::cubic_stream::CubicStream {
+    fn s_axis_tready(&self) -> bool {
+        self.s_axis_tready.val()
+    }
+}
+
+/// Drive `words` into the stream top `s`, a word per clock while `s_axis_tready`, and take every
+/// fragment beat (`m_axis_tready` high) until `records` beats with `tlast` have come:
+/// `fragment(record, beat, clock)` for each beat with a pixel (record = the `tlast`s seen
+/// before it), `record_done(records_done)` after each `tlast`. An error names `top` and
+/// `what` the records are when `max_clocks` pass first, or when the top flags a malformed
+/// record. Stops the VCD (if any) at the end.
+#[allow(clippy::too_many_arguments)]
+pub fn drive<T: StreamTop>(
+    s: &mut rtl::sim::Stepper<T>,
+    top: &str,
+    what: &str,
+    words: &[Word],
+    records: u64,
+    max_clocks: u64,
+    fragment: &mut dyn FnMut(usize, Beat, u64),
+    record_done: &mut dyn FnMut(u64),
+) -> Result<crate::gouraud::PipeStats, String> {
+    let mut st = crate::gouraud::PipeStats::default();
+    // Outputs: s_axis_tready, m_axis_tvalid, m_axis_tdata, [m_axis_tuser,] m_axis_tlast, error.
+    let n_out = if T::TUSER { 6 } else { 5 };
+    let mut out = vec![0u64; n_out];
+    let mut next = 0;
+    while st.triangles < records {
+        if st.clocks >= max_clocks {
+            return Err(format!(
+                "{top}: {} of {records} {what} done after {max_clocks} clocks",
+                st.triangles
+            ));
+        }
+        let taken = s.dut().s_axis_tready();
+        let row = match words.get(next) {
+            Some(&(w, last)) => [w as u64, 1, last as u64, 1],
+            None => [0, 0, 0, 1],
+        };
+        s.step(&row, &mut out)?;
+        next += (row[1] != 0 && taken) as usize;
+        st.clocks += 1;
+        if out[n_out - 1] != 0 {
+            return Err(format!("{top} flagged a malformed set-up record"));
+        }
+        if out[1] != 0 {
+            let (tuser, tlast) = if T::TUSER {
+                (out[3], out[4])
+            } else {
+                (0, out[3])
+            };
+            let b = Beat::read(out[2], tuser, tlast != 0);
+            if b.pixel {
+                st.pixels += 1;
+                fragment(st.triangles as usize, b, st.clocks - 1);
+            }
+            if b.last {
+                st.triangles += 1;
+                record_done(st.triangles);
+            }
+        }
+    }
+    s.stop_vcd();
+    Ok(st)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
