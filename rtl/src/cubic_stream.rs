@@ -67,6 +67,7 @@ use rust_hdl::prelude::*;
 
 use crate::cubic_pipeline::{CubicParams, CubicPipeline};
 use crate::primitives::Lutram;
+use crate::record_reader::RecordReader;
 use crate::registry::RtlBlock;
 
 /// Clocks from a pixel entering the units to its fragment at `cubic-pipeline`'s outputs (at
@@ -91,18 +92,16 @@ crate::hw_block! {
             m_axis_tlast: Bit, error: Bit,
         }
         pub pipe: CubicPipeline = CubicPipeline::new(p),
-        // Set-up side: words of the current record (0: expecting a header), its type, a
-        // complete record waiting, dropping to tlast, the sticky error.
-        count: DFF<Bits<4>>, rec_type: DFF<Bits<4>>, pending: DFF<Bit>, skip: DFF<Bit>,
-        err: DFF<Bit>,
+        /// Set-up side: the record reader (one record type, the line).
+        rd: RecordReader,
         /// A line waits in the load bank.
         pend_b: DFF<Bit>, transfer: Signal<Local, Bit>,
-        tri_words: Constant<Bits<4>> =
+        tri_words: Constant<Bits<6>> =
             Constant::new((crate::stream_layout::payload_words(&crate::stream_layout::CUBIC_LINE) as u64).into()),
-        /// The word the record reader takes (the set-up stream's).
-        in_word: Signal<Local, Bits<32>>, in_last: Signal<Local, Bit>,
-        accept: Signal<Local, Bit>, take_word: Signal<Local, Bit>, known: Signal<Local, Bit>,
-        at_end: Signal<Local, Bit>,
+        no_words: Constant<Bits<6>> = Constant::new(0u64.into()),
+        /// The word the reader takes, and which payload word it is (+ 1).
+        in_word: Signal<Local, Bits<32>>, take_word: Signal<Local, Bit>,
+        word_index: Signal<Local, Bits<6>>,
         // Fragment side: the FIFO (beat, and z with tlast), pointers, level.
         fifo_beat: Lutram<Bits<64>, FIFO_BITS>,
         fifo_tail: Lutram<Bits<33>, FIFO_BITS>,
@@ -148,59 +147,27 @@ crate::hw_block! {
 impl Logic for CubicStream {
     #[hdl_gen]
     fn update(&mut self) {
-        clock!(self, clock, pipe, fifo_beat, fifo_tail);
-        dff_setup!(self, clock, count, rec_type, pending, skip, err, pend_b);
+        clock!(self, clock, pipe, rd, fifo_beat, fifo_tail);
+        dff_setup!(self, clock, pend_b);
         dff_setup!(self, clock, wr_ptr, rd_ptr, level, hold_q, out_v, out_data, out_tail);
-        // Set-up side: the record reader takes a word while no complete record waits in the
-        // receive bank.
-        self.s_axis_tready.next = !self.pending.q.val();
+        // Set-up side: the record reader (`record_reader`) takes a word while no complete
+        // record waits in the receive bank, and names the payload word it is.
+        self.rd.head.next = self.s_axis_tdata.val().get_bits::<4>(0);
+        self.rd.tvalid.next = self.s_axis_tvalid.val();
+        self.rd.tlast.next = self.s_axis_tlast.val();
+        self.rd.len1.next = self.tri_words.val();
+        self.rd.len2.next = self.no_words.val();
+        self.s_axis_tready.next = self.rd.tready.val();
         self.in_word.next = self.s_axis_tdata.val();
-        self.in_last.next = self.s_axis_tlast.val();
-        self.accept.next = self.s_axis_tvalid.val() & !self.pending.q.val();
-        self.take_word.next = self.accept.val() & !self.skip.q.val() & (self.count.q.val() != 0);
-        self.known.next = self.rec_type.q.val() == 1;
-        self.at_end.next = self.count.q.val() == self.tri_words.val();
-        if self.accept.val() & self.skip.q.val() {
-            // Dropping a bad record up to its tlast.
-            if self.in_last.val() {
-                self.skip.d.next = false;
-            }
-        } else if self.accept.val() & (self.count.q.val() == 0) {
-            // Header.
-            self.rec_type.d.next = self.in_word.val().get_bits::<4>(0);
-            self.count.d.next = 1.into();
-            if self.in_last.val() {
-                // A record without payload.
-                self.err.d.next = true;
-                self.count.d.next = 0.into();
-            } else if self.in_word.val().get_bits::<4>(0) != 1 {
-                self.err.d.next = true;
-                self.skip.d.next = true;
-                self.count.d.next = 0.into();
-            }
-        } else if self.take_word.val() {
-            self.count.d.next = self.count.q.val() + 1;
-            if self.in_last.val() {
-                self.count.d.next = 0.into();
-                if self.at_end.val() & self.known.val() {
-                    self.pending.d.next = true;
-                } else {
-                    self.err.d.next = true;
-                }
-            } else if self.at_end.val() {
-                // Longer than its type: drop the rest.
-                self.err.d.next = true;
-                self.skip.d.next = true;
-                self.count.d.next = 0.into();
-            }
-        }
-        self.error.next = self.err.q.val();
+        self.take_word.next = self.rd.take_word.val();
+        self.word_index.next = self.rd.index.val();
+        self.error.next = self.rd.error.val();
 
         // A complete record moves to the load bank when that is free; it loads when the
         // pipeline is ready.
-        self.transfer.next = self.pending.q.val() & !self.pend_b.q.val();
+        self.transfer.next = self.rd.pending.val() & !self.pend_b.q.val();
+        self.rd.take_record.next = self.transfer.val();
         if self.transfer.val() {
-            self.pending.d.next = false;
             self.pend_b.d.next = true;
         }
         self.pipe.load.next = self.pend_b.q.val();
@@ -213,37 +180,37 @@ impl Logic for CubicStream {
         dff_setup!(self, clock, sw9, sw10, lw0, lw1, lw2, lw3, lw4, lw5, lw6);
         dff_setup!(self, clock, lw7, lw8, lw9, lw10);
         // Payload word k is the (k + 1)-th word of a record.
-        if self.take_word.val() & (self.count.q.val() == 1) {
+        if self.take_word.val() & (self.word_index.val() == 1) {
             self.sw0.d.next = self.in_word.val();
         }
-        if self.take_word.val() & (self.count.q.val() == 2) {
+        if self.take_word.val() & (self.word_index.val() == 2) {
             self.sw1.d.next = self.in_word.val();
         }
-        if self.take_word.val() & (self.count.q.val() == 3) {
+        if self.take_word.val() & (self.word_index.val() == 3) {
             self.sw2.d.next = self.in_word.val();
         }
-        if self.take_word.val() & (self.count.q.val() == 4) {
+        if self.take_word.val() & (self.word_index.val() == 4) {
             self.sw3.d.next = self.in_word.val();
         }
-        if self.take_word.val() & (self.count.q.val() == 5) {
+        if self.take_word.val() & (self.word_index.val() == 5) {
             self.sw4.d.next = self.in_word.val();
         }
-        if self.take_word.val() & (self.count.q.val() == 6) {
+        if self.take_word.val() & (self.word_index.val() == 6) {
             self.sw5.d.next = self.in_word.val();
         }
-        if self.take_word.val() & (self.count.q.val() == 7) {
+        if self.take_word.val() & (self.word_index.val() == 7) {
             self.sw6.d.next = self.in_word.val();
         }
-        if self.take_word.val() & (self.count.q.val() == 8) {
+        if self.take_word.val() & (self.word_index.val() == 8) {
             self.sw7.d.next = self.in_word.val();
         }
-        if self.take_word.val() & (self.count.q.val() == 9) {
+        if self.take_word.val() & (self.word_index.val() == 9) {
             self.sw8.d.next = self.in_word.val();
         }
-        if self.take_word.val() & (self.count.q.val() == 10) {
+        if self.take_word.val() & (self.word_index.val() == 10) {
             self.sw9.d.next = self.in_word.val();
         }
-        if self.take_word.val() & (self.count.q.val() == 11) {
+        if self.take_word.val() & (self.word_index.val() == 11) {
             self.sw10.d.next = self.in_word.val();
         }
         // A complete record moves to the load bank when that is free.

@@ -23,6 +23,7 @@ pub mod pixel_stream;
 pub mod power_unit;
 pub mod primitives;
 pub mod quadric_unit;
+pub mod record_reader;
 pub mod registry;
 pub mod sim;
 pub mod span_pipeline;

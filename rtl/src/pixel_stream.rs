@@ -70,6 +70,7 @@ use rust_hdl::prelude::*;
 
 use crate::pixel_pipeline::{PipelineParams, PixelPipeline, EVENT_TO_FRAGMENT};
 use crate::primitives::Lutram;
+use crate::record_reader::RecordReader;
 
 /// FIFO depth (entries) and its address width.
 pub const FIFO_DEPTH: usize = 1 << FIFO_BITS;
@@ -91,10 +92,8 @@ crate::hw_block! {
             m_axis_tlast: Bit, error: Bit,
         }
         pub pipe: PixelPipeline = PixelPipeline::new(p),
-        // Set-up side: words of the current record (0: expecting a header), its type, a
-        // complete record waiting, dropping to tlast, the sticky error.
-        count: DFF<Bits<6>>, rec_type: DFF<Bits<4>>, pending: DFF<Bit>, skip: DFF<Bit>,
-        err: DFF<Bit>,
+        /// Set-up side: the record reader (types 1, the triangle, and 2, the registers).
+        rd: RecordReader,
         /// A record waits in the load bank (`pend_b`), of type `type_b`.
         pend_b: DFF<Bit>, type_b: DFF<Bits<4>>, transfer: Signal<Local, Bit>,
         /// Triangles loaded whose `done` has not left the pipeline.
@@ -103,10 +102,9 @@ crate::hw_block! {
             Constant::new((crate::stream_layout::payload_words(&crate::stream_layout::TRIANGLE) as u64).into()),
         reg_words: Constant<Bits<6>> =
             Constant::new((crate::stream_layout::payload_words(&crate::stream_layout::REGISTERS) as u64).into()),
-        /// The word the record reader takes (the set-up stream's).
-        in_word: Signal<Local, Bits<32>>, in_last: Signal<Local, Bit>,
-        accept: Signal<Local, Bit>, take_word: Signal<Local, Bit>, known: Signal<Local, Bit>,
-        expected: Signal<Local, Bits<6>>, at_end: Signal<Local, Bit>,
+        /// The word the reader takes, and which payload word it is (+ 1).
+        in_word: Signal<Local, Bits<32>>, take_word: Signal<Local, Bit>,
+        word_index: Signal<Local, Bits<6>>,
         load_taken: Signal<Local, Bit>, apply_regs: Signal<Local, Bit>,
         // Fragment side: the FIFO (beat, and z with tlast), pointers, level.
         fifo_beat: Lutram<Bits<64>, FIFO_BITS>,
@@ -200,70 +198,31 @@ crate::hw_block! {
 impl Logic for PixelStream {
     #[hdl_gen]
     fn update(&mut self) {
-        clock!(self, clock, pipe, fifo_beat, fifo_tail);
-        dff_setup!(self, clock, count, rec_type, pending, skip, err);
+        clock!(self, clock, pipe, rd, fifo_beat, fifo_tail);
         dff_setup!(self, clock, outstanding, pend_b, type_b);
         dff_setup!(self, clock, wr_ptr, rd_ptr, level, hold_q, out_v, out_data, out_tail);
 
-        // Set-up side: the record reader takes a word while no complete record waits in the
-        // receive bank.
-        self.s_axis_tready.next = !self.pending.q.val();
+        // Set-up side: the record reader (`record_reader`) takes a word while no complete
+        // record waits in the receive bank, and names the payload word it is.
+        self.rd.head.next = self.s_axis_tdata.val().get_bits::<4>(0);
+        self.rd.tvalid.next = self.s_axis_tvalid.val();
+        self.rd.tlast.next = self.s_axis_tlast.val();
+        self.rd.len1.next = self.tri_words.val();
+        self.rd.len2.next = self.reg_words.val();
+        self.s_axis_tready.next = self.rd.tready.val();
         self.in_word.next = self.s_axis_tdata.val();
-        self.in_last.next = self.s_axis_tlast.val();
-        self.accept.next = self.s_axis_tvalid.val() & !self.pending.q.val();
-        self.take_word.next = self.accept.val() & !self.skip.q.val() & (self.count.q.val() != 0);
-        self.known.next = (self.rec_type.q.val() == 1) | (self.rec_type.q.val() == 2);
-        self.expected.next = self.reg_words.val();
-        if self.rec_type.q.val() == 1 {
-            self.expected.next = self.tri_words.val();
-        }
-        self.at_end.next = self.count.q.val() == self.expected.val();
-        if self.accept.val() & self.skip.q.val() {
-            // Dropping a bad record up to its tlast.
-            if self.in_last.val() {
-                self.skip.d.next = false;
-            }
-        } else if self.accept.val() & (self.count.q.val() == 0) {
-            // Header.
-            self.rec_type.d.next = self.in_word.val().get_bits::<4>(0);
-            self.count.d.next = 1.into();
-            if self.in_last.val() {
-                // A record without payload.
-                self.err.d.next = true;
-                self.count.d.next = 0.into();
-            } else if (self.in_word.val().get_bits::<4>(0) != 1)
-                & (self.in_word.val().get_bits::<4>(0) != 2)
-            {
-                self.err.d.next = true;
-                self.skip.d.next = true;
-                self.count.d.next = 0.into();
-            }
-        } else if self.take_word.val() {
-            self.count.d.next = self.count.q.val() + 1;
-            if self.in_last.val() {
-                self.count.d.next = 0.into();
-                if self.at_end.val() & self.known.val() {
-                    self.pending.d.next = true;
-                } else {
-                    self.err.d.next = true;
-                }
-            } else if self.at_end.val() {
-                // Longer than its type: drop the rest.
-                self.err.d.next = true;
-                self.skip.d.next = true;
-                self.count.d.next = 0.into();
-            }
-        }
-        self.error.next = self.err.q.val();
+        self.take_word.next = self.rd.take_word.val();
+        self.word_index.next = self.rd.index.val();
+        self.error.next = self.rd.error.val();
 
         // A complete record moves to the load bank when that is free, and the receive bank
         // takes the next record. In the load bank a triangle loads when the address block is
         // ready; registers apply when every earlier triangle has left the pipeline.
-        self.transfer.next = self.pending.q.val() & !self.pend_b.q.val();
+        self.transfer.next = self.rd.pending.val() & !self.pend_b.q.val();
+        self.rd.take_record.next = self.transfer.val();
         if self.transfer.val() {
-            self.pending.d.next = false;
             self.pend_b.d.next = true;
-            self.type_b.d.next = self.rec_type.q.val();
+            self.type_b.d.next = self.rd.rec_type.val();
         }
         self.pipe.load.next = self.pend_b.q.val() & (self.type_b.q.val() == 1);
         self.load_taken.next =
@@ -290,79 +249,79 @@ impl Logic for PixelStream {
         dff_setup!(self, clock, r_n, r_amb_r, r_amb_g, r_amb_b, r_dif_r, r_dif_g);
         dff_setup!(self, clock, r_dif_b, r_spc_r, r_spc_g, r_spc_b);
         // Payload word k is the (k + 1)-th word of a record.
-        if self.take_word.val() & (self.count.q.val() == 1) {
+        if self.take_word.val() & (self.word_index.val() == 1) {
             self.sw0.d.next = self.in_word.val();
         }
-        if self.take_word.val() & (self.count.q.val() == 2) {
+        if self.take_word.val() & (self.word_index.val() == 2) {
             self.sw1.d.next = self.in_word.val();
         }
-        if self.take_word.val() & (self.count.q.val() == 3) {
+        if self.take_word.val() & (self.word_index.val() == 3) {
             self.sw2.d.next = self.in_word.val();
         }
-        if self.take_word.val() & (self.count.q.val() == 4) {
+        if self.take_word.val() & (self.word_index.val() == 4) {
             self.sw3.d.next = self.in_word.val();
         }
-        if self.take_word.val() & (self.count.q.val() == 5) {
+        if self.take_word.val() & (self.word_index.val() == 5) {
             self.sw4.d.next = self.in_word.val();
         }
-        if self.take_word.val() & (self.count.q.val() == 6) {
+        if self.take_word.val() & (self.word_index.val() == 6) {
             self.sw5.d.next = self.in_word.val();
         }
-        if self.take_word.val() & (self.count.q.val() == 7) {
+        if self.take_word.val() & (self.word_index.val() == 7) {
             self.sw6.d.next = self.in_word.val();
         }
-        if self.take_word.val() & (self.count.q.val() == 8) {
+        if self.take_word.val() & (self.word_index.val() == 8) {
             self.sw7.d.next = self.in_word.val();
         }
-        if self.take_word.val() & (self.count.q.val() == 9) {
+        if self.take_word.val() & (self.word_index.val() == 9) {
             self.sw8.d.next = self.in_word.val();
         }
-        if self.take_word.val() & (self.count.q.val() == 10) {
+        if self.take_word.val() & (self.word_index.val() == 10) {
             self.sw9.d.next = self.in_word.val();
         }
-        if self.take_word.val() & (self.count.q.val() == 11) {
+        if self.take_word.val() & (self.word_index.val() == 11) {
             self.sw10.d.next = self.in_word.val();
         }
-        if self.take_word.val() & (self.count.q.val() == 12) {
+        if self.take_word.val() & (self.word_index.val() == 12) {
             self.sw11.d.next = self.in_word.val();
         }
-        if self.take_word.val() & (self.count.q.val() == 13) {
+        if self.take_word.val() & (self.word_index.val() == 13) {
             self.sw12.d.next = self.in_word.val();
         }
-        if self.take_word.val() & (self.count.q.val() == 14) {
+        if self.take_word.val() & (self.word_index.val() == 14) {
             self.sw13.d.next = self.in_word.val();
         }
-        if self.take_word.val() & (self.count.q.val() == 15) {
+        if self.take_word.val() & (self.word_index.val() == 15) {
             self.sw14.d.next = self.in_word.val();
         }
-        if self.take_word.val() & (self.count.q.val() == 16) {
+        if self.take_word.val() & (self.word_index.val() == 16) {
             self.sw15.d.next = self.in_word.val();
         }
-        if self.take_word.val() & (self.count.q.val() == 17) {
+        if self.take_word.val() & (self.word_index.val() == 17) {
             self.sw16.d.next = self.in_word.val();
         }
-        if self.take_word.val() & (self.count.q.val() == 18) {
+        if self.take_word.val() & (self.word_index.val() == 18) {
             self.sw17.d.next = self.in_word.val();
         }
-        if self.take_word.val() & (self.count.q.val() == 19) {
+        if self.take_word.val() & (self.word_index.val() == 19) {
             self.sw18.d.next = self.in_word.val();
         }
-        if self.take_word.val() & (self.count.q.val() == 20) {
+        if self.take_word.val() & (self.word_index.val() == 20) {
             self.sw19.d.next = self.in_word.val();
         }
-        if self.take_word.val() & (self.count.q.val() == 21) {
+        if self.take_word.val() & (self.word_index.val() == 21) {
             self.sw20.d.next = self.in_word.val();
         }
-        if self.take_word.val() & (self.count.q.val() == 22) {
+        if self.take_word.val() & (self.word_index.val() == 22) {
             self.sw21.d.next = self.in_word.val();
         }
-        if self.take_word.val() & (self.count.q.val() == 23) {
+        if self.take_word.val() & (self.word_index.val() == 23) {
             self.sw22.d.next = self.in_word.val();
         }
-        if self.take_word.val() & (self.count.q.val() == 24) {
+        if self.take_word.val() & (self.word_index.val() == 24) {
             self.sw23.d.next = self.in_word.val();
         }
-        if self.take_word.val() & (self.count.q.val() == 25) {
+        if self.take_word.val() & (self.word_index.val() == 25) {
             self.sw24.d.next = self.in_word.val();
         }
         // A complete record moves to the load bank when that is free.

@@ -498,7 +498,7 @@ pub fn generated_rtl(top: &StreamTop) -> (String, String) {
     up.push_str("        // Payload word k is the (k + 1)-th word of a record.\n");
     for k in 0..n {
         up.push_str(&format!(
-            "        if self.take_word.val() & (self.count.q.val() == {}) {{\n            self.sw{k}.d.next = self.in_word.val();\n        }}\n",
+            "        if self.take_word.val() & (self.word_index.val() == {}) {{\n            self.sw{k}.d.next = self.in_word.val();\n        }}\n",
             k + 1
         ));
     }
