@@ -8,9 +8,10 @@
 //! (`fast-pipeline` 94.9 MHz, `pixel-stream` 99.5 MHz, each on one such path).
 //!
 //! [`map_multipliers`] rewrites each product that rust-hdl exports as
-//! `X$d = A$q * B$q;` — A, B 16-bit registers, X a 32-bit register, all plain `DFF`s (no
-//! enable, no reset, initial 0) — into one MULT18X18D instance whose input registers take
-//! `A$d`, `B$d` and whose output register is X. The cycle behaviour is the same: X(t + 1) =
+//! `X$d = A$q * B$q;` — A, B 16-bit registers (or 16-bit slices `A$q[(k)+:(16)]` of wider
+//! ones, as the Horner unit's 32×16 product takes its halves), X a 32-bit register, all plain
+//! `DFF`s (no reset, initial 0) — into one MULT18X18D instance whose input registers take
+//! `A$d`, `B$d` (the same bits) and whose output register is X. The cycle behaviour is the same: X(t + 1) =
 //! A$q(t)·B$q(t) = A$d(t − 1)·B$d(t − 1). The fabric copies of A and B stay where anything else
 //! reads them (Yosys removes those nobody reads); X's own module is dropped. The multiplier's
 //! 3.9 ns then lies between two registers inside the DSP block, and what remains outside is
@@ -56,16 +57,53 @@ fn reg_width(module: &str, name: &str) -> Option<usize> {
     })
 }
 
-/// `X$d = A$q * B$q;` → (X, A, B).
-fn product_line(line: &str) -> Option<(&str, &str, &str)> {
+/// A product's operand: register `name`, its 16 bits from `lsb` (`name$q`: the whole
+/// register, lsb 0; `name$q[(k)+:(16)]`: a 16-bit slice of a wider one).
+#[derive(Clone, Debug, PartialEq)]
+struct Operand {
+    name: String,
+    lsb: usize,
+    slice: bool,
+}
+
+fn ident(s: &str) -> bool {
+    !s.is_empty() && s.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
+}
+
+fn operand(t: &str) -> Option<Operand> {
+    if let Some(name) = t.strip_suffix("$q") {
+        return ident(name).then(|| Operand {
+            name: name.to_string(),
+            lsb: 0,
+            slice: false,
+        });
+    }
+    let (name, sel) = t.split_once("$q[(")?;
+    let lsb = sel.strip_suffix(")+:(16)]")?.parse().ok()?;
+    ident(name).then(|| Operand {
+        name: name.to_string(),
+        lsb,
+        slice: true,
+    })
+}
+
+/// `X$d = A * B;` with A, B operands as [`operand`] reads them → (X, A, B, the line).
+fn product_line(line: &str) -> Option<(String, Operand, Operand)> {
     let t = line.trim().strip_suffix(';')?;
     let (lhs, rhs) = t.split_once(" = ")?;
     let x = lhs.strip_suffix("$d")?;
     let (a, b) = rhs.split_once(" * ")?;
-    let a = a.strip_suffix("$q")?;
-    let b = b.strip_suffix("$q")?;
-    let ident = |s: &str| !s.is_empty() && s.chars().all(|c| c.is_ascii_alphanumeric() || c == '_');
-    (ident(x) && ident(a) && ident(b)).then_some((x, a, b))
+    let (a, b) = (operand(a)?, operand(b)?);
+    ident(x).then(|| (x.to_string(), a, b))
+}
+
+/// Whether `o` is 16 bits of a register declared in `module`.
+fn operand_fits(module: &str, o: &Operand) -> bool {
+    match reg_width(module, &format!("{}$d", o.name)) {
+        Some(w) if o.slice => o.lsb + 16 <= w,
+        Some(w) => w == 16,
+        None => false,
+    }
 }
 
 /// The five lines instantiating DFF `x` (`mod x(`, `.d(x$d),`, `.q(x$q),`, `.clock(x$clock)`,
@@ -98,25 +136,30 @@ fn dff_instance(module: &str, x: &str) -> Option<(usize, usize, String)> {
     None
 }
 
-fn dsp_instance(x: &str, a: &str, b: &str) -> String {
-    let port = |p: &str, sig: &str, w: usize| {
+fn dsp_instance(x: &str, a: &Operand, b: &Operand) -> String {
+    let port = |p: &str, o: Option<&Operand>| {
         (0..18)
-            .map(|i| {
-                if i < w {
-                    format!(".{p}{i}({sig}[{i}])")
-                } else {
-                    format!(".{p}{i}(1'b0)")
-                }
+            .map(|i| match o {
+                Some(o) if i < 16 => format!(".{p}{i}({}$d[{}])", o.name, o.lsb + i),
+                _ => format!(".{p}{i}(1'b0)"),
             })
             .collect::<Vec<_>>()
             .join(", ")
     };
+    let show = |o: &Operand| {
+        if o.slice {
+            format!("{}[{}+:16]", o.name, o.lsb)
+        } else {
+            o.name.clone()
+        }
+    };
+    let (an, bn) = (show(a), show(b));
     let outs = (0..36)
         .map(|i| format!(".P{i}({x}$dsp[{i}])"))
         .collect::<Vec<_>>()
         .join(", ");
     format!(
-        "    // {x} = {a} * {b}: one MULT18X18D, {a} and {b} in its input registers, {x} its output register\n\
+        "    // {x} = {an} * {bn}: one MULT18X18D, {an} and {bn} in its input registers, {x} its output register\n\
          \x20   wire  [35:0] {x}$dsp;\n\
          \x20   assign {x}$q = {x}$dsp[31:0];\n\
          \x20   MULT18X18D #({DSP_PARAMS}) {x}$mult (\n\
@@ -127,9 +170,9 @@ fn dsp_instance(x: &str, a: &str, b: &str) -> String {
          \x20       .CLK0({x}$clock), .CE0(1'b1), .RST0(1'b0),\n\
          \x20       {outs}\n\
          \x20   );\n",
-        port("A", &format!("{a}$d"), 16),
-        port("B", &format!("{b}$d"), 16),
-        port("C", "", 0),
+        port("A", Some(a)),
+        port("B", Some(b)),
+        port("C", None),
     )
 }
 
@@ -137,17 +180,13 @@ fn dsp_instance(x: &str, a: &str, b: &str) -> String {
 fn map_module(text: &str) -> (String, Vec<String>) {
     let mut m = text.to_string();
     let mut dropped = Vec::new();
-    let products: Vec<(String, String, String)> = text
+    let products: Vec<(String, Operand, Operand, String)> = text
         .lines()
-        .filter_map(product_line)
-        .map(|(x, a, b)| (x.to_string(), a.to_string(), b.to_string()))
+        .filter_map(|l| product_line(l).map(|(x, a, b)| (x, a, b, l.trim().to_string())))
         .collect();
-    for (x, a, b) in products {
+    for (x, a, b, line) in products {
         let xd = format!("{x}$d");
-        if reg_width(&m, &format!("{a}$d")) != Some(16)
-            || reg_width(&m, &format!("{b}$d")) != Some(16)
-            || reg_width(&m, &xd) != Some(32)
-        {
+        if !operand_fits(&m, &a) || !operand_fits(&m, &b) || reg_width(&m, &xd) != Some(32) {
             continue;
         }
         // X$d must be assigned by the product alone.
@@ -162,8 +201,7 @@ fn map_module(text: &str) -> (String, Vec<String>) {
             .split_inclusive('\n')
             .filter(|l| {
                 let t = l.trim();
-                t != format!("{xd} = {a}$q * {b}$q;")
-                    && t.split_whitespace().last() != Some(&format!("{xd};"))
+                t != line && t.split_whitespace().last() != Some(&format!("{xd};"))
             })
             .collect();
         dropped.push(inst_module);
@@ -319,9 +357,30 @@ mod tests {
     }
 
     #[test]
+    fn a_slice_of_a_wider_register_is_an_operand() {
+        let wide = SAMPLE
+            .replace("reg  [15:0] a_q$d;", "reg  [31:0] a_q$d;")
+            .replace(
+                "p_q$d = a_q$q * b_q$q;",
+                "p_q$d = a_q$q[(16)+:(16)] * b_q$q;",
+            );
+        let m = map_multipliers(&wide);
+        assert_eq!(m.products, 1, "{}", m.verilog);
+        assert!(m.verilog.contains(".A0(a_q$d[16])") && m.verilog.contains(".A15(a_q$d[31])"));
+        // A slice past the register's end is not.
+        let past = wide.replace("a_q$q[(16)+:(16)]", "a_q$q[(20)+:(16)]");
+        assert_eq!(map_multipliers(&past).products, 0);
+    }
+
+    #[test]
     fn the_model_names_every_port_the_mapping_connects() {
         let model = sim_model();
-        let inst = dsp_instance("x", "a", "b");
+        let o = |n: &str| Operand {
+            name: n.into(),
+            lsb: 0,
+            slice: false,
+        };
+        let inst = dsp_instance("x", &o("a"), &o("b"));
         for port in inst
             .split(&['(', ' ', ','][..])
             .filter_map(|t| t.strip_prefix('.'))
