@@ -17,6 +17,12 @@
 //! dropped. The multiplier's 3.9 ns then lies between two registers inside the DSP block, and
 //! what remains outside is a route into an input register and one out of the output register.
 //!
+//! # Latency, throughput, overflow
+//! None of its own: a rewrite of Verilog text, not a block. The mapped design has the
+//! latency and throughput of the exported one (every product keeps its two clocks, one
+//! product per clock), and the product is exact as before (16 × 16 bits into the 36-bit
+//! product, bits 31..0 kept; A16, A17, B16, B17 tied to 0).
+//!
 //! Products of other shapes are left to Yosys as before: those whose operands are module
 //! inputs or whose product register holds on an enable (the pipelined Horner steps), and
 //! anything not 16 × 16 → 32.

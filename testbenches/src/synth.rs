@@ -803,22 +803,11 @@ pub fn ecp5_on_pins(
     part: Ecp5Part,
     tag: &str,
 ) -> Result<PinsReport, String> {
-    ecp5_on_pins_seeded(verilog, module, ports, part, tag, 1)
+    ecp5_on_pins_with(verilog, module, ports, part, tag, 1, MultRegs::Dsp)
 }
 
-/// [`ecp5_on_pins`] with nextpnr-ecp5's placer seed.
-pub fn ecp5_on_pins_seeded(
-    verilog: &str,
-    module: &str,
-    ports: &(Vec<Port>, Vec<Port>),
-    part: Ecp5Part,
-    tag: &str,
-    seed: u64,
-) -> Result<PinsReport, String> {
-    ecp5_on_pins_with(verilog, module, ports, part, tag, seed, MultRegs::Dsp)
-}
-
-/// [`ecp5_on_pins_seeded`] with the multipliers' registers where `regs` says.
+/// [`ecp5_on_pins`] with nextpnr-ecp5's placer seed and the multipliers' registers where `regs`
+/// says.
 pub fn ecp5_on_pins_with(
     verilog: &str,
     module: &str,
