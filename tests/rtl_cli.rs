@@ -371,6 +371,10 @@ fn synth_ecp5_only_flags_are_one_line_errors() {
             &["synth", "--block", "power-unit", "--mult-regs", "fabric"][..],
             "--mult-regs",
         ),
+        (
+            &["synth", "--block", "power-unit", "--mult-regs", "dsp"][..],
+            "--mult-regs",
+        ),
     ] {
         let out = shadecore(args);
         let err = String::from_utf8_lossy(&out.stderr);

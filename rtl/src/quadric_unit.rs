@@ -63,6 +63,17 @@
 //! what is left is routing — 6.6 ns of the 10.68 ns path
 //! f_neg → term selects → carry chain → I: the flag's fan-out to the 3 × 192 term selects, and
 //! from the chain to I's word multiplexer.
+//! Tried on this netlist and not kept (placer seed 1, the exported Verilog edited by hand):
+//! - each channel with its own copy of the step flags (one inverted, one ANDed with `tbusy`:
+//!   Yosys merges identical flip-flops): 96.5 MHz, the path moved to tdx → xi_k → carry chain;
+//! - the x-step's four outcomes of I formed in parallel and selected after the chains, as for
+//!   Dx: 83.2 MHz (I's word multiplexer became three LUT levels);
+//! - `synth_ecp5 -abc9`: 96.2 MHz (5 853 LUT4 against 6 696);
+//! - I's x-step without its carry chain (an XOR, to find the next path): 92.8 MHz, on the
+//!   load's y compare → f_yat → f_hand.
+//!
+//! So two kinds of path sit near 10.3 ns. Both have to change: I kept in carry-save form in
+//! the tracker, and the flags' next-value cone cut by a register.
 //!
 //! # Overflow
 //! Every update is an exact integer add modulo 2⁶⁴ (nothing may saturate: each word feeds the

@@ -129,9 +129,10 @@ pub struct SynthArgs {
     pub seed: Option<u64>,
     /// With `--target ecp5`: where a registered 16×16 product's registers go — dsp (the
     /// MULT18X18D's own input and output registers; `rtl::ecp5_dsp` rewrites the exported
-    /// Verilog for the flow) or fabric (flip-flops, as Yosys maps the Verilog as exported).
-    #[arg(long, value_enum, default_value = "dsp")]
-    pub mult_regs: MultRegsArg,
+    /// Verilog for the flow; the default) or fabric (flip-flops, as Yosys maps the Verilog as
+    /// exported).
+    #[arg(long, value_enum)]
+    pub mult_regs: Option<MultRegsArg>,
 }
 
 /// `synth --mult-regs`.
@@ -308,7 +309,7 @@ pub fn synth(a: SynthArgs) -> anyhow::Result<()> {
                     a.device.as_deref(),
                     &format!("ecp5-{}", b.name()),
                     a.seed.unwrap_or(1),
-                    a.mult_regs.into(),
+                    a.mult_regs.unwrap_or(MultRegsArg::Dsp).into(),
                 )
                 .map_err(|e| anyhow!(e))
             });
@@ -330,7 +331,7 @@ pub fn synth(a: SynthArgs) -> anyhow::Result<()> {
                     rep.part,
                     &format!("pins-{}", b.name()),
                     a.seed.unwrap_or(1),
-                    a.mult_regs.into(),
+                    a.mult_regs.unwrap_or(MultRegsArg::Dsp).into(),
                 )
                 .map_err(|e| anyhow!(e));
                 spin.finish_and_clear();
@@ -364,7 +365,7 @@ pub fn synth(a: SynthArgs) -> anyhow::Result<()> {
     if a.seed.is_some() {
         bail!("--seed is nextpnr-ecp5's placer seed: use it with --target ecp5");
     }
-    if a.mult_regs != MultRegsArg::Dsp {
+    if a.mult_regs.is_some() {
         bail!("--mult-regs places the multipliers' registers on ECP5: use it with --target ecp5");
     }
     for b in blocks {
