@@ -68,12 +68,17 @@
 //!   Yosys merges identical flip-flops): 96.5 MHz, the path moved to tdx → xi_k → carry chain;
 //! - the x-step's four outcomes of I formed in parallel and selected after the chains, as for
 //!   Dx: 83.2 MHz (I's word multiplexer became three LUT levels);
-//! - `synth_ecp5 -abc9`: 96.2 MHz (5 853 LUT4 against 6 696);
+//! - `synth_ecp5 -abc9`: 96.2 MHz, 9 985 LUT4 (against 11 080; two per carry cell);
 //! - I's x-step without its carry chain (an XOR, to find the next path): 92.8 MHz, on the
-//!   load's y compare → f_yat → f_hand.
+//!   load's y compare → f_yat → f_hand;
+//! - the tracker's I in carry-save form (two words; the x- and y-steps without a carry chain,
+//!   the hand-over resolving it): 90.2 MHz, 13 139 LUT4; the path moved to Dx, 11.09 ns:
+//!   tdx → dx_m1's carry chain → four LUT levels of tdx's select.
 //!
-//! So two kinds of path sit near 10.3 ns. Both have to change: I kept in carry-save form in
-//! the tracker, and the flags' next-value cone cut by a register.
+//! So several kinds of path (I's step, Dx's step, the load's flags) sit between 10.3 and
+//! 11.1 ns, most of it routing; moving one brings up the next. What is left is structural —
+//! for instance x-steps of one pixel per clock (two-way selects instead of four) with the
+//! line generator unchanged — and changes the tracker's timing and its twin.
 //!
 //! # Overflow
 //! Every update is an exact integer add modulo 2⁶⁴ (nothing may saturate: each word feeds the
