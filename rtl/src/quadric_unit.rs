@@ -73,12 +73,15 @@
 //!   load's y compare → f_yat → f_hand;
 //! - the tracker's I in carry-save form (two words; the x- and y-steps without a carry chain,
 //!   the hand-over resolving it): 90.2 MHz, 13 139 LUT4; the path moved to Dx, 11.09 ns:
-//!   tdx → dx_m1's carry chain → four LUT levels of tdx's select.
+//!   tdx → dx_m1's carry chain → four LUT levels of tdx's select;
+//! - x-steps of one pixel only (the two-pixel flag tied to 0, which would change the
+//!   tracker's timing): 97.7 MHz, 9 051 LUT4, on neg → xi_s (one LUT level) → carry chain →
+//!   ti, 10.24 ns (4.16 of it logic).
 //!
-//! So several kinds of path (I's step, Dx's step, the load's flags) sit between 10.3 and
-//! 11.1 ns, most of it routing; moving one brings up the next. What is left is structural —
-//! for instance x-steps of one pixel per clock (two-way selects instead of four) with the
-//! line generator unchanged — and changes the tracker's timing and its twin.
+//! So several kinds of path (I's step, Dx's step, the load's flags) sit between 10.2 and
+//! 11.1 ns, 6–8 ns of it routing; moving one brings up the next. A 64-bit carry chain is
+//! 2.3 ns of each: what would be left is to split the words' adds at bit 32 with the carry
+//! between the halves registered, and to resolve a word only where it leaves the tracker.
 //!
 //! # Overflow
 //! Every update is an exact integer add modulo 2⁶⁴ (nothing may saturate: each word feeds the
