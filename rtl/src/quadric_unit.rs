@@ -63,7 +63,9 @@
 //! what is left is routing — 6.6 ns of the 10.68 ns path
 //! f_neg → term selects → carry chain → I: the flag's fan-out to the 3 × 192 term selects, and
 //! from the chain to I's word multiplexer.
-//! Tried on this netlist and not kept (placer seed 1, the exported Verilog edited by hand):
+//! Tried on this netlist and not kept (placer seed 1, the exported Verilog edited by hand; the
+//! first, second and fourth repeat probes of an earlier session, README: 91.5–96.7, 87.9 (in
+//! RTL) and 97.2 MHz then — placement alone moves these figures by several MHz):
 //! - each channel with its own copy of the step flags (one inverted, one ANDed with `tbusy`:
 //!   Yosys merges identical flip-flops): 96.5 MHz, the path moved to tdx → xi_k → carry chain;
 //! - the x-step's four outcomes of I formed in parallel and selected after the chains, as for

@@ -78,7 +78,7 @@ pub fn load_obj_counting(path: &Path) -> Result<(Mesh, usize), SceneError> {
         },
         tobj::LoadError::OpenFileFailed | tobj::LoadError::ReadError => SceneError::ObjUnreadable {
             path: shown.clone(),
-            reason: e.to_string(),
+            reason: read_failure(path, &e),
         },
         e => SceneError::ObjMalformed {
             path: shown.clone(),
@@ -86,6 +86,25 @@ pub fn load_obj_counting(path: &Path) -> Result<(Mesh, usize), SceneError> {
         },
     })?;
     from_models(&models, &shown)
+}
+
+/// Why `tobj` could not read `path`: its own message is a bare "read error" for a file that is
+/// not UTF-8 text (it reads lines), so that case names the first byte that is not.
+fn read_failure(path: &Path, e: &tobj::LoadError) -> String {
+    if matches!(e, tobj::LoadError::ReadError) {
+        // The size was checked above (≤ MAX_OBJ_BYTES), so reading it whole is bounded.
+        if let Ok(bytes) = std::fs::read(path) {
+            if let Err(u) = std::str::from_utf8(&bytes) {
+                // An error means a bad byte exists at `valid_up_to`.
+                let at = u.valid_up_to();
+                return format!(
+                    "is not UTF-8 text (byte 0x{:02x} at offset {at} is not valid UTF-8)",
+                    bytes[at]
+                );
+            }
+        }
+    }
+    e.to_string()
 }
 
 /// The mesh of the objects `tobj` loaded from the file `shown`: every check of [`load_obj`] that
@@ -328,6 +347,16 @@ mod tests {
         // Only degenerate faces: no face normal either; +Z, counted.
         let f = TempObj::new("degenerate", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n");
         assert_eq!(load_obj_counting(&f.0).unwrap().1, 3);
+        // Not text: tobj says only "read error"; the message names the first bad byte.
+        let bin =
+            std::env::temp_dir().join(format!("shadecore-scene-{}-binary.obj", std::process::id()));
+        std::fs::write(&bin, b"v 0 0 0\nv 1 0 \xff\xfe\n").unwrap();
+        let e = load_obj(&bin).unwrap_err().to_string();
+        let _ = std::fs::remove_file(&bin);
+        assert!(
+            e.contains("not UTF-8 text") && e.contains("0xff at offset 14") && !e.contains('\n'),
+            "{e}"
+        );
         for (name, text, want) in cases {
             let f = TempObj::new(name, text);
             let e = load_obj(&f.0).unwrap_err().to_string();
