@@ -177,6 +177,43 @@ fn raster_bad_triangles_are_one_line_errors() {
     }
 }
 
+/// A triangle the walk gives no pixel is not an error: the CSV (no valid clock) on standard
+/// output, exit 0, and one note on standard error saying why.
+#[test]
+fn raster_degenerate_triangles_say_why_no_pixel() {
+    for (tri, why) in [
+        ("0,0,10,0,20,0", "zero area"),
+        ("5,5,5,5,5,5", "zero area"),
+        ("0,0,10,10,20,20", "zero area"),
+        ("0,0,1,0,0,1", "area 0.5 pixels) covers no pixel centre"),
+    ] {
+        let out = shadecore(&["raster", "--tri", tri]);
+        let err = String::from_utf8_lossy(&out.stderr);
+        let csv = String::from_utf8_lossy(&out.stdout);
+        assert!(out.status.success(), "{tri}: {err}");
+        assert_eq!(err.lines().count(), 1, "{tri}: {err:?}");
+        assert!(
+            err.starts_with("note:") && err.contains(why),
+            "{tri}: {err}"
+        );
+        assert!(
+            csv.starts_with("cycle,valid")
+                && csv
+                    .lines()
+                    .skip(1)
+                    .all(|l| l.split(',').nth(1) == Some("0")),
+            "{tri}: {csv}"
+        );
+    }
+    // A triangle with pixels prints no note.
+    let out = shadecore(&["raster", "--tri", "0,0,40,0,0,40"]);
+    assert!(
+        out.status.success() && out.stderr.is_empty(),
+        "{:?}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
+
 /// Values of `names` (under scope `uut`) sampled on every rising clock edge of a VCD, parsed
 /// with the `vcd` crate (independent of the simulator's writer).
 fn sample_vcd(path: &std::path::Path, names: &[&str]) -> Vec<Vec<u64>> {

@@ -193,6 +193,21 @@ pub fn walk_clocks_with(
     }
 }
 
+/// Why a walk of `tri` emitted no pixel, in one line: zero area (collinear or repeated
+/// vertices), or no pixel centre inside it.
+pub fn no_pixel_reason(tri: &ScreenTriangle) -> String {
+    let [a, b, c] = tri.v;
+    let area2 = (b.x - a.x) as i64 * (c.y - a.y) as i64 - (c.x - a.x) as i64 * (b.y - a.y) as i64;
+    if area2 == 0 {
+        "the triangle has zero area (its vertices are collinear or repeated): the walk emits no pixel".into()
+    } else {
+        format!(
+            "the triangle (area {:.1} pixels) covers no pixel centre: the walk emits no pixel",
+            area2.abs() as f64 / 2.0
+        )
+    }
+}
+
 /// The CSV text of a run.
 pub fn csv(out: &[AddressOutputs]) -> String {
     let mut s = String::from("cycle,valid,x,y,step,line_start,done\n");
@@ -224,6 +239,11 @@ pub fn run(a: Args) -> Result<()> {
             (four_csv(&out), out.len(), pixels, rows)
         }
     };
+    if pixels == 0 {
+        // Not an error (the hardware walks it and emits nothing), but a dump of zeros alone
+        // would leave the user guessing why.
+        eprintln!("note: {}", no_pixel_reason(&tri));
+    }
     match &a.dump {
         Some(p) => {
             std::fs::write(p, text).with_context(|| format!("cannot write {}", p.display()))?;
