@@ -185,7 +185,7 @@ fn raster_degenerate_triangles_say_why_no_pixel() {
         ("0,0,10,0,20,0", "zero area"),
         ("5,5,5,5,5,5", "zero area"),
         ("0,0,10,10,20,20", "zero area"),
-        ("0,0,1,0,0,1", "area 0.5 pixels) covers no pixel centre"),
+        ("0,0,1,0,0,1", "area 0.5 pixels) owns no pixel centre"),
     ] {
         let out = shadecore(&["raster", "--tri", tri]);
         let err = String::from_utf8_lossy(&out.stderr);

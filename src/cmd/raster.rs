@@ -194,7 +194,8 @@ pub fn walk_clocks_with(
 }
 
 /// Why a walk of `tri` emitted no pixel, in one line: zero area (collinear or repeated
-/// vertices), or no pixel centre inside it.
+/// vertices), or no pixel centre it owns under the fill rule (`golden::raster`: inside, or on
+/// a left edge).
 pub fn no_pixel_reason(tri: &ScreenTriangle) -> String {
     let [a, b, c] = tri.v;
     let area2 = (b.x - a.x) as i64 * (c.y - a.y) as i64 - (c.x - a.x) as i64 * (b.y - a.y) as i64;
@@ -202,7 +203,7 @@ pub fn no_pixel_reason(tri: &ScreenTriangle) -> String {
         "the triangle has zero area (its vertices are collinear or repeated): the walk emits no pixel".into()
     } else {
         format!(
-            "the triangle (area {:.1} pixels) covers no pixel centre: the walk emits no pixel",
+            "the triangle (area {:.1} pixels) owns no pixel centre (none inside it or on a left edge): the walk emits no pixel",
             area2.abs() as f64 / 2.0
         )
     }
