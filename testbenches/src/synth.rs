@@ -598,7 +598,7 @@ pub fn ecp5(
     device: Option<&str>,
     tag: &str,
 ) -> Result<Ecp5Report, String> {
-    ecp5_seeded(verilog, module, ports, device, tag, 1)
+    ecp5_with(verilog, module, ports, device, tag, 1, MultRegs::Dsp)
 }
 
 /// Where the ECP5 flow puts a 16×16 product's operand and product registers.
@@ -624,20 +624,8 @@ pub fn ecp5_verilog(verilog: &str, regs: MultRegs) -> (String, usize) {
     }
 }
 
-/// [`ecp5`] with nextpnr-ecp5's placer seed: the same netlist placed another way, to see how
-/// far the figure moves with placement alone.
-pub fn ecp5_seeded(
-    verilog: &str,
-    module: &str,
-    ports: &(Vec<Port>, Vec<Port>),
-    device: Option<&str>,
-    tag: &str,
-    seed: u64,
-) -> Result<Ecp5Report, String> {
-    ecp5_with(verilog, module, ports, device, tag, seed, MultRegs::Dsp)
-}
-
-/// [`ecp5_seeded`] with the multipliers' registers where `regs` says.
+/// [`ecp5`] with nextpnr-ecp5's placer seed (the same netlist placed another way, to see how
+/// far the figure moves with placement alone) and the multipliers' registers where `regs` says.
 pub fn ecp5_with(
     verilog: &str,
     module: &str,

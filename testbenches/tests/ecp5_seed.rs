@@ -6,7 +6,7 @@
 
 use rtl::registry::Options;
 use testbenches::registry;
-use testbenches::synth::{ecp5_seeded, require_ecp5};
+use testbenches::synth::{ecp5_with, require_ecp5, MultRegs};
 
 /// The last "Checksum: 0x…" nextpnr printed (after placement and routing).
 fn last_checksum(log_dir: &std::path::Path) -> String {
@@ -27,8 +27,16 @@ fn the_placer_seed_reaches_nextpnr() {
     let b = registry::find("k-recurrence").unwrap();
     let v = b.verilog(&Options::new()).unwrap();
     let run = |seed: u64, tag: &str| {
-        ecp5_seeded(&v, &b.module_name(), &b.ports(), None, tag, seed)
-            .unwrap_or_else(|e| panic!("seed {seed}: {e}"))
+        ecp5_with(
+            &v,
+            &b.module_name(),
+            &b.ports(),
+            None,
+            tag,
+            seed,
+            MultRegs::Dsp,
+        )
+        .unwrap_or_else(|e| panic!("seed {seed}: {e}"))
     };
     let a = run(1, "seed-test-a");
     let again = run(1, "seed-test-b");
