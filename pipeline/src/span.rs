@@ -21,6 +21,7 @@ use golden::quadric_unit::{check_line, triangle_words, QuadricWords};
 use golden::raster::walk;
 use golden::shade::ShadeContext;
 use golden::types::ScreenTriangle;
+use rtl::angular_stream::AngularStream;
 use rtl::cubic_pipeline::{CubicParams, CubicPipeline};
 use rtl::cubic_stream::CubicStream;
 use rtl::horner_unit::HornerParams;
@@ -351,6 +352,9 @@ enum Top {
     Cubic(Box<Stepper<CubicPipeline>>),
     /// The cubic pipeline's AXI4-Stream top (line records in, fragment beats out).
     CubicStream(Box<Stepper<CubicStream>>),
+    /// The angular pipeline's AXI4-Stream top (line and register records in, a fragment
+    /// stream per lane out).
+    AngularStream(Box<Stepper<AngularStream>>),
     Quadric(Box<Stepper<QuadricUnit>>),
     Replay(crate::replay::Replay),
 }
@@ -404,6 +408,16 @@ impl SpanPipe {
         })
     }
 
+    /// `angular` through its AXI4-Stream top `angular-stream`: [`SpanPipe::run`] sends the
+    /// register record and every line's record on the set-up stream (one word per clock while
+    /// `s_axis_tready`) and takes every beat of both lanes (both `m_axis_*_tready` high).
+    pub fn angular_stream() -> Result<SpanPipe, String> {
+        Ok(SpanPipe {
+            kind: SpanKind::Angular,
+            top: Top::AngularStream(Box::new(Stepper::new(AngularStream::default())?)),
+        })
+    }
+
     pub fn kind(&self) -> SpanKind {
         self.kind
     }
@@ -423,6 +437,7 @@ impl SpanPipe {
             Top::Fast(_) => <FastPipeline as RtlBlock>::LATENCY,
             Top::Cubic(_) => <CubicPipeline as RtlBlock>::LATENCY,
             Top::CubicStream(_) => <CubicStream as RtlBlock>::LATENCY,
+            Top::AngularStream(_) => <AngularStream as RtlBlock>::LATENCY,
             Top::Quadric(_) => QuadricUnit::LATENCY,
             Top::Replay(_) => match self.kind {
                 SpanKind::Angular => AngularPipeline::LATENCY,
@@ -440,6 +455,7 @@ impl SpanPipe {
             Top::Fast(s) => s.start_vcd(w),
             Top::Cubic(s) => s.start_vcd(w),
             Top::CubicStream(s) => s.start_vcd(w),
+            Top::AngularStream(s) => s.start_vcd(w),
             Top::Quadric(s) => s.start_vcd(w),
             Top::Replay(_) => {}
         }
@@ -450,7 +466,9 @@ impl SpanPipe {
             Top::Angular(s) => s.dut().ready.val(),
             Top::Fast(s) => s.dut().ready.val(),
             Top::Cubic(s) => s.dut().ready.val(),
-            Top::CubicStream(_) => unreachable!("the stream top is run by run_stream"),
+            Top::CubicStream(_) | Top::AngularStream(_) => {
+                unreachable!("a stream top is run by its own driver")
+            }
             Top::Quadric(s) => s.dut().ready.val(),
             Top::Replay(r) => r.ready(),
         }
@@ -461,7 +479,9 @@ impl SpanPipe {
             Top::Angular(s) => s.step(row, out),
             Top::Fast(s) => s.step(row, out),
             Top::Cubic(s) => s.step(row, out),
-            Top::CubicStream(_) => unreachable!("the stream top is run by run_stream"),
+            Top::CubicStream(_) | Top::AngularStream(_) => {
+                unreachable!("a stream top is run by its own driver")
+            }
             Top::Quadric(s) => s.step(row, out),
             Top::Replay(r) => r.step(row, out),
         }
@@ -481,6 +501,9 @@ impl SpanPipe {
     ) -> Result<PipeStats, String> {
         if let Top::CubicStream(s) = &mut self.top {
             return run_cubic_stream(s, spans, max_clocks, &mut fragment, &mut progress);
+        }
+        if let Top::AngularStream(s) = &mut self.top {
+            return run_angular_stream(s, spans, regs, max_clocks, &mut fragment, &mut progress);
         }
         let mut st = PipeStats::default();
         let mut out = vec![0u64; OUTPUTS];
@@ -536,6 +559,7 @@ impl SpanPipe {
             Top::Fast(s) => s.stop_vcd(),
             Top::Cubic(s) => s.stop_vcd(),
             Top::CubicStream(s) => s.stop_vcd(),
+            Top::AngularStream(s) => s.stop_vcd(),
             Top::Quadric(s) => s.stop_vcd(),
             Top::Replay(_) => {}
         }
@@ -579,20 +603,60 @@ fn run_cubic_stream(
     )
 }
 
+/// [`SpanPipe::run`] through `angular-stream`: the register record and the lines' records on
+/// the set-up stream, every beat of both lanes taken; a line ends with both lanes' `tlast`.
+fn run_angular_stream(
+    s: &mut Stepper<AngularStream>,
+    spans: &[SpanJob],
+    regs: &ShadingRegs,
+    max_clocks: u64,
+    fragment: &mut dyn FnMut(SpanFragment),
+    progress: &mut dyn FnMut(u64),
+) -> Result<PipeStats, String> {
+    let n = spans.len() as u64;
+    crate::stream::drive_angular(
+        s,
+        &crate::stream::angular_words(spans, regs),
+        n,
+        max_clocks,
+        &mut |line, b, clock, lane_b| {
+            fragment(SpanFragment {
+                triangle: spans[line].triangle,
+                x: b.x,
+                y: b.y,
+                z: b.z,
+                rgb: b.rgb,
+                clock,
+                lane_b,
+            })
+        },
+        &mut |done| {
+            if done % 256 == 0 || done == n {
+                progress(done);
+            }
+        },
+    )
+}
+
 /// A clock budget for `spans`: their clocks plus the pipeline's latency and margin (and for
 /// the quadric unit every line start's move).
 pub fn span_clock_budget(spans: &[SpanJob]) -> u64 {
-    // A cubic line through `cubic-stream` takes at least its record's words (one per clock).
+    // A line through `cubic-stream` or `angular-stream` takes at least its record's words (one
+    // per clock); the angular stream's register record comes first.
     let words = 1 + rtl::stream_layout::payload_words(&rtl::stream_layout::CUBIC_LINE) as u64;
+    let pair_words =
+        1 + rtl::stream_layout::payload_words(&rtl::stream_layout::ANGULAR_LINE) as u64;
     spans
         .iter()
         .map(|s| match s.words {
             JobWords::Quadric { .. } => s.clocks() + 2 + 4096 / 2,
             JobWords::Cubic { .. } => s.clocks().max(words) + 2,
-            JobWords::Pair { .. } => s.clocks() + 2,
+            JobWords::Pair { .. } => s.clocks().max(pair_words) + 2,
         })
         .sum::<u64>()
         + 64
+        + 1
+        + rtl::stream_layout::payload_words(&rtl::stream_layout::SPAN_REGISTERS) as u64
 }
 
 /// The quadric unit's timing (the header of `rtl::quadric_unit`), written apart from its twin:

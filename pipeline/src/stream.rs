@@ -1,10 +1,11 @@
-//! The stream tops' streams (`pixel-stream`, `gouraud-stream`, `cubic-stream`) from the
-//! driver's side: set-up
+//! The stream tops' streams (`pixel-stream`, `gouraud-stream`, `cubic-stream`,
+//! `angular-stream`) from the driver's side: set-up
 //! records packed with the one layout table (`rtl::stream_layout`), and fragment beats read
 //! back with it.
 
 use rtl::stream_layout::{
-    pack, unpack_fragment, CUBIC_LINE, GOURAUD_TRIANGLE, REGISTERS, TRIANGLE,
+    pack, unpack_fragment, ANGULAR_LINE, CUBIC_LINE, GOURAUD_TRIANGLE, REGISTERS, SPAN_REGISTERS,
+    TRIANGLE,
 };
 
 use crate::gouraud::{pipe_row, TriangleJob, PIPE_HOLD_AT};
@@ -74,6 +75,31 @@ pub fn cubic_words(spans: &[SpanJob]) -> Vec<Word> {
     spans.iter().flat_map(cubic_record).collect()
 }
 
+/// The `angular-stream` record of an angular line (`span` from `crate::span::span_jobs` with
+/// [`SpanKind::Angular`]): the same field values `angular-pipeline`'s load row carries.
+pub fn angular_record(span: &SpanJob) -> Vec<Word> {
+    let row = span_row(SpanKind::Angular, Some(span), &ShadingRegs::default());
+    let fields = ANGULAR_LINE.fields.len();
+    with_last(pack(&ANGULAR_LINE, &row[1..=fields]))
+}
+
+/// The `angular-stream` register record of `regs` (n and the nine colour weights; L and H
+/// are in each line's words).
+pub fn span_register_record(regs: &ShadingRegs) -> Vec<Word> {
+    let mut values = vec![regs.n];
+    values.extend(regs.weights);
+    with_last(pack(&SPAN_REGISTERS, &values))
+}
+
+/// An angular scene's set-up stream: the registers, then every line in walk order.
+pub fn angular_words(spans: &[SpanJob], regs: &ShadingRegs) -> Vec<Word> {
+    let mut w = span_register_record(regs);
+    for s in spans {
+        w.extend(angular_record(s));
+    }
+    w
+}
+
 /// The order in which the driver sends `jobs` on the set-up stream (indices into `jobs`):
 /// largest walk first, then smallest, then the second largest, the second smallest, and so
 /// on.
@@ -131,6 +157,18 @@ pub struct Beat {
 }
 
 impl Beat {
+    /// The beat's `m_axis_tdata` (the inverse of [`Beat::read`]'s).
+    pub fn tdata(&self) -> u64 {
+        rtl::stream_layout::pack_fragment(&[
+            self.x as u64,
+            self.y as u64,
+            self.pixel as u64,
+            self.rgb[0] as u64,
+            self.rgb[1] as u64,
+            self.rgb[2] as u64,
+        ]) as u64
+    }
+
     /// The beat of `m_axis_tdata`, `m_axis_tuser`, `m_axis_tlast`.
     pub fn read(tdata: u64, tuser: u64, tlast: bool) -> Beat {
         let f = unpack_fragment(tdata as u128);
@@ -170,6 +208,62 @@ impl StreamTop for rtl::cubic_stream::CubicStream {
     fn s_axis_tready(&self) -> bool {
         self.s_axis_tready.val()
     }
+}
+
+/// [`drive`] for `angular-stream`'s two fragment streams (both `m_axis_*_tready` high):
+/// `fragment(line, beat, clock, lane_b)` for each beat with a pixel (line = the `tlast`s seen
+/// before it on its lane), `record_done(lines_done)` when both lanes have seen a line's
+/// `tlast`. `records` counts lines (the register record at the start is not one).
+pub fn drive_angular(
+    s: &mut rtl::sim::Stepper<rtl::angular_stream::AngularStream>,
+    words: &[Word],
+    records: u64,
+    max_clocks: u64,
+    fragment: &mut dyn FnMut(usize, Beat, u64, bool),
+    record_done: &mut dyn FnMut(u64),
+) -> Result<crate::gouraud::PipeStats, String> {
+    let mut st = crate::gouraud::PipeStats::default();
+    // Outputs: s_axis_tready; lane A tvalid, tdata, tuser, tlast; lane B the same; error.
+    let mut out = [0u64; 10];
+    let (mut next, mut ends) = (0, [0u64; 2]);
+    while st.triangles < records {
+        if st.clocks >= max_clocks {
+            return Err(format!(
+                "angular-stream: {} of {records} lines done after {max_clocks} clocks",
+                st.triangles
+            ));
+        }
+        let taken = s.dut().s_axis_tready.val();
+        let row = match words.get(next) {
+            Some(&(w, last)) => [w as u64, 1, last as u64, 1, 1],
+            None => [0, 0, 0, 1, 1],
+        };
+        s.step(&row, &mut out)?;
+        next += (row[1] != 0 && taken) as usize;
+        st.clocks += 1;
+        if out[9] != 0 {
+            return Err("angular-stream flagged a malformed set-up record".into());
+        }
+        for (lane, end) in ends.iter_mut().enumerate() {
+            let at = 1 + 4 * lane;
+            if out[at] == 0 {
+                continue;
+            }
+            let b = Beat::read(out[at + 1], out[at + 2], out[at + 3] != 0);
+            if b.pixel {
+                st.pixels += 1;
+                fragment(*end as usize, b, st.clocks - 1, lane == 1);
+            }
+            *end += b.last as u64;
+        }
+        let done = ends[0].min(ends[1]);
+        while st.triangles < done {
+            st.triangles += 1;
+            record_done(st.triangles);
+        }
+    }
+    s.stop_vcd();
+    Ok(st)
 }
 
 /// Drive `words` into the stream top `s`, a word per clock while `s_axis_tready`, and take every
@@ -287,6 +381,32 @@ mod tests {
             row[1..row.len() - 1].to_vec()
         );
         assert_eq!(cubic_words(&spans).len(), 12 * spans.len());
+    }
+
+    #[test]
+    fn angular_records_carry_the_load_row() {
+        let t = golden::types::ScreenTriangle::from_points([(3, 1), (40, 7), (11, 30)]);
+        let ctx = golden::shade::ShadeContext::default();
+        let spans = crate::span::span_jobs(&t, 0, SpanKind::Angular, &ctx).unwrap();
+        let regs = ShadingRegs::of(&ctx).unwrap();
+        let rec = angular_record(&spans[3]);
+        assert_eq!(rec.len(), 14);
+        assert_eq!(rec[0], (1, false));
+        assert!(rec[..13].iter().all(|w| !w.1) && rec[13].1);
+        let payload: Vec<u32> = rec[1..].iter().map(|w| w.0).collect();
+        let row = span_row(SpanKind::Angular, Some(&spans[3]), &regs);
+        let fields = ANGULAR_LINE.fields.len();
+        assert_eq!(unpack(&ANGULAR_LINE, &payload), row[1..=fields].to_vec());
+        // The register record carries the row's material registers (before `hold`).
+        let r = span_register_record(&regs);
+        assert_eq!(r.len(), 6);
+        assert_eq!(r[0], (2, false));
+        let payload: Vec<u32> = r[1..].iter().map(|w| w.0).collect();
+        assert_eq!(
+            unpack(&SPAN_REGISTERS, &payload),
+            row[fields + 1..row.len() - 1].to_vec()
+        );
+        assert_eq!(angular_words(&spans, &regs).len(), 6 + 14 * spans.len());
     }
 
     #[test]

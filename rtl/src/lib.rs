@@ -1,4 +1,5 @@
 pub mod address_block;
+pub mod angular_stream;
 pub mod brzssk;
 pub mod colour_combine;
 pub mod cos_v_accumulator;
@@ -10,6 +11,7 @@ pub mod export;
 pub mod fast_unit;
 pub mod fixed;
 pub mod four_triangle;
+pub mod fragment_fifo;
 pub mod gouraud_raster;
 pub mod gouraud_stream;
 pub mod horner_unit;

@@ -1,26 +1,29 @@
-//! Word layouts of the AXI4-Stream tops (`pixel-stream`, `gouraud-stream`, `cubic-stream`),
-//! defined once.
+//! Word layouts of the AXI4-Stream tops (`pixel-stream`, `gouraud-stream`, `cubic-stream`,
+//! `angular-stream`), defined once.
 //!
 //! The set-up stream (`s_axis_*`, 32-bit words) carries *records*: a header word, then the
 //! record's fields packed LSB first into 32-bit words (a field never straddles two words),
 //! `tlast` on the record's last word. The fragment stream (`m_axis_*`, 64-bit `tdata` and the
-//! fragment's 32-bit depth on `tuser`) carries one fragment, or one triangle end, per beat.
+//! fragment's 32-bit depth on `tuser`) carries one fragment, or one triangle end, per beat; a
+//! two-lane top (`angular-stream`) has one such stream per lane (`m_axis_a_*`, `m_axis_b_*`).
 //!
 //! Everything that reads or writes these words comes from the tables here:
 //! - the driver packs records with [`pack`] (`pipeline::stream`), and reads fragments with
 //!   [`unpack_fragment`];
 //! - each top's field selects and fragment packing (`rtl/src/pixel_stream.rs`,
-//!   `rtl/src/gouraud_stream.rs`, `rtl/src/cubic_stream.rs`) are generated from the same tables by [`generated_rtl`]; the
-//!   tests `*_rtl_is_generated` fail if a file's generated regions differ from what the tables
-//!   give (set `SHADECORE_REGENERATE=1` to rewrite them);
+//!   `rtl/src/gouraud_stream.rs`, `rtl/src/cubic_stream.rs`, `rtl/src/angular_stream.rs`) are
+//!   generated from the same tables by [`generated_rtl`]; the tests `*_rtl_is_generated` fail
+//!   if a file's generated regions differ from what the tables give (set
+//!   `SHADECORE_REGENERATE=1` to rewrite them);
 //! - `rtl/README.md`'s layout table is printed by [`markdown`] (checked by a test as well).
 //!
 //! Field names and widths are the wrapped top's input ports (`pixel-pipeline`'s,
-//! `gouraud-raster`'s, `cubic-pipeline`'s), in its port order (checked against its port list
-//! by `testbenches/tests/pixel_stream.rs`, `gouraud_stream.rs` and `cubic_stream.rs`).
+//! `gouraud-raster`'s, `cubic-pipeline`'s, `angular-pipeline`'s), in its port order (checked
+//! against its port list by `testbenches/tests/pixel_stream.rs`, `gouraud_stream.rs`,
+//! `cubic_stream.rs` and `angular_stream.rs`).
 //!
-//! Not a block: no ports, no latency (the hardware that reads these words is `pixel_stream`,
-//! `gouraud_stream` and `cubic_stream`, whose headers give them).
+//! Not a block: no ports, no latency (the hardware that reads these words is the stream tops',
+//! whose headers give them).
 
 /// One field of a record: a port of `pixel-pipeline` (name, width in bits).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -198,10 +201,15 @@ pub struct StreamTop {
     /// `m_axis_tuser`, when the top has one.
     pub tuser: Option<Field>,
     /// The wrapped top's output port for a fragment field, where it is not the field's name
-    /// (`pixel` is `valid` unless given here).
+    /// and lane suffix (`pixel` is `valid` and the lane's suffix unless given here).
     pub ports: &'static [(&'static str, &'static str)],
     /// What `m_axis_tlast` marks.
     pub tlast: &'static str,
+    /// The fragment lanes: `&[""]` for one stream (`m_axis_*`, the wrapped top's `x`, `red`,
+    /// …); `&["_a", "_b"]` for a two-lane top, one stream per lane (`m_axis_a_*` fed from the
+    /// wrapped top's `x_a`, `red_a`, …, `m_axis_b_*` from `x_b`, …). A field in `ports` is the
+    /// same port for every lane (the line's `y`).
+    pub lanes: &'static [&'static str],
 }
 
 impl StreamTop {
@@ -217,13 +225,19 @@ impl StreamTop {
         self.records().iter().map(payload_words).max().unwrap_or(0)
     }
 
-    /// The wrapped top's output port that fragment field `field` comes from.
-    pub fn port(&self, field: &'static str) -> &'static str {
+    /// The wrapped top's output port that fragment field `field` of lane `lane` (a suffix
+    /// from [`StreamTop::lanes`]) comes from.
+    pub fn port(&self, field: &'static str, lane: &str) -> String {
         match self.ports.iter().find(|(f, _)| *f == field) {
-            Some((_, p)) => p,
-            None if field == "pixel" => "valid",
-            None => field,
+            Some((_, p)) => p.to_string(),
+            None if field == "pixel" => format!("valid{lane}"),
+            None => format!("{field}{lane}"),
         }
+    }
+
+    /// The fragment stream's port prefix of `lane`: `m_axis` (one lane), `m_axis_a`, ….
+    pub fn stream(lane: &str) -> String {
+        format!("m_axis{lane}")
     }
 }
 
@@ -237,6 +251,7 @@ pub const PIXEL_STREAM: StreamTop = StreamTop {
     tuser: Some(TUSER),
     ports: &[],
     tlast: "the triangle's last event",
+    lanes: &[""],
 };
 
 /// The Gouraud raster pipe's stream top.
@@ -249,6 +264,7 @@ pub const GOURAUD_STREAM: StreamTop = StreamTop {
     tuser: None,
     ports: &[],
     tlast: "the triangle's last event",
+    lanes: &[""],
 };
 
 /// The cubic span pipeline's stream top: one record per raster line.
@@ -261,10 +277,70 @@ pub const CUBIC_STREAM: StreamTop = StreamTop {
     tuser: Some(TUSER),
     ports: &[("y", "y_out")],
     tlast: "the line's last pixel",
+    lanes: &[""],
+};
+
+/// A raster line of the angular method (`angular-stream`): `angular-pipeline`'s load ports —
+/// the line's base (y, first pixel's x, direction, pixels − 1), the cos v accumulator's words
+/// for L and for H (p, q, d, cos β), the depth at pixel 0, at pixel m and per pixel.
+pub const ANGULAR_LINE: Record = Record {
+    name: "angular line",
+    code: 1,
+    fields: &[
+        f("y", 12),
+        f("x0", 12),
+        f("dir", 1),
+        f("m", 12),
+        f("lp", 32),
+        f("lq", 32),
+        f("ld", 32),
+        f("lcb", 16),
+        f("hp", 32),
+        f("hq", 32),
+        f("hd", 32),
+        f("hcb", 16),
+        f("z0", 32),
+        f("zm", 32),
+        f("dz", 32),
+    ],
+};
+
+/// The material registers of a span pipeline (`angular-stream`): n and the nine colour
+/// weights (L and H are in each line's words). Applied when every line loaded before it has
+/// left the pipeline.
+pub const SPAN_REGISTERS: Record = Record {
+    name: "span registers",
+    code: 2,
+    fields: &[
+        f("n", 10),
+        f("amb_r", 16),
+        f("amb_g", 16),
+        f("amb_b", 16),
+        f("dif_r", 16),
+        f("dif_g", 16),
+        f("dif_b", 16),
+        f("spc_r", 16),
+        f("spc_g", 16),
+        f("spc_b", 16),
+    ],
+};
+
+/// The angular span pipeline's stream top: one record per raster line, two fragment streams
+/// (lane A: pixel k of the line in its clock k; lane B: pixel m − k).
+pub const ANGULAR_STREAM: StreamTop = StreamTop {
+    block: "angular-stream",
+    file: "angular_stream.rs",
+    wraps: "angular-pipeline",
+    triangle: ANGULAR_LINE,
+    registers: Some(SPAN_REGISTERS),
+    tuser: Some(TUSER),
+    ports: &[("y", "y_out")],
+    tlast: "the line's last clock, on both lanes (a lane without a pixel then sends a beat with `pixel` = 0)",
+    lanes: &["_a", "_b"],
 };
 
 /// Every stream top.
-pub const TOPS: [StreamTop; 3] = [PIXEL_STREAM, GOURAUD_STREAM, CUBIC_STREAM];
+pub const TOPS: [StreamTop; 4] = [PIXEL_STREAM, GOURAUD_STREAM, CUBIC_STREAM, ANGULAR_STREAM];
 
 /// A fragment beat (`m_axis_tdata`, 64 bits); `tlast` marks a triangle's last event. A beat
 /// with `pixel` = 0 carries only that end (a triangle whose last event had no pixel). The
@@ -431,12 +507,20 @@ pub fn markdown() -> String {
             }
             s.push('\n');
         }
+        let each = |port: &str| {
+            top.lanes
+                .iter()
+                .map(|l| format!("`{}_{port}`", StreamTop::stream(l)))
+                .collect::<Vec<_>>()
+                .join(", ")
+        };
         let tuser = match top.tuser {
-            Some(t) => format!("`m_axis_tuser`: `{}`, {} bits", t.name, t.bits),
+            Some(t) => format!("{}: `{}`, {} bits", each("tuser"), t.name, t.bits),
             None => "no `m_axis_tuser`".to_string(),
         };
         s.push_str(&format!(
-            "**fragment** beat (`m_axis_tdata`, {FRAGMENT_BITS} bits; {tuser}; `tlast`: {}):\n\n| bits | field |\n|---|---|\n",
+            "**fragment** beat ({}, {FRAGMENT_BITS} bits; {tuser}; `tlast`: {}):\n\n| bits | field |\n|---|---|\n",
+            each("tdata"),
             top.tlast
         ));
         for pl in FRAGMENT {
@@ -536,42 +620,54 @@ pub fn generated_rtl(top: &StreamTop) -> (String, String) {
             fl.name
         ));
     }
-    up.push_str("        // The fragment beat (`pixel` is the pipeline's `valid`).\n");
-    let terms: Vec<String> = FRAGMENT
-        .iter()
-        .filter(|pl| pl.bits > 1)
-        .map(|pl| {
-            let wide = format!(
-                "bit_cast::<{FRAGMENT_BITS}, {}>(self.pipe.{}.val())",
-                pl.bits,
-                top.port(pl.name)
-            );
-            if pl.at() == 0 {
-                wide
-            } else {
-                format!("({wide} << {})", pl.at())
-            }
-        })
-        .collect();
-    up.push_str(&format!(
-        "        self.beat_data.next = {};\n        self.beat.next = self.beat_data.val();\n",
-        terms.join("\n            | ")
-    ));
     for pl in FRAGMENT.iter().filter(|pl| pl.bits == 1) {
-        let src = top.port(pl.name);
-        up.push_str(&format!(
-            "        if self.pipe.{src}.val() {{\n            self.beat.next = self.beat_data.val() | self.frag_{}_bit.val();\n        }}\n",
-            pl.name
-        ));
         decl.push_str(&format!(
             "        frag_{}_bit: Constant<Bits<{FRAGMENT_BITS}>> = Constant::new((1u64 << {}).into()),\n",
             pl.name,
             pl.at()
         ));
     }
-    decl.push_str(&format!(
-        "        beat_data: Signal<Local, Bits<{FRAGMENT_BITS}>>,\n"
-    ));
+    for lane in top.lanes {
+        let valid = top.port("pixel", lane);
+        up.push_str(&format!(
+            "        // The fragment beat{} (`pixel` is the pipeline's `{valid}`).\n",
+            if lane.is_empty() {
+                String::new()
+            } else {
+                format!(" of lane {}", &lane[1..].to_uppercase())
+            }
+        ));
+        let terms: Vec<String> = FRAGMENT
+            .iter()
+            .filter(|pl| pl.bits > 1)
+            .map(|pl| {
+                let wide = format!(
+                    "bit_cast::<{FRAGMENT_BITS}, {}>(self.pipe.{}.val())",
+                    pl.bits,
+                    top.port(pl.name, lane)
+                );
+                if pl.at() == 0 {
+                    wide
+                } else {
+                    format!("({wide} << {})", pl.at())
+                }
+            })
+            .collect();
+        up.push_str(&format!(
+            "        self.beat{lane}_data.next = {};\n        self.beat{lane}.next = self.beat{lane}_data.val();\n",
+            terms.join("\n            | ")
+        ));
+        for pl in FRAGMENT.iter().filter(|pl| pl.bits == 1) {
+            let src = top.port(pl.name, lane);
+            up.push_str(&format!(
+                "        if self.pipe.{src}.val() {{\n            self.beat{lane}.next = self.beat{lane}_data.val() | self.frag_{}_bit.val();\n        }}\n",
+                pl.name
+            ));
+        }
+        decl.push_str(&format!(
+            "        beat{lane}_data: Signal<Local, Bits<{FRAGMENT_BITS}>>,\n"
+        ));
+    }
     (decl, up)
 }
 
@@ -650,6 +746,8 @@ mod tests {
         assert_eq!(payload_words(&REGISTERS), 8);
         assert_eq!(payload_words(&GOURAUD_TRIANGLE), 21);
         assert_eq!(payload_words(&CUBIC_LINE), 11);
+        assert_eq!(payload_words(&ANGULAR_LINE), 13);
+        assert_eq!(payload_words(&SPAN_REGISTERS), 5);
     }
 
     #[test]

@@ -499,9 +499,11 @@ pub fn run_stream<D: Dut>(
 }
 
 /// A port that flags a valid output: `valid*`, a lane's `*_valid`, or an AXI4-Stream
-/// master's `m_axis_tvalid`.
+/// master's `m_axis_tvalid` (a two-lane top's `m_axis_a_tvalid`, `m_axis_b_tvalid`).
 pub fn is_valid_port(name: &str) -> bool {
-    name.starts_with("valid") || name.ends_with("_valid") || name == "m_axis_tvalid"
+    name.starts_with("valid")
+        || name.ends_with("_valid")
+        || (name.starts_with("m_axis") && name.ends_with("_tvalid"))
 }
 
 /// [`run`] over a fixed list: clock `c` drives `rows[c]` and checks `expected[c]`.

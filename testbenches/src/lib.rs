@@ -1,4 +1,5 @@
 pub mod address_block;
+pub mod angular_stream;
 pub mod brzssk;
 pub mod colour_combine;
 pub mod cos_v_accumulator;

@@ -291,6 +291,7 @@ pub static BLOCKS: &[&dyn Entry] = &[
     &entry::<rtl::horner_unit::HornerUnit>(),
     &entry::<rtl::cubic_pipeline::CubicPipeline>(),
     &entry::<rtl::cubic_stream::CubicStream>(),
+    &entry::<rtl::angular_stream::AngularStream>(),
     &entry::<rtl::quadric_unit::QuadricUnit>(),
 ];
 

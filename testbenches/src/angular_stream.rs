@@ -1,0 +1,285 @@
+//! Bench of `angular-stream` (`rtl::angular_stream`), the AXI4-Stream top of the angular span
+//! pipeline: its bit-exact twin (the record reader, the word banks, the active registers, a
+//! FIFO per lane with the units' hold, around `angular-pipeline`'s twin), driven by the seeded
+//! producer and consumers of the other stream tops' benches (a word stays until taken; each
+//! lane's `tready` low in a quarter of the clocks and in long stretches, the two lanes
+//! independently).
+//!
+//! Golden: the stream adds no arithmetic. Its golden expectation is the protocol (every
+//! `tready`, `tvalid`, `tlast`, `error`, exact) and, for the data, each lane's beats in order
+//! are those of the same words without a stall, whose colours and depths `angular-pipeline`'s
+//! bench checks against the golden `angular` method and the f64 depth plane every clock (and
+//! `tests/angular_stream.rs` against that pipeline's RTL run through its own ports).
+
+use pipeline::lit::ShadingRegs;
+use pipeline::span::{SpanJob, SpanKind};
+use pipeline::stream::{angular_words, Beat, Word};
+use rtl::angular_stream::{AngularStream, FIFO_DEPTH, HOLD_ABOVE};
+use rtl::stream_layout::{pack_fragment, unpack, ANGULAR_LINE, ANGULAR_STREAM, SPAN_REGISTERS};
+
+use crate::harness::{Compare, Expected};
+use crate::pixel_pipeline::lit_triangles;
+use crate::registry::{Bench, Stimulus, Twin};
+use crate::span_pipeline::{GoldenSpans, SpanPipelineTwin};
+use crate::stall::{SplitMix, StallPattern};
+use crate::stream_twin::{BeatFifo, RecordReader};
+use rtl::registry::NoParams;
+
+/// Output ports in row order: s_axis_tready; lane A tvalid, tdata, tuser, tlast; lane B the
+/// same; error.
+pub const OUTPUTS: usize = 10;
+
+/// Twin of `angular-stream`.
+pub struct AngularStreamTwin {
+    inner: SpanPipelineTwin,
+    reader: RecordReader,
+    /// The active registers: n, the nine weights (0 after reset).
+    regs: Vec<u64>,
+    /// Beats per lane: tdata, tuser (z), tlast.
+    lanes: [BeatFifo<(u64, u64, bool)>; 2],
+    /// Lines loaded whose last clock has not left the pipeline.
+    outstanding: usize,
+    /// Clocks the pipeline was held.
+    pub held: usize,
+}
+
+impl Default for AngularStreamTwin {
+    fn default() -> Self {
+        AngularStreamTwin {
+            inner: SpanPipelineTwin::new(SpanKind::Angular),
+            reader: RecordReader::new(&ANGULAR_STREAM.records()),
+            regs: vec![0; SPAN_REGISTERS.fields.len()],
+            lanes: [0, 1].map(|_| BeatFifo::new(FIFO_DEPTH, HOLD_ABOVE)),
+            outstanding: 0,
+            held: 0,
+        }
+    }
+}
+
+impl AngularStreamTwin {
+    /// `s_axis_tready` in the current clock.
+    pub fn s_ready(&self) -> bool {
+        self.reader.s_ready()
+    }
+
+    /// Nothing waiting, nothing in flight, nothing to deliver.
+    pub fn idle(&self) -> bool {
+        self.reader.idle() && self.outstanding == 0 && self.lanes.iter().all(|l| l.is_empty())
+    }
+
+    /// The most beats either lane's FIFO held.
+    pub fn max_level(&self) -> usize {
+        self.lanes.iter().map(|l| l.max_level).max().unwrap_or(0)
+    }
+
+    fn outputs(&self) -> Vec<u64> {
+        let mut o = vec![self.s_ready() as u64];
+        for l in &self.lanes {
+            let (tdata, tuser, tlast) = l.out.unwrap_or((0, 0, false));
+            o.extend([l.out.is_some() as u64, tdata, tuser, tlast as u64]);
+        }
+        o.push(self.reader.err as u64);
+        o
+    }
+}
+
+impl Twin for AngularStreamTwin {
+    fn step(&mut self, r: &[u64]) -> Vec<u64> {
+        let (tdata, tvalid, tlast) = (r[0] as u32, r[1] != 0, r[2] != 0);
+        let m_ready = [r[3] != 0, r[4] != 0];
+        let out = self.outputs();
+
+        // The pipeline's inputs this clock: load, the load bank's line fields, the active
+        // registers, hold (either lane's registered level flag).
+        let is_line = self.reader.pend_b && self.reader.type_b == 1;
+        let mut row = vec![is_line as u64];
+        row.extend(unpack(&ANGULAR_LINE, &self.reader.load_bank));
+        row.extend(&self.regs);
+        let hold = self.lanes.iter_mut().fold(false, |h, l| l.hold() | h);
+        self.held += hold as usize;
+        row.push(hold as u64);
+        // Outputs: ready; lane A valid, x, z, r, g, b; lane B the same; y; last.
+        let o = self.inner.step(&row);
+        let (ready, last) = (o[0] != 0, o[14] != 0);
+
+        let load_taken = is_line && ready;
+        let apply = self.reader.pend_b && self.reader.type_b == 2 && self.outstanding == 0;
+        if apply {
+            self.regs = unpack(&SPAN_REGISTERS, &self.reader.load_bank);
+        }
+        self.reader.clock(tdata, tvalid, tlast, load_taken || apply);
+        self.outstanding = self.outstanding + load_taken as usize - last as usize;
+        for (k, lane) in self.lanes.iter_mut().enumerate() {
+            let at = 1 + 6 * k;
+            let valid = o[at] != 0;
+            let beat = pack_fragment(&[
+                o[at + 1],
+                o[13],
+                valid as u64,
+                o[at + 3],
+                o[at + 4],
+                o[at + 5],
+            ]);
+            lane.clock(
+                m_ready[k],
+                (valid || last).then_some((beat as u64, o[at + 2], last)),
+            );
+        }
+        out
+    }
+}
+
+/// A run: input rows, the twin's outputs, and what happened.
+pub struct AngularStreamRun {
+    pub rows: Vec<Vec<u64>>,
+    pub outputs: Vec<Vec<u64>>,
+    /// The beats each lane's consumer took, in order (lane A, lane B).
+    pub beats: [Vec<Beat>; 2],
+    pub held: usize,
+    /// Clocks each lane's consumer was stalled.
+    pub consumer_stalls: [usize; 2],
+    /// The most beats a lane's FIFO held.
+    pub max_level: usize,
+}
+
+/// Drive `words` into the twin with a producer that leaves a gap (tvalid low) with
+/// probability `gap` and each lane's consumer stalled by its pattern, until every word is
+/// taken and everything has drained (plus `tail` idle clocks).
+pub fn drive(
+    words: &[Word],
+    seed: u64,
+    gap: f64,
+    stalls: &mut [StallPattern; 2],
+    tail: usize,
+) -> AngularStreamRun {
+    let mut twin = AngularStreamTwin::default();
+    let mut rng = SplitMix::new(seed ^ 0xA9_6E1A);
+    let mut run = AngularStreamRun {
+        rows: Vec::new(),
+        outputs: Vec::new(),
+        beats: [Vec::new(), Vec::new()],
+        held: 0,
+        consumer_stalls: [0; 2],
+        max_level: 0,
+    };
+    let (mut next, mut showing, mut idle_clocks) = (0usize, false, 0usize);
+    let limit = 200 + words.len() * 200 + 400_000;
+    while idle_clocks < tail {
+        assert!(run.rows.len() < limit, "the stream does not drain");
+        if !showing && next < words.len() {
+            showing = rng.unit() >= gap;
+        }
+        let (w, last) = if showing { words[next] } else { (0, false) };
+        let m_ready = [0, 1].map(|k| !stalls[k].next_stalled());
+        let row = vec![
+            w as u64,
+            showing as u64,
+            last as u64,
+            m_ready[0] as u64,
+            m_ready[1] as u64,
+        ];
+        let s_ready = twin.s_ready();
+        let o = twin.step(&row);
+        if showing && s_ready {
+            next += 1;
+            showing = false;
+        }
+        for (k, ready) in m_ready.into_iter().enumerate() {
+            let at = 1 + 4 * k;
+            if o[at] != 0 && ready {
+                run.beats[k].push(Beat::read(o[at + 1], o[at + 2], o[at + 3] != 0));
+            }
+            run.consumer_stalls[k] += !ready as usize;
+        }
+        run.rows.push(row);
+        run.outputs.push(o);
+        if next == words.len() && twin.idle() {
+            idle_clocks += 1;
+        }
+    }
+    run.held = twin.held;
+    run.max_level = twin.max_level();
+    run
+}
+
+/// The stimulus's scene: the angular lines of `n` seeded lit triangles (the
+/// `angular-pipeline` bench's), in walk order, and the default context's registers.
+pub fn scene(seed: u64, n: usize) -> (Vec<SpanJob>, ShadingRegs) {
+    let g = GoldenSpans::new(SpanKind::Angular, &lit_triangles(seed, n));
+    (g.spans, g.regs)
+}
+
+/// Each lane's beats of `words` through the stream without a stall (the order and content
+/// every stalled run must reproduce).
+pub fn reference_beats(words: &[Word]) -> [Vec<Beat>; 2] {
+    drive(
+        words,
+        1,
+        0.0,
+        &mut [StallPattern::never(), StallPattern::never()],
+        20,
+    )
+    .beats
+}
+
+/// The stall patterns of a bench run: lane A's and lane B's consumers, independent.
+pub fn stalls(seed: u64, p: f64) -> [StallPattern; 2] {
+    [
+        StallPattern::new(seed, p),
+        StallPattern::new(seed ^ 0xB_B0B, p),
+    ]
+}
+
+impl Bench for AngularStream {
+    const ITEMS: &'static str = "triangles";
+    const DEFAULT_ITEMS: usize = 3;
+    fn stimulus(_: &NoParams, n: usize, seed: u64) -> Stimulus {
+        let (spans, regs) = scene(seed, n);
+        let words = angular_words(&spans, &regs);
+        let run = drive(&words, seed, 0.1, &mut stalls(seed, 0.25), 8);
+        // Golden: the protocol (exact), and each lane's beats in the order of the same words
+        // without a stall (whose colours and depths `angular-pipeline`'s bench checks against
+        // the golden method, and `tests/angular_stream.rs` against that pipeline's RTL).
+        let reference = reference_beats(&words);
+        let mut k = [0usize; 2];
+        let expected = run
+            .outputs
+            .iter()
+            .zip(&run.rows)
+            .map(|(o, r)| {
+                let mut e = vec![Expected::Word(o[0])];
+                for lane in 0..2 {
+                    let at = 1 + 4 * lane;
+                    let (data, tuser) = if o[at] != 0 {
+                        let b = &reference[lane][k[lane]];
+                        k[lane] += (r[3 + lane] != 0) as usize;
+                        (Expected::Word(b.tdata()), Expected::Word(b.z as u32 as u64))
+                    } else {
+                        (Expected::DontCare, Expected::DontCare)
+                    };
+                    e.extend([
+                        Expected::Word(o[at]),
+                        data,
+                        tuser,
+                        Expected::Word(o[at + 3]),
+                    ]);
+                }
+                e.push(Expected::Word(o[9]));
+                e
+            })
+            .collect();
+        assert_eq!(
+            k,
+            [0, 1].map(|l| reference[l].len()),
+            "every beat delivered"
+        );
+        Stimulus {
+            rows: run.rows,
+            expected,
+            compare: vec![Compare::Exact; OUTPUTS],
+        }
+    }
+    fn twin(_: &NoParams) -> Box<dyn Twin> {
+        Box::new(AngularStreamTwin::default())
+    }
+}
