@@ -147,9 +147,9 @@ pub enum LitTop {
     /// `stream` under rust-hdl, `pipeline` under Verilator (whose replay drives the ports).
     #[default]
     Default,
-    /// `pixel-stream` / `gouraud-stream` / `cubic-stream` / `angular-stream`: set-up records
-    /// on a 32-bit AXI4-Stream, fragment beats out (cubic and angular only when asked: their
-    /// per-line records make short lines set-up bound).
+    /// `pixel-stream` / `gouraud-stream` / `cubic-stream` / `angular-stream` / `fast-stream`:
+    /// set-up records on a 32-bit AXI4-Stream, fragment beats out (the span methods only when
+    /// asked: their per-line records make short lines set-up bound).
     Stream,
     /// `pixel-pipeline` / `gouraud-raster` / `cubic-pipeline`: the set-up on load ports, one
     /// triangle (cubic: one line) per load.
@@ -352,17 +352,20 @@ pub fn render_span_rtl(
     } else {
         ShadingRegs::of(ctx).map_err(|e| anyhow::anyhow!("RTL set-up: {e}"))?
     };
-    // `cubic` goes through its stream top `cubic-stream` (and `angular` through
-    // `angular-stream`) only when asked (`--lit-top stream`, rust-hdl): a line's record is 12 set-up words, so on meshes whose triangles
+    // `cubic` goes through its stream top `cubic-stream` (and `angular`, `fast`, `fast-fit`
+    // through `angular-stream`, `fast-stream`) only when asked (`--lit-top stream`, rust-hdl): a line's record is 12 set-up words, so on meshes whose triangles
     // give lines of a few pixels the stream is set-up bound (the default scene: see the
     // README) and the main job keeps `cubic-pipeline`'s ports.
     build.lit_top.resolve(build.sim)?;
     let mut pipe = if method == Method::Cubic && build.lit_top == LitTop::Stream {
         SpanPipe::cubic_stream(build.horner_pipelined)
-    } else if method == Method::Angular && build.lit_top == LitTop::Stream {
-        // `angular-stream` likewise: a line's record is 14 words and a line of m + 1 pixels
-        // takes ⌊m/2⌋ + 1 clocks, so lines under 27 pixels are set-up bound.
-        SpanPipe::angular_stream()
+    } else if matches!(method, Method::Angular | Method::Fast | Method::FastFit)
+        && build.lit_top == LitTop::Stream
+    {
+        // `angular-stream` and `fast-stream` likewise: a line's record is 14 or 20 words and a
+        // line of m + 1 pixels takes ⌊m/2⌋ + 1 clocks, so lines under 27 or 39 pixels are
+        // set-up bound.
+        SpanPipe::span_stream(method)
     } else {
         SpanPipe::with_horner(method, build.horner_pipelined)
     }
@@ -673,55 +676,63 @@ mod tests {
         assert!(max <= 1, "RTL differs from golden Gouraud by {max} LSB");
     }
 
-    /// Angular through `angular-stream` (line and register records, a fragment stream per
-    /// lane) and through `angular-pipeline`'s ports gives the same frame, bit for bit, on the
-    /// torus at 128×128 and the default sphere at 112×112; the clocks of both are printed
-    /// (lines shorter than 27 pixels are set-up bound: a line's record is 14 words).
+    /// The span methods through their two-lane stream tops (`angular-stream`, `fast-stream`:
+    /// line and register records, a fragment stream per lane) and through the span pipelines'
+    /// ports give the same frame, bit for bit: the torus at 80×80 (`angular`, `fast`) and the
+    /// default sphere at 72×72 (`angular`, `fast-fit`); the clocks of both are printed (lines
+    /// shorter than 27 or 39 pixels are set-up bound: a line's record is 14 or 20 words).
     #[test]
-    fn angular_stream_and_ports_render_the_same_frame() {
-        for (scene, size) in [("torus", 128), ("sphere", 112)] {
+    fn span_streams_and_ports_render_the_same_frame() {
+        for (scene, size, methods) in [
+            ("torus", 80, [Method::Angular, Method::Fast]),
+            ("sphere", 72, [Method::Angular, Method::FastFit]),
+        ] {
             let s = crate::setup::build(&crate::setup::SceneArgs {
                 scene: scene.into(),
                 size: (size, size),
                 ..crate::setup::SceneArgs::default()
             })
             .unwrap();
-            let run = |top| {
-                let build = RtlBuild {
-                    lit_top: top,
-                    ..RtlBuild::default()
+            for method in methods {
+                let run = |top| {
+                    let build = RtlBuild {
+                        lit_top: top,
+                        ..RtlBuild::default()
+                    };
+                    render_span_rtl(
+                        &s.tris,
+                        method,
+                        &s.ctx,
+                        s.width,
+                        s.height,
+                        &ProgressBar::hidden(),
+                        build,
+                    )
+                    .unwrap()
                 };
-                render_span_rtl(
-                    &s.tris,
-                    Method::Angular,
-                    &s.ctx,
-                    s.width,
-                    s.height,
-                    &ProgressBar::hidden(),
-                    build,
-                )
-                .unwrap()
-            };
-            let stream = run(LitTop::Stream);
-            let ports = run(LitTop::Pipeline);
-            assert!(
-                stream.stats.pixels > 1000,
-                "{scene}: a scene worth rendering"
-            );
-            assert_eq!(stream.stats.pixels, ports.stats.pixels, "{scene}");
-            assert_eq!(stream.stats.triangles, ports.stats.triangles, "{scene}");
-            assert!(
-                stream.frame.rgb == ports.frame.rgb,
-                "{scene}: frames differ"
-            );
-            println!(
-                "angular, {scene} {size}×{size}: angular-stream {} clocks ({:.3} px/clock), angular-pipeline {} ({:.3}), ratio {:.3}",
-                stream.stats.clocks,
-                stream.stats.pixels_per_clock(),
-                ports.stats.clocks,
-                ports.stats.pixels_per_clock(),
-                ports.stats.clocks as f64 / stream.stats.clocks as f64
-            );
+                let stream = run(LitTop::Stream);
+                let ports = run(LitTop::Pipeline);
+                assert!(
+                    stream.stats.pixels > 1000,
+                    "{scene}: a scene worth rendering"
+                );
+                assert_eq!(stream.stats.pixels, ports.stats.pixels, "{scene} {method}");
+                assert_eq!(stream.stats.triangles, ports.stats.triangles);
+                assert!(
+                    stream.frame.rgb == ports.frame.rgb,
+                    "{scene} {method}: frames differ"
+                );
+                // The stream top ran (its set-up words cost clocks the ports do not).
+                assert!(stream.stats.clocks > ports.stats.clocks, "{scene} {method}");
+                println!(
+                    "{method}, {scene} {size}×{size}: stream top {} clocks ({:.3} px/clock), pipeline ports {} ({:.3}), ratio {:.3}",
+                    stream.stats.clocks,
+                    stream.stats.pixels_per_clock(),
+                    ports.stats.clocks,
+                    ports.stats.pixels_per_clock(),
+                    ports.stats.clocks as f64 / stream.stats.clocks as f64
+                );
+            }
         }
     }
 

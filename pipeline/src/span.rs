@@ -24,6 +24,7 @@ use golden::types::ScreenTriangle;
 use rtl::angular_stream::AngularStream;
 use rtl::cubic_pipeline::{CubicParams, CubicPipeline};
 use rtl::cubic_stream::CubicStream;
+use rtl::fast_stream::FastStream;
 use rtl::horner_unit::HornerParams;
 use rtl::quadric_unit::QuadricUnit;
 use rtl::registry::{BlockParams, Options, RtlBlock};
@@ -355,6 +356,8 @@ enum Top {
     /// The angular pipeline's AXI4-Stream top (line and register records in, a fragment
     /// stream per lane out).
     AngularStream(Box<Stepper<AngularStream>>),
+    /// The fast pipeline's AXI4-Stream top (as `angular-stream`).
+    FastStream(Box<Stepper<FastStream>>),
     Quadric(Box<Stepper<QuadricUnit>>),
     Replay(crate::replay::Replay),
 }
@@ -408,13 +411,28 @@ impl SpanPipe {
         })
     }
 
-    /// `angular` through its AXI4-Stream top `angular-stream`: [`SpanPipe::run`] sends the
-    /// register record and every line's record on the set-up stream (one word per clock while
-    /// `s_axis_tready`) and takes every beat of both lanes (both `m_axis_*_tready` high).
-    pub fn angular_stream() -> Result<SpanPipe, String> {
+    /// `angular`, `fast` or `fast-fit` through its AXI4-Stream top (`angular-stream`,
+    /// `fast-stream`): [`SpanPipe::run`] sends the register record and every line's record on
+    /// the set-up stream (one word per clock while `s_axis_tready`) and takes every beat of both
+    /// lanes (both `m_axis_*_tready` high).
+    pub fn span_stream(method: Method) -> Result<SpanPipe, String> {
+        let kind = SpanKind::of(method);
+        let top = match kind {
+            Some(SpanKind::Angular) => {
+                Top::AngularStream(Box::new(Stepper::new(AngularStream::default())?))
+            }
+            Some(k @ SpanKind::Fast(_)) => {
+                Top::FastStream(Box::new(Stepper::new(FastStream::new(&k.fast_params()))?))
+            }
+            _ => {
+                return Err(format!(
+                    "{method} has no two-lane stream top (angular, fast and fast-fit have)"
+                ))
+            }
+        };
         Ok(SpanPipe {
-            kind: SpanKind::Angular,
-            top: Top::AngularStream(Box::new(Stepper::new(AngularStream::default())?)),
+            kind: kind.expect("matched"),
+            top,
         })
     }
 
@@ -438,6 +456,7 @@ impl SpanPipe {
             Top::Cubic(_) => <CubicPipeline as RtlBlock>::LATENCY,
             Top::CubicStream(_) => <CubicStream as RtlBlock>::LATENCY,
             Top::AngularStream(_) => <AngularStream as RtlBlock>::LATENCY,
+            Top::FastStream(_) => <FastStream as RtlBlock>::LATENCY,
             Top::Quadric(_) => QuadricUnit::LATENCY,
             Top::Replay(_) => match self.kind {
                 SpanKind::Angular => AngularPipeline::LATENCY,
@@ -456,6 +475,7 @@ impl SpanPipe {
             Top::Cubic(s) => s.start_vcd(w),
             Top::CubicStream(s) => s.start_vcd(w),
             Top::AngularStream(s) => s.start_vcd(w),
+            Top::FastStream(s) => s.start_vcd(w),
             Top::Quadric(s) => s.start_vcd(w),
             Top::Replay(_) => {}
         }
@@ -466,7 +486,7 @@ impl SpanPipe {
             Top::Angular(s) => s.dut().ready.val(),
             Top::Fast(s) => s.dut().ready.val(),
             Top::Cubic(s) => s.dut().ready.val(),
-            Top::CubicStream(_) | Top::AngularStream(_) => {
+            Top::CubicStream(_) | Top::AngularStream(_) | Top::FastStream(_) => {
                 unreachable!("a stream top is run by its own driver")
             }
             Top::Quadric(s) => s.dut().ready.val(),
@@ -479,7 +499,7 @@ impl SpanPipe {
             Top::Angular(s) => s.step(row, out),
             Top::Fast(s) => s.step(row, out),
             Top::Cubic(s) => s.step(row, out),
-            Top::CubicStream(_) | Top::AngularStream(_) => {
+            Top::CubicStream(_) | Top::AngularStream(_) | Top::FastStream(_) => {
                 unreachable!("a stream top is run by its own driver")
             }
             Top::Quadric(s) => s.step(row, out),
@@ -502,8 +522,30 @@ impl SpanPipe {
         if let Top::CubicStream(s) = &mut self.top {
             return run_cubic_stream(s, spans, max_clocks, &mut fragment, &mut progress);
         }
-        if let Top::AngularStream(s) = &mut self.top {
-            return run_angular_stream(s, spans, regs, max_clocks, &mut fragment, &mut progress);
+        match &mut self.top {
+            Top::AngularStream(s) => {
+                return run_lanes(
+                    s,
+                    self.kind,
+                    spans,
+                    regs,
+                    max_clocks,
+                    &mut fragment,
+                    &mut progress,
+                )
+            }
+            Top::FastStream(s) => {
+                return run_lanes(
+                    s,
+                    self.kind,
+                    spans,
+                    regs,
+                    max_clocks,
+                    &mut fragment,
+                    &mut progress,
+                )
+            }
+            _ => {}
         }
         let mut st = PipeStats::default();
         let mut out = vec![0u64; OUTPUTS];
@@ -560,6 +602,7 @@ impl SpanPipe {
             Top::Cubic(s) => s.stop_vcd(),
             Top::CubicStream(s) => s.stop_vcd(),
             Top::AngularStream(s) => s.stop_vcd(),
+            Top::FastStream(s) => s.stop_vcd(),
             Top::Quadric(s) => s.stop_vcd(),
             Top::Replay(_) => {}
         }
@@ -603,10 +646,13 @@ fn run_cubic_stream(
     )
 }
 
-/// [`SpanPipe::run`] through `angular-stream`: the register record and the lines' records on
-/// the set-up stream, every beat of both lanes taken; a line ends with both lanes' `tlast`.
-fn run_angular_stream(
-    s: &mut Stepper<AngularStream>,
+/// [`SpanPipe::run`] through a two-lane stream top (`angular-stream`, `fast-stream`): the
+/// register record and the lines' records on the set-up stream, every beat of both lanes
+/// taken; a line ends with both lanes' `tlast`.
+#[allow(clippy::too_many_arguments)]
+fn run_lanes<T: crate::stream::TwoLaneTop>(
+    s: &mut Stepper<T>,
+    kind: SpanKind,
     spans: &[SpanJob],
     regs: &ShadingRegs,
     max_clocks: u64,
@@ -614,9 +660,9 @@ fn run_angular_stream(
     progress: &mut dyn FnMut(u64),
 ) -> Result<PipeStats, String> {
     let n = spans.len() as u64;
-    crate::stream::drive_angular(
+    crate::stream::drive_lanes(
         s,
-        &crate::stream::angular_words(spans, regs),
+        &crate::stream::span_stream_words(kind, spans, regs),
         n,
         max_clocks,
         &mut |line, b, clock, lane_b| {
@@ -641,11 +687,11 @@ fn run_angular_stream(
 /// A clock budget for `spans`: their clocks plus the pipeline's latency and margin (and for
 /// the quadric unit every line start's move).
 pub fn span_clock_budget(spans: &[SpanJob]) -> u64 {
-    // A line through `cubic-stream` or `angular-stream` takes at least its record's words (one
-    // per clock); the angular stream's register record comes first.
+    // A line through a stream top takes at least its record's words (one per clock; the fast
+    // line's, the longer of the two span records); the span stream tops' register record
+    // comes first.
     let words = 1 + rtl::stream_layout::payload_words(&rtl::stream_layout::CUBIC_LINE) as u64;
-    let pair_words =
-        1 + rtl::stream_layout::payload_words(&rtl::stream_layout::ANGULAR_LINE) as u64;
+    let pair_words = 1 + rtl::stream_layout::payload_words(&rtl::stream_layout::FAST_LINE) as u64;
     spans
         .iter()
         .map(|s| match s.words {

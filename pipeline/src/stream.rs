@@ -4,8 +4,8 @@
 //! back with it.
 
 use rtl::stream_layout::{
-    pack, unpack_fragment, ANGULAR_LINE, CUBIC_LINE, GOURAUD_TRIANGLE, REGISTERS, SPAN_REGISTERS,
-    TRIANGLE,
+    pack, unpack_fragment, ANGULAR_LINE, CUBIC_LINE, FAST_LINE, GOURAUD_TRIANGLE, REGISTERS,
+    SPAN_REGISTERS, TRIANGLE,
 };
 
 use crate::gouraud::{pipe_row, TriangleJob, PIPE_HOLD_AT};
@@ -75,15 +75,26 @@ pub fn cubic_words(spans: &[SpanJob]) -> Vec<Word> {
     spans.iter().flat_map(cubic_record).collect()
 }
 
-/// The `angular-stream` record of an angular line (`span` from `crate::span::span_jobs` with
-/// [`SpanKind::Angular`]): the same field values `angular-pipeline`'s load row carries.
-pub fn angular_record(span: &SpanJob) -> Vec<Word> {
-    let row = span_row(SpanKind::Angular, Some(span), &ShadingRegs::default());
-    let fields = ANGULAR_LINE.fields.len();
-    with_last(pack(&ANGULAR_LINE, &row[1..=fields]))
+/// The line record of the two-lane span stream top of `kind` (`angular-stream` for
+/// [`SpanKind::Angular`], `fast-stream` for [`SpanKind::Fast`]) for `span` (from
+/// `crate::span::span_jobs` with that kind): the same field values the span pipeline's load row
+/// carries.
+pub fn span_line_record(kind: SpanKind, span: &SpanJob) -> Vec<Word> {
+    let line = span_line_layout(kind);
+    let row = span_row(kind, Some(span), &ShadingRegs::default());
+    with_last(pack(&line, &row[1..=line.fields.len()]))
 }
 
-/// The `angular-stream` register record of `regs` (n and the nine colour weights; L and H
+/// The line layout of the span stream top of `kind`.
+pub fn span_line_layout(kind: SpanKind) -> rtl::stream_layout::Record {
+    match kind {
+        SpanKind::Angular => ANGULAR_LINE,
+        SpanKind::Fast(_) => FAST_LINE,
+        _ => panic!("{kind:?} has no two-lane stream top"),
+    }
+}
+
+/// The span stream tops' register record of `regs` (n and the nine colour weights; L and H
 /// are in each line's words).
 pub fn span_register_record(regs: &ShadingRegs) -> Vec<Word> {
     let mut values = vec![regs.n];
@@ -91,11 +102,12 @@ pub fn span_register_record(regs: &ShadingRegs) -> Vec<Word> {
     with_last(pack(&SPAN_REGISTERS, &values))
 }
 
-/// An angular scene's set-up stream: the registers, then every line in walk order.
-pub fn angular_words(spans: &[SpanJob], regs: &ShadingRegs) -> Vec<Word> {
+/// A span scene's set-up stream for the stream top of `kind`: the registers, then every line
+/// in walk order.
+pub fn span_stream_words(kind: SpanKind, spans: &[SpanJob], regs: &ShadingRegs) -> Vec<Word> {
     let mut w = span_register_record(regs);
     for s in spans {
-        w.extend(angular_record(s));
+        w.extend(span_line_record(kind, s));
     }
     w
 }
@@ -210,12 +222,33 @@ impl StreamTop for rtl::cubic_stream::CubicStream {
     }
 }
 
-/// [`drive`] for `angular-stream`'s two fragment streams (both `m_axis_*_tready` high):
+/// The two-lane span stream tops (`angular-stream`, `fast-stream`), for [`drive_lanes`].
+pub trait TwoLaneTop: rtl::sim::Dut {
+    /// Its registry name.
+    const NAME: &'static str;
+    fn s_axis_tready(&self) -> bool;
+}
+
+impl TwoLaneTop for rtl::angular_stream::AngularStream {
+    const NAME: &'static str = "angular-stream";
+    fn s_axis_tready(&self) -> bool {
+        self.s_axis_tready.val()
+    }
+}
+
+impl TwoLaneTop for rtl::fast_stream::FastStream {
+    const NAME: &'static str = "fast-stream";
+    fn s_axis_tready(&self) -> bool {
+        self.s_axis_tready.val()
+    }
+}
+
+/// [`drive`] for a two-lane top's fragment streams (both `m_axis_*_tready` high):
 /// `fragment(line, beat, clock, lane_b)` for each beat with a pixel (line = the `tlast`s seen
 /// before it on its lane), `record_done(lines_done)` when both lanes have seen a line's
 /// `tlast`. `records` counts lines (the register record at the start is not one).
-pub fn drive_angular(
-    s: &mut rtl::sim::Stepper<rtl::angular_stream::AngularStream>,
+pub fn drive_lanes<T: TwoLaneTop>(
+    s: &mut rtl::sim::Stepper<T>,
     words: &[Word],
     records: u64,
     max_clocks: u64,
@@ -229,11 +262,12 @@ pub fn drive_angular(
     while st.triangles < records {
         if st.clocks >= max_clocks {
             return Err(format!(
-                "angular-stream: {} of {records} lines done after {max_clocks} clocks",
+                "{}: {} of {records} lines done after {max_clocks} clocks",
+                T::NAME,
                 st.triangles
             ));
         }
-        let taken = s.dut().s_axis_tready.val();
+        let taken = s.dut().s_axis_tready();
         let row = match words.get(next) {
             Some(&(w, last)) => [w as u64, 1, last as u64, 1, 1],
             None => [0, 0, 0, 1, 1],
@@ -242,7 +276,7 @@ pub fn drive_angular(
         next += (row[1] != 0 && taken) as usize;
         st.clocks += 1;
         if out[9] != 0 {
-            return Err("angular-stream flagged a malformed set-up record".into());
+            return Err(format!("{} flagged a malformed set-up record", T::NAME));
         }
         for (lane, end) in ends.iter_mut().enumerate() {
             let at = 1 + 4 * lane;
@@ -384,29 +418,35 @@ mod tests {
     }
 
     #[test]
-    fn angular_records_carry_the_load_row() {
+    fn span_records_carry_the_load_row() {
         let t = golden::types::ScreenTriangle::from_points([(3, 1), (40, 7), (11, 30)]);
         let ctx = golden::shade::ShadeContext::default();
-        let spans = crate::span::span_jobs(&t, 0, SpanKind::Angular, &ctx).unwrap();
         let regs = ShadingRegs::of(&ctx).unwrap();
-        let rec = angular_record(&spans[3]);
-        assert_eq!(rec.len(), 14);
-        assert_eq!(rec[0], (1, false));
-        assert!(rec[..13].iter().all(|w| !w.1) && rec[13].1);
-        let payload: Vec<u32> = rec[1..].iter().map(|w| w.0).collect();
-        let row = span_row(SpanKind::Angular, Some(&spans[3]), &regs);
-        let fields = ANGULAR_LINE.fields.len();
-        assert_eq!(unpack(&ANGULAR_LINE, &payload), row[1..=fields].to_vec());
-        // The register record carries the row's material registers (before `hold`).
-        let r = span_register_record(&regs);
-        assert_eq!(r.len(), 6);
-        assert_eq!(r[0], (2, false));
-        let payload: Vec<u32> = r[1..].iter().map(|w| w.0).collect();
-        assert_eq!(
-            unpack(&SPAN_REGISTERS, &payload),
-            row[fields + 1..row.len() - 1].to_vec()
-        );
-        assert_eq!(angular_words(&spans, &regs).len(), 6 + 14 * spans.len());
+        for (kind, words) in [(SpanKind::Angular, 14), (SpanKind::Fast("fit"), 20)] {
+            let spans = crate::span::span_jobs(&t, 0, kind, &ctx).unwrap();
+            let rec = span_line_record(kind, &spans[3]);
+            assert_eq!(rec.len(), words, "{kind:?}");
+            assert_eq!(rec[0], (1, false));
+            assert!(rec[..words - 1].iter().all(|w| !w.1) && rec[words - 1].1);
+            let payload: Vec<u32> = rec[1..].iter().map(|w| w.0).collect();
+            let row = span_row(kind, Some(&spans[3]), &regs);
+            let line = span_line_layout(kind);
+            let fields = line.fields.len();
+            assert_eq!(unpack(&line, &payload), row[1..=fields].to_vec());
+            // The register record carries the row's material registers (before `hold`).
+            let r = span_register_record(&regs);
+            assert_eq!(r.len(), 6);
+            assert_eq!(r[0], (2, false));
+            let payload: Vec<u32> = r[1..].iter().map(|w| w.0).collect();
+            assert_eq!(
+                unpack(&SPAN_REGISTERS, &payload),
+                row[fields + 1..row.len() - 1].to_vec()
+            );
+            assert_eq!(
+                span_stream_words(kind, &spans, &regs).len(),
+                6 + words * spans.len()
+            );
+        }
     }
 
     #[test]

@@ -56,8 +56,9 @@
 //!   already past them run on) in the clock after either FIFO held more than 66 beats (the
 //!   hold is registered): from the clock a level first reaches 67, at most
 //!   `EVENT_TO_FRAGMENT` + 1 = 61 more beats arrive on a lane, so neither FIFO holds more than
-//!   128 and none overflows (`tests/angular_stream.rs` measures the most under 90 % stalls).
-//!   With both `tready` high each FIFO holds at most one beat and the pipeline is never held.
+//!   128 and none overflows (`tests/span_stream.rs` measures the most under 90 % stalls and
+//!   1 500-clock stretches). With both `tready` high each FIFO holds at most one beat and the
+//!   pipeline is never held.
 //! - Throughput: the pipeline's — two fragments per clock along a line — as long as the set-up
 //!   words keep ahead: a line's record is 14 words at one word per clock, and a line of m + 1
 //!   pixels takes ⌊m/2⌋ + 1 clocks, so lines shorter than 27 pixels are set-up bound.

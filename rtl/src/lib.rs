@@ -8,6 +8,7 @@ pub mod cubic_stream;
 pub mod declare;
 pub mod ecp5_dsp;
 pub mod export;
+pub mod fast_stream;
 pub mod fast_unit;
 pub mod fixed;
 pub mod four_triangle;

@@ -1,26 +1,28 @@
 //! Word layouts of the AXI4-Stream tops (`pixel-stream`, `gouraud-stream`, `cubic-stream`,
-//! `angular-stream`), defined once.
+//! `angular-stream`, `fast-stream`), defined once.
 //!
 //! The set-up stream (`s_axis_*`, 32-bit words) carries *records*: a header word, then the
-//! record's fields packed LSB first into 32-bit words (a field never straddles two words),
-//! `tlast` on the record's last word. The fragment stream (`m_axis_*`, 64-bit `tdata` and the
+//! record's fields packed LSB first into 32-bit words (a field of up to 32 bits never
+//! straddles two words; a wider one takes a word and the next one's low bits), `tlast` on the
+//! record's last word. The fragment stream (`m_axis_*`, 64-bit `tdata` and the
 //! fragment's 32-bit depth on `tuser`) carries one fragment, or one triangle end, per beat; a
-//! two-lane top (`angular-stream`) has one such stream per lane (`m_axis_a_*`, `m_axis_b_*`).
+//! two-lane top (`angular-stream`, `fast-stream`) has one such stream per lane (`m_axis_a_*`,
+//! `m_axis_b_*`).
 //!
 //! Everything that reads or writes these words comes from the tables here:
 //! - the driver packs records with [`pack`] (`pipeline::stream`), and reads fragments with
 //!   [`unpack_fragment`];
 //! - each top's field selects and fragment packing (`rtl/src/pixel_stream.rs`,
-//!   `rtl/src/gouraud_stream.rs`, `rtl/src/cubic_stream.rs`, `rtl/src/angular_stream.rs`) are
-//!   generated from the same tables by [`generated_rtl`]; the tests `*_rtl_is_generated` fail
-//!   if a file's generated regions differ from what the tables give (set
-//!   `SHADECORE_REGENERATE=1` to rewrite them);
+//!   `rtl/src/gouraud_stream.rs`, `rtl/src/cubic_stream.rs`, `rtl/src/angular_stream.rs`,
+//!   `rtl/src/fast_stream.rs`) are generated from the same tables by [`generated_rtl`]; the
+//!   tests `*_rtl_is_generated` fail if a file's generated regions differ from what the tables
+//!   give (set `SHADECORE_REGENERATE=1` to rewrite them);
 //! - `rtl/README.md`'s layout table is printed by [`markdown`] (checked by a test as well).
 //!
 //! Field names and widths are the wrapped top's input ports (`pixel-pipeline`'s,
-//! `gouraud-raster`'s, `cubic-pipeline`'s, `angular-pipeline`'s), in its port order (checked
-//! against its port list by `testbenches/tests/pixel_stream.rs`, `gouraud_stream.rs`,
-//! `cubic_stream.rs` and `angular_stream.rs`).
+//! `gouraud-raster`'s, `cubic-pipeline`'s, `angular-pipeline`'s, `fast-pipeline`'s), in its port
+//! order (checked against its port list by `testbenches/tests/pixel_stream.rs`,
+//! `gouraud_stream.rs`, `cubic_stream.rs` and `span_stream.rs`).
 //!
 //! Not a block: no ports, no latency (the hardware that reads these words is the stream tops',
 //! whose headers give them).
@@ -339,8 +341,50 @@ pub const ANGULAR_STREAM: StreamTop = StreamTop {
     lanes: &["_a", "_b"],
 };
 
+/// A raster line of the fast methods (`fast-stream`): `fast-pipeline`'s load ports — the
+/// line's base, the fast unit's words for L and for H (b, h, g; the 48-bit d0 and dd, each over
+/// two words), the depth at pixel 0, at pixel m and per pixel.
+pub const FAST_LINE: Record = Record {
+    name: "fast line",
+    code: 1,
+    fields: &[
+        f("y", 12),
+        f("x0", 12),
+        f("dir", 1),
+        f("m", 12),
+        f("lb", 32),
+        f("lh", 32),
+        f("lg", 32),
+        f("ld0", 48),
+        f("ldd", 48),
+        f("hb", 32),
+        f("hh", 32),
+        f("hg", 32),
+        f("hd0", 48),
+        f("hdd", 48),
+        f("z0", 32),
+        f("zm", 32),
+        f("dz", 32),
+    ],
+};
+
+/// The fast span pipeline's stream top: as `angular-stream`, with the fast unit's words.
+pub const FAST_STREAM: StreamTop = StreamTop {
+    block: "fast-stream",
+    file: "fast_stream.rs",
+    wraps: "fast-pipeline",
+    triangle: FAST_LINE,
+    ..ANGULAR_STREAM
+};
+
 /// Every stream top.
-pub const TOPS: [StreamTop; 4] = [PIXEL_STREAM, GOURAUD_STREAM, CUBIC_STREAM, ANGULAR_STREAM];
+pub const TOPS: [StreamTop; 5] = [
+    PIXEL_STREAM,
+    GOURAUD_STREAM,
+    CUBIC_STREAM,
+    ANGULAR_STREAM,
+    FAST_STREAM,
+];
 
 /// A fragment beat (`m_axis_tdata`, 64 bits); `tlast` marks a triangle's last event. A beat
 /// with `pixel` = 0 carries only that end (a triangle whose last event had no pixel). The
@@ -385,20 +429,31 @@ pub struct Placed {
 }
 
 impl Placed {
+    /// The last word the field has bits in (`word` unless it is wider than 32 bits).
+    pub fn last_word(&self) -> usize {
+        self.word + (self.offset + self.bits - 1) as usize / 32
+    }
+
     /// Bit position in a multi-word beat.
     pub fn at(&self) -> u32 {
         self.word as u32 * 32 + self.offset
     }
 }
 
-/// The fields of `r` placed LSB first, a field never straddling a word.
+/// The fields of `r` placed LSB first, a field never straddling a word; a field wider than 32
+/// bits (up to 64) starts a word and takes the next one's low bits for the rest (its low 32
+/// bits in the first word).
 pub fn place(r: &Record) -> Vec<Placed> {
     let (mut word, mut used) = (0usize, 0u32);
     r.fields
         .iter()
         .map(|fl| {
-            assert!(fl.bits <= 32, "{}: a field fits one word", fl.name);
-            if used + fl.bits > 32 {
+            assert!(
+                (1..=64).contains(&fl.bits),
+                "{}: a field has 1 to 64 bits",
+                fl.name
+            );
+            if used + fl.bits > 32 && used > 0 {
                 word += 1;
                 used = 0;
             }
@@ -408,7 +463,12 @@ pub fn place(r: &Record) -> Vec<Placed> {
                 word,
                 offset: used,
             };
-            used += fl.bits;
+            if fl.bits > 32 {
+                word += 1;
+                used = fl.bits - 32;
+            } else {
+                used += fl.bits;
+            }
             pl
         })
         .collect()
@@ -416,7 +476,7 @@ pub fn place(r: &Record) -> Vec<Placed> {
 
 /// Payload words of `r` (without the header).
 pub fn payload_words(r: &Record) -> usize {
-    place(r).last().map_or(0, |p| p.word + 1)
+    place(r).last().map_or(0, |p| p.last_word() + 1)
 }
 
 /// The most payload words of any `pixel-stream` record (its word bank).
@@ -442,14 +502,22 @@ pub fn pack(r: &Record, values: &[u64]) -> Vec<u32> {
     let mut words = vec![0u32; 1 + payload_words(r)];
     words[0] = header(r);
     for (pl, v) in placed.iter().zip(values) {
-        let mask = if pl.bits == 32 {
-            u32::MAX
-        } else {
-            (1u32 << pl.bits) - 1
-        };
-        words[1 + pl.word] |= ((*v as u32) & mask) << pl.offset;
+        let v = *v & mask64(pl.bits);
+        words[1 + pl.word] |= (v << pl.offset) as u32;
+        if pl.bits > 32 {
+            words[2 + pl.word] |= (v >> 32) as u32;
+        }
     }
     words
+}
+
+/// The low `bits` bits set.
+fn mask64(bits: u32) -> u64 {
+    if bits >= 64 {
+        u64::MAX
+    } else {
+        (1u64 << bits) - 1
+    }
 }
 
 /// The inverse of [`pack`] for the payload (without the header).
@@ -457,12 +525,11 @@ pub fn unpack(r: &Record, payload: &[u32]) -> Vec<u64> {
     place(r)
         .iter()
         .map(|pl| {
-            let w = payload[pl.word] >> pl.offset;
-            (if pl.bits == 32 {
-                w
-            } else {
-                w & ((1u32 << pl.bits) - 1)
-            }) as u64
+            let mut v = (payload[pl.word] as u64) >> pl.offset;
+            if pl.bits > 32 {
+                v |= (payload[pl.word + 1] as u64) << 32;
+            }
+            v & mask64(pl.bits)
         })
         .collect()
 }
@@ -497,6 +564,19 @@ pub fn markdown() -> String {
                 payload_words(&r)
             ));
             for pl in place(&r) {
+                if pl.bits > 32 {
+                    // A wide field: its low 32 bits, then the rest in the next word.
+                    s.push_str(&format!(
+                        "| {} | 31..0 | `{}` bits 31..0 |\n| {} | {}..0 | `{}` bits {}..32 |\n",
+                        pl.word + 1,
+                        pl.name,
+                        pl.word + 2,
+                        pl.bits - 33,
+                        pl.name,
+                        pl.bits - 1
+                    ));
+                    continue;
+                }
                 s.push_str(&format!(
                     "| {} | {}..{} | `{}` |\n",
                     pl.word + 1,
@@ -711,7 +791,20 @@ pub fn check_generated(top: &StreamTop) -> Result<(), String> {
 
 /// The hardware's select of a placed field from its load-bank word.
 fn select(pl: &Placed) -> String {
-    if pl.bits == 32 {
+    if pl.bits > 32 {
+        // Low 32 bits from the first word, the rest from the next word's low bits.
+        let (b, hi) = (pl.bits, pl.bits - 32);
+        let high = if hi == 32 {
+            format!("self.lw{}.q.val()", pl.word + 1)
+        } else {
+            format!("self.lw{}.q.val().get_bits::<{hi}>(0)", pl.word + 1)
+        };
+        // Broken as rustfmt breaks it (the line is too long for one).
+        format!(
+            "bit_cast::<{b}, 32>(self.lw{}.q.val())\n            | (bit_cast::<{b}, {hi}>({high}) << 32)",
+            pl.word
+        )
+    } else if pl.bits == 32 {
         format!("self.lw{}.q.val()", pl.word)
     } else if pl.bits == 1 {
         format!("self.lw{}.q.val().get_bit({})", pl.word, pl.offset)
@@ -734,9 +827,7 @@ mod tests {
                 .fields
                 .iter()
                 .enumerate()
-                .map(|(i, fl)| {
-                    (0x9E37_79B9_7F4A_7C15u64.rotate_left(i as u32 * 7)) & ((1u64 << fl.bits) - 1)
-                })
+                .map(|(i, fl)| 0x9E37_79B9_7F4A_7C15u64.rotate_left(i as u32 * 7) & mask64(fl.bits))
                 .collect();
             let words = pack(&r, &values);
             assert_eq!(words[0], r.code);
@@ -748,6 +839,27 @@ mod tests {
         assert_eq!(payload_words(&CUBIC_LINE), 11);
         assert_eq!(payload_words(&ANGULAR_LINE), 13);
         assert_eq!(payload_words(&SPAN_REGISTERS), 5);
+        assert_eq!(payload_words(&FAST_LINE), 19);
+    }
+
+    /// A field wider than 32 bits starts a word and ends in the next one's low bits, where
+    /// the next field may follow; 64 bits take two whole words.
+    #[test]
+    fn wide_fields_take_two_words() {
+        const R: Record = Record {
+            name: "wide",
+            code: 1,
+            fields: &[f("a", 5), f("w", 48), f("b", 16), f("c", 64), f("d", 1)],
+        };
+        let at: Vec<(usize, u32, usize)> = place(&R)
+            .iter()
+            .map(|p| (p.word, p.offset, p.last_word()))
+            .collect();
+        assert_eq!(at, [(0, 0, 0), (1, 0, 2), (2, 16, 2), (3, 0, 4), (5, 0, 5)]);
+        let v = [0x1F, 0xABCD_1234_5678, 0xBEEF, u64::MAX - 5, 1];
+        let words = pack(&R, &v);
+        assert_eq!(words[2..5], [0x1234_5678, 0xBEEF_ABCD, 0xFFFF_FFFA]);
+        assert_eq!(unpack(&R, &words[1..]), v);
     }
 
     #[test]

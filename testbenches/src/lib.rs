@@ -1,5 +1,4 @@
 pub mod address_block;
-pub mod angular_stream;
 pub mod brzssk;
 pub mod colour_combine;
 pub mod cos_v_accumulator;
@@ -21,6 +20,7 @@ pub mod quadric_unit;
 pub mod registry;
 pub mod span;
 pub mod span_pipeline;
+pub mod span_stream;
 pub mod stall;
 pub mod stream_twin;
 pub mod subdivision_raster;

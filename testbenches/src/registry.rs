@@ -292,6 +292,7 @@ pub static BLOCKS: &[&dyn Entry] = &[
     &entry::<rtl::cubic_pipeline::CubicPipeline>(),
     &entry::<rtl::cubic_stream::CubicStream>(),
     &entry::<rtl::angular_stream::AngularStream>(),
+    &entry::<rtl::fast_stream::FastStream>(),
     &entry::<rtl::quadric_unit::QuadricUnit>(),
 ];
 

