@@ -147,8 +147,8 @@ pub enum LitTop {
     /// `stream` under rust-hdl, `pipeline` under Verilator (whose replay drives the ports).
     #[default]
     Default,
-    /// `pixel-stream` / `gouraud-stream` / `cubic-stream` / `angular-stream` / `fast-stream`:
-    /// set-up records on a 32-bit AXI4-Stream, fragment beats out (the span methods only when
+    /// `pixel-stream` / `gouraud-stream` / `cubic-stream` / `angular-stream` / `fast-stream` /
+    /// `quadric-stream`: set-up records on a 32-bit AXI4-Stream, fragment beats out (the span methods only when
     /// asked: their per-line records make short lines set-up bound).
     Stream,
     /// `pixel-pipeline` / `gouraud-raster` / `cubic-pipeline`: the set-up on load ports, one
@@ -352,19 +352,22 @@ pub fn render_span_rtl(
     } else {
         ShadingRegs::of(ctx).map_err(|e| anyhow::anyhow!("RTL set-up: {e}"))?
     };
-    // `cubic` goes through its stream top `cubic-stream` (and `angular`, `fast`, `fast-fit`
-    // through `angular-stream`, `fast-stream`) only when asked (`--lit-top stream`, rust-hdl): a line's record is 12 set-up words, so on meshes whose triangles
+    // `cubic` goes through its stream top `cubic-stream` (and `angular`, `fast`, `fast-fit`,
+    // `quadric` through `angular-stream`, `fast-stream`, `quadric-stream`) only when asked
+    // (`--lit-top stream`, rust-hdl): a line's record is 12 set-up words, so on meshes whose triangles
     // give lines of a few pixels the stream is set-up bound (the default scene: see the
     // README) and the main job keeps `cubic-pipeline`'s ports.
     build.lit_top.resolve(build.sim)?;
     let mut pipe = if method == Method::Cubic && build.lit_top == LitTop::Stream {
         SpanPipe::cubic_stream(build.horner_pipelined)
-    } else if matches!(method, Method::Angular | Method::Fast | Method::FastFit)
-        && build.lit_top == LitTop::Stream
+    } else if matches!(
+        method,
+        Method::Angular | Method::Fast | Method::FastFit | Method::Quadric
+    ) && build.lit_top == LitTop::Stream
     {
-        // `angular-stream` and `fast-stream` likewise: a line's record is 14 or 20 words and a
-        // line of m + 1 pixels takes ⌊m/2⌋ + 1 clocks, so lines under 27 or 39 pixels are
-        // set-up bound.
+        // `angular-stream`, `fast-stream` and `quadric-stream` likewise: a line's record is 14,
+        // 20 or 5 words (a quadric triangle's first line 41) and a line of m + 1 pixels takes
+        // ⌊m/2⌋ + 1 clocks, so lines under 27, 39 or 9 pixels are set-up bound.
         SpanPipe::span_stream(method)
     } else {
         SpanPipe::with_horner(method, build.horner_pipelined)
@@ -676,16 +679,16 @@ mod tests {
         assert!(max <= 1, "RTL differs from golden Gouraud by {max} LSB");
     }
 
-    /// The span methods through their two-lane stream tops (`angular-stream`, `fast-stream`:
-    /// line and register records, a fragment stream per lane) and through the span pipelines'
+    /// The span methods through their two-lane stream tops (`angular-stream`, `fast-stream`,
+    /// `quadric-stream`: line and register records, a fragment stream per lane) and through the span pipelines'
     /// ports give the same frame, bit for bit: the torus at 80×80 (`angular`, `fast`) and the
-    /// default sphere at 72×72 (`angular`, `fast-fit`); the clocks of both are printed (lines
-    /// shorter than 27 or 39 pixels are set-up bound: a line's record is 14 or 20 words).
+    /// default sphere at 72×72 (`quadric`, `fast-fit`); the clocks of both are printed (lines
+    /// shorter than 27, 39 or 9 pixels are set-up bound: a line's record is 14, 20 or 5 words).
     #[test]
     fn span_streams_and_ports_render_the_same_frame() {
         for (scene, size, methods) in [
             ("torus", 80, [Method::Angular, Method::Fast]),
-            ("sphere", 72, [Method::Angular, Method::FastFit]),
+            ("sphere", 72, [Method::Quadric, Method::FastFit]),
         ] {
             let s = crate::setup::build(&crate::setup::SceneArgs {
                 scene: scene.into(),

@@ -26,6 +26,7 @@ use rtl::cubic_pipeline::{CubicParams, CubicPipeline};
 use rtl::cubic_stream::CubicStream;
 use rtl::fast_stream::FastStream;
 use rtl::horner_unit::HornerParams;
+use rtl::quadric_stream::QuadricStream;
 use rtl::quadric_unit::QuadricUnit;
 use rtl::registry::{BlockParams, Options, RtlBlock};
 use rtl::sim::Stepper;
@@ -358,6 +359,8 @@ enum Top {
     AngularStream(Box<Stepper<AngularStream>>),
     /// The fast pipeline's AXI4-Stream top (as `angular-stream`).
     FastStream(Box<Stepper<FastStream>>),
+    /// The quadric unit's AXI4-Stream top (as `angular-stream`, without registers).
+    QuadricStream(Box<Stepper<QuadricStream>>),
     Quadric(Box<Stepper<QuadricUnit>>),
     Replay(crate::replay::Replay),
 }
@@ -411,10 +414,11 @@ impl SpanPipe {
         })
     }
 
-    /// `angular`, `fast` or `fast-fit` through its AXI4-Stream top (`angular-stream`,
-    /// `fast-stream`): [`SpanPipe::run`] sends the register record and every line's record on
-    /// the set-up stream (one word per clock while `s_axis_tready`) and takes every beat of both
-    /// lanes (both `m_axis_*_tready` high).
+    /// `angular`, `fast`, `fast-fit` or `quadric` through its AXI4-Stream top
+    /// (`angular-stream`, `fast-stream`, `quadric-stream`): [`SpanPipe::run`] sends the register
+    /// record (not to the quadric's) and every line's record on the set-up stream (one word per
+    /// clock while `s_axis_tready`) and takes every beat of both lanes (both `m_axis_*_tready`
+    /// high).
     pub fn span_stream(method: Method) -> Result<SpanPipe, String> {
         let kind = SpanKind::of(method);
         let top = match kind {
@@ -424,9 +428,12 @@ impl SpanPipe {
             Some(k @ SpanKind::Fast(_)) => {
                 Top::FastStream(Box::new(Stepper::new(FastStream::new(&k.fast_params()))?))
             }
+            Some(SpanKind::Quadric) => {
+                Top::QuadricStream(Box::new(Stepper::new(QuadricStream::default())?))
+            }
             _ => {
                 return Err(format!(
-                    "{method} has no two-lane stream top (angular, fast and fast-fit have)"
+                    "{method} has no two-lane stream top (angular, fast, fast-fit and quadric have)"
                 ))
             }
         };
@@ -457,6 +464,7 @@ impl SpanPipe {
             Top::CubicStream(_) => <CubicStream as RtlBlock>::LATENCY,
             Top::AngularStream(_) => <AngularStream as RtlBlock>::LATENCY,
             Top::FastStream(_) => <FastStream as RtlBlock>::LATENCY,
+            Top::QuadricStream(_) => <QuadricStream as RtlBlock>::LATENCY,
             Top::Quadric(_) => QuadricUnit::LATENCY,
             Top::Replay(_) => match self.kind {
                 SpanKind::Angular => AngularPipeline::LATENCY,
@@ -476,6 +484,7 @@ impl SpanPipe {
             Top::CubicStream(s) => s.start_vcd(w),
             Top::AngularStream(s) => s.start_vcd(w),
             Top::FastStream(s) => s.start_vcd(w),
+            Top::QuadricStream(s) => s.start_vcd(w),
             Top::Quadric(s) => s.start_vcd(w),
             Top::Replay(_) => {}
         }
@@ -486,7 +495,10 @@ impl SpanPipe {
             Top::Angular(s) => s.dut().ready.val(),
             Top::Fast(s) => s.dut().ready.val(),
             Top::Cubic(s) => s.dut().ready.val(),
-            Top::CubicStream(_) | Top::AngularStream(_) | Top::FastStream(_) => {
+            Top::CubicStream(_)
+            | Top::AngularStream(_)
+            | Top::FastStream(_)
+            | Top::QuadricStream(_) => {
                 unreachable!("a stream top is run by its own driver")
             }
             Top::Quadric(s) => s.dut().ready.val(),
@@ -499,7 +511,10 @@ impl SpanPipe {
             Top::Angular(s) => s.step(row, out),
             Top::Fast(s) => s.step(row, out),
             Top::Cubic(s) => s.step(row, out),
-            Top::CubicStream(_) | Top::AngularStream(_) | Top::FastStream(_) => {
+            Top::CubicStream(_)
+            | Top::AngularStream(_)
+            | Top::FastStream(_)
+            | Top::QuadricStream(_) => {
                 unreachable!("a stream top is run by its own driver")
             }
             Top::Quadric(s) => s.step(row, out),
@@ -522,29 +537,11 @@ impl SpanPipe {
         if let Top::CubicStream(s) = &mut self.top {
             return run_cubic_stream(s, spans, max_clocks, &mut fragment, &mut progress);
         }
+        let (kind, f, p) = (self.kind, &mut fragment, &mut progress);
         match &mut self.top {
-            Top::AngularStream(s) => {
-                return run_lanes(
-                    s,
-                    self.kind,
-                    spans,
-                    regs,
-                    max_clocks,
-                    &mut fragment,
-                    &mut progress,
-                )
-            }
-            Top::FastStream(s) => {
-                return run_lanes(
-                    s,
-                    self.kind,
-                    spans,
-                    regs,
-                    max_clocks,
-                    &mut fragment,
-                    &mut progress,
-                )
-            }
+            Top::AngularStream(s) => return run_lanes(s, kind, spans, regs, max_clocks, f, p),
+            Top::FastStream(s) => return run_lanes(s, kind, spans, regs, max_clocks, f, p),
+            Top::QuadricStream(s) => return run_lanes(s, kind, spans, regs, max_clocks, f, p),
             _ => {}
         }
         let mut st = PipeStats::default();
@@ -603,6 +600,7 @@ impl SpanPipe {
             Top::CubicStream(s) => s.stop_vcd(),
             Top::AngularStream(s) => s.stop_vcd(),
             Top::FastStream(s) => s.stop_vcd(),
+            Top::QuadricStream(s) => s.stop_vcd(),
             Top::Quadric(s) => s.stop_vcd(),
             Top::Replay(_) => {}
         }

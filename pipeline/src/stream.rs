@@ -4,8 +4,8 @@
 //! back with it.
 
 use rtl::stream_layout::{
-    pack, unpack_fragment, ANGULAR_LINE, CUBIC_LINE, FAST_LINE, GOURAUD_TRIANGLE, REGISTERS,
-    SPAN_REGISTERS, TRIANGLE,
+    pack, unpack_fragment, ANGULAR_LINE, CUBIC_LINE, FAST_LINE, GOURAUD_TRIANGLE, QUADRIC_LINE,
+    QUADRIC_TRIANGLE, REGISTERS, SPAN_REGISTERS, TRIANGLE,
 };
 
 use crate::gouraud::{pipe_row, TriangleJob, PIPE_HOLD_AT};
@@ -80,8 +80,20 @@ pub fn cubic_words(spans: &[SpanJob]) -> Vec<Word> {
 /// `crate::span::span_jobs` with that kind): the same field values the span pipeline's load row
 /// carries.
 pub fn span_line_record(kind: SpanKind, span: &SpanJob) -> Vec<Word> {
-    let line = span_line_layout(kind);
     let row = span_row(kind, Some(span), &ShadingRegs::default());
+    if kind == SpanKind::Quadric {
+        // Row: load, y, x0, dir, m, first, 18 coefficient words, z0, dz, hold. A triangle's
+        // first line carries its coefficients (type 2), a later line only its base (type 1).
+        let base = [row[1], row[2], row[3], row[4], row[24], row[25]];
+        return with_last(if row[5] != 0 {
+            let mut v = base.to_vec();
+            v.extend(&row[6..24]);
+            pack(&QUADRIC_TRIANGLE, &v)
+        } else {
+            pack(&QUADRIC_LINE, &base)
+        });
+    }
+    let line = span_line_layout(kind);
     with_last(pack(&line, &row[1..=line.fields.len()]))
 }
 
@@ -90,6 +102,7 @@ pub fn span_line_layout(kind: SpanKind) -> rtl::stream_layout::Record {
     match kind {
         SpanKind::Angular => ANGULAR_LINE,
         SpanKind::Fast(_) => FAST_LINE,
+        SpanKind::Quadric => QUADRIC_LINE,
         _ => panic!("{kind:?} has no two-lane stream top"),
     }
 }
@@ -102,10 +115,14 @@ pub fn span_register_record(regs: &ShadingRegs) -> Vec<Word> {
     with_last(pack(&SPAN_REGISTERS, &values))
 }
 
-/// A span scene's set-up stream for the stream top of `kind`: the registers, then every line
-/// in walk order.
+/// A span scene's set-up stream for the stream top of `kind`: the registers (not for the
+/// quadric, lit in the set-up), then every line in walk order.
 pub fn span_stream_words(kind: SpanKind, spans: &[SpanJob], regs: &ShadingRegs) -> Vec<Word> {
-    let mut w = span_register_record(regs);
+    let mut w = if kind == SpanKind::Quadric {
+        Vec::new()
+    } else {
+        span_register_record(regs)
+    };
     for s in spans {
         w.extend(span_line_record(kind, s));
     }
@@ -222,7 +239,8 @@ impl StreamTop for rtl::cubic_stream::CubicStream {
     }
 }
 
-/// The two-lane span stream tops (`angular-stream`, `fast-stream`), for [`drive_lanes`].
+/// The two-lane span stream tops (`angular-stream`, `fast-stream`, `quadric-stream`), for
+/// [`drive_lanes`].
 pub trait TwoLaneTop: rtl::sim::Dut {
     /// Its registry name.
     const NAME: &'static str;
@@ -231,6 +249,13 @@ pub trait TwoLaneTop: rtl::sim::Dut {
 
 impl TwoLaneTop for rtl::angular_stream::AngularStream {
     const NAME: &'static str = "angular-stream";
+    fn s_axis_tready(&self) -> bool {
+        self.s_axis_tready.val()
+    }
+}
+
+impl TwoLaneTop for rtl::quadric_stream::QuadricStream {
+    const NAME: &'static str = "quadric-stream";
     fn s_axis_tready(&self) -> bool {
         self.s_axis_tready.val()
     }

@@ -25,6 +25,7 @@ pub mod pixel_pipeline;
 pub mod pixel_stream;
 pub mod power_unit;
 pub mod primitives;
+pub mod quadric_stream;
 pub mod quadric_unit;
 pub mod record_reader;
 pub mod registry;

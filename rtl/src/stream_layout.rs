@@ -1,28 +1,29 @@
 //! Word layouts of the AXI4-Stream tops (`pixel-stream`, `gouraud-stream`, `cubic-stream`,
-//! `angular-stream`, `fast-stream`), defined once.
+//! `angular-stream`, `fast-stream`, `quadric-stream`), defined once.
 //!
 //! The set-up stream (`s_axis_*`, 32-bit words) carries *records*: a header word, then the
 //! record's fields packed LSB first into 32-bit words (a field of up to 32 bits never
 //! straddles two words; a wider one takes a word and the next one's low bits), `tlast` on the
 //! record's last word. The fragment stream (`m_axis_*`, 64-bit `tdata` and the
 //! fragment's 32-bit depth on `tuser`) carries one fragment, or one triangle end, per beat; a
-//! two-lane top (`angular-stream`, `fast-stream`) has one such stream per lane (`m_axis_a_*`,
-//! `m_axis_b_*`).
+//! two-lane top (`angular-stream`, `fast-stream`, `quadric-stream`) has one such stream per
+//! lane (`m_axis_a_*`, `m_axis_b_*`).
 //!
 //! Everything that reads or writes these words comes from the tables here:
 //! - the driver packs records with [`pack`] (`pipeline::stream`), and reads fragments with
 //!   [`unpack_fragment`];
 //! - each top's field selects and fragment packing (`rtl/src/pixel_stream.rs`,
 //!   `rtl/src/gouraud_stream.rs`, `rtl/src/cubic_stream.rs`, `rtl/src/angular_stream.rs`,
-//!   `rtl/src/fast_stream.rs`) are generated from the same tables by [`generated_rtl`]; the
-//!   tests `*_rtl_is_generated` fail if a file's generated regions differ from what the tables
-//!   give (set `SHADECORE_REGENERATE=1` to rewrite them);
+//!   `rtl/src/fast_stream.rs`, `rtl/src/quadric_stream.rs`) are generated from the same tables
+//!   by [`generated_rtl`]; the tests `*_rtl_is_generated` fail if a file's generated regions
+//!   differ from what the tables give (set `SHADECORE_REGENERATE=1` to rewrite them);
 //! - `rtl/README.md`'s layout table is printed by [`markdown`] (checked by a test as well).
 //!
 //! Field names and widths are the wrapped top's input ports (`pixel-pipeline`'s,
-//! `gouraud-raster`'s, `cubic-pipeline`'s, `angular-pipeline`'s, `fast-pipeline`'s), in its port
-//! order (checked against its port list by `testbenches/tests/pixel_stream.rs`,
-//! `gouraud_stream.rs`, `cubic_stream.rs` and `span_stream.rs`).
+//! `gouraud-raster`'s, `cubic-pipeline`'s, `angular-pipeline`'s, `fast-pipeline`'s,
+//! `quadric-unit`'s), in its port order — the quadric's by name — (checked against its port
+//! list by `testbenches/tests/pixel_stream.rs`, `gouraud_stream.rs`, `cubic_stream.rs` and
+//! `span_stream.rs`).
 //!
 //! Not a block: no ports, no latency (the hardware that reads these words is the stream tops',
 //! whose headers give them).
@@ -200,6 +201,10 @@ pub struct StreamTop {
     pub wraps: &'static str,
     pub triangle: Record,
     pub registers: Option<Record>,
+    /// A second load record (type 2), where the top has one: `triangle`'s fields in the same
+    /// places, then more of the wrapped top's load ports; a record of this type loads with
+    /// `first` = 1 (`quadric-stream`: a triangle's first line and its coefficients).
+    pub full: Option<Record>,
     /// `m_axis_tuser`, when the top has one.
     pub tuser: Option<Field>,
     /// The wrapped top's output port for a fragment field, where it is not the field's name
@@ -219,6 +224,7 @@ impl StreamTop {
     pub fn records(&self) -> Vec<Record> {
         std::iter::once(self.triangle)
             .chain(self.registers)
+            .chain(self.full)
             .collect()
     }
 
@@ -250,6 +256,7 @@ pub const PIXEL_STREAM: StreamTop = StreamTop {
     wraps: "pixel-pipeline",
     triangle: TRIANGLE,
     registers: Some(REGISTERS),
+    full: None,
     tuser: Some(TUSER),
     ports: &[],
     tlast: "the triangle's last event",
@@ -263,6 +270,7 @@ pub const GOURAUD_STREAM: StreamTop = StreamTop {
     wraps: "gouraud-raster",
     triangle: GOURAUD_TRIANGLE,
     registers: None,
+    full: None,
     tuser: None,
     ports: &[],
     tlast: "the triangle's last event",
@@ -276,6 +284,7 @@ pub const CUBIC_STREAM: StreamTop = StreamTop {
     wraps: "cubic-pipeline",
     triangle: CUBIC_LINE,
     registers: None,
+    full: None,
     tuser: Some(TUSER),
     ports: &[("y", "y_out")],
     tlast: "the line's last pixel",
@@ -335,6 +344,7 @@ pub const ANGULAR_STREAM: StreamTop = StreamTop {
     wraps: "angular-pipeline",
     triangle: ANGULAR_LINE,
     registers: Some(SPAN_REGISTERS),
+    full: None,
     tuser: Some(TUSER),
     ports: &[("y", "y_out")],
     tlast: "the line's last clock, on both lanes (a lane without a pixel then sends a beat with `pixel` = 0)",
@@ -377,13 +387,75 @@ pub const FAST_STREAM: StreamTop = StreamTop {
     ..ANGULAR_STREAM
 };
 
+/// A raster line of the quadric method (`quadric-stream`) after a triangle's first: the line's
+/// base and its depth at pixel 0 and per pixel (the tracker reaches its start from the line
+/// before).
+pub const QUADRIC_LINE: Record = Record {
+    name: "quadric line",
+    code: 1,
+    fields: &[
+        f("y", 12),
+        f("x0", 12),
+        f("dir", 1),
+        f("m", 12),
+        f("z0", 32),
+        f("dz", 32),
+    ],
+};
+
+/// A triangle's first line (`quadric-stream`): the line's fields, then per channel I, Dx, Dy
+/// at its first pixel, 2A, 2B, C (signed Q34.30, 64 bits, each two words).
+pub const QUADRIC_TRIANGLE: Record = Record {
+    name: "quadric triangle",
+    code: 2,
+    fields: &[
+        f("y", 12),
+        f("x0", 12),
+        f("dir", 1),
+        f("m", 12),
+        f("z0", 32),
+        f("dz", 32),
+        f("ri", 64),
+        f("rdx", 64),
+        f("rdy", 64),
+        f("ra", 64),
+        f("rb", 64),
+        f("rc", 64),
+        f("gi", 64),
+        f("gdx", 64),
+        f("gdy", 64),
+        f("ga", 64),
+        f("gb", 64),
+        f("gc", 64),
+        f("bi", 64),
+        f("bdx", 64),
+        f("bdy", 64),
+        f("ba", 64),
+        f("bb", 64),
+        f("bc", 64),
+    ],
+};
+
+/// The quadric unit's stream top: a 4-word record per line, a 40-word one for a triangle's
+/// first line (its coefficients), two fragment streams.
+pub const QUADRIC_STREAM: StreamTop = StreamTop {
+    block: "quadric-stream",
+    file: "quadric_stream.rs",
+    wraps: "quadric-unit",
+    triangle: QUADRIC_LINE,
+    registers: None,
+    full: Some(QUADRIC_TRIANGLE),
+    ..ANGULAR_STREAM
+};
+
 /// Every stream top.
-pub const TOPS: [StreamTop; 5] = [
+pub const TOPS: [StreamTop; 6] = [
     PIXEL_STREAM,
     GOURAUD_STREAM,
     CUBIC_STREAM,
     ANGULAR_STREAM,
     FAST_STREAM,
+    QUADRIC_STREAM,
 ];
 
 /// A fragment beat (`m_axis_tdata`, 64 bits); `tlast` marks a triangle's last event. A beat
@@ -682,6 +754,27 @@ pub fn generated_rtl(top: &StreamTop) -> (String, String) {
             select(&pl)
         ));
     }
+    if let Some(full) = top.full {
+        let line = place(&top.triangle);
+        let placed = place(&full);
+        assert_eq!(
+            placed[..line.len()],
+            line[..],
+            "{}: the line's fields lead, in the same places",
+            full.name
+        );
+        up.push_str(&format!(
+            "        // The {} record's further fields (loaded with `first`).\n",
+            full.name
+        ));
+        for pl in &placed[line.len()..] {
+            up.push_str(&format!(
+                "        self.pipe.{}.next = {};\n",
+                pl.name,
+                select(pl)
+            ));
+        }
+    }
     if top.registers.is_some() {
         up.push_str("        // Register fields: applied into the active registers.\n");
         up.push_str("        if self.apply_regs.val() {\n");
@@ -772,12 +865,15 @@ pub fn with_generated(text: &str, top: &StreamTop) -> String {
 }
 
 /// Check `top`'s source file against the tables: `Err` naming the file when its generated
-/// regions differ (with `SHADECORE_REGENERATE` set, the file is rewritten instead).
+/// regions differ (white space aside) (with `SHADECORE_REGENERATE` set, the file is rewritten instead).
 pub fn check_generated(top: &StreamTop) -> Result<(), String> {
     let path = format!("{}/src/{}", env!("CARGO_MANIFEST_DIR"), top.file);
     let text = std::fs::read_to_string(&path).map_err(|e| format!("{path}: {e}"))?;
     let out = with_generated(&text, top);
-    if out == text {
+    // Compared without white space: rustfmt may break a generated line differently (run
+    // `cargo fmt` after regenerating).
+    let squash = |t: &str| t.split_whitespace().collect::<String>();
+    if squash(&out) == squash(&text) {
         Ok(())
     } else if std::env::var_os("SHADECORE_REGENERATE").is_some() {
         std::fs::write(&path, &out).map_err(|e| format!("{path}: {e}"))
@@ -840,6 +936,8 @@ mod tests {
         assert_eq!(payload_words(&ANGULAR_LINE), 13);
         assert_eq!(payload_words(&SPAN_REGISTERS), 5);
         assert_eq!(payload_words(&FAST_LINE), 19);
+        assert_eq!(payload_words(&QUADRIC_LINE), 4);
+        assert_eq!(payload_words(&QUADRIC_TRIANGLE), 40);
     }
 
     /// A field wider than 32 bits starts a word and ends in the next one's low bits, where

@@ -293,6 +293,7 @@ pub static BLOCKS: &[&dyn Entry] = &[
     &entry::<rtl::cubic_stream::CubicStream>(),
     &entry::<rtl::angular_stream::AngularStream>(),
     &entry::<rtl::fast_stream::FastStream>(),
+    &entry::<rtl::quadric_stream::QuadricStream>(),
     &entry::<rtl::quadric_unit::QuadricUnit>(),
 ];
 

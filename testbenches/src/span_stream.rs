@@ -1,7 +1,8 @@
-//! Benches of the two-lane span stream tops, `angular-stream` (`rtl::angular_stream`) and
-//! `fast-stream` (`rtl::fast_stream`), the AXI4-Stream tops of the angular and fast span
-//! pipelines: their bit-exact twin (the record reader, the word banks, the active registers, a
-//! FIFO per lane with the units' hold, around the span pipeline's twin), driven by the seeded
+//! Benches of the two-lane span stream tops, `angular-stream` (`rtl::angular_stream`),
+//! `fast-stream` (`rtl::fast_stream`) and `quadric-stream` (`rtl::quadric_stream`), the
+//! AXI4-Stream tops of the angular and fast span pipelines and the quadric unit: their
+//! bit-exact twin (the record reader, the word banks, the active registers, a FIFO per lane
+//! with the units' hold, around the wrapped top's twin), driven by the seeded
 //! producer and consumers of the other stream tops' benches (a word stays until taken; each
 //! lane's `tready` low in a quarter of the clocks and in long stretches, the two lanes
 //! independently).
@@ -9,20 +10,23 @@
 //! Golden: the stream adds no arithmetic. Its golden expectation is the protocol (every
 //! `tready`, `tvalid`, `tlast`, `error`, exact) and, for the data, each lane's beats in order
 //! are those of the same words without a stall, whose colours and depths the wrapped
-//! pipeline's bench checks against the golden `angular` / `fast` / `fast-fit` method and the f64
+//! top's bench checks against the golden `angular` / `fast` / `fast-fit` / `quadric` method and the f64
 //! depth plane every clock (and `tests/span_stream.rs` against that pipeline's RTL run through
 //! its own ports).
 
+use golden::quadric_unit::twin::QuadricTwin;
 use pipeline::lit::ShadingRegs;
 use pipeline::span::{SpanJob, SpanKind};
 use pipeline::stream::{span_stream_words, Beat, Word};
 use rtl::angular_stream::AngularStream;
 use rtl::fast_stream::FastStream;
+use rtl::quadric_stream::QuadricStream;
 use rtl::span_pipeline::FastPipelineParams;
 use rtl::stream_layout::{pack_fragment, unpack, StreamTop, SPAN_REGISTERS};
 
 use crate::harness::{Compare, Expected};
 use crate::pixel_pipeline::lit_triangles;
+use crate::quadric_unit::QuadricRows;
 use crate::registry::{Bench, Stimulus, Twin};
 use crate::span_pipeline::{GoldenSpans, SpanPipelineTwin};
 use crate::stall::{SplitMix, StallPattern};
@@ -33,10 +37,14 @@ use rtl::registry::NoParams;
 /// same; error.
 pub const OUTPUTS: usize = 10;
 
-/// The stream top of span kind `kind` (angular or fast): its layout and the level above which
-/// it holds the units.
+/// The stream top of span kind `kind` (angular, fast or quadric): its layout and the level
+/// above which it holds the units.
 pub fn top_of(kind: SpanKind) -> (StreamTop, usize) {
     match kind {
+        SpanKind::Quadric => (
+            rtl::stream_layout::QUADRIC_STREAM,
+            rtl::quadric_stream::HOLD_ABOVE,
+        ),
         SpanKind::Angular => (
             rtl::stream_layout::ANGULAR_STREAM,
             rtl::angular_stream::HOLD_ABOVE,
@@ -49,10 +57,12 @@ pub fn top_of(kind: SpanKind) -> (StreamTop, usize) {
     }
 }
 
-/// Twin of `angular-stream` and `fast-stream`.
+/// Twin of `angular-stream`, `fast-stream` and `quadric-stream`.
 pub struct SpanStreamTwin {
     top: StreamTop,
-    inner: SpanPipelineTwin,
+    /// The wrapped top's twin, and its input port names (its row is built by name).
+    inner: Box<dyn Twin>,
+    in_ports: Vec<&'static str>,
     reader: RecordReader,
     /// The active registers: n, the nine weights (0 after reset).
     regs: Vec<u64>,
@@ -67,9 +77,21 @@ pub struct SpanStreamTwin {
 impl SpanStreamTwin {
     pub fn new(kind: SpanKind) -> Self {
         let (top, hold_above) = top_of(kind);
+        let inner: Box<dyn Twin> = match kind {
+            SpanKind::Quadric => Box::new(QuadricRows(QuadricTwin::new())),
+            _ => Box::new(SpanPipelineTwin::new(kind)),
+        };
+        let in_ports = crate::registry::find(top.wraps)
+            .expect("the wrapped top is registered")
+            .ports()
+            .0
+            .iter()
+            .map(|p| p.name)
+            .collect();
         SpanStreamTwin {
             top,
-            inner: SpanPipelineTwin::new(kind),
+            inner,
+            in_ports,
             reader: RecordReader::new(&top.records()),
             regs: vec![0; SPAN_REGISTERS.fields.len()],
             lanes: [0, 1].map(|_| BeatFifo::new(rtl::fragment_fifo::FIFO_DEPTH, hold_above)),
@@ -110,21 +132,50 @@ impl Twin for SpanStreamTwin {
         let m_ready = [r[3] != 0, r[4] != 0];
         let out = self.outputs();
 
-        // The pipeline's inputs this clock: load, the load bank's line fields, the active
-        // registers, hold (either lane's registered level flag).
-        let is_line = self.reader.pend_b && self.reader.type_b == 1;
-        let mut row = vec![is_line as u64];
-        row.extend(unpack(&self.top.triangle, &self.reader.load_bank));
-        row.extend(&self.regs);
+        // The pipeline's inputs this clock, by port name: load (and `first` for a type-2 load
+        // record), the load bank's fields, the active registers, hold (either lane's
+        // registered level flag).
+        let (pend, t) = (self.reader.pend_b, self.reader.type_b);
+        let loads = pend && (t == 1 || (t == 2 && self.top.full.is_some()));
         let hold = self.lanes.iter_mut().fold(false, |h, l| l.hold() | h);
         self.held += hold as usize;
-        row.push(hold as u64);
+        let fields = self.top.full.unwrap_or(self.top.triangle);
+        let mut value: Vec<(&str, u64)> = vec![
+            ("load", loads as u64),
+            ("first", (t == 2) as u64),
+            ("hold", hold as u64),
+        ];
+        value.extend(
+            fields
+                .fields
+                .iter()
+                .map(|f| f.name)
+                .zip(unpack(&fields, &self.reader.load_bank)),
+        );
+        value.extend(
+            SPAN_REGISTERS
+                .fields
+                .iter()
+                .map(|f| f.name)
+                .zip(self.regs.iter().copied()),
+        );
+        let row: Vec<u64> = self
+            .in_ports
+            .iter()
+            .map(|p| {
+                value
+                    .iter()
+                    .find(|(n, _)| n == p)
+                    .unwrap_or_else(|| panic!("{}: no value for port {p}", self.top.block))
+                    .1
+            })
+            .collect();
         // Outputs: ready; lane A valid, x, z, r, g, b; lane B the same; y; last.
         let o = self.inner.step(&row);
         let (ready, last) = (o[0] != 0, o[14] != 0);
 
-        let load_taken = is_line && ready;
-        let apply = self.reader.pend_b && self.reader.type_b == 2 && self.outstanding == 0;
+        let load_taken = loads && ready;
+        let apply = self.top.registers.is_some() && pend && t == 2 && self.outstanding == 0;
         if apply {
             self.regs = unpack(&SPAN_REGISTERS, &self.reader.load_bank);
         }
@@ -227,7 +278,12 @@ pub fn drive(
 /// The stimulus's scene: the lines of `kind` of `n` seeded lit triangles (the span pipeline
 /// bench's), in walk order, and the default context's registers.
 pub fn scene(kind: SpanKind, seed: u64, n: usize) -> (Vec<SpanJob>, ShadingRegs) {
-    let g = GoldenSpans::new(kind, &lit_triangles(seed, n));
+    let tris = match kind {
+        // Triangles whose quadric stays in the unit's range (the quadric bench's).
+        SpanKind::Quadric => crate::quadric_unit::triangles(n, seed),
+        _ => lit_triangles(seed, n),
+    };
+    let g = GoldenSpans::new(kind, &tris);
     (g.spans, g.regs)
 }
 
@@ -314,6 +370,17 @@ impl Bench for AngularStream {
     }
     fn twin(_: &NoParams) -> Box<dyn Twin> {
         Box::new(SpanStreamTwin::new(SpanKind::Angular))
+    }
+}
+
+impl Bench for QuadricStream {
+    const ITEMS: &'static str = "triangles";
+    const DEFAULT_ITEMS: usize = 3;
+    fn stimulus(_: &NoParams, n: usize, seed: u64) -> Stimulus {
+        stimulus(SpanKind::Quadric, n, seed)
+    }
+    fn twin(_: &NoParams) -> Box<dyn Twin> {
+        Box::new(SpanStreamTwin::new(SpanKind::Quadric))
     }
 }
 

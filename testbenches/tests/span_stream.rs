@@ -30,7 +30,7 @@ struct Top {
     latency: usize,
 }
 
-fn tops() -> [Top; 2] {
+fn tops() -> [Top; 3] {
     [
         Top {
             block: "angular-stream",
@@ -45,6 +45,13 @@ fn tops() -> [Top; 2] {
             kind: SpanKind::Fast("fit"),
             method: Method::FastFit,
             latency: <rtl::fast_stream::FastStream as RtlBlock>::LATENCY,
+        },
+        Top {
+            block: "quadric-stream",
+            options: Options::new(),
+            kind: SpanKind::Quadric,
+            method: Method::Quadric,
+            latency: <rtl::quadric_stream::QuadricStream as RtlBlock>::LATENCY,
         },
     ]
 }
@@ -307,7 +314,8 @@ fn long_stalls_lose_nothing_and_the_verilog_agrees() {
 #[test]
 fn registers_apply_to_the_lines_after_them() {
     let seed = seed_for("span_registers_apply_to_the_lines_after_them");
-    for top in tops() {
+    // The quadric is lit in the set-up: `quadric-stream` has no registers.
+    for top in tops().into_iter().filter(|t| t.kind != SpanKind::Quadric) {
         let (spans, regs) = scene(top.kind, seed, 2);
         let half = spans.len() / 2;
         let mut other = regs;
@@ -371,14 +379,21 @@ fn bad_records_are_dropped_with_error() {
         let mut long: Vec<Word> = t.clone();
         long.last_mut().unwrap().1 = false;
         long.extend([(0x1234, false), (0x5678, true)]);
-        let mut short_regs: Vec<Word> = span_register_record(&regs)[..3].to_vec();
+        // The second record type: the registers, or the quadric triangle's first line (the
+        // scene's first record).
+        let second = match top.kind {
+            SpanKind::Quadric => span_line_record(top.kind, &spans[0]),
+            _ => span_register_record(&regs),
+        };
+        assert_eq!(second[0].0, 2);
+        let mut short_regs: Vec<Word> = second[..3].to_vec();
         short_regs.last_mut().unwrap().1 = true;
         let header_only: Vec<Word> = vec![(1, true)];
         for (label, bad) in [
             ("unknown type", &unknown),
             ("short line", &short),
             ("long line", &long),
-            ("short registers", &short_regs),
+            ("short record of type 2", &short_regs),
             ("header only", &header_only),
         ] {
             let mut words = bad.clone();
@@ -429,10 +444,12 @@ fn tready_high_never_holds_the_units() {
         let st = pipe
             .run(&spans, &regs, span_clock_budget(&spans), |_| {}, |_| {})
             .unwrap();
-        let record = span_line_record(top.kind, &spans[0]).len();
-        let short = spans.iter().filter(|s| s.clocks() < record as u64).count();
+        let short = spans
+            .iter()
+            .filter(|s| s.clocks() < span_line_record(top.kind, s).len() as u64)
+            .count();
         println!(
-            "{}: {} + {} beats in {} clocks, never held; the pipeline through its ports {} clocks (ratio {:.3}); {short} of {} lines shorter than their {record}-word record",
+            "{}: {} + {} beats in {} clocks, never held; the pipeline through its ports {} clocks (ratio {:.3}); {short} of {} lines take fewer clocks than their record's words",
             top.block,
             run.beats[0].len(),
             run.beats[1].len(),
@@ -451,12 +468,21 @@ fn tready_high_never_holds_the_units() {
 fn latency_from_last_word_to_first_beat() {
     for top in tops() {
         let (spans, regs) = scene(top.kind, 7, 1);
-        // A line of at least two pixels: both lanes have one in its first clock.
-        let line = spans.iter().find(|s| s.m >= 1).unwrap();
+        // A line of at least two pixels: both lanes have one in its first clock. The quadric's
+        // a triangle's first line (the tracker starts there: no move before its pixels).
+        let line = spans
+            .iter()
+            .find(|s| {
+                s.m >= 1
+                    && (top.kind != SpanKind::Quadric || span_line_record(top.kind, s)[0].0 == 2)
+            })
+            .unwrap();
         let idle = vec![0, 0, 0, 1, 1];
         let mut rows: Vec<Vec<u64>> = vec![idle.clone(); 3];
-        for (w, last) in span_register_record(&regs) {
-            rows.push(vec![w as u64, 1, last as u64, 1, 1]);
+        if top.kind != SpanKind::Quadric {
+            for (w, last) in span_register_record(&regs) {
+                rows.push(vec![w as u64, 1, last as u64, 1, 1]);
+            }
         }
         rows.extend(std::iter::repeat_n(idle.clone(), 4));
         for (w, last) in span_line_record(top.kind, line) {
@@ -503,4 +529,32 @@ fn layout_fields_are_the_pipeline_ports() {
         assert_eq!(ports.last().map(|p| p.0.as_str()), Some("hold"));
         assert_eq!(ports[1..ports.len() - 1], fields[..], "{}", layout.block);
     }
+}
+
+/// `quadric-stream`'s layout covers `quadric-unit`'s load ports: the line record's fields, then
+/// the triangle record's further ones, are its ports other than `load`, `first` (the record
+/// type) and `hold`, the same names and widths.
+#[test]
+fn quadric_layout_fields_are_the_unit_ports() {
+    use rtl::stream_layout::QUADRIC_STREAM;
+    let (ins, _) = find("quadric-unit").unwrap().ports();
+    let mut ports: Vec<(String, usize)> = ins
+        .iter()
+        .filter(|p| !["load", "first", "hold"].contains(&p.name))
+        .map(|p| (p.name.to_string(), p.width))
+        .collect();
+    let mut fields: Vec<(String, usize)> = QUADRIC_STREAM
+        .full
+        .unwrap()
+        .fields
+        .iter()
+        .map(|f| (f.name.to_string(), f.bits as usize))
+        .collect();
+    assert_eq!(ins.len(), fields.len() + 3);
+    ports.sort();
+    fields.sort();
+    assert_eq!(ports, fields);
+    // The line record is the triangle record's head.
+    let line = QUADRIC_STREAM.triangle.fields;
+    assert_eq!(line, &QUADRIC_STREAM.full.unwrap().fields[..line.len()]);
 }
