@@ -1,7 +1,7 @@
-//! One lane's fragment FIFO of a two-lane stream top (`angular-stream`): the AXI4-Stream
-//! master side of a fragment stream — a 128-entry FIFO of beats (64-bit `tdata`, and the
-//! 32-bit `tuser` with `tlast`), an output register offering one beat, and the level compare
-//! the top turns into its pipeline's hold. The same logic `cubic-stream` and `pixel-stream`
+//! One lane's fragment FIFO of a two-lane stream top (`angular-stream`, `fast-stream`,
+//! `quadric-stream`): the AXI4-Stream master side of a fragment stream — a 128-entry FIFO of
+//! beats (64-bit `tdata`, and the 32-bit `tuser` with `tlast`), an output register offering
+//! one beat, and the level compare the top turns into its pipeline's hold. The same logic `cubic-stream` and `pixel-stream`
 //! write inline for their one stream; a two-lane top has one of these per lane.
 //!
 //! # Ports

