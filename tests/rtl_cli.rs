@@ -422,19 +422,23 @@ fn synth_ecp5_only_flags_are_one_line_errors() {
     }
 }
 
-/// `stream --method` with a method no stream top builds is a one-line error naming the ones
-/// each top has; `--method gouraud` writes `gouraud-stream`'s files.
+/// `stream --method` with a method whose streams it does not write is a one-line error naming
+/// the methods each top it writes has (and, for `quadric`, the two-lane top it does not write
+/// yet); `--method gouraud` writes `gouraud-stream`'s files.
 #[test]
 fn stream_methods_are_the_stream_tops() {
-    let out = shadecore(&["stream", "--method", "quadric", "--out", "target/never"]);
-    let err = String::from_utf8_lossy(&out.stderr);
-    assert!(
-        !out.status.success()
-            && err.trim().lines().count() == 1
-            && err.contains("quadric")
-            && err.contains("gouraud-stream has gouraud"),
-        "{err}"
-    );
+    for method in ["quadric", "flat"] {
+        let out = shadecore(&["stream", "--method", method, "--out", "target/never"]);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(
+            !out.status.success()
+                && err.trim().lines().count() == 1
+                && err.contains(&format!("for method {method} "))
+                && err.contains("gouraud-stream's for gouraud")
+                && err.contains("quadric-stream"),
+            "{err}"
+        );
+    }
     let dir = tempfile::tempdir().unwrap();
     let out = shadecore_ok(&[
         "stream",
