@@ -13,7 +13,7 @@
 //! - **serial** (fig. 2.6): register RG, MX1 (A or RG into the multiplier), MX2 (B, C or D into
 //!   the adder), one multiplier MUL, one adder Sm; step 0: A·p + B, step 1: RG·p + C, step 2:
 //!   out ← RG·p + D. Three clocks per pixel. The MUL–Sm loop is four registers deep (OP: the
-//!   operands; PR: the two 16×16 products and, beside them, the addend k·2¹⁵ + 2¹⁴ − [x<0]·p·2³²;
+//!   operands; PR: the two 16×16 products and, beside them, the addend k·2¹⁵ + 2¹⁴ − \[x<0\]·p·2³²;
 //!   PT: the 48-bit partial sum; RG), so three pixels are in the loop at once, interleaved: a
 //!   free-running phase (1, 2, 0) issues the walk's next pixel's step 0 in phase 1 and the
 //!   recirculated RG in phases 2 and 0, RG always holding the same pixel's previous step. This
@@ -155,7 +155,7 @@ crate::hw_block! {
     /// One Horner step of the pipelined variant, `r = ((x·p + 2¹⁴) >> 15) + k (mod 2³²)` —
     /// `MulS32U16Round(x, p) + k`, bit for bit — in [`STEP_CLOCKS`] clocks, the serial loop's
     /// registers without the loop: PR (the two unsigned 16×16 products x_lo·p, x_hi·p and
-    /// beside them kk = k·2¹⁵ + 2¹⁴ − [x < 0]·p·2³², 48 bits), PT (x_hi·p·2¹⁶ + x_lo·p, mod
+    /// beside them kk = k·2¹⁵ + 2¹⁴ − \[x < 0\]·p·2³², 48 bits), PT (x_hi·p·2¹⁶ + x_lo·p, mod
     /// 2⁴⁸), R ((PT + kk) >> 15). Inputs from registers; `x` signed Q-format, `p` UQ1.15,
     /// `k` and `r` signed, 32 bits. Exact mod 2³² (|x·p| < 2⁴⁷). One step per clock.
     pub struct HornerStep(clock) {

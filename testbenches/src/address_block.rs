@@ -236,7 +236,7 @@ pub fn channel_planes(t: &ScreenTriangle, v: &[[f64; 3]; 3]) -> [Plane; 3] {
 /// Rows, expectations and comparisons of a triangle block's run.
 pub type TriangleRun = (Vec<Vec<u64>>, Vec<Vec<Expected>>, Vec<Compare>);
 
-/// A [`TriangleRun`] as a registry [`Stimulus`].
+/// A [`TriangleRun`] as a registry [`Stimulus`](crate::registry::Stimulus).
 pub fn triangle_run((rows, expected, compare): TriangleRun) -> registry::Stimulus {
     registry::Stimulus {
         rows,
