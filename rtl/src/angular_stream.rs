@@ -376,41 +376,18 @@ mod tests {
     /// The header's latency, FIFO and record figures are the constants'.
     #[test]
     fn header_figures_are_the_constants() {
-        // The header as one line of words.
-        let text = include_str!("angular_stream.rs")
-            .lines()
-            .filter_map(|l| l.strip_prefix("//!"))
-            .flat_map(str::split_whitespace)
-            .collect::<Vec<_>>()
-            .join(" ");
-        let layout = crate::stream_layout::ANGULAR_STREAM;
-        let words = crate::stream_layout::payload_words(&layout.triangle);
-        let regs = crate::stream_layout::payload_words(&layout.registers.unwrap());
-        for want in [
-            format!("{}-entry FIFO", super::FIFO_DEPTH),
-            format!("more than {} beats", super::HOLD_ABOVE),
-            format!("first reaches {}", super::HOLD_ABOVE + 1),
-            format!(
-                "`EVENT_TO_FRAGMENT` + 1 = {} more beats",
-                super::EVENT_TO_FRAGMENT + 1
-            ),
-            format!(
-                "holds more than {}",
-                super::HOLD_ABOVE + 1 + super::EVENT_TO_FRAGMENT + 1
-            ),
-            format!("clock t + {}", <super::AngularStream as RtlBlock>::LATENCY),
-            format!(
-                "{} clocks through `angular-pipeline`",
-                <AngularPipeline as RtlBlock>::LATENCY
-            ),
-            format!("a line is {words} payload words"),
-            format!("the registers {regs}"),
-            format!("record is {} words", words + 1),
-            format!("shorter than {} pixels", 2 * (words + 1) - 1),
-            format!("FIFO ({})", super::FIFO_DEPTH),
-        ] {
-            assert!(text.contains(&want), "header lacks {want:?}");
-        }
+        let top = crate::stream_layout::ANGULAR_STREAM;
+        let regs = crate::stream_layout::payload_words(&top.registers.unwrap());
+        let extra = [format!("the registers {regs}")];
+        crate::fragment_fifo::check_two_lane_header(
+            include_str!("angular_stream.rs"),
+            &top,
+            super::HOLD_ABOVE,
+            super::EVENT_TO_FRAGMENT,
+            <super::AngularStream as RtlBlock>::LATENCY,
+            <AngularPipeline as RtlBlock>::LATENCY,
+            &extra,
+        );
     }
 
     /// The generated regions of this file are what `rtl::stream_layout` gives; with

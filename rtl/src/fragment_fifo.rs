@@ -86,3 +86,55 @@ impl Logic for FragmentFifo {
         }
     }
 }
+
+/// Checks a two-lane stream top's header (its source `source`) against its constants: the
+/// FIFO and hold figures, the overflow bound, the latencies, the line record's words and the
+/// line length below which it is set-up bound, and `extra` phrases. Panics naming the first
+/// phrase missing.
+#[cfg(test)]
+pub(crate) fn check_two_lane_header(
+    source: &str,
+    top: &crate::stream_layout::StreamTop,
+    hold_above: usize,
+    event_to_fragment: usize,
+    latency: usize,
+    wrapped_latency: usize,
+    extra: &[String],
+) {
+    // The header as one line of words.
+    let text = source
+        .lines()
+        .filter_map(|l| l.strip_prefix("//!"))
+        .flat_map(str::split_whitespace)
+        .collect::<Vec<_>>()
+        .join(" ");
+    let words = crate::stream_layout::payload_words(&top.triangle);
+    let wants = [
+        format!("{FIFO_DEPTH}-entry FIFO"),
+        format!("FIFO ({FIFO_DEPTH})"),
+        format!("more than {hold_above} beats"),
+        format!("first reaches {}", hold_above + 1),
+        format!(
+            "`EVENT_TO_FRAGMENT` + 1 = {} more beats",
+            event_to_fragment + 1
+        ),
+        format!("holds more than {}", hold_above + 1 + event_to_fragment + 1),
+        format!("clock t + {latency}"),
+        format!("{wrapped_latency} clocks through `{}`", top.wraps),
+        format!("a line is {words} payload words"),
+        format!("record is {} words", words + 1),
+        format!("shorter than {} pixels", 2 * (words + 1) - 1),
+    ];
+    assert!(
+        hold_above + 1 + event_to_fragment < FIFO_DEPTH,
+        "{}: the FIFO can overflow",
+        top.block
+    );
+    for want in wants.iter().chain(extra) {
+        assert!(
+            text.contains(want.as_str()),
+            "{}: header lacks {want:?}",
+            top.block
+        );
+    }
+}

@@ -511,42 +511,21 @@ mod tests {
     /// The header's latency, FIFO and record figures are the constants'.
     #[test]
     fn header_figures_are_the_constants() {
-        // The header as one line of words.
-        let text = include_str!("quadric_stream.rs")
-            .lines()
-            .filter_map(|l| l.strip_prefix("//!"))
-            .flat_map(str::split_whitespace)
-            .collect::<Vec<_>>()
-            .join(" ");
-        let layout = crate::stream_layout::QUADRIC_STREAM;
-        let words = crate::stream_layout::payload_words(&layout.triangle);
-        let full = crate::stream_layout::payload_words(&layout.full.unwrap());
-        for want in [
-            format!("{}-entry FIFO", super::FIFO_DEPTH),
-            format!("more than {} beats", super::HOLD_ABOVE),
-            format!("first reaches {}", super::HOLD_ABOVE + 1),
-            format!(
-                "`EVENT_TO_FRAGMENT` + 1 = {} more beats",
-                super::EVENT_TO_FRAGMENT + 1
-            ),
-            format!(
-                "holds more than {}",
-                super::HOLD_ABOVE + 1 + super::EVENT_TO_FRAGMENT + 1
-            ),
-            format!("clock t + {}", <super::QuadricStream as RtlBlock>::LATENCY),
-            format!(
-                "{} clocks through `quadric-unit`",
-                <QuadricUnit as RtlBlock>::LATENCY
-            ),
-            format!("a line is {words} payload words"),
+        let top = crate::stream_layout::QUADRIC_STREAM;
+        let full = crate::stream_layout::payload_words(&top.full.unwrap());
+        let extra = [
             format!("first line {full}"),
-            format!("record is {} words", words + 1),
             format!("first line {})", full + 1),
-            format!("shorter than {} pixels", 2 * (words + 1) - 1),
-            format!("FIFO ({})", super::FIFO_DEPTH),
-        ] {
-            assert!(text.contains(&want), "header lacks {want:?}");
-        }
+        ];
+        crate::fragment_fifo::check_two_lane_header(
+            include_str!("quadric_stream.rs"),
+            &top,
+            super::HOLD_ABOVE,
+            super::EVENT_TO_FRAGMENT,
+            <super::QuadricStream as RtlBlock>::LATENCY,
+            <QuadricUnit as RtlBlock>::LATENCY,
+            &extra,
+        );
     }
 
     /// The generated regions of this file are what `rtl::stream_layout` gives; with

@@ -56,12 +56,27 @@ pub fn top_of(kind: SpanKind) -> (StreamTop, usize) {
     }
 }
 
+/// Where the wrapped top's input port takes its value from in [`SpanStreamTwin`].
+#[derive(Clone, Copy, Debug)]
+enum Source {
+    Load,
+    /// A type-2 record in the load bank (`quadric-unit`'s `first`).
+    First,
+    Hold,
+    /// Field k of the load record (the type-2 one where the top has it: the line's fields
+    /// lead it).
+    Field(usize),
+    /// Active register k.
+    Register(usize),
+}
+
 /// Twin of `angular-stream`, `fast-stream` and `quadric-stream`.
 pub struct SpanStreamTwin {
     top: StreamTop,
-    /// The wrapped top's twin, and its input port names (its row is built by name).
+    /// The wrapped top's twin, and where each of its input ports takes its value from (matched
+    /// by name once, at construction).
     inner: Box<dyn Twin>,
-    in_ports: Vec<&'static str>,
+    sources: Vec<Source>,
     reader: RecordReader,
     /// The active registers: n, the nine weights (0 after reset).
     regs: Vec<u64>,
@@ -80,17 +95,34 @@ impl SpanStreamTwin {
             SpanKind::Quadric => Box::new(QuadricRows(QuadricTwin::new())),
             _ => Box::new(SpanPipelineTwin::new(kind)),
         };
-        let in_ports = crate::registry::find(top.wraps)
+        let fields = top.full.unwrap_or(top.triangle).fields;
+        let sources = crate::registry::find(top.wraps)
             .expect("the wrapped top is registered")
             .ports()
             .0
             .iter()
-            .map(|p| p.name)
+            .map(|p| match p.name {
+                "load" => Source::Load,
+                "first" => Source::First,
+                "hold" => Source::Hold,
+                n => fields
+                    .iter()
+                    .position(|f| f.name == n)
+                    .map(Source::Field)
+                    .or_else(|| {
+                        SPAN_REGISTERS
+                            .fields
+                            .iter()
+                            .position(|f| f.name == n)
+                            .map(Source::Register)
+                    })
+                    .unwrap_or_else(|| panic!("{}: no value for port {n}", top.block)),
+            })
             .collect();
         SpanStreamTwin {
             top,
             inner,
-            in_ports,
+            sources,
             reader: RecordReader::new(&top.records()),
             regs: vec![0; SPAN_REGISTERS.fields.len()],
             lanes: [0, 1].map(|_| BeatFifo::new(rtl::fragment_fifo::FIFO_DEPTH, hold_above)),
@@ -131,42 +163,26 @@ impl Twin for SpanStreamTwin {
         let m_ready = [r[3] != 0, r[4] != 0];
         let out = self.outputs();
 
-        // The pipeline's inputs this clock, by port name: load (and `first` for a type-2 load
+        // The pipeline's inputs this clock, in its port order: load (and `first` for a type-2 load
         // record), the load bank's fields, the active registers, hold (either lane's
         // registered level flag).
         let (pend, t) = (self.reader.pend_b, self.reader.type_b);
         let loads = pend && (t == 1 || (t == 2 && self.top.full.is_some()));
         let hold = self.lanes.iter_mut().fold(false, |h, l| l.hold() | h);
         self.held += hold as usize;
-        let fields = self.top.full.unwrap_or(self.top.triangle);
-        let mut value: Vec<(&str, u64)> = vec![
-            ("load", loads as u64),
-            ("first", (t == 2) as u64),
-            ("hold", hold as u64),
-        ];
-        value.extend(
-            fields
-                .fields
-                .iter()
-                .map(|f| f.name)
-                .zip(unpack(&fields, &self.reader.load_bank)),
-        );
-        value.extend(
-            SPAN_REGISTERS
-                .fields
-                .iter()
-                .map(|f| f.name)
-                .zip(self.regs.iter().copied()),
+        let fields = unpack(
+            &self.top.full.unwrap_or(self.top.triangle),
+            &self.reader.load_bank,
         );
         let row: Vec<u64> = self
-            .in_ports
+            .sources
             .iter()
-            .map(|p| {
-                value
-                    .iter()
-                    .find(|(n, _)| n == p)
-                    .unwrap_or_else(|| panic!("{}: no value for port {p}", self.top.block))
-                    .1
+            .map(|s| match *s {
+                Source::Load => loads as u64,
+                Source::First => (t == 2) as u64,
+                Source::Hold => hold as u64,
+                Source::Field(i) => fields[i],
+                Source::Register(i) => self.regs[i],
             })
             .collect();
         // Outputs: ready; lane A valid, x, z, r, g, b; lane B the same; y; last.
