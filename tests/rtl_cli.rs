@@ -427,7 +427,7 @@ fn synth_ecp5_only_flags_are_one_line_errors() {
 /// yet); `--method gouraud` writes `gouraud-stream`'s files.
 #[test]
 fn stream_methods_are_the_stream_tops() {
-    for method in ["quadric", "flat"] {
+    for method in ["quadric", "subdivision", "flat"] {
         let out = shadecore(&["stream", "--method", method, "--out", "target/never"]);
         let err = String::from_utf8_lossy(&out.stderr);
         assert!(
@@ -435,7 +435,8 @@ fn stream_methods_are_the_stream_tops() {
                 && err.trim().lines().count() == 1
                 && err.contains(&format!("for method {method} "))
                 && err.contains("gouraud-stream's for gouraud")
-                && err.contains("quadric-stream"),
+                && err.contains("quadric-stream")
+                && err.contains("subdivision-stream"),
             "{err}"
         );
     }

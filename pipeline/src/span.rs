@@ -648,7 +648,7 @@ fn run_cubic_stream(
 /// register record and the lines' records on the set-up stream, every beat of both lanes
 /// taken; a line ends with both lanes' `tlast`.
 #[allow(clippy::too_many_arguments)]
-fn run_lanes<T: crate::stream::TwoLaneTop>(
+fn run_lanes<T: crate::stream::LaneTop>(
     s: &mut Stepper<T>,
     kind: SpanKind,
     spans: &[SpanJob],
@@ -663,7 +663,7 @@ fn run_lanes<T: crate::stream::TwoLaneTop>(
         &crate::stream::span_stream_words(kind, spans, regs),
         n,
         max_clocks,
-        &mut |line, b, clock, lane_b| {
+        &mut |line, b, clock, lane| {
             fragment(SpanFragment {
                 triangle: spans[line].triangle,
                 x: b.x,
@@ -671,7 +671,7 @@ fn run_lanes<T: crate::stream::TwoLaneTop>(
                 z: b.z,
                 rgb: b.rgb,
                 clock,
-                lane_b,
+                lane_b: lane == 1,
             })
         },
         &mut |done| {

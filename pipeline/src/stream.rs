@@ -1,11 +1,12 @@
 //! The stream tops' streams (`pixel-stream`, `gouraud-stream`, `cubic-stream`,
-//! `angular-stream`) from the driver's side: set-up
+//! `angular-stream`, `fast-stream`, `quadric-stream`, `subdivision-stream`) from the driver's
+//! side: set-up
 //! records packed with the one layout table (`rtl::stream_layout`), and fragment beats read
 //! back with it.
 
 use rtl::stream_layout::{
     pack, unpack_fragment, ANGULAR_LINE, CUBIC_LINE, FAST_LINE, GOURAUD_TRIANGLE, QUADRIC_LINE,
-    QUADRIC_TRIANGLE, REGISTERS, SPAN_REGISTERS, TRIANGLE,
+    QUADRIC_TRIANGLE, REGISTERS, SPAN_REGISTERS, SUBDIVISION_PARENT, TRIANGLE,
 };
 
 use crate::gouraud::{pipe_row, TriangleJob, PIPE_HOLD_AT};
@@ -55,6 +56,21 @@ pub fn gouraud_record(job: &TriangleJob) -> Vec<Word> {
 /// A Gouraud scene's set-up stream: every triangle, in order.
 pub fn gouraud_words(jobs: &[TriangleJob]) -> Vec<Word> {
     jobs.iter().flat_map(gouraud_record).collect()
+}
+
+/// The `subdivision-stream` record of a parent (the same field values `subdivision-raster`'s
+/// load row carries).
+pub fn subdivision_record(job: &crate::subdivision::SubJob) -> Vec<Word> {
+    let row = crate::subdivision::pipe_row(Some(job));
+    with_last(pack(
+        &SUBDIVISION_PARENT,
+        &row[1..crate::subdivision::PIPE_HOLD_AT],
+    ))
+}
+
+/// A subdivision scene's set-up stream: every parent, in order.
+pub fn subdivision_words(jobs: &[crate::subdivision::SubJob]) -> Vec<Word> {
+    jobs.iter().flat_map(subdivision_record).collect()
 }
 
 /// The `cubic-stream` record of a cubic line (`span` from `crate::span::span_jobs` with a
@@ -239,83 +255,106 @@ impl StreamTop for rtl::cubic_stream::CubicStream {
     }
 }
 
-/// The two-lane span stream tops (`angular-stream`, `fast-stream`, `quadric-stream`), for
+/// The stream tops with a fragment stream per lane (`angular-stream`, `fast-stream`,
+/// `quadric-stream`: two lanes with `tuser`; `subdivision-stream`: four without), for
 /// [`drive_lanes`].
-pub trait TwoLaneTop: rtl::sim::Dut {
+pub trait LaneTop: rtl::sim::Dut {
     /// Its registry name.
     const NAME: &'static str;
+    /// Fragment streams.
+    const LANES: usize = 2;
+    /// Whether each stream has `m_axis_*_tuser` (the depth).
+    const TUSER: bool = true;
+    /// What one record loads, for messages ("lines", "parents").
+    const RECORDS: &'static str = "lines";
     fn s_axis_tready(&self) -> bool;
 }
 
-impl TwoLaneTop for rtl::angular_stream::AngularStream {
+impl LaneTop for rtl::angular_stream::AngularStream {
     const NAME: &'static str = "angular-stream";
     fn s_axis_tready(&self) -> bool {
         self.s_axis_tready.val()
     }
 }
 
-impl TwoLaneTop for rtl::quadric_stream::QuadricStream {
+impl LaneTop for rtl::quadric_stream::QuadricStream {
     const NAME: &'static str = "quadric-stream";
     fn s_axis_tready(&self) -> bool {
         self.s_axis_tready.val()
     }
 }
 
-impl TwoLaneTop for rtl::fast_stream::FastStream {
+impl LaneTop for rtl::fast_stream::FastStream {
     const NAME: &'static str = "fast-stream";
     fn s_axis_tready(&self) -> bool {
         self.s_axis_tready.val()
     }
 }
 
-/// [`drive`] for a two-lane top's fragment streams (both `m_axis_*_tready` high):
-/// `fragment(line, beat, clock, lane_b)` for each beat with a pixel (line = the `tlast`s seen
-/// before it on its lane), `record_done(lines_done)` when both lanes have seen a line's
-/// `tlast`. `records` counts lines (the register record at the start is not one).
-pub fn drive_lanes<T: TwoLaneTop>(
+impl LaneTop for rtl::subdivision_stream::SubdivisionStream {
+    const NAME: &'static str = "subdivision-stream";
+    const LANES: usize = 4;
+    const TUSER: bool = false;
+    const RECORDS: &'static str = "parents";
+    fn s_axis_tready(&self) -> bool {
+        self.s_axis_tready.val()
+    }
+}
+
+/// [`drive`] for a top's per-lane fragment streams (every `m_axis_*_tready` high):
+/// `fragment(record, beat, clock, lane)` for each beat with a pixel (record = the `tlast`s
+/// seen before it on its lane), `record_done(records_done)` when every lane has seen a
+/// record's `tlast`. `records` counts the load records (lines, parents; a register record at
+/// the start is not one).
+pub fn drive_lanes<T: LaneTop>(
     s: &mut rtl::sim::Stepper<T>,
     words: &[Word],
     records: u64,
     max_clocks: u64,
-    fragment: &mut dyn FnMut(usize, Beat, u64, bool),
+    fragment: &mut dyn FnMut(usize, Beat, u64, usize),
     record_done: &mut dyn FnMut(u64),
 ) -> Result<crate::gouraud::PipeStats, String> {
     let mut st = crate::gouraud::PipeStats::default();
-    // Outputs: s_axis_tready; lane A tvalid, tdata, tuser, tlast; lane B the same; error.
-    let mut out = [0u64; 10];
-    let (mut next, mut ends) = (0, [0u64; 2]);
+    // Outputs: s_axis_tready; per lane tvalid, tdata, [tuser,] tlast; error.
+    let per = 3 + T::TUSER as usize;
+    let mut out = vec![0u64; 2 + per * T::LANES];
+    let mut ready_row = vec![0u64; 3];
+    ready_row.extend(std::iter::repeat_n(1, T::LANES));
+    let (mut next, mut ends) = (0, vec![0u64; T::LANES]);
     while st.triangles < records {
         if st.clocks >= max_clocks {
             return Err(format!(
-                "{}: {} of {records} lines done after {max_clocks} clocks",
+                "{}: {} of {records} {} done after {max_clocks} clocks",
                 T::NAME,
-                st.triangles
+                st.triangles,
+                T::RECORDS
             ));
         }
         let taken = s.dut().s_axis_tready();
-        let row = match words.get(next) {
-            Some(&(w, last)) => [w as u64, 1, last as u64, 1, 1],
-            None => [0, 0, 0, 1, 1],
-        };
+        let mut row = ready_row.clone();
+        if let Some(&(w, last)) = words.get(next) {
+            row[..3].copy_from_slice(&[w as u64, 1, last as u64]);
+        }
         s.step(&row, &mut out)?;
         next += (row[1] != 0 && taken) as usize;
         st.clocks += 1;
-        if out[9] != 0 {
+        if out[out.len() - 1] != 0 {
             return Err(format!("{} flagged a malformed set-up record", T::NAME));
         }
         for (lane, end) in ends.iter_mut().enumerate() {
-            let at = 1 + 4 * lane;
+            let at = 1 + per * lane;
             if out[at] == 0 {
                 continue;
             }
-            let b = Beat::read(out[at + 1], out[at + 2], out[at + 3] != 0);
+            let tuser = if T::TUSER { out[at + 2] } else { 0 };
+            let b = Beat::read(out[at + 1], tuser, out[at + per - 1] != 0);
             if b.pixel {
                 st.pixels += 1;
-                fragment(*end as usize, b, st.clocks - 1, lane == 1);
+                fragment(*end as usize, b, st.clocks - 1, lane);
             }
             *end += b.last as u64;
         }
-        let done = ends[0].min(ends[1]);
+        let done = ends.iter().copied().min().unwrap_or(0);
         while st.triangles < done {
             st.triangles += 1;
             record_done(st.triangles);
@@ -421,6 +460,26 @@ mod tests {
             row[1..PIPE_HOLD_AT].to_vec()
         );
         assert_eq!(gouraud_words(&[job, job]).len(), 44);
+    }
+
+    #[test]
+    fn subdivision_records_carry_the_load_row() {
+        let mut t = golden::types::ScreenTriangle::from_points([(3, 1), (40, 7), (11, 30)]);
+        t.v[1].normal = glam::DVec3::new(0.3, 0.1, 1.0).normalize();
+        let ctx = golden::shade::ShadeContext::default();
+        let job = crate::subdivision::SubJob::subdivision(&t, &ctx).unwrap();
+        let rec = subdivision_record(&job);
+        assert_eq!(rec.len(), 72);
+        assert_eq!(rec[0], (1, false));
+        assert!(rec.last().unwrap().1);
+        assert!(rec[..71].iter().all(|w| !w.1));
+        let payload: Vec<u32> = rec[1..].iter().map(|w| w.0).collect();
+        let row = crate::subdivision::pipe_row(Some(&job));
+        assert_eq!(
+            unpack(&SUBDIVISION_PARENT, &payload),
+            row[1..crate::subdivision::PIPE_HOLD_AT].to_vec()
+        );
+        assert_eq!(subdivision_words(&[job, job]).len(), 144);
     }
 
     #[test]

@@ -146,6 +146,9 @@ pub const OUTPUTS: usize = 1 + 7 * LANES;
 enum SubSim {
     Rust(Box<Stepper<SubdivisionRaster>>),
     Replay(crate::replay::Replay),
+    /// Through the stream top `subdivision-stream` (parent records in, a fragment stream per
+    /// lane out).
+    Stream(Box<Stepper<rtl::subdivision_stream::SubdivisionStream>>),
 }
 
 /// The subdivision raster pipe, stepped by hand (or a recorded run replayed).
@@ -160,6 +163,17 @@ impl SubPipe {
         })
     }
 
+    /// The pipe through its AXI4-Stream top `subdivision-stream`: each parent a 72-word
+    /// record on the set-up stream, each lane's fragments on its own stream (every `tready`
+    /// high).
+    pub fn stream() -> Result<SubPipe, String> {
+        Ok(SubPipe {
+            sim: SubSim::Stream(Box::new(Stepper::new(
+                rtl::subdivision_stream::SubdivisionStream::default(),
+            )?)),
+        })
+    }
+
     /// A recorded run (see [`crate::replay`]).
     pub fn replay(r: crate::replay::Replay) -> SubPipe {
         SubPipe {
@@ -171,6 +185,7 @@ impl SubPipe {
         match &self.sim {
             SubSim::Rust(s) => s.dut().ready.val(),
             SubSim::Replay(r) => r.ready(),
+            SubSim::Stream(_) => unreachable!("the stream top is driven by its stream"),
         }
     }
 
@@ -178,6 +193,7 @@ impl SubPipe {
         match &mut self.sim {
             SubSim::Rust(s) => s.step(row, out),
             SubSim::Replay(r) => r.step(row, out),
+            SubSim::Stream(_) => unreachable!("the stream top is driven by its stream"),
         }
     }
 
@@ -192,6 +208,17 @@ impl SubPipe {
         mut pixel: impl FnMut(usize, u32, u32, [u8; 3]),
         mut progress: impl FnMut(u64),
     ) -> Result<PipeStats, String> {
+        if let SubSim::Stream(s) = &mut self.sim {
+            let n = jobs.len() as u64;
+            return crate::stream::drive_lanes(
+                s,
+                &crate::stream::subdivision_words(jobs),
+                n,
+                max_clocks,
+                &mut |k, b, _, _| pixel(k, b.x, b.y, b.rgb),
+                &mut |done| progress(done),
+            );
+        }
         let mut st = PipeStats::default();
         let mut out = vec![0u64; OUTPUTS];
         let idle = pipe_row(None);
@@ -235,11 +262,12 @@ impl SubPipe {
     }
 }
 
-/// A clock budget for `jobs`: every lane row at the full line length plus latency.
+/// A clock budget for `jobs`: every lane row at the full line length plus latency (and the
+/// stream top's record, 72 words, per parent).
 pub fn clock_budget(jobs: &[SubJob]) -> u64 {
     jobs.iter()
         .map(|j| {
-            8 + j
+            80 + j
                 .addr
                 .lanes
                 .iter()

@@ -76,7 +76,7 @@
 use rust_hdl::prelude::*;
 
 use crate::fragment_fifo::FragmentFifo;
-use crate::record_reader::RecordReader;
+use crate::record_reader::{RecordReader, INDEX_BITS};
 use crate::registry::RtlBlock;
 use crate::span_pipeline::AngularPipeline;
 
@@ -112,13 +112,13 @@ crate::hw_block! {
         pend_b: DFF<Bit>, type_b: DFF<Bits<4>>, transfer: Signal<Local, Bit>,
         /// Lines loaded whose last clock has not left the pipeline.
         outstanding: DFF<Bits<16>>,
-        tri_words: Constant<Bits<6>> =
+        tri_words: Constant<Bits<INDEX_BITS>> =
             Constant::new((crate::stream_layout::payload_words(&crate::stream_layout::ANGULAR_LINE) as u64).into()),
-        reg_words: Constant<Bits<6>> =
+        reg_words: Constant<Bits<INDEX_BITS>> =
             Constant::new((crate::stream_layout::payload_words(&crate::stream_layout::SPAN_REGISTERS) as u64).into()),
         /// The word the reader takes, and which payload word it is (+ 1).
         in_word: Signal<Local, Bits<32>>, take_word: Signal<Local, Bit>,
-        word_index: Signal<Local, Bits<6>>,
+        word_index: Signal<Local, Bits<INDEX_BITS>>,
         load_taken: Signal<Local, Bit>, apply_regs: Signal<Local, Bit>,
         // Fragment side: a FIFO per lane, the hold from either's level.
         lane_a: FragmentFifo, lane_b: FragmentFifo,

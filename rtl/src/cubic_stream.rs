@@ -67,7 +67,7 @@ use rust_hdl::prelude::*;
 
 use crate::cubic_pipeline::{CubicParams, CubicPipeline};
 use crate::primitives::Lutram;
-use crate::record_reader::RecordReader;
+use crate::record_reader::{RecordReader, INDEX_BITS};
 use crate::registry::RtlBlock;
 
 /// Clocks from a pixel entering the units to its fragment at `cubic-pipeline`'s outputs (at
@@ -96,12 +96,12 @@ crate::hw_block! {
         rd: RecordReader,
         /// A line waits in the load bank.
         pend_b: DFF<Bit>, transfer: Signal<Local, Bit>,
-        tri_words: Constant<Bits<6>> =
+        tri_words: Constant<Bits<INDEX_BITS>> =
             Constant::new((crate::stream_layout::payload_words(&crate::stream_layout::CUBIC_LINE) as u64).into()),
-        no_words: Constant<Bits<6>> = Constant::new(0u64.into()),
+        no_words: Constant<Bits<INDEX_BITS>> = Constant::new(0u64.into()),
         /// The word the reader takes, and which payload word it is (+ 1).
         in_word: Signal<Local, Bits<32>>, take_word: Signal<Local, Bit>,
-        word_index: Signal<Local, Bits<6>>,
+        word_index: Signal<Local, Bits<INDEX_BITS>>,
         // Fragment side: the FIFO (beat, and z with tlast), pointers, level.
         fifo_beat: Lutram<Bits<64>, FIFO_BITS>,
         fifo_tail: Lutram<Bits<33>, FIFO_BITS>,

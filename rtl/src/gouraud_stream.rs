@@ -59,7 +59,7 @@ use rust_hdl::prelude::*;
 use crate::gouraud_raster::GouraudRaster;
 use crate::intensity_interpolator::IntensityInterpolator;
 use crate::primitives::Lutram;
-use crate::record_reader::RecordReader;
+use crate::record_reader::{RecordReader, INDEX_BITS};
 
 /// Clocks from an address-block event to its fragment at `gouraud-raster`'s outputs.
 pub const EVENT_TO_FRAGMENT: usize = IntensityInterpolator::LATENCY;
@@ -87,12 +87,12 @@ crate::hw_block! {
         rd: RecordReader,
         /// A triangle waits in the load bank.
         pend_b: DFF<Bit>, transfer: Signal<Local, Bit>,
-        tri_words: Constant<Bits<6>> =
+        tri_words: Constant<Bits<INDEX_BITS>> =
             Constant::new((crate::stream_layout::payload_words(&crate::stream_layout::GOURAUD_TRIANGLE) as u64).into()),
-        no_words: Constant<Bits<6>> = Constant::new(0u64.into()),
+        no_words: Constant<Bits<INDEX_BITS>> = Constant::new(0u64.into()),
         /// The word the reader takes, and which payload word it is (+ 1).
         in_word: Signal<Local, Bits<32>>, take_word: Signal<Local, Bit>,
-        word_index: Signal<Local, Bits<6>>,
+        word_index: Signal<Local, Bits<INDEX_BITS>>,
         // Fragment side: the FIFO (beat, tlast), pointers, level.
         fifo_beat: Lutram<Bits<64>, FIFO_BITS>,
         fifo_last: Lutram<Bit, FIFO_BITS>,

@@ -33,4 +33,5 @@ pub mod sim;
 pub mod span_pipeline;
 pub mod stream_layout;
 pub mod subdivision_raster;
+pub mod subdivision_stream;
 pub mod vector_interpolator;

@@ -70,7 +70,7 @@ use rust_hdl::prelude::*;
 
 use crate::pixel_pipeline::{PipelineParams, PixelPipeline, EVENT_TO_FRAGMENT};
 use crate::primitives::Lutram;
-use crate::record_reader::RecordReader;
+use crate::record_reader::{RecordReader, INDEX_BITS};
 
 /// FIFO depth (entries) and its address width.
 pub const FIFO_DEPTH: usize = 1 << FIFO_BITS;
@@ -98,13 +98,13 @@ crate::hw_block! {
         pend_b: DFF<Bit>, type_b: DFF<Bits<4>>, transfer: Signal<Local, Bit>,
         /// Triangles loaded whose `done` has not left the pipeline.
         outstanding: DFF<Bits<16>>,
-        tri_words: Constant<Bits<6>> =
+        tri_words: Constant<Bits<INDEX_BITS>> =
             Constant::new((crate::stream_layout::payload_words(&crate::stream_layout::TRIANGLE) as u64).into()),
-        reg_words: Constant<Bits<6>> =
+        reg_words: Constant<Bits<INDEX_BITS>> =
             Constant::new((crate::stream_layout::payload_words(&crate::stream_layout::REGISTERS) as u64).into()),
         /// The word the reader takes, and which payload word it is (+ 1).
         in_word: Signal<Local, Bits<32>>, take_word: Signal<Local, Bit>,
-        word_index: Signal<Local, Bits<6>>,
+        word_index: Signal<Local, Bits<INDEX_BITS>>,
         load_taken: Signal<Local, Bit>, apply_regs: Signal<Local, Bit>,
         // Fragment side: the FIFO (beat, and z with tlast), pointers, level.
         fifo_beat: Lutram<Bits<64>, FIFO_BITS>,

@@ -61,7 +61,7 @@ use rust_hdl::prelude::*;
 
 use crate::fragment_fifo::FragmentFifo;
 use crate::quadric_unit::QuadricUnit;
-use crate::record_reader::RecordReader;
+use crate::record_reader::{RecordReader, INDEX_BITS};
 use crate::registry::RtlBlock;
 
 /// Clocks from a pixel entering the span units to its fragment at `quadric-unit`'s
@@ -94,13 +94,13 @@ crate::hw_block! {
         rd: RecordReader,
         /// A record waits in the load bank (`pend_b`), of type `type_b`.
         pend_b: DFF<Bit>, type_b: DFF<Bits<4>>, transfer: Signal<Local, Bit>,
-        tri_words: Constant<Bits<6>> =
+        tri_words: Constant<Bits<INDEX_BITS>> =
             Constant::new((crate::stream_layout::payload_words(&crate::stream_layout::QUADRIC_LINE) as u64).into()),
-        full_words: Constant<Bits<6>> =
+        full_words: Constant<Bits<INDEX_BITS>> =
             Constant::new((crate::stream_layout::payload_words(&crate::stream_layout::QUADRIC_TRIANGLE) as u64).into()),
         /// The word the reader takes, and which payload word it is (+ 1).
         in_word: Signal<Local, Bits<32>>, take_word: Signal<Local, Bit>,
-        word_index: Signal<Local, Bits<6>>,
+        word_index: Signal<Local, Bits<INDEX_BITS>>,
         load_taken: Signal<Local, Bit>,
         // Fragment side: a FIFO per lane, the hold from either's level.
         lane_a: FragmentFifo, lane_b: FragmentFifo,

@@ -14,36 +14,41 @@
 //! | port | dir | format |
 //! |---|---|---|
 //! | `head`, `tvalid`, `tlast` | in | the set-up stream (`s_axis_*`): `head` is `tdata`'s bits 3..0, all of a word the reader reads (the type, when it is a header) |
-//! | `len1`, `len2` | in | payload words of record types 1 and 2 (≤ 63; `len2` = 0: type 2 unknown) |
+//! | `len1`, `len2` | in | `INDEX_BITS` (7) bits: payload words of record types 1 and 2 (≤ 127; `len2` = 0: type 2 unknown) |
 //! | `take_record` | in | the top takes the pending record this clock |
 //! | `tready` | out | `s_axis_tready`: low only while a complete record is pending |
 //! | `take_word` | out | this clock's word is payload word `index` − 1 of a record of a known length |
-//! | `index` | out | 6 bits: 0 while a header is expected, else the payload word's number + 1 |
+//! | `index` | out | `INDEX_BITS` (7) bits: 0 while a header is expected, else the payload word's number + 1 |
 //! | `rec_type` | out | the current (or pending) record's type |
 //! | `pending` | out | a complete, well-formed record waits |
 //! | `error` | out | sticky: a record was dropped |
 //!
 //! # Latency, throughput
 //! A word per clock while nothing is pending; `pending` rises in the clock after the record's
-//! last word, and `tready` falls with it. No arithmetic, no overflow (a record longer than 63
-//! payload words is longer than every known type and dropped).
+//! last word, and `tready` falls with it. No arithmetic, no overflow (a record longer than
+//! 127 payload words is longer than every known type and dropped).
 
 use rust_hdl::prelude::*;
+
+/// Width of the word count (`len1`, `len2`, `index`): records of up to 127 payload words
+/// (`subdivision-stream`'s parent record has 72).
+pub const INDEX_BITS: usize = 7;
 
 crate::hw_block! {
     /// The set-up record reader (see the module header).
     pub struct RecordReader(clock) {
         in {
-            head: Bits<4>, tvalid: Bit, tlast: Bit, len1: Bits<6>, len2: Bits<6>, take_record: Bit,
+            head: Bits<4>, tvalid: Bit, tlast: Bit, len1: Bits<INDEX_BITS>, len2: Bits<INDEX_BITS>,
+            take_record: Bit,
         }
         out {
-            tready: Bit, take_word: Bit, index: Bits<6>, rec_type: Bits<4>, pending: Bit,
+            tready: Bit, take_word: Bit, index: Bits<INDEX_BITS>, rec_type: Bits<4>, pending: Bit,
             error: Bit,
         }
-        count: DFF<Bits<6>>, type_q: DFF<Bits<4>>, pend: DFF<Bit>, skip: DFF<Bit>,
+        count: DFF<Bits<INDEX_BITS>>, type_q: DFF<Bits<4>>, pend: DFF<Bit>, skip: DFF<Bit>,
         err: DFF<Bit>,
         accept: Signal<Local, Bit>, take: Signal<Local, Bit>, known: Signal<Local, Bit>,
-        head_known: Signal<Local, Bit>, expected: Signal<Local, Bits<6>>,
+        head_known: Signal<Local, Bit>, expected: Signal<Local, Bits<INDEX_BITS>>,
         at_end: Signal<Local, Bit>, head_type: Signal<Local, Bits<4>>,
     }
 }

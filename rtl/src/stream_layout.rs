@@ -217,6 +217,9 @@ pub struct StreamTop {
     /// wrapped top's `x_a`, `red_a`, …, `m_axis_b_*` from `x_b`, …). A field in `ports` is the
     /// same port for every lane (the line's `y`).
     pub lanes: &'static [&'static str],
+    /// The wrapped top names a lane's ports with a prefix instead: lane `_l0`'s `x` is `l0_x`
+    /// (`subdivision-raster`'s four lanes); the streams are still `m_axis_l0_*`, ….
+    pub lane_prefix: bool,
 }
 
 impl StreamTop {
@@ -236,10 +239,15 @@ impl StreamTop {
     /// The wrapped top's output port that fragment field `field` of lane `lane` (a suffix
     /// from [`StreamTop::lanes`]) comes from.
     pub fn port(&self, field: &'static str, lane: &str) -> String {
-        match self.ports.iter().find(|(f, _)| *f == field) {
-            Some((_, p)) => p.to_string(),
-            None if field == "pixel" => format!("valid{lane}"),
-            None => format!("{field}{lane}"),
+        let field = match self.ports.iter().find(|(f, _)| *f == field) {
+            Some((_, p)) => return p.to_string(),
+            None if field == "pixel" => "valid",
+            None => field,
+        };
+        if self.lane_prefix && !lane.is_empty() {
+            format!("{}_{field}", &lane[1..])
+        } else {
+            format!("{field}{lane}")
         }
     }
 
@@ -261,6 +269,7 @@ pub const PIXEL_STREAM: StreamTop = StreamTop {
     ports: &[],
     tlast: "the triangle's last event",
     lanes: &[""],
+    lane_prefix: false,
 };
 
 /// The Gouraud raster pipe's stream top.
@@ -275,6 +284,7 @@ pub const GOURAUD_STREAM: StreamTop = StreamTop {
     ports: &[],
     tlast: "the triangle's last event",
     lanes: &[""],
+    lane_prefix: false,
 };
 
 /// The cubic span pipeline's stream top: one record per raster line.
@@ -289,6 +299,7 @@ pub const CUBIC_STREAM: StreamTop = StreamTop {
     ports: &[("y", "y_out")],
     tlast: "the line's last pixel",
     lanes: &[""],
+    lane_prefix: false,
 };
 
 /// A raster line of the angular method (`angular-stream`): `angular-pipeline`'s load ports —
@@ -349,6 +360,7 @@ pub const ANGULAR_STREAM: StreamTop = StreamTop {
     ports: &[("y", "y_out")],
     tlast: "the line's last clock, on both lanes (a lane without a pixel then sends a beat with `pixel` = 0)",
     lanes: &["_a", "_b"],
+    lane_prefix: false,
 };
 
 /// A raster line of the fast methods (`fast-stream`): `fast-pipeline`'s load ports — the
@@ -448,14 +460,70 @@ pub const QUADRIC_STREAM: StreamTop = StreamTop {
     ..ANGULAR_STREAM
 };
 
+/// The fields of [`SUBDIVISION_PARENT`]: `subdivision-raster`'s set-up ports in port order
+/// (the shared edge increments, each lane's walk, each lane's twelve BVI words).
+macro_rules! subdivision_fields {
+    ($($l:literal),*) => {
+        &[
+            f("w_f", 12), f("w_r", 13), f("w_d", 13),
+            f("a_f", 12), f("a_r", 13), f("a_d", 13),
+            f("t_f", 12), f("t_r", 13), f("t_d", 13),
+            $(
+                f(concat!("l", $l, "_w_b0"), 12), f(concat!("l", $l, "_w_e0"), 13),
+                f(concat!("l", $l, "_a_b0"), 12), f(concat!("l", $l, "_a_e0"), 13),
+                f(concat!("l", $l, "_a_third"), 1),
+                f(concat!("l", $l, "_t_b0"), 12), f(concat!("l", $l, "_t_e0"), 13),
+                f(concat!("l", $l, "_t_adjacent"), 1),
+                f(concat!("l", $l, "_y_top"), 12), f(concat!("l", $l, "_rows"), 12),
+                f(concat!("l", $l, "_y_switch"), 12), f(concat!("l", $l, "_dir_neg"), 1),
+            )*
+            $(
+                f(concat!("l", $l, "_r_start"), 32), f(concat!("l", $l, "_r_short"), 32),
+                f(concat!("l", $l, "_r_long"), 32), f(concat!("l", $l, "_r_line"), 32),
+                f(concat!("l", $l, "_g_start"), 32), f(concat!("l", $l, "_g_short"), 32),
+                f(concat!("l", $l, "_g_long"), 32), f(concat!("l", $l, "_g_line"), 32),
+                f(concat!("l", $l, "_b_start"), 32), f(concat!("l", $l, "_b_short"), 32),
+                f(concat!("l", $l, "_b_long"), 32), f(concat!("l", $l, "_b_line"), 32),
+            )*
+        ]
+    };
+}
+
+/// A parent triangle of the subdivision raster pipe (`subdivision-stream`): the four-triangle
+/// block's set-up (the shared increments, then per lane its walk) and each lane's twelve
+/// signed Q16.16 BVI words (`subdivision-raster`'s set-up ports).
+pub const SUBDIVISION_PARENT: Record = Record {
+    name: "subdivision parent",
+    code: 1,
+    fields: subdivision_fields!("0", "1", "2", "3"),
+};
+
+/// The subdivision raster pipe's stream top: one record per parent, a fragment stream per
+/// lane (sub-triangle K's pixels on `m_axis_lK_*`).
+pub const SUBDIVISION_STREAM: StreamTop = StreamTop {
+    block: "subdivision-stream",
+    file: "subdivision_stream.rs",
+    wraps: "subdivision-raster",
+    triangle: SUBDIVISION_PARENT,
+    registers: None,
+    full: None,
+    tuser: None,
+    ports: &[],
+    tlast:
+        "the lane's last event of the parent (a beat with `pixel` = 0 when that event has no pixel)",
+    lanes: &["_l0", "_l1", "_l2", "_l3"],
+    lane_prefix: true,
+};
+
 /// Every stream top.
-pub const TOPS: [StreamTop; 6] = [
+pub const TOPS: [StreamTop; 7] = [
     PIXEL_STREAM,
     GOURAUD_STREAM,
     CUBIC_STREAM,
     ANGULAR_STREAM,
     FAST_STREAM,
     QUADRIC_STREAM,
+    SUBDIVISION_STREAM,
 ];
 
 /// A fragment beat (`m_axis_tdata`, 64 bits); `tlast` marks a triangle's last event. A beat
@@ -938,6 +1006,31 @@ mod tests {
         assert_eq!(payload_words(&FAST_LINE), 19);
         assert_eq!(payload_words(&QUADRIC_LINE), 4);
         assert_eq!(payload_words(&QUADRIC_TRIANGLE), 40);
+        assert_eq!(payload_words(&SUBDIVISION_PARENT), 71);
+    }
+
+    /// Every record's payload fits the record reader's word count.
+    #[test]
+    fn records_fit_the_readers_count() {
+        for top in TOPS {
+            assert!(
+                top.bank_words() < 1 << crate::record_reader::INDEX_BITS,
+                "{}: {} words",
+                top.block,
+                top.bank_words()
+            );
+        }
+    }
+
+    /// A lane-prefixed top takes lane K's fragment fields from the wrapped top's `lK_*` ports.
+    #[test]
+    fn lane_prefixed_ports() {
+        let t = SUBDIVISION_STREAM;
+        assert_eq!(t.port("x", "_l2"), "l2_x");
+        assert_eq!(t.port("pixel", "_l0"), "l0_valid");
+        assert_eq!(StreamTop::stream("_l3"), "m_axis_l3");
+        assert_eq!(ANGULAR_STREAM.port("pixel", "_b"), "valid_b");
+        assert_eq!(ANGULAR_STREAM.port("y", "_b"), "y_out");
     }
 
     /// A field wider than 32 bits starts a word and ends in the next one's low bits, where

@@ -66,13 +66,16 @@ pub struct Args {
     #[arg(long, value_enum, default_value = "default", hide_default_value = true)]
     pub address: crate::rtl_engine::Address,
     /// With the RTL engine: the top the lit methods (normalizer, normalizer-fit, brdf-k*,
-    /// bump), gouraud (single address block) and cubic go through — stream (`pixel-stream`,
-    /// `gouraud-stream`, `cubic-stream`: AXI4-Stream set-up records and fragment beats) or
-    /// pipeline (`pixel-pipeline`, `gouraud-raster`, `cubic-pipeline`: set-up on load ports).
-    /// Default: stream under rust-hdl (cubic: pipeline, as its 12-word line records make the
-    /// stream set-up bound on short lines), pipeline under verilator. The images are
-    /// identical; the clock counts differ (the set-up stream carries 26 words per lit
-    /// triangle, 22 per Gouraud one, 12 per cubic line).
+    /// bump), gouraud, the span methods (cubic, angular, fast, fast-fit, quadric) and
+    /// subdivision go through — stream (`pixel-stream`, `gouraud-stream`, `cubic-stream`,
+    /// `angular-stream`, `fast-stream`, `quadric-stream`, `subdivision-stream`: AXI4-Stream
+    /// set-up records and fragment beats) or pipeline (`pixel-pipeline`, `gouraud-raster`, the
+    /// span pipelines, `subdivision-raster`: set-up on load ports). Default: stream under
+    /// rust-hdl for the lit methods and gouraud (the span methods and subdivision: pipeline, as
+    /// their per-line and per-parent records make the stream set-up bound on short lines and
+    /// small triangles), pipeline under verilator. The images are identical; the clock counts
+    /// differ (the set-up stream carries 26 words per lit triangle, 22 per Gouraud one, 12 per
+    /// cubic line, 72 per subdivision parent).
     #[arg(long, value_enum, default_value = "default", hide_default_value = true)]
     pub lit_top: crate::rtl_engine::LitTop,
     /// With the RTL engine: the order the lit methods' and gouraud's triangles are sent in — balanced (large

@@ -49,7 +49,7 @@ pub fn run(a: Args) -> Result<()> {
     }
     let Some(o) = method_options(method) else {
         bail!(
-            "`stream` writes no streams for method {} (it writes pixel-stream's for normalizer, normalizer-fit, brdf-k4, brdf-k8, brdf-k16, bump; gouraud-stream's for gouraud; cubic-stream's for cubic; angular, fast, fast-fit and quadric have two-lane stream tops, angular-stream, fast-stream and quadric-stream, that it does not write yet)",
+            "`stream` writes no streams for method {} (it writes pixel-stream's for normalizer, normalizer-fit, brdf-k4, brdf-k8, brdf-k16, bump; gouraud-stream's for gouraud; cubic-stream's for cubic; angular, fast, fast-fit, quadric and subdivision have stream tops with a fragment stream per lane, angular-stream, fast-stream, quadric-stream and subdivision-stream, that it does not write yet)",
             a.method
         );
     };

@@ -24,6 +24,7 @@ pub mod span_stream;
 pub mod stall;
 pub mod stream_twin;
 pub mod subdivision_raster;
+pub mod subdivision_stream;
 pub mod synth;
 pub mod tools;
 pub mod vcd_check;

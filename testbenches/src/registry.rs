@@ -277,6 +277,7 @@ pub static BLOCKS: &[&dyn Entry] = &[
     &entry::<rtl::gouraud_stream::GouraudStream>(),
     &entry::<rtl::four_triangle::FourTriangle>(),
     &entry::<rtl::subdivision_raster::SubdivisionRaster>(),
+    &entry::<rtl::subdivision_stream::SubdivisionStream>(),
     &entry::<rtl::vector_interpolator::VectorInterpolator>(),
     &entry::<rtl::lighting_unit::LightingUnit>(),
     &entry::<rtl::colour_combine::ColourCombine>(),

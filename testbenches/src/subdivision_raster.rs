@@ -105,7 +105,7 @@ pub fn run(jobs: &[(SubJob, Option<SubdivisionSetup>)]) -> Stimulus {
 /// Twin of the pipe: the four-triangle cycle model feeding one [`BviTwin`] per lane (loaded on
 /// the accepted load), with each lane's x, y and done delayed one clock.
 #[derive(Default)]
-struct SubRows {
+pub struct SubRows {
     addr: FourTriangleModel,
     bvi: [BviTwin; LANES],
     xy_done: [(u32, u32, bool); LANES],
