@@ -73,6 +73,9 @@
 //! The event stream with stalls is the stream without them with empty clocks inserted
 //! (the fragment stream's back-pressure in `pixel-stream` uses this). `hold` reaches the
 //! event ports through one AND gate (no register): drive it from a register.
+//! Whether E's next row is the switch to the third edge comes from a register (`e_at_switch`,
+//! formed with each write of E's row counter `e_y`), not from an add and compare in front of the
+//! other edge's load (the ECP5 path of the four-triangle lanes in `subdivision-stream`).
 //! Overflow: none for set-up values in range (all counters are exact modulo their widths).
 //! Error budget: exact (integer).
 
@@ -116,6 +119,8 @@ crate::hw_block! {
         // E: edge stage, and the third edge's set-up kept for the switch.
         e_busy: DFF<Bit>, e_rows_left: DFF<Bits<12>>, e_y: DFF<Bits<12>>, e_first: DFF<Bit>,
         e_dir_neg: DFF<Bit>, e_y_switch: DFF<Bits<12>>, wait_first: DFF<Bit>,
+        /// e_y + 1 = e_y_switch, kept as a register (formed when e_y is written).
+        e_at_switch: DFF<Bit>,
         t_b0_q: DFF<Bits<12>>, t_e0_q: DFF<Bits<13>>, t_f_q: DFF<Bits<12>>,
         t_r_q: DFF<Bits<13>>, t_d_q: DFF<Bits<13>>,
 
@@ -142,6 +147,8 @@ crate::hw_block! {
         /// The next line is y_switch: load the third edge into `other`.
         switch_now: Signal<Local, Bit>,
         e_y_next: Signal<Local, Bits<12>>,
+        /// e_y + 2 (the next row's e_y + 1) and y_top + 1, for `e_at_switch`.
+        e_y_next2: Signal<Local, Bits<12>>, y_top_next: Signal<Local, Bits<12>>,
         /// Row record: x_start (B_w or B_w − 1) and length.
         rec_x: Signal<Local, Bits<12>>, rec_len: Signal<Local, Bits<12>>,
         /// nb_len ≠ 0.
@@ -156,7 +163,16 @@ impl Logic for AddressBlock {
     fn update(&mut self) {
         // E, the third edge, the buffer, P (position, then flags): one call per group keeps
         // each list short enough for rustfmt to leave on one line.
-        dff_setup!(self, clock, e_busy, e_rows_left, e_y, e_first, e_dir_neg);
+        dff_setup!(
+            self,
+            clock,
+            e_busy,
+            e_rows_left,
+            e_y,
+            e_first,
+            e_dir_neg,
+            e_at_switch
+        );
         dff_setup!(self, clock, e_y_switch, wait_first, t_b0_q, t_e0_q, t_f_q, t_r_q, t_d_q);
         dff_setup!(self, clock, nb_valid, nb_is_row, nb_x, nb_y, nb_len, nb_step);
         dff_setup!(self, clock, nb_carry, nb_dir_neg, nb_first, nb_last);
@@ -174,7 +190,13 @@ impl Logic for AddressBlock {
         self.ready_now.next = !self.e_busy.q.val() & !self.wait_first.q.val();
         self.do_load.next = self.load.val() & self.ready_now.val();
         self.e_y_next.next = self.e_y.q.val() + 1;
-        self.switch_now.next = self.e_y_next.val() == self.e_y_switch.q.val();
+        // Whether the next row is y_switch comes from a register, formed whenever e_y is
+        // written (a load: y_top + 1 = y_switch; a row: e_y + 2 = e_y_switch), so no add and
+        // compare precede the other edge's load multiplexer (ECP5: e_y → e_y_next →
+        // other.load → other.err_q was the path of `subdivision-stream`, 11.47 ns).
+        self.e_y_next2.next = self.e_y.q.val() + 2;
+        self.y_top_next.next = self.y_top.val() + 1;
+        self.switch_now.next = self.e_at_switch.q.val();
 
         // Step-increment: the row's start and length from the two boundaries.
         self.rec_x.next = self.working.bound.val();
@@ -267,6 +289,7 @@ impl Logic for AddressBlock {
                 self.nb_carry.d.next = self.working.last_carry.val();
                 self.nb_last.d.next = self.e_rows_left.q.val() == 1;
                 self.e_y.d.next = self.e_y_next.val();
+                self.e_at_switch.d.next = self.e_y_next2.val() == self.e_y_switch.q.val();
                 self.e_rows_left.d.next = self.e_rows_left.q.val() - 1;
                 self.e_first.d.next = false;
                 if self.e_rows_left.q.val() == 1 {
@@ -291,6 +314,7 @@ impl Logic for AddressBlock {
             self.e_busy.d.next = true;
             self.e_rows_left.d.next = self.rows.val();
             self.e_y.d.next = self.y_top.val();
+            self.e_at_switch.d.next = self.y_top_next.val() == self.y_switch.val();
             self.e_first.d.next = true;
             self.e_dir_neg.d.next = self.dir_neg.val();
             self.e_y_switch.d.next = self.y_switch.val();

@@ -50,7 +50,10 @@
 //! Inputs `in_valid`, `in_row_start`, `in_step`, `in_carry` are the address block's outputs of
 //! the same name. Outputs are registers: the colour of the pixel presented in clock t appears
 //! in clock t + 1 with `valid_out` (and the unsaturated words `red_word` … `blue_word`).
-//! One pixel per clock. `load` writes the shadow bank in any clock: assert it together with
+//! One pixel per clock. Sm is built as three adders side by side (RG4 + RG3, RG5 + RG1,
+//! RG5 + RG2) and the event selects among their sums and SH5, so the event flags (and the
+//! address block's `hold` in them) steer only the last multiplexer, not an adder's operands.
+//! `load` writes the shadow bank in any clock: assert it together with
 //! the address block's accepted load (`load & ready`). That is always safe, because the
 //! address block raises `ready` only after the previous triangle's first event has been shown,
 //! i.e. after the clock in which this block copied the shadow bank into RG1–RG3/RG5 (a copy and
@@ -96,9 +99,11 @@ crate::hw_block! {
         rg5: DFF<Bits<32>>,
         /// The shadow bank: RG1, RG2, RG3 and RG5 of the next triangle.
         sh1: DFF<Bits<32>>, sh2: DFF<Bits<32>>, sh3: DFF<Bits<32>>, sh5: DFF<Bits<32>>,
-        /// Adder operands and sum (signed Q16.16, modulo 2^32).
-        add_a: Signal<Local, Bits<32>>, add_b: Signal<Local, Bits<32>>,
-        sum: Signal<Local, Bits<32>>,
+        /// Sm's three possible sums, formed side by side (signed Q16.16, modulo 2^32): along
+        /// the line, at a line start after a short and after a long edge move; and the one the
+        /// event selects.
+        s_line: Signal<Local, Bits<32>>, s_short: Signal<Local, Bits<32>>,
+        s_long: Signal<Local, Bits<32>>, sum: Signal<Local, Bits<32>>,
     }
 }
 
@@ -106,20 +111,23 @@ impl Logic for IntensityChannel {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(self, clock, rg1, rg2, rg3, rg4, rg5, sh1, sh2, sh3, sh5);
-        // Operand multiplexers in front of the single adder Sm.
-        self.add_a.next = self.rg4.q.val();
-        self.add_b.next = self.rg3.q.val();
+        // Sm's sum for each kind of event, formed side by side from registers only; the event
+        // (through the address block's `hold` gate) selects one after the carry chains, so
+        // `hold` does not reach an adder (ECP5: hold_q → row_start → first → operand
+        // select → carry chain → RG4 was `subdivision-stream`'s path, 10.59 ns). The same sums
+        // as one adder with operand multiplexers: SH5 + 0 at the first event.
+        self.s_line.next = self.rg4.q.val() + self.rg3.q.val();
+        self.s_short.next = self.rg5.q.val() + self.rg1.q.val();
+        self.s_long.next = self.rg5.q.val() + self.rg2.q.val();
+        self.sum.next = self.s_line.val();
         if self.ev_first.val() {
-            self.add_a.next = self.sh5.q.val();
-            self.add_b.next = 0.into();
+            self.sum.next = self.sh5.q.val();
         } else if self.ev_row_start.val() {
-            self.add_a.next = self.rg5.q.val();
-            self.add_b.next = self.rg1.q.val();
+            self.sum.next = self.s_short.val();
             if self.ev_carry.val() {
-                self.add_b.next = self.rg2.q.val();
+                self.sum.next = self.s_long.val();
             }
         }
-        self.sum.next = self.add_a.val() + self.add_b.val();
         if self.ev_first.val() {
             self.rg1.d.next = self.sh1.q.val();
             self.rg2.d.next = self.sh2.q.val();

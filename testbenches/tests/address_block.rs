@@ -176,7 +176,7 @@ fn broken_address_block_export_is_caught() {
     let mutants = [
         Mutant { what: "CTx step: +1 → +2", module: "", from: "p_x$d = p_x$q + 12'h1", to: "p_x$d = p_x$q + 12'h2" },
         Mutant { what: "row length: B_o − B_w → B_w − B_o", module: "", from: "rec_len = other$bound - working$bound", to: "rec_len = working$bound - other$bound" },
-        Mutant { what: "third-edge switch: == → !=", module: "", from: "switch_now = e_y_next == e_y_switch$q", to: "switch_now = e_y_next != e_y_switch$q" },
+        Mutant { what: "third-edge switch: == → !=", module: "", from: "e_at_switch$d = e_y_next2 == e_y_switch$q", to: "e_at_switch$d = e_y_next2 != e_y_switch$q" },
         Mutant { what: "ready: & → |", module: "", from: "ready_now = ~e_busy$q & ~wait_first$q", to: "ready_now = ~e_busy$q | ~wait_first$q" },
     ];
     assert_mutants_caught(block("address-block"), &rows, &mutants);

@@ -390,8 +390,8 @@ fn broken_bvi_export_is_caught() {
     // Each site occurs once per channel module; the red channel's is mutated.
     #[rustfmt::skip]
     let mutants = [
-        Mutant { what: "adder: + → -", module: "intensity_interpolator__chan__0", from: "sum = add_a + add_b", to: "sum = add_a - add_b" },
-        Mutant { what: "carry selects RG1", module: "intensity_interpolator__chan__0", from: "add_b = rg2$q", to: "add_b = rg1$q" },
+        Mutant { what: "adder: + → -", module: "intensity_interpolator__chan__0", from: "s_line = rg4$q + rg3$q", to: "s_line = rg4$q - rg3$q" },
+        Mutant { what: "carry selects RG1", module: "intensity_interpolator__chan__0", from: "sum = s_long", to: "sum = s_short" },
         Mutant { what: "saturation high: bits 30..24 → 30..25", module: "intensity_interpolator__chan__0", from: "|rg4$q[(24)+:(7)]", to: "|rg4$q[(25)+:(6)]" },
     ];
     assert_mutants_caught(block("intensity-interpolator"), &rows, &mutants);
