@@ -1,8 +1,9 @@
-//! One lane's fragment FIFO of a two-lane stream top (`angular-stream`, `fast-stream`,
-//! `quadric-stream`): the AXI4-Stream master side of a fragment stream — a 128-entry FIFO of
+//! One lane's fragment FIFO of a stream top with a stream per lane (`angular-stream`,
+//! `fast-stream`, `quadric-stream`; `subdivision-stream`'s four, whose `tuser` is unused): the
+//! AXI4-Stream master side of a fragment stream — a 128-entry FIFO of
 //! beats (64-bit `tdata`, and the 32-bit `tuser` with `tlast`), an output register offering
 //! one beat, and the level compare the top turns into its pipeline's hold. The same logic `cubic-stream` and `pixel-stream`
-//! write inline for their one stream; a two-lane top has one of these per lane.
+//! write inline for their one stream; a top with a stream per lane has one of these per lane.
 //!
 //! # Ports
 //! | port | dir | format |

@@ -1,5 +1,6 @@
 //! Intensity interpolator BVI (SPEC §6, fig. 3.8): Gouraud intensities along the address
-//! block's walk, one adder per colour channel (golden: `golden::intensity_interpolator`).
+//! block's walk, one addition per event and colour channel (golden:
+//! `golden::intensity_interpolator`).
 //!
 //! # Formula
 //!
@@ -71,7 +72,8 @@
 use rust_hdl::prelude::*;
 
 crate::hw_block! {
-    /// One colour channel: five registers, a shadow bank, one adder, the saturating output.
+    /// One colour channel: five registers, a shadow bank, the adder Sm (three sums side by
+    /// side, one selected), the saturating output.
     pub struct IntensityChannel(clock) {
         in {
             /// Write the shadow bank from the set-up ports.

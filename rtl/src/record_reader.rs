@@ -1,5 +1,6 @@
-//! The set-up record reader shared by the stream tops (`pixel-stream`, `gouraud-stream`,
-//! `cubic-stream`): the AXI4-Stream slave side that splits 32-bit words into records and says
+//! The set-up record reader shared by the stream tops (all seven: `pixel-stream`,
+//! `gouraud-stream`, `cubic-stream`, `angular-stream`, `fast-stream`, `quadric-stream`,
+//! `subdivision-stream`): the AXI4-Stream slave side that splits 32-bit words into records and says
 //! which payload word each accepted word is. The tops keep their word banks (generated from
 //! `rtl::stream_layout`), which take word k of a record when `take_word` and `index` = k + 1.
 //!

@@ -1,5 +1,5 @@
 //! Word layouts of the AXI4-Stream tops (`pixel-stream`, `gouraud-stream`, `cubic-stream`,
-//! `angular-stream`, `fast-stream`, `quadric-stream`), defined once.
+//! `angular-stream`, `fast-stream`, `quadric-stream`, `subdivision-stream`), defined once.
 //!
 //! The set-up stream (`s_axis_*`, 32-bit words) carries *records*: a header word, then the
 //! record's fields packed LSB first into 32-bit words (a field of up to 32 bits never
@@ -7,23 +7,25 @@
 //! record's last word. The fragment stream (`m_axis_*`, 64-bit `tdata` and the
 //! fragment's 32-bit depth on `tuser`) carries one fragment, or one triangle end, per beat; a
 //! two-lane top (`angular-stream`, `fast-stream`, `quadric-stream`) has one such stream per
-//! lane (`m_axis_a_*`, `m_axis_b_*`).
+//! lane (`m_axis_a_*`, `m_axis_b_*`), `subdivision-stream` one per sub-triangle lane
+//! (`m_axis_l0_*` … `m_axis_l3_*`, without `tuser`).
 //!
 //! Everything that reads or writes these words comes from the tables here:
 //! - the driver packs records with [`pack`] (`pipeline::stream`), and reads fragments with
 //!   [`unpack_fragment`];
 //! - each top's field selects and fragment packing (`rtl/src/pixel_stream.rs`,
 //!   `rtl/src/gouraud_stream.rs`, `rtl/src/cubic_stream.rs`, `rtl/src/angular_stream.rs`,
-//!   `rtl/src/fast_stream.rs`, `rtl/src/quadric_stream.rs`) are generated from the same tables
+//!   `rtl/src/fast_stream.rs`, `rtl/src/quadric_stream.rs`, `rtl/src/subdivision_stream.rs`)
+//!   are generated from the same tables
 //!   by [`generated_rtl`]; the tests `*_rtl_is_generated` fail if a file's generated regions
 //!   differ from what the tables give (set `SHADECORE_REGENERATE=1` to rewrite them);
 //! - `rtl/README.md`'s layout table is printed by [`markdown`] (checked by a test as well).
 //!
 //! Field names and widths are the wrapped top's input ports (`pixel-pipeline`'s,
 //! `gouraud-raster`'s, `cubic-pipeline`'s, `angular-pipeline`'s, `fast-pipeline`'s,
-//! `quadric-unit`'s), in its port order — the quadric's by name — (checked against its port
-//! list by `testbenches/tests/pixel_stream.rs`, `gouraud_stream.rs`, `cubic_stream.rs` and
-//! `span_stream.rs`).
+//! `quadric-unit`'s, `subdivision-raster`'s), in its port order — the quadric's by name —
+//! (checked against its port list by `testbenches/tests/pixel_stream.rs`, `gouraud_stream.rs`,
+//! `cubic_stream.rs`, `span_stream.rs` and `subdivision_stream.rs`).
 //!
 //! Not a block: no ports, no latency (the hardware that reads these words is the stream tops',
 //! whose headers give them).

@@ -10,7 +10,7 @@
 //! working edge's whole move into a line — the ΔN_H/ΔN_V/ΔN_D steps of that move summed —
 //! and `line` = dir·a along a line), and the value at the first line start. The hardware adds
 //! one of them per event, exactly as the BVI does for an intensity: the block *is* a BVI
-//! ([`IntensityInterpolator`]: per component RG1–RG5, a shadow bank, one adder), its words read
+//! ([`IntensityInterpolator`]: per component RG1–RG5, a shadow bank, the adder Sm), its words read
 //! as Q3.29 instead of Q16.16, followed by a rounding stage per component.
 //! K for the normalizer is not formed here: the pipeline squares the rounded N (the
 //! normalizer's own squarers), which keeps K exact for the vector the normalizer scales.

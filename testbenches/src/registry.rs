@@ -403,6 +403,18 @@ pub fn synth_block(
                 rep.luts(),
                 rep.ffs()
             )),
+            // The analytic placer's legaliser gives up ("design is probably at utilisation
+            // limit"): `gouraud-stream` since the BVI's side-by-side sums, with 3 912 of the
+            // 5 280 logic cells packed (seed 1; seed 2 had not legalised after 4 minutes, nor
+            // had the annealing placer finished its initial placement after 3).
+            Err(e) if e.contains("Unable to find legal placement") => {
+                Placement::DoesNotFit(format!(
+                    "nextpnr-ice40 found no legal placement in the UP5K's {UP5K_LUT4} logic \
+                     cells ({} LUT4, {} flip-flops)",
+                    rep.luts(),
+                    rep.ffs()
+                ))
+            }
             Err(e) => return Err(e),
         }
     };
