@@ -28,8 +28,8 @@ use crate::pixel_pipeline::lit_triangles;
 use crate::quadric_unit::QuadricRows;
 use crate::registry::{Bench, Stimulus, Twin};
 use crate::span_pipeline::{GoldenSpans, SpanPipelineTwin};
-use crate::stall::{SplitMix, StallPattern};
-use crate::stream_twin::{BeatFifo, RecordReader};
+use crate::stall::StallPattern;
+use crate::stream_twin::{drive_lanes, BeatFifo, LaneTwin, RecordReader};
 use rtl::registry::NoParams;
 
 /// Output ports in row order: s_axis_tready; lane A tvalid, tdata, tuser, tlast; lane B the
@@ -131,21 +131,6 @@ impl SpanStreamTwin {
         }
     }
 
-    /// `s_axis_tready` in the current clock.
-    pub fn s_ready(&self) -> bool {
-        self.reader.s_ready()
-    }
-
-    /// Nothing waiting, nothing in flight, nothing to deliver.
-    pub fn idle(&self) -> bool {
-        self.reader.idle() && self.outstanding == 0 && self.lanes.iter().all(|l| l.is_empty())
-    }
-
-    /// The most beats either lane's FIFO held.
-    pub fn max_level(&self) -> usize {
-        self.lanes.iter().map(|l| l.max_level).max().unwrap_or(0)
-    }
-
     fn outputs(&self) -> Vec<u64> {
         let mut o = vec![self.s_ready() as u64];
         for l in &self.lanes {
@@ -154,6 +139,23 @@ impl SpanStreamTwin {
         }
         o.push(self.reader.err as u64);
         o
+    }
+}
+
+impl LaneTwin for SpanStreamTwin {
+    const LANES: usize = 2;
+    const TUSER: bool = true;
+    fn s_ready(&self) -> bool {
+        self.reader.s_ready()
+    }
+    fn idle(&self) -> bool {
+        self.reader.idle() && self.outstanding == 0 && self.lanes.iter().all(|l| l.is_empty())
+    }
+    fn held(&self) -> usize {
+        self.held
+    }
+    fn max_level(&self) -> usize {
+        self.lanes.iter().map(|l| l.max_level).max().unwrap_or(0)
     }
 }
 
@@ -231,7 +233,7 @@ pub struct SpanStreamRun {
 
 /// Drive `words` into the twin with a producer that leaves a gap (tvalid low) with
 /// probability `gap` and each lane's consumer stalled by its pattern, until every word is
-/// taken and everything has drained (plus `tail` idle clocks).
+/// taken and everything has drained (plus `tail` idle clocks): `stream_twin::drive_lanes`.
 pub fn drive(
     kind: SpanKind,
     words: &[Word],
@@ -241,53 +243,15 @@ pub fn drive(
     tail: usize,
 ) -> SpanStreamRun {
     let mut twin = SpanStreamTwin::new(kind);
-    let mut rng = SplitMix::new(seed ^ 0xA9_6E1A);
-    let mut run = SpanStreamRun {
-        rows: Vec::new(),
-        outputs: Vec::new(),
-        beats: [Vec::new(), Vec::new()],
-        held: 0,
-        consumer_stalls: [0; 2],
-        max_level: 0,
-    };
-    let (mut next, mut showing, mut idle_clocks) = (0usize, false, 0usize);
-    let limit = 200 + words.len() * 200 + 400_000;
-    while idle_clocks < tail {
-        assert!(run.rows.len() < limit, "the stream does not drain");
-        if !showing && next < words.len() {
-            showing = rng.unit() >= gap;
-        }
-        let (w, last) = if showing { words[next] } else { (0, false) };
-        let m_ready = [0, 1].map(|k| !stalls[k].next_stalled());
-        let row = vec![
-            w as u64,
-            showing as u64,
-            last as u64,
-            m_ready[0] as u64,
-            m_ready[1] as u64,
-        ];
-        let s_ready = twin.s_ready();
-        let o = twin.step(&row);
-        if showing && s_ready {
-            next += 1;
-            showing = false;
-        }
-        for (k, ready) in m_ready.into_iter().enumerate() {
-            let at = 1 + 4 * k;
-            if o[at] != 0 && ready {
-                run.beats[k].push(Beat::read(o[at + 1], o[at + 2], o[at + 3] != 0));
-            }
-            run.consumer_stalls[k] += !ready as usize;
-        }
-        run.rows.push(row);
-        run.outputs.push(o);
-        if next == words.len() && twin.idle() {
-            idle_clocks += 1;
-        }
+    let r = drive_lanes(&mut twin, words, seed ^ 0xA9_6E1A, gap, stalls, tail);
+    SpanStreamRun {
+        rows: r.rows,
+        outputs: r.outputs,
+        beats: r.beats.try_into().expect("two lanes"),
+        held: r.held,
+        consumer_stalls: r.consumer_stalls.try_into().expect("two lanes"),
+        max_level: r.max_level,
     }
-    run.held = twin.held;
-    run.max_level = twin.max_level();
-    run
 }
 
 /// The stimulus's scene: the lines of `kind` of `n` seeded lit triangles (the span pipeline

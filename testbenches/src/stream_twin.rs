@@ -1,11 +1,107 @@
-//! The parts every stream top's twin shares (`pixel_stream`, `gouraud_stream`, `cubic_stream`):
-//! the record reader with its two word banks, and the fragment FIFO with its output register
-//! and the registered hold — written once, as the hardware's are the same in each top
-//! (`rtl/src/*_stream.rs`).
+//! The parts every stream top's twin shares (`pixel_stream`, `gouraud_stream`, `cubic_stream`,
+//! `span_stream`, `subdivision_stream`): the record reader with its two word banks, and the
+//! fragment FIFO with its output register and the registered hold — written once, as the
+//! hardware's are the same in each top (`rtl/src/*_stream.rs`) — and the seeded producer and
+//! consumers that drive a top with a fragment stream per lane ([`drive_lanes`]).
 
 use std::collections::VecDeque;
 
+use pipeline::stream::{Beat, Word};
 use rtl::stream_layout::{payload_words, Record};
+
+use crate::registry::Twin;
+use crate::stall::{SplitMix, StallPattern};
+
+/// The twin of a stream top with a fragment stream per lane (`angular-stream`, `fast-stream`,
+/// `quadric-stream`, `subdivision-stream`), for [`drive_lanes`]. Its input rows are
+/// `s_axis_tdata`, `tvalid`, `tlast`, then each lane's `tready`; its outputs
+/// `s_axis_tready`, then per lane `tvalid`, `tdata`, [`tuser`,] `tlast`, then `error`.
+pub trait LaneTwin: Twin {
+    /// Fragment streams.
+    const LANES: usize;
+    /// Whether each lane's outputs include `tuser`.
+    const TUSER: bool;
+    /// `s_axis_tready` in the current clock.
+    fn s_ready(&self) -> bool;
+    /// Nothing waiting, nothing in flight, nothing to deliver.
+    fn idle(&self) -> bool;
+    /// Clocks the wrapped top was held so far.
+    fn held(&self) -> usize;
+    /// The most beats a lane's FIFO held.
+    fn max_level(&self) -> usize;
+}
+
+/// A run of [`drive_lanes`]: input rows, the twin's outputs, and what happened.
+pub struct LaneRun {
+    pub rows: Vec<Vec<u64>>,
+    pub outputs: Vec<Vec<u64>>,
+    /// The beats each lane's consumer took, in order.
+    pub beats: Vec<Vec<Beat>>,
+    /// Clocks the wrapped top was held.
+    pub held: usize,
+    /// Clocks each lane's consumer was stalled.
+    pub consumer_stalls: Vec<usize>,
+    /// The most beats a lane's FIFO held.
+    pub max_level: usize,
+}
+
+/// Drive `words` into `twin` with a producer that leaves a gap (tvalid low) with probability
+/// `gap` (its draws seeded by `seed`) and each lane's consumer stalled by its pattern in
+/// `stalls`, until every word is taken and everything has drained (plus `tail` idle clocks).
+pub fn drive_lanes<T: LaneTwin>(
+    twin: &mut T,
+    words: &[Word],
+    seed: u64,
+    gap: f64,
+    stalls: &mut [StallPattern],
+    tail: usize,
+) -> LaneRun {
+    assert_eq!(stalls.len(), T::LANES, "a stall pattern per lane");
+    let per = 3 + T::TUSER as usize;
+    let mut rng = SplitMix::new(seed);
+    let mut run = LaneRun {
+        rows: Vec::new(),
+        outputs: Vec::new(),
+        beats: vec![Vec::new(); T::LANES],
+        held: 0,
+        consumer_stalls: vec![0; T::LANES],
+        max_level: 0,
+    };
+    let (mut next, mut showing, mut idle_clocks) = (0usize, false, 0usize);
+    let limit = 200 + words.len() * 200 + 400_000;
+    while idle_clocks < tail {
+        assert!(run.rows.len() < limit, "the stream does not drain");
+        if !showing && next < words.len() {
+            showing = rng.unit() >= gap;
+        }
+        let (w, last) = if showing { words[next] } else { (0, false) };
+        let m_ready: Vec<bool> = stalls.iter_mut().map(|s| !s.next_stalled()).collect();
+        let mut row = vec![w as u64, showing as u64, last as u64];
+        row.extend(m_ready.iter().map(|&r| r as u64));
+        let s_ready = twin.s_ready();
+        let o = twin.step(&row);
+        if showing && s_ready {
+            next += 1;
+            showing = false;
+        }
+        for (k, &ready) in m_ready.iter().enumerate() {
+            let at = 1 + per * k;
+            if o[at] != 0 && ready {
+                let tuser = if T::TUSER { o[at + 2] } else { 0 };
+                run.beats[k].push(Beat::read(o[at + 1], tuser, o[at + per - 1] != 0));
+            }
+            run.consumer_stalls[k] += !ready as usize;
+        }
+        run.rows.push(row);
+        run.outputs.push(o);
+        if next == words.len() && twin.idle() {
+            idle_clocks += 1;
+        }
+    }
+    run.held = twin.held();
+    run.max_level = twin.max_level();
+    run
+}
 
 /// The set-up side: header / word count, the receive bank, the load bank.
 pub struct RecordReader {

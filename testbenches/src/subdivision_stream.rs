@@ -21,8 +21,8 @@ use rtl::subdivision_stream::{SubdivisionStream, FIFO_DEPTH, HOLD_ABOVE};
 
 use crate::harness::{Compare, Expected};
 use crate::registry::{Bench, Stimulus, Twin};
-use crate::stall::{SplitMix, StallPattern};
-use crate::stream_twin::{BeatFifo, RecordReader};
+use crate::stall::StallPattern;
+use crate::stream_twin::{drive_lanes, BeatFifo, LaneTwin, RecordReader};
 use crate::subdivision_raster::SubRows;
 
 /// Output ports in row order: s_axis_tready; per lane tvalid, tdata, tlast; error.
@@ -39,6 +39,8 @@ pub struct SubdivisionStreamTwin {
     /// Parents loaded, and each lane's parent ends seen.
     loaded: usize,
     ends: [usize; LANES],
+    /// Clocks the four-triangle block was held.
+    held: usize,
 }
 
 impl Default for SubdivisionStreamTwin {
@@ -57,24 +59,8 @@ impl SubdivisionStreamTwin {
                 .collect(),
             loaded: 0,
             ends: [0; LANES],
+            held: 0,
         }
-    }
-
-    /// `s_axis_tready` in the current clock.
-    pub fn s_ready(&self) -> bool {
-        self.reader.s_ready()
-    }
-
-    /// Nothing waiting, nothing in flight, nothing to deliver.
-    pub fn idle(&self) -> bool {
-        self.reader.idle()
-            && self.ends.iter().all(|&e| e == self.loaded)
-            && self.lanes.iter().all(|l| l.is_empty())
-    }
-
-    /// The most beats a lane's FIFO held.
-    pub fn max_level(&self) -> usize {
-        self.lanes.iter().map(|l| l.max_level).max().unwrap_or(0)
     }
 
     fn outputs(&self) -> Vec<u64> {
@@ -86,15 +72,36 @@ impl SubdivisionStreamTwin {
         o.push(self.reader.err as u64);
         o
     }
+}
 
-    /// One clock; returns the outputs before the edge and whether the block was held.
-    fn clock(&mut self, r: &[u64]) -> (Vec<u64>, bool) {
+impl LaneTwin for SubdivisionStreamTwin {
+    const LANES: usize = LANES;
+    const TUSER: bool = false;
+    fn s_ready(&self) -> bool {
+        self.reader.s_ready()
+    }
+    fn idle(&self) -> bool {
+        self.reader.idle()
+            && self.ends.iter().all(|&e| e == self.loaded)
+            && self.lanes.iter().all(|l| l.is_empty())
+    }
+    fn held(&self) -> usize {
+        self.held
+    }
+    fn max_level(&self) -> usize {
+        self.lanes.iter().map(|l| l.max_level).max().unwrap_or(0)
+    }
+}
+
+impl Twin for SubdivisionStreamTwin {
+    fn step(&mut self, r: &[u64]) -> Vec<u64> {
         let (tdata, tvalid, tlast) = (r[0] as u32, r[1] != 0, r[2] != 0);
         let out = self.outputs();
         // The raster pipe's inputs this clock: load, the load bank's fields, hold (any lane's
         // registered level flag).
         let pend = self.reader.pend_b;
         let hold = self.lanes.iter_mut().fold(false, |h, l| l.hold() | h);
+        self.held += hold as usize;
         let mut row = vec![pend as u64];
         row.extend(unpack(&SUBDIVISION_PARENT, &self.reader.load_bank));
         debug_assert_eq!(row.len(), PIPE_HOLD_AT);
@@ -116,13 +123,7 @@ impl SubdivisionStreamTwin {
             lane.clock(r[3 + k] != 0, (valid || done).then_some((beat, done)));
             self.ends[k] += done as usize;
         }
-        (out, hold)
-    }
-}
-
-impl Twin for SubdivisionStreamTwin {
-    fn step(&mut self, r: &[u64]) -> Vec<u64> {
-        self.clock(r).0
+        out
     }
 }
 
@@ -142,7 +143,7 @@ pub struct SubdivisionStreamRun {
 
 /// Drive `words` into the twin with a producer that leaves a gap (tvalid low) with
 /// probability `gap` and each lane's consumer stalled by its pattern, until every word is
-/// taken and everything has drained (plus `tail` idle clocks).
+/// taken and everything has drained (plus `tail` idle clocks): `stream_twin::drive_lanes`.
 pub fn drive(
     words: &[Word],
     seed: u64,
@@ -151,48 +152,15 @@ pub fn drive(
     tail: usize,
 ) -> SubdivisionStreamRun {
     let mut twin = SubdivisionStreamTwin::new();
-    let mut rng = SplitMix::new(seed ^ 0x5_0B_D1);
-    let mut run = SubdivisionStreamRun {
-        rows: Vec::new(),
-        outputs: Vec::new(),
-        beats: Default::default(),
-        held: 0,
-        consumer_stalls: [0; LANES],
-        max_level: 0,
-    };
-    let (mut next, mut showing, mut idle_clocks) = (0usize, false, 0usize);
-    let limit = 200 + words.len() * 200 + 400_000;
-    while idle_clocks < tail {
-        assert!(run.rows.len() < limit, "the stream does not drain");
-        if !showing && next < words.len() {
-            showing = rng.unit() >= gap;
-        }
-        let (w, last) = if showing { words[next] } else { (0, false) };
-        let m_ready: [bool; LANES] = std::array::from_fn(|k| !stalls[k].next_stalled());
-        let mut row = vec![w as u64, showing as u64, last as u64];
-        row.extend(m_ready.map(u64::from));
-        let s_ready = twin.s_ready();
-        let (o, held) = twin.clock(&row);
-        run.held += held as usize;
-        if showing && s_ready {
-            next += 1;
-            showing = false;
-        }
-        for (k, ready) in m_ready.into_iter().enumerate() {
-            let at = 1 + 3 * k;
-            if o[at] != 0 && ready {
-                run.beats[k].push(Beat::read(o[at + 1], 0, o[at + 2] != 0));
-            }
-            run.consumer_stalls[k] += !ready as usize;
-        }
-        run.rows.push(row);
-        run.outputs.push(o);
-        if next == words.len() && twin.idle() {
-            idle_clocks += 1;
-        }
+    let r = drive_lanes(&mut twin, words, seed ^ 0x5_0B_D1, gap, stalls, tail);
+    SubdivisionStreamRun {
+        rows: r.rows,
+        outputs: r.outputs,
+        beats: r.beats.try_into().expect("four lanes"),
+        held: r.held,
+        consumer_stalls: r.consumer_stalls.try_into().expect("four lanes"),
+        max_level: r.max_level,
     }
-    run.max_level = twin.max_level();
-    run
 }
 
 /// `n` seeded parents shaded by the `subdivision` method (the raster pipe's bench's), with
