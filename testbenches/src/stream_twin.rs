@@ -15,7 +15,8 @@ use crate::stall::{SplitMix, StallPattern};
 /// The twin of a stream top with a fragment stream per lane (`angular-stream`, `fast-stream`,
 /// `quadric-stream`, `subdivision-stream`), for [`drive_lanes`]. Its input rows are
 /// `s_axis_tdata`, `tvalid`, `tlast`, then each lane's `tready`; its outputs
-/// `s_axis_tready`, then per lane `tvalid`, `tdata`, [`tuser`,] `tlast`, then `error`.
+/// `s_axis_tready`, then per lane `tvalid`, `tdata`, `tuser` (where the top has it), `tlast`, then
+/// `error`.
 pub trait LaneTwin: Twin {
     /// Fragment streams.
     const LANES: usize;
