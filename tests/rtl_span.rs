@@ -81,7 +81,9 @@ fn check_scene(label: &str, args: &SceneArgs, nmse_bound: &[(Method, f64)]) {
         if m == Method::Quadric {
             // The quadric unit's tracker moves between line starts: its own timing model.
             let (_, hand) = *quadric_timing(&spans).last().unwrap();
-            let end = hand + spans.last().unwrap().clocks() + 2;
+            // The last line's clocks after its hand-over, then the output register and the
+            // colours' rounding (from the words' high halves, a clock behind).
+            let end = hand + spans.last().unwrap().clocks() + 3;
             println!(
                 "{label} quadric: {} clocks beyond the lines' own (the tracker's moves)",
                 end - span_clocks

@@ -168,12 +168,16 @@ pub mod twin {
         za: u64,
         zb: u64,
         out: Vec<u64>,
+        /// `out` a clock later: the colours are rounded from the words' high halves, which run a
+        /// clock behind, so every output is registered twice.
+        out_d: Vec<u64>,
     }
 
     impl QuadricTwin {
         pub fn new() -> Self {
             QuadricTwin {
                 out: vec![0; 14],
+                out_d: vec![0; 14],
                 ..Default::default()
             }
         }
@@ -198,7 +202,7 @@ pub mod twin {
         /// [`Self::outputs`] with the `hold` input at `hold`.
         pub fn outputs_held(&self, hold: bool) -> Vec<u64> {
             let mut o = vec![self.ready_held(hold) as u64];
-            o.extend(&self.out);
+            o.extend(&self.out_d);
             o
         }
         /// One clock without `hold`.
@@ -206,7 +210,7 @@ pub mod twin {
             self.clock_held(load, false);
         }
         /// One clock; `hold`: the generator stands still (no step, no hand-over) and the next
-        /// clock's outputs carry no pixel.
+        /// outputs two clocks later carry no pixel.
         pub fn clock_held(&mut self, load: Option<&QuadricLine>, hold: bool) {
             let l = &self.gline;
             let x = |t: u32| {
@@ -223,7 +227,7 @@ pub mod twin {
             o.extend([vb as u64, x(self.t + 1), self.zb]);
             o.extend(self.q.map(out8));
             o.extend([l.y, (shown && self.glast()) as u64]);
-            self.out = o;
+            self.out_d = std::mem::replace(&mut self.out, o);
             let handover = self.handover() && !hold;
             let ready = !self.tbusy || handover;
             // Generator.

@@ -39,8 +39,8 @@
 //! waits in the receive bank.
 //! - Each lane's beats enter its own 128-entry FIFO (`fragment_fifo`). The unit is held (its
 //!   `hold`: the generator stands still, no pixel is lost) in the clock after either FIFO held
-//!   more than 123 beats (the hold is registered): from the clock a level first reaches 124, at
-//!   most `EVENT_TO_FRAGMENT` + 1 = 4 more beats arrive on a lane, so neither FIFO holds more
+//!   more than 122 beats (the hold is registered): from the clock a level first reaches 123, at
+//!   most `EVENT_TO_FRAGMENT` + 1 = 5 more beats arrive on a lane, so neither FIFO holds more
 //!   than 128 and none overflows. With both `tready` high each FIFO holds at most one beat and
 //!   the unit is never held.
 //! - Throughput: two fragments per clock along a line while the set-up words keep ahead: a
@@ -48,8 +48,8 @@
 //!   m + 1 pixels takes ⌊m/2⌋ + 1 clocks after its start's move, so lines shorter than 9 pixels
 //!   are set-up bound.
 //! - Latency: a line record's last word accepted in clock t → its first beats offered in
-//!   clock t + 7 (the record is complete in t + 1, moves to the load bank in t + 1, loads in
-//!   t + 2; 3 clocks through `quadric-unit`, 2 through the FIFO and its output register), when
+//!   clock t + 8 (the record is complete in t + 1, moves to the load bank in t + 1, loads in
+//!   t + 2; 4 clocks through `quadric-unit`, 2 through the FIFO and its output register), when
 //!   the unit is ready and the line starts where the tracker stands.
 //!
 //! # Overflow, error budget

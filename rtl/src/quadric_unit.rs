@@ -28,7 +28,7 @@
 //! | `first` | in | the triangle's first line: the words below are loaded into the tracker |
 //! | `ri rdx rdy ra rb rc`, `g…`, `b…` | in | per channel I, Dx, Dy at that line's first pixel, 2A, 2B, C: signed Q34.30 (64 bits), LSB units |
 //! | `z0`, `dz` | in | depth at the line's pixel 0 and per pixel step, signed Q16.16 |
-//! | `hold` | in | 1: the generator stands still this clock (no step, no hand-over, so a tracker waiting to hand over keeps `ready` low) and the next clock's outputs carry no pixel; nothing is lost or repeated — the pixels come one clock per clock without `hold` (a stream top's back-pressure) |
+//! | `hold` | in | 1: the generator stands still this clock (no step, no hand-over, so a tracker waiting to hand over keeps `ready` low) and the outputs two clocks later carry no pixel; nothing is lost or repeated — the pixels come one clock per clock without `hold` (a stream top's back-pressure) |
 //! | `ready` | out | the tracker takes a line this clock |
 //! | `valid_a`, `x_a`, `z_a`, `red_a` … | out | lane A: pixel 2j in the line's clock j |
 //! | `valid_b`, `x_b`, `z_b`, `red_b` … | out | lane B: pixel 2j + 1 (when ≤ m) |
@@ -39,7 +39,8 @@
 //! its start after ⌈|Δx0|/2⌉ clocks of x-steps (the y-step rides on the load), and is handed to
 //! the generator when that finishes its line: per line max(⌊m/2⌋ + 1, 1 + ⌈|Δx0|/2⌉) clocks,
 //! two pixels per clock on lines longer than their start's move. Load → first pixels of a
-//! triangle's first line: 3 clocks (load, hand-over, output register). Each clock with `hold`
+//! triangle's first line: 4 clocks (load, hand-over, output register, the colours' rounding
+//! from the words' high halves, which run a clock behind). Each clock with `hold`
 //! high delays everything the generator has yet to show by one clock; the tracker still moves
 //! to its line's start meanwhile.
 //!
@@ -80,13 +81,28 @@
 //!   tracker's timing): 97.7 MHz, 9 051 LUT4, on neg → xi_s (one LUT level) → carry chain →
 //!   ti, 10.24 ns (4.16 of it logic).
 //!
-//! So several kinds of path (I's step, Dx's step, the load's flags) sit between 10.2 and
-//! 11.1 ns, 6–8 ns of it routing; moving one brings up the next. A 64-bit carry chain is
-//! 2.3 ns of each: what would be left is to split the words' adds at bit 32 with the carry
-//! between the halves registered, and to resolve a word only where it leaves the tracker.
+//! So several kinds of path (I's step, Dx's step, the load's flags) sat between 10.2 and
+//! 11.1 ns, 6–8 ns of it routing; moving one brought up the next, and a 64-bit carry chain
+//! was 2.3 ns of each.
+//!
+//! **Split words** (what closed it): every 64-bit word of the tracker and the generator is
+//! kept as two 32-bit halves in two copies of one block (`QuadricHalf`): the low half steps
+//! with this clock's control; the high half steps a clock later with the same control
+//! delayed a register, the load's high words registered, and the low half's 29 crossing bits
+//! per channel (`cross`: each add's carry out of bit 31, each carry-save carry word's and
+//! each one-place shift's bit 31) registered. So each high half holds the word's high half of
+//! the clock before, and no carry chain is longer than 34 bits. A word is resolved only
+//! where it leaves the unit: the colours are rounded from the high half and the low half's
+//! bits 28..31 of the clock before — one clock more latency (3 → 4), the same values and
+//! the same `ready`, hand-over and pixel order in every clock (the twin's outputs are
+//! delayed one clock, nothing else changed). ECP5 (LFE5U-25F): 97.5 → **113.6 MHz** (placer
+//! seeds 2, 3: 106.6, 113.1), 11 080 → 9 966 LUT4, 2 652 → 3 444 FF; path 8.80 ns,
+//! f_neg → the low half's carry in → I's carry-save sum → I (the flag's fan-out again, now
+//! before a 34-bit chain). `quadric-stream`: 88.7 → 110.8 MHz (seed 2: 107.2).
 //!
 //! # Overflow
-//! Every update is an exact integer add modulo 2⁶⁴ (nothing may saturate: each word feeds the
+//! Every update is an exact integer add modulo 2⁶⁴, made of two 32-bit adds with the carry
+//! between them registered (the high half's carry out is dropped; nothing may saturate: each word feeds the
 //! next; intermediates may wrap harmlessly, the values equal the exact quadric of the words
 //! modulo 2⁶⁴); the span front end rejects a line whose intensities or coefficients leave ±2³¹
 //! LSB (`golden::quadric_unit::RANGE`; the words hold ±2³³ — a quadric fitted on a sliver
@@ -99,27 +115,823 @@
 
 use rust_hdl::prelude::*;
 
+/// The bits that cross from a word's low half to its high half (`QuadricHalf`'s `cin_*` and
+/// `cout_*`, one vector per channel), by index: each add's carry out of bit 31, each
+/// carry-save carry word's and each one-place shift's bit 31.
+pub mod cross {
+    /// `IP1`
+    pub const IP1: usize = 0;
+    /// `CKM1`
+    pub const CKM1: usize = 1;
+    /// `IM1`
+    pub const IM1: usize = 2;
+    /// `TDX31`
+    pub const TDX31: usize = 3;
+    /// `XIK`
+    pub const XIK: usize = 4;
+    /// `XI`
+    pub const XI: usize = 5;
+    /// `TA231`
+    pub const TA231: usize = 6;
+    /// `DXP1`
+    pub const DXP1: usize = 7;
+    /// `DXP2`
+    pub const DXP2: usize = 8;
+    /// `DXM1`
+    pub const DXM1: usize = 9;
+    /// `DXM2`
+    pub const DXM2: usize = 10;
+    /// `TC31`
+    pub const TC31: usize = 11;
+    /// `DYP1`
+    pub const DYP1: usize = 12;
+    /// `DYP2`
+    pub const DYP2: usize = 13;
+    /// `DYM1`
+    pub const DYM1: usize = 14;
+    /// `DYM2`
+    pub const DYM2: usize = 15;
+    /// `YI`
+    pub const YI: usize = 16;
+    /// `YDY`
+    pub const YDY: usize = 17;
+    /// `YDX`
+    pub const YDX: usize = 18;
+    /// `WA231`
+    pub const WA231: usize = 19;
+    /// `TA3`
+    pub const TA3: usize = 20;
+    /// `GE31`
+    pub const GE31: usize = 21;
+    /// `GPK`
+    pub const GPK: usize = 22;
+    /// `GP`
+    pub const GP: usize = 23;
+    /// `GQK`
+    pub const GQK: usize = 24;
+    /// `GQ`
+    pub const GQ: usize = 25;
+    /// `GA231`
+    pub const GA231: usize = 26;
+    /// `GE`
+    pub const GE: usize = 27;
+    /// `HGE`
+    pub const HGE: usize = 28;
+    /// How many.
+    pub const BITS: usize = 29;
+    /// The low half's carries in: a subtraction's +1 (its add's carry in) and the hand-over's
+    /// I − Dx + 2A (the carry word's free bit 0); the x-step's −Dx's +1 is `XIK`, set with
+    /// `neg`.
+    pub const LOW: u64 =
+        (1 << CKM1) | (1 << DXM1) | (1 << DXM2) | (1 << DYM1) | (1 << DYM2) | (1 << HGE);
+}
+
 crate::hw_block! {
-    /// A Q34.30 word (64 bits) → 8 bits: +2²⁹, drop 30, saturate to 0..=255. Combinational.
-    pub struct RoundSat8Q30 {
-        in { v: Bits<64> }
+    /// Bits 28..63 of a Q34.30 word → 8 bits: +2²⁹, drop 30, saturate to 0..=255.
+    /// Combinational. `hi` is the word's bits 32..63, `lo4` its bits 28..31 (the rounding
+    /// constant is read at bit 28, a quarter of the output LSB, so that a quarter-LSB error
+    /// in it is a change of the constant).
+    pub struct RoundSat8Split {
+        in { hi: Bits<32>, lo4: Bits<4> }
         out { q: Bits<8> }
-        half: Constant<Bits<64>> = Constant::new((1u64 << 29).into()),
-        rnd: Signal<Local, Bits<64>>,
+        half: Constant<Bits<36>> = Constant::new(2u64.into()),
+        word: Signal<Local, Bits<36>>,
+        rnd: Signal<Local, Bits<36>>,
     }
 }
 
-impl Logic for RoundSat8Q30 {
+impl Logic for RoundSat8Split {
     #[hdl_gen]
     fn update(&mut self) {
-        self.rnd.next = self.v.val() + self.half.val();
-        if self.rnd.val().get_bit(63) {
+        self.word.next =
+            (bit_cast::<36, 32>(self.hi.val()) << 4) | bit_cast::<36, 4>(self.lo4.val());
+        self.rnd.next = self.word.val() + self.half.val();
+        if self.rnd.val().get_bit(35) {
             self.q.next = 0.into();
-        } else if self.rnd.val().get_bits::<25>(38).any() {
+        } else if self.rnd.val().get_bits::<25>(10).any() {
             self.q.next = 255.into();
         } else {
-            self.q.next = self.rnd.val().get_bits::<8>(30);
+            self.q.next = self.rnd.val().get_bits::<8>(2);
         }
+    }
+}
+
+crate::hw_block! {
+    /// One 32-bit half of every word of the tracker and the generator, three channels (see the
+    /// module header): the low half with the control of this clock and constant carries in,
+    /// the high half with the control and the low half's `cout_*` of the clock before.
+    pub struct QuadricHalf(clock) {
+        in {
+            ystep: Bit, xstep: Bit, neg: Bit, big: Bit, ld: Bit, hand: Bit, hdir: Bit, gadv: Bit,
+            ri: Bits<32>, rdx: Bits<32>, rdy: Bits<32>, ra: Bits<32>, rb: Bits<32>, rc: Bits<32>,
+            gi: Bits<32>, gdx: Bits<32>, gdy: Bits<32>, ga: Bits<32>, gb: Bits<32>, gc: Bits<32>,
+            bi: Bits<32>, bdx: Bits<32>, bdy: Bits<32>, ba: Bits<32>, bb: Bits<32>, bc: Bits<32>,
+            cin_r: Bits<29>, cin_g: Bits<29>, cin_b: Bits<29>,
+        }
+        out {
+            cout_r: Bits<29>, cout_g: Bits<29>, cout_b: Bits<29>,
+            p_r: Bits<32>, p_g: Bits<32>, p_b: Bits<32>, q_r: Bits<32>, q_g: Bits<32>, q_b: Bits<32>,
+        }
+        /// The tracker's I, Dx, Dy, 2A, 3·2A, 2B, C; the generator's pair p, q, its 2A, 3·2A
+        /// and difference e = q − p.
+        ti: [DFF<Bits<32>>; 3], tdx: [DFF<Bits<32>>; 3], tdy: [DFF<Bits<32>>; 3],
+        ta2: [DFF<Bits<32>>; 3], ta3: [DFF<Bits<32>>; 3], tb2: [DFF<Bits<32>>; 3],
+        tc: [DFF<Bits<32>>; 3], p: [DFF<Bits<32>>; 3], q: [DFF<Bits<32>>; 3],
+        ga2: [DFF<Bits<32>>; 3], ga3: [DFF<Bits<32>>; 3], ge: [DFF<Bits<32>>; 3],
+        w_i: [Signal<Local, Bits<32>>; 3], w_dx: [Signal<Local, Bits<32>>; 3],
+        w_dy: [Signal<Local, Bits<32>>; 3], w_a2: [Signal<Local, Bits<32>>; 3],
+        w_b2: [Signal<Local, Bits<32>>; 3], w_c: [Signal<Local, Bits<32>>; 3],
+        s_tdx: [Signal<Local, Bits<32>>; 3], n_dx: [Signal<Local, Bits<32>>; 3],
+        n_sdx: [Signal<Local, Bits<32>>; 3], m_im1: [Signal<Local, Bits<32>>; 3],
+        x_im1: [Signal<Local, Bits<32>>; 3], k_im1: [Signal<Local, Bits<32>>; 3],
+        xt1: [Signal<Local, Bits<32>>; 3], xt2: [Signal<Local, Bits<32>>; 3],
+        m_xi: [Signal<Local, Bits<32>>; 3], x_xi: [Signal<Local, Bits<32>>; 3],
+        k_xi: [Signal<Local, Bits<32>>; 3], s_ta2: [Signal<Local, Bits<32>>; 3],
+        n_ta2: [Signal<Local, Bits<32>>; 3], n_sta2: [Signal<Local, Bits<32>>; 3],
+        s_tc: [Signal<Local, Bits<32>>; 3], n_tc: [Signal<Local, Bits<32>>; 3],
+        n_stc: [Signal<Local, Bits<32>>; 3], s_wa2: [Signal<Local, Bits<32>>; 3],
+        s_ge: [Signal<Local, Bits<32>>; 3], m_gp: [Signal<Local, Bits<32>>; 3],
+        x_gp: [Signal<Local, Bits<32>>; 3], k_gp: [Signal<Local, Bits<32>>; 3],
+        m_gq: [Signal<Local, Bits<32>>; 3], x_gq: [Signal<Local, Bits<32>>; 3],
+        k_gq: [Signal<Local, Bits<32>>; 3], s_ga2: [Signal<Local, Bits<32>>; 3],
+        cin: [Signal<Local, Bits<29>>; 3], cout: [Signal<Local, Bits<29>>; 3],
+        /// Each add as 34 bits: (a·2 + 1) + (b·2 + carry in) → bits 1..32 the sum, bit 33 the
+        /// carry out (bit 0 unused).
+        cs_ip1: [Signal<Local, Bits<34>>; 3], cs_im1: [Signal<Local, Bits<34>>; 3],
+        cs_xi: [Signal<Local, Bits<34>>; 3], cs_dxp1: [Signal<Local, Bits<34>>; 3],
+        cs_dxp2: [Signal<Local, Bits<34>>; 3], cs_dxm1: [Signal<Local, Bits<34>>; 3],
+        cs_dxm2: [Signal<Local, Bits<34>>; 3], cs_dyp1: [Signal<Local, Bits<34>>; 3],
+        cs_dyp2: [Signal<Local, Bits<34>>; 3], cs_dym1: [Signal<Local, Bits<34>>; 3],
+        cs_dym2: [Signal<Local, Bits<34>>; 3], cs_yi: [Signal<Local, Bits<34>>; 3],
+        cs_ydy: [Signal<Local, Bits<34>>; 3], cs_ydx: [Signal<Local, Bits<34>>; 3],
+        cs_ta3: [Signal<Local, Bits<34>>; 3], cs_gp: [Signal<Local, Bits<34>>; 3],
+        cs_gq: [Signal<Local, Bits<34>>; 3], cs_ge: [Signal<Local, Bits<34>>; 3],
+        cs_hge: [Signal<Local, Bits<34>>; 3],
+    }
+}
+
+impl Logic for QuadricHalf {
+    #[hdl_gen]
+    fn update(&mut self) {
+        for c in 0..3 {
+            self.ti[c].clock.next = self.clock.val();
+            self.ti[c].d.next = self.ti[c].q.val();
+            self.tdx[c].clock.next = self.clock.val();
+            self.tdx[c].d.next = self.tdx[c].q.val();
+            self.tdy[c].clock.next = self.clock.val();
+            self.tdy[c].d.next = self.tdy[c].q.val();
+            self.ta2[c].clock.next = self.clock.val();
+            self.ta2[c].d.next = self.ta2[c].q.val();
+            self.ta3[c].clock.next = self.clock.val();
+            self.ta3[c].d.next = self.ta3[c].q.val();
+            self.tb2[c].clock.next = self.clock.val();
+            self.tb2[c].d.next = self.tb2[c].q.val();
+            self.tc[c].clock.next = self.clock.val();
+            self.tc[c].d.next = self.tc[c].q.val();
+            self.p[c].clock.next = self.clock.val();
+            self.p[c].d.next = self.p[c].q.val();
+            self.q[c].clock.next = self.clock.val();
+            self.q[c].d.next = self.q[c].q.val();
+            self.ga2[c].clock.next = self.clock.val();
+            self.ga2[c].d.next = self.ga2[c].q.val();
+            self.ga3[c].clock.next = self.clock.val();
+            self.ga3[c].d.next = self.ga3[c].q.val();
+            self.ge[c].clock.next = self.clock.val();
+            self.ge[c].d.next = self.ge[c].q.val();
+        }
+        self.w_i[0].next = self.ri.val();
+        self.w_dx[0].next = self.rdx.val();
+        self.w_dy[0].next = self.rdy.val();
+        self.w_a2[0].next = self.ra.val();
+        self.w_b2[0].next = self.rb.val();
+        self.w_c[0].next = self.rc.val();
+        self.cin[0].next = self.cin_r.val();
+        self.w_i[1].next = self.gi.val();
+        self.w_dx[1].next = self.gdx.val();
+        self.w_dy[1].next = self.gdy.val();
+        self.w_a2[1].next = self.ga.val();
+        self.w_b2[1].next = self.gb.val();
+        self.w_c[1].next = self.gc.val();
+        self.cin[1].next = self.cin_g.val();
+        self.w_i[2].next = self.bi.val();
+        self.w_dx[2].next = self.bdx.val();
+        self.w_dy[2].next = self.bdy.val();
+        self.w_a2[2].next = self.ba.val();
+        self.w_b2[2].next = self.bb.val();
+        self.w_c[2].next = self.bc.val();
+        self.cin[2].next = self.cin_b.val();
+        // Channel 0.
+        // The hand-over's pair: I + Dx; I − Dx + 2A (carry-save, the +1 in bit 0's carry).
+        self.cs_ip1[0].next = ((bit_cast::<34, 32>(self.ti[0].q.val()) << 1) | 1)
+            + ((bit_cast::<34, 32>(self.tdx[0].q.val()) << 1)
+                | bit_cast::<34, 1>(self.cin[0].val().get_bits::<1>(0)));
+        self.n_dx[0].next = !self.tdx[0].q.val();
+        self.x_im1[0].next = self.ti[0].q.val() ^ self.n_dx[0].val() ^ self.ta2[0].q.val();
+        self.m_im1[0].next = (self.ti[0].q.val() & self.n_dx[0].val())
+            | (self.ti[0].q.val() & self.ta2[0].q.val())
+            | (self.n_dx[0].val() & self.ta2[0].q.val());
+        self.k_im1[0].next =
+            (self.m_im1[0].val() << 1) | bit_cast::<32, 1>(self.cin[0].val().get_bits::<1>(1));
+        self.cs_im1[0].next = ((bit_cast::<34, 32>(self.x_im1[0].val()) << 1) | 1)
+            + ((bit_cast::<34, 32>(self.k_im1[0].val()) << 1)
+                | bit_cast::<34, 1>(self.cin[0].val().get_bits::<1>(2)));
+        // The x-step's terms: I + (Dx | 2·Dx + 2A | −Dx + 2A | −2·Dx + 3·2A).
+        self.s_tdx[0].next =
+            (self.tdx[0].q.val() << 1) | bit_cast::<32, 1>(self.cin[0].val().get_bits::<1>(3));
+        self.n_sdx[0].next = !self.s_tdx[0].val();
+        if self.neg.val() {
+            if self.big.val() {
+                self.xt1[0].next = self.n_sdx[0].val();
+                self.xt2[0].next = self.ta3[0].q.val();
+            } else {
+                self.xt1[0].next = self.n_dx[0].val();
+                self.xt2[0].next = self.ta2[0].q.val();
+            }
+        } else if self.big.val() {
+            self.xt1[0].next = self.s_tdx[0].val();
+            self.xt2[0].next = self.ta2[0].q.val();
+        } else {
+            self.xt1[0].next = self.tdx[0].q.val();
+            self.xt2[0].next = 0.into();
+        }
+        self.x_xi[0].next = self.ti[0].q.val() ^ self.xt1[0].val() ^ self.xt2[0].val();
+        self.m_xi[0].next = (self.ti[0].q.val() & self.xt1[0].val())
+            | (self.ti[0].q.val() & self.xt2[0].val())
+            | (self.xt1[0].val() & self.xt2[0].val());
+        self.k_xi[0].next =
+            (self.m_xi[0].val() << 1) | bit_cast::<32, 1>(self.cin[0].val().get_bits::<1>(4));
+        self.cs_xi[0].next = ((bit_cast::<34, 32>(self.x_xi[0].val()) << 1) | 1)
+            + ((bit_cast::<34, 32>(self.k_xi[0].val()) << 1)
+                | bit_cast::<34, 1>(self.cin[0].val().get_bits::<1>(5)));
+        // Dx ± 2A·step, Dy ± C·step: two-operand adds, selected after the carry chains.
+        self.s_ta2[0].next =
+            (self.ta2[0].q.val() << 1) | bit_cast::<32, 1>(self.cin[0].val().get_bits::<1>(6));
+        self.n_ta2[0].next = !self.ta2[0].q.val();
+        self.n_sta2[0].next = !self.s_ta2[0].val();
+        self.cs_dxp1[0].next = ((bit_cast::<34, 32>(self.tdx[0].q.val()) << 1) | 1)
+            + ((bit_cast::<34, 32>(self.ta2[0].q.val()) << 1)
+                | bit_cast::<34, 1>(self.cin[0].val().get_bits::<1>(7)));
+        self.cs_dxp2[0].next = ((bit_cast::<34, 32>(self.tdx[0].q.val()) << 1) | 1)
+            + ((bit_cast::<34, 32>(self.s_ta2[0].val()) << 1)
+                | bit_cast::<34, 1>(self.cin[0].val().get_bits::<1>(8)));
+        self.cs_dxm1[0].next = ((bit_cast::<34, 32>(self.tdx[0].q.val()) << 1) | 1)
+            + ((bit_cast::<34, 32>(self.n_ta2[0].val()) << 1)
+                | bit_cast::<34, 1>(self.cin[0].val().get_bits::<1>(9)));
+        self.cs_dxm2[0].next = ((bit_cast::<34, 32>(self.tdx[0].q.val()) << 1) | 1)
+            + ((bit_cast::<34, 32>(self.n_sta2[0].val()) << 1)
+                | bit_cast::<34, 1>(self.cin[0].val().get_bits::<1>(10)));
+        self.s_tc[0].next =
+            (self.tc[0].q.val() << 1) | bit_cast::<32, 1>(self.cin[0].val().get_bits::<1>(11));
+        self.n_tc[0].next = !self.tc[0].q.val();
+        self.n_stc[0].next = !self.s_tc[0].val();
+        self.cs_dyp1[0].next = ((bit_cast::<34, 32>(self.tdy[0].q.val()) << 1) | 1)
+            + ((bit_cast::<34, 32>(self.tc[0].q.val()) << 1)
+                | bit_cast::<34, 1>(self.cin[0].val().get_bits::<1>(12)));
+        self.cs_dyp2[0].next = ((bit_cast::<34, 32>(self.tdy[0].q.val()) << 1) | 1)
+            + ((bit_cast::<34, 32>(self.s_tc[0].val()) << 1)
+                | bit_cast::<34, 1>(self.cin[0].val().get_bits::<1>(13)));
+        self.cs_dym1[0].next = ((bit_cast::<34, 32>(self.tdy[0].q.val()) << 1) | 1)
+            + ((bit_cast::<34, 32>(self.n_tc[0].val()) << 1)
+                | bit_cast::<34, 1>(self.cin[0].val().get_bits::<1>(14)));
+        self.cs_dym2[0].next = ((bit_cast::<34, 32>(self.tdy[0].q.val()) << 1) | 1)
+            + ((bit_cast::<34, 32>(self.n_stc[0].val()) << 1)
+                | bit_cast::<34, 1>(self.cin[0].val().get_bits::<1>(15)));
+        // The y-step: I + Dy, Dy + 2B, Dx + C.
+        self.cs_yi[0].next = ((bit_cast::<34, 32>(self.ti[0].q.val()) << 1) | 1)
+            + ((bit_cast::<34, 32>(self.tdy[0].q.val()) << 1)
+                | bit_cast::<34, 1>(self.cin[0].val().get_bits::<1>(16)));
+        self.cs_ydy[0].next = ((bit_cast::<34, 32>(self.tdy[0].q.val()) << 1) | 1)
+            + ((bit_cast::<34, 32>(self.tb2[0].q.val()) << 1)
+                | bit_cast::<34, 1>(self.cin[0].val().get_bits::<1>(17)));
+        self.cs_ydx[0].next = ((bit_cast::<34, 32>(self.tdx[0].q.val()) << 1) | 1)
+            + ((bit_cast::<34, 32>(self.tc[0].q.val()) << 1)
+                | bit_cast::<34, 1>(self.cin[0].val().get_bits::<1>(18)));
+        // The load's 3·2A.
+        self.s_wa2[0].next =
+            (self.w_a2[0].val() << 1) | bit_cast::<32, 1>(self.cin[0].val().get_bits::<1>(19));
+        self.cs_ta3[0].next = ((bit_cast::<34, 32>(self.s_wa2[0].val()) << 1) | 1)
+            + ((bit_cast::<34, 32>(self.w_a2[0].val()) << 1)
+                | bit_cast::<34, 1>(self.cin[0].val().get_bits::<1>(20)));
+        // The generator: p' = q + e + 2A, q' = q + 2e + 3·2A, e' = e + 2·2A; a hand-over's e = 2A − Dx.
+        self.s_ge[0].next =
+            (self.ge[0].q.val() << 1) | bit_cast::<32, 1>(self.cin[0].val().get_bits::<1>(21));
+        self.x_gp[0].next = self.q[0].q.val() ^ self.ge[0].q.val() ^ self.ga2[0].q.val();
+        self.m_gp[0].next = (self.q[0].q.val() & self.ge[0].q.val())
+            | (self.q[0].q.val() & self.ga2[0].q.val())
+            | (self.ge[0].q.val() & self.ga2[0].q.val());
+        self.k_gp[0].next =
+            (self.m_gp[0].val() << 1) | bit_cast::<32, 1>(self.cin[0].val().get_bits::<1>(22));
+        self.cs_gp[0].next = ((bit_cast::<34, 32>(self.x_gp[0].val()) << 1) | 1)
+            + ((bit_cast::<34, 32>(self.k_gp[0].val()) << 1)
+                | bit_cast::<34, 1>(self.cin[0].val().get_bits::<1>(23)));
+        self.x_gq[0].next = self.q[0].q.val() ^ self.s_ge[0].val() ^ self.ga3[0].q.val();
+        self.m_gq[0].next = (self.q[0].q.val() & self.s_ge[0].val())
+            | (self.q[0].q.val() & self.ga3[0].q.val())
+            | (self.s_ge[0].val() & self.ga3[0].q.val());
+        self.k_gq[0].next =
+            (self.m_gq[0].val() << 1) | bit_cast::<32, 1>(self.cin[0].val().get_bits::<1>(24));
+        self.cs_gq[0].next = ((bit_cast::<34, 32>(self.x_gq[0].val()) << 1) | 1)
+            + ((bit_cast::<34, 32>(self.k_gq[0].val()) << 1)
+                | bit_cast::<34, 1>(self.cin[0].val().get_bits::<1>(25)));
+        self.s_ga2[0].next =
+            (self.ga2[0].q.val() << 1) | bit_cast::<32, 1>(self.cin[0].val().get_bits::<1>(26));
+        self.cs_ge[0].next = ((bit_cast::<34, 32>(self.ge[0].q.val()) << 1) | 1)
+            + ((bit_cast::<34, 32>(self.s_ga2[0].val()) << 1)
+                | bit_cast::<34, 1>(self.cin[0].val().get_bits::<1>(27)));
+        self.cs_hge[0].next = ((bit_cast::<34, 32>(self.ta2[0].q.val()) << 1) | 1)
+            + ((bit_cast::<34, 32>(self.n_dx[0].val()) << 1)
+                | bit_cast::<34, 1>(self.cin[0].val().get_bits::<1>(28)));
+        // What leaves bit 31: each add's carry, each carry word's and each shift's top bit.
+        self.cout[0].next = bit_cast::<29, 1>(self.cs_ip1[0].val().get_bits::<1>(33))
+            | (bit_cast::<29, 1>(self.m_im1[0].val().get_bits::<1>(31)) << 1)
+            | (bit_cast::<29, 1>(self.cs_im1[0].val().get_bits::<1>(33)) << 2)
+            | (bit_cast::<29, 1>(self.tdx[0].q.val().get_bits::<1>(31)) << 3)
+            | (bit_cast::<29, 1>(self.m_xi[0].val().get_bits::<1>(31)) << 4)
+            | (bit_cast::<29, 1>(self.cs_xi[0].val().get_bits::<1>(33)) << 5)
+            | (bit_cast::<29, 1>(self.ta2[0].q.val().get_bits::<1>(31)) << 6)
+            | (bit_cast::<29, 1>(self.cs_dxp1[0].val().get_bits::<1>(33)) << 7)
+            | (bit_cast::<29, 1>(self.cs_dxp2[0].val().get_bits::<1>(33)) << 8)
+            | (bit_cast::<29, 1>(self.cs_dxm1[0].val().get_bits::<1>(33)) << 9)
+            | (bit_cast::<29, 1>(self.cs_dxm2[0].val().get_bits::<1>(33)) << 10)
+            | (bit_cast::<29, 1>(self.tc[0].q.val().get_bits::<1>(31)) << 11)
+            | (bit_cast::<29, 1>(self.cs_dyp1[0].val().get_bits::<1>(33)) << 12)
+            | (bit_cast::<29, 1>(self.cs_dyp2[0].val().get_bits::<1>(33)) << 13)
+            | (bit_cast::<29, 1>(self.cs_dym1[0].val().get_bits::<1>(33)) << 14)
+            | (bit_cast::<29, 1>(self.cs_dym2[0].val().get_bits::<1>(33)) << 15)
+            | (bit_cast::<29, 1>(self.cs_yi[0].val().get_bits::<1>(33)) << 16)
+            | (bit_cast::<29, 1>(self.cs_ydy[0].val().get_bits::<1>(33)) << 17)
+            | (bit_cast::<29, 1>(self.cs_ydx[0].val().get_bits::<1>(33)) << 18)
+            | (bit_cast::<29, 1>(self.w_a2[0].val().get_bits::<1>(31)) << 19)
+            | (bit_cast::<29, 1>(self.cs_ta3[0].val().get_bits::<1>(33)) << 20)
+            | (bit_cast::<29, 1>(self.ge[0].q.val().get_bits::<1>(31)) << 21)
+            | (bit_cast::<29, 1>(self.m_gp[0].val().get_bits::<1>(31)) << 22)
+            | (bit_cast::<29, 1>(self.cs_gp[0].val().get_bits::<1>(33)) << 23)
+            | (bit_cast::<29, 1>(self.m_gq[0].val().get_bits::<1>(31)) << 24)
+            | (bit_cast::<29, 1>(self.cs_gq[0].val().get_bits::<1>(33)) << 25)
+            | (bit_cast::<29, 1>(self.ga2[0].q.val().get_bits::<1>(31)) << 26)
+            | (bit_cast::<29, 1>(self.cs_ge[0].val().get_bits::<1>(33)) << 27)
+            | (bit_cast::<29, 1>(self.cs_hge[0].val().get_bits::<1>(33)) << 28);
+        // The registers: the y-step, the x-step, the load; the generator's step, the hand-over.
+        if self.ystep.val() {
+            self.ti[0].d.next = self.cs_yi[0].val().get_bits::<32>(1);
+            self.tdy[0].d.next = self.cs_ydy[0].val().get_bits::<32>(1);
+            self.tdx[0].d.next = self.cs_ydx[0].val().get_bits::<32>(1);
+        }
+        if self.xstep.val() {
+            self.ti[0].d.next = self.cs_xi[0].val().get_bits::<32>(1);
+            if self.neg.val() {
+                if self.big.val() {
+                    self.tdx[0].d.next = self.cs_dxm2[0].val().get_bits::<32>(1);
+                    self.tdy[0].d.next = self.cs_dym2[0].val().get_bits::<32>(1);
+                } else {
+                    self.tdx[0].d.next = self.cs_dxm1[0].val().get_bits::<32>(1);
+                    self.tdy[0].d.next = self.cs_dym1[0].val().get_bits::<32>(1);
+                }
+            } else if self.big.val() {
+                self.tdx[0].d.next = self.cs_dxp2[0].val().get_bits::<32>(1);
+                self.tdy[0].d.next = self.cs_dyp2[0].val().get_bits::<32>(1);
+            } else {
+                self.tdx[0].d.next = self.cs_dxp1[0].val().get_bits::<32>(1);
+                self.tdy[0].d.next = self.cs_dyp1[0].val().get_bits::<32>(1);
+            }
+        }
+        if self.ld.val() {
+            self.ti[0].d.next = self.w_i[0].val();
+            self.tdx[0].d.next = self.w_dx[0].val();
+            self.tdy[0].d.next = self.w_dy[0].val();
+            self.ta2[0].d.next = self.w_a2[0].val();
+            self.ta3[0].d.next = self.cs_ta3[0].val().get_bits::<32>(1);
+            self.tb2[0].d.next = self.w_b2[0].val();
+            self.tc[0].d.next = self.w_c[0].val();
+        }
+        if self.gadv.val() {
+            self.p[0].d.next = self.cs_gp[0].val().get_bits::<32>(1);
+            self.q[0].d.next = self.cs_gq[0].val().get_bits::<32>(1);
+            self.ge[0].d.next = self.cs_ge[0].val().get_bits::<32>(1);
+        }
+        if self.hand.val() {
+            self.p[0].d.next = self.ti[0].q.val();
+            self.ga2[0].d.next = self.ta2[0].q.val();
+            self.ga3[0].d.next = self.ta3[0].q.val();
+            if self.hdir.val() {
+                self.q[0].d.next = self.cs_im1[0].val().get_bits::<32>(1);
+                self.ge[0].d.next = self.cs_hge[0].val().get_bits::<32>(1);
+            } else {
+                self.q[0].d.next = self.cs_ip1[0].val().get_bits::<32>(1);
+                self.ge[0].d.next = self.tdx[0].q.val();
+            }
+        }
+        // Channel 1.
+        // The hand-over's pair: I + Dx; I − Dx + 2A (carry-save, the +1 in bit 0's carry).
+        self.cs_ip1[1].next = ((bit_cast::<34, 32>(self.ti[1].q.val()) << 1) | 1)
+            + ((bit_cast::<34, 32>(self.tdx[1].q.val()) << 1)
+                | bit_cast::<34, 1>(self.cin[1].val().get_bits::<1>(0)));
+        self.n_dx[1].next = !self.tdx[1].q.val();
+        self.x_im1[1].next = self.ti[1].q.val() ^ self.n_dx[1].val() ^ self.ta2[1].q.val();
+        self.m_im1[1].next = (self.ti[1].q.val() & self.n_dx[1].val())
+            | (self.ti[1].q.val() & self.ta2[1].q.val())
+            | (self.n_dx[1].val() & self.ta2[1].q.val());
+        self.k_im1[1].next =
+            (self.m_im1[1].val() << 1) | bit_cast::<32, 1>(self.cin[1].val().get_bits::<1>(1));
+        self.cs_im1[1].next = ((bit_cast::<34, 32>(self.x_im1[1].val()) << 1) | 1)
+            + ((bit_cast::<34, 32>(self.k_im1[1].val()) << 1)
+                | bit_cast::<34, 1>(self.cin[1].val().get_bits::<1>(2)));
+        // The x-step's terms: I + (Dx | 2·Dx + 2A | −Dx + 2A | −2·Dx + 3·2A).
+        self.s_tdx[1].next =
+            (self.tdx[1].q.val() << 1) | bit_cast::<32, 1>(self.cin[1].val().get_bits::<1>(3));
+        self.n_sdx[1].next = !self.s_tdx[1].val();
+        if self.neg.val() {
+            if self.big.val() {
+                self.xt1[1].next = self.n_sdx[1].val();
+                self.xt2[1].next = self.ta3[1].q.val();
+            } else {
+                self.xt1[1].next = self.n_dx[1].val();
+                self.xt2[1].next = self.ta2[1].q.val();
+            }
+        } else if self.big.val() {
+            self.xt1[1].next = self.s_tdx[1].val();
+            self.xt2[1].next = self.ta2[1].q.val();
+        } else {
+            self.xt1[1].next = self.tdx[1].q.val();
+            self.xt2[1].next = 0.into();
+        }
+        self.x_xi[1].next = self.ti[1].q.val() ^ self.xt1[1].val() ^ self.xt2[1].val();
+        self.m_xi[1].next = (self.ti[1].q.val() & self.xt1[1].val())
+            | (self.ti[1].q.val() & self.xt2[1].val())
+            | (self.xt1[1].val() & self.xt2[1].val());
+        self.k_xi[1].next =
+            (self.m_xi[1].val() << 1) | bit_cast::<32, 1>(self.cin[1].val().get_bits::<1>(4));
+        self.cs_xi[1].next = ((bit_cast::<34, 32>(self.x_xi[1].val()) << 1) | 1)
+            + ((bit_cast::<34, 32>(self.k_xi[1].val()) << 1)
+                | bit_cast::<34, 1>(self.cin[1].val().get_bits::<1>(5)));
+        // Dx ± 2A·step, Dy ± C·step: two-operand adds, selected after the carry chains.
+        self.s_ta2[1].next =
+            (self.ta2[1].q.val() << 1) | bit_cast::<32, 1>(self.cin[1].val().get_bits::<1>(6));
+        self.n_ta2[1].next = !self.ta2[1].q.val();
+        self.n_sta2[1].next = !self.s_ta2[1].val();
+        self.cs_dxp1[1].next = ((bit_cast::<34, 32>(self.tdx[1].q.val()) << 1) | 1)
+            + ((bit_cast::<34, 32>(self.ta2[1].q.val()) << 1)
+                | bit_cast::<34, 1>(self.cin[1].val().get_bits::<1>(7)));
+        self.cs_dxp2[1].next = ((bit_cast::<34, 32>(self.tdx[1].q.val()) << 1) | 1)
+            + ((bit_cast::<34, 32>(self.s_ta2[1].val()) << 1)
+                | bit_cast::<34, 1>(self.cin[1].val().get_bits::<1>(8)));
+        self.cs_dxm1[1].next = ((bit_cast::<34, 32>(self.tdx[1].q.val()) << 1) | 1)
+            + ((bit_cast::<34, 32>(self.n_ta2[1].val()) << 1)
+                | bit_cast::<34, 1>(self.cin[1].val().get_bits::<1>(9)));
+        self.cs_dxm2[1].next = ((bit_cast::<34, 32>(self.tdx[1].q.val()) << 1) | 1)
+            + ((bit_cast::<34, 32>(self.n_sta2[1].val()) << 1)
+                | bit_cast::<34, 1>(self.cin[1].val().get_bits::<1>(10)));
+        self.s_tc[1].next =
+            (self.tc[1].q.val() << 1) | bit_cast::<32, 1>(self.cin[1].val().get_bits::<1>(11));
+        self.n_tc[1].next = !self.tc[1].q.val();
+        self.n_stc[1].next = !self.s_tc[1].val();
+        self.cs_dyp1[1].next = ((bit_cast::<34, 32>(self.tdy[1].q.val()) << 1) | 1)
+            + ((bit_cast::<34, 32>(self.tc[1].q.val()) << 1)
+                | bit_cast::<34, 1>(self.cin[1].val().get_bits::<1>(12)));
+        self.cs_dyp2[1].next = ((bit_cast::<34, 32>(self.tdy[1].q.val()) << 1) | 1)
+            + ((bit_cast::<34, 32>(self.s_tc[1].val()) << 1)
+                | bit_cast::<34, 1>(self.cin[1].val().get_bits::<1>(13)));
+        self.cs_dym1[1].next = ((bit_cast::<34, 32>(self.tdy[1].q.val()) << 1) | 1)
+            + ((bit_cast::<34, 32>(self.n_tc[1].val()) << 1)
+                | bit_cast::<34, 1>(self.cin[1].val().get_bits::<1>(14)));
+        self.cs_dym2[1].next = ((bit_cast::<34, 32>(self.tdy[1].q.val()) << 1) | 1)
+            + ((bit_cast::<34, 32>(self.n_stc[1].val()) << 1)
+                | bit_cast::<34, 1>(self.cin[1].val().get_bits::<1>(15)));
+        // The y-step: I + Dy, Dy + 2B, Dx + C.
+        self.cs_yi[1].next = ((bit_cast::<34, 32>(self.ti[1].q.val()) << 1) | 1)
+            + ((bit_cast::<34, 32>(self.tdy[1].q.val()) << 1)
+                | bit_cast::<34, 1>(self.cin[1].val().get_bits::<1>(16)));
+        self.cs_ydy[1].next = ((bit_cast::<34, 32>(self.tdy[1].q.val()) << 1) | 1)
+            + ((bit_cast::<34, 32>(self.tb2[1].q.val()) << 1)
+                | bit_cast::<34, 1>(self.cin[1].val().get_bits::<1>(17)));
+        self.cs_ydx[1].next = ((bit_cast::<34, 32>(self.tdx[1].q.val()) << 1) | 1)
+            + ((bit_cast::<34, 32>(self.tc[1].q.val()) << 1)
+                | bit_cast::<34, 1>(self.cin[1].val().get_bits::<1>(18)));
+        // The load's 3·2A.
+        self.s_wa2[1].next =
+            (self.w_a2[1].val() << 1) | bit_cast::<32, 1>(self.cin[1].val().get_bits::<1>(19));
+        self.cs_ta3[1].next = ((bit_cast::<34, 32>(self.s_wa2[1].val()) << 1) | 1)
+            + ((bit_cast::<34, 32>(self.w_a2[1].val()) << 1)
+                | bit_cast::<34, 1>(self.cin[1].val().get_bits::<1>(20)));
+        // The generator: p' = q + e + 2A, q' = q + 2e + 3·2A, e' = e + 2·2A; a hand-over's e = 2A − Dx.
+        self.s_ge[1].next =
+            (self.ge[1].q.val() << 1) | bit_cast::<32, 1>(self.cin[1].val().get_bits::<1>(21));
+        self.x_gp[1].next = self.q[1].q.val() ^ self.ge[1].q.val() ^ self.ga2[1].q.val();
+        self.m_gp[1].next = (self.q[1].q.val() & self.ge[1].q.val())
+            | (self.q[1].q.val() & self.ga2[1].q.val())
+            | (self.ge[1].q.val() & self.ga2[1].q.val());
+        self.k_gp[1].next =
+            (self.m_gp[1].val() << 1) | bit_cast::<32, 1>(self.cin[1].val().get_bits::<1>(22));
+        self.cs_gp[1].next = ((bit_cast::<34, 32>(self.x_gp[1].val()) << 1) | 1)
+            + ((bit_cast::<34, 32>(self.k_gp[1].val()) << 1)
+                | bit_cast::<34, 1>(self.cin[1].val().get_bits::<1>(23)));
+        self.x_gq[1].next = self.q[1].q.val() ^ self.s_ge[1].val() ^ self.ga3[1].q.val();
+        self.m_gq[1].next = (self.q[1].q.val() & self.s_ge[1].val())
+            | (self.q[1].q.val() & self.ga3[1].q.val())
+            | (self.s_ge[1].val() & self.ga3[1].q.val());
+        self.k_gq[1].next =
+            (self.m_gq[1].val() << 1) | bit_cast::<32, 1>(self.cin[1].val().get_bits::<1>(24));
+        self.cs_gq[1].next = ((bit_cast::<34, 32>(self.x_gq[1].val()) << 1) | 1)
+            + ((bit_cast::<34, 32>(self.k_gq[1].val()) << 1)
+                | bit_cast::<34, 1>(self.cin[1].val().get_bits::<1>(25)));
+        self.s_ga2[1].next =
+            (self.ga2[1].q.val() << 1) | bit_cast::<32, 1>(self.cin[1].val().get_bits::<1>(26));
+        self.cs_ge[1].next = ((bit_cast::<34, 32>(self.ge[1].q.val()) << 1) | 1)
+            + ((bit_cast::<34, 32>(self.s_ga2[1].val()) << 1)
+                | bit_cast::<34, 1>(self.cin[1].val().get_bits::<1>(27)));
+        self.cs_hge[1].next = ((bit_cast::<34, 32>(self.ta2[1].q.val()) << 1) | 1)
+            + ((bit_cast::<34, 32>(self.n_dx[1].val()) << 1)
+                | bit_cast::<34, 1>(self.cin[1].val().get_bits::<1>(28)));
+        // What leaves bit 31: each add's carry, each carry word's and each shift's top bit.
+        self.cout[1].next = bit_cast::<29, 1>(self.cs_ip1[1].val().get_bits::<1>(33))
+            | (bit_cast::<29, 1>(self.m_im1[1].val().get_bits::<1>(31)) << 1)
+            | (bit_cast::<29, 1>(self.cs_im1[1].val().get_bits::<1>(33)) << 2)
+            | (bit_cast::<29, 1>(self.tdx[1].q.val().get_bits::<1>(31)) << 3)
+            | (bit_cast::<29, 1>(self.m_xi[1].val().get_bits::<1>(31)) << 4)
+            | (bit_cast::<29, 1>(self.cs_xi[1].val().get_bits::<1>(33)) << 5)
+            | (bit_cast::<29, 1>(self.ta2[1].q.val().get_bits::<1>(31)) << 6)
+            | (bit_cast::<29, 1>(self.cs_dxp1[1].val().get_bits::<1>(33)) << 7)
+            | (bit_cast::<29, 1>(self.cs_dxp2[1].val().get_bits::<1>(33)) << 8)
+            | (bit_cast::<29, 1>(self.cs_dxm1[1].val().get_bits::<1>(33)) << 9)
+            | (bit_cast::<29, 1>(self.cs_dxm2[1].val().get_bits::<1>(33)) << 10)
+            | (bit_cast::<29, 1>(self.tc[1].q.val().get_bits::<1>(31)) << 11)
+            | (bit_cast::<29, 1>(self.cs_dyp1[1].val().get_bits::<1>(33)) << 12)
+            | (bit_cast::<29, 1>(self.cs_dyp2[1].val().get_bits::<1>(33)) << 13)
+            | (bit_cast::<29, 1>(self.cs_dym1[1].val().get_bits::<1>(33)) << 14)
+            | (bit_cast::<29, 1>(self.cs_dym2[1].val().get_bits::<1>(33)) << 15)
+            | (bit_cast::<29, 1>(self.cs_yi[1].val().get_bits::<1>(33)) << 16)
+            | (bit_cast::<29, 1>(self.cs_ydy[1].val().get_bits::<1>(33)) << 17)
+            | (bit_cast::<29, 1>(self.cs_ydx[1].val().get_bits::<1>(33)) << 18)
+            | (bit_cast::<29, 1>(self.w_a2[1].val().get_bits::<1>(31)) << 19)
+            | (bit_cast::<29, 1>(self.cs_ta3[1].val().get_bits::<1>(33)) << 20)
+            | (bit_cast::<29, 1>(self.ge[1].q.val().get_bits::<1>(31)) << 21)
+            | (bit_cast::<29, 1>(self.m_gp[1].val().get_bits::<1>(31)) << 22)
+            | (bit_cast::<29, 1>(self.cs_gp[1].val().get_bits::<1>(33)) << 23)
+            | (bit_cast::<29, 1>(self.m_gq[1].val().get_bits::<1>(31)) << 24)
+            | (bit_cast::<29, 1>(self.cs_gq[1].val().get_bits::<1>(33)) << 25)
+            | (bit_cast::<29, 1>(self.ga2[1].q.val().get_bits::<1>(31)) << 26)
+            | (bit_cast::<29, 1>(self.cs_ge[1].val().get_bits::<1>(33)) << 27)
+            | (bit_cast::<29, 1>(self.cs_hge[1].val().get_bits::<1>(33)) << 28);
+        // The registers: the y-step, the x-step, the load; the generator's step, the hand-over.
+        if self.ystep.val() {
+            self.ti[1].d.next = self.cs_yi[1].val().get_bits::<32>(1);
+            self.tdy[1].d.next = self.cs_ydy[1].val().get_bits::<32>(1);
+            self.tdx[1].d.next = self.cs_ydx[1].val().get_bits::<32>(1);
+        }
+        if self.xstep.val() {
+            self.ti[1].d.next = self.cs_xi[1].val().get_bits::<32>(1);
+            if self.neg.val() {
+                if self.big.val() {
+                    self.tdx[1].d.next = self.cs_dxm2[1].val().get_bits::<32>(1);
+                    self.tdy[1].d.next = self.cs_dym2[1].val().get_bits::<32>(1);
+                } else {
+                    self.tdx[1].d.next = self.cs_dxm1[1].val().get_bits::<32>(1);
+                    self.tdy[1].d.next = self.cs_dym1[1].val().get_bits::<32>(1);
+                }
+            } else if self.big.val() {
+                self.tdx[1].d.next = self.cs_dxp2[1].val().get_bits::<32>(1);
+                self.tdy[1].d.next = self.cs_dyp2[1].val().get_bits::<32>(1);
+            } else {
+                self.tdx[1].d.next = self.cs_dxp1[1].val().get_bits::<32>(1);
+                self.tdy[1].d.next = self.cs_dyp1[1].val().get_bits::<32>(1);
+            }
+        }
+        if self.ld.val() {
+            self.ti[1].d.next = self.w_i[1].val();
+            self.tdx[1].d.next = self.w_dx[1].val();
+            self.tdy[1].d.next = self.w_dy[1].val();
+            self.ta2[1].d.next = self.w_a2[1].val();
+            self.ta3[1].d.next = self.cs_ta3[1].val().get_bits::<32>(1);
+            self.tb2[1].d.next = self.w_b2[1].val();
+            self.tc[1].d.next = self.w_c[1].val();
+        }
+        if self.gadv.val() {
+            self.p[1].d.next = self.cs_gp[1].val().get_bits::<32>(1);
+            self.q[1].d.next = self.cs_gq[1].val().get_bits::<32>(1);
+            self.ge[1].d.next = self.cs_ge[1].val().get_bits::<32>(1);
+        }
+        if self.hand.val() {
+            self.p[1].d.next = self.ti[1].q.val();
+            self.ga2[1].d.next = self.ta2[1].q.val();
+            self.ga3[1].d.next = self.ta3[1].q.val();
+            if self.hdir.val() {
+                self.q[1].d.next = self.cs_im1[1].val().get_bits::<32>(1);
+                self.ge[1].d.next = self.cs_hge[1].val().get_bits::<32>(1);
+            } else {
+                self.q[1].d.next = self.cs_ip1[1].val().get_bits::<32>(1);
+                self.ge[1].d.next = self.tdx[1].q.val();
+            }
+        }
+        // Channel 2.
+        // The hand-over's pair: I + Dx; I − Dx + 2A (carry-save, the +1 in bit 0's carry).
+        self.cs_ip1[2].next = ((bit_cast::<34, 32>(self.ti[2].q.val()) << 1) | 1)
+            + ((bit_cast::<34, 32>(self.tdx[2].q.val()) << 1)
+                | bit_cast::<34, 1>(self.cin[2].val().get_bits::<1>(0)));
+        self.n_dx[2].next = !self.tdx[2].q.val();
+        self.x_im1[2].next = self.ti[2].q.val() ^ self.n_dx[2].val() ^ self.ta2[2].q.val();
+        self.m_im1[2].next = (self.ti[2].q.val() & self.n_dx[2].val())
+            | (self.ti[2].q.val() & self.ta2[2].q.val())
+            | (self.n_dx[2].val() & self.ta2[2].q.val());
+        self.k_im1[2].next =
+            (self.m_im1[2].val() << 1) | bit_cast::<32, 1>(self.cin[2].val().get_bits::<1>(1));
+        self.cs_im1[2].next = ((bit_cast::<34, 32>(self.x_im1[2].val()) << 1) | 1)
+            + ((bit_cast::<34, 32>(self.k_im1[2].val()) << 1)
+                | bit_cast::<34, 1>(self.cin[2].val().get_bits::<1>(2)));
+        // The x-step's terms: I + (Dx | 2·Dx + 2A | −Dx + 2A | −2·Dx + 3·2A).
+        self.s_tdx[2].next =
+            (self.tdx[2].q.val() << 1) | bit_cast::<32, 1>(self.cin[2].val().get_bits::<1>(3));
+        self.n_sdx[2].next = !self.s_tdx[2].val();
+        if self.neg.val() {
+            if self.big.val() {
+                self.xt1[2].next = self.n_sdx[2].val();
+                self.xt2[2].next = self.ta3[2].q.val();
+            } else {
+                self.xt1[2].next = self.n_dx[2].val();
+                self.xt2[2].next = self.ta2[2].q.val();
+            }
+        } else if self.big.val() {
+            self.xt1[2].next = self.s_tdx[2].val();
+            self.xt2[2].next = self.ta2[2].q.val();
+        } else {
+            self.xt1[2].next = self.tdx[2].q.val();
+            self.xt2[2].next = 0.into();
+        }
+        self.x_xi[2].next = self.ti[2].q.val() ^ self.xt1[2].val() ^ self.xt2[2].val();
+        self.m_xi[2].next = (self.ti[2].q.val() & self.xt1[2].val())
+            | (self.ti[2].q.val() & self.xt2[2].val())
+            | (self.xt1[2].val() & self.xt2[2].val());
+        self.k_xi[2].next =
+            (self.m_xi[2].val() << 1) | bit_cast::<32, 1>(self.cin[2].val().get_bits::<1>(4));
+        self.cs_xi[2].next = ((bit_cast::<34, 32>(self.x_xi[2].val()) << 1) | 1)
+            + ((bit_cast::<34, 32>(self.k_xi[2].val()) << 1)
+                | bit_cast::<34, 1>(self.cin[2].val().get_bits::<1>(5)));
+        // Dx ± 2A·step, Dy ± C·step: two-operand adds, selected after the carry chains.
+        self.s_ta2[2].next =
+            (self.ta2[2].q.val() << 1) | bit_cast::<32, 1>(self.cin[2].val().get_bits::<1>(6));
+        self.n_ta2[2].next = !self.ta2[2].q.val();
+        self.n_sta2[2].next = !self.s_ta2[2].val();
+        self.cs_dxp1[2].next = ((bit_cast::<34, 32>(self.tdx[2].q.val()) << 1) | 1)
+            + ((bit_cast::<34, 32>(self.ta2[2].q.val()) << 1)
+                | bit_cast::<34, 1>(self.cin[2].val().get_bits::<1>(7)));
+        self.cs_dxp2[2].next = ((bit_cast::<34, 32>(self.tdx[2].q.val()) << 1) | 1)
+            + ((bit_cast::<34, 32>(self.s_ta2[2].val()) << 1)
+                | bit_cast::<34, 1>(self.cin[2].val().get_bits::<1>(8)));
+        self.cs_dxm1[2].next = ((bit_cast::<34, 32>(self.tdx[2].q.val()) << 1) | 1)
+            + ((bit_cast::<34, 32>(self.n_ta2[2].val()) << 1)
+                | bit_cast::<34, 1>(self.cin[2].val().get_bits::<1>(9)));
+        self.cs_dxm2[2].next = ((bit_cast::<34, 32>(self.tdx[2].q.val()) << 1) | 1)
+            + ((bit_cast::<34, 32>(self.n_sta2[2].val()) << 1)
+                | bit_cast::<34, 1>(self.cin[2].val().get_bits::<1>(10)));
+        self.s_tc[2].next =
+            (self.tc[2].q.val() << 1) | bit_cast::<32, 1>(self.cin[2].val().get_bits::<1>(11));
+        self.n_tc[2].next = !self.tc[2].q.val();
+        self.n_stc[2].next = !self.s_tc[2].val();
+        self.cs_dyp1[2].next = ((bit_cast::<34, 32>(self.tdy[2].q.val()) << 1) | 1)
+            + ((bit_cast::<34, 32>(self.tc[2].q.val()) << 1)
+                | bit_cast::<34, 1>(self.cin[2].val().get_bits::<1>(12)));
+        self.cs_dyp2[2].next = ((bit_cast::<34, 32>(self.tdy[2].q.val()) << 1) | 1)
+            + ((bit_cast::<34, 32>(self.s_tc[2].val()) << 1)
+                | bit_cast::<34, 1>(self.cin[2].val().get_bits::<1>(13)));
+        self.cs_dym1[2].next = ((bit_cast::<34, 32>(self.tdy[2].q.val()) << 1) | 1)
+            + ((bit_cast::<34, 32>(self.n_tc[2].val()) << 1)
+                | bit_cast::<34, 1>(self.cin[2].val().get_bits::<1>(14)));
+        self.cs_dym2[2].next = ((bit_cast::<34, 32>(self.tdy[2].q.val()) << 1) | 1)
+            + ((bit_cast::<34, 32>(self.n_stc[2].val()) << 1)
+                | bit_cast::<34, 1>(self.cin[2].val().get_bits::<1>(15)));
+        // The y-step: I + Dy, Dy + 2B, Dx + C.
+        self.cs_yi[2].next = ((bit_cast::<34, 32>(self.ti[2].q.val()) << 1) | 1)
+            + ((bit_cast::<34, 32>(self.tdy[2].q.val()) << 1)
+                | bit_cast::<34, 1>(self.cin[2].val().get_bits::<1>(16)));
+        self.cs_ydy[2].next = ((bit_cast::<34, 32>(self.tdy[2].q.val()) << 1) | 1)
+            + ((bit_cast::<34, 32>(self.tb2[2].q.val()) << 1)
+                | bit_cast::<34, 1>(self.cin[2].val().get_bits::<1>(17)));
+        self.cs_ydx[2].next = ((bit_cast::<34, 32>(self.tdx[2].q.val()) << 1) | 1)
+            + ((bit_cast::<34, 32>(self.tc[2].q.val()) << 1)
+                | bit_cast::<34, 1>(self.cin[2].val().get_bits::<1>(18)));
+        // The load's 3·2A.
+        self.s_wa2[2].next =
+            (self.w_a2[2].val() << 1) | bit_cast::<32, 1>(self.cin[2].val().get_bits::<1>(19));
+        self.cs_ta3[2].next = ((bit_cast::<34, 32>(self.s_wa2[2].val()) << 1) | 1)
+            + ((bit_cast::<34, 32>(self.w_a2[2].val()) << 1)
+                | bit_cast::<34, 1>(self.cin[2].val().get_bits::<1>(20)));
+        // The generator: p' = q + e + 2A, q' = q + 2e + 3·2A, e' = e + 2·2A; a hand-over's e = 2A − Dx.
+        self.s_ge[2].next =
+            (self.ge[2].q.val() << 1) | bit_cast::<32, 1>(self.cin[2].val().get_bits::<1>(21));
+        self.x_gp[2].next = self.q[2].q.val() ^ self.ge[2].q.val() ^ self.ga2[2].q.val();
+        self.m_gp[2].next = (self.q[2].q.val() & self.ge[2].q.val())
+            | (self.q[2].q.val() & self.ga2[2].q.val())
+            | (self.ge[2].q.val() & self.ga2[2].q.val());
+        self.k_gp[2].next =
+            (self.m_gp[2].val() << 1) | bit_cast::<32, 1>(self.cin[2].val().get_bits::<1>(22));
+        self.cs_gp[2].next = ((bit_cast::<34, 32>(self.x_gp[2].val()) << 1) | 1)
+            + ((bit_cast::<34, 32>(self.k_gp[2].val()) << 1)
+                | bit_cast::<34, 1>(self.cin[2].val().get_bits::<1>(23)));
+        self.x_gq[2].next = self.q[2].q.val() ^ self.s_ge[2].val() ^ self.ga3[2].q.val();
+        self.m_gq[2].next = (self.q[2].q.val() & self.s_ge[2].val())
+            | (self.q[2].q.val() & self.ga3[2].q.val())
+            | (self.s_ge[2].val() & self.ga3[2].q.val());
+        self.k_gq[2].next =
+            (self.m_gq[2].val() << 1) | bit_cast::<32, 1>(self.cin[2].val().get_bits::<1>(24));
+        self.cs_gq[2].next = ((bit_cast::<34, 32>(self.x_gq[2].val()) << 1) | 1)
+            + ((bit_cast::<34, 32>(self.k_gq[2].val()) << 1)
+                | bit_cast::<34, 1>(self.cin[2].val().get_bits::<1>(25)));
+        self.s_ga2[2].next =
+            (self.ga2[2].q.val() << 1) | bit_cast::<32, 1>(self.cin[2].val().get_bits::<1>(26));
+        self.cs_ge[2].next = ((bit_cast::<34, 32>(self.ge[2].q.val()) << 1) | 1)
+            + ((bit_cast::<34, 32>(self.s_ga2[2].val()) << 1)
+                | bit_cast::<34, 1>(self.cin[2].val().get_bits::<1>(27)));
+        self.cs_hge[2].next = ((bit_cast::<34, 32>(self.ta2[2].q.val()) << 1) | 1)
+            + ((bit_cast::<34, 32>(self.n_dx[2].val()) << 1)
+                | bit_cast::<34, 1>(self.cin[2].val().get_bits::<1>(28)));
+        // What leaves bit 31: each add's carry, each carry word's and each shift's top bit.
+        self.cout[2].next = bit_cast::<29, 1>(self.cs_ip1[2].val().get_bits::<1>(33))
+            | (bit_cast::<29, 1>(self.m_im1[2].val().get_bits::<1>(31)) << 1)
+            | (bit_cast::<29, 1>(self.cs_im1[2].val().get_bits::<1>(33)) << 2)
+            | (bit_cast::<29, 1>(self.tdx[2].q.val().get_bits::<1>(31)) << 3)
+            | (bit_cast::<29, 1>(self.m_xi[2].val().get_bits::<1>(31)) << 4)
+            | (bit_cast::<29, 1>(self.cs_xi[2].val().get_bits::<1>(33)) << 5)
+            | (bit_cast::<29, 1>(self.ta2[2].q.val().get_bits::<1>(31)) << 6)
+            | (bit_cast::<29, 1>(self.cs_dxp1[2].val().get_bits::<1>(33)) << 7)
+            | (bit_cast::<29, 1>(self.cs_dxp2[2].val().get_bits::<1>(33)) << 8)
+            | (bit_cast::<29, 1>(self.cs_dxm1[2].val().get_bits::<1>(33)) << 9)
+            | (bit_cast::<29, 1>(self.cs_dxm2[2].val().get_bits::<1>(33)) << 10)
+            | (bit_cast::<29, 1>(self.tc[2].q.val().get_bits::<1>(31)) << 11)
+            | (bit_cast::<29, 1>(self.cs_dyp1[2].val().get_bits::<1>(33)) << 12)
+            | (bit_cast::<29, 1>(self.cs_dyp2[2].val().get_bits::<1>(33)) << 13)
+            | (bit_cast::<29, 1>(self.cs_dym1[2].val().get_bits::<1>(33)) << 14)
+            | (bit_cast::<29, 1>(self.cs_dym2[2].val().get_bits::<1>(33)) << 15)
+            | (bit_cast::<29, 1>(self.cs_yi[2].val().get_bits::<1>(33)) << 16)
+            | (bit_cast::<29, 1>(self.cs_ydy[2].val().get_bits::<1>(33)) << 17)
+            | (bit_cast::<29, 1>(self.cs_ydx[2].val().get_bits::<1>(33)) << 18)
+            | (bit_cast::<29, 1>(self.w_a2[2].val().get_bits::<1>(31)) << 19)
+            | (bit_cast::<29, 1>(self.cs_ta3[2].val().get_bits::<1>(33)) << 20)
+            | (bit_cast::<29, 1>(self.ge[2].q.val().get_bits::<1>(31)) << 21)
+            | (bit_cast::<29, 1>(self.m_gp[2].val().get_bits::<1>(31)) << 22)
+            | (bit_cast::<29, 1>(self.cs_gp[2].val().get_bits::<1>(33)) << 23)
+            | (bit_cast::<29, 1>(self.m_gq[2].val().get_bits::<1>(31)) << 24)
+            | (bit_cast::<29, 1>(self.cs_gq[2].val().get_bits::<1>(33)) << 25)
+            | (bit_cast::<29, 1>(self.ga2[2].q.val().get_bits::<1>(31)) << 26)
+            | (bit_cast::<29, 1>(self.cs_ge[2].val().get_bits::<1>(33)) << 27)
+            | (bit_cast::<29, 1>(self.cs_hge[2].val().get_bits::<1>(33)) << 28);
+        // The registers: the y-step, the x-step, the load; the generator's step, the hand-over.
+        if self.ystep.val() {
+            self.ti[2].d.next = self.cs_yi[2].val().get_bits::<32>(1);
+            self.tdy[2].d.next = self.cs_ydy[2].val().get_bits::<32>(1);
+            self.tdx[2].d.next = self.cs_ydx[2].val().get_bits::<32>(1);
+        }
+        if self.xstep.val() {
+            self.ti[2].d.next = self.cs_xi[2].val().get_bits::<32>(1);
+            if self.neg.val() {
+                if self.big.val() {
+                    self.tdx[2].d.next = self.cs_dxm2[2].val().get_bits::<32>(1);
+                    self.tdy[2].d.next = self.cs_dym2[2].val().get_bits::<32>(1);
+                } else {
+                    self.tdx[2].d.next = self.cs_dxm1[2].val().get_bits::<32>(1);
+                    self.tdy[2].d.next = self.cs_dym1[2].val().get_bits::<32>(1);
+                }
+            } else if self.big.val() {
+                self.tdx[2].d.next = self.cs_dxp2[2].val().get_bits::<32>(1);
+                self.tdy[2].d.next = self.cs_dyp2[2].val().get_bits::<32>(1);
+            } else {
+                self.tdx[2].d.next = self.cs_dxp1[2].val().get_bits::<32>(1);
+                self.tdy[2].d.next = self.cs_dyp1[2].val().get_bits::<32>(1);
+            }
+        }
+        if self.ld.val() {
+            self.ti[2].d.next = self.w_i[2].val();
+            self.tdx[2].d.next = self.w_dx[2].val();
+            self.tdy[2].d.next = self.w_dy[2].val();
+            self.ta2[2].d.next = self.w_a2[2].val();
+            self.ta3[2].d.next = self.cs_ta3[2].val().get_bits::<32>(1);
+            self.tb2[2].d.next = self.w_b2[2].val();
+            self.tc[2].d.next = self.w_c[2].val();
+        }
+        if self.gadv.val() {
+            self.p[2].d.next = self.cs_gp[2].val().get_bits::<32>(1);
+            self.q[2].d.next = self.cs_gq[2].val().get_bits::<32>(1);
+            self.ge[2].d.next = self.cs_ge[2].val().get_bits::<32>(1);
+        }
+        if self.hand.val() {
+            self.p[2].d.next = self.ti[2].q.val();
+            self.ga2[2].d.next = self.ta2[2].q.val();
+            self.ga3[2].d.next = self.ta3[2].q.val();
+            if self.hdir.val() {
+                self.q[2].d.next = self.cs_im1[2].val().get_bits::<32>(1);
+                self.ge[2].d.next = self.cs_hge[2].val().get_bits::<32>(1);
+            } else {
+                self.q[2].d.next = self.cs_ip1[2].val().get_bits::<32>(1);
+                self.ge[2].d.next = self.tdx[2].q.val();
+            }
+        }
+        self.cout_r.next = self.cout[0].val();
+        self.p_r.next = self.p[0].q.val();
+        self.q_r.next = self.q[0].q.val();
+        self.cout_g.next = self.cout[1].val();
+        self.p_g.next = self.p[1].q.val();
+        self.q_g.next = self.q[1].q.val();
+        self.cout_b.next = self.cout[2].val();
+        self.p_b.next = self.p[2].q.val();
+        self.q_b.next = self.q[2].q.val();
     }
 }
 
@@ -127,7 +939,7 @@ crate::hw_block! {
     /// The quadric forward-difference unit (see the module header).
     pub struct QuadricUnit(clock) as "quadric-unit" {
         summary: "a triangle's I, Dx, Dy, 2A, 2B, C per channel and its raster lines in, quadric-shaded fragments out two per clock: a 2-D difference tracker over the line starts and a line generator, adds and shifts only (SPEC §8)",
-        latency: 3 => "load of a triangle's first line to its first two pixels, two pixels per clock along a line",
+        latency: 4 => "load of a triangle's first line to its first two pixels, two pixels per clock along a line",
         multipliers: 0,
         in {
             load: Bit, span_base_ports!, first: Bit,
@@ -142,17 +954,29 @@ crate::hw_block! {
             valid_b: Bit, x_b: Bits<12>, z_b: Bits<32>, red_b: Bits<8>, green_b: Bits<8>, blue_b: Bits<8>,
             y_out: Bits<12>, last: Bit,
         }
-        // Tracker: position, the line it holds, (I, Dx, Dy, 2A, 2B, C) per channel.
+        // Tracker: position and the line it holds (its words are in the halves).
         tbusy: DFF<Bit>, tx: DFF<Bits<12>>, ty: DFF<Bits<12>>,
         ly: DFF<Bits<12>>, lx0: DFF<Bits<12>>, ldir: DFF<Bit>, lm: DFF<Bits<12>>,
         lz0: DFF<Bits<32>>, ldz: DFF<Bits<32>>,
-        ti: [DFF<Bits<64>>; 3], tdx: [DFF<Bits<64>>; 3], tdy: [DFF<Bits<64>>; 3],
-        ta2: [DFF<Bits<64>>; 3], tb2: [DFF<Bits<64>>; 3], tc: [DFF<Bits<64>>; 3],
-        w_i: [Signal<Local, Bits<64>>; 3], w_dx: [Signal<Local, Bits<64>>; 3], w_dy: [Signal<Local, Bits<64>>; 3],
-        w_a2: [Signal<Local, Bits<64>>; 3], w_b2: [Signal<Local, Bits<64>>; 3], w_c: [Signal<Local, Bits<64>>; 3],
+        /// The words' low halves (this clock's control) and high halves (the control and the
+        /// low halves' carries of the clock before: each word's high half is one clock behind).
+        half_lo: QuadricHalf, half_hi: QuadricHalf,
+        /// The control of the low half, delayed a clock for the high half.
+        d_ystep: DFF<Bit>, d_xstep: DFF<Bit>, d_neg: DFF<Bit>, d_big: DFF<Bit>,
+        d_ld: DFF<Bit>, d_hand: DFF<Bit>, d_hdir: DFF<Bit>, d_gadv: DFF<Bit>,
+        /// The load's high halves, a clock later (channel-major: I, Dx, Dy, 2A, 2B, C).
+        whi: [DFF<Bits<32>>; 18],
+        /// The low halves' carries (`cross`), registered for the high halves.
+        carry: [DFF<Bits<29>>; 3],
+        /// Bits 28..31 of the generator's p and q, a clock later (the output rounding's).
+        plo: [DFF<Bits<4>>; 3], qlo: [DFF<Bits<4>>; 3],
+        cin_k: Constant<Bits<29>> = Constant::new(cross::LOW.into()),
+        cin_kn: Constant<Bits<29>> = Constant::new((cross::LOW | (1 << cross::XIK)).into()),
+        cin_lo: Signal<Local, Bits<29>>,
+        ystep: Signal<Local, Bit>, ld: Signal<Local, Bit>, gadv: Signal<Local, Bit>,
         /// The tracker's decisions from registers: flags of the distance to the line start
         /// (zero, negative, two or more pixels; `diff` is a load's distance x0 − tx), of
-        /// ty = ly and of the generator's last clock — no compare precedes the 576 word
+        /// ty = ly and of the generator's last clock — no compare precedes the word
         /// multiplexers they steer.
         diff: Signal<Local, Bits<13>>, neg: Signal<Local, Bit>, big: Signal<Local, Bit>,
         f_zero: DFF<Bit>, f_neg: DFF<Bit>, f_big: DFF<Bit>, f_yat: DFF<Bit>, f_glast: DFF<Bit>,
@@ -164,48 +988,26 @@ crate::hw_block! {
         ty1: Signal<Local, Bits<12>>, t4: Signal<Local, Bits<13>>,
         n_zero: Signal<Local, Bit>, n_neg: Signal<Local, Bit>, n_big: Signal<Local, Bit>,
         a_zero: Signal<Local, Bit>, a_neg: Signal<Local, Bit>, a_big: Signal<Local, Bit>,
-        /// 3·2A, registered with 2A (the −2 x-step's term).
-        ta3: [DFF<Bits<64>>; 3],
-        /// The x-step of I as one add: its terms are selected by the registered flags
-        /// (direction, size) before one carry-save level and one carry chain, and the word
-        /// multiplexer after the chain chooses only among the x-step, the y-step and the load
-        /// (−x = !x + 1, the +1 entering as the carry word's free bit 0). Dx and Dy, two-operand,
-        /// form their four outcomes (±1, ±2 pixels) from registers; the flags select after the
-        /// chains (`xdx`, `xdy`).
-        xt1: [Signal<Local, Bits<64>>; 3], xt2: [Signal<Local, Bits<64>>; 3],
-        xi_s: [Signal<Local, Bits<64>>; 3], xi_k: [Signal<Local, Bits<64>>; 3], xi: [Signal<Local, Bits<64>>; 3],
-        dx_p1: [Signal<Local, Bits<64>>; 3], dx_p2: [Signal<Local, Bits<64>>; 3],
-        dx_m1: [Signal<Local, Bits<64>>; 3], dx_m2: [Signal<Local, Bits<64>>; 3],
-        dy_p1: [Signal<Local, Bits<64>>; 3], dy_p2: [Signal<Local, Bits<64>>; 3],
-        dy_m1: [Signal<Local, Bits<64>>; 3], dy_m2: [Signal<Local, Bits<64>>; 3],
-        xdx: [Signal<Local, Bits<64>>; 3], xdy: [Signal<Local, Bits<64>>; 3],
-        /// The hand-over's first difference along the line: I + Dx (rightward), I − Dx + 2A
-        /// (leftward, carry-save as above).
-        i_p1: [Signal<Local, Bits<64>>; 3], i_m1: [Signal<Local, Bits<64>>; 3],
-        cs_m1: [Signal<Local, Bits<64>>; 3], ck_m1: [Signal<Local, Bits<64>>; 3], n_dx: [Signal<Local, Bits<64>>; 3],
         step: Signal<Local, Bits<12>>,
         /// `handover`: the hand-over happens this clock (`f_hand` and no `hold`).
         handover: Signal<Local, Bit>, can_take: Signal<Local, Bit>, gstep: Signal<Local, Bit>,
         accept: Signal<Local, Bit>, y_move: Signal<Local, Bit>, x_move: Signal<Local, Bit>,
-        // Generator: the line being emitted.
+        // Generator: the line being emitted (its words are in the halves).
         gbusy: DFF<Bit>, t_q: DFF<Bits<13>>, gm: DFF<Bits<13>>, gx0: DFF<Bits<12>>,
         gy: DFF<Bits<12>>, gdir: DFF<Bit>, gdz: DFF<Bits<32>>,
-        p: [DFF<Bits<64>>; 3], q: [DFF<Bits<64>>; 3], ga2: [DFF<Bits<64>>; 3],
-        /// The pair's difference e = q − p and 3·2A: the pair's step as three-operand adds,
-        /// each one carry-save level and one carry chain (p' = q + e + 2A,
-        /// q' = q + 2e + 3·2A, e' = e + 2·2A).
-        ge: [DFF<Bits<64>>; 3], ga3: [DFF<Bits<64>>; 3],
-        gp_s: [Signal<Local, Bits<64>>; 3], gp_k: [Signal<Local, Bits<64>>; 3],
-        gq_s: [Signal<Local, Bits<64>>; 3], gq_k: [Signal<Local, Bits<64>>; 3], ge2: [Signal<Local, Bits<64>>; 3],
         za: DFF<Bits<32>>, zb: DFF<Bits<32>>,
         t2: Signal<Local, Bits<13>>, t1: Signal<Local, Bits<13>>,
         glast: Signal<Local, Bit>, vb: Signal<Local, Bit>,
         xa: Signal<Local, Bits<12>>, xb: Signal<Local, Bits<12>>,
-        sat_a: [RoundSat8Q30; 3], sat_b: [RoundSat8Q30; 3],
-        // Output register.
-        o_va: DFF<Bit>, o_xa: DFF<Bits<12>>, o_za: DFF<Bits<32>>, o_ca: [DFF<Bits<8>>; 3],
-        o_vb: DFF<Bit>, o_xb: DFF<Bits<12>>, o_zb: DFF<Bits<32>>, o_cb: [DFF<Bits<8>>; 3],
+        sat_a: [RoundSat8Split; 3], sat_b: [RoundSat8Split; 3],
+        // Output registers: the generator's clock registered (`o_*`), then once more beside
+        // the colours, which are rounded a clock later from the high halves (`s_*`, `o_c*`).
+        o_va: DFF<Bit>, o_xa: DFF<Bits<12>>, o_za: DFF<Bits<32>>,
+        o_vb: DFF<Bit>, o_xb: DFF<Bits<12>>, o_zb: DFF<Bits<32>>,
         o_y: DFF<Bits<12>>, o_l: DFF<Bit>,
+        s_va: DFF<Bit>, s_xa: DFF<Bits<12>>, s_za: DFF<Bits<32>>, o_ca: [DFF<Bits<8>>; 3],
+        s_vb: DFF<Bit>, s_xb: DFF<Bits<12>>, s_zb: DFF<Bits<32>>, o_cb: [DFF<Bits<8>>; 3],
+        s_y: DFF<Bits<12>>, s_l: DFF<Bit>,
     }
 }
 
@@ -216,54 +1018,22 @@ impl Logic for QuadricUnit {
             self, clock, tbusy, tx, ty, ly, lx0, ldir, lm, lz0, ldz, gbusy, t_q, gm, gx0, gy, gdir,
             gdz, za, zb, f_zero, f_neg, f_big, f_yat, f_glast, f_hand, tdist
         );
-        clock!(self, clock, o_va, o_xa, o_za, o_vb, o_xb, o_zb, o_y, o_l);
+        clock!(
+            self, clock, o_va, o_xa, o_za, o_vb, o_xb, o_zb, o_y, o_l, s_va, s_xa, s_za, s_vb,
+            s_xb, s_zb, s_y, s_l, d_ystep, d_xstep, d_neg, d_big, d_ld, d_hand, d_hdir, d_gadv
+        );
+        self.half_lo.clock.next = self.clock.val();
+        self.half_hi.clock.next = self.clock.val();
+        for k in 0..18 {
+            self.whi[k].clock.next = self.clock.val();
+        }
         for c in 0..3 {
-            self.ti[c].clock.next = self.clock.val();
-            self.tdx[c].clock.next = self.clock.val();
-            self.tdy[c].clock.next = self.clock.val();
-            self.ta2[c].clock.next = self.clock.val();
-            self.tb2[c].clock.next = self.clock.val();
-            self.tc[c].clock.next = self.clock.val();
-            self.ta3[c].clock.next = self.clock.val();
-            self.ta3[c].d.next = self.ta3[c].q.val();
-            self.ti[c].d.next = self.ti[c].q.val();
-            self.tdx[c].d.next = self.tdx[c].q.val();
-            self.tdy[c].d.next = self.tdy[c].q.val();
-            self.ta2[c].d.next = self.ta2[c].q.val();
-            self.tb2[c].d.next = self.tb2[c].q.val();
-            self.tc[c].d.next = self.tc[c].q.val();
-            self.p[c].clock.next = self.clock.val();
-            self.q[c].clock.next = self.clock.val();
-            self.ga2[c].clock.next = self.clock.val();
-            self.p[c].d.next = self.p[c].q.val();
-            self.q[c].d.next = self.q[c].q.val();
-            self.ga2[c].d.next = self.ga2[c].q.val();
-            self.ge[c].clock.next = self.clock.val();
-            self.ga3[c].clock.next = self.clock.val();
-            self.ge[c].d.next = self.ge[c].q.val();
-            self.ga3[c].d.next = self.ga3[c].q.val();
+            self.carry[c].clock.next = self.clock.val();
+            self.plo[c].clock.next = self.clock.val();
+            self.qlo[c].clock.next = self.clock.val();
             self.o_ca[c].clock.next = self.clock.val();
             self.o_cb[c].clock.next = self.clock.val();
         }
-        // The load's words per channel.
-        self.w_i[0].next = self.ri.val();
-        self.w_dx[0].next = self.rdx.val();
-        self.w_dy[0].next = self.rdy.val();
-        self.w_a2[0].next = self.ra.val();
-        self.w_b2[0].next = self.rb.val();
-        self.w_c[0].next = self.rc.val();
-        self.w_i[1].next = self.gi.val();
-        self.w_dx[1].next = self.gdx.val();
-        self.w_dy[1].next = self.gdy.val();
-        self.w_a2[1].next = self.ga.val();
-        self.w_b2[1].next = self.gb.val();
-        self.w_c[1].next = self.gc.val();
-        self.w_i[2].next = self.bi.val();
-        self.w_dx[2].next = self.bdx.val();
-        self.w_dy[2].next = self.bdy.val();
-        self.w_a2[2].next = self.ba.val();
-        self.w_b2[2].next = self.bb.val();
-        self.w_c[2].next = self.bc.val();
 
         // Generator status.
         self.t1.next = self.t_q.q.val() + 1;
@@ -272,9 +1042,9 @@ impl Logic for QuadricUnit {
         self.vb.next = self.gbusy.q.val() & (self.t_q.q.val() < self.gm.q.val());
 
         // Tracker status and moves.
-        // `hold` stops the generator (no step, no hand-over) and empties the outputs of the
-        // next clock; the tracker's moves do not depend on it (it has none left once `f_hand`
-        // is set), so they use `f_hand` itself.
+        // `hold` stops the generator (no step, no hand-over) and empties the outputs two
+        // clocks later; the tracker's moves do not depend on it (it has none left once
+        // `f_hand` is set), so they use `f_hand` itself.
         self.handover.next = self.f_hand.q.val() & !self.hold.val();
         self.gstep.next = self.gbusy.q.val() & !self.hold.val();
         self.can_take.next = !self.tbusy.q.val() | self.handover.val();
@@ -288,92 +1058,129 @@ impl Logic for QuadricUnit {
         if self.big.val() {
             self.step.next = 2.into();
         }
-        for c in 0..3 {
-            // The hand-over's pair: I + Dx, I − Dx + 2A.
-            self.i_p1[c].next = self.ti[c].q.val() + self.tdx[c].q.val();
-            self.n_dx[c].next = !self.tdx[c].q.val();
-            self.cs_m1[c].next = self.ti[c].q.val() ^ self.n_dx[c].val() ^ self.ta2[c].q.val();
-            self.ck_m1[c].next = (((self.ti[c].q.val() & self.n_dx[c].val())
-                | (self.ti[c].q.val() & self.ta2[c].q.val())
-                | (self.n_dx[c].val() & self.ta2[c].q.val()))
-                << 1)
-                | 1;
-            self.i_m1[c].next = self.cs_m1[c].val() + self.ck_m1[c].val();
-            // The x-step's terms: I + (Dx | 2·Dx + 2A | −Dx + 2A | −2·Dx + 3·2A),
-            // Dx ± 2A·step, Dy ± C·step.
-            if self.neg.val() {
-                if self.big.val() {
-                    self.xt1[c].next = !(self.tdx[c].q.val() << 1);
-                    self.xt2[c].next = self.ta3[c].q.val();
-                } else {
-                    self.xt1[c].next = !self.tdx[c].q.val();
-                    self.xt2[c].next = self.ta2[c].q.val();
-                }
-            } else if self.big.val() {
-                self.xt1[c].next = self.tdx[c].q.val() << 1;
-                self.xt2[c].next = self.ta2[c].q.val();
-            } else {
-                self.xt1[c].next = self.tdx[c].q.val();
-                self.xt2[c].next = 0.into();
-            }
-            self.xi_s[c].next = self.ti[c].q.val() ^ self.xt1[c].val() ^ self.xt2[c].val();
-            self.xi_k[c].next = ((self.ti[c].q.val() & self.xt1[c].val())
-                | (self.ti[c].q.val() & self.xt2[c].val())
-                | (self.xt1[c].val() & self.xt2[c].val()))
-                << 1;
-            if self.neg.val() {
-                self.xi_k[c].next = (((self.ti[c].q.val() & self.xt1[c].val())
-                    | (self.ti[c].q.val() & self.xt2[c].val())
-                    | (self.xt1[c].val() & self.xt2[c].val()))
-                    << 1)
-                    | 1;
-            }
-            self.xi[c].next = self.xi_s[c].val() + self.xi_k[c].val();
-            // Dx ± 2A·step, Dy ± C·step: two-operand adds from registers, the flags selecting
-            // after the carry chains.
-            self.dx_p1[c].next = self.tdx[c].q.val() + self.ta2[c].q.val();
-            self.dx_p2[c].next = self.tdx[c].q.val() + (self.ta2[c].q.val() << 1);
-            self.dx_m1[c].next = self.tdx[c].q.val() - self.ta2[c].q.val();
-            self.dx_m2[c].next = self.tdx[c].q.val() - (self.ta2[c].q.val() << 1);
-            self.dy_p1[c].next = self.tdy[c].q.val() + self.tc[c].q.val();
-            self.dy_p2[c].next = self.tdy[c].q.val() + (self.tc[c].q.val() << 1);
-            self.dy_m1[c].next = self.tdy[c].q.val() - self.tc[c].q.val();
-            self.dy_m2[c].next = self.tdy[c].q.val() - (self.tc[c].q.val() << 1);
-            if self.neg.val() {
-                if self.big.val() {
-                    self.xdx[c].next = self.dx_m2[c].val();
-                    self.xdy[c].next = self.dy_m2[c].val();
-                } else {
-                    self.xdx[c].next = self.dx_m1[c].val();
-                    self.xdy[c].next = self.dy_m1[c].val();
-                }
-            } else if self.big.val() {
-                self.xdx[c].next = self.dx_p2[c].val();
-                self.xdy[c].next = self.dy_p2[c].val();
-            } else {
-                self.xdx[c].next = self.dx_p1[c].val();
-                self.xdy[c].next = self.dy_p1[c].val();
-            }
+        self.ystep.next = self.y_move.val()
+            | (self.accept.val() & !self.first.val() & (self.ty.q.val() != self.y.val()));
+        self.ld.next = self.accept.val() & self.first.val();
+        self.gadv.next = self.gstep.val() & !self.glast.val();
+
+        // The words: low halves now, high halves a clock later.
+        self.cin_lo.next = self.cin_k.val();
+        if self.neg.val() {
+            self.cin_lo.next = self.cin_kn.val();
         }
-        if self.y_move.val()
-            | (self.accept.val() & !self.first.val() & (self.ty.q.val() != self.y.val()))
-        {
+        self.half_lo.ystep.next = self.ystep.val();
+        self.half_lo.xstep.next = self.x_move.val();
+        self.half_lo.neg.next = self.neg.val();
+        self.half_lo.big.next = self.big.val();
+        self.half_lo.ld.next = self.ld.val();
+        self.half_lo.hand.next = self.handover.val();
+        self.half_lo.hdir.next = self.ldir.q.val();
+        self.half_lo.gadv.next = self.gadv.val();
+        self.d_ystep.d.next = self.ystep.val();
+        self.d_xstep.d.next = self.x_move.val();
+        self.d_neg.d.next = self.neg.val();
+        self.d_big.d.next = self.big.val();
+        self.d_ld.d.next = self.ld.val();
+        self.d_hand.d.next = self.handover.val();
+        self.d_hdir.d.next = self.ldir.q.val();
+        self.d_gadv.d.next = self.gadv.val();
+        self.half_hi.ystep.next = self.d_ystep.q.val();
+        self.half_hi.xstep.next = self.d_xstep.q.val();
+        self.half_hi.neg.next = self.d_neg.q.val();
+        self.half_hi.big.next = self.d_big.q.val();
+        self.half_hi.ld.next = self.d_ld.q.val();
+        self.half_hi.hand.next = self.d_hand.q.val();
+        self.half_hi.hdir.next = self.d_hdir.q.val();
+        self.half_hi.gadv.next = self.d_gadv.q.val();
+        self.half_lo.ri.next = self.ri.val().get_bits::<32>(0);
+        self.half_lo.rdx.next = self.rdx.val().get_bits::<32>(0);
+        self.half_lo.rdy.next = self.rdy.val().get_bits::<32>(0);
+        self.half_lo.ra.next = self.ra.val().get_bits::<32>(0);
+        self.half_lo.rb.next = self.rb.val().get_bits::<32>(0);
+        self.half_lo.rc.next = self.rc.val().get_bits::<32>(0);
+        self.half_lo.gi.next = self.gi.val().get_bits::<32>(0);
+        self.half_lo.gdx.next = self.gdx.val().get_bits::<32>(0);
+        self.half_lo.gdy.next = self.gdy.val().get_bits::<32>(0);
+        self.half_lo.ga.next = self.ga.val().get_bits::<32>(0);
+        self.half_lo.gb.next = self.gb.val().get_bits::<32>(0);
+        self.half_lo.gc.next = self.gc.val().get_bits::<32>(0);
+        self.half_lo.bi.next = self.bi.val().get_bits::<32>(0);
+        self.half_lo.bdx.next = self.bdx.val().get_bits::<32>(0);
+        self.half_lo.bdy.next = self.bdy.val().get_bits::<32>(0);
+        self.half_lo.ba.next = self.ba.val().get_bits::<32>(0);
+        self.half_lo.bb.next = self.bb.val().get_bits::<32>(0);
+        self.half_lo.bc.next = self.bc.val().get_bits::<32>(0);
+        self.whi[0].d.next = self.ri.val().get_bits::<32>(32);
+        self.whi[1].d.next = self.rdx.val().get_bits::<32>(32);
+        self.whi[2].d.next = self.rdy.val().get_bits::<32>(32);
+        self.whi[3].d.next = self.ra.val().get_bits::<32>(32);
+        self.whi[4].d.next = self.rb.val().get_bits::<32>(32);
+        self.whi[5].d.next = self.rc.val().get_bits::<32>(32);
+        self.whi[6].d.next = self.gi.val().get_bits::<32>(32);
+        self.whi[7].d.next = self.gdx.val().get_bits::<32>(32);
+        self.whi[8].d.next = self.gdy.val().get_bits::<32>(32);
+        self.whi[9].d.next = self.ga.val().get_bits::<32>(32);
+        self.whi[10].d.next = self.gb.val().get_bits::<32>(32);
+        self.whi[11].d.next = self.gc.val().get_bits::<32>(32);
+        self.whi[12].d.next = self.bi.val().get_bits::<32>(32);
+        self.whi[13].d.next = self.bdx.val().get_bits::<32>(32);
+        self.whi[14].d.next = self.bdy.val().get_bits::<32>(32);
+        self.whi[15].d.next = self.ba.val().get_bits::<32>(32);
+        self.whi[16].d.next = self.bb.val().get_bits::<32>(32);
+        self.whi[17].d.next = self.bc.val().get_bits::<32>(32);
+        self.half_hi.ri.next = self.whi[0].q.val();
+        self.half_hi.rdx.next = self.whi[1].q.val();
+        self.half_hi.rdy.next = self.whi[2].q.val();
+        self.half_hi.ra.next = self.whi[3].q.val();
+        self.half_hi.rb.next = self.whi[4].q.val();
+        self.half_hi.rc.next = self.whi[5].q.val();
+        self.half_hi.gi.next = self.whi[6].q.val();
+        self.half_hi.gdx.next = self.whi[7].q.val();
+        self.half_hi.gdy.next = self.whi[8].q.val();
+        self.half_hi.ga.next = self.whi[9].q.val();
+        self.half_hi.gb.next = self.whi[10].q.val();
+        self.half_hi.gc.next = self.whi[11].q.val();
+        self.half_hi.bi.next = self.whi[12].q.val();
+        self.half_hi.bdx.next = self.whi[13].q.val();
+        self.half_hi.bdy.next = self.whi[14].q.val();
+        self.half_hi.ba.next = self.whi[15].q.val();
+        self.half_hi.bb.next = self.whi[16].q.val();
+        self.half_hi.bc.next = self.whi[17].q.val();
+        self.half_lo.cin_r.next = self.cin_lo.val();
+        self.carry[0].d.next = self.half_lo.cout_r.val();
+        self.half_hi.cin_r.next = self.carry[0].q.val();
+        self.plo[0].d.next = self.half_lo.p_r.val().get_bits::<4>(28);
+        self.qlo[0].d.next = self.half_lo.q_r.val().get_bits::<4>(28);
+        self.sat_a[0].hi.next = self.half_hi.p_r.val();
+        self.sat_a[0].lo4.next = self.plo[0].q.val();
+        self.sat_b[0].hi.next = self.half_hi.q_r.val();
+        self.sat_b[0].lo4.next = self.qlo[0].q.val();
+        self.half_lo.cin_g.next = self.cin_lo.val();
+        self.carry[1].d.next = self.half_lo.cout_g.val();
+        self.half_hi.cin_g.next = self.carry[1].q.val();
+        self.plo[1].d.next = self.half_lo.p_g.val().get_bits::<4>(28);
+        self.qlo[1].d.next = self.half_lo.q_g.val().get_bits::<4>(28);
+        self.sat_a[1].hi.next = self.half_hi.p_g.val();
+        self.sat_a[1].lo4.next = self.plo[1].q.val();
+        self.sat_b[1].hi.next = self.half_hi.q_g.val();
+        self.sat_b[1].lo4.next = self.qlo[1].q.val();
+        self.half_lo.cin_b.next = self.cin_lo.val();
+        self.carry[2].d.next = self.half_lo.cout_b.val();
+        self.half_hi.cin_b.next = self.carry[2].q.val();
+        self.plo[2].d.next = self.half_lo.p_b.val().get_bits::<4>(28);
+        self.qlo[2].d.next = self.half_lo.q_b.val().get_bits::<4>(28);
+        self.sat_a[2].hi.next = self.half_hi.p_b.val();
+        self.sat_a[2].lo4.next = self.plo[2].q.val();
+        self.sat_b[2].hi.next = self.half_hi.q_b.val();
+        self.sat_b[2].lo4.next = self.qlo[2].q.val();
+
+        if self.ystep.val() {
             self.ty.d.next = self.ty.q.val() + 1;
-            for c in 0..3 {
-                self.ti[c].d.next = self.ti[c].q.val() + self.tdy[c].q.val();
-                self.tdy[c].d.next = self.tdy[c].q.val() + self.tb2[c].q.val();
-                self.tdx[c].d.next = self.tdx[c].q.val() + self.tc[c].q.val();
-            }
         }
         if self.x_move.val() {
             self.tx.d.next = self.tx.q.val() + self.step.val();
             if self.neg.val() {
                 self.tx.d.next = self.tx.q.val() - self.step.val();
-            }
-            for c in 0..3 {
-                self.ti[c].d.next = self.xi[c].val();
-                self.tdx[c].d.next = self.xdx[c].val();
-                self.tdy[c].d.next = self.xdy[c].val();
             }
         }
         if self.handover.val() {
@@ -390,19 +1197,10 @@ impl Logic for QuadricUnit {
             if self.first.val() {
                 self.tx.d.next = self.x0.val();
                 self.ty.d.next = self.y.val();
-                for c in 0..3 {
-                    self.ti[c].d.next = self.w_i[c].val();
-                    self.tdx[c].d.next = self.w_dx[c].val();
-                    self.tdy[c].d.next = self.w_dy[c].val();
-                    self.ta2[c].d.next = self.w_a2[c].val();
-                    self.ta3[c].d.next = (self.w_a2[c].val() << 1) + self.w_a2[c].val();
-                    self.tb2[c].d.next = self.w_b2[c].val();
-                    self.tc[c].d.next = self.w_c[c].val();
-                }
             }
         }
 
-        // Output register: both lanes, from the generator's state.
+        // Output registers: both lanes, from the generator's state; the colours a clock later.
         self.xa.next = self.gx0.q.val() + self.t_q.q.val().get_bits::<12>(0);
         self.xb.next = self.gx0.q.val() + self.t1.val().get_bits::<12>(0);
         if self.gdir.q.val() {
@@ -410,8 +1208,6 @@ impl Logic for QuadricUnit {
             self.xb.next = self.gx0.q.val() - self.t1.val().get_bits::<12>(0);
         }
         for c in 0..3 {
-            self.sat_a[c].v.next = self.p[c].q.val();
-            self.sat_b[c].v.next = self.q[c].q.val();
             self.o_ca[c].d.next = self.sat_a[c].q.val();
             self.o_cb[c].d.next = self.sat_b[c].q.val();
         }
@@ -423,32 +1219,20 @@ impl Logic for QuadricUnit {
         self.o_zb.d.next = self.zb.q.val();
         self.o_y.d.next = self.gy.q.val();
         self.o_l.d.next = self.gstep.val() & self.glast.val();
+        self.s_va.d.next = self.o_va.q.val();
+        self.s_xa.d.next = self.o_xa.q.val();
+        self.s_za.d.next = self.o_za.q.val();
+        self.s_vb.d.next = self.o_vb.q.val();
+        self.s_xb.d.next = self.o_xb.q.val();
+        self.s_zb.d.next = self.o_zb.q.val();
+        self.s_y.d.next = self.o_y.q.val();
+        self.s_l.d.next = self.o_l.q.val();
 
-        // Generator: the pair's step, p' = q + e + 2A, q' = q + 2e + 3·2A (carry-save, then
-        // one carry chain each), computed every clock and taken while the line runs.
-        for c in 0..3 {
-            self.ge2[c].next = self.ge[c].q.val() << 1;
-            self.gp_s[c].next = self.q[c].q.val() ^ self.ge[c].q.val() ^ self.ga2[c].q.val();
-            self.gp_k[c].next = ((self.q[c].q.val() & self.ge[c].q.val())
-                | (self.q[c].q.val() & self.ga2[c].q.val())
-                | (self.ge[c].q.val() & self.ga2[c].q.val()))
-                << 1;
-            self.gq_s[c].next = self.q[c].q.val() ^ self.ge2[c].val() ^ self.ga3[c].q.val();
-            self.gq_k[c].next = ((self.q[c].q.val() & self.ge2[c].val())
-                | (self.q[c].q.val() & self.ga3[c].q.val())
-                | (self.ge2[c].val() & self.ga3[c].q.val()))
-                << 1;
-        }
-        // Generator: step the pairs, or take the tracker's line.
+        // Generator: step along the line, or take the tracker's line.
         if self.gstep.val() {
             if self.glast.val() {
                 self.gbusy.d.next = false;
             } else {
-                for c in 0..3 {
-                    self.p[c].d.next = self.gp_s[c].val() + self.gp_k[c].val();
-                    self.q[c].d.next = self.gq_s[c].val() + self.gq_k[c].val();
-                    self.ge[c].d.next = self.ge[c].q.val() + (self.ga2[c].q.val() << 1);
-                }
                 self.t_q.d.next = self.t2.val();
                 self.za.d.next = self.za.q.val() + (self.gdz.q.val() << 1);
                 self.zb.d.next = self.zb.q.val() + (self.gdz.q.val() << 1);
@@ -464,35 +1248,23 @@ impl Logic for QuadricUnit {
             self.gdz.d.next = self.ldz.q.val();
             self.za.d.next = self.lz0.q.val();
             self.zb.d.next = self.lz0.q.val() + self.ldz.q.val();
-            for c in 0..3 {
-                self.p[c].d.next = self.ti[c].q.val();
-                self.ga2[c].d.next = self.ta2[c].q.val();
-                self.ga3[c].d.next = self.ta3[c].q.val();
-                if self.ldir.q.val() {
-                    self.q[c].d.next = self.i_m1[c].val();
-                    self.ge[c].d.next = self.ta2[c].q.val() - self.tdx[c].q.val();
-                } else {
-                    self.q[c].d.next = self.i_p1[c].val();
-                    self.ge[c].d.next = self.tdx[c].q.val();
-                }
-            }
         }
 
         self.ready.next = self.can_take.val();
-        self.valid_a.next = self.o_va.q.val();
-        self.x_a.next = self.o_xa.q.val();
-        self.z_a.next = self.o_za.q.val();
+        self.valid_a.next = self.s_va.q.val();
+        self.x_a.next = self.s_xa.q.val();
+        self.z_a.next = self.s_za.q.val();
         self.red_a.next = self.o_ca[0].q.val();
         self.green_a.next = self.o_ca[1].q.val();
         self.blue_a.next = self.o_ca[2].q.val();
-        self.valid_b.next = self.o_vb.q.val();
-        self.x_b.next = self.o_xb.q.val();
-        self.z_b.next = self.o_zb.q.val();
+        self.valid_b.next = self.s_vb.q.val();
+        self.x_b.next = self.s_xb.q.val();
+        self.z_b.next = self.s_zb.q.val();
         self.red_b.next = self.o_cb[0].q.val();
         self.green_b.next = self.o_cb[1].q.val();
         self.blue_b.next = self.o_cb[2].q.val();
-        self.y_out.next = self.o_y.q.val();
-        self.last.next = self.o_l.q.val();
+        self.y_out.next = self.s_y.q.val();
+        self.last.next = self.s_l.q.val();
         // The decision flags of the next clock, each from the case that sets the registers it
         // tests (a load, an x-step, a y-step, the generator's step or hand-over), formed in
         // parallel from registers and inputs; the control only selects. Last in `update`: the

@@ -10,7 +10,8 @@
 //! `ready` is high. Expectations: `ready`, valid flags, `x`, `y`, `last` exact from the timing
 //! model `pipeline::span::quadric_timing` (written apart from the twin: a line is taken at its
 //! predecessor's hand-over, the tracker moves 1 + ⌈|Δx0|/2⌉ clocks, the generator shows pixels
-//! 2j and 2j + 1 two clocks after hand-over + j); colours within
+//! 2j and 2j + 1 three clocks after hand-over + j: the colours are rounded a clock after the
+//! generator's clock, from the words' high halves); colours within
 //! 2 LSB of the golden method, RMS 0.5; `z` within 4096·2⁻¹⁷ + 2⁻¹⁶ of the f64 depth plane.
 
 use glam::DVec3;
@@ -113,10 +114,11 @@ fn stimulus(tris: &[ScreenTriangle]) -> Stimulus {
     let g = GoldenSpans::new(kind, tris);
     let (spans, regs) = (&g.spans, &g.regs);
     // Schedule: `quadric_timing` gives each line's load and hand-over clocks; clock j of its
-    // generator (hand-over + 1 + j) shows pixels 2j and 2j + 1 one clock later.
+    // generator (hand-over + 1 + j) shows pixels 2j and 2j + 1 two clocks later (the output
+    // register, and the colours' rounding from the high halves a clock behind).
     let timing = quadric_timing(spans);
     let last_hand = timing.last().map_or(0, |&(_, h)| h) as usize;
-    let end = last_hand + spans.last().map_or(0, |s| s.clocks()) as usize + 3;
+    let end = last_hand + spans.last().map_or(0, |s| s.clocks()) as usize + 4;
     let mut rows = vec![span_row(kind, None, regs); end];
     let mut shown: Vec<Option<(usize, u64)>> = vec![None; end];
     let mut ready = vec![false; end];
@@ -125,7 +127,7 @@ fn stimulus(tris: &[ScreenTriangle]) -> Stimulus {
         rows[take as usize] = span_row(kind, Some(&spans[i]), regs);
         ready[hand as usize] = true;
         for j in 0..spans[i].clocks() {
-            shown[(hand + 2 + j) as usize] = Some((i, j));
+            shown[(hand + 3 + j) as usize] = Some((i, j));
         }
     }
     for r in ready.iter_mut().skip(last_hand + 1) {
