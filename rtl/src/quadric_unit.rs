@@ -91,14 +91,19 @@
 //! delayed a register, the load's high words registered, and the low half's 29 crossing bits
 //! per channel (`cross`: each add's carry out of bit 31, each carry-save carry word's and
 //! each one-place shift's bit 31) registered. So each high half holds the word's high half of
-//! the clock before, and no carry chain is longer than 34 bits. A word is resolved only
-//! where it leaves the unit: the colours are rounded from the high half and the low half's
-//! bits 28..31 of the clock before — one clock more latency (3 → 4), the same values and
-//! the same `ready`, hand-over and pixel order in every clock (the twin's outputs are
-//! delayed one clock, nothing else changed). ECP5 (LFE5U-25F): 97.5 → **113.6 MHz** (placer
-//! seeds 2, 3: 106.6, 113.1), 11 080 → 9 966 LUT4, 2 652 → 3 444 FF; path 8.80 ns,
-//! f_neg → the low half's carry in → I's carry-save sum → I (the flag's fan-out again, now
-//! before a 34-bit chain). `quadric-stream`: 88.7 → 110.8 MHz (seed 2: 107.2).
+//! the clock before, and no carry chain is longer than 32 bits (each add a + b + carry in,
+//! one chain; its carry out is bit 31 of a·b + (a ⊕ b)·¬sum). A word is resolved only where
+//! it leaves the unit: the colours are rounded from the high half and the low half's bits
+//! 28..31 (plus the rounding constant, registered) of the clock before — one clock more
+//! latency (3 → 4), the same values and the same `ready`, hand-over and pixel order in every
+//! clock (the twin's outputs are delayed one clock, nothing else changed). ECP5 (LFE5U-25F):
+//! 97.5 → **109.1 MHz** (placer seeds 2, 3: 111.2, 109.2), 11 080 → 9 837 LUT4, 2 652 → 3 444
+//! FF; path 9.17 ns, ta2 → 2·2A → its complement → Dx − 2·2A's chain → Dx (the low half's
+//! −2 x-step of Dx). `quadric-stream`: 88.7 → 104.6 MHz (seeds 2, 3: 108.5, 108.1).
+//! A first build formed each add 34 bits wide, (a·2 + 1) + (b·2 + carry in), which placed at
+//! 113.6 MHz but simulated 4.4 times slower than the 64-bit unit had (rust-hdl keeps vectors
+//! wider than 32 bits as big integers); with 32-bit adds and the carry in as a third, 1-bit
+//! operand (Yosys maps it to the chain's carry in) the simulation is as fast as before.
 //!
 //! # Overflow
 //! Every update is an exact integer add modulo 2⁶⁴, made of two 32-bit adds with the carry
@@ -187,31 +192,46 @@ pub mod cross {
 }
 
 crate::hw_block! {
-    /// Bits 28..63 of a Q34.30 word → 8 bits: +2²⁹, drop 30, saturate to 0..=255.
-    /// Combinational. `hi` is the word's bits 32..63, `lo4` its bits 28..31 (the rounding
-    /// constant is read at bit 28, a quarter of the output LSB, so that a quarter-LSB error
-    /// in it is a change of the constant).
+    /// The rounding's low part: bits 28..31 of a Q34.30 word (`lo4`) + `half` (2: the
+    /// rounding constant +2²⁹ in units of bit 28, a quarter of the output LSB, so that a
+    /// quarter-LSB error in it is a change of the constant), 5 bits. Combinational; registered
+    /// after it, so its carry (bit 4) enters the high half's add from a register.
+    pub struct RoundLo {
+        in { lo4: Bits<4> }
+        out { lsum: Bits<5> }
+        half: Constant<Bits<5>> = Constant::new(2u64.into()),
+    }
+}
+
+impl Logic for RoundLo {
+    #[hdl_gen]
+    fn update(&mut self) {
+        self.lsum.next = bit_cast::<5, 4>(self.lo4.val()) + self.half.val();
+    }
+}
+
+crate::hw_block! {
+    /// The rounding's high part: a Q34.30 word's bits 32..63 (`hi`) plus the carry of
+    /// [`RoundLo`]'s sum (`lsum`, registered), dropping 30 bits and saturating to 0..=255.
+    /// Combinational.
     pub struct RoundSat8Split {
-        in { hi: Bits<32>, lo4: Bits<4> }
+        in { hi: Bits<32>, lsum: Bits<5> }
         out { q: Bits<8> }
-        half: Constant<Bits<36>> = Constant::new(2u64.into()),
-        word: Signal<Local, Bits<36>>,
-        rnd: Signal<Local, Bits<36>>,
+        hsum: Signal<Local, Bits<32>>,
     }
 }
 
 impl Logic for RoundSat8Split {
     #[hdl_gen]
     fn update(&mut self) {
-        self.word.next =
-            (bit_cast::<36, 32>(self.hi.val()) << 4) | bit_cast::<36, 4>(self.lo4.val());
-        self.rnd.next = self.word.val() + self.half.val();
-        if self.rnd.val().get_bit(35) {
+        self.hsum.next = self.hi.val() + bit_cast::<32, 1>(self.lsum.val().get_bits::<1>(4));
+        if self.hsum.val().get_bit(31) {
             self.q.next = 0.into();
-        } else if self.rnd.val().get_bits::<25>(10).any() {
+        } else if self.hsum.val().get_bits::<25>(6).any() {
             self.q.next = 255.into();
         } else {
-            self.q.next = self.rnd.val().get_bits::<8>(2);
+            self.q.next = (bit_cast::<8, 6>(self.hsum.val().get_bits::<6>(0)) << 2)
+                | bit_cast::<8, 2>(self.lsum.val().get_bits::<2>(2));
         }
     }
 }
@@ -255,18 +275,28 @@ crate::hw_block! {
         m_gq: [Signal<Local, Bits<32>>; 3], x_gq: [Signal<Local, Bits<32>>; 3],
         k_gq: [Signal<Local, Bits<32>>; 3], s_ga2: [Signal<Local, Bits<32>>; 3],
         cin: [Signal<Local, Bits<29>>; 3], cout: [Signal<Local, Bits<29>>; 3],
-        /// Each add as 34 bits: (a·2 + 1) + (b·2 + carry in) → bits 1..32 the sum, bit 33 the
-        /// carry out (bit 0 unused).
-        cs_ip1: [Signal<Local, Bits<34>>; 3], cs_im1: [Signal<Local, Bits<34>>; 3],
-        cs_xi: [Signal<Local, Bits<34>>; 3], cs_dxp1: [Signal<Local, Bits<34>>; 3],
-        cs_dxp2: [Signal<Local, Bits<34>>; 3], cs_dxm1: [Signal<Local, Bits<34>>; 3],
-        cs_dxm2: [Signal<Local, Bits<34>>; 3], cs_dyp1: [Signal<Local, Bits<34>>; 3],
-        cs_dyp2: [Signal<Local, Bits<34>>; 3], cs_dym1: [Signal<Local, Bits<34>>; 3],
-        cs_dym2: [Signal<Local, Bits<34>>; 3], cs_yi: [Signal<Local, Bits<34>>; 3],
-        cs_ydy: [Signal<Local, Bits<34>>; 3], cs_ydx: [Signal<Local, Bits<34>>; 3],
-        cs_ta3: [Signal<Local, Bits<34>>; 3], cs_gp: [Signal<Local, Bits<34>>; 3],
-        cs_gq: [Signal<Local, Bits<34>>; 3], cs_ge: [Signal<Local, Bits<34>>; 3],
-        cs_hge: [Signal<Local, Bits<34>>; 3],
+        /// Each add, a + b + carry in (`cs_*`, one carry chain with its carry in), and its
+        /// carries (`cy_*` = a·b + (a ⊕ b)·¬sum, bit by bit; only bit 31, the carry out, is read).
+        cs_ip1: [Signal<Local, Bits<32>>; 3], cs_im1: [Signal<Local, Bits<32>>; 3],
+        cs_xi: [Signal<Local, Bits<32>>; 3], cs_dxp1: [Signal<Local, Bits<32>>; 3],
+        cs_dxp2: [Signal<Local, Bits<32>>; 3], cs_dxm1: [Signal<Local, Bits<32>>; 3],
+        cs_dxm2: [Signal<Local, Bits<32>>; 3], cs_dyp1: [Signal<Local, Bits<32>>; 3],
+        cs_dyp2: [Signal<Local, Bits<32>>; 3], cs_dym1: [Signal<Local, Bits<32>>; 3],
+        cs_dym2: [Signal<Local, Bits<32>>; 3], cs_yi: [Signal<Local, Bits<32>>; 3],
+        cs_ydy: [Signal<Local, Bits<32>>; 3], cs_ydx: [Signal<Local, Bits<32>>; 3],
+        cs_ta3: [Signal<Local, Bits<32>>; 3], cs_gp: [Signal<Local, Bits<32>>; 3],
+        cs_gq: [Signal<Local, Bits<32>>; 3], cs_ge: [Signal<Local, Bits<32>>; 3],
+        cs_hge: [Signal<Local, Bits<32>>; 3],
+        cy_ip1: [Signal<Local, Bits<32>>; 3], cy_im1: [Signal<Local, Bits<32>>; 3],
+        cy_xi: [Signal<Local, Bits<32>>; 3], cy_dxp1: [Signal<Local, Bits<32>>; 3],
+        cy_dxp2: [Signal<Local, Bits<32>>; 3], cy_dxm1: [Signal<Local, Bits<32>>; 3],
+        cy_dxm2: [Signal<Local, Bits<32>>; 3], cy_dyp1: [Signal<Local, Bits<32>>; 3],
+        cy_dyp2: [Signal<Local, Bits<32>>; 3], cy_dym1: [Signal<Local, Bits<32>>; 3],
+        cy_dym2: [Signal<Local, Bits<32>>; 3], cy_yi: [Signal<Local, Bits<32>>; 3],
+        cy_ydy: [Signal<Local, Bits<32>>; 3], cy_ydx: [Signal<Local, Bits<32>>; 3],
+        cy_ta3: [Signal<Local, Bits<32>>; 3], cy_gp: [Signal<Local, Bits<32>>; 3],
+        cy_gq: [Signal<Local, Bits<32>>; 3], cy_ge: [Signal<Local, Bits<32>>; 3],
+        cy_hge: [Signal<Local, Bits<32>>; 3],
     }
 }
 
@@ -322,9 +352,11 @@ impl Logic for QuadricHalf {
         self.cin[2].next = self.cin_b.val();
         // Channel 0.
         // The hand-over's pair: I + Dx; I − Dx + 2A (carry-save, the +1 in bit 0's carry).
-        self.cs_ip1[0].next = ((bit_cast::<34, 32>(self.ti[0].q.val()) << 1) | 1)
-            + ((bit_cast::<34, 32>(self.tdx[0].q.val()) << 1)
-                | bit_cast::<34, 1>(self.cin[0].val().get_bits::<1>(0)));
+        self.cs_ip1[0].next = self.ti[0].q.val()
+            + self.tdx[0].q.val()
+            + bit_cast::<32, 1>(self.cin[0].val().get_bits::<1>(0));
+        self.cy_ip1[0].next = (self.ti[0].q.val() & self.tdx[0].q.val())
+            | ((self.ti[0].q.val() ^ self.tdx[0].q.val()) & !self.cs_ip1[0].val());
         self.n_dx[0].next = !self.tdx[0].q.val();
         self.x_im1[0].next = self.ti[0].q.val() ^ self.n_dx[0].val() ^ self.ta2[0].q.val();
         self.m_im1[0].next = (self.ti[0].q.val() & self.n_dx[0].val())
@@ -332,9 +364,11 @@ impl Logic for QuadricHalf {
             | (self.n_dx[0].val() & self.ta2[0].q.val());
         self.k_im1[0].next =
             (self.m_im1[0].val() << 1) | bit_cast::<32, 1>(self.cin[0].val().get_bits::<1>(1));
-        self.cs_im1[0].next = ((bit_cast::<34, 32>(self.x_im1[0].val()) << 1) | 1)
-            + ((bit_cast::<34, 32>(self.k_im1[0].val()) << 1)
-                | bit_cast::<34, 1>(self.cin[0].val().get_bits::<1>(2)));
+        self.cs_im1[0].next = self.x_im1[0].val()
+            + self.k_im1[0].val()
+            + bit_cast::<32, 1>(self.cin[0].val().get_bits::<1>(2));
+        self.cy_im1[0].next = (self.x_im1[0].val() & self.k_im1[0].val())
+            | ((self.x_im1[0].val() ^ self.k_im1[0].val()) & !self.cs_im1[0].val());
         // The x-step's terms: I + (Dx | 2·Dx + 2A | −Dx + 2A | −2·Dx + 3·2A).
         self.s_tdx[0].next =
             (self.tdx[0].q.val() << 1) | bit_cast::<32, 1>(self.cin[0].val().get_bits::<1>(3));
@@ -360,58 +394,84 @@ impl Logic for QuadricHalf {
             | (self.xt1[0].val() & self.xt2[0].val());
         self.k_xi[0].next =
             (self.m_xi[0].val() << 1) | bit_cast::<32, 1>(self.cin[0].val().get_bits::<1>(4));
-        self.cs_xi[0].next = ((bit_cast::<34, 32>(self.x_xi[0].val()) << 1) | 1)
-            + ((bit_cast::<34, 32>(self.k_xi[0].val()) << 1)
-                | bit_cast::<34, 1>(self.cin[0].val().get_bits::<1>(5)));
+        self.cs_xi[0].next = self.x_xi[0].val()
+            + self.k_xi[0].val()
+            + bit_cast::<32, 1>(self.cin[0].val().get_bits::<1>(5));
+        self.cy_xi[0].next = (self.x_xi[0].val() & self.k_xi[0].val())
+            | ((self.x_xi[0].val() ^ self.k_xi[0].val()) & !self.cs_xi[0].val());
         // Dx ± 2A·step, Dy ± C·step: two-operand adds, selected after the carry chains.
         self.s_ta2[0].next =
             (self.ta2[0].q.val() << 1) | bit_cast::<32, 1>(self.cin[0].val().get_bits::<1>(6));
         self.n_ta2[0].next = !self.ta2[0].q.val();
         self.n_sta2[0].next = !self.s_ta2[0].val();
-        self.cs_dxp1[0].next = ((bit_cast::<34, 32>(self.tdx[0].q.val()) << 1) | 1)
-            + ((bit_cast::<34, 32>(self.ta2[0].q.val()) << 1)
-                | bit_cast::<34, 1>(self.cin[0].val().get_bits::<1>(7)));
-        self.cs_dxp2[0].next = ((bit_cast::<34, 32>(self.tdx[0].q.val()) << 1) | 1)
-            + ((bit_cast::<34, 32>(self.s_ta2[0].val()) << 1)
-                | bit_cast::<34, 1>(self.cin[0].val().get_bits::<1>(8)));
-        self.cs_dxm1[0].next = ((bit_cast::<34, 32>(self.tdx[0].q.val()) << 1) | 1)
-            + ((bit_cast::<34, 32>(self.n_ta2[0].val()) << 1)
-                | bit_cast::<34, 1>(self.cin[0].val().get_bits::<1>(9)));
-        self.cs_dxm2[0].next = ((bit_cast::<34, 32>(self.tdx[0].q.val()) << 1) | 1)
-            + ((bit_cast::<34, 32>(self.n_sta2[0].val()) << 1)
-                | bit_cast::<34, 1>(self.cin[0].val().get_bits::<1>(10)));
+        self.cs_dxp1[0].next = self.tdx[0].q.val()
+            + self.ta2[0].q.val()
+            + bit_cast::<32, 1>(self.cin[0].val().get_bits::<1>(7));
+        self.cy_dxp1[0].next = (self.tdx[0].q.val() & self.ta2[0].q.val())
+            | ((self.tdx[0].q.val() ^ self.ta2[0].q.val()) & !self.cs_dxp1[0].val());
+        self.cs_dxp2[0].next = self.tdx[0].q.val()
+            + self.s_ta2[0].val()
+            + bit_cast::<32, 1>(self.cin[0].val().get_bits::<1>(8));
+        self.cy_dxp2[0].next = (self.tdx[0].q.val() & self.s_ta2[0].val())
+            | ((self.tdx[0].q.val() ^ self.s_ta2[0].val()) & !self.cs_dxp2[0].val());
+        self.cs_dxm1[0].next = self.tdx[0].q.val()
+            + self.n_ta2[0].val()
+            + bit_cast::<32, 1>(self.cin[0].val().get_bits::<1>(9));
+        self.cy_dxm1[0].next = (self.tdx[0].q.val() & self.n_ta2[0].val())
+            | ((self.tdx[0].q.val() ^ self.n_ta2[0].val()) & !self.cs_dxm1[0].val());
+        self.cs_dxm2[0].next = self.tdx[0].q.val()
+            + self.n_sta2[0].val()
+            + bit_cast::<32, 1>(self.cin[0].val().get_bits::<1>(10));
+        self.cy_dxm2[0].next = (self.tdx[0].q.val() & self.n_sta2[0].val())
+            | ((self.tdx[0].q.val() ^ self.n_sta2[0].val()) & !self.cs_dxm2[0].val());
         self.s_tc[0].next =
             (self.tc[0].q.val() << 1) | bit_cast::<32, 1>(self.cin[0].val().get_bits::<1>(11));
         self.n_tc[0].next = !self.tc[0].q.val();
         self.n_stc[0].next = !self.s_tc[0].val();
-        self.cs_dyp1[0].next = ((bit_cast::<34, 32>(self.tdy[0].q.val()) << 1) | 1)
-            + ((bit_cast::<34, 32>(self.tc[0].q.val()) << 1)
-                | bit_cast::<34, 1>(self.cin[0].val().get_bits::<1>(12)));
-        self.cs_dyp2[0].next = ((bit_cast::<34, 32>(self.tdy[0].q.val()) << 1) | 1)
-            + ((bit_cast::<34, 32>(self.s_tc[0].val()) << 1)
-                | bit_cast::<34, 1>(self.cin[0].val().get_bits::<1>(13)));
-        self.cs_dym1[0].next = ((bit_cast::<34, 32>(self.tdy[0].q.val()) << 1) | 1)
-            + ((bit_cast::<34, 32>(self.n_tc[0].val()) << 1)
-                | bit_cast::<34, 1>(self.cin[0].val().get_bits::<1>(14)));
-        self.cs_dym2[0].next = ((bit_cast::<34, 32>(self.tdy[0].q.val()) << 1) | 1)
-            + ((bit_cast::<34, 32>(self.n_stc[0].val()) << 1)
-                | bit_cast::<34, 1>(self.cin[0].val().get_bits::<1>(15)));
+        self.cs_dyp1[0].next = self.tdy[0].q.val()
+            + self.tc[0].q.val()
+            + bit_cast::<32, 1>(self.cin[0].val().get_bits::<1>(12));
+        self.cy_dyp1[0].next = (self.tdy[0].q.val() & self.tc[0].q.val())
+            | ((self.tdy[0].q.val() ^ self.tc[0].q.val()) & !self.cs_dyp1[0].val());
+        self.cs_dyp2[0].next = self.tdy[0].q.val()
+            + self.s_tc[0].val()
+            + bit_cast::<32, 1>(self.cin[0].val().get_bits::<1>(13));
+        self.cy_dyp2[0].next = (self.tdy[0].q.val() & self.s_tc[0].val())
+            | ((self.tdy[0].q.val() ^ self.s_tc[0].val()) & !self.cs_dyp2[0].val());
+        self.cs_dym1[0].next = self.tdy[0].q.val()
+            + self.n_tc[0].val()
+            + bit_cast::<32, 1>(self.cin[0].val().get_bits::<1>(14));
+        self.cy_dym1[0].next = (self.tdy[0].q.val() & self.n_tc[0].val())
+            | ((self.tdy[0].q.val() ^ self.n_tc[0].val()) & !self.cs_dym1[0].val());
+        self.cs_dym2[0].next = self.tdy[0].q.val()
+            + self.n_stc[0].val()
+            + bit_cast::<32, 1>(self.cin[0].val().get_bits::<1>(15));
+        self.cy_dym2[0].next = (self.tdy[0].q.val() & self.n_stc[0].val())
+            | ((self.tdy[0].q.val() ^ self.n_stc[0].val()) & !self.cs_dym2[0].val());
         // The y-step: I + Dy, Dy + 2B, Dx + C.
-        self.cs_yi[0].next = ((bit_cast::<34, 32>(self.ti[0].q.val()) << 1) | 1)
-            + ((bit_cast::<34, 32>(self.tdy[0].q.val()) << 1)
-                | bit_cast::<34, 1>(self.cin[0].val().get_bits::<1>(16)));
-        self.cs_ydy[0].next = ((bit_cast::<34, 32>(self.tdy[0].q.val()) << 1) | 1)
-            + ((bit_cast::<34, 32>(self.tb2[0].q.val()) << 1)
-                | bit_cast::<34, 1>(self.cin[0].val().get_bits::<1>(17)));
-        self.cs_ydx[0].next = ((bit_cast::<34, 32>(self.tdx[0].q.val()) << 1) | 1)
-            + ((bit_cast::<34, 32>(self.tc[0].q.val()) << 1)
-                | bit_cast::<34, 1>(self.cin[0].val().get_bits::<1>(18)));
+        self.cs_yi[0].next = self.ti[0].q.val()
+            + self.tdy[0].q.val()
+            + bit_cast::<32, 1>(self.cin[0].val().get_bits::<1>(16));
+        self.cy_yi[0].next = (self.ti[0].q.val() & self.tdy[0].q.val())
+            | ((self.ti[0].q.val() ^ self.tdy[0].q.val()) & !self.cs_yi[0].val());
+        self.cs_ydy[0].next = self.tdy[0].q.val()
+            + self.tb2[0].q.val()
+            + bit_cast::<32, 1>(self.cin[0].val().get_bits::<1>(17));
+        self.cy_ydy[0].next = (self.tdy[0].q.val() & self.tb2[0].q.val())
+            | ((self.tdy[0].q.val() ^ self.tb2[0].q.val()) & !self.cs_ydy[0].val());
+        self.cs_ydx[0].next = self.tdx[0].q.val()
+            + self.tc[0].q.val()
+            + bit_cast::<32, 1>(self.cin[0].val().get_bits::<1>(18));
+        self.cy_ydx[0].next = (self.tdx[0].q.val() & self.tc[0].q.val())
+            | ((self.tdx[0].q.val() ^ self.tc[0].q.val()) & !self.cs_ydx[0].val());
         // The load's 3·2A.
         self.s_wa2[0].next =
             (self.w_a2[0].val() << 1) | bit_cast::<32, 1>(self.cin[0].val().get_bits::<1>(19));
-        self.cs_ta3[0].next = ((bit_cast::<34, 32>(self.s_wa2[0].val()) << 1) | 1)
-            + ((bit_cast::<34, 32>(self.w_a2[0].val()) << 1)
-                | bit_cast::<34, 1>(self.cin[0].val().get_bits::<1>(20)));
+        self.cs_ta3[0].next = self.s_wa2[0].val()
+            + self.w_a2[0].val()
+            + bit_cast::<32, 1>(self.cin[0].val().get_bits::<1>(20));
+        self.cy_ta3[0].next = (self.s_wa2[0].val() & self.w_a2[0].val())
+            | ((self.s_wa2[0].val() ^ self.w_a2[0].val()) & !self.cs_ta3[0].val());
         // The generator: p' = q + e + 2A, q' = q + 2e + 3·2A, e' = e + 2·2A; a hand-over's e = 2A − Dx.
         self.s_ge[0].next =
             (self.ge[0].q.val() << 1) | bit_cast::<32, 1>(self.cin[0].val().get_bits::<1>(21));
@@ -421,78 +481,86 @@ impl Logic for QuadricHalf {
             | (self.ge[0].q.val() & self.ga2[0].q.val());
         self.k_gp[0].next =
             (self.m_gp[0].val() << 1) | bit_cast::<32, 1>(self.cin[0].val().get_bits::<1>(22));
-        self.cs_gp[0].next = ((bit_cast::<34, 32>(self.x_gp[0].val()) << 1) | 1)
-            + ((bit_cast::<34, 32>(self.k_gp[0].val()) << 1)
-                | bit_cast::<34, 1>(self.cin[0].val().get_bits::<1>(23)));
+        self.cs_gp[0].next = self.x_gp[0].val()
+            + self.k_gp[0].val()
+            + bit_cast::<32, 1>(self.cin[0].val().get_bits::<1>(23));
+        self.cy_gp[0].next = (self.x_gp[0].val() & self.k_gp[0].val())
+            | ((self.x_gp[0].val() ^ self.k_gp[0].val()) & !self.cs_gp[0].val());
         self.x_gq[0].next = self.q[0].q.val() ^ self.s_ge[0].val() ^ self.ga3[0].q.val();
         self.m_gq[0].next = (self.q[0].q.val() & self.s_ge[0].val())
             | (self.q[0].q.val() & self.ga3[0].q.val())
             | (self.s_ge[0].val() & self.ga3[0].q.val());
         self.k_gq[0].next =
             (self.m_gq[0].val() << 1) | bit_cast::<32, 1>(self.cin[0].val().get_bits::<1>(24));
-        self.cs_gq[0].next = ((bit_cast::<34, 32>(self.x_gq[0].val()) << 1) | 1)
-            + ((bit_cast::<34, 32>(self.k_gq[0].val()) << 1)
-                | bit_cast::<34, 1>(self.cin[0].val().get_bits::<1>(25)));
+        self.cs_gq[0].next = self.x_gq[0].val()
+            + self.k_gq[0].val()
+            + bit_cast::<32, 1>(self.cin[0].val().get_bits::<1>(25));
+        self.cy_gq[0].next = (self.x_gq[0].val() & self.k_gq[0].val())
+            | ((self.x_gq[0].val() ^ self.k_gq[0].val()) & !self.cs_gq[0].val());
         self.s_ga2[0].next =
             (self.ga2[0].q.val() << 1) | bit_cast::<32, 1>(self.cin[0].val().get_bits::<1>(26));
-        self.cs_ge[0].next = ((bit_cast::<34, 32>(self.ge[0].q.val()) << 1) | 1)
-            + ((bit_cast::<34, 32>(self.s_ga2[0].val()) << 1)
-                | bit_cast::<34, 1>(self.cin[0].val().get_bits::<1>(27)));
-        self.cs_hge[0].next = ((bit_cast::<34, 32>(self.ta2[0].q.val()) << 1) | 1)
-            + ((bit_cast::<34, 32>(self.n_dx[0].val()) << 1)
-                | bit_cast::<34, 1>(self.cin[0].val().get_bits::<1>(28)));
+        self.cs_ge[0].next = self.ge[0].q.val()
+            + self.s_ga2[0].val()
+            + bit_cast::<32, 1>(self.cin[0].val().get_bits::<1>(27));
+        self.cy_ge[0].next = (self.ge[0].q.val() & self.s_ga2[0].val())
+            | ((self.ge[0].q.val() ^ self.s_ga2[0].val()) & !self.cs_ge[0].val());
+        self.cs_hge[0].next = self.ta2[0].q.val()
+            + self.n_dx[0].val()
+            + bit_cast::<32, 1>(self.cin[0].val().get_bits::<1>(28));
+        self.cy_hge[0].next = (self.ta2[0].q.val() & self.n_dx[0].val())
+            | ((self.ta2[0].q.val() ^ self.n_dx[0].val()) & !self.cs_hge[0].val());
         // What leaves bit 31: each add's carry, each carry word's and each shift's top bit.
-        self.cout[0].next = bit_cast::<29, 1>(self.cs_ip1[0].val().get_bits::<1>(33))
+        self.cout[0].next = bit_cast::<29, 1>(self.cy_ip1[0].val().get_bits::<1>(31))
             | (bit_cast::<29, 1>(self.m_im1[0].val().get_bits::<1>(31)) << 1)
-            | (bit_cast::<29, 1>(self.cs_im1[0].val().get_bits::<1>(33)) << 2)
+            | (bit_cast::<29, 1>(self.cy_im1[0].val().get_bits::<1>(31)) << 2)
             | (bit_cast::<29, 1>(self.tdx[0].q.val().get_bits::<1>(31)) << 3)
             | (bit_cast::<29, 1>(self.m_xi[0].val().get_bits::<1>(31)) << 4)
-            | (bit_cast::<29, 1>(self.cs_xi[0].val().get_bits::<1>(33)) << 5)
+            | (bit_cast::<29, 1>(self.cy_xi[0].val().get_bits::<1>(31)) << 5)
             | (bit_cast::<29, 1>(self.ta2[0].q.val().get_bits::<1>(31)) << 6)
-            | (bit_cast::<29, 1>(self.cs_dxp1[0].val().get_bits::<1>(33)) << 7)
-            | (bit_cast::<29, 1>(self.cs_dxp2[0].val().get_bits::<1>(33)) << 8)
-            | (bit_cast::<29, 1>(self.cs_dxm1[0].val().get_bits::<1>(33)) << 9)
-            | (bit_cast::<29, 1>(self.cs_dxm2[0].val().get_bits::<1>(33)) << 10)
+            | (bit_cast::<29, 1>(self.cy_dxp1[0].val().get_bits::<1>(31)) << 7)
+            | (bit_cast::<29, 1>(self.cy_dxp2[0].val().get_bits::<1>(31)) << 8)
+            | (bit_cast::<29, 1>(self.cy_dxm1[0].val().get_bits::<1>(31)) << 9)
+            | (bit_cast::<29, 1>(self.cy_dxm2[0].val().get_bits::<1>(31)) << 10)
             | (bit_cast::<29, 1>(self.tc[0].q.val().get_bits::<1>(31)) << 11)
-            | (bit_cast::<29, 1>(self.cs_dyp1[0].val().get_bits::<1>(33)) << 12)
-            | (bit_cast::<29, 1>(self.cs_dyp2[0].val().get_bits::<1>(33)) << 13)
-            | (bit_cast::<29, 1>(self.cs_dym1[0].val().get_bits::<1>(33)) << 14)
-            | (bit_cast::<29, 1>(self.cs_dym2[0].val().get_bits::<1>(33)) << 15)
-            | (bit_cast::<29, 1>(self.cs_yi[0].val().get_bits::<1>(33)) << 16)
-            | (bit_cast::<29, 1>(self.cs_ydy[0].val().get_bits::<1>(33)) << 17)
-            | (bit_cast::<29, 1>(self.cs_ydx[0].val().get_bits::<1>(33)) << 18)
+            | (bit_cast::<29, 1>(self.cy_dyp1[0].val().get_bits::<1>(31)) << 12)
+            | (bit_cast::<29, 1>(self.cy_dyp2[0].val().get_bits::<1>(31)) << 13)
+            | (bit_cast::<29, 1>(self.cy_dym1[0].val().get_bits::<1>(31)) << 14)
+            | (bit_cast::<29, 1>(self.cy_dym2[0].val().get_bits::<1>(31)) << 15)
+            | (bit_cast::<29, 1>(self.cy_yi[0].val().get_bits::<1>(31)) << 16)
+            | (bit_cast::<29, 1>(self.cy_ydy[0].val().get_bits::<1>(31)) << 17)
+            | (bit_cast::<29, 1>(self.cy_ydx[0].val().get_bits::<1>(31)) << 18)
             | (bit_cast::<29, 1>(self.w_a2[0].val().get_bits::<1>(31)) << 19)
-            | (bit_cast::<29, 1>(self.cs_ta3[0].val().get_bits::<1>(33)) << 20)
+            | (bit_cast::<29, 1>(self.cy_ta3[0].val().get_bits::<1>(31)) << 20)
             | (bit_cast::<29, 1>(self.ge[0].q.val().get_bits::<1>(31)) << 21)
             | (bit_cast::<29, 1>(self.m_gp[0].val().get_bits::<1>(31)) << 22)
-            | (bit_cast::<29, 1>(self.cs_gp[0].val().get_bits::<1>(33)) << 23)
+            | (bit_cast::<29, 1>(self.cy_gp[0].val().get_bits::<1>(31)) << 23)
             | (bit_cast::<29, 1>(self.m_gq[0].val().get_bits::<1>(31)) << 24)
-            | (bit_cast::<29, 1>(self.cs_gq[0].val().get_bits::<1>(33)) << 25)
+            | (bit_cast::<29, 1>(self.cy_gq[0].val().get_bits::<1>(31)) << 25)
             | (bit_cast::<29, 1>(self.ga2[0].q.val().get_bits::<1>(31)) << 26)
-            | (bit_cast::<29, 1>(self.cs_ge[0].val().get_bits::<1>(33)) << 27)
-            | (bit_cast::<29, 1>(self.cs_hge[0].val().get_bits::<1>(33)) << 28);
+            | (bit_cast::<29, 1>(self.cy_ge[0].val().get_bits::<1>(31)) << 27)
+            | (bit_cast::<29, 1>(self.cy_hge[0].val().get_bits::<1>(31)) << 28);
         // The registers: the y-step, the x-step, the load; the generator's step, the hand-over.
         if self.ystep.val() {
-            self.ti[0].d.next = self.cs_yi[0].val().get_bits::<32>(1);
-            self.tdy[0].d.next = self.cs_ydy[0].val().get_bits::<32>(1);
-            self.tdx[0].d.next = self.cs_ydx[0].val().get_bits::<32>(1);
+            self.ti[0].d.next = self.cs_yi[0].val();
+            self.tdy[0].d.next = self.cs_ydy[0].val();
+            self.tdx[0].d.next = self.cs_ydx[0].val();
         }
         if self.xstep.val() {
-            self.ti[0].d.next = self.cs_xi[0].val().get_bits::<32>(1);
+            self.ti[0].d.next = self.cs_xi[0].val();
             if self.neg.val() {
                 if self.big.val() {
-                    self.tdx[0].d.next = self.cs_dxm2[0].val().get_bits::<32>(1);
-                    self.tdy[0].d.next = self.cs_dym2[0].val().get_bits::<32>(1);
+                    self.tdx[0].d.next = self.cs_dxm2[0].val();
+                    self.tdy[0].d.next = self.cs_dym2[0].val();
                 } else {
-                    self.tdx[0].d.next = self.cs_dxm1[0].val().get_bits::<32>(1);
-                    self.tdy[0].d.next = self.cs_dym1[0].val().get_bits::<32>(1);
+                    self.tdx[0].d.next = self.cs_dxm1[0].val();
+                    self.tdy[0].d.next = self.cs_dym1[0].val();
                 }
             } else if self.big.val() {
-                self.tdx[0].d.next = self.cs_dxp2[0].val().get_bits::<32>(1);
-                self.tdy[0].d.next = self.cs_dyp2[0].val().get_bits::<32>(1);
+                self.tdx[0].d.next = self.cs_dxp2[0].val();
+                self.tdy[0].d.next = self.cs_dyp2[0].val();
             } else {
-                self.tdx[0].d.next = self.cs_dxp1[0].val().get_bits::<32>(1);
-                self.tdy[0].d.next = self.cs_dyp1[0].val().get_bits::<32>(1);
+                self.tdx[0].d.next = self.cs_dxp1[0].val();
+                self.tdy[0].d.next = self.cs_dyp1[0].val();
             }
         }
         if self.ld.val() {
@@ -500,32 +568,34 @@ impl Logic for QuadricHalf {
             self.tdx[0].d.next = self.w_dx[0].val();
             self.tdy[0].d.next = self.w_dy[0].val();
             self.ta2[0].d.next = self.w_a2[0].val();
-            self.ta3[0].d.next = self.cs_ta3[0].val().get_bits::<32>(1);
+            self.ta3[0].d.next = self.cs_ta3[0].val();
             self.tb2[0].d.next = self.w_b2[0].val();
             self.tc[0].d.next = self.w_c[0].val();
         }
         if self.gadv.val() {
-            self.p[0].d.next = self.cs_gp[0].val().get_bits::<32>(1);
-            self.q[0].d.next = self.cs_gq[0].val().get_bits::<32>(1);
-            self.ge[0].d.next = self.cs_ge[0].val().get_bits::<32>(1);
+            self.p[0].d.next = self.cs_gp[0].val();
+            self.q[0].d.next = self.cs_gq[0].val();
+            self.ge[0].d.next = self.cs_ge[0].val();
         }
         if self.hand.val() {
             self.p[0].d.next = self.ti[0].q.val();
             self.ga2[0].d.next = self.ta2[0].q.val();
             self.ga3[0].d.next = self.ta3[0].q.val();
             if self.hdir.val() {
-                self.q[0].d.next = self.cs_im1[0].val().get_bits::<32>(1);
-                self.ge[0].d.next = self.cs_hge[0].val().get_bits::<32>(1);
+                self.q[0].d.next = self.cs_im1[0].val();
+                self.ge[0].d.next = self.cs_hge[0].val();
             } else {
-                self.q[0].d.next = self.cs_ip1[0].val().get_bits::<32>(1);
+                self.q[0].d.next = self.cs_ip1[0].val();
                 self.ge[0].d.next = self.tdx[0].q.val();
             }
         }
         // Channel 1.
         // The hand-over's pair: I + Dx; I − Dx + 2A (carry-save, the +1 in bit 0's carry).
-        self.cs_ip1[1].next = ((bit_cast::<34, 32>(self.ti[1].q.val()) << 1) | 1)
-            + ((bit_cast::<34, 32>(self.tdx[1].q.val()) << 1)
-                | bit_cast::<34, 1>(self.cin[1].val().get_bits::<1>(0)));
+        self.cs_ip1[1].next = self.ti[1].q.val()
+            + self.tdx[1].q.val()
+            + bit_cast::<32, 1>(self.cin[1].val().get_bits::<1>(0));
+        self.cy_ip1[1].next = (self.ti[1].q.val() & self.tdx[1].q.val())
+            | ((self.ti[1].q.val() ^ self.tdx[1].q.val()) & !self.cs_ip1[1].val());
         self.n_dx[1].next = !self.tdx[1].q.val();
         self.x_im1[1].next = self.ti[1].q.val() ^ self.n_dx[1].val() ^ self.ta2[1].q.val();
         self.m_im1[1].next = (self.ti[1].q.val() & self.n_dx[1].val())
@@ -533,9 +603,11 @@ impl Logic for QuadricHalf {
             | (self.n_dx[1].val() & self.ta2[1].q.val());
         self.k_im1[1].next =
             (self.m_im1[1].val() << 1) | bit_cast::<32, 1>(self.cin[1].val().get_bits::<1>(1));
-        self.cs_im1[1].next = ((bit_cast::<34, 32>(self.x_im1[1].val()) << 1) | 1)
-            + ((bit_cast::<34, 32>(self.k_im1[1].val()) << 1)
-                | bit_cast::<34, 1>(self.cin[1].val().get_bits::<1>(2)));
+        self.cs_im1[1].next = self.x_im1[1].val()
+            + self.k_im1[1].val()
+            + bit_cast::<32, 1>(self.cin[1].val().get_bits::<1>(2));
+        self.cy_im1[1].next = (self.x_im1[1].val() & self.k_im1[1].val())
+            | ((self.x_im1[1].val() ^ self.k_im1[1].val()) & !self.cs_im1[1].val());
         // The x-step's terms: I + (Dx | 2·Dx + 2A | −Dx + 2A | −2·Dx + 3·2A).
         self.s_tdx[1].next =
             (self.tdx[1].q.val() << 1) | bit_cast::<32, 1>(self.cin[1].val().get_bits::<1>(3));
@@ -561,58 +633,84 @@ impl Logic for QuadricHalf {
             | (self.xt1[1].val() & self.xt2[1].val());
         self.k_xi[1].next =
             (self.m_xi[1].val() << 1) | bit_cast::<32, 1>(self.cin[1].val().get_bits::<1>(4));
-        self.cs_xi[1].next = ((bit_cast::<34, 32>(self.x_xi[1].val()) << 1) | 1)
-            + ((bit_cast::<34, 32>(self.k_xi[1].val()) << 1)
-                | bit_cast::<34, 1>(self.cin[1].val().get_bits::<1>(5)));
+        self.cs_xi[1].next = self.x_xi[1].val()
+            + self.k_xi[1].val()
+            + bit_cast::<32, 1>(self.cin[1].val().get_bits::<1>(5));
+        self.cy_xi[1].next = (self.x_xi[1].val() & self.k_xi[1].val())
+            | ((self.x_xi[1].val() ^ self.k_xi[1].val()) & !self.cs_xi[1].val());
         // Dx ± 2A·step, Dy ± C·step: two-operand adds, selected after the carry chains.
         self.s_ta2[1].next =
             (self.ta2[1].q.val() << 1) | bit_cast::<32, 1>(self.cin[1].val().get_bits::<1>(6));
         self.n_ta2[1].next = !self.ta2[1].q.val();
         self.n_sta2[1].next = !self.s_ta2[1].val();
-        self.cs_dxp1[1].next = ((bit_cast::<34, 32>(self.tdx[1].q.val()) << 1) | 1)
-            + ((bit_cast::<34, 32>(self.ta2[1].q.val()) << 1)
-                | bit_cast::<34, 1>(self.cin[1].val().get_bits::<1>(7)));
-        self.cs_dxp2[1].next = ((bit_cast::<34, 32>(self.tdx[1].q.val()) << 1) | 1)
-            + ((bit_cast::<34, 32>(self.s_ta2[1].val()) << 1)
-                | bit_cast::<34, 1>(self.cin[1].val().get_bits::<1>(8)));
-        self.cs_dxm1[1].next = ((bit_cast::<34, 32>(self.tdx[1].q.val()) << 1) | 1)
-            + ((bit_cast::<34, 32>(self.n_ta2[1].val()) << 1)
-                | bit_cast::<34, 1>(self.cin[1].val().get_bits::<1>(9)));
-        self.cs_dxm2[1].next = ((bit_cast::<34, 32>(self.tdx[1].q.val()) << 1) | 1)
-            + ((bit_cast::<34, 32>(self.n_sta2[1].val()) << 1)
-                | bit_cast::<34, 1>(self.cin[1].val().get_bits::<1>(10)));
+        self.cs_dxp1[1].next = self.tdx[1].q.val()
+            + self.ta2[1].q.val()
+            + bit_cast::<32, 1>(self.cin[1].val().get_bits::<1>(7));
+        self.cy_dxp1[1].next = (self.tdx[1].q.val() & self.ta2[1].q.val())
+            | ((self.tdx[1].q.val() ^ self.ta2[1].q.val()) & !self.cs_dxp1[1].val());
+        self.cs_dxp2[1].next = self.tdx[1].q.val()
+            + self.s_ta2[1].val()
+            + bit_cast::<32, 1>(self.cin[1].val().get_bits::<1>(8));
+        self.cy_dxp2[1].next = (self.tdx[1].q.val() & self.s_ta2[1].val())
+            | ((self.tdx[1].q.val() ^ self.s_ta2[1].val()) & !self.cs_dxp2[1].val());
+        self.cs_dxm1[1].next = self.tdx[1].q.val()
+            + self.n_ta2[1].val()
+            + bit_cast::<32, 1>(self.cin[1].val().get_bits::<1>(9));
+        self.cy_dxm1[1].next = (self.tdx[1].q.val() & self.n_ta2[1].val())
+            | ((self.tdx[1].q.val() ^ self.n_ta2[1].val()) & !self.cs_dxm1[1].val());
+        self.cs_dxm2[1].next = self.tdx[1].q.val()
+            + self.n_sta2[1].val()
+            + bit_cast::<32, 1>(self.cin[1].val().get_bits::<1>(10));
+        self.cy_dxm2[1].next = (self.tdx[1].q.val() & self.n_sta2[1].val())
+            | ((self.tdx[1].q.val() ^ self.n_sta2[1].val()) & !self.cs_dxm2[1].val());
         self.s_tc[1].next =
             (self.tc[1].q.val() << 1) | bit_cast::<32, 1>(self.cin[1].val().get_bits::<1>(11));
         self.n_tc[1].next = !self.tc[1].q.val();
         self.n_stc[1].next = !self.s_tc[1].val();
-        self.cs_dyp1[1].next = ((bit_cast::<34, 32>(self.tdy[1].q.val()) << 1) | 1)
-            + ((bit_cast::<34, 32>(self.tc[1].q.val()) << 1)
-                | bit_cast::<34, 1>(self.cin[1].val().get_bits::<1>(12)));
-        self.cs_dyp2[1].next = ((bit_cast::<34, 32>(self.tdy[1].q.val()) << 1) | 1)
-            + ((bit_cast::<34, 32>(self.s_tc[1].val()) << 1)
-                | bit_cast::<34, 1>(self.cin[1].val().get_bits::<1>(13)));
-        self.cs_dym1[1].next = ((bit_cast::<34, 32>(self.tdy[1].q.val()) << 1) | 1)
-            + ((bit_cast::<34, 32>(self.n_tc[1].val()) << 1)
-                | bit_cast::<34, 1>(self.cin[1].val().get_bits::<1>(14)));
-        self.cs_dym2[1].next = ((bit_cast::<34, 32>(self.tdy[1].q.val()) << 1) | 1)
-            + ((bit_cast::<34, 32>(self.n_stc[1].val()) << 1)
-                | bit_cast::<34, 1>(self.cin[1].val().get_bits::<1>(15)));
+        self.cs_dyp1[1].next = self.tdy[1].q.val()
+            + self.tc[1].q.val()
+            + bit_cast::<32, 1>(self.cin[1].val().get_bits::<1>(12));
+        self.cy_dyp1[1].next = (self.tdy[1].q.val() & self.tc[1].q.val())
+            | ((self.tdy[1].q.val() ^ self.tc[1].q.val()) & !self.cs_dyp1[1].val());
+        self.cs_dyp2[1].next = self.tdy[1].q.val()
+            + self.s_tc[1].val()
+            + bit_cast::<32, 1>(self.cin[1].val().get_bits::<1>(13));
+        self.cy_dyp2[1].next = (self.tdy[1].q.val() & self.s_tc[1].val())
+            | ((self.tdy[1].q.val() ^ self.s_tc[1].val()) & !self.cs_dyp2[1].val());
+        self.cs_dym1[1].next = self.tdy[1].q.val()
+            + self.n_tc[1].val()
+            + bit_cast::<32, 1>(self.cin[1].val().get_bits::<1>(14));
+        self.cy_dym1[1].next = (self.tdy[1].q.val() & self.n_tc[1].val())
+            | ((self.tdy[1].q.val() ^ self.n_tc[1].val()) & !self.cs_dym1[1].val());
+        self.cs_dym2[1].next = self.tdy[1].q.val()
+            + self.n_stc[1].val()
+            + bit_cast::<32, 1>(self.cin[1].val().get_bits::<1>(15));
+        self.cy_dym2[1].next = (self.tdy[1].q.val() & self.n_stc[1].val())
+            | ((self.tdy[1].q.val() ^ self.n_stc[1].val()) & !self.cs_dym2[1].val());
         // The y-step: I + Dy, Dy + 2B, Dx + C.
-        self.cs_yi[1].next = ((bit_cast::<34, 32>(self.ti[1].q.val()) << 1) | 1)
-            + ((bit_cast::<34, 32>(self.tdy[1].q.val()) << 1)
-                | bit_cast::<34, 1>(self.cin[1].val().get_bits::<1>(16)));
-        self.cs_ydy[1].next = ((bit_cast::<34, 32>(self.tdy[1].q.val()) << 1) | 1)
-            + ((bit_cast::<34, 32>(self.tb2[1].q.val()) << 1)
-                | bit_cast::<34, 1>(self.cin[1].val().get_bits::<1>(17)));
-        self.cs_ydx[1].next = ((bit_cast::<34, 32>(self.tdx[1].q.val()) << 1) | 1)
-            + ((bit_cast::<34, 32>(self.tc[1].q.val()) << 1)
-                | bit_cast::<34, 1>(self.cin[1].val().get_bits::<1>(18)));
+        self.cs_yi[1].next = self.ti[1].q.val()
+            + self.tdy[1].q.val()
+            + bit_cast::<32, 1>(self.cin[1].val().get_bits::<1>(16));
+        self.cy_yi[1].next = (self.ti[1].q.val() & self.tdy[1].q.val())
+            | ((self.ti[1].q.val() ^ self.tdy[1].q.val()) & !self.cs_yi[1].val());
+        self.cs_ydy[1].next = self.tdy[1].q.val()
+            + self.tb2[1].q.val()
+            + bit_cast::<32, 1>(self.cin[1].val().get_bits::<1>(17));
+        self.cy_ydy[1].next = (self.tdy[1].q.val() & self.tb2[1].q.val())
+            | ((self.tdy[1].q.val() ^ self.tb2[1].q.val()) & !self.cs_ydy[1].val());
+        self.cs_ydx[1].next = self.tdx[1].q.val()
+            + self.tc[1].q.val()
+            + bit_cast::<32, 1>(self.cin[1].val().get_bits::<1>(18));
+        self.cy_ydx[1].next = (self.tdx[1].q.val() & self.tc[1].q.val())
+            | ((self.tdx[1].q.val() ^ self.tc[1].q.val()) & !self.cs_ydx[1].val());
         // The load's 3·2A.
         self.s_wa2[1].next =
             (self.w_a2[1].val() << 1) | bit_cast::<32, 1>(self.cin[1].val().get_bits::<1>(19));
-        self.cs_ta3[1].next = ((bit_cast::<34, 32>(self.s_wa2[1].val()) << 1) | 1)
-            + ((bit_cast::<34, 32>(self.w_a2[1].val()) << 1)
-                | bit_cast::<34, 1>(self.cin[1].val().get_bits::<1>(20)));
+        self.cs_ta3[1].next = self.s_wa2[1].val()
+            + self.w_a2[1].val()
+            + bit_cast::<32, 1>(self.cin[1].val().get_bits::<1>(20));
+        self.cy_ta3[1].next = (self.s_wa2[1].val() & self.w_a2[1].val())
+            | ((self.s_wa2[1].val() ^ self.w_a2[1].val()) & !self.cs_ta3[1].val());
         // The generator: p' = q + e + 2A, q' = q + 2e + 3·2A, e' = e + 2·2A; a hand-over's e = 2A − Dx.
         self.s_ge[1].next =
             (self.ge[1].q.val() << 1) | bit_cast::<32, 1>(self.cin[1].val().get_bits::<1>(21));
@@ -622,78 +720,86 @@ impl Logic for QuadricHalf {
             | (self.ge[1].q.val() & self.ga2[1].q.val());
         self.k_gp[1].next =
             (self.m_gp[1].val() << 1) | bit_cast::<32, 1>(self.cin[1].val().get_bits::<1>(22));
-        self.cs_gp[1].next = ((bit_cast::<34, 32>(self.x_gp[1].val()) << 1) | 1)
-            + ((bit_cast::<34, 32>(self.k_gp[1].val()) << 1)
-                | bit_cast::<34, 1>(self.cin[1].val().get_bits::<1>(23)));
+        self.cs_gp[1].next = self.x_gp[1].val()
+            + self.k_gp[1].val()
+            + bit_cast::<32, 1>(self.cin[1].val().get_bits::<1>(23));
+        self.cy_gp[1].next = (self.x_gp[1].val() & self.k_gp[1].val())
+            | ((self.x_gp[1].val() ^ self.k_gp[1].val()) & !self.cs_gp[1].val());
         self.x_gq[1].next = self.q[1].q.val() ^ self.s_ge[1].val() ^ self.ga3[1].q.val();
         self.m_gq[1].next = (self.q[1].q.val() & self.s_ge[1].val())
             | (self.q[1].q.val() & self.ga3[1].q.val())
             | (self.s_ge[1].val() & self.ga3[1].q.val());
         self.k_gq[1].next =
             (self.m_gq[1].val() << 1) | bit_cast::<32, 1>(self.cin[1].val().get_bits::<1>(24));
-        self.cs_gq[1].next = ((bit_cast::<34, 32>(self.x_gq[1].val()) << 1) | 1)
-            + ((bit_cast::<34, 32>(self.k_gq[1].val()) << 1)
-                | bit_cast::<34, 1>(self.cin[1].val().get_bits::<1>(25)));
+        self.cs_gq[1].next = self.x_gq[1].val()
+            + self.k_gq[1].val()
+            + bit_cast::<32, 1>(self.cin[1].val().get_bits::<1>(25));
+        self.cy_gq[1].next = (self.x_gq[1].val() & self.k_gq[1].val())
+            | ((self.x_gq[1].val() ^ self.k_gq[1].val()) & !self.cs_gq[1].val());
         self.s_ga2[1].next =
             (self.ga2[1].q.val() << 1) | bit_cast::<32, 1>(self.cin[1].val().get_bits::<1>(26));
-        self.cs_ge[1].next = ((bit_cast::<34, 32>(self.ge[1].q.val()) << 1) | 1)
-            + ((bit_cast::<34, 32>(self.s_ga2[1].val()) << 1)
-                | bit_cast::<34, 1>(self.cin[1].val().get_bits::<1>(27)));
-        self.cs_hge[1].next = ((bit_cast::<34, 32>(self.ta2[1].q.val()) << 1) | 1)
-            + ((bit_cast::<34, 32>(self.n_dx[1].val()) << 1)
-                | bit_cast::<34, 1>(self.cin[1].val().get_bits::<1>(28)));
+        self.cs_ge[1].next = self.ge[1].q.val()
+            + self.s_ga2[1].val()
+            + bit_cast::<32, 1>(self.cin[1].val().get_bits::<1>(27));
+        self.cy_ge[1].next = (self.ge[1].q.val() & self.s_ga2[1].val())
+            | ((self.ge[1].q.val() ^ self.s_ga2[1].val()) & !self.cs_ge[1].val());
+        self.cs_hge[1].next = self.ta2[1].q.val()
+            + self.n_dx[1].val()
+            + bit_cast::<32, 1>(self.cin[1].val().get_bits::<1>(28));
+        self.cy_hge[1].next = (self.ta2[1].q.val() & self.n_dx[1].val())
+            | ((self.ta2[1].q.val() ^ self.n_dx[1].val()) & !self.cs_hge[1].val());
         // What leaves bit 31: each add's carry, each carry word's and each shift's top bit.
-        self.cout[1].next = bit_cast::<29, 1>(self.cs_ip1[1].val().get_bits::<1>(33))
+        self.cout[1].next = bit_cast::<29, 1>(self.cy_ip1[1].val().get_bits::<1>(31))
             | (bit_cast::<29, 1>(self.m_im1[1].val().get_bits::<1>(31)) << 1)
-            | (bit_cast::<29, 1>(self.cs_im1[1].val().get_bits::<1>(33)) << 2)
+            | (bit_cast::<29, 1>(self.cy_im1[1].val().get_bits::<1>(31)) << 2)
             | (bit_cast::<29, 1>(self.tdx[1].q.val().get_bits::<1>(31)) << 3)
             | (bit_cast::<29, 1>(self.m_xi[1].val().get_bits::<1>(31)) << 4)
-            | (bit_cast::<29, 1>(self.cs_xi[1].val().get_bits::<1>(33)) << 5)
+            | (bit_cast::<29, 1>(self.cy_xi[1].val().get_bits::<1>(31)) << 5)
             | (bit_cast::<29, 1>(self.ta2[1].q.val().get_bits::<1>(31)) << 6)
-            | (bit_cast::<29, 1>(self.cs_dxp1[1].val().get_bits::<1>(33)) << 7)
-            | (bit_cast::<29, 1>(self.cs_dxp2[1].val().get_bits::<1>(33)) << 8)
-            | (bit_cast::<29, 1>(self.cs_dxm1[1].val().get_bits::<1>(33)) << 9)
-            | (bit_cast::<29, 1>(self.cs_dxm2[1].val().get_bits::<1>(33)) << 10)
+            | (bit_cast::<29, 1>(self.cy_dxp1[1].val().get_bits::<1>(31)) << 7)
+            | (bit_cast::<29, 1>(self.cy_dxp2[1].val().get_bits::<1>(31)) << 8)
+            | (bit_cast::<29, 1>(self.cy_dxm1[1].val().get_bits::<1>(31)) << 9)
+            | (bit_cast::<29, 1>(self.cy_dxm2[1].val().get_bits::<1>(31)) << 10)
             | (bit_cast::<29, 1>(self.tc[1].q.val().get_bits::<1>(31)) << 11)
-            | (bit_cast::<29, 1>(self.cs_dyp1[1].val().get_bits::<1>(33)) << 12)
-            | (bit_cast::<29, 1>(self.cs_dyp2[1].val().get_bits::<1>(33)) << 13)
-            | (bit_cast::<29, 1>(self.cs_dym1[1].val().get_bits::<1>(33)) << 14)
-            | (bit_cast::<29, 1>(self.cs_dym2[1].val().get_bits::<1>(33)) << 15)
-            | (bit_cast::<29, 1>(self.cs_yi[1].val().get_bits::<1>(33)) << 16)
-            | (bit_cast::<29, 1>(self.cs_ydy[1].val().get_bits::<1>(33)) << 17)
-            | (bit_cast::<29, 1>(self.cs_ydx[1].val().get_bits::<1>(33)) << 18)
+            | (bit_cast::<29, 1>(self.cy_dyp1[1].val().get_bits::<1>(31)) << 12)
+            | (bit_cast::<29, 1>(self.cy_dyp2[1].val().get_bits::<1>(31)) << 13)
+            | (bit_cast::<29, 1>(self.cy_dym1[1].val().get_bits::<1>(31)) << 14)
+            | (bit_cast::<29, 1>(self.cy_dym2[1].val().get_bits::<1>(31)) << 15)
+            | (bit_cast::<29, 1>(self.cy_yi[1].val().get_bits::<1>(31)) << 16)
+            | (bit_cast::<29, 1>(self.cy_ydy[1].val().get_bits::<1>(31)) << 17)
+            | (bit_cast::<29, 1>(self.cy_ydx[1].val().get_bits::<1>(31)) << 18)
             | (bit_cast::<29, 1>(self.w_a2[1].val().get_bits::<1>(31)) << 19)
-            | (bit_cast::<29, 1>(self.cs_ta3[1].val().get_bits::<1>(33)) << 20)
+            | (bit_cast::<29, 1>(self.cy_ta3[1].val().get_bits::<1>(31)) << 20)
             | (bit_cast::<29, 1>(self.ge[1].q.val().get_bits::<1>(31)) << 21)
             | (bit_cast::<29, 1>(self.m_gp[1].val().get_bits::<1>(31)) << 22)
-            | (bit_cast::<29, 1>(self.cs_gp[1].val().get_bits::<1>(33)) << 23)
+            | (bit_cast::<29, 1>(self.cy_gp[1].val().get_bits::<1>(31)) << 23)
             | (bit_cast::<29, 1>(self.m_gq[1].val().get_bits::<1>(31)) << 24)
-            | (bit_cast::<29, 1>(self.cs_gq[1].val().get_bits::<1>(33)) << 25)
+            | (bit_cast::<29, 1>(self.cy_gq[1].val().get_bits::<1>(31)) << 25)
             | (bit_cast::<29, 1>(self.ga2[1].q.val().get_bits::<1>(31)) << 26)
-            | (bit_cast::<29, 1>(self.cs_ge[1].val().get_bits::<1>(33)) << 27)
-            | (bit_cast::<29, 1>(self.cs_hge[1].val().get_bits::<1>(33)) << 28);
+            | (bit_cast::<29, 1>(self.cy_ge[1].val().get_bits::<1>(31)) << 27)
+            | (bit_cast::<29, 1>(self.cy_hge[1].val().get_bits::<1>(31)) << 28);
         // The registers: the y-step, the x-step, the load; the generator's step, the hand-over.
         if self.ystep.val() {
-            self.ti[1].d.next = self.cs_yi[1].val().get_bits::<32>(1);
-            self.tdy[1].d.next = self.cs_ydy[1].val().get_bits::<32>(1);
-            self.tdx[1].d.next = self.cs_ydx[1].val().get_bits::<32>(1);
+            self.ti[1].d.next = self.cs_yi[1].val();
+            self.tdy[1].d.next = self.cs_ydy[1].val();
+            self.tdx[1].d.next = self.cs_ydx[1].val();
         }
         if self.xstep.val() {
-            self.ti[1].d.next = self.cs_xi[1].val().get_bits::<32>(1);
+            self.ti[1].d.next = self.cs_xi[1].val();
             if self.neg.val() {
                 if self.big.val() {
-                    self.tdx[1].d.next = self.cs_dxm2[1].val().get_bits::<32>(1);
-                    self.tdy[1].d.next = self.cs_dym2[1].val().get_bits::<32>(1);
+                    self.tdx[1].d.next = self.cs_dxm2[1].val();
+                    self.tdy[1].d.next = self.cs_dym2[1].val();
                 } else {
-                    self.tdx[1].d.next = self.cs_dxm1[1].val().get_bits::<32>(1);
-                    self.tdy[1].d.next = self.cs_dym1[1].val().get_bits::<32>(1);
+                    self.tdx[1].d.next = self.cs_dxm1[1].val();
+                    self.tdy[1].d.next = self.cs_dym1[1].val();
                 }
             } else if self.big.val() {
-                self.tdx[1].d.next = self.cs_dxp2[1].val().get_bits::<32>(1);
-                self.tdy[1].d.next = self.cs_dyp2[1].val().get_bits::<32>(1);
+                self.tdx[1].d.next = self.cs_dxp2[1].val();
+                self.tdy[1].d.next = self.cs_dyp2[1].val();
             } else {
-                self.tdx[1].d.next = self.cs_dxp1[1].val().get_bits::<32>(1);
-                self.tdy[1].d.next = self.cs_dyp1[1].val().get_bits::<32>(1);
+                self.tdx[1].d.next = self.cs_dxp1[1].val();
+                self.tdy[1].d.next = self.cs_dyp1[1].val();
             }
         }
         if self.ld.val() {
@@ -701,32 +807,34 @@ impl Logic for QuadricHalf {
             self.tdx[1].d.next = self.w_dx[1].val();
             self.tdy[1].d.next = self.w_dy[1].val();
             self.ta2[1].d.next = self.w_a2[1].val();
-            self.ta3[1].d.next = self.cs_ta3[1].val().get_bits::<32>(1);
+            self.ta3[1].d.next = self.cs_ta3[1].val();
             self.tb2[1].d.next = self.w_b2[1].val();
             self.tc[1].d.next = self.w_c[1].val();
         }
         if self.gadv.val() {
-            self.p[1].d.next = self.cs_gp[1].val().get_bits::<32>(1);
-            self.q[1].d.next = self.cs_gq[1].val().get_bits::<32>(1);
-            self.ge[1].d.next = self.cs_ge[1].val().get_bits::<32>(1);
+            self.p[1].d.next = self.cs_gp[1].val();
+            self.q[1].d.next = self.cs_gq[1].val();
+            self.ge[1].d.next = self.cs_ge[1].val();
         }
         if self.hand.val() {
             self.p[1].d.next = self.ti[1].q.val();
             self.ga2[1].d.next = self.ta2[1].q.val();
             self.ga3[1].d.next = self.ta3[1].q.val();
             if self.hdir.val() {
-                self.q[1].d.next = self.cs_im1[1].val().get_bits::<32>(1);
-                self.ge[1].d.next = self.cs_hge[1].val().get_bits::<32>(1);
+                self.q[1].d.next = self.cs_im1[1].val();
+                self.ge[1].d.next = self.cs_hge[1].val();
             } else {
-                self.q[1].d.next = self.cs_ip1[1].val().get_bits::<32>(1);
+                self.q[1].d.next = self.cs_ip1[1].val();
                 self.ge[1].d.next = self.tdx[1].q.val();
             }
         }
         // Channel 2.
         // The hand-over's pair: I + Dx; I − Dx + 2A (carry-save, the +1 in bit 0's carry).
-        self.cs_ip1[2].next = ((bit_cast::<34, 32>(self.ti[2].q.val()) << 1) | 1)
-            + ((bit_cast::<34, 32>(self.tdx[2].q.val()) << 1)
-                | bit_cast::<34, 1>(self.cin[2].val().get_bits::<1>(0)));
+        self.cs_ip1[2].next = self.ti[2].q.val()
+            + self.tdx[2].q.val()
+            + bit_cast::<32, 1>(self.cin[2].val().get_bits::<1>(0));
+        self.cy_ip1[2].next = (self.ti[2].q.val() & self.tdx[2].q.val())
+            | ((self.ti[2].q.val() ^ self.tdx[2].q.val()) & !self.cs_ip1[2].val());
         self.n_dx[2].next = !self.tdx[2].q.val();
         self.x_im1[2].next = self.ti[2].q.val() ^ self.n_dx[2].val() ^ self.ta2[2].q.val();
         self.m_im1[2].next = (self.ti[2].q.val() & self.n_dx[2].val())
@@ -734,9 +842,11 @@ impl Logic for QuadricHalf {
             | (self.n_dx[2].val() & self.ta2[2].q.val());
         self.k_im1[2].next =
             (self.m_im1[2].val() << 1) | bit_cast::<32, 1>(self.cin[2].val().get_bits::<1>(1));
-        self.cs_im1[2].next = ((bit_cast::<34, 32>(self.x_im1[2].val()) << 1) | 1)
-            + ((bit_cast::<34, 32>(self.k_im1[2].val()) << 1)
-                | bit_cast::<34, 1>(self.cin[2].val().get_bits::<1>(2)));
+        self.cs_im1[2].next = self.x_im1[2].val()
+            + self.k_im1[2].val()
+            + bit_cast::<32, 1>(self.cin[2].val().get_bits::<1>(2));
+        self.cy_im1[2].next = (self.x_im1[2].val() & self.k_im1[2].val())
+            | ((self.x_im1[2].val() ^ self.k_im1[2].val()) & !self.cs_im1[2].val());
         // The x-step's terms: I + (Dx | 2·Dx + 2A | −Dx + 2A | −2·Dx + 3·2A).
         self.s_tdx[2].next =
             (self.tdx[2].q.val() << 1) | bit_cast::<32, 1>(self.cin[2].val().get_bits::<1>(3));
@@ -762,58 +872,84 @@ impl Logic for QuadricHalf {
             | (self.xt1[2].val() & self.xt2[2].val());
         self.k_xi[2].next =
             (self.m_xi[2].val() << 1) | bit_cast::<32, 1>(self.cin[2].val().get_bits::<1>(4));
-        self.cs_xi[2].next = ((bit_cast::<34, 32>(self.x_xi[2].val()) << 1) | 1)
-            + ((bit_cast::<34, 32>(self.k_xi[2].val()) << 1)
-                | bit_cast::<34, 1>(self.cin[2].val().get_bits::<1>(5)));
+        self.cs_xi[2].next = self.x_xi[2].val()
+            + self.k_xi[2].val()
+            + bit_cast::<32, 1>(self.cin[2].val().get_bits::<1>(5));
+        self.cy_xi[2].next = (self.x_xi[2].val() & self.k_xi[2].val())
+            | ((self.x_xi[2].val() ^ self.k_xi[2].val()) & !self.cs_xi[2].val());
         // Dx ± 2A·step, Dy ± C·step: two-operand adds, selected after the carry chains.
         self.s_ta2[2].next =
             (self.ta2[2].q.val() << 1) | bit_cast::<32, 1>(self.cin[2].val().get_bits::<1>(6));
         self.n_ta2[2].next = !self.ta2[2].q.val();
         self.n_sta2[2].next = !self.s_ta2[2].val();
-        self.cs_dxp1[2].next = ((bit_cast::<34, 32>(self.tdx[2].q.val()) << 1) | 1)
-            + ((bit_cast::<34, 32>(self.ta2[2].q.val()) << 1)
-                | bit_cast::<34, 1>(self.cin[2].val().get_bits::<1>(7)));
-        self.cs_dxp2[2].next = ((bit_cast::<34, 32>(self.tdx[2].q.val()) << 1) | 1)
-            + ((bit_cast::<34, 32>(self.s_ta2[2].val()) << 1)
-                | bit_cast::<34, 1>(self.cin[2].val().get_bits::<1>(8)));
-        self.cs_dxm1[2].next = ((bit_cast::<34, 32>(self.tdx[2].q.val()) << 1) | 1)
-            + ((bit_cast::<34, 32>(self.n_ta2[2].val()) << 1)
-                | bit_cast::<34, 1>(self.cin[2].val().get_bits::<1>(9)));
-        self.cs_dxm2[2].next = ((bit_cast::<34, 32>(self.tdx[2].q.val()) << 1) | 1)
-            + ((bit_cast::<34, 32>(self.n_sta2[2].val()) << 1)
-                | bit_cast::<34, 1>(self.cin[2].val().get_bits::<1>(10)));
+        self.cs_dxp1[2].next = self.tdx[2].q.val()
+            + self.ta2[2].q.val()
+            + bit_cast::<32, 1>(self.cin[2].val().get_bits::<1>(7));
+        self.cy_dxp1[2].next = (self.tdx[2].q.val() & self.ta2[2].q.val())
+            | ((self.tdx[2].q.val() ^ self.ta2[2].q.val()) & !self.cs_dxp1[2].val());
+        self.cs_dxp2[2].next = self.tdx[2].q.val()
+            + self.s_ta2[2].val()
+            + bit_cast::<32, 1>(self.cin[2].val().get_bits::<1>(8));
+        self.cy_dxp2[2].next = (self.tdx[2].q.val() & self.s_ta2[2].val())
+            | ((self.tdx[2].q.val() ^ self.s_ta2[2].val()) & !self.cs_dxp2[2].val());
+        self.cs_dxm1[2].next = self.tdx[2].q.val()
+            + self.n_ta2[2].val()
+            + bit_cast::<32, 1>(self.cin[2].val().get_bits::<1>(9));
+        self.cy_dxm1[2].next = (self.tdx[2].q.val() & self.n_ta2[2].val())
+            | ((self.tdx[2].q.val() ^ self.n_ta2[2].val()) & !self.cs_dxm1[2].val());
+        self.cs_dxm2[2].next = self.tdx[2].q.val()
+            + self.n_sta2[2].val()
+            + bit_cast::<32, 1>(self.cin[2].val().get_bits::<1>(10));
+        self.cy_dxm2[2].next = (self.tdx[2].q.val() & self.n_sta2[2].val())
+            | ((self.tdx[2].q.val() ^ self.n_sta2[2].val()) & !self.cs_dxm2[2].val());
         self.s_tc[2].next =
             (self.tc[2].q.val() << 1) | bit_cast::<32, 1>(self.cin[2].val().get_bits::<1>(11));
         self.n_tc[2].next = !self.tc[2].q.val();
         self.n_stc[2].next = !self.s_tc[2].val();
-        self.cs_dyp1[2].next = ((bit_cast::<34, 32>(self.tdy[2].q.val()) << 1) | 1)
-            + ((bit_cast::<34, 32>(self.tc[2].q.val()) << 1)
-                | bit_cast::<34, 1>(self.cin[2].val().get_bits::<1>(12)));
-        self.cs_dyp2[2].next = ((bit_cast::<34, 32>(self.tdy[2].q.val()) << 1) | 1)
-            + ((bit_cast::<34, 32>(self.s_tc[2].val()) << 1)
-                | bit_cast::<34, 1>(self.cin[2].val().get_bits::<1>(13)));
-        self.cs_dym1[2].next = ((bit_cast::<34, 32>(self.tdy[2].q.val()) << 1) | 1)
-            + ((bit_cast::<34, 32>(self.n_tc[2].val()) << 1)
-                | bit_cast::<34, 1>(self.cin[2].val().get_bits::<1>(14)));
-        self.cs_dym2[2].next = ((bit_cast::<34, 32>(self.tdy[2].q.val()) << 1) | 1)
-            + ((bit_cast::<34, 32>(self.n_stc[2].val()) << 1)
-                | bit_cast::<34, 1>(self.cin[2].val().get_bits::<1>(15)));
+        self.cs_dyp1[2].next = self.tdy[2].q.val()
+            + self.tc[2].q.val()
+            + bit_cast::<32, 1>(self.cin[2].val().get_bits::<1>(12));
+        self.cy_dyp1[2].next = (self.tdy[2].q.val() & self.tc[2].q.val())
+            | ((self.tdy[2].q.val() ^ self.tc[2].q.val()) & !self.cs_dyp1[2].val());
+        self.cs_dyp2[2].next = self.tdy[2].q.val()
+            + self.s_tc[2].val()
+            + bit_cast::<32, 1>(self.cin[2].val().get_bits::<1>(13));
+        self.cy_dyp2[2].next = (self.tdy[2].q.val() & self.s_tc[2].val())
+            | ((self.tdy[2].q.val() ^ self.s_tc[2].val()) & !self.cs_dyp2[2].val());
+        self.cs_dym1[2].next = self.tdy[2].q.val()
+            + self.n_tc[2].val()
+            + bit_cast::<32, 1>(self.cin[2].val().get_bits::<1>(14));
+        self.cy_dym1[2].next = (self.tdy[2].q.val() & self.n_tc[2].val())
+            | ((self.tdy[2].q.val() ^ self.n_tc[2].val()) & !self.cs_dym1[2].val());
+        self.cs_dym2[2].next = self.tdy[2].q.val()
+            + self.n_stc[2].val()
+            + bit_cast::<32, 1>(self.cin[2].val().get_bits::<1>(15));
+        self.cy_dym2[2].next = (self.tdy[2].q.val() & self.n_stc[2].val())
+            | ((self.tdy[2].q.val() ^ self.n_stc[2].val()) & !self.cs_dym2[2].val());
         // The y-step: I + Dy, Dy + 2B, Dx + C.
-        self.cs_yi[2].next = ((bit_cast::<34, 32>(self.ti[2].q.val()) << 1) | 1)
-            + ((bit_cast::<34, 32>(self.tdy[2].q.val()) << 1)
-                | bit_cast::<34, 1>(self.cin[2].val().get_bits::<1>(16)));
-        self.cs_ydy[2].next = ((bit_cast::<34, 32>(self.tdy[2].q.val()) << 1) | 1)
-            + ((bit_cast::<34, 32>(self.tb2[2].q.val()) << 1)
-                | bit_cast::<34, 1>(self.cin[2].val().get_bits::<1>(17)));
-        self.cs_ydx[2].next = ((bit_cast::<34, 32>(self.tdx[2].q.val()) << 1) | 1)
-            + ((bit_cast::<34, 32>(self.tc[2].q.val()) << 1)
-                | bit_cast::<34, 1>(self.cin[2].val().get_bits::<1>(18)));
+        self.cs_yi[2].next = self.ti[2].q.val()
+            + self.tdy[2].q.val()
+            + bit_cast::<32, 1>(self.cin[2].val().get_bits::<1>(16));
+        self.cy_yi[2].next = (self.ti[2].q.val() & self.tdy[2].q.val())
+            | ((self.ti[2].q.val() ^ self.tdy[2].q.val()) & !self.cs_yi[2].val());
+        self.cs_ydy[2].next = self.tdy[2].q.val()
+            + self.tb2[2].q.val()
+            + bit_cast::<32, 1>(self.cin[2].val().get_bits::<1>(17));
+        self.cy_ydy[2].next = (self.tdy[2].q.val() & self.tb2[2].q.val())
+            | ((self.tdy[2].q.val() ^ self.tb2[2].q.val()) & !self.cs_ydy[2].val());
+        self.cs_ydx[2].next = self.tdx[2].q.val()
+            + self.tc[2].q.val()
+            + bit_cast::<32, 1>(self.cin[2].val().get_bits::<1>(18));
+        self.cy_ydx[2].next = (self.tdx[2].q.val() & self.tc[2].q.val())
+            | ((self.tdx[2].q.val() ^ self.tc[2].q.val()) & !self.cs_ydx[2].val());
         // The load's 3·2A.
         self.s_wa2[2].next =
             (self.w_a2[2].val() << 1) | bit_cast::<32, 1>(self.cin[2].val().get_bits::<1>(19));
-        self.cs_ta3[2].next = ((bit_cast::<34, 32>(self.s_wa2[2].val()) << 1) | 1)
-            + ((bit_cast::<34, 32>(self.w_a2[2].val()) << 1)
-                | bit_cast::<34, 1>(self.cin[2].val().get_bits::<1>(20)));
+        self.cs_ta3[2].next = self.s_wa2[2].val()
+            + self.w_a2[2].val()
+            + bit_cast::<32, 1>(self.cin[2].val().get_bits::<1>(20));
+        self.cy_ta3[2].next = (self.s_wa2[2].val() & self.w_a2[2].val())
+            | ((self.s_wa2[2].val() ^ self.w_a2[2].val()) & !self.cs_ta3[2].val());
         // The generator: p' = q + e + 2A, q' = q + 2e + 3·2A, e' = e + 2·2A; a hand-over's e = 2A − Dx.
         self.s_ge[2].next =
             (self.ge[2].q.val() << 1) | bit_cast::<32, 1>(self.cin[2].val().get_bits::<1>(21));
@@ -823,78 +959,86 @@ impl Logic for QuadricHalf {
             | (self.ge[2].q.val() & self.ga2[2].q.val());
         self.k_gp[2].next =
             (self.m_gp[2].val() << 1) | bit_cast::<32, 1>(self.cin[2].val().get_bits::<1>(22));
-        self.cs_gp[2].next = ((bit_cast::<34, 32>(self.x_gp[2].val()) << 1) | 1)
-            + ((bit_cast::<34, 32>(self.k_gp[2].val()) << 1)
-                | bit_cast::<34, 1>(self.cin[2].val().get_bits::<1>(23)));
+        self.cs_gp[2].next = self.x_gp[2].val()
+            + self.k_gp[2].val()
+            + bit_cast::<32, 1>(self.cin[2].val().get_bits::<1>(23));
+        self.cy_gp[2].next = (self.x_gp[2].val() & self.k_gp[2].val())
+            | ((self.x_gp[2].val() ^ self.k_gp[2].val()) & !self.cs_gp[2].val());
         self.x_gq[2].next = self.q[2].q.val() ^ self.s_ge[2].val() ^ self.ga3[2].q.val();
         self.m_gq[2].next = (self.q[2].q.val() & self.s_ge[2].val())
             | (self.q[2].q.val() & self.ga3[2].q.val())
             | (self.s_ge[2].val() & self.ga3[2].q.val());
         self.k_gq[2].next =
             (self.m_gq[2].val() << 1) | bit_cast::<32, 1>(self.cin[2].val().get_bits::<1>(24));
-        self.cs_gq[2].next = ((bit_cast::<34, 32>(self.x_gq[2].val()) << 1) | 1)
-            + ((bit_cast::<34, 32>(self.k_gq[2].val()) << 1)
-                | bit_cast::<34, 1>(self.cin[2].val().get_bits::<1>(25)));
+        self.cs_gq[2].next = self.x_gq[2].val()
+            + self.k_gq[2].val()
+            + bit_cast::<32, 1>(self.cin[2].val().get_bits::<1>(25));
+        self.cy_gq[2].next = (self.x_gq[2].val() & self.k_gq[2].val())
+            | ((self.x_gq[2].val() ^ self.k_gq[2].val()) & !self.cs_gq[2].val());
         self.s_ga2[2].next =
             (self.ga2[2].q.val() << 1) | bit_cast::<32, 1>(self.cin[2].val().get_bits::<1>(26));
-        self.cs_ge[2].next = ((bit_cast::<34, 32>(self.ge[2].q.val()) << 1) | 1)
-            + ((bit_cast::<34, 32>(self.s_ga2[2].val()) << 1)
-                | bit_cast::<34, 1>(self.cin[2].val().get_bits::<1>(27)));
-        self.cs_hge[2].next = ((bit_cast::<34, 32>(self.ta2[2].q.val()) << 1) | 1)
-            + ((bit_cast::<34, 32>(self.n_dx[2].val()) << 1)
-                | bit_cast::<34, 1>(self.cin[2].val().get_bits::<1>(28)));
+        self.cs_ge[2].next = self.ge[2].q.val()
+            + self.s_ga2[2].val()
+            + bit_cast::<32, 1>(self.cin[2].val().get_bits::<1>(27));
+        self.cy_ge[2].next = (self.ge[2].q.val() & self.s_ga2[2].val())
+            | ((self.ge[2].q.val() ^ self.s_ga2[2].val()) & !self.cs_ge[2].val());
+        self.cs_hge[2].next = self.ta2[2].q.val()
+            + self.n_dx[2].val()
+            + bit_cast::<32, 1>(self.cin[2].val().get_bits::<1>(28));
+        self.cy_hge[2].next = (self.ta2[2].q.val() & self.n_dx[2].val())
+            | ((self.ta2[2].q.val() ^ self.n_dx[2].val()) & !self.cs_hge[2].val());
         // What leaves bit 31: each add's carry, each carry word's and each shift's top bit.
-        self.cout[2].next = bit_cast::<29, 1>(self.cs_ip1[2].val().get_bits::<1>(33))
+        self.cout[2].next = bit_cast::<29, 1>(self.cy_ip1[2].val().get_bits::<1>(31))
             | (bit_cast::<29, 1>(self.m_im1[2].val().get_bits::<1>(31)) << 1)
-            | (bit_cast::<29, 1>(self.cs_im1[2].val().get_bits::<1>(33)) << 2)
+            | (bit_cast::<29, 1>(self.cy_im1[2].val().get_bits::<1>(31)) << 2)
             | (bit_cast::<29, 1>(self.tdx[2].q.val().get_bits::<1>(31)) << 3)
             | (bit_cast::<29, 1>(self.m_xi[2].val().get_bits::<1>(31)) << 4)
-            | (bit_cast::<29, 1>(self.cs_xi[2].val().get_bits::<1>(33)) << 5)
+            | (bit_cast::<29, 1>(self.cy_xi[2].val().get_bits::<1>(31)) << 5)
             | (bit_cast::<29, 1>(self.ta2[2].q.val().get_bits::<1>(31)) << 6)
-            | (bit_cast::<29, 1>(self.cs_dxp1[2].val().get_bits::<1>(33)) << 7)
-            | (bit_cast::<29, 1>(self.cs_dxp2[2].val().get_bits::<1>(33)) << 8)
-            | (bit_cast::<29, 1>(self.cs_dxm1[2].val().get_bits::<1>(33)) << 9)
-            | (bit_cast::<29, 1>(self.cs_dxm2[2].val().get_bits::<1>(33)) << 10)
+            | (bit_cast::<29, 1>(self.cy_dxp1[2].val().get_bits::<1>(31)) << 7)
+            | (bit_cast::<29, 1>(self.cy_dxp2[2].val().get_bits::<1>(31)) << 8)
+            | (bit_cast::<29, 1>(self.cy_dxm1[2].val().get_bits::<1>(31)) << 9)
+            | (bit_cast::<29, 1>(self.cy_dxm2[2].val().get_bits::<1>(31)) << 10)
             | (bit_cast::<29, 1>(self.tc[2].q.val().get_bits::<1>(31)) << 11)
-            | (bit_cast::<29, 1>(self.cs_dyp1[2].val().get_bits::<1>(33)) << 12)
-            | (bit_cast::<29, 1>(self.cs_dyp2[2].val().get_bits::<1>(33)) << 13)
-            | (bit_cast::<29, 1>(self.cs_dym1[2].val().get_bits::<1>(33)) << 14)
-            | (bit_cast::<29, 1>(self.cs_dym2[2].val().get_bits::<1>(33)) << 15)
-            | (bit_cast::<29, 1>(self.cs_yi[2].val().get_bits::<1>(33)) << 16)
-            | (bit_cast::<29, 1>(self.cs_ydy[2].val().get_bits::<1>(33)) << 17)
-            | (bit_cast::<29, 1>(self.cs_ydx[2].val().get_bits::<1>(33)) << 18)
+            | (bit_cast::<29, 1>(self.cy_dyp1[2].val().get_bits::<1>(31)) << 12)
+            | (bit_cast::<29, 1>(self.cy_dyp2[2].val().get_bits::<1>(31)) << 13)
+            | (bit_cast::<29, 1>(self.cy_dym1[2].val().get_bits::<1>(31)) << 14)
+            | (bit_cast::<29, 1>(self.cy_dym2[2].val().get_bits::<1>(31)) << 15)
+            | (bit_cast::<29, 1>(self.cy_yi[2].val().get_bits::<1>(31)) << 16)
+            | (bit_cast::<29, 1>(self.cy_ydy[2].val().get_bits::<1>(31)) << 17)
+            | (bit_cast::<29, 1>(self.cy_ydx[2].val().get_bits::<1>(31)) << 18)
             | (bit_cast::<29, 1>(self.w_a2[2].val().get_bits::<1>(31)) << 19)
-            | (bit_cast::<29, 1>(self.cs_ta3[2].val().get_bits::<1>(33)) << 20)
+            | (bit_cast::<29, 1>(self.cy_ta3[2].val().get_bits::<1>(31)) << 20)
             | (bit_cast::<29, 1>(self.ge[2].q.val().get_bits::<1>(31)) << 21)
             | (bit_cast::<29, 1>(self.m_gp[2].val().get_bits::<1>(31)) << 22)
-            | (bit_cast::<29, 1>(self.cs_gp[2].val().get_bits::<1>(33)) << 23)
+            | (bit_cast::<29, 1>(self.cy_gp[2].val().get_bits::<1>(31)) << 23)
             | (bit_cast::<29, 1>(self.m_gq[2].val().get_bits::<1>(31)) << 24)
-            | (bit_cast::<29, 1>(self.cs_gq[2].val().get_bits::<1>(33)) << 25)
+            | (bit_cast::<29, 1>(self.cy_gq[2].val().get_bits::<1>(31)) << 25)
             | (bit_cast::<29, 1>(self.ga2[2].q.val().get_bits::<1>(31)) << 26)
-            | (bit_cast::<29, 1>(self.cs_ge[2].val().get_bits::<1>(33)) << 27)
-            | (bit_cast::<29, 1>(self.cs_hge[2].val().get_bits::<1>(33)) << 28);
+            | (bit_cast::<29, 1>(self.cy_ge[2].val().get_bits::<1>(31)) << 27)
+            | (bit_cast::<29, 1>(self.cy_hge[2].val().get_bits::<1>(31)) << 28);
         // The registers: the y-step, the x-step, the load; the generator's step, the hand-over.
         if self.ystep.val() {
-            self.ti[2].d.next = self.cs_yi[2].val().get_bits::<32>(1);
-            self.tdy[2].d.next = self.cs_ydy[2].val().get_bits::<32>(1);
-            self.tdx[2].d.next = self.cs_ydx[2].val().get_bits::<32>(1);
+            self.ti[2].d.next = self.cs_yi[2].val();
+            self.tdy[2].d.next = self.cs_ydy[2].val();
+            self.tdx[2].d.next = self.cs_ydx[2].val();
         }
         if self.xstep.val() {
-            self.ti[2].d.next = self.cs_xi[2].val().get_bits::<32>(1);
+            self.ti[2].d.next = self.cs_xi[2].val();
             if self.neg.val() {
                 if self.big.val() {
-                    self.tdx[2].d.next = self.cs_dxm2[2].val().get_bits::<32>(1);
-                    self.tdy[2].d.next = self.cs_dym2[2].val().get_bits::<32>(1);
+                    self.tdx[2].d.next = self.cs_dxm2[2].val();
+                    self.tdy[2].d.next = self.cs_dym2[2].val();
                 } else {
-                    self.tdx[2].d.next = self.cs_dxm1[2].val().get_bits::<32>(1);
-                    self.tdy[2].d.next = self.cs_dym1[2].val().get_bits::<32>(1);
+                    self.tdx[2].d.next = self.cs_dxm1[2].val();
+                    self.tdy[2].d.next = self.cs_dym1[2].val();
                 }
             } else if self.big.val() {
-                self.tdx[2].d.next = self.cs_dxp2[2].val().get_bits::<32>(1);
-                self.tdy[2].d.next = self.cs_dyp2[2].val().get_bits::<32>(1);
+                self.tdx[2].d.next = self.cs_dxp2[2].val();
+                self.tdy[2].d.next = self.cs_dyp2[2].val();
             } else {
-                self.tdx[2].d.next = self.cs_dxp1[2].val().get_bits::<32>(1);
-                self.tdy[2].d.next = self.cs_dyp1[2].val().get_bits::<32>(1);
+                self.tdx[2].d.next = self.cs_dxp1[2].val();
+                self.tdy[2].d.next = self.cs_dyp1[2].val();
             }
         }
         if self.ld.val() {
@@ -902,24 +1046,24 @@ impl Logic for QuadricHalf {
             self.tdx[2].d.next = self.w_dx[2].val();
             self.tdy[2].d.next = self.w_dy[2].val();
             self.ta2[2].d.next = self.w_a2[2].val();
-            self.ta3[2].d.next = self.cs_ta3[2].val().get_bits::<32>(1);
+            self.ta3[2].d.next = self.cs_ta3[2].val();
             self.tb2[2].d.next = self.w_b2[2].val();
             self.tc[2].d.next = self.w_c[2].val();
         }
         if self.gadv.val() {
-            self.p[2].d.next = self.cs_gp[2].val().get_bits::<32>(1);
-            self.q[2].d.next = self.cs_gq[2].val().get_bits::<32>(1);
-            self.ge[2].d.next = self.cs_ge[2].val().get_bits::<32>(1);
+            self.p[2].d.next = self.cs_gp[2].val();
+            self.q[2].d.next = self.cs_gq[2].val();
+            self.ge[2].d.next = self.cs_ge[2].val();
         }
         if self.hand.val() {
             self.p[2].d.next = self.ti[2].q.val();
             self.ga2[2].d.next = self.ta2[2].q.val();
             self.ga3[2].d.next = self.ta3[2].q.val();
             if self.hdir.val() {
-                self.q[2].d.next = self.cs_im1[2].val().get_bits::<32>(1);
-                self.ge[2].d.next = self.cs_hge[2].val().get_bits::<32>(1);
+                self.q[2].d.next = self.cs_im1[2].val();
+                self.ge[2].d.next = self.cs_hge[2].val();
             } else {
-                self.q[2].d.next = self.cs_ip1[2].val().get_bits::<32>(1);
+                self.q[2].d.next = self.cs_ip1[2].val();
                 self.ge[2].d.next = self.tdx[2].q.val();
             }
         }
@@ -968,8 +1112,10 @@ crate::hw_block! {
         whi: [DFF<Bits<32>>; 18],
         /// The low halves' carries (`cross`), registered for the high halves.
         carry: [DFF<Bits<29>>; 3],
-        /// Bits 28..31 of the generator's p and q, a clock later (the output rounding's).
-        plo: [DFF<Bits<4>>; 3], qlo: [DFF<Bits<4>>; 3],
+        /// Bits 28..31 of the generator's p and q plus the rounding constant (`RoundLo`), a
+        /// clock later: the output rounding's low part, its carry into the high half's add.
+        plo: [DFF<Bits<5>>; 3], qlo: [DFF<Bits<5>>; 3],
+        rlo_a: [RoundLo; 3], rlo_b: [RoundLo; 3],
         cin_k: Constant<Bits<29>> = Constant::new(cross::LOW.into()),
         cin_kn: Constant<Bits<29>> = Constant::new((cross::LOW | (1 << cross::XIK)).into()),
         cin_lo: Signal<Local, Bits<29>>,
@@ -1149,30 +1295,36 @@ impl Logic for QuadricUnit {
         self.half_lo.cin_r.next = self.cin_lo.val();
         self.carry[0].d.next = self.half_lo.cout_r.val();
         self.half_hi.cin_r.next = self.carry[0].q.val();
-        self.plo[0].d.next = self.half_lo.p_r.val().get_bits::<4>(28);
-        self.qlo[0].d.next = self.half_lo.q_r.val().get_bits::<4>(28);
+        self.rlo_a[0].lo4.next = self.half_lo.p_r.val().get_bits::<4>(28);
+        self.plo[0].d.next = self.rlo_a[0].lsum.val();
+        self.rlo_b[0].lo4.next = self.half_lo.q_r.val().get_bits::<4>(28);
+        self.qlo[0].d.next = self.rlo_b[0].lsum.val();
         self.sat_a[0].hi.next = self.half_hi.p_r.val();
-        self.sat_a[0].lo4.next = self.plo[0].q.val();
+        self.sat_a[0].lsum.next = self.plo[0].q.val();
         self.sat_b[0].hi.next = self.half_hi.q_r.val();
-        self.sat_b[0].lo4.next = self.qlo[0].q.val();
+        self.sat_b[0].lsum.next = self.qlo[0].q.val();
         self.half_lo.cin_g.next = self.cin_lo.val();
         self.carry[1].d.next = self.half_lo.cout_g.val();
         self.half_hi.cin_g.next = self.carry[1].q.val();
-        self.plo[1].d.next = self.half_lo.p_g.val().get_bits::<4>(28);
-        self.qlo[1].d.next = self.half_lo.q_g.val().get_bits::<4>(28);
+        self.rlo_a[1].lo4.next = self.half_lo.p_g.val().get_bits::<4>(28);
+        self.plo[1].d.next = self.rlo_a[1].lsum.val();
+        self.rlo_b[1].lo4.next = self.half_lo.q_g.val().get_bits::<4>(28);
+        self.qlo[1].d.next = self.rlo_b[1].lsum.val();
         self.sat_a[1].hi.next = self.half_hi.p_g.val();
-        self.sat_a[1].lo4.next = self.plo[1].q.val();
+        self.sat_a[1].lsum.next = self.plo[1].q.val();
         self.sat_b[1].hi.next = self.half_hi.q_g.val();
-        self.sat_b[1].lo4.next = self.qlo[1].q.val();
+        self.sat_b[1].lsum.next = self.qlo[1].q.val();
         self.half_lo.cin_b.next = self.cin_lo.val();
         self.carry[2].d.next = self.half_lo.cout_b.val();
         self.half_hi.cin_b.next = self.carry[2].q.val();
-        self.plo[2].d.next = self.half_lo.p_b.val().get_bits::<4>(28);
-        self.qlo[2].d.next = self.half_lo.q_b.val().get_bits::<4>(28);
+        self.rlo_a[2].lo4.next = self.half_lo.p_b.val().get_bits::<4>(28);
+        self.plo[2].d.next = self.rlo_a[2].lsum.val();
+        self.rlo_b[2].lo4.next = self.half_lo.q_b.val().get_bits::<4>(28);
+        self.qlo[2].d.next = self.rlo_b[2].lsum.val();
         self.sat_a[2].hi.next = self.half_hi.p_b.val();
-        self.sat_a[2].lo4.next = self.plo[2].q.val();
+        self.sat_a[2].lsum.next = self.plo[2].q.val();
         self.sat_b[2].hi.next = self.half_hi.q_b.val();
-        self.sat_b[2].lo4.next = self.qlo[2].q.val();
+        self.sat_b[2].lsum.next = self.qlo[2].q.val();
 
         if self.ystep.val() {
             self.ty.d.next = self.ty.q.val() + 1;

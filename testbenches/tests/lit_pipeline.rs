@@ -70,7 +70,7 @@ fn quarter_lsb_rounding_errors_are_caught_by_the_twins() {
     ]);
     #[rustfmt::skip]
     check("quadric-unit", &Options::new(), 12, &[
-        Mutant { what: "lane B red rounding + ¼ LSB", module: "quadric_unit__sat_b__0", from: "localparam  half = 36'h2;", to: "localparam  half = 36'h3;" },
+        Mutant { what: "lane B red rounding + ¼ LSB", module: "quadric_unit__rlo_b__0", from: "localparam  half = 5'b10;", to: "localparam  half = 5'b11;" },
         // The carry-save adds, the halves' carries and the flags from the distance register
         // (not roundings: one operator each, which the twin must catch as well).
         // (A subtraction's +1 in the carry word is 2⁻³⁰ LSB: below what the 8-bit outputs
@@ -78,9 +78,9 @@ fn quarter_lsb_rounding_errors_are_caught_by_the_twins() {
         // (In the high half this one would go unseen: there −2·Dx and −Dx differ only for
         // |Dx| ≥ 2³¹ in Q34.30, 2 LSB per pixel, where the high half is more than sign.)
         Mutant { what: "−2 x-step of I: −Dx in place of −2·Dx (red, low half)", module: "quadric_unit__half_lo", from: "xt1$0 = n_sdx$0;", to: "xt1$0 = n_dx$0;" },
-        Mutant { what: "generator difference e' = e + 2A instead of e + 2·2A (green, low half)", module: "quadric_unit__half_lo", from: "(({2'h0, s_ga2$1} << 32'h1)", to: "(({2'h0, ga2$1$q} << 32'h1)" },
-        Mutant { what: "leftward hand-over e = 2A + Dx + 1 instead of 2A − Dx (green, low half)", module: "quadric_unit__half_lo", from: "(({2'h0, n_dx$1} << 32'h1) | {33'h0, cin$1[(28)+:(1)]})", to: "(({2'h0, tdx$1$q} << 32'h1) | {33'h0, cin$1[(28)+:(1)]})" },
-        Mutant { what: "the y-step's carry from I's low half into its high half dropped (red)", module: "quadric_unit__half_hi", from: "(({2'h0, tdy$0$q} << 32'h1) | {33'h0, cin$0[(16)+:(1)]})", to: "(({2'h0, tdy$0$q} << 32'h1) | 34'h0)" },
+        Mutant { what: "generator difference e' = e + 2A instead of e + 2·2A (green, low half)", module: "quadric_unit__half_lo", from: "cs_ge$1 = ge$1$q + s_ga2$1 +", to: "cs_ge$1 = ge$1$q + ga2$1$q +" },
+        Mutant { what: "leftward hand-over e = 2A + Dx + 1 instead of 2A − Dx (green, low half)", module: "quadric_unit__half_lo", from: "cs_hge$1 = ta2$1$q + n_dx$1 +", to: "cs_hge$1 = ta2$1$q + tdx$1$q +" },
+        Mutant { what: "the y-step's carry from I's low half into its high half dropped (red)", module: "quadric_unit__half_hi", from: "cs_yi$0 = ti$0$q + tdy$0$q + {31'h0, cin$0[(16)+:(1)]};", to: "cs_yi$0 = ti$0$q + tdy$0$q;" },
         Mutant { what: "a +2 x-step from d = 3 taken as reaching the line start (d = 2)", module: "quadric_unit", from: "n_zero = tdist$q == 13'b10;", to: "n_zero = tdist$q == 13'b11;" },
     ]);
 }

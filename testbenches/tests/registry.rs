@@ -395,7 +395,7 @@ fn ecp5_places_and_times_blocks() {
         "horner-unit",
         "pixel-stream",
         "fast-pipeline",
-        // 113.6 MHz since its words are split into halves a clock apart (2026-11-26; 97.5
+        // 109.1 MHz since its words are split into halves a clock apart (2026-11-26; 97.5
         // before).
         "quadric-unit",
     ];
