@@ -119,8 +119,10 @@ pub struct SynthArgs {
     #[arg(long, value_parser = ["25k", "45k", "85k"])]
     pub device: Option<String>,
     /// With `--target ecp5`: also place and route the block as the top of a board design, its
-    /// ports on the package's own pins (no timing shell) — whether its interface fits the
-    /// package (the stream tops do; tops with flat set-up ports have hundreds of pins).
+    /// ports on a package's own pins (no timing shell) — whether its interface fits a real
+    /// package: the part's own package, or the smallest of the same or a larger die that has
+    /// the pins (45F CABGA381/554, 85F CABGA554/756); tops with flat set-up ports have more
+    /// pins than any.
     #[arg(long)]
     pub pins: bool,
     /// With `--target ecp5`: nextpnr-ecp5's placer seed (default 1, the figures in the README).
@@ -317,18 +319,23 @@ pub fn synth(a: SynthArgs) -> anyhow::Result<()> {
             let rep = rep?;
             crate::outln!("{rep}")?;
             if a.pins {
+                // The smallest package of this die or a larger one that has the top's pins.
+                let part = testbenches::synth::ecp5_part_for_pins(
+                    rep.part,
+                    testbenches::synth::top_pins(&b.ports()),
+                );
                 let spin = spinner(format!(
                     "synth {}: on its own pins of the {} ({})",
                     b.name(),
-                    rep.part.name,
-                    rep.part.package
+                    part.name,
+                    part.package
                 ));
                 let v = b.verilog(&o).map_err(|e| anyhow!(e))?;
                 let pins = testbenches::synth::ecp5_on_pins_with(
                     &v,
                     &b.module_name(),
                     &b.ports(),
-                    rep.part,
+                    part,
                     &format!("pins-{}", b.name()),
                     a.seed.unwrap_or(1),
                     a.mult_regs.unwrap_or(MultRegsArg::Dsp).into(),

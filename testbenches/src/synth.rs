@@ -364,6 +364,63 @@ pub const ECP5_PARTS: [Ecp5Part; 3] = [
     },
 ];
 
+/// The larger packages of the same dies, for a top whose own pins exceed its part's package
+/// (`synth --pins`): user I/O per the ECP5 family data sheet, smallest die first, then the
+/// fewest balls. The 25F has no package with more than the CABGA256's 197.
+pub const ECP5_PIN_PACKAGES: [Ecp5Part; 4] = [
+    Ecp5Part {
+        package: "CABGA381",
+        name: "LFE5U-45F-6BG381C",
+        user_io: 203,
+        ..ECP5_PARTS[1]
+    },
+    Ecp5Part {
+        package: "CABGA554",
+        name: "LFE5U-45F-6BG554C",
+        user_io: 245,
+        ..ECP5_PARTS[1]
+    },
+    Ecp5Part {
+        package: "CABGA554",
+        name: "LFE5U-85F-6BG554C",
+        user_io: 259,
+        ..ECP5_PARTS[2]
+    },
+    Ecp5Part {
+        package: "CABGA756",
+        name: "LFE5U-85F-6BG756C",
+        user_io: 365,
+        ..ECP5_PARTS[2]
+    },
+];
+
+/// A top's pins on a board: every port bit and the clock.
+pub fn top_pins(ports: &(Vec<Port>, Vec<Port>)) -> usize {
+    1 + ports
+        .0
+        .iter()
+        .chain(&ports.1)
+        .map(|p| p.width)
+        .sum::<usize>()
+}
+
+/// The part to place a top with `pins` pins on: `part` (the smallest that holds its logic)
+/// when its package has the user I/O, otherwise the smallest part in [`ECP5_PARTS`] or
+/// [`ECP5_PIN_PACKAGES`] at least as large whose package has them (`part` itself when none
+/// has: [`ecp5_on_pins`] then refuses it).
+pub fn ecp5_part_for_pins(part: Ecp5Part, pins: usize) -> Ecp5Part {
+    if pins <= part.user_io {
+        return part;
+    }
+    ECP5_PARTS
+        .iter()
+        .chain(&ECP5_PIN_PACKAGES)
+        .filter(|p| p.luts >= part.luts && p.user_io >= pins)
+        .min_by_key(|p| (p.luts, p.user_io))
+        .copied()
+        .unwrap_or(part)
+}
+
 /// The skip-or-fail policy of [`crate::tools::require`] for the ECP5 flow: Yosys and
 /// nextpnr-ecp5. `true` when both run; otherwise a notice on the process's stderr (visible
 /// even when the test passes) and `false`, or a panic when `CI` is set.
@@ -813,12 +870,7 @@ pub fn ecp5_on_pins_with(
     regs: MultRegs,
 ) -> Result<PinsReport, String> {
     let dir = tools::unique_dir(tag)?;
-    let pins = 1 + ports
-        .0
-        .iter()
-        .chain(&ports.1)
-        .map(|p| p.width)
-        .sum::<usize>();
+    let pins = top_pins(ports);
     let mut rep = PinsReport {
         part,
         pins,
@@ -921,6 +973,26 @@ mod tests {
             MultRegs::Dsp,
         );
         assert!(fits.is_err(), "{fits:?}");
+    }
+
+    /// A top whose pins exceed its part's package moves to the smallest package of the same
+    /// or a larger die that has them: the two-lane stream tops' 235 pins to the 45F's
+    /// CABGA554, `subdivision-stream`'s 305 to the 85F's CABGA756; 366 pins have no package;
+    /// a top that fits its package stays on it.
+    #[test]
+    fn a_top_beyond_its_package_moves_to_the_smallest_package_with_its_pins() {
+        let [p25, p45, p85] = ECP5_PARTS;
+        assert_eq!(ecp5_part_for_pins(p25, 136), p25);
+        assert_eq!(ecp5_part_for_pins(p25, 197), p25);
+        assert_eq!(ecp5_part_for_pins(p25, 198).name, "LFE5U-45F-6BG381C");
+        assert_eq!(ecp5_part_for_pins(p25, 235).name, "LFE5U-45F-6BG554C");
+        assert_eq!(ecp5_part_for_pins(p45, 235).name, "LFE5U-45F-6BG554C");
+        assert_eq!(ecp5_part_for_pins(p25, 305).name, "LFE5U-85F-6BG756C");
+        assert_eq!(ecp5_part_for_pins(p85, 250).name, "LFE5U-85F-6BG554C");
+        assert_eq!(ecp5_part_for_pins(p25, 366), p25);
+        assert_eq!(ecp5_part_for_pins(p45, 664), p45);
+        // A larger package never means a smaller die.
+        assert_eq!(ecp5_part_for_pins(p85, 198).device, "85k");
     }
 
     /// A nextpnr-ecp5 critical path report (shortened from the lighting unit's): the design's
