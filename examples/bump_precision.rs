@@ -1,0 +1,473 @@
+//! Where the lit front end loses the bits the 2-LSB bound needs (issue 9;
+//! `docs/bump-precision.md` holds the tables and what they mean).
+//!
+//! `cargo run --release --example bump_precision` prints, for four scenes, how far the
+//! hardware's cos γ is from the golden f64 front end's, and how far that moves the colour of
+//! `bump` and of `normalizer-fit`'s specular path, for today's formats and for wider ones.
+//! `-- --stages` rounds one word at a time; `-- --sweep` runs every design over 54 scenes. It
+//! is a design tool, not a test: nothing here is asserted.
+//!
+//! The front end is modelled stage by stage, each word rounded to nearest (ties up) at its
+//! fraction bits (`None` = kept exact), as in `rtl/src/normalizer.rs` and
+//! `rtl/src/lighting_unit.rs`:
+//!
+//! ```text
+//! N   the vector interpolator's output         signed Q2.14 today
+//! K   |N|² narrowed for the Horner multipliers unsigned Q1.15
+//! t1  c2·K + c1                                signed Q2.14
+//! f   t1·K + c0                                unsigned Q1.15
+//! N'  N·f                                      signed Q2.14
+//! H   the half vector register                 signed Q2.14
+//! c   N'·H, rounded for the BRZSSK             unsigned Q1.15; the sin γ PROM takes 11 address
+//!                                              bits and interpolates with the rest
+//! ```
+//! The first design runs today's words through the bit-exact integer twin of the normalizer
+//! (`golden::normalizer::twin`) instead of the model, so the model can be compared with it.
+//!
+//! The colour is compared per fragment (before the z-buffer) with the golden image whose sin γ
+//! PROM interpolates with the same bits. The diffuse term is the golden one in both, so the
+//! difference is the specular path's alone; the power unit's own error is not modelled.
+//!
+//! Near the highlight's centre cos(γ ± dγ) = c·cos dγ ∓ √(1 − c²)·sin dγ is steep in c (see
+//! `tests/rtl_lit.rs`, `ill_conditioned`), and the power n multiplies any error in c. So the
+//! bound needs both a finer c out of the lighting unit and a front end whose error is well
+//! under one LSB of Q1.15.
+
+use glam::DVec3;
+use golden::bump::{perturb, BumpMap, SinProm};
+use shadecore::setup::{build, SceneArgs};
+
+/// Fraction bits of each front-end word (`None`: exact).
+#[derive(Clone, Copy)]
+struct Formats {
+    n: Option<u32>,
+    k: Option<u32>,
+    t1: Option<u32>,
+    f: Option<u32>,
+    n_prime: Option<u32>,
+    h: Option<u32>,
+    /// Fraction bits of c into the BRZSSK; the sin γ PROM interpolates with `c − 11` bits.
+    c: u32,
+}
+
+const TODAY: Formats = Formats {
+    n: Some(14),
+    k: Some(15),
+    t1: Some(14),
+    f: Some(15),
+    n_prime: Some(14),
+    h: Some(14),
+    c: 15,
+};
+
+fn round(v: f64, frac: Option<u32>) -> f64 {
+    match frac {
+        Some(b) => {
+            let s = (b as f64).exp2();
+            (v * s + 0.5).floor() / s
+        }
+        None => v,
+    }
+}
+
+fn round3(v: DVec3, frac: Option<u32>) -> DVec3 {
+    DVec3::new(round(v.x, frac), round(v.y, frac), round(v.z, frac))
+}
+
+/// cos γ = N'·H through the modelled front end (unclamped, before the output rounding).
+fn model(n: DVec3, h: DVec3, c: [f64; 3], f: &Formats) -> f64 {
+    let n = round3(n, f.n);
+    let k = round(n.length_squared(), f.k);
+    let t1 = round(c[0] * k + c[1], f.t1);
+    let scale = round(t1 * k + c[2], f.f);
+    round3(n * scale, f.n_prime).dot(round3(h, f.h))
+}
+
+/// cos γ through the integer twin of today's normalizer and an exact Q2.14 dot product.
+fn twin(n: DVec3, h: DVec3, c: [f64; 3]) -> f64 {
+    use golden::normalizer::twin::NormalizerTwin;
+    let q = |v: f64| (v * 16384.0 + 0.5).floor() as i64;
+    let mut t = NormalizerTwin::new(c);
+    t.clock(true, [q(n.x), q(n.y), q(n.z)]);
+    loop {
+        let (valid, np) = t.outputs();
+        if valid {
+            let s: i64 = np[0] * q(h.x) + np[1] * q(h.y) + np[2] * q(h.z);
+            return s as f64 / (28f64).exp2();
+        }
+        t.clock(false, [0; 3]);
+    }
+}
+
+struct Outcome {
+    dc_max: f64,
+    lsb_max: u8,
+    over_2: usize,
+    /// The same for `normalizer-fit`'s specular path: c^n from the same c word.
+    plain_lsb_max: u8,
+}
+
+fn run(args: &SceneArgs, formats: Option<&Formats>) -> Outcome {
+    let s = build(args).expect("scene");
+    let coeffs = golden::normalizer::FIT;
+    let half = s.ctx.half();
+    let map = BumpMap::default();
+    let (phi, _) = golden::bump::default_proms();
+    let fm = formats.unwrap_or(&TODAY);
+    let prom = SinProm {
+        addr_bits: golden::bump::SIN_ADDR_BITS,
+        interp_bits: fm.c - golden::bump::SIN_ADDR_BITS,
+    };
+    let top = (1i64 << (fm.c + 1)) - 1;
+    let mut o = Outcome {
+        dc_max: 0.0,
+        lsb_max: 0,
+        over_2: 0,
+        plain_lsb_max: 0,
+    };
+    for t in &s.tris {
+        let w = golden::raster::walk(t);
+        let Some(setup) = golden::normalizer::setup(t, &w) else {
+            continue;
+        };
+        for p in golden::normalizer::interpolate(&setup, &w) {
+            let (d, c_gold) = golden::normalizer::cosines(&p, &s.ctx, coeffs);
+            let c_hw = match formats {
+                Some(f) => model(p.n, half, coeffs, f),
+                None => twin(p.n, half, coeffs),
+            };
+            o.dc_max = o.dc_max.max((c_hw - c_gold).abs() * 32768.0);
+            let scale = (fm.c as f64).exp2();
+            let c_word = ((c_hw * scale + 0.5).floor() as i64).clamp(0, top) as f64 / scale;
+            let code = map.code(p.x, p.y);
+            let diffuse = perturb(d, code, &map, &phi);
+            let colour = |c: f64| {
+                let spec = s.ctx.specular_power(perturb(c, code, &map, &prom));
+                s.ctx.combine(diffuse, spec)
+            };
+            let (hw, gold) = (colour(c_word), colour(c_gold));
+            let lsb = (0..3).map(|i| hw[i].abs_diff(gold[i])).max().unwrap_or(0);
+            o.lsb_max = o.lsb_max.max(lsb);
+            o.over_2 += (lsb > 2) as usize;
+            let plain = |c: f64| s.ctx.combine(d, s.ctx.specular_power(c));
+            let (hw, gold) = (plain(c_word), plain(c_gold));
+            let lsb = (0..3).map(|i| hw[i].abs_diff(gold[i])).max().unwrap_or(0);
+            o.plain_lsb_max = o.plain_lsb_max.max(lsb);
+        }
+    }
+    o
+}
+
+fn main() {
+    let scenes = [
+        ("sphere 400²", SceneArgs::default()),
+        (
+            "torus 400²",
+            SceneArgs {
+                scene: "torus".into(),
+                ..SceneArgs::default()
+            },
+        ),
+        (
+            "sphere 400², n = 1000",
+            SceneArgs {
+                shininess: 1000,
+                ..SceneArgs::default()
+            },
+        ),
+        (
+            "torus rez 30 240²",
+            SceneArgs {
+                scene: "torus".into(),
+                rez: 30,
+                size: (240, 240),
+                ..SceneArgs::default()
+            },
+        ),
+    ];
+    let wide = |f: Formats| Some(f);
+    let designs: Vec<(&str, Option<Formats>)> = vec![
+        ("today: integer twin", None),
+        ("today: model", Some(TODAY)),
+        (
+            "N' not rounded (N·H before ·f)",
+            wide(Formats {
+                n_prime: None,
+                ..TODAY
+            }),
+        ),
+        (
+            "t1 Q2.17",
+            wide(Formats {
+                t1: Some(17),
+                ..TODAY
+            }),
+        ),
+        (
+            "N' not rounded, t1 Q2.17, c Q1.17",
+            wide(Formats {
+                n_prime: None,
+                t1: Some(17),
+                c: 17,
+                ..TODAY
+            }),
+        ),
+        (
+            "N' not rounded, t1 Q2.17, f Q1.18, c Q1.17",
+            wide(Formats {
+                n_prime: None,
+                t1: Some(17),
+                f: Some(18),
+                c: 17,
+                ..TODAY
+            }),
+        ),
+        (
+            "N Q2.17, N' not rounded, t1 Q2.17, f Q1.18, c Q1.17",
+            wide(Formats {
+                n: Some(17),
+                n_prime: None,
+                t1: Some(17),
+                f: Some(18),
+                c: 17,
+                ..TODAY
+            }),
+        ),
+        (
+            "every word +2 bits (18-bit operands), c Q1.17",
+            wide(Formats {
+                n: Some(16),
+                k: Some(17),
+                t1: Some(16),
+                f: Some(17),
+                n_prime: Some(16),
+                h: Some(16),
+                c: 17,
+            }),
+        ),
+        (
+            "every word +2 bits but H, c Q1.17",
+            wide(Formats {
+                n: Some(16),
+                k: Some(17),
+                t1: Some(16),
+                f: Some(17),
+                n_prime: Some(16),
+                c: 17,
+                ..TODAY
+            }),
+        ),
+        (
+            "every word +3 bits, c Q1.15",
+            wide(Formats {
+                n: Some(17),
+                k: Some(18),
+                t1: Some(17),
+                f: Some(18),
+                n_prime: Some(17),
+                h: Some(17),
+                c: 15,
+            }),
+        ),
+        (
+            "every word +3 bits, c Q1.17",
+            wide(Formats {
+                n: Some(17),
+                k: Some(18),
+                t1: Some(17),
+                f: Some(18),
+                n_prime: Some(17),
+                h: Some(17),
+                c: 17,
+            }),
+        ),
+        (
+            "18-bit magnitudes: N, t1, N', H ±Q1.17; K, f Q1.17; c Q1.17",
+            wide(Formats {
+                n: Some(17),
+                k: Some(17),
+                t1: Some(17),
+                f: Some(17),
+                n_prime: Some(17),
+                h: Some(17),
+                c: 17,
+            }),
+        ),
+        (
+            "every word +4 bits, c Q1.18",
+            wide(Formats {
+                n: Some(18),
+                k: Some(19),
+                t1: Some(18),
+                f: Some(19),
+                n_prime: Some(18),
+                h: Some(18),
+                c: 18,
+            }),
+        ),
+        (
+            "every word +5 bits, c Q1.19",
+            wide(Formats {
+                n: Some(19),
+                k: Some(20),
+                t1: Some(19),
+                f: Some(20),
+                n_prime: Some(19),
+                h: Some(19),
+                c: 19,
+            }),
+        ),
+    ];
+    if std::env::args().any(|a| a == "--stages") {
+        stages();
+        return;
+    }
+    if std::env::args().any(|a| a == "--sweep") {
+        sweep(&designs);
+        return;
+    }
+    println!(
+        "Against the golden images, per fragment: max |Δcos γ| in LSB of Q1.15 / `bump`'s max \
+         colour difference in 8-bit LSB (fragments more than 2 LSB off) / the same for \
+         `normalizer-fit`'s specular path\n"
+    );
+    print!("| front end |");
+    for (name, _) in &scenes {
+        print!(" {name} |");
+    }
+    println!();
+    println!("|---|{}", "---:|".repeat(scenes.len()));
+    for (label, formats) in &designs {
+        print!("| {label} |");
+        for (_, args) in &scenes {
+            let o = run(args, formats.as_ref());
+            print!(
+                " {:.2} / {} ({}) / {} |",
+                o.dc_max, o.lsb_max, o.over_2, o.plain_lsb_max
+            );
+        }
+        println!();
+    }
+}
+
+/// Per n: `bump`'s scenes over 2 LSB and its worst LSB; the same for `normalizer-fit`.
+type Tally = (usize, u8, usize, u8);
+
+/// `--sweep`: every design over 54 scenes (sphere and torus; 240², 400², 600²; light at 60°,
+/// 90°, 120°; n = 50, 200 and 1000): per n, in how many scenes the colour is more than 2 LSB
+/// off, and the worst; for `bump` and for `normalizer-fit`'s specular path (c^n).
+fn sweep(designs: &[(&str, Option<Formats>)]) {
+    let mut scenes = Vec::new();
+    for scene in ["sphere", "torus"] {
+        for size in [240, 400, 600] {
+            for light_deg in [60.0, 90.0, 120.0] {
+                for shininess in [50, 200, 1000] {
+                    scenes.push(SceneArgs {
+                        scene: scene.into(),
+                        size: (size, size),
+                        light_deg,
+                        shininess,
+                        ..SceneArgs::default()
+                    });
+                }
+            }
+        }
+    }
+    let per_n = scenes.len() / 3;
+    println!(
+        "| front end | `bump`: scenes over 2 LSB (of {per_n} per n), n = 50 / 200 / 1000 | `bump`: worst LSB | `normalizer-fit` specular path: scenes over 2 LSB | its worst LSB | worst max |Δcos γ| (LSB of Q1.15) |"
+    );
+    println!("|---|---:|---:|---:|---:|---:|");
+    for (label, formats) in designs {
+        // Per n = 50, 200, 1000: (bump over, bump worst, plain over, plain worst).
+        let mut t: [Tally; 3] = [(0, 0, 0, 0); 3];
+        let mut dc = 0f64;
+        for args in &scenes {
+            let o = run(args, formats.as_ref());
+            let slot = &mut t[match args.shininess {
+                50 => 0,
+                200 => 1,
+                _ => 2,
+            }];
+            slot.0 += (o.lsb_max > 2) as usize;
+            slot.1 = slot.1.max(o.lsb_max);
+            slot.2 += (o.plain_lsb_max > 2) as usize;
+            slot.3 = slot.3.max(o.plain_lsb_max);
+            dc = dc.max(o.dc_max);
+        }
+        let col = |f: &dyn Fn(&Tally) -> String| t.iter().map(f).collect::<Vec<_>>().join(" / ");
+        println!(
+            "| {label} | {} | {} | {} | {} | {dc:.2} |",
+            col(&|x| x.0.to_string()),
+            col(&|x| x.1.to_string()),
+            col(&|x| x.2.to_string()),
+            col(&|x| x.3.to_string()),
+        );
+    }
+}
+
+/// `--stages`: on the default sphere, the worst |Δcos γ| when only one word is rounded (at
+/// today's format) and every other word is exact.
+fn stages() {
+    let exact = Formats {
+        n: None,
+        k: None,
+        t1: None,
+        f: None,
+        n_prime: None,
+        h: None,
+        c: TODAY.c,
+    };
+    let rows = [
+        (
+            "N, the vector interpolator's output (signed Q2.14)",
+            Formats {
+                n: TODAY.n,
+                ..exact
+            },
+        ),
+        (
+            "N' = N·f (signed Q2.14)",
+            Formats {
+                n_prime: TODAY.n_prime,
+                ..exact
+            },
+        ),
+        (
+            "t1 = c2·K + c1 (signed Q2.14)",
+            Formats {
+                t1: TODAY.t1,
+                ..exact
+            },
+        ),
+        (
+            "f = t1·K + c0 (unsigned Q1.15)",
+            Formats {
+                f: TODAY.f,
+                ..exact
+            },
+        ),
+        (
+            "K for the Horner multipliers (unsigned Q1.15)",
+            Formats {
+                k: TODAY.k,
+                ..exact
+            },
+        ),
+        (
+            "H, the half vector (signed Q2.14)",
+            Formats {
+                h: TODAY.h,
+                ..exact
+            },
+        ),
+        ("all but H", Formats { h: None, ..TODAY }),
+        ("all: today", TODAY),
+    ];
+    println!("| word rounded (every other word exact) | worst |Δcos γ|, LSB of Q1.15 |");
+    println!("|---|---:|");
+    for (label, f) in rows {
+        let o = run(&SceneArgs::default(), Some(&f));
+        println!("| {label} | {:.2} |", o.dc_max);
+    }
+}
