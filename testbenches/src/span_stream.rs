@@ -29,7 +29,7 @@ use crate::quadric_unit::QuadricRows;
 use crate::registry::{Bench, Stimulus, Twin};
 use crate::span_pipeline::{GoldenSpans, SpanPipelineTwin};
 use crate::stall::StallPattern;
-use crate::stream_twin::{drive_lanes, BeatFifo, LaneTwin, RecordReader};
+use crate::stream_twin::{drive_lanes, BeatFifo, LaneRun, LaneTwin, RecordReader};
 use rtl::registry::NoParams;
 
 /// Output ports in row order: s_axis_tready; lane A tvalid, tdata, tuser, tlast; lane B the
@@ -218,18 +218,8 @@ impl Twin for SpanStreamTwin {
     }
 }
 
-/// A run: input rows, the twin's outputs, and what happened.
-pub struct SpanStreamRun {
-    pub rows: Vec<Vec<u64>>,
-    pub outputs: Vec<Vec<u64>>,
-    /// The beats each lane's consumer took, in order (lane A, lane B).
-    pub beats: [Vec<Beat>; 2],
-    pub held: usize,
-    /// Clocks each lane's consumer was stalled.
-    pub consumer_stalls: [usize; 2],
-    /// The most beats a lane's FIFO held.
-    pub max_level: usize,
-}
+/// A run: input rows, the twin's outputs, and what happened (`stream_twin::LaneRun`).
+pub type SpanStreamRun = LaneRun<2>;
 
 /// Drive `words` into the twin with a producer that leaves a gap (tvalid low) with
 /// probability `gap` and each lane's consumer stalled by its pattern, until every word is
@@ -243,15 +233,7 @@ pub fn drive(
     tail: usize,
 ) -> SpanStreamRun {
     let mut twin = SpanStreamTwin::new(kind);
-    let r = drive_lanes(&mut twin, words, seed ^ 0xA9_6E1A, gap, stalls, tail);
-    SpanStreamRun {
-        rows: r.rows,
-        outputs: r.outputs,
-        beats: r.beats.try_into().expect("two lanes"),
-        held: r.held,
-        consumer_stalls: r.consumer_stalls.try_into().expect("two lanes"),
-        max_level: r.max_level,
-    }
+    drive_lanes(&mut twin, words, seed ^ 0xA9_6E1A, gap, stalls, tail)
 }
 
 /// The stimulus's scene: the lines of `kind` of `n` seeded lit triangles (the span pipeline

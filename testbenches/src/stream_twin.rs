@@ -32,16 +32,16 @@ pub trait LaneTwin: Twin {
     fn max_level(&self) -> usize;
 }
 
-/// A run of [`drive_lanes`]: input rows, the twin's outputs, and what happened.
-pub struct LaneRun {
+/// A run of [`drive_lanes`] over `L` lanes: input rows, the twin's outputs, and what happened.
+pub struct LaneRun<const L: usize> {
     pub rows: Vec<Vec<u64>>,
     pub outputs: Vec<Vec<u64>>,
     /// The beats each lane's consumer took, in order.
-    pub beats: Vec<Vec<Beat>>,
+    pub beats: [Vec<Beat>; L],
     /// Clocks the wrapped top was held.
     pub held: usize,
     /// Clocks each lane's consumer was stalled.
-    pub consumer_stalls: Vec<usize>,
+    pub consumer_stalls: [usize; L],
     /// The most beats a lane's FIFO held.
     pub max_level: usize,
 }
@@ -49,23 +49,23 @@ pub struct LaneRun {
 /// Drive `words` into `twin` with a producer that leaves a gap (tvalid low) with probability
 /// `gap` (its draws seeded by `seed`) and each lane's consumer stalled by its pattern in
 /// `stalls`, until every word is taken and everything has drained (plus `tail` idle clocks).
-pub fn drive_lanes<T: LaneTwin>(
+pub fn drive_lanes<T: LaneTwin, const L: usize>(
     twin: &mut T,
     words: &[Word],
     seed: u64,
     gap: f64,
-    stalls: &mut [StallPattern],
+    stalls: &mut [StallPattern; L],
     tail: usize,
-) -> LaneRun {
-    assert_eq!(stalls.len(), T::LANES, "a stall pattern per lane");
+) -> LaneRun<L> {
+    assert_eq!(L, T::LANES, "a stall pattern per lane");
     let per = 3 + T::TUSER as usize;
     let mut rng = SplitMix::new(seed);
     let mut run = LaneRun {
         rows: Vec::new(),
         outputs: Vec::new(),
-        beats: vec![Vec::new(); T::LANES],
+        beats: std::array::from_fn(|_| Vec::new()),
         held: 0,
-        consumer_stalls: vec![0; T::LANES],
+        consumer_stalls: [0; L],
         max_level: 0,
     };
     let (mut next, mut showing, mut idle_clocks) = (0usize, false, 0usize);

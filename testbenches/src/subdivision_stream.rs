@@ -22,7 +22,7 @@ use rtl::subdivision_stream::{SubdivisionStream, FIFO_DEPTH, HOLD_ABOVE};
 use crate::harness::{Compare, Expected};
 use crate::registry::{Bench, Stimulus, Twin};
 use crate::stall::StallPattern;
-use crate::stream_twin::{drive_lanes, BeatFifo, LaneTwin, RecordReader};
+use crate::stream_twin::{drive_lanes, BeatFifo, LaneRun, LaneTwin, RecordReader};
 use crate::subdivision_raster::SubRows;
 
 /// Output ports in row order: s_axis_tready; per lane tvalid, tdata, tlast; error.
@@ -127,19 +127,8 @@ impl Twin for SubdivisionStreamTwin {
     }
 }
 
-/// A run: input rows, the twin's outputs, and what happened.
-pub struct SubdivisionStreamRun {
-    pub rows: Vec<Vec<u64>>,
-    pub outputs: Vec<Vec<u64>>,
-    /// The beats each lane's consumer took, in order.
-    pub beats: [Vec<Beat>; LANES],
-    /// Clocks the four-triangle block was held.
-    pub held: usize,
-    /// Clocks each lane's consumer was stalled.
-    pub consumer_stalls: [usize; LANES],
-    /// The most beats a lane's FIFO held.
-    pub max_level: usize,
-}
+/// A run: input rows, the twin's outputs, and what happened (`stream_twin::LaneRun`).
+pub type SubdivisionStreamRun = LaneRun<LANES>;
 
 /// Drive `words` into the twin with a producer that leaves a gap (tvalid low) with
 /// probability `gap` and each lane's consumer stalled by its pattern, until every word is
@@ -152,15 +141,7 @@ pub fn drive(
     tail: usize,
 ) -> SubdivisionStreamRun {
     let mut twin = SubdivisionStreamTwin::new();
-    let r = drive_lanes(&mut twin, words, seed ^ 0x5_0B_D1, gap, stalls, tail);
-    SubdivisionStreamRun {
-        rows: r.rows,
-        outputs: r.outputs,
-        beats: r.beats.try_into().expect("four lanes"),
-        held: r.held,
-        consumer_stalls: r.consumer_stalls.try_into().expect("four lanes"),
-        max_level: r.max_level,
-    }
+    drive_lanes(&mut twin, words, seed ^ 0x5_0B_D1, gap, stalls, tail)
 }
 
 /// `n` seeded parents shaded by the `subdivision` method (the raster pipe's bench's), with
