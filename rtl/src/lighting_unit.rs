@@ -51,6 +51,12 @@
 //! products and sums are exact; the output rounding adds 2⁻¹⁶:
 //! |Δcos| ≤ Σ|u_i|·e + 2⁻¹⁶ ≤ 1.96·10⁻⁴ (published), 1.77·10⁻⁴ (fit), i.e. ≤ 6.5 LSB of Q1.15
 //! (`golden::lighting_unit::error_bound`).
+//!
+//! Measured against the golden f64 front end (N and H unquantized, fitted set), cos γ before
+//! the output rounding is 3.1–3.9 LSB of Q1.15 off at worst over 54 scenes. That keeps the lit
+//! methods within 1 LSB of their golden images at n = 50, but not `bump` (up to 6 LSB) nor any
+//! lit method at n = 200 (3–4 LSB). `docs/bump-precision.md` gives each word's share and the
+//! wider formats that would meet a 2-LSB bound (`examples/bump_precision.rs`).
 
 use rust_hdl::prelude::*;
 
