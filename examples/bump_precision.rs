@@ -60,6 +60,20 @@ const TODAY: Formats = Formats {
     c: 15,
 };
 
+/// Today's formats with every word `extra` bits wider, and c at `c` fraction bits.
+fn wider(extra: u32, c: u32) -> Formats {
+    let w = |b: Option<u32>| b.map(|b| b + extra);
+    Formats {
+        n: w(TODAY.n),
+        k: w(TODAY.k),
+        t1: w(TODAY.t1),
+        f: w(TODAY.f),
+        n_prime: w(TODAY.n_prime),
+        h: w(TODAY.h),
+        c,
+    }
+}
+
 fn round(v: f64, frac: Option<u32>) -> f64 {
     match frac {
         Some(b) => {
@@ -185,27 +199,26 @@ fn main() {
             },
         ),
     ];
-    let wide = |f: Formats| Some(f);
     let designs: Vec<(&str, Option<Formats>)> = vec![
         ("today: integer twin", None),
         ("today: model", Some(TODAY)),
         (
             "N' not rounded (N·H before ·f)",
-            wide(Formats {
+            Some(Formats {
                 n_prime: None,
                 ..TODAY
             }),
         ),
         (
             "t1 Q2.17",
-            wide(Formats {
+            Some(Formats {
                 t1: Some(17),
                 ..TODAY
             }),
         ),
         (
             "N' not rounded, t1 Q2.17, c Q1.17",
-            wide(Formats {
+            Some(Formats {
                 n_prime: None,
                 t1: Some(17),
                 c: 17,
@@ -214,7 +227,7 @@ fn main() {
         ),
         (
             "N' not rounded, t1 Q2.17, f Q1.18, c Q1.17",
-            wide(Formats {
+            Some(Formats {
                 n_prime: None,
                 t1: Some(17),
                 f: Some(18),
@@ -224,7 +237,7 @@ fn main() {
         ),
         (
             "N Q2.17, N' not rounded, t1 Q2.17, f Q1.18, c Q1.17",
-            wide(Formats {
+            Some(Formats {
                 n: Some(17),
                 n_prime: None,
                 t1: Some(17),
@@ -235,55 +248,20 @@ fn main() {
         ),
         (
             "every word +2 bits (18-bit operands), c Q1.17",
-            wide(Formats {
-                n: Some(16),
-                k: Some(17),
-                t1: Some(16),
-                f: Some(17),
-                n_prime: Some(16),
-                h: Some(16),
-                c: 17,
-            }),
+            Some(wider(2, 17)),
         ),
         (
             "every word +2 bits but H, c Q1.17",
-            wide(Formats {
-                n: Some(16),
-                k: Some(17),
-                t1: Some(16),
-                f: Some(17),
-                n_prime: Some(16),
-                c: 17,
-                ..TODAY
+            Some(Formats {
+                h: TODAY.h,
+                ..wider(2, 17)
             }),
         ),
-        (
-            "every word +3 bits, c Q1.15",
-            wide(Formats {
-                n: Some(17),
-                k: Some(18),
-                t1: Some(17),
-                f: Some(18),
-                n_prime: Some(17),
-                h: Some(17),
-                c: 15,
-            }),
-        ),
-        (
-            "every word +3 bits, c Q1.17",
-            wide(Formats {
-                n: Some(17),
-                k: Some(18),
-                t1: Some(17),
-                f: Some(18),
-                n_prime: Some(17),
-                h: Some(17),
-                c: 17,
-            }),
-        ),
+        ("every word +3 bits, c Q1.15", Some(wider(3, 15))),
+        ("every word +3 bits, c Q1.17", Some(wider(3, 17))),
         (
             "18-bit magnitudes: N, t1, N', H ±Q1.17; K, f Q1.17; c Q1.17",
-            wide(Formats {
+            Some(Formats {
                 n: Some(17),
                 k: Some(17),
                 t1: Some(17),
@@ -293,30 +271,8 @@ fn main() {
                 c: 17,
             }),
         ),
-        (
-            "every word +4 bits, c Q1.18",
-            wide(Formats {
-                n: Some(18),
-                k: Some(19),
-                t1: Some(18),
-                f: Some(19),
-                n_prime: Some(18),
-                h: Some(18),
-                c: 18,
-            }),
-        ),
-        (
-            "every word +5 bits, c Q1.19",
-            wide(Formats {
-                n: Some(19),
-                k: Some(20),
-                t1: Some(19),
-                f: Some(20),
-                n_prime: Some(19),
-                h: Some(19),
-                c: 19,
-            }),
-        ),
+        ("every word +4 bits, c Q1.18", Some(wider(4, 18))),
+        ("every word +5 bits, c Q1.19", Some(wider(5, 19))),
     ];
     if std::env::args().any(|a| a == "--stages") {
         stages();
