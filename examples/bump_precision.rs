@@ -21,8 +21,9 @@
 //! c   N'·H, rounded for the BRZSSK             unsigned Q1.15; the sin γ PROM takes 11 address
 //!                                              bits and interpolates with the rest
 //! ```
-//! The first design runs today's words through the bit-exact integer twin of the normalizer
-//! (`golden::normalizer::twin`) instead of the model, so the model can be compared with it.
+//! The first design runs today's words through the bit-exact integer twin of the lighting unit
+//! (`golden::lighting_unit::twin`) instead of the model, so the model can be compared with it.
+//! The twin gives cos γ only after its output rounding, so that row's |Δcos γ| includes it.
 //!
 //! The colour is compared per fragment (before the z-buffer) with the golden image whose sin γ
 //! PROM interpolates with the same bits. The diffuse term is the golden one in both, so the
@@ -97,20 +98,25 @@ fn model(n: DVec3, h: DVec3, c: [f64; 3], f: &Formats) -> f64 {
     round3(n * scale, f.n_prime).dot(round3(h, f.h))
 }
 
-/// cos γ through the integer twin of today's normalizer and an exact Q2.14 dot product.
+/// cos γ, after the output rounding, from the bit-exact integer twin of today's lighting unit
+/// (`golden::lighting_unit::twin`: the normalizer, the dot products, the Q1.15 narrowing).
 fn twin(n: DVec3, h: DVec3, c: [f64; 3]) -> f64 {
-    use golden::normalizer::twin::NormalizerTwin;
-    let q = |v: f64| (v * 16384.0 + 0.5).floor() as i64;
-    let mut t = NormalizerTwin::new(c);
-    t.clock(true, [q(n.x), q(n.y), q(n.z)]);
+    use golden::lighting_unit::twin::LightingTwin;
+    let q = |v: DVec3| [v.x, v.y, v.z].map(|x| (x * 16384.0 + 0.5).floor() as i64);
+    let mut t = LightingTwin::new(c);
+    t.clock(true, q(n), [0; 3], q(h));
     loop {
-        let (valid, np) = t.outputs();
+        let (valid, _, cos_gamma) = t.outputs();
         if valid {
-            let s: i64 = np[0] * q(h.x) + np[1] * q(h.y) + np[2] * q(h.z);
-            return s as f64 / (28f64).exp2();
+            return cos_gamma as f64 / 32768.0;
         }
-        t.clock(false, [0; 3]);
+        t.clock(false, [0; 3], [0; 3], q(h));
     }
+}
+
+/// The largest difference between two colours' channels.
+fn channel_diff(a: [u8; 3], b: [u8; 3]) -> u8 {
+    (0..3).map(|i| a[i].abs_diff(b[i])).max().unwrap_or(0)
 }
 
 struct Outcome {
@@ -133,6 +139,7 @@ fn run(args: &SceneArgs, formats: Option<&Formats>) -> Outcome {
         interp_bits: fm.c - golden::bump::SIN_ADDR_BITS,
     };
     let top = (1i64 << (fm.c + 1)) - 1;
+    let scale = (fm.c as f64).exp2();
     let mut o = Outcome {
         dc_max: 0.0,
         lsb_max: 0,
@@ -150,8 +157,10 @@ fn run(args: &SceneArgs, formats: Option<&Formats>) -> Outcome {
                 Some(f) => model(p.n, half, coeffs, f),
                 None => twin(p.n, half, coeffs),
             };
-            o.dc_max = o.dc_max.max((c_hw - c_gold).abs() * 32768.0);
-            let scale = (fm.c as f64).exp2();
+            // Both clamped as the lighting unit's output is: a negative c only ever enters
+            // the colour as 0.
+            let clamp = |c: f64| c.clamp(0.0, golden::lighting_unit::COS_MAX);
+            o.dc_max = o.dc_max.max((clamp(c_hw) - clamp(c_gold)).abs() * 32768.0);
             let c_word = ((c_hw * scale + 0.5).floor() as i64).clamp(0, top) as f64 / scale;
             let code = map.code(p.x, p.y);
             let diffuse = perturb(d, code, &map, &phi);
@@ -159,14 +168,13 @@ fn run(args: &SceneArgs, formats: Option<&Formats>) -> Outcome {
                 let spec = s.ctx.specular_power(perturb(c, code, &map, &prom));
                 s.ctx.combine(diffuse, spec)
             };
-            let (hw, gold) = (colour(c_word), colour(c_gold));
-            let lsb = (0..3).map(|i| hw[i].abs_diff(gold[i])).max().unwrap_or(0);
+            let lsb = channel_diff(colour(c_word), colour(c_gold));
             o.lsb_max = o.lsb_max.max(lsb);
             o.over_2 += (lsb > 2) as usize;
             let plain = |c: f64| s.ctx.combine(d, s.ctx.specular_power(c));
-            let (hw, gold) = (plain(c_word), plain(c_gold));
-            let lsb = (0..3).map(|i| hw[i].abs_diff(gold[i])).max().unwrap_or(0);
-            o.plain_lsb_max = o.plain_lsb_max.max(lsb);
+            o.plain_lsb_max = o
+                .plain_lsb_max
+                .max(channel_diff(plain(c_word), plain(c_gold)));
         }
     }
     o
