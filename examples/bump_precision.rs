@@ -3,7 +3,8 @@
 //!
 //! `cargo run --release --example bump_precision` prints, for four scenes, how far the
 //! hardware's cos γ is from the golden f64 front end's, and how far that moves the colour of
-//! `bump` and of `normalizer-fit`'s specular path, for today's formats and for wider ones.
+//! `bump` and of `normalizer-fit`'s specular path: for the formats built, for the 16-bit words
+//! before them, and for other designs.
 //! `-- --stages` rounds one word at a time; `-- --sweep` runs every design over 54 scenes. It
 //! is a design tool, not a test: nothing here is asserted.
 //!
@@ -12,17 +13,19 @@
 //! `rtl/src/lighting_unit.rs`:
 //!
 //! ```text
-//! N   the vector interpolator's output         signed Q2.14 today
-//! K   |N|² narrowed for the Horner multipliers unsigned Q1.15
-//! t1  c2·K + c1                                signed Q2.14
-//! f   t1·K + c0                                unsigned Q1.15
-//! N'  N·f                                      signed Q2.14
-//! H   the half vector register                 signed Q2.14
+//!                                              built            before
+//! N   the vector interpolator's output         signed Q2.14     signed Q2.14
+//! K   |N|² narrowed for the Horner multipliers unsigned Q1.15   unsigned Q1.15
+//! t1  c2·K + c1                                signed Q2.17     signed Q2.14
+//! f   t1·K + c0                                unsigned Q1.18   unsigned Q1.15
+//! N'  N·f                                      signed Q2.17     signed Q2.14
+//! H   the half vector register                 signed Q2.14     signed Q2.14
 //! c   N'·H, rounded for the BRZSSK             unsigned Q1.15; the sin γ PROM takes 11 address
 //!                                              bits and interpolates with the rest
 //! ```
-//! The first design runs today's words through the bit-exact integer twin of the lighting unit
-//! (`golden::lighting_unit::twin`) instead of the model, so the model can be compared with it.
+//! The first design runs the built words through the bit-exact integer twin of the lighting
+//! unit (`golden::lighting_unit::twin`) instead of the model, so the model can be compared
+//! with it (the twin also floors the low parts of the 19-bit words' products, < 2⁻²⁸).
 //! The twin gives cos γ only after its output rounding, so that row's |Δcos γ| includes it.
 //!
 //! The colour is compared per fragment (before the z-buffer) with the golden image whose sin γ
@@ -51,7 +54,8 @@ struct Formats {
     c: u32,
 }
 
-const TODAY: Formats = Formats {
+/// The formats before the fix: every word 16 bits.
+const BEFORE: Formats = Formats {
     n: Some(14),
     k: Some(15),
     t1: Some(14),
@@ -61,16 +65,25 @@ const TODAY: Formats = Formats {
     c: 15,
 };
 
-/// Today's formats with every word `extra` bits wider, and c at `c` fraction bits.
+/// The formats built (`rtl/src/normalizer.rs`): t1 Q2.17, f Q1.18 and N' Q2.17, 19-bit words
+/// split 16 + 3 at their multipliers.
+const BUILT: Formats = Formats {
+    t1: Some(17),
+    f: Some(18),
+    n_prime: Some(17),
+    ..BEFORE
+};
+
+/// The formats before the fix with every word `extra` bits wider, and c at `c` fraction bits.
 fn wider(extra: u32, c: u32) -> Formats {
     let w = |b: Option<u32>| b.map(|b| b + extra);
     Formats {
-        n: w(TODAY.n),
-        k: w(TODAY.k),
-        t1: w(TODAY.t1),
-        f: w(TODAY.f),
-        n_prime: w(TODAY.n_prime),
-        h: w(TODAY.h),
+        n: w(BEFORE.n),
+        k: w(BEFORE.k),
+        t1: w(BEFORE.t1),
+        f: w(BEFORE.f),
+        n_prime: w(BEFORE.n_prime),
+        h: w(BEFORE.h),
         c,
     }
 }
@@ -98,7 +111,7 @@ fn model(n: DVec3, h: DVec3, c: [f64; 3], f: &Formats) -> f64 {
     round3(n * scale, f.n_prime).dot(round3(h, f.h))
 }
 
-/// cos γ, after the output rounding, from the bit-exact integer twin of today's lighting unit
+/// cos γ, after the output rounding, from the bit-exact integer twin of the lighting unit
 /// (`golden::lighting_unit::twin`: the normalizer, the dot products, the Q1.15 narrowing).
 fn twin(n: DVec3, h: DVec3, c: [f64; 3]) -> f64 {
     use golden::lighting_unit::twin::LightingTwin;
@@ -133,7 +146,7 @@ fn run(args: &SceneArgs, formats: Option<&Formats>) -> Outcome {
     let half = s.ctx.half();
     let map = BumpMap::default();
     let (phi, _) = golden::bump::default_proms();
-    let fm = formats.unwrap_or(&TODAY);
+    let fm = formats.unwrap_or(&BUILT);
     let prom = SinProm {
         addr_bits: golden::bump::SIN_ADDR_BITS,
         interp_bits: fm.c - golden::bump::SIN_ADDR_BITS,
@@ -208,20 +221,21 @@ fn main() {
         ),
     ];
     let designs: Vec<(&str, Option<Formats>)> = vec![
-        ("today: integer twin", None),
-        ("today: model", Some(TODAY)),
+        ("built (t1 Q2.17, f Q1.18, N' Q2.17): integer twin", None),
+        ("built: model", Some(BUILT)),
+        ("before (every word 16 bits): model", Some(BEFORE)),
         (
             "N' not rounded (N·H before ·f)",
             Some(Formats {
                 n_prime: None,
-                ..TODAY
+                ..BEFORE
             }),
         ),
         (
             "t1 Q2.17",
             Some(Formats {
                 t1: Some(17),
-                ..TODAY
+                ..BEFORE
             }),
         ),
         (
@@ -230,7 +244,7 @@ fn main() {
                 n_prime: None,
                 t1: Some(17),
                 c: 17,
-                ..TODAY
+                ..BEFORE
             }),
         ),
         (
@@ -240,7 +254,7 @@ fn main() {
                 t1: Some(17),
                 f: Some(18),
                 c: 17,
-                ..TODAY
+                ..BEFORE
             }),
         ),
         (
@@ -251,7 +265,7 @@ fn main() {
                 t1: Some(17),
                 f: Some(18),
                 c: 17,
-                ..TODAY
+                ..BEFORE
             }),
         ),
         (
@@ -261,7 +275,7 @@ fn main() {
         (
             "every word +2 bits but H, c Q1.17",
             Some(Formats {
-                h: TODAY.h,
+                h: BEFORE.h,
                 ..wider(2, 17)
             }),
         ),
@@ -371,7 +385,8 @@ fn sweep(designs: &[(&str, Option<Formats>)]) {
 }
 
 /// `--stages`: on the default sphere, the worst |Δcos γ| when only one word is rounded (at
-/// today's format) and every other word is exact.
+/// its format before the fix) and every other word is exact; then all of them, before and
+/// built.
 fn stages() {
     let exact = Formats {
         n: None,
@@ -380,53 +395,54 @@ fn stages() {
         f: None,
         n_prime: None,
         h: None,
-        c: TODAY.c,
+        c: BEFORE.c,
     };
     let rows = [
         (
             "N, the vector interpolator's output (signed Q2.14)",
             Formats {
-                n: TODAY.n,
+                n: BEFORE.n,
                 ..exact
             },
         ),
         (
             "N' = N·f (signed Q2.14)",
             Formats {
-                n_prime: TODAY.n_prime,
+                n_prime: BEFORE.n_prime,
                 ..exact
             },
         ),
         (
             "t1 = c2·K + c1 (signed Q2.14)",
             Formats {
-                t1: TODAY.t1,
+                t1: BEFORE.t1,
                 ..exact
             },
         ),
         (
             "f = t1·K + c0 (unsigned Q1.15)",
             Formats {
-                f: TODAY.f,
+                f: BEFORE.f,
                 ..exact
             },
         ),
         (
             "K for the Horner multipliers (unsigned Q1.15)",
             Formats {
-                k: TODAY.k,
+                k: BEFORE.k,
                 ..exact
             },
         ),
         (
             "H, the half vector (signed Q2.14)",
             Formats {
-                h: TODAY.h,
+                h: BEFORE.h,
                 ..exact
             },
         ),
-        ("all but H", Formats { h: None, ..TODAY }),
-        ("all: today", TODAY),
+        ("all but H", Formats { h: None, ..BEFORE }),
+        ("all: before", BEFORE),
+        ("all: built (t1 Q2.17, f Q1.18, N' Q2.17)", BUILT),
     ];
     println!("| word rounded (every other word exact) | worst |Δcos γ|, LSB of Q1.15 |");
     println!("|---|---:|");

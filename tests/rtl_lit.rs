@@ -3,8 +3,9 @@
 //! the same method (max LSB per channel, pixels differing, identical coverage) and against the
 //! reference (NMSE), on the default sphere, the torus and an OBJ mesh generated here.
 //!
-//! Bounds: every method within 2 LSB per channel of its golden image — for `bump`, at every
-//! pixel where the method is well conditioned (see [`ill_conditioned`]); on the default scene
+//! Bounds: every method within 2 LSB per channel of its golden image at every pixel — for
+//! `bump` on the OBJ mesh, at every pixel where the method is well conditioned (see
+//! [`ill_conditioned`]: one pixel of its highlight's centre is 3 LSB off); on the default scene
 //! `normalizer-fit` and `brdf-k16` reach NMSE ≤ 10⁻⁴ against the reference; no pixel may see a
 //! different surface than the f64 depth planes pick, except where two surfaces are closer
 //! than the depth words resolve (counted and printed; these scenes have none).
@@ -19,7 +20,7 @@ use shadecore::setup::{build, SceneArgs};
 /// The pixels where `bump` is ill-conditioned: cos(γ ± dγ) = c·cos dγ ∓ √(1 − c²)·sin dγ has
 /// the slope cos dγ ± sin dγ·c/√(1 − c²) in c, unbounded as c → 1 (the highlight's centre),
 /// so the lighting unit's own error on c (`golden::lighting_unit::error_bound` of the
-/// normalizer's format-derived budget: ≤ 1.77·10⁻⁴ with the fitted coefficients) moves S by up to
+/// normalizer's format-derived budget: ≤ 6.1·10⁻⁵ with the fitted coefficients) moves S by up to
 /// n·S^((n−1)/n)·sin|dγ|·c/√(1 − c²)·Δc. Where that exceeds one 8-bit LSB of the specular
 /// colour, no implementation whose c is off by Δc can stay within 2 LSB of the f64 golden.
 /// Computed from the golden front end's c at each pixel of every triangle.
@@ -84,8 +85,16 @@ fn split_diff(
     (out, inside)
 }
 
+/// Where `bump` is held to the 2-LSB bound: every pixel, or only outside the ill-conditioned
+/// zone (the zone's figures are printed either way).
+#[derive(Clone, Copy, PartialEq)]
+enum BumpBound {
+    Everywhere,
+    OutsideIllConditioned,
+}
+
 /// Render every lit method of `args` through the RTL and check it against golden.
-fn check_scene(label: &str, args: &SceneArgs, nmse_bound: &[(Method, f64)]) {
+fn check_scene(label: &str, args: &SceneArgs, nmse_bound: &[(Method, f64)], bump: BumpBound) {
     let s = build(args).unwrap();
     let reference = render(&s.tris, Method::Reference, &s.ctx, s.width, s.height);
     for m in LIT_METHODS {
@@ -127,6 +136,12 @@ fn check_scene(label: &str, args: &SceneArgs, nmse_bound: &[(Method, f64)]) {
                 out_max <= 2,
                 "{label} bump: {out_max} LSB outside the ill-conditioned zone"
             );
+            if bump == BumpBound::Everywhere {
+                assert!(
+                    max <= 2,
+                    "{label} bump: RTL differs from golden by {max} LSB"
+                );
+            }
         } else {
             assert!(
                 max <= 2,
@@ -149,6 +164,7 @@ fn default_scene_every_lit_method_through_the_rtl() {
         "sphere rez 50 400x400",
         &SceneArgs::default(),
         &[(Method::NormalizerFit, 1e-4), (Method::BrdfK16, 1e-4)],
+        BumpBound::Everywhere,
     );
 }
 
@@ -160,7 +176,7 @@ fn torus_every_lit_method_through_the_rtl() {
         size: (240, 240),
         ..SceneArgs::default()
     };
-    check_scene("torus rez 30 240x240", &args, &[]);
+    check_scene("torus rez 30 240x240", &args, &[], BumpBound::Everywhere);
 }
 
 /// A lumpy closed mesh without normals (the loader computes smooth ones): latitude-longitude
@@ -203,7 +219,14 @@ fn generated_obj_every_lit_method_through_the_rtl() {
         size: (200, 200),
         ..SceneArgs::default()
     };
-    check_scene("lumpy.obj 200x200", &args, &[]);
+    // One pixel of the highlight's centre is 3 LSB off (2 with the 16-bit front end before
+    // t1, f and N' got three more bits, which moved it by a rounding); see the README.
+    check_scene(
+        "lumpy.obj 200x200",
+        &args,
+        &[],
+        BumpBound::OutsideIllConditioned,
+    );
 }
 
 #[test]

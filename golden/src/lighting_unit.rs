@@ -24,17 +24,21 @@ pub fn cosines(n: DVec3, light: DVec3, half: DVec3, c: Coeffs) -> (f64, f64) {
 
 /// The bound on |cos_hw − cos| given a bound `component` on each component of N'_hw − N' and
 /// the unit vector `u` it is dotted with: Σ|u_i|·component (≤ √3·component) plus the output
-/// rounding (half an LSB, 2⁻¹⁶). The dot products themselves are exact.
+/// rounding (half an LSB, 2⁻¹⁶) and the floors of the three products' low parts (each
+/// < 2⁻²⁸, see the twin's D1). The sums are exact.
 pub fn error_bound(component: f64, u: DVec3) -> f64 {
-    (u.x.abs() + u.y.abs() + u.z.abs()) * component + (-(COS_FRAC_BITS as f64 + 1.0)).exp2()
+    (u.x.abs() + u.y.abs() + u.z.abs()) * component
+        + (-(COS_FRAC_BITS as f64 + 1.0)).exp2()
+        + 3.0 * (-28f64).exp2()
 }
 
 /// Bit-exact integer twin of `rtl/src/lighting_unit.rs`, from its header: the normalizer
 /// ([`crate::normalizer::twin::NormalizerTwin`], latency 15), then
 ///
 /// ```text
-/// D1 p = N'_i·L_i, N'_i·H_i          six exact signed Q2.14 × Q2.14 → Q4.28 products,
-///                                    three clocks (the product is ready three registers on)
+/// D1 p = N'_i·L_i, N'_i·H_i          six signed Q2.17 × Q2.14 products in Q4.28, four clocks
+///                                    (ready four registers on): N' split into ⌊N'/8⌋ (exact
+///                                    product) and N' − 8·⌊N'/8⌋ (product floored by 8)
 /// D2 s = Σ p                         exact (34 bits), registered
 /// D3 cos = sat(round(s: Q4.28 → UQ1.15))   +2¹², drop 13 bits, negative → 0, ≥ 2 → 0xFFFF
 /// ```
@@ -51,28 +55,28 @@ pub mod twin {
     #[derive(Clone, Debug)]
     pub struct LightingTwin {
         norm: NormalizerTwin,
-        /// D1's first two registers.
-        prod_a: [[i64; 6]; 2],
+        /// D1's first three registers.
+        prod_a: [[i64; 6]; 3],
         prod: [i64; 6],
         sum: [i64; 2],
         cos: [i64; 2],
-        valid: [bool; 5],
+        valid: [bool; 6],
     }
 
     impl LightingTwin {
         pub fn new(c: Coeffs) -> Self {
             Self {
                 norm: NormalizerTwin::new(c),
-                prod_a: [[0; 6]; 2],
+                prod_a: [[0; 6]; 3],
                 prod: [0; 6],
                 sum: [0; 2],
                 cos: [0; 2],
-                valid: [false; 5],
+                valid: [false; 6],
             }
         }
         /// (valid_out, cos φ, cos γ as unsigned Q1.15 integers) shown this clock.
         pub fn outputs(&self) -> (bool, i64, i64) {
-            (self.valid[4], self.cos[0], self.cos[1])
+            (self.valid[5], self.cos[0], self.cos[1])
         }
         /// One rising edge: `v` the interpolated normal, `l` and `h` the light and half
         /// vectors (signed Q2.14 integers).
@@ -83,15 +87,18 @@ pub mod twin {
                 self.prod[0] + self.prod[1] + self.prod[2],
                 self.prod[3] + self.prod[4] + self.prod[5],
             ];
-            self.prod = self.prod_a[1];
+            self.prod = self.prod_a[2];
+            self.prod_a[2] = self.prod_a[1];
             self.prod_a[1] = self.prod_a[0];
+            // N' (Q2.17) · u (Q2.14) in Q4.28: the high part exact, the low part floored.
+            let p = |n: i64, u: i64| (n >> 3) * u + (((n & 7) * u) >> 3);
             self.prod_a[0] = [
-                n[0] * l[0],
-                n[1] * l[1],
-                n[2] * l[2],
-                n[0] * h[0],
-                n[1] * h[1],
-                n[2] * h[2],
+                p(n[0], l[0]),
+                p(n[1], l[1]),
+                p(n[2], l[2]),
+                p(n[0], h[0]),
+                p(n[1], h[1]),
+                p(n[2], h[2]),
             ];
             self.valid = [
                 nv,
@@ -99,6 +106,7 @@ pub mod twin {
                 self.valid[1],
                 self.valid[2],
                 self.valid[3],
+                self.valid[4],
             ];
             self.norm.clock(valid_in, v);
         }

@@ -183,8 +183,9 @@ pub fn shade_front_end(
 /// `rtl/src/k_recurrence.rs`, written from their headers' formats (not from the RTL): every
 /// register, every rounding (add half an LSB, drop, ties toward +∞) and every saturation, in
 /// plain `i64` arithmetic. The benches compare them with the RTL exactly, every port, every
-/// clock; the f64 functions above are the second check. Words are raw integers (signed Q2.14
-/// components as `i64` in −2¹⁵..2¹⁵, K in Q4.28 units).
+/// clock; the f64 functions above are the second check. Words are raw integers (input
+/// components signed Q2.14, `i64` in −2¹⁵..2¹⁵; output components signed Q2.17, in
+/// −2¹⁸..2¹⁸; K in Q4.28 units).
 pub mod twin {
     use super::Coeffs;
 
@@ -198,20 +199,23 @@ pub mod twin {
         ((v + (1 << (bits - 1))) >> bits).clamp(lo, hi)
     }
 
-    const Q214_MIN: i64 = -(1 << 15);
-    const Q214_MAX: i64 = (1 << 15) - 1;
+    const Q217_MIN: i64 = -(1 << 18);
+    const Q217_MAX: i64 = (1 << 18) - 1;
     const U16_MAX: i64 = 0xFFFF;
+    const U19_MAX: i64 = 0x7FFFF;
 
     /// The normalizer back end (`NormalizerK`): N and K in, N·f(K) out, latency 11 (B4 and B6
     /// take three clocks: the product is ready three registers on).
     ///
     /// ```text
     /// B1 k_narrow = sat(round(K: Q4.28 → Q1.15))         B2 c2k = |c2|·k_narrow (Q2.30)
-    /// B3 t1 = sat(round(c1 ± c2k/2: Q3.29 → Q2.14))      B4 t1k = t1·k_narrow   (Q3.29)
-    /// B5 f = sat(round(c0 + t1k/2: Q4.28 → Q1.15))       B6 xf = x·f            (Q3.29)
-    /// B7 nx = sat(round(xf: Q3.29 → Q2.14))
+    /// B3 t1 = sat(round(c1 ± c2k/2: Q3.29 → Q2.17))
+    /// B4 t1h = ⌊t1/8⌋, t1l = t1 − 8·t1h: t1h·k_narrow (Q3.29), t1l·k_narrow (units 2⁻³²)
+    /// B5 f = sat(round(c0 + ⌊t1h·k/2⌋ + ⌊t1l·k/16⌋: Q4.28 → Q1.18))
+    /// B6 fh = ⌊f/8⌋, fl = f − 8·fh: xf = x·fh + ⌊x·fl/8⌋     (Q3.29)
+    /// B7 nx = sat(round(xf: Q3.29 → Q2.17))
     /// ```
-    /// The halvings (c2k/2, t1k/2) floor, as an arithmetic shift does.
+    /// The halvings and the floors of the low parts floor, as an arithmetic shift does.
     #[derive(Clone, Debug)]
     pub struct NormalizerKTwin {
         c2_mag: i64,
@@ -278,14 +282,18 @@ pub mod twin {
             self.k_narrow_p1 = s.k_narrow;
             let half = s.c2k >> 1;
             let t1_wide = s.c1 + if s.c2_neg { -half } else { half };
-            self.t1 = round_sat(t1_wide, 15, Q214_MIN, Q214_MAX);
+            self.t1 = round_sat(t1_wide, 12, Q217_MIN, Q217_MAX);
             self.k_narrow_p2 = s.k_narrow_p1;
-            self.t1k_a = [s.t1 * s.k_narrow_p2, s.t1k_a[0]];
+            // t1·K in Q4.28: the high part halved, the low part (units 2⁻³²) shifted by 4.
+            let (t1h, t1l) = (s.t1 >> 3, s.t1 & 7);
+            let t1k = ((t1h * s.k_narrow_p2) >> 1) + ((t1l * s.k_narrow_p2) >> 4);
+            self.t1k_a = [t1k, s.t1k_a[0]];
             self.t1k = s.t1k_a[1];
-            self.f = round_sat(s.c0 + (s.t1k >> 1), 13, 0, U16_MAX);
-            self.xf_a = [s.vec[6].map(|x| x * s.f), s.xf_a[0]];
+            self.f = round_sat(s.c0 + s.t1k, 10, 0, U19_MAX);
+            let (fh, fl) = (s.f >> 3, s.f & 7);
+            self.xf_a = [s.vec[6].map(|x| x * fh + ((x * fl) >> 3)), s.xf_a[0]];
             self.xf = s.xf_a[1];
-            self.n = s.xf.map(|p| round_sat(p, 15, Q214_MIN, Q214_MAX));
+            self.n = s.xf.map(|p| round_sat(p, 12, Q217_MIN, Q217_MAX));
             self.valid = [
                 valid_in, s.valid[0], s.valid[1], s.valid[2], s.valid[3], s.valid[4], s.valid[5],
                 s.valid[6], s.valid[7], s.valid[8], s.valid[9],

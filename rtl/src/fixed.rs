@@ -17,15 +17,17 @@
 //! # Formats of the normal-vector datapath
 //! | name (const)   | format           | bits | meaning                                        |
 //! |----------------|------------------|------|------------------------------------------------|
-//! | [`NORMAL`]     | signed Q2.14     | 16   | normal components, in and out of every block   |
+//! | [`NORMAL`]     | signed Q2.14     | 16   | N, L and H (the normalizer's input, not its output) |
 //! | [`K_FULL`]     | unsigned Q4.28   | 32   | K = x²+y²+z², exact (3·2³⁰ < 2³²)               |
 //! | [`K_ALPHA`]    | signed Q4.28     | 32   | α = N₀·Δ of the K recurrence, exact             |
 //! | [`K_NARROW`]   | unsigned Q1.15   | 16   | K rounded to a multiplier operand              |
 //! | [`COEF_C2`]    | unsigned Q1.15   | 16   | \|c2\| (its sign is a separate constant bit)    |
 //! | [`COEF_C1`]    | signed Q3.29     | 32   | c1 (added, never multiplied: full precision)   |
 //! | [`COEF_C0`]    | signed Q4.28     | 32   | c0 (added, never multiplied: full precision)   |
-//! | [`HORNER_T1`]  | signed Q2.14     | 16   | t1 = c2·K + c1, multiplier operand             |
-//! | [`SCALE`]      | unsigned Q1.15   | 16   | f(K), multiplier operand                       |
+//! | [`HORNER_T1`]  | signed Q2.17     | 19   | t1 = c2·K + c1, multiplier operand (split 16 + 3) |
+//! | [`NORM_SCALE`] | unsigned Q1.18   | 19   | f(K), multiplier operand (split 16 + 3)        |
+//! | [`NORMALIZED`] | signed Q2.17     | 19   | N' = N·f(K), the normalizer's output           |
+//! | [`SCALE`]      | unsigned Q1.15   | 16   | cosines and other unsigned multiplier operands |
 //! | [`PRODUCT`]    | signed Q3.29     | 32   | Q2.14 × Q1.15 products                         |
 //!
 //! # Formats of the Gouraud intensity datapath (BVI, `crate::intensity_interpolator`)
@@ -39,6 +41,10 @@
 //!   operand `a` (two's complement) times an unsigned `b` is formed from the unsigned product
 //!   with the standard correction `a·b = ua·ub − [a<0]·(ub ≪ 16)  (mod 2³²)`; a signed square
 //!   is `a² = ua² − [a<0]·(ua ≪ 17)  (mod 2³²)`. Both are exact: the true product fits 32 bits.
+//!   A 19-bit operand (t1, f and N' of the normalizer) is split into its top 16 bits, which
+//!   go through the multiplier (exact), and its three low bits, multiplied by shift and add
+//!   ([`MulLow3Pipe`](crate::primitives::MulLow3Pipe), exact) and floored to the LSB of the
+//!   32-bit sum they join (an error below one LSB of that sum, stated in each block's budget).
 //! - **Rounding**: whenever LSBs are dropped the result is rounded to nearest, ties toward +∞
 //!   (add half an output LSB, then shift right arithmetically). The half-LSB is folded into a
 //!   constant where one is being added anyway. [`QFormat::quantize`] rounds the same way.
@@ -52,8 +58,9 @@
 //! The multiplies and narrowings above are built once, in [`crate::primitives`]
 //! ([`MulSignedUnsigned`](crate::primitives::MulSignedUnsigned),
 //! [`MulSignedPipe`](crate::primitives::MulSignedPipe), [`SatToQ2_14`](crate::primitives::SatToQ2_14),
-//! [`RoundToQ2_14`](crate::primitives::RoundToQ2_14), [`SatToUQ1_15`](crate::primitives::SatToUQ1_15),
-//! [`RoundToUQ1_15`](crate::primitives::RoundToUQ1_15)), and the blocks use those.
+//! [`RoundToQ2_14`](crate::primitives::RoundToQ2_14), [`SatToQ2_17`](crate::primitives::SatToQ2_17),
+//! [`SatToUQ1_18`](crate::primitives::SatToUQ1_18), [`RoundToUQ1_15`](crate::primitives::RoundToUQ1_15),
+//! [`MulLow3Pipe`](crate::primitives::MulLow3Pipe)), and the blocks use those.
 //!
 //! Every block header restates the formats of its ports and width-changing intermediates.
 
@@ -66,7 +73,7 @@ pub struct QFormat {
     pub signed: bool,
 }
 
-/// Normal components (inputs and outputs of the normalizer and the span blocks).
+/// Normal components: the interpolated normal (the normalizer's input), L and H.
 pub const NORMAL: QFormat = QFormat::signed(2, 14);
 /// K = x² + y² + z² of Q2.14 components, exact.
 pub const K_FULL: QFormat = QFormat::unsigned(4, 28);
@@ -80,9 +87,16 @@ pub const COEF_C2: QFormat = QFormat::unsigned(1, 15);
 pub const COEF_C1: QFormat = QFormat::signed(3, 29);
 /// c0, added to the 32-bit product t1·K (halved to Q4.28 so the sum cannot overflow).
 pub const COEF_C0: QFormat = QFormat::signed(4, 28);
-/// t1 = c2·K + c1, the Horner intermediate fed to the second multiplier.
-pub const HORNER_T1: QFormat = QFormat::signed(2, 14);
-/// f(K) = (c2·K + c1)·K + c0, the scale factor.
+/// t1 = c2·K + c1, the Horner intermediate fed to the second multiplier: its top 16 bits go
+/// through the multiplier, its three low bits through a shift-add
+/// ([`MulLow3Pipe`](crate::primitives::MulLow3Pipe)).
+pub const HORNER_T1: QFormat = QFormat::signed(2, 17);
+/// f(K) = (c2·K + c1)·K + c0, the normalizer's scale factor (split 16 + 3 like t1).
+pub const NORM_SCALE: QFormat = QFormat::unsigned(1, 18);
+/// N' = N·f(K), the normalizer's output components. Three bits finer than [`NORMAL`]: the
+/// lit methods' 2-LSB bound needs them (`docs/bump-precision.md`).
+pub const NORMALIZED: QFormat = QFormat::signed(2, 17);
+/// Unsigned Q1.15: the cosines and the other unsigned 16-bit multiplier operands.
 pub const SCALE: QFormat = QFormat::unsigned(1, 15);
 /// Product of a Q2.14 and a Q1.15 word.
 pub const PRODUCT: QFormat = QFormat::signed(3, 29);

@@ -47,7 +47,7 @@
 //! reach [`NormalizerK`] in the same clock. Its ports: `valid_in`, `load`, `k0`, `alpha`,
 //! `beta` as above, plus `x0`, `y0`, `z0` (signed Q2.14, N₀, taken with `load`) and `dx`,
 //! `dy`, `dz` (signed Q2.14, Δ, taken with `load`); outputs `valid_out`, `nx`, `ny`, `nz`
-//! (signed Q2.14) as the normalizer's. Error budget: the normalizer's
+//! (signed Q2.17) as the normalizer's. Error budget: the normalizer's
 //! (`crate::normalizer::error_budget`).
 
 use rust_hdl::prelude::*;
@@ -149,7 +149,7 @@ crate::hw_block! {
             x0: Bits<16>, y0: Bits<16>, z0: Bits<16>, dx: Bits<16>, dy: Bits<16>, dz: Bits<16>,
             k0: Bits<32>, alpha: Bits<32>, beta: Bits<32>,
         }
-        out { valid_out: Bit, nx: Bits<16>, ny: Bits<16>, nz: Bits<16> }
+        out { valid_out: Bit, nx: Bits<19>, ny: Bits<19>, nz: Bits<19> }
         krec: KRecurrence,
         // Vector interpolation N_{i+1} = N_i + Δ, one component each, aligned with `krec`.
         step_x: ComponentStep, step_y: ComponentStep, step_z: ComponentStep,

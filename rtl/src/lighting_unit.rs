@@ -21,10 +21,15 @@
 //!
 //! # Pipeline
 //! ```text
-//! N1..N15 the normalizer (`crate::normalizer::Normalizer`, coefficient set a build parameter)
-//! D1  p = nx·lx … nz·hz     six signed Q2.14 × Q2.14 → Q4.28 products, exact, in three
+//! N1..N15 the normalizer (`crate::normalizer::Normalizer`, coefficient set a build parameter),
+//!         N' out in signed Q2.17
+//! D1  p = nx·lx … nz·hz     six signed Q2.17 × Q2.14 products in Q4.28, in four clocks
+//!                           [DotTerm]: N' split into its top 16 bits ⌊N'/8⌋ (signed Q2.14)
+//!                           and its three low bits; ⌊N'/8⌋·u exact on a multiplier in three
 //!                           clocks [MulSignedPipe: the operands; ua·ub and the sign
-//!                           corrections; their difference]
+//!                           corrections; their difference]; beside it (low bits)·u by
+//!                           shift-add [MulLow3Pipe], floored by 8 into Q4.28; the two added
+//!                           in the fourth clock (|p| ≤ 2³⁰ + 2¹⁵: no wrap)
 //! D2  s = Σp + 2¹²          three-operand sums, exact (|Σp| ≤ 3·2³⁰: 34 bits), + 2¹²
 //!                           (half LSB), formed in two parts so no word is wider than 32 bits
 //!                           (the simulator's fast width; the same 34-bit sum, split at bit 16):
@@ -34,41 +39,42 @@
 //!                           negative (hi < 0) → 0, ≥ 2 − 2⁻¹⁶ (hi ≥ 2¹³) → 0xFFFF
 //!                           (2 − 2⁻¹⁵), else bits 28..13 = hi[12:0] : lo[15:13]
 //! ```
-//! For ECP5 timing D1 takes three clocks and D2, D3 were one stage (latency 11 before, 72.6 MHz:
-//! the three-operand sums, the carry add and the clamp in one clock; then the multiply and its
-//! sign correction in one clock, 95 MHz).
-//! Latency 20 clocks (15 + 5), one pixel per clock, no stall; `valid` travels with the data.
-//! 14 multipliers: the normalizer's 8 and the six of D1.
+//! For ECP5 timing D1's multiply takes three clocks and D2, D3 were one stage (latency 11
+//! before, 72.6 MHz: the three-operand sums, the carry add and the clamp in one clock; then the
+//! multiply and its sign correction in one clock, 95 MHz). D1's fourth clock came with N' at
+//! Q2.17 (before: Q2.14, latency 20).
+//! Latency 21 clocks (15 + 6), one pixel per clock, no stall; `valid` travels with the data.
+//! 14 multipliers: the normalizer's 8 and the six of D1 (the low parts are shift-adds).
 //!
 //! # Overflow
-//! Nothing wraps: the products are exact, the 34-bit sums cannot overflow for any input
-//! words, and the cosines saturate at 0 and 2 − 2⁻¹⁵. A published-coefficient normal is up to
+//! Nothing wraps: the products are exact but for the low parts' floor, the 34-bit sums cannot
+//! overflow for any input words, and the cosines saturate at 0 and 2 − 2⁻¹⁵. A published-coefficient normal is up to
 //! 0.35 % long, so cos γ may exceed 1 (by design: the golden model keeps that bias).
 //!
 //! # Error budget (vs `golden::lighting_unit::cosines` on the same quantized N, L, H)
-//! The normalizer's per-component bound e (1.04·10⁻⁴ published, 9.3·10⁻⁵ fit on the domain,
+//! The normalizer's per-component bound e (3.73·10⁻⁵ published, 2.65·10⁻⁵ fit on the domain,
 //! `crate::normalizer::error_budget`) enters each dot product weighted by Σ|u_i| ≤ √3; the
-//! products and sums are exact; the output rounding adds 2⁻¹⁶:
-//! |Δcos| ≤ Σ|u_i|·e + 2⁻¹⁶ ≤ 1.96·10⁻⁴ (published), 1.77·10⁻⁴ (fit), i.e. ≤ 6.5 LSB of Q1.15
-//! (`golden::lighting_unit::error_bound`).
+//! floors of the three low-part products add < 3·2⁻²⁸, the sums are exact, the output rounding
+//! adds 2⁻¹⁶: |Δcos| ≤ Σ|u_i|·e + 2⁻¹⁶ + 3·2⁻²⁸ ≤ 8.0·10⁻⁵ (published), 6.1·10⁻⁵ (fit), i.e.
+//! ≤ 2.6 and 2.0 LSB of Q1.15 (`golden::lighting_unit::error_bound`; with 16-bit t1, f and N'
+//! before: 6.5 LSB).
 //!
-//! Measured against the golden f64 front end (N and H unquantized, fitted set), cos γ before
-//! the output rounding is 3.1–3.9 LSB of Q1.15 off at worst over 54 scenes. That keeps the lit
-//! methods within 1 LSB of their golden images at n = 50, but not `bump` (up to 6 LSB) nor any
-//! lit method at n = 200 (3–4 LSB). `docs/bump-precision.md` gives each word's share and the
-//! wider formats that would meet a 2-LSB bound (`examples/bump_precision.rs`).
+//! Measured against the golden f64 front end (N and H unquantized, fitted set):
+//! `examples/bump_precision.rs` and `docs/bump-precision.md` give each word's share. N's own
+//! rounding to Q2.14 in the vector interpolator is now the largest (1.4 LSB of Q1.15 on cos γ
+//! alone).
 
 use rust_hdl::prelude::*;
 
 use crate::normalizer::{Normalizer, NormalizerCoeffs};
-use crate::primitives::{Delay, MulSignedPipe, SIGNED_MUL_LATENCY};
+use crate::primitives::{Delay, MulLow3Pipe, MulSignedPipe, SIGNED_MUL_LATENCY};
 
 crate::hw_block! {
     /// The lighting unit: normalizer, then N'·L and N'·H clamped to [0, 2) (see the module
     /// header).
     pub struct LightingUnit(clock) as "lighting-unit" {
         summary: "N in, cos φ = N'·L and cos γ = N'·H out (Q1.15, clamped at 0): normalizer + two dot products (SPEC §0, §1)",
-        latency: Normalizer::LATENCY + SIGNED_MUL_LATENCY + 2 => "valid_in to valid_out, one pixel per clock",
+        latency: Normalizer::LATENCY + DotTerm::LATENCY + 2 => "valid_in to valid_out, one pixel per clock",
         multipliers: 14,
         in {
             valid_in: Bit, x: Bits<16>, y: Bits<16>, z: Bits<16>,
@@ -79,8 +85,8 @@ crate::hw_block! {
         // N1..N15
         pub norm: Normalizer = Normalizer::new(c),
         // D1: the six products in the order nx·lx, ny·ly, nz·lz, nx·hx, ny·hy, nz·hz.
-        mul: [MulSignedPipe; 6],
-        valid_p1: Delay<Bit, SIGNED_MUL_LATENCY>,
+        mul: [DotTerm; 6],
+        valid_p1: Delay<Bit, { DotTerm::LATENCY }>,
         // D2: each product's high half sign-extended, the two sums in two parts, registered.
         ext: [Signal<Local, Bits<32>>; 6],
         lo_l: Signal<Local, Bits<32>>,
@@ -219,5 +225,51 @@ impl Logic for LightingUnit {
         self.valid_out.next = self.valid_p3.q.val();
         self.cos_phi.next = self.cos_phi_q.q.val();
         self.cos_gamma.next = self.cos_gamma_q.q.val();
+    }
+}
+
+crate::hw_block! {
+    /// One product of D1: `p = a·b` for a normalizer component `a` (signed Q2.17, 19 bits) and
+    /// a unit-vector component `b` (signed Q2.14), in Q4.28. `a` is split: its top 16 bits
+    /// (Q2.14, a's floor) times b on a multiplier, exact; its three low bits times b by
+    /// shift-add (units 2⁻³¹, exact), floored to Q4.28 (an arithmetic shift by 3) and added in
+    /// the clock after both arrive. Error: the floor, < 2⁻²⁸. Latency [`DotTerm::LATENCY`].
+    struct DotTerm(clock) {
+        in { a: Bits<19>, b: Bits<16> }
+        out { p: Bits<32> }
+        mul: MulSignedPipe, low: MulLow3Pipe, corr: DFF<Bits<32>>, p_q: DFF<Bits<32>>,
+        sign3: Constant<Bits<32>> = Constant::new(0xE000_0000u64.into()),
+        sign4: Constant<Bits<20>> = Constant::new(0xF_0000u64.into()),
+        u_ext: Signal<Local, Bits<20>>, low_shift: Signal<Local, Bits<32>>,
+    }
+}
+
+impl DotTerm {
+    /// The multiplier's three clocks, then the sum with the low part.
+    const LATENCY: usize = SIGNED_MUL_LATENCY + 1;
+}
+
+impl Logic for DotTerm {
+    #[hdl_gen]
+    fn update(&mut self) {
+        clock!(self, clock, mul, low, corr, p_q);
+        self.mul.a.next = self.a.val().get_bits::<16>(3);
+        self.mul.b.next = self.b.val();
+        if self.b.val().get_bit(15) {
+            self.u_ext.next = bit_cast::<20, 16>(self.b.val()) | self.sign4.val();
+        } else {
+            self.u_ext.next = bit_cast::<20, 16>(self.b.val());
+        }
+        self.low.v.next = self.u_ext.val();
+        self.low.m.next = self.a.val().get_bits::<3>(0);
+        // |a_low·b| ≤ 7·2¹⁵: the floor by 8 fits; |a_high·b| ≤ 2³⁰: the sum cannot wrap.
+        if self.low.p.val().get_bit(31) {
+            self.low_shift.next = (self.low.p.val() >> 3) | self.sign3.val();
+        } else {
+            self.low_shift.next = self.low.p.val() >> 3;
+        }
+        self.corr.d.next = self.low_shift.val();
+        self.p_q.d.next = self.mul.p.val() + self.corr.q.val();
+        self.p.next = self.p_q.q.val();
     }
 }

@@ -13,7 +13,9 @@
 //!
 //! 8 multipliers, 3 datapath adders (Sm1 three-operand), as in the patent's device; the only
 //! other adders are the fixed-point bookkeeping of `crate::fixed` (sign corrections of the
-//! unsigned multiplies, rounding, saturation).
+//! unsigned multiplies, rounding, saturation) and the shift-adds of the 19-bit operands' low
+//! parts (t1 and f are 19 bits: their top 16 bits go through Mul5 and Mul6–8, their three low
+//! bits through `MulLow3Pipe`, no multiplier).
 //!
 //! # Ports (formats from [`crate::fixed`])
 //! | port                   | dir | format                    |
@@ -23,7 +25,7 @@
 //! | `x`, `y`, `z`          | in  | signed Q2.14              |
 //! | `k` (NormalizerK only) | in  | unsigned Q4.28, exact x²+y²+z² |
 //! | `valid_out`            | out | `valid_in` delayed by the latency |
-//! | `nx`, `ny`, `nz`       | out | signed Q2.14 (registered) |
+//! | `nx`, `ny`, `nz`       | out | signed Q2.17, 19 bits (registered) |
 //!
 //! Throughput: one vector per clock, no stalls; `valid` travels with the data, data words move
 //! every clock whatever `valid_in` says (outputs are meaningful only with `valid_out`).
@@ -45,17 +47,24 @@
 //!  B2  c2k = |c2|·k_narrow       Mul4, Q1.15 × Q1.15 → Q2.30 unsigned, exact
 //!  B3  t1 = c1 ± c2k             Sm2 in Q3.29 (c2k halved: drops 1 LSB = 2⁻³⁰; cannot
 //!                                overflow, checked by NormalizerCoeffs::new), then
-//!                                Q3.29 → Q2.14: round (drop 15 LSBs; the half LSB is in the
-//!                                constant c1_rnd), saturate to [−2, 2) [SatToQ2_14]
-//!  B4  t1k = t1·k_narrow_p2      Mul5, signed Q2.14 × unsigned Q1.15 → signed Q3.29, exact,
-//!                                three clocks [MulSignedUnsignedPipe]
-//!  B5  f = c0 + t1k              Sm3 in Q4.28 (t1k halved: drops 2⁻²⁹; range [−8, 8), cannot
-//!                                overflow), then Q4.28 → Q1.15: round (drop 13 LSBs; half LSB
-//!                                in c0_rnd), saturate to [0, 2 − 2⁻¹⁵] [SatToUQ1_15]
-//!  B6  xf = x_to_f·f (Mul6-8)    signed Q2.14 × unsigned Q1.15 → signed Q3.29, exact,
-//!                                three clocks [MulSignedUnsignedPipe]
-//!  B7  nx = xf                   Q3.29 → Q2.14: round (drop 15 LSBs), saturate to [−2, 2)
-//!                                [RoundToQ2_14]; valid_p7 carries valid_in [Delay]
+//!                                Q3.29 → Q2.17 (19 bits): round (drop 12 LSBs; the half LSB
+//!                                is in the constant c1_rnd), saturate to [−2, 2) [SatToQ2_17]
+//!  B4  t1k = t1·k_narrow_p2      t1 = 8·t1h + t1l: Mul5, t1h (bits 18..3, signed Q2.14) ×
+//!                                unsigned Q1.15 → signed Q3.29, exact, three clocks
+//!                                [MulSignedUnsignedPipe]; beside it t1l·k (units 2⁻³², < 2¹⁹)
+//!                                by shift-add in two clocks [MulLow3Pipe], then in the third
+//!                                c0_low = c0_rnd + ⌊t1l·k / 16⌋ (Q4.28)
+//!  B5  f = c0 + t1k              Sm3: c0_low + ⌊t1h·k / 2⌋ in Q4.28 (range [−8, 8), cannot
+//!                                overflow), then Q4.28 → Q1.18 (19 bits): round (drop 10
+//!                                LSBs; half LSB in c0_rnd), saturate to [0, 2 − 2⁻¹⁸]
+//!                                [SatToUQ1_18]
+//!  B6  xf = x_to_f·f (Mul6-8)    f = 8·fh + fl: x·fh, signed Q2.14 × unsigned Q1.15 → signed
+//!                                Q3.29, exact, three clocks [MulSignedUnsignedPipe]; beside it
+//!                                x·fl (units 2⁻³², |x·fl| < 2¹⁸) by shift-add [MulLow3Pipe],
+//!                                then corr = ⌊x·fl / 8⌋ + 2¹¹ (Q3.29, the half output LSB)
+//!  B7  nx = xf + corr            Q3.29 → Q2.17: drop 12 LSBs, saturate to [−2, 2)
+//!                                [SatToQ2_17] (|x·fh| ≤ 2³¹ − 2¹⁵, |corr| < 2¹⁵: no wrap);
+//!                                valid_p7 carries valid_in [Delay]
 //! ```
 //! ```text
 //! clock      : 0    1    2    3    4    5    6    7    8    9    10   11   12   13   14   15
@@ -67,32 +76,43 @@
 //! pixel pipeline a multiplier and its sign correction in one clock ran at 92–98 MHz, and a
 //! multiplier fed from registers placed by other logic, 94 MHz (see `crate::primitives`).
 //!
+//! t1, f and the outputs were 16 bits (Q2.14, Q1.15, Q2.14) until the lit methods' 2-LSB bound
+//! (issue 9): the lighting unit's cos γ was up to 3.1–3.9 LSB of Q1.15 off the golden f64 front
+//! end, and `bump` up to 6 LSB of 8 bits off its golden image. These three words were the
+//! cheapest to widen (`docs/bump-precision.md`: no port of the lighting unit changes, no extra
+//! multiplier).
+//!
 //! # Overflow
 //! Nothing wraps. K cannot overflow; K ≥ 2 saturates k_narrow (out of the formula's domain);
-//! t1 and f saturate; outputs saturate to the Q2.14 range. In the domain K ∈ [0.499, 1] with
+//! t1 and f saturate; outputs saturate to the Q2.17 range. In the domain K ∈ [0.499, 1] with
 //! the published or fitted coefficients no saturation happens (checked by
 //! [`NormalizerCoeffs::new`], which rejects coefficient sets that would saturate t1 or f there
 //! or overflow an adder anywhere).
 //!
 //! # Error budget (vs the f64 golden N·f(K) on the same quantized N, requested coefficients)
 //! [`error_budget`] derives it from the formats above: per output component
-//! `|err| ≤ |x|max·Δf + 2⁻¹⁵` with
+//! `|err| ≤ |x|max·Δf + 2⁻¹⁸ + 2⁻²⁹` (the output rounding and the floor of x·fl) with
 //! `Δf = max|f'(K)|·2⁻¹⁶ (K rounding) + Δc2·K² (c2 quantization, ≤ 2⁻¹⁶·K²)
-//!      + 2⁻¹⁵·K (t1 rounding) + 2⁻¹⁶ (f rounding) + ~2⁻²⁸ (c0, c1, halvings)`.
-//! Published coefficients on the domain (K ∈ [0.499, 1 + 2⁻¹²], |x| ≤ 1 + 2⁻¹⁴): Δf ≤ 7.4·10⁻⁵,
-//! component error ≤ 1.04·10⁻⁴ (1.7 LSB), RMS bound 3.8·10⁻⁵ (measured over 100 000 vectors:
-//! 8.3·10⁻⁵ and 2.0·10⁻⁵). FIT (exact in these formats): 9.3·10⁻⁵, RMS 2.8·10⁻⁵.
+//!      + 2⁻¹⁸·K (t1 rounding) + 2⁻¹⁹ (f rounding) + ~2⁻²⁷ (c0, c1, halvings, low-part floors)`.
+//! Published coefficients on the domain (K ∈ [0.499, 1 + 2⁻¹²], |x| ≤ 1 + 2⁻¹⁴): Δf ≤ 3.35·10⁻⁵,
+//! component error ≤ 3.73·10⁻⁵ (4.9 LSB of Q2.17, 1.2 of Q2.14), RMS bound 2.03·10⁻⁵
+//! (measured over 100 000 vectors: 2.22·10⁻⁵ and 5.4·10⁻⁶). FIT (exact in these formats):
+//! 2.65·10⁻⁵, RMS 1.04·10⁻⁵ (measured 1.69·10⁻⁵, 4.1·10⁻⁶). With 16-bit t1, f and outputs
+//! (before) the published set's bound was 1.04·10⁻⁴ (measured 8.3·10⁻⁵): K's rounding to
+//! Q1.15 is now the largest term.
 //! End-to-end against exact normalization N/|N| of the same quantized N:
-//! max|f(K)·√K − 1| (0.351 % for the published set) + √K·Δf + √3·2⁻¹⁵ = 0.351 % + 0.0126 %
-//! (measured: 0.356 %).
+//! max|f(K)·√K − 1| (0.351 % for the published set) + √K·Δf + √3·(2⁻¹⁸ + 2⁻²⁹) = 0.351 % +
+//! 0.0040 % (measured: 0.3524 %).
 
 use golden::normalizer::{Coeffs, K_DOMAIN};
 use rust_hdl::prelude::*;
 
-use crate::fixed::{QFormat, COEF_C0, COEF_C1, COEF_C2, HORNER_T1, K_NARROW, NORMAL, SCALE};
+use crate::fixed::{
+    QFormat, COEF_C0, COEF_C1, COEF_C2, HORNER_T1, K_NARROW, NORMALIZED, NORM_SCALE, PRODUCT,
+};
 use crate::primitives::{
-    Delay, MulSignedPipe, MulSignedUnsignedPipe, RoundToQ2_14, RoundToUQ1_15, SatToQ2_14,
-    SatToUQ1_15, SIGNED_MUL_LATENCY,
+    Delay, MulLow3Pipe, MulSignedPipe, MulSignedUnsignedPipe, RoundToUQ1_15, SatToQ2_17,
+    SatToUQ1_18, SIGNED_MUL_LATENCY,
 };
 use crate::registry::{BlockParams, Options};
 
@@ -162,9 +182,9 @@ impl NormalizerCoeffs {
             c1: COEF_C1.quantize_int(c[1]),
             c0: COEF_C0.quantize_int(c[2]),
         };
-        // Sm2: c1 + 2^14 ± (c2k >> 1) over every k_narrow in [0, 0xFFFF].
+        // Sm2: c1 + 2^11 ± (c2k >> 1) over every k_narrow in [0, 0xFFFF].
         let c2k_half_max = ((coeffs.c2_mag * 0xFFFF) >> 1) as i64;
-        let base = coeffs.c1 + (1 << 14);
+        let base = coeffs.c1 + (1 << 11);
         let (lo, hi) = if coeffs.c2_neg {
             (base - c2k_half_max, base)
         } else {
@@ -175,11 +195,12 @@ impl NormalizerCoeffs {
                 what: "Sm2 (c1 + c2·K)",
             });
         }
-        // Sm3: c0 + 2^12 + (t1k >> 1), t1k in [-2^15·0xFFFF, 0x7FFF·0xFFFF].
-        let base = coeffs.c0 + (1 << 12);
+        // Sm3: c0 + 2^9 + (t1l·K >> 4) + (t1k >> 1), t1k = t1h·K in
+        // [-2^15·0xFFFF, 0x7FFF·0xFFFF], t1l·K in [0, 7·0xFFFF].
+        let base = coeffs.c0 + (1 << 9);
         let (lo, hi) = (
             base + ((-(1i64 << 15) * 0xFFFF) >> 1),
-            base + ((0x7FFFi64 * 0xFFFF) >> 1),
+            base + ((7 * 0xFFFF) >> 4) + ((0x7FFFi64 * 0xFFFF) >> 1),
         );
         if lo < i32::MIN as i64 || hi > i32::MAX as i64 {
             return Err(CoeffError::AdderOverflow {
@@ -200,7 +221,7 @@ impl NormalizerCoeffs {
                 });
             }
             let f = t1 * k + q[2];
-            if !SCALE.contains(f) {
+            if !NORM_SCALE.contains(f) {
                 return Err(CoeffError::SaturatesInDomain {
                     what: "f(K)",
                     k,
@@ -288,10 +309,12 @@ pub fn error_budget(c: &NormalizerCoeffs, k_lo: f64, k_hi: f64, x_max: f64) -> E
     let fprime_max = fprime(k_lo - dk).max(fprime(k_n));
     let dc2 = (q[0] - r[0]).abs();
     let dc1 = (q[1] - r[1]).abs() + COEF_C1.lsb(); // + halving of c2k (Q2.30 → Q3.29)
-    let dc0 = (q[2] - r[2]).abs() + COEF_C0.lsb(); // + halving of t1k (Q3.29 → Q4.28)
+                                                   // + halving of t1h·K (Q3.29 → Q4.28) and the floor of t1l·K (units 2⁻³² → Q4.28)
+    let dc0 = (q[2] - r[2]).abs() + 2.0 * COEF_C0.lsb();
     let t1_round = HORNER_T1.lsb() / 2.0;
-    let f_round = SCALE.lsb() / 2.0;
-    let out_round = NORMAL.lsb() / 2.0;
+    let f_round = NORM_SCALE.lsb() / 2.0;
+    // The output rounding, and the floor of x·fl (units 2⁻³² → Q3.29) before it.
+    let out_round = NORMALIZED.lsb() / 2.0 + PRODUCT.lsb();
     let scale_max = fprime_max * dk
         + r[0].abs() * dk * dk
         + dc2 * k_n * k_n
@@ -301,10 +324,10 @@ pub fn error_budget(c: &NormalizerCoeffs, k_lo: f64, k_hi: f64, x_max: f64) -> E
         + f_round;
     let component_max = x_max * scale_max + out_round;
     let var = |step: f64| step * step / 12.0;
-    let noise = var(NORMAL.lsb())
+    let noise = var(NORMALIZED.lsb())
         + x_max
             * x_max
-            * (var(SCALE.lsb())
+            * (var(NORM_SCALE.lsb())
                 + k_n * k_n * var(HORNER_T1.lsb())
                 + fprime_max.powi(2) * var(K_NARROW.lsb()));
     let bias = x_max * (dc2 * k_n * k_n + dc1 * k_n + dc0);
@@ -329,30 +352,31 @@ crate::hw_block! {
             => "valid_in to valid_out, one input per clock",
         multipliers: 5,
         in { valid_in: Bit, x: Bits<16>, y: Bits<16>, z: Bits<16>, k: Bits<32> }
-        out { valid_out: Bit, nx: Bits<16>, ny: Bits<16>, nz: Bits<16> }
+        out { valid_out: Bit, nx: Bits<19>, ny: Bits<19>, nz: Bits<19> }
         // Coefficients, with half an output LSB folded into the constants that are added
-        // anyway: t1 drops 15 LSBs, f drops 13.
+        // anyway: t1 drops 12 LSBs, f drops 10.
         c2_mag: Constant<Bits<16>> = Constant::new(c.c2_mag.into()),
         c2_neg: Constant<Bit> = Constant::new(c.c2_neg),
-        c1_rnd: Constant<Bits<32>> = b32(c.c1 + (1 << 14)),
-        c0_rnd: Constant<Bits<32>> = b32(c.c0 + (1 << 12)),
+        c1_rnd: Constant<Bits<32>> = b32(c.c1 + (1 << 11)),
+        c0_rnd: Constant<Bits<32>> = b32(c.c0 + (1 << 9)),
         sign32: Constant<Bits<32>> = b32(1 << 31),
         // B1
         k_round: RoundToUQ1_15, k_narrow: DFF<Bits<16>>,
         // B2 (Mul4 is the plain unsigned multiply: both operands are unsigned)
         c2k: DFF<Bits<32>>, k_narrow_p2: Delay<Bits<16>, 2>,
         // B3
-        t1_sat: SatToQ2_14, t1: DFF<Bits<16>>,
-        // B4
-        mul5: MulSignedUnsignedPipe,
+        t1_sat: SatToQ2_17, t1: DFF<Bits<19>>,
+        // B4: t1's top 16 bits on Mul5, its 3 low bits by shift-add, then c0 + the low part.
+        mul5: MulSignedUnsignedPipe, low5: MulLow3Pipe, c0_low: DFF<Bits<32>>,
         // B5
-        f_sat: SatToUQ1_15, f: DFF<Bits<16>>,
+        f_sat: SatToUQ1_18, f: DFF<Bits<19>>,
         // B6, B7: one lane per component.
         lane_x: ScaleLane, lane_y: ScaleLane, lane_z: ScaleLane,
         valid_p7: Delay<Bit, { NormalizerK::LATENCY }>,
         // Combinational intermediates, each exactly sized (rust-hdl wraps per op, Verilog per
         // context).
         c2k_half: Signal<Local, Bits<32>>, t1_wide: Signal<Local, Bits<32>>,
+        k_ext: Signal<Local, Bits<20>>, low5_shift: Signal<Local, Bits<32>>,
         t1k_half: Signal<Local, Bits<32>>, f_wide: Signal<Local, Bits<32>>,
     }
     new(c: &NormalizerCoeffs);
@@ -362,7 +386,18 @@ impl Logic for NormalizerK {
     #[hdl_gen]
     fn update(&mut self) {
         // B1..B5 registers, then the lanes (B6, B7) and the valid line.
-        clock!(self, clock, k_narrow, c2k, k_narrow_p2, t1, mul5, f);
+        clock!(
+            self,
+            clock,
+            k_narrow,
+            c2k,
+            k_narrow_p2,
+            t1,
+            mul5,
+            low5,
+            c0_low,
+            f
+        );
         clock!(self, clock, lane_x, lane_y, lane_z, valid_p7);
         // B1: K (Q4.28) → Q1.15, round to nearest, saturate.
         self.k_round.wide.next = self.k.val();
@@ -372,7 +407,7 @@ impl Logic for NormalizerK {
         self.c2k.d.next = self.c2_mag.val() * self.k_narrow.q.val();
         self.k_narrow_p2.d.next = self.k_narrow.q.val();
 
-        // B3 (Sm2): t1 = c1 ± c2·K in Q3.29 (+ half LSB of Q2.14), then round/saturate to Q2.14.
+        // B3 (Sm2): t1 = c1 ± c2·K in Q3.29 (+ half LSB of Q2.17), then round/saturate to Q2.17.
         self.c2k_half.next = self.c2k.q.val() >> 1;
         if self.c2_neg.val() {
             self.t1_wide.next = self.c1_rnd.val() - self.c2k_half.val();
@@ -382,20 +417,27 @@ impl Logic for NormalizerK {
         self.t1_sat.wide.next = self.t1_wide.val();
         self.t1.d.next = self.t1_sat.narrow.val();
 
-        // B4 (Mul5): t1·K, signed Q2.14 × unsigned Q1.15 → signed Q3.29.
-        self.mul5.a.next = self.t1.q.val();
+        // B4 (Mul5): t1h·K, t1h = t1 bits 18..3 (signed Q2.14), × unsigned Q1.15 → signed
+        // Q3.29; beside it t1l·K (t1l = bits 2..0, units 2⁻³², < 2¹⁹) by shift-add, floored
+        // to Q4.28 and added to c0 (+ half LSB of Q1.18) in the clock Mul5's product arrives.
+        self.mul5.a.next = self.t1.q.val().get_bits::<16>(3);
         self.mul5.b.next = self.k_narrow_p2.q.val();
+        self.k_ext.next = bit_cast::<20, 16>(self.k_narrow_p2.q.val());
+        self.low5.v.next = self.k_ext.val();
+        self.low5.m.next = self.t1.q.val().get_bits::<3>(0);
+        self.low5_shift.next = self.low5.p.val() >> 4;
+        self.c0_low.d.next = self.c0_rnd.val() + self.low5_shift.val();
 
-        // B5 (Sm3): f = c0 + t1·K in Q4.28 (+ half LSB of Q1.15), then round/saturate to Q1.15.
+        // B5 (Sm3): f = c0 + t1·K in Q4.28 (+ half LSB of Q1.18), then round/saturate to Q1.18.
         self.t1k_half.next = self.mul5.p.val() >> 1;
         if self.mul5.p.val().get_bit(31) {
             self.t1k_half.next = self.t1k_half.val() | self.sign32.val();
         }
-        self.f_wide.next = self.c0_rnd.val() + self.t1k_half.val();
+        self.f_wide.next = self.c0_low.q.val() + self.t1k_half.val();
         self.f_sat.wide.next = self.f_wide.val();
         self.f.d.next = self.f_sat.narrow.val();
 
-        // B6, B7 (Mul6-8): each component, delayed to meet f, times f, rounded to Q2.14.
+        // B6, B7 (Mul6-8): each component, delayed to meet f, times f, rounded to Q2.17.
         self.lane_x.x.next = self.x.val();
         self.lane_y.x.next = self.y.val();
         self.lane_z.x.next = self.z.val();
@@ -416,14 +458,23 @@ const F_LATENCY: usize = 4 + SIGNED_MUL_LATENCY;
 
 crate::hw_block! {
     /// One output component of [`NormalizerK`], stages B6 and B7: `n = x·f` (Mul6, Mul7 or
-    /// Mul8), signed Q2.14 × unsigned Q1.15 → signed Q3.29 (exact), rounded and saturated to
-    /// Q2.14. `x` enters with the vector's `valid_in` and waits [`F_LATENCY`] clocks for `f`;
-    /// `n` is registered, [`ScaleLane::LATENCY_FROM_F`] clocks after `f`.
+    /// Mul8), signed Q2.14 × unsigned Q1.18, rounded and saturated to Q2.17. f is split: its
+    /// top 16 bits fh (Q1.15) go through the multiplier (x·fh, signed Q3.29, exact), its three
+    /// low bits fl through a shift-add (x·fl, units 2⁻³², exact), floored to Q3.29 and added
+    /// with the half output LSB. `x` enters with the vector's `valid_in` and waits
+    /// [`F_LATENCY`] clocks for `f`; `n` is registered, [`ScaleLane::LATENCY_FROM_F`] clocks
+    /// after `f`.
     struct ScaleLane(clock) {
-        in { x: Bits<16>, f: Bits<16> }
-        out { n: Bits<16> }
+        in { x: Bits<16>, f: Bits<19> }
+        out { n: Bits<19> }
         x_to_f: Delay<Bits<16>, F_LATENCY>, mul: MulSignedUnsignedPipe,
-        round: RoundToQ2_14, n_q: DFF<Bits<16>>,
+        low: MulLow3Pipe, corr: DFF<Bits<32>>,
+        half_lsb: Constant<Bits<32>> = Constant::new((1u64 << 11).into()),
+        sign3: Constant<Bits<32>> = Constant::new(0xE000_0000u64.into()),
+        sign4: Constant<Bits<20>> = Constant::new(0xF_0000u64.into()),
+        x_ext: Signal<Local, Bits<20>>, low_shift: Signal<Local, Bits<32>>,
+        sum: Signal<Local, Bits<32>>,
+        sat: SatToQ2_17, n_q: DFF<Bits<19>>,
     }
 }
 
@@ -435,15 +486,31 @@ impl ScaleLane {
 impl Logic for ScaleLane {
     #[hdl_gen]
     fn update(&mut self) {
-        clock!(self, clock, x_to_f, mul, n_q);
+        clock!(self, clock, x_to_f, mul, low, corr, n_q);
         self.x_to_f.d.next = self.x.val();
-        // B6: x·f, signed Q2.14 × unsigned Q1.15 → signed Q3.29.
+        // B6: x·fh, signed Q2.14 × unsigned Q1.15 → signed Q3.29 (three clocks).
         self.mul.a.next = self.x_to_f.q.val();
-        self.mul.b.next = self.f.val();
-        // B7: Q3.29 → Q2.14, round to nearest, saturate (|xf| < 2³¹ − 2¹⁴: the rounding add
-        // cannot overflow).
-        self.round.wide.next = self.mul.p.val();
-        self.n_q.d.next = self.round.narrow.val();
+        self.mul.b.next = self.f.val().get_bits::<16>(3);
+        // Beside it: x·fl (x sign-extended; |x·fl| < 2¹⁸) in two clocks, then
+        // corr = floor(x·fl / 8) + 2¹¹ (Q3.29, with the half output LSB) in the third.
+        if self.x_to_f.q.val().get_bit(15) {
+            self.x_ext.next = bit_cast::<20, 16>(self.x_to_f.q.val()) | self.sign4.val();
+        } else {
+            self.x_ext.next = bit_cast::<20, 16>(self.x_to_f.q.val());
+        }
+        self.low.v.next = self.x_ext.val();
+        self.low.m.next = self.f.val().get_bits::<3>(0);
+        if self.low.p.val().get_bit(31) {
+            self.low_shift.next = (self.low.p.val() >> 3) | self.sign3.val();
+        } else {
+            self.low_shift.next = self.low.p.val() >> 3;
+        }
+        self.corr.d.next = self.low_shift.val() + self.half_lsb.val();
+        // B7: Q3.29 → Q2.17, saturate (|x·fh| ≤ 2³¹ − 2¹⁵ and |corr| < 2¹⁵: the sum cannot
+        // wrap).
+        self.sum.next = self.mul.p.val() + self.corr.q.val();
+        self.sat.wide.next = self.sum.val();
+        self.n_q.d.next = self.sat.narrow.val();
         self.n.next = self.n_q.q.val();
     }
 }
@@ -455,7 +522,7 @@ crate::hw_block! {
         latency: SIGNED_MUL_LATENCY + 1 + NormalizerK::LATENCY => "valid_in to valid_out, one input per clock",
         multipliers: 8,
         in { valid_in: Bit, x: Bits<16>, y: Bits<16>, z: Bits<16> }
-        out { valid_out: Bit, nx: Bits<16>, ny: Bits<16>, nz: Bits<16> }
+        out { valid_out: Bit, nx: Bits<19>, ny: Bits<19>, nz: Bits<19> }
         // S1 (the squares are the multipliers' registered outputs)
         mul1: MulSignedPipe, mul2: MulSignedPipe, mul3: MulSignedPipe,
         // S2

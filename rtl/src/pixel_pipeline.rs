@@ -35,8 +35,8 @@
 //! power unit with its pixel.
 //!
 //! # Latency, throughput
-//! Event → fragment 84 clocks (a register on the event 1, vector interpolator 1, a register
-//! on the normal 1, lighting 20, BRZSSK 7, power 50, colour 4); load → first fragment 87 (the
+//! Event → fragment 85 clocks (a register on the event 1, vector interpolator 1, a register
+//! on the normal 1, lighting 21, BRZSSK 7, power 50, colour 4); load → first fragment 88 (the
 //! address block's 3 more). The two registers are for ECP5 timing: the interpolator's output
 //! rounding feeding the normalizer's squarers was the critical path (68 MHz), and `hold`
 //! gating the event into the interpolators' adders (`EVENT_REGISTER`). BRZSSK is in the path of

@@ -40,8 +40,8 @@
 //!   register record first.
 //! - Fragments (and triangle ends) enter a 128-entry FIFO. The address block is held (its
 //!   `hold`: no event this clock, none lost) in the clock after the FIFO held
-//!   more than 42 beats (the hold is registered, for ECP5 timing): at most
-//!   `EVENT_TO_FRAGMENT` + 2 = 86 events are then still in flight, so the FIFO never
+//!   more than 41 beats (the hold is registered, for ECP5 timing): at most
+//!   `EVENT_TO_FRAGMENT` + 2 = 87 events are then still in flight, so the FIFO never
 //!   overflows and never drops a fragment, and with `m_axis_tready` high it holds at most one beat and
 //!   the address block is never held.
 //! - Throughput: one fragment per clock along a line, as `pixel-pipeline`, as long as the
@@ -54,8 +54,8 @@
 //!   (`pipeline::stream::balanced_order`): 0.985, 114 847 clocks against `pixel-pipeline`'s
 //!   114 808 (`cargo bench --bench rtl_lit`, both orders printed).
 //! - Latency: a triangle record's last word accepted in clock t → its first beat offered in
-//!   clock t + 91 (the record is complete in t + 1, moves to the load bank in t + 1, loads in
-//!   t + 2; 87 clocks through `pixel-pipeline`, 2 through the FIFO and its output register).
+//!   clock t + 92 (the record is complete in t + 1, moves to the load bank in t + 1, loads in
+//!   t + 2; 88 clocks through `pixel-pipeline`, 2 through the FIFO and its output register).
 //! - The fragment stream comes from an output register (`m_axis_t*` are register outputs):
 //!   it is loaded from the FIFO when empty or when its beat is taken, so a beat per clock
 //!   still flows with `m_axis_tready` high. (The FIFO's read port maps to block RAM on ECP5,

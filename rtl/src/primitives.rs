@@ -10,7 +10,6 @@
 //! | [`Delay<T, N>`]        | `d` → `q`                | q = d delayed N clocks (N registers, reset 0)      | N       |
 //! | [`SatToQ2_14`]         | `wide` (32) → `narrow` (16) | signed Q3.29 + ½ LSB → signed Q2.14: drop 15 LSBs, saturate | 0 |
 //! | [`RoundToQ2_14`]       | `wide` (32) → `narrow` (16) | signed Q3.29 → signed Q2.14: add ½ LSB (2¹⁴), then [`SatToQ2_14`] | 0 |
-//! | [`SatToUQ1_15`]        | `wide` (32) → `narrow` (16) | signed Q4.28 + ½ LSB → unsigned Q1.15: drop 13 LSBs, clamp to [0, 2 − 2⁻¹⁵] | 0 |
 //! | [`RoundToUQ1_15`]      | `wide` (32) → `narrow` (16) | unsigned Q4.28 → unsigned Q1.15: add ½ LSB (2¹²), drop 13 LSBs, saturate | 0 |
 //! | [`MulSignedUnsigned`]  | `a` (16), `b` (16) → `p` (32) | `a·b = ua·ub − [a<0]·(ub ≪ 16)` mod 2³² (one multiplier) | 0 |
 //! | [`MulPipe`]            | `a` (16), `b` (16) → `p` (32) | a·b unsigned, exact: operands registered, product registered | 2 |
@@ -18,6 +17,9 @@
 //! | [`MulSignedUnsignedPipe`] | `a` (16), `b` (16) → `p` (32) | as [`MulSignedUnsigned`], pipelined: operands registered; ua·ub and the correction registered; their difference registered | 3 |
 //! | [`MulSignedPipe`]      | `a` (16), `b` (16) → `p` (32) | `a·b = ua·ub − ([a<0]·ub + [b<0]·ua) ≪ 16` mod 2³², pipelined the same way; with `b = a` the signed square | 3 |
 //! | [`RoundProductToUQ1_15`] | `wide` (32) → `narrow` (16) | unsigned Q2.30 → unsigned Q1.15: add ½ LSB (2¹⁴), drop 15 LSBs, saturate | 0 |
+//! | [`SatToQ2_17`]         | `wide` (32) → `narrow` (19) | signed Q3.29 + ½ LSB → signed Q2.17: drop 12 LSBs, saturate | 0 |
+//! | [`SatToUQ1_18`]        | `wide` (32) → `narrow` (19) | signed Q4.28 + ½ LSB → unsigned Q1.18: drop 10 LSBs, clamp to [0, 2 − 2⁻¹⁸] | 0 |
+//! | [`MulLow3Pipe`]        | `v` (20), `m` (3) → `p` (32) | v·m for a 3-bit unsigned m, by shift and add in 20 bits (no multiplier), sign-extended: the low part of a 19-bit operand split 16 + 3 | 2 |
 //!
 //! Rounding is to nearest with ties toward +∞ (add half an output LSB, then drop the LSBs), the
 //! rule of [`crate::fixed`]. The `Sat…` narrowings take a word that already carries the half LSB
@@ -241,30 +243,6 @@ impl Logic for RoundToQ2_14 {
 }
 
 crate::hw_block! {
-    /// Signed Q4.28 → unsigned Q1.15, for a word that already carries the half output LSB
-    /// (2¹²): negative → 0; ≥ 2 (bit 30 or 29 set) → 0xFFFF (2 − 2⁻¹⁵); else bits 28..13.
-    /// Combinational.
-    pub struct SatToUQ1_15 {
-        in { wide: Bits<32> }
-        out { narrow: Bits<16> }
-        uq1_15_max: Constant<Bits<16>> = Constant::new(0xFFFF.into()),
-    }
-}
-
-impl Logic for SatToUQ1_15 {
-    #[hdl_gen]
-    fn update(&mut self) {
-        if self.wide.val().get_bit(31) {
-            self.narrow.next = 0.into();
-        } else if self.wide.val().get_bit(30) | self.wide.val().get_bit(29) {
-            self.narrow.next = self.uq1_15_max.val();
-        } else {
-            self.narrow.next = self.wide.val().get_bits::<16>(13);
-        }
-    }
-}
-
-crate::hw_block! {
     /// Unsigned Q4.28 → unsigned Q1.15, rounded to nearest (ties toward +∞) and saturated:
     /// bits 28..13 of `wide + 2¹²`, or 0xFFFF (2 − 2⁻¹⁵) when `wide` ≥ 2 − 2⁻¹⁶ (it would
     /// round to 2.0). That test is `wide` ≥ 2 (bits 31..29) or bits 28..12 all ones — bit tests
@@ -340,6 +318,108 @@ impl Logic for RoundProductToUQ1_15 {
             self.narrow.next = self.uq1_15_max.val();
         } else {
             self.narrow.next = self.rounded.val().get_bits::<16>(15);
+        }
+    }
+}
+
+crate::hw_block! {
+    /// Signed Q3.29 → signed Q2.17 (19 bits), for a word that already carries the half output
+    /// LSB (2¹¹): `narrow` = bits 30..12 of `wide` when bits 31 and 30 agree (the value fits
+    /// [−2, 2)), else the bound on `wide`'s side: 0x40000 (−2) or 0x3FFFF (2 − 2⁻¹⁷).
+    /// Combinational.
+    pub struct SatToQ2_17 {
+        in { wide: Bits<32> }
+        out { narrow: Bits<19> }
+        q2_17_min: Constant<Bits<19>> = Constant::new(0x40000.into()),
+        q2_17_max: Constant<Bits<19>> = Constant::new(0x3FFFF.into()),
+    }
+}
+
+impl Logic for SatToQ2_17 {
+    #[hdl_gen]
+    fn update(&mut self) {
+        if self.wide.val().get_bit(31) == self.wide.val().get_bit(30) {
+            self.narrow.next = self.wide.val().get_bits::<19>(12);
+        } else if self.wide.val().get_bit(31) {
+            self.narrow.next = self.q2_17_min.val();
+        } else {
+            self.narrow.next = self.q2_17_max.val();
+        }
+    }
+}
+
+crate::hw_block! {
+    /// Signed Q4.28 → unsigned Q1.18 (19 bits), for a word that already carries the half output
+    /// LSB (2⁹): negative → 0; ≥ 2 (bit 30 or 29 set) → 0x7FFFF (2 − 2⁻¹⁸); else bits 28..10.
+    /// Combinational.
+    pub struct SatToUQ1_18 {
+        in { wide: Bits<32> }
+        out { narrow: Bits<19> }
+        uq1_18_max: Constant<Bits<19>> = Constant::new(0x7FFFF.into()),
+    }
+}
+
+impl Logic for SatToUQ1_18 {
+    #[hdl_gen]
+    fn update(&mut self) {
+        if self.wide.val().get_bit(31) {
+            self.narrow.next = 0.into();
+        } else if self.wide.val().get_bit(30) | self.wide.val().get_bit(29) {
+            self.narrow.next = self.uq1_18_max.val();
+        } else {
+            self.narrow.next = self.wide.val().get_bits::<19>(10);
+        }
+    }
+}
+
+/// Latency of [`MulLow3Pipe`]: one clock less than the 16×16 multiplies beside it, so its
+/// caller can shift its product and add a constant in the clock that meets theirs.
+pub const MUL_LOW_LATENCY: usize = 2;
+
+crate::hw_block! {
+    /// `p = v·m` for a 20-bit two's-complement `v` (a 16-bit word, sign- or zero-extended by the
+    /// caller) and a 3-bit unsigned `m`, by shift and add (no multiplier): `v` and `m`
+    /// registered; `(m₀·v + m₁·2v) + m₂·4v` in 20 bits, registered; `p` is that word
+    /// sign-extended to 32 bits (wiring). Exact when |v·m| < 2¹⁹, which holds for every 16-bit
+    /// word, signed or unsigned, times m ≤ 7. It multiplies the three low bits of a 19-bit
+    /// operand split into 16 + 3 (the 16 go through a multiplier). Latency
+    /// [`MUL_LOW_LATENCY`], one product per clock.
+    pub struct MulLow3Pipe(clock) {
+        in { v: Bits<20>, m: Bits<3> }
+        out { p: Bits<32> }
+        v_q: DFF<Bits<20>>,
+        m_q: DFF<Bits<3>>,
+        t0: Signal<Local, Bits<20>>,
+        t1: Signal<Local, Bits<20>>,
+        t2: Signal<Local, Bits<20>>,
+        p_q: DFF<Bits<20>>,
+        sign12: Constant<Bits<32>> = Constant::new(0xFFF0_0000u64.into()),
+    }
+}
+
+impl Logic for MulLow3Pipe {
+    #[hdl_gen]
+    fn update(&mut self) {
+        clock!(self, clock, v_q, m_q, p_q);
+        self.v_q.d.next = self.v.val();
+        self.m_q.d.next = self.m.val();
+        self.t0.next = 0.into();
+        self.t1.next = 0.into();
+        self.t2.next = 0.into();
+        if self.m_q.q.val().get_bit(0) {
+            self.t0.next = self.v_q.q.val();
+        }
+        if self.m_q.q.val().get_bit(1) {
+            self.t1.next = self.v_q.q.val() << 1;
+        }
+        if self.m_q.q.val().get_bit(2) {
+            self.t2.next = self.v_q.q.val() << 2;
+        }
+        self.p_q.d.next = self.t0.val() + self.t1.val() + self.t2.val();
+        if self.p_q.q.val().get_bit(19) {
+            self.p.next = bit_cast::<32, 20>(self.p_q.q.val()) | self.sign12.val();
+        } else {
+            self.p.next = bit_cast::<32, 20>(self.p_q.q.val());
         }
     }
 }
@@ -498,7 +578,7 @@ impl Logic for MulSignedPipe {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::fixed::{QFormat, HORNER_T1, K_FULL, K_NARROW, NORMAL, PRODUCT, SCALE};
+    use crate::fixed::{QFormat, K_FULL, K_NARROW, NORMAL, NORMALIZED, NORM_SCALE, PRODUCT, SCALE};
 
     /// Settle a block's combinational logic after its inputs changed.
     fn settle<B: Block>(uut: &mut B) {
@@ -545,7 +625,9 @@ mod tests {
     fn narrowings_match_the_fixed_rules() {
         let mut sat_s = SatToQ2_14::default();
         let mut round_s = RoundToQ2_14::default();
-        let mut sat_u = SatToUQ1_15::default();
+        let mut sat_u = SatToUQ1_18::default();
+        let mut sat_17 = SatToQ2_17::default();
+        sat_17.connect_all();
         let mut round_u = RoundToUQ1_15::default();
         let mut round_p = RoundProductToUQ1_15::default();
         round_p.connect_all();
@@ -561,7 +643,7 @@ mod tests {
             if !(0x7FFF_C000..=0x7FFF_FFFF).contains(&w) {
                 assert_eq!(
                     round_s.narrow.val().to_u64(),
-                    reference(PRODUCT, HORNER_T1, w),
+                    reference(PRODUCT, NORMAL, w),
                     "RoundToQ2_14 {w:#x}"
                 );
             }
@@ -573,13 +655,22 @@ mod tests {
                 round_s.narrow.val(),
                 "SatToQ2_14 {w:#x}"
             );
-            if (w as i32) < i32::MAX - (1 << 12) {
-                sat_u.wide.next = (w.wrapping_add(1 << 12) as u64).into();
+            if (w as i32) < i32::MAX - (1 << 9) {
+                sat_u.wide.next = (w.wrapping_add(1 << 9) as u64).into();
                 settle(&mut sat_u);
                 assert_eq!(
                     sat_u.narrow.val().to_u64(),
-                    reference(f_wide, SCALE, w),
-                    "SatToUQ1_15 {w:#x}"
+                    reference(f_wide, NORM_SCALE, w),
+                    "SatToUQ1_18 {w:#x}"
+                );
+            }
+            if (w as i32) < i32::MAX - (1 << 11) {
+                sat_17.wide.next = (w.wrapping_add(1 << 11) as u64).into();
+                settle(&mut sat_17);
+                assert_eq!(
+                    sat_17.narrow.val().to_u64(),
+                    reference(PRODUCT, NORMALIZED, w),
+                    "SatToQ2_17 {w:#x}"
                 );
             }
             round_p.wide.next = (w as u64).into();
@@ -622,6 +713,38 @@ mod tests {
                     "{a:#x}·{b:#x}"
                 );
             }
+        }
+    }
+
+    /// The shift-add of a 3-bit factor: v·m (exact, as a 32-bit word) of the words presented
+    /// `MUL_LOW_LATENCY` clocks earlier, for every m and signed and unsigned 16-bit v.
+    #[test]
+    fn low_part_shift_add_is_exact_after_its_latency() {
+        let mut low = MulLow3Pipe::default();
+        low.connect_all();
+        // Every 16-bit word as a signed and as an unsigned value, in the 20-bit input.
+        let mut values: Vec<i64> = vec![0, 1, -1, 0x7FFF, -0x8000, 0xFFFF, 0x8000, 0x1234];
+        values.extend((0..600i64).map(|i| ((i * 40503) & 0xFFFF) - (i % 2) * 0x8000));
+        let pairs: Vec<(i64, i64)> = values
+            .iter()
+            .flat_map(|&v| (0..8i64).map(move |m| (v, m)))
+            .collect();
+        for c in 0..pairs.len() + MUL_LOW_LATENCY {
+            let (v, m) = pairs.get(c).copied().unwrap_or((0, 0));
+            low.v.next = ((v as u64) & 0xF_FFFF).into();
+            low.m.next = (m as u64).into();
+            low.clock.next = Clock { clk: false };
+            settle(&mut low);
+            if c >= MUL_LOW_LATENCY {
+                let (v, m) = pairs[c - MUL_LOW_LATENCY];
+                assert_eq!(
+                    low.p.val().to_u64(),
+                    ((v * m) as u64) & 0xFFFF_FFFF,
+                    "{v}·{m}"
+                );
+            }
+            low.clock.next = Clock { clk: true };
+            settle(&mut low);
         }
     }
 

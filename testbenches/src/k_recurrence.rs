@@ -6,7 +6,7 @@
 use proptest::prelude::*;
 use proptest::strategy::ValueTree;
 use proptest::test_runner::TestRunner;
-use rtl::fixed::{K_FULL, NORMAL};
+use rtl::fixed::{K_FULL, NORMAL, NORMALIZED};
 use rtl::k_recurrence::{span_setup, KRecurrence, SpanNormalizer};
 use rtl::normalizer::Normalizer;
 
@@ -361,7 +361,7 @@ impl Twin for SpanNormalizerRows {
             w(10),
         );
         let mut o = vec![v as u64];
-        o.extend(n.map(|x| NORMAL.from_int(x)));
+        o.extend(n.map(|x| NORMALIZED.from_int(x)));
         o
     }
 }

@@ -125,7 +125,7 @@ impl Bench for LightingUnit {
             rows.push(f);
         }
         // The expectation of clock t is the pixel that entered at t − latency, lit with the
-        // L, H present when it reached D1 (the normalizer's output: clock t − 3).
+        // L, H present when it reached D1 (the normalizer's output: clock t − at_d1).
         let at_d1 = LightingUnit::LATENCY - rtl::normalizer::Normalizer::LATENCY;
         let budget = domain_budget(c);
         let mut worst: f64 = 0.0;

@@ -7,7 +7,7 @@ use golden::normalizer::{twin, Coeffs};
 use proptest::prelude::*;
 use proptest::strategy::ValueTree;
 use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
-use rtl::fixed::{HORNER_T1, K_NARROW, NORMAL, SCALE};
+use rtl::fixed::{HORNER_T1, K_NARROW, NORMAL, NORMALIZED, NORM_SCALE};
 use rtl::normalizer::{error_budget, ErrorBudget, Normalizer, NormalizerCoeffs, NormalizerK};
 
 use crate::harness::{self, CheckSpec, Compare, Expected, Failure, Report, Tolerance};
@@ -147,20 +147,25 @@ pub fn quantize(v: [f64; 3]) -> [u64; 3] {
     v.map(|c| NORMAL.quantize(c))
 }
 
-/// Real values of raw Q2.14 words.
+/// Real values of raw Q2.14 words (the inputs).
 pub fn dequantize(raw: [u64; 3]) -> [f64; 3] {
     raw.map(|r| NORMAL.to_f64(r))
 }
 
+/// Real values of raw Q2.17 words (the outputs, N').
+pub fn dequantize_out(raw: [u64; 3]) -> [f64; 3] {
+    raw.map(|r| NORMALIZED.to_f64(r))
+}
+
 /// The golden formula with the block's documented saturation rules applied in f64 (K clamped
-/// to the Q1.15 range, t1 to Q2.14, f to Q1.15, outputs to Q2.14). Inside the domain none of
+/// to the Q1.15 range, t1 to Q2.17, f to Q1.18, outputs to Q2.17). Inside the domain none of
 /// the clamps acts and this is exactly `golden::normalizer::normalize`.
 pub fn saturating_model(raw: [u64; 3], c: Coeffs) -> [f64; 3] {
     let n = dequantize(raw);
     let k = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).min(K_NARROW.max());
     let t1 = (c[0] * k + c[1]).clamp(HORNER_T1.min(), HORNER_T1.max());
-    let f = (t1 * k + c[2]).clamp(SCALE.min(), SCALE.max());
-    n.map(|x| (x * f).clamp(NORMAL.min(), NORMAL.max()))
+    let f = (t1 * k + c[2]).clamp(NORM_SCALE.min(), NORM_SCALE.max());
+    n.map(|x| (x * f).clamp(NORMALIZED.min(), NORMALIZED.max()))
 }
 
 /// Tolerance of an output component for domain inputs, from [`error_budget`].
@@ -180,10 +185,10 @@ fn tolerance(b: &ErrorBudget) -> Tolerance {
     }
 }
 
-/// How the normalizer's outputs are compared: `valid_out` exactly, components through Q2.14.
+/// How the normalizer's outputs are compared: `valid_out` exactly, components through Q2.17.
 pub fn check_spec(name: &str, seed: u64, b: &ErrorBudget) -> CheckSpec {
     let fixed = Compare::Fixed {
-        format: NORMAL,
+        format: NORMALIZED,
         tol: tolerance(b),
     };
     CheckSpec {
@@ -290,7 +295,7 @@ pub fn end_to_end(report: &Report, vectors: &[[f64; 3]], latency: usize) -> EndT
         }
         let inp = &report.inputs[c - latency];
         let nq = dequantize([inp[1], inp[2], inp[3]]);
-        let hw = dequantize([out[1], out[2], out[3]]);
+        let hw = dequantize_out([out[1], out[2], out[3]]);
         let dist = |a: [f64; 3]| {
             let len = (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt();
             ((hw[0] - a[0] / len).powi(2)
@@ -332,7 +337,7 @@ fn signed16(w: u64) -> i64 {
 
 fn vector_out(valid: bool, n: [i64; 3]) -> Vec<u64> {
     let mut o = vec![valid as u64];
-    o.extend(n.map(|x| NORMAL.from_int(x)));
+    o.extend(n.map(|x| NORMALIZED.from_int(x)));
     o
 }
 

@@ -104,7 +104,7 @@ fn check_named(kind: &str, label: &str, raw: [u64; 3], b: &ErrorBudget) {
     let report =
         check_normalizer(&name, 0, &[Slot::Vector(raw)], &c, b).unwrap_or_else(|f| panic!("{f}"));
     let out = &report.outputs[Normalizer::LATENCY];
-    let (i, o) = (dequantize(raw), dequantize([out[1], out[2], out[3]]));
+    let (i, o) = (dequantize(raw), dequantize_out([out[1], out[2], out[3]]));
     println!("{label:<44} in {i:?} -> out {o:?}");
 }
 

@@ -129,13 +129,13 @@ fn broken_export_is_caught() {
         Mutant { what: "K rounding: + → -", module: "normalizer__scale__k_round", from: "rounded = wide + half_lsb", to: "rounded = wide - half_lsb" },
         Mutant { what: "K saturation test: | → &", module: "normalizer__scale__k_round", from: "|wide[(29)+:(3)] | &wide[", to: "|wide[(29)+:(3)] & &wide[" },
         Mutant { what: "halving c2·K: >> → <<", module: "", from: "c2k_half = c2k$q >> 32'h1", to: "c2k_half = c2k$q << 32'h1" },
-        Mutant { what: "Horner add: + → -", module: "", from: "f_wide = c0_rnd + t1k_half", to: "f_wide = c0_rnd - t1k_half" },
+        Mutant { what: "Horner add: + → -", module: "", from: "f_wide = c0_low$q + t1k_half", to: "f_wide = c0_low$q - t1k_half" },
     ];
     assert_mutants_caught(registry::find("normalizer").unwrap(), &rows, &mutants);
 }
 
 /// A rounding bias of a quarter LSB in the normalizer's output stage (the half-LSB constant
-/// 2¹⁴ of every output lane made 2¹⁴ + 2¹³) — the kind of bug the rust-hdl simulation shares
+/// 2¹¹ of every output lane made 2¹¹ + 2¹⁰) — the kind of bug the rust-hdl simulation shares
 /// with its own Verilog, so only an independent model can see it — is caught by the
 /// bit-exact twin on the first vectors; the unmodified export equals the twin every clock.
 #[test]
@@ -169,8 +169,8 @@ fn twin_catches_a_quarter_lsb_output_bias() {
     run(&good, "quarter-lsb-control").unwrap_or_else(|e| panic!("control: {e}"));
     let mut bad = good.clone();
     for lane in ["x", "y", "z"] {
-        let module = format!("normalizer__scale__lane_{lane}__round");
-        let (from, to) = ("half_lsb = 32'h4000", "half_lsb = 32'h6000");
+        let module = format!("normalizer__scale__lane_{lane}");
+        let (from, to) = ("half_lsb = 32'h800", "half_lsb = 32'hc00");
         bad = Mutant {
             what: "¼-LSB bias",
             module: &module,
