@@ -293,11 +293,12 @@ fn sim_writes_a_readable_normalizer_vcd() {
         200,
         "one output per input vector"
     );
-    let q214 = |w: u64| (w as u16 as i16) as f64 / 16384.0;
+    // N' is signed Q2.17 (19 bits).
+    let q217 = |w: u64| (((w << 45) as i64) >> 45) as f64 / 131072.0;
     for r in s.iter().filter(|r| r[1] == 1) {
-        let len = (q214(r[3]).powi(2) + q214(r[4]).powi(2) + q214(r[5]).powi(2)).sqrt();
+        let len = (q217(r[3]).powi(2) + q217(r[4]).powi(2) + q217(r[5]).powi(2)).sqrt();
         assert!(
-            (len - 1.0).abs() < 0.0036 + 3.0 * 2f64.powi(-14),
+            (len - 1.0).abs() < 0.0036 + 3.0 * 2f64.powi(-17),
             "|N'| = {len}"
         );
     }

@@ -48,8 +48,9 @@
 //!
 //! # Overflow
 //! Nothing wraps: the products are exact but for the low parts' floor, the 34-bit sums cannot
-//! overflow for any input words, and the cosines saturate at 0 and 2 − 2⁻¹⁵. A published-coefficient normal is up to
-//! 0.35 % long, so cos γ may exceed 1 (by design: the golden model keeps that bias).
+//! overflow for any input words, and the cosines saturate at 0 and 2 − 2⁻¹⁵. A
+//! published-coefficient normal is up to 0.35 % long, so cos γ may exceed 1 (by design: the
+//! golden model keeps that bias).
 //!
 //! # Error budget (vs `golden::lighting_unit::cosines` on the same quantized N, L, H)
 //! The normalizer's per-component bound e (3.73·10⁻⁵ published, 2.65·10⁻⁵ fit on the domain,

@@ -309,7 +309,9 @@ pub fn error_budget(c: &NormalizerCoeffs, k_lo: f64, k_hi: f64, x_max: f64) -> E
     let fprime_max = fprime(k_lo - dk).max(fprime(k_n));
     let dc2 = (q[0] - r[0]).abs();
     let dc1 = (q[1] - r[1]).abs() + COEF_C1.lsb(); // + halving of c2k (Q2.30 → Q3.29)
-                                                   // + halving of t1h·K (Q3.29 → Q4.28) and the floor of t1l·K (units 2⁻³² → Q4.28)
+
+    // c0's quantization, the halving of t1h·K (Q3.29 → Q4.28) and the floor of t1l·K (units
+    // 2⁻³² → Q4.28).
     let dc0 = (q[2] - r[2]).abs() + 2.0 * COEF_C0.lsb();
     let t1_round = HORNER_T1.lsb() / 2.0;
     let f_round = NORM_SCALE.lsb() / 2.0;
