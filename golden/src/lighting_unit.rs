@@ -78,8 +78,8 @@ pub mod twin {
         pub fn outputs(&self) -> (bool, i64, i64) {
             (self.valid[5], self.cos[0], self.cos[1])
         }
-        /// One rising edge: `v` the interpolated normal, `l` and `h` the light and half
-        /// vectors (signed Q2.14 integers).
+        /// One rising edge: `v` the interpolated normal (signed Q2.17 integers), `l` and `h`
+        /// the light and half vectors (signed Q2.14 integers).
         pub fn clock(&mut self, valid_in: bool, v: [i64; 3], l: [i64; 3], h: [i64; 3]) {
             let (nv, n) = self.norm.outputs();
             self.cos = [narrow(self.sum[0]), narrow(self.sum[1])];

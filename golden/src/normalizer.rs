@@ -183,9 +183,9 @@ pub fn shade_front_end(
 /// `rtl/src/k_recurrence.rs`, written from their headers' formats (not from the RTL): every
 /// register, every rounding (add half an LSB, drop, ties toward +∞) and every saturation, in
 /// plain `i64` arithmetic. The benches compare them with the RTL exactly, every port, every
-/// clock; the f64 functions above are the second check. Words are raw integers (input
-/// components signed Q2.14, `i64` in −2¹⁵..2¹⁵; output components signed Q2.17, in
-/// −2¹⁸..2¹⁸; K in Q4.28 units).
+/// clock; the f64 functions above are the second check. Words are raw integers (input and
+/// output components signed Q2.17, `i64` in −2¹⁸..2¹⁸; K in Q4.28 units; the span
+/// normalizer's N₀ and Δ signed Q2.14).
 pub mod twin {
     use super::Coeffs;
 
@@ -212,7 +212,7 @@ pub mod twin {
     /// B3 t1 = sat(round(c1 ± c2k/2: Q3.29 → Q2.17))
     /// B4 t1h = ⌊t1/8⌋, t1l = t1 − 8·t1h: t1h·k_narrow (Q3.29), t1l·k_narrow (units 2⁻³²)
     /// B5 f = sat(round(c0 + ⌊t1h·k/2⌋ + ⌊t1l·k/16⌋: Q4.28 → Q1.18))
-    /// B6 fh = ⌊f/8⌋, fl = f − 8·fh: xf = x·fh + ⌊x·fl/8⌋     (Q3.29)
+    /// B6 xf = ⌊x·f / 64⌋ (x Q2.17 · f Q1.18 → Q3.29, floored)
     /// B7 nx = sat(round(xf: Q3.29 → Q2.17))
     /// ```
     /// The halvings and the floors of the low parts floor, as an arithmetic shift does.
@@ -273,7 +273,7 @@ pub mod twin {
             (self.c2_mag, self.c2_neg, self.c1, self.c0)
         }
 
-        /// One rising edge with inputs `valid_in`, N = `v` (signed Q2.14 integers) and
+        /// One rising edge with inputs `valid_in`, N = `v` (signed Q2.17 integers) and
         /// `k` (Q4.28 units).
         pub fn clock(&mut self, valid_in: bool, v: [i64; 3], k: i64) {
             let s = self.clone();
@@ -290,8 +290,7 @@ pub mod twin {
             self.t1k_a = [t1k, s.t1k_a[0]];
             self.t1k = s.t1k_a[1];
             self.f = round_sat(s.c0 + s.t1k, 10, 0, U19_MAX);
-            let (fh, fl) = (s.f >> 3, s.f & 7);
-            self.xf_a = [s.vec[6].map(|x| x * fh + ((x * fl) >> 3)), s.xf_a[0]];
+            self.xf_a = [s.vec[6].map(|x| (x * s.f) >> 6), s.xf_a[0]];
             self.xf = s.xf_a[1];
             self.n = s.xf.map(|p| round_sat(p, 12, Q217_MIN, Q217_MAX));
             self.valid = [
@@ -305,7 +304,7 @@ pub mod twin {
     }
 
     /// The full normalizer: three squarers (three clocks: the square is ready three registers
-    /// on) and Sm1 (K exact) in front of [`NormalizerKTwin`]; latency 15.
+    /// on) and Sm1 (K = ⌊x² + y² + z²⌋ in Q4.28) in front of [`NormalizerKTwin`]; latency 15.
     #[derive(Clone, Debug)]
     pub struct NormalizerTwin {
         sq_a: [[i64; 3]; 2],
@@ -332,7 +331,8 @@ pub mod twin {
         }
         pub fn clock(&mut self, valid_in: bool, v: [i64; 3]) {
             self.back.clock(self.valid[3], self.vec[3], self.k_full);
-            self.k_full = self.sq.iter().sum();
+            // Q2.17 squares are in units of 2⁻³⁴: floor the sum to Q4.28.
+            self.k_full = self.sq.iter().sum::<i64>() >> 6;
             self.sq = self.sq_a[1];
             self.sq_a = [v.map(|x| x * x), self.sq_a[0]];
             self.valid = [valid_in, self.valid[0], self.valid[1], self.valid[2]];
@@ -442,7 +442,8 @@ pub mod twin {
             beta: u32,
         ) {
             let (kv, k) = self.krec.outputs();
-            self.back.clock(kv, self.n_out, k as i64);
+            // N_i enters the back end as Q2.17: the Q2.14 word times 8.
+            self.back.clock(kv, self.n_out.map(|x| x * 8), k as i64);
             self.krec.clock(valid_in, load, k0, alpha, beta);
             if self.valid_p1 {
                 let (n, dd) = if self.load_p1 {

@@ -8,7 +8,9 @@
 //! into a line (`short` = f·a + b or `long` = (f + 1)·a + b, the grouped ΔN_H/ΔN_V/ΔN_D of
 //! SPEC §1) or one pixel along the line (`line` = dir·a). The hardware words are signed Q3.29
 //! (wrapping, like the BVI's: only the pixel values must be in range, and |N| ≤ 1 for
-//! interpolated unit normals); the output is rounded to signed Q2.14.
+//! interpolated unit normals); the output is rounded to signed Q2.17 (it was Q2.14 until
+//! `bump`'s 2-LSB bound: that rounding was the largest error left in cos γ,
+//! `docs/bump-precision.md`).
 
 use crate::address_block::{AddressOutputs, AddressSetup};
 use crate::intensity_interpolator::{BviTwin, ChannelSetup, ChannelWords};
@@ -16,8 +18,8 @@ use crate::types::Plane;
 
 /// Fraction bits of the accumulator words (signed Q3.29).
 pub const WORD_FRAC_BITS: u32 = 29;
-/// Fraction bits of the output components (signed Q2.14).
-pub const OUT_FRAC_BITS: u32 = 14;
+/// Fraction bits of the output components (signed Q2.17).
+pub const OUT_FRAC_BITS: u32 = 17;
 
 /// `v` rounded to the nearest signed Q3.29 word (ties toward +∞), modulo 2³².
 pub fn quantize(v: f64) -> u32 {
@@ -40,21 +42,21 @@ pub fn setup(planes: &[Plane; 3], addr: &AddressSetup) -> [ChannelWords; 3] {
 }
 
 /// The bound on |output − N_k| for a pixel reached by `adds` additions: each of the `adds`
-/// quantized terms is off by ≤ 2⁻³⁰, and the output rounding by ≤ 2⁻¹⁵.
+/// quantized terms is off by ≤ 2⁻³⁰, and the output rounding by ≤ 2⁻¹⁸.
 pub fn error_bound(adds: u32) -> f64 {
     adds as f64 * (-(WORD_FRAC_BITS as f64 + 1.0)).exp2() + (-(OUT_FRAC_BITS as f64 + 1.0)).exp2()
 }
 
-/// The output stage: a Q3.29 word to Q2.14 — add half an output LSB in the 32-bit adder
-/// (wrapping), drop 15 bits, saturate to [−2, 2) when the sum leaves that range.
+/// The output stage: a Q3.29 word to Q2.17 — add half an output LSB (2¹¹) in the 32-bit
+/// adder (wrapping), drop 12 bits, saturate to [−2, 2 − 2⁻¹⁷] when the sum leaves [−2, 2).
 pub fn round_word(word: u32) -> i64 {
-    let sum = word.wrapping_add(1 << 14) as i32 as i64;
+    let sum = word.wrapping_add(1 << 11) as i32 as i64;
     if (-(1 << 30)..(1 << 30)).contains(&sum) {
-        sum >> 15
+        sum >> 12
     } else if sum < 0 {
-        -(1 << 15)
+        -(1 << 18)
     } else {
-        (1 << 15) - 1
+        (1 << 18) - 1
     }
 }
 
@@ -64,7 +66,7 @@ pub fn round_word(word: u32) -> i64 {
 pub struct VectorTwin(BviTwin);
 
 impl VectorTwin {
-    /// (valid_out, [nx, ny, nz] as signed Q2.14 integers) shown this clock.
+    /// (valid_out, [nx, ny, nz] as signed Q2.17 integers) shown this clock.
     pub fn outputs(&self) -> (bool, [i64; 3]) {
         let (valid, _, words) = self.0.outputs();
         (valid, words.map(round_word))
@@ -83,14 +85,15 @@ mod tests {
     fn quantize_and_round() {
         assert_eq!(quantize(1.0), 1 << 29);
         assert_eq!(quantize(-1.0), (-(1i64 << 29)) as u32);
-        assert_eq!(round_word(1 << 29), 1 << 14);
+        assert_eq!(round_word(1 << 29), 1 << 17);
         // Half an output LSB rounds up; just below it rounds down.
-        assert_eq!(round_word(1 << 14), 1);
-        assert_eq!(round_word((1 << 14) - 1), 0);
-        assert_eq!(round_word((-(1i64 << 14)) as u32), 0);
+        assert_eq!(round_word(1 << 11), 1);
+        assert_eq!(round_word((1 << 11) - 1), 0);
+        assert_eq!(round_word((-(1i64 << 11)) as u32), 0);
+        assert_eq!(round_word((-(1i64 << 11) - 1) as u32), -1);
         // Beyond ±2: saturation, not wrap.
-        assert_eq!(round_word(3 << 29), (1 << 15) - 1);
-        assert_eq!(round_word((-(3i64 << 29)) as u32), -(1 << 15));
-        assert!(error_bound(8189) < 0.63 * (-14f64).exp2());
+        assert_eq!(round_word(3 << 29), (1 << 18) - 1);
+        assert_eq!(round_word((-(3i64 << 29)) as u32), -(1 << 18));
+        assert!(error_bound(8189) < 1.51 * (-17f64).exp2());
     }
 }

@@ -41,9 +41,9 @@
 //!   operand `a` (two's complement) times an unsigned `b` is formed from the unsigned product
 //!   with the standard correction `a·b = ua·ub − [a<0]·(ub ≪ 16)  (mod 2³²)`; a signed square
 //!   is `a² = ua² − [a<0]·(ua ≪ 17)  (mod 2³²)`. Both are exact: the true product fits 32 bits.
-//!   A 19-bit operand (t1, f and N' of the normalizer) is split into its top 16 bits, which
-//!   go through the multiplier (exact), and its three low bits, multiplied by shift and add
-//!   ([`MulLow3Pipe`](crate::primitives::MulLow3Pipe), exact) and floored to the LSB of the
+//!   A 19-bit operand (N, t1, f and N' of the normalizer) is split into its top 16 bits,
+//!   which go through the multiplier (exact), and its three low bits, multiplied by shift and
+//!   add ([`MulLow3Pipe`](crate::primitives::MulLow3Pipe), exact) and floored to the LSB of the
 //!   32-bit sum they join (an error below one LSB of that sum, stated in each block's budget).
 //! - **Rounding**: whenever LSBs are dropped the result is rounded to nearest, ties toward +∞
 //!   (add half an output LSB, then shift right arithmetically). The half-LSB is folded into a
@@ -58,7 +58,7 @@
 //! The multiplies and narrowings above are built once, in [`crate::primitives`]
 //! ([`MulSignedUnsigned`](crate::primitives::MulSignedUnsigned),
 //! [`MulSignedPipe`](crate::primitives::MulSignedPipe), [`SatToQ2_14`](crate::primitives::SatToQ2_14),
-//! [`RoundToQ2_14`](crate::primitives::RoundToQ2_14), [`SatToQ2_17`](crate::primitives::SatToQ2_17),
+//! [`RoundToQ2_17`](crate::primitives::RoundToQ2_17), [`SatToQ2_17`](crate::primitives::SatToQ2_17),
 //! [`SatToUQ1_18`](crate::primitives::SatToUQ1_18), [`RoundToUQ1_15`](crate::primitives::RoundToUQ1_15),
 //! [`MulLow3Pipe`](crate::primitives::MulLow3Pipe)), and the blocks use those.
 //!
@@ -73,9 +73,14 @@ pub struct QFormat {
     pub signed: bool,
 }
 
-/// Normal components: the interpolated normal (the normalizer's input), L and H.
+/// Unit-vector components: L and H, and the span normalizer's N₀ and Δ.
 pub const NORMAL: QFormat = QFormat::signed(2, 14);
-/// K = x² + y² + z² of Q2.14 components, exact.
+/// The interpolated normal N: the vector interpolator's output, the normalizer's input. Three
+/// bits finer than [`NORMAL`], split 16 + 3 at the normalizer's multipliers like t1 and f
+/// (`docs/bump-precision.md`: its rounding was the largest error left in `bump`'s cos γ).
+pub const INTERPOLATED: QFormat = QFormat::signed(2, 17);
+/// K = x² + y² + z² of the normalizer's input in Q4.28: exact for Q2.14 components (the K
+/// recurrence), floored for Q2.17 ones (the squarers drop what lies below 2⁻²⁸).
 pub const K_FULL: QFormat = QFormat::unsigned(4, 28);
 /// α = N₀·Δ of the K recurrence (and the increments 2α + β_i), exact.
 pub const K_ALPHA: QFormat = QFormat::signed(4, 28);

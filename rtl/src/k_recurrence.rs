@@ -47,7 +47,9 @@
 //! reach [`NormalizerK`] in the same clock. Its ports: `valid_in`, `load`, `k0`, `alpha`,
 //! `beta` as above, plus `x0`, `y0`, `z0` (signed Q2.14, N₀, taken with `load`) and `dx`,
 //! `dy`, `dz` (signed Q2.14, Δ, taken with `load`); outputs `valid_out`, `nx`, `ny`, `nz`
-//! (signed Q2.17) as the normalizer's. Error budget: the normalizer's
+//! (signed Q2.17) as the normalizer's. N_i enters [`NormalizerK`] as signed Q2.17 (its input
+//! format since N left the vector interpolator at Q2.17): the Q2.14 word with three zero LSBs,
+//! for which the squarers' K is exact too. Error budget: the normalizer's
 //! (`crate::normalizer::error_budget`).
 
 use rust_hdl::prelude::*;
@@ -198,16 +200,18 @@ crate::hw_block! {
     /// Q2.14, modulo 2¹⁶; the caller keeps N_i representable), in [`KRecurrence`]'s two stages:
     /// input registers, then the recurrence state and the output register. `load` (with
     /// `valid_in`) takes `n0` and `delta`; clocks with `valid_in` low freeze it. `n` is N_i,
-    /// [`KRecurrence::LATENCY`] clocks after its `valid_in`, beside K_i.
+    /// [`KRecurrence::LATENCY`] clocks after its `valid_in`, beside K_i, in the normalizer's
+    /// input format: signed Q2.17, the Q2.14 word with three zero LSBs (wiring).
     struct ComponentStep(clock) {
         in { valid_in: Bit, load: Bit, n0: Bits<16>, delta: Bits<16> }
-        out { n: Bits<16> }
+        out { n: Bits<19> }
         // Stage 1: input registers.
         valid_p1: DFF<Bit>, load_p1: DFF<Bit>, n0_p1: DFF<Bits<16>>, delta_p1: DFF<Bits<16>>,
         // Stage 2: recurrence state (value for the next pixel) and the output register.
         n_next: DFF<Bits<16>>, delta_hold: DFF<Bits<16>>, n_out: DFF<Bits<16>>,
         // This pixel's N and Δ: the loaded values on a load, else the state.
         n_cur: Signal<Local, Bits<16>>, delta_cur: Signal<Local, Bits<16>>,
+        n_ext: Signal<Local, Bits<19>>,
     }
 }
 
@@ -232,6 +236,7 @@ impl Logic for ComponentStep {
             self.n_next.d.next = self.n_cur.val() + self.delta_cur.val();
             self.delta_hold.d.next = self.delta_cur.val();
         }
-        self.n.next = self.n_out.q.val();
+        self.n_ext.next = bit_cast::<19, 16>(self.n_out.q.val());
+        self.n.next = self.n_ext.val() << 3;
     }
 }

@@ -14,7 +14,7 @@
 //! | port | dir | format |
 //! |---|---|---|
 //! | `valid_in` | in | 1 = x, y, z hold a normal this clock |
-//! | `x`, `y`, `z` | in | signed Q2.14: the interpolated (unnormalized) normal |
+//! | `x`, `y`, `z` | in | signed Q2.17 (19 bits): the interpolated (unnormalized) normal |
 //! | `lx ly lz`, `hx hy hz` | in | signed Q2.14: unit L and H, registers of the top (sampled when a pixel enters D1, 5 clocks before its output; hold them while pixels are in flight) |
 //! | `valid_out` | out | `valid_in` delayed by the latency |
 //! | `cos_phi`, `cos_gamma` | out | unsigned Q1.15, registered |
@@ -62,8 +62,8 @@
 //!
 //! Measured against the golden f64 front end (N and H unquantized, fitted set):
 //! `examples/bump_precision.rs` and `docs/bump-precision.md` give each word's share. N's own
-//! rounding to Q2.14 in the vector interpolator is now the largest (1.4 LSB of Q1.15 on cos γ
-//! alone).
+//! rounding in the vector interpolator was the largest (1.4 LSB of Q1.15 on cos γ alone at
+//! Q2.14); N is now Q2.17, and K's rounding to Q1.15 and H's to Q2.14 lead.
 
 use rust_hdl::prelude::*;
 
@@ -78,7 +78,7 @@ crate::hw_block! {
         latency: Normalizer::LATENCY + DotTerm::LATENCY + 2 => "valid_in to valid_out, one pixel per clock",
         multipliers: 14,
         in {
-            valid_in: Bit, x: Bits<16>, y: Bits<16>, z: Bits<16>,
+            valid_in: Bit, x: Bits<19>, y: Bits<19>, z: Bits<19>,
             lx: Bits<16>, ly: Bits<16>, lz: Bits<16>,
             hx: Bits<16>, hy: Bits<16>, hz: Bits<16>,
         }
@@ -240,8 +240,8 @@ crate::hw_block! {
         out { p: Bits<32> }
         mul: MulSignedPipe, low: MulLow3Pipe, corr: DFF<Bits<32>>, p_q: DFF<Bits<32>>,
         sign3: Constant<Bits<32>> = Constant::new(0xE000_0000u64.into()),
-        sign4: Constant<Bits<20>> = Constant::new(0xF_0000u64.into()),
-        u_ext: Signal<Local, Bits<20>>, low_shift: Signal<Local, Bits<32>>,
+        sign8: Constant<Bits<24>> = Constant::new(0xFF_0000u64.into()),
+        u_ext: Signal<Local, Bits<24>>, low_shift: Signal<Local, Bits<32>>,
     }
 }
 
@@ -257,9 +257,9 @@ impl Logic for DotTerm {
         self.mul.a.next = self.a.val().get_bits::<16>(3);
         self.mul.b.next = self.b.val();
         if self.b.val().get_bit(15) {
-            self.u_ext.next = bit_cast::<20, 16>(self.b.val()) | self.sign4.val();
+            self.u_ext.next = bit_cast::<24, 16>(self.b.val()) | self.sign8.val();
         } else {
-            self.u_ext.next = bit_cast::<20, 16>(self.b.val());
+            self.u_ext.next = bit_cast::<24, 16>(self.b.val());
         }
         self.low.v.next = self.u_ext.val();
         self.low.m.next = self.a.val().get_bits::<3>(0);

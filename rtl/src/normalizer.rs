@@ -14,16 +14,16 @@
 //! 8 multipliers, 3 datapath adders (Sm1 three-operand), as in the patent's device; the only
 //! other adders are the fixed-point bookkeeping of `crate::fixed` (sign corrections of the
 //! unsigned multiplies, rounding, saturation) and the shift-adds of the 19-bit operands' low
-//! parts (t1 and f are 19 bits: their top 16 bits go through Mul5 and Mul6–8, their three low
-//! bits through `MulLow3Pipe`, no multiplier).
+//! parts (N, t1 and f are 19 bits: their top 16 bits go through Mul1–3, Mul5 and Mul6–8, their
+//! three low bits through `MulLow3Pipe`, no multiplier).
 //!
 //! # Ports (formats from [`crate::fixed`])
 //! | port                   | dir | format                    |
 //! |------------------------|-----|---------------------------|
 //! | `clock`                | in  | clock, rising edge        |
 //! | `valid_in`             | in  | 1 = x, y, z (and k) hold a vector this clock |
-//! | `x`, `y`, `z`          | in  | signed Q2.14              |
-//! | `k` (NormalizerK only) | in  | unsigned Q4.28, exact x²+y²+z² |
+//! | `x`, `y`, `z`          | in  | signed Q2.17, 19 bits     |
+//! | `k` (NormalizerK only) | in  | unsigned Q4.28, x²+y²+z² (exact, or floored to Q4.28) |
 //! | `valid_out`            | out | `valid_in` delayed by the latency |
 //! | `nx`, `ny`, `nz`       | out | signed Q2.17, 19 bits (registered) |
 //!
@@ -36,10 +36,13 @@
 //! `lane_z`), which also delays its component by 7 clocks (`x_to_f`) to meet f.
 //! ```text
 //! Normalizer only:
-//!  S1  sq_x = x·x (Mul1-3)       Q2.14² → Q4.28 unsigned, exact, in three clocks (x
-//!                                registered; ux² and the sign correction; their difference)
-//!                                [MulSignedPipe, both operands x]
-//!  S2  k_full = sq_x+sq_y+sq_z   Sm1, Q4.28 unsigned, exact (≤ 3·2³⁰, cannot overflow);
+//!  S1  x = 8·xh + xl            per component [Square19]: xh² (Mul1-3), Q2.14² → Q4.28,
+//!                                exact, in three clocks [MulSignedPipe, both operands xh];
+//!                                beside it the cross term xl·(16·xh + xl) (units 2⁻³⁴,
+//!                                exact) by shift-add in two [MulLow3Pipe]; in the third,
+//!                                xterm_q = ⌊Σ cross terms / 64⌋ (Q4.28)
+//!  S2  k_full = Σ xh² + xterm_q  Sm1, Q4.28 unsigned: ⌊x² + y² + z²⌋ exactly (x²/64 =
+//!                                xh² + xl·(16·xh + xl)/64; < 12, cannot overflow);
 //!                                valid_p4, x_p4 … carry the vector alongside [Delay]
 //! NormalizerK (its stage 1 follows Normalizer's S2):
 //!  B1  k_narrow = K              Q4.28 → Q1.15 unsigned: round (drop 13 LSBs), saturate at
@@ -58,10 +61,12 @@
 //!                                overflow), then Q4.28 → Q1.18 (19 bits): round (drop 10
 //!                                LSBs; half LSB in c0_rnd), saturate to [0, 2 − 2⁻¹⁸]
 //!                                [SatToUQ1_18]
-//!  B6  xf = x_to_f·f (Mul6-8)    f = 8·fh + fl: x·fh, signed Q2.14 × unsigned Q1.15 → signed
-//!                                Q3.29, exact, three clocks [MulSignedUnsignedPipe]; beside it
-//!                                x·fl (units 2⁻³², |x·fl| < 2¹⁸) by shift-add [MulLow3Pipe],
-//!                                then corr = ⌊x·fl / 8⌋ + 2¹¹ (Q3.29, the half output LSB)
+//!  B6  xf = x_to_f·f (Mul6-8)    x = 8·xh + xl, f = 8·fh + fl: xh·fh, signed Q2.14 × unsigned
+//!                                Q1.15 → signed Q3.29, exact, three clocks
+//!                                [MulSignedUnsignedPipe]; beside it x·fl (units 2⁻³⁵) and
+//!                                xl·fh (units 2⁻³²) by shift-add [MulLow3Pipe ×2], then
+//!                                corr = ⌊(x·fl + 8·xl·fh) / 64⌋ + 2¹¹ (Q3.29, the half output
+//!                                LSB): xh·fh + corr − 2¹¹ = ⌊x·f⌋ in Q3.29, exactly
 //!  B7  nx = xf + corr            Q3.29 → Q2.17: drop 12 LSBs, saturate to [−2, 2)
 //!                                [SatToQ2_17] (|x·fh| ≤ 2³¹ − 2¹⁵, |corr| < 2¹⁵: no wrap);
 //!                                valid_p7 carries valid_in [Delay]
@@ -80,7 +85,10 @@
 //! (issue 9): the lighting unit's cos γ was up to 3.1–3.9 LSB of Q1.15 off the golden f64 front
 //! end, and `bump` up to 6 LSB of 8 bits off its golden image. These three words were the
 //! cheapest to widen (`docs/bump-precision.md`: no port of the lighting unit changes, no extra
-//! multiplier).
+//! multiplier). The input N followed (Q2.14 → Q2.17, the vector interpolator's output): its
+//! rounding was then the largest error left in cos γ, and `bump` on an OBJ mesh was still
+//! 3 LSB off at one pixel. Again no multiplier was added: three shift-adds in the squarers,
+//! three more in the lanes.
 //!
 //! # Overflow
 //! Nothing wraps. K cannot overflow; K ≥ 2 saturates k_narrow (out of the formula's domain);
@@ -91,24 +99,26 @@
 //!
 //! # Error budget (vs the f64 golden N·f(K) on the same quantized N, requested coefficients)
 //! [`error_budget`] derives it from the formats above: per output component
-//! `|err| ≤ |x|max·Δf + 2⁻¹⁸ + 2⁻²⁹` (the output rounding and the floor of x·fl) with
-//! `Δf = max|f'(K)|·2⁻¹⁶ (K rounding) + Δc2·K² (c2 quantization, ≤ 2⁻¹⁶·K²)
+//! `|err| ≤ |x|max·Δf + 2⁻¹⁸ + 2⁻²⁹` (the output rounding and the floor of x·f) with
+//! `Δf = max|f'(K)|·(2⁻¹⁶ + 2⁻²⁸) (K's floor and rounding) + Δc2·K² (c2 quantization, ≤ 2⁻¹⁶·K²)
 //!      + 2⁻¹⁸·K (t1 rounding) + 2⁻¹⁹ (f rounding) + ~2⁻²⁷ (c0, c1, halvings, low-part floors)`.
-//! Published coefficients on the domain (K ∈ [0.499, 1 + 2⁻¹²], |x| ≤ 1 + 2⁻¹⁴): Δf ≤ 3.35·10⁻⁵,
+//! Published coefficients on the domain (K ∈ [0.499, 1 + 2⁻¹²], |x| ≤ 1 + 2⁻¹⁷): Δf ≤ 3.35·10⁻⁵,
 //! component error ≤ 3.73·10⁻⁵ (4.9 LSB of Q2.17, 1.2 of Q2.14), RMS bound 2.03·10⁻⁵
-//! (measured over 100 000 vectors: 2.22·10⁻⁵ and 5.4·10⁻⁶). FIT (exact in these formats):
-//! 2.65·10⁻⁵, RMS 1.04·10⁻⁵ (measured 1.69·10⁻⁵, 4.1·10⁻⁶). With 16-bit t1, f and outputs
-//! (before) the published set's bound was 1.04·10⁻⁴ (measured 8.3·10⁻⁵): K's rounding to
-//! Q1.15 is now the largest term.
+//! (measured over 100 000 vectors: 2.21·10⁻⁵ and 5.4·10⁻⁶; 2.22·10⁻⁵ with N at Q2.14). FIT
+//! (exact in these formats): 2.65·10⁻⁵, RMS 1.04·10⁻⁵ (measured 1.66·10⁻⁵, 4.1·10⁻⁶). With
+//! 16-bit t1, f and outputs (before) the published set's bound was 1.04·10⁻⁴ (measured
+//! 8.3·10⁻⁵): K's rounding to Q1.15 is now the largest term.
 //! End-to-end against exact normalization N/|N| of the same quantized N:
 //! max|f(K)·√K − 1| (0.351 % for the published set) + √K·Δf + √3·(2⁻¹⁸ + 2⁻²⁹) = 0.351 % +
-//! 0.0040 % (measured: 0.3524 %).
+//! 0.0040 % (measured: 0.3523 %). Rounding N to Q2.17 in the vector interpolator moves N/|N| by
+//! at most 0.0009 % more (0.0075 % at Q2.14).
 
 use golden::normalizer::{Coeffs, K_DOMAIN};
 use rust_hdl::prelude::*;
 
 use crate::fixed::{
-    QFormat, COEF_C0, COEF_C1, COEF_C2, HORNER_T1, K_NARROW, NORMALIZED, NORM_SCALE, PRODUCT,
+    QFormat, COEF_C0, COEF_C1, COEF_C2, HORNER_T1, K_FULL, K_NARROW, NORMALIZED, NORM_SCALE,
+    PRODUCT,
 };
 use crate::primitives::{
     Delay, MulLow3Pipe, MulSignedPipe, MulSignedUnsignedPipe, RoundToUQ1_15, SatToQ2_17,
@@ -153,7 +163,7 @@ pub struct NormalizerCoeffs {
 }
 
 /// Extra margin on the K domain for the saturation check: quantizing a vector of the domain
-/// to Q2.14 moves K by less than 2·√3·2⁻¹⁵ ≈ 1.1·10⁻⁴.
+/// to Q2.17 (or Q2.14, the span normalizer's) moves K by less than 2·√3·2⁻¹⁵ ≈ 1.1·10⁻⁴.
 const DOMAIN_MARGIN: f64 = 0.01;
 
 impl NormalizerCoeffs {
@@ -301,9 +311,10 @@ pub struct ErrorBudget {
 pub fn error_budget(c: &NormalizerCoeffs, k_lo: f64, k_hi: f64, x_max: f64) -> ErrorBudget {
     let r = c.requested;
     let q = c.quantized();
-    // K after rounding to Q1.15 may exceed k_hi by half an LSB.
+    // K after rounding to Q1.15 may exceed k_hi by half an LSB; before it, the squarers floor
+    // K to Q4.28 (for Q2.17 components).
     let k_n = (k_hi + K_NARROW.lsb() / 2.0).min(K_NARROW.max());
-    let dk = K_NARROW.lsb() / 2.0;
+    let dk = K_NARROW.lsb() / 2.0 + K_FULL.lsb();
     // f'(K) = 2·c2·K + c1 is linear: its extremes are at the interval's ends.
     let fprime = |k: f64| (2.0 * r[0] * k + r[1]).abs();
     let fprime_max = fprime(k_lo - dk).max(fprime(k_n));
@@ -315,7 +326,7 @@ pub fn error_budget(c: &NormalizerCoeffs, k_lo: f64, k_hi: f64, x_max: f64) -> E
     let dc0 = (q[2] - r[2]).abs() + 2.0 * COEF_C0.lsb();
     let t1_round = HORNER_T1.lsb() / 2.0;
     let f_round = NORM_SCALE.lsb() / 2.0;
-    // The output rounding, and the floor of x·fl (units 2⁻³² → Q3.29) before it.
+    // The output rounding, and the floor of x·f (units 2⁻³⁵ → Q3.29) before it.
     let out_round = NORMALIZED.lsb() / 2.0 + PRODUCT.lsb();
     let scale_max = fprime_max * dk
         + r[0].abs() * dk * dk
@@ -353,7 +364,7 @@ crate::hw_block! {
         latency: F_LATENCY + ScaleLane::LATENCY_FROM_F
             => "valid_in to valid_out, one input per clock",
         multipliers: 5,
-        in { valid_in: Bit, x: Bits<16>, y: Bits<16>, z: Bits<16>, k: Bits<32> }
+        in { valid_in: Bit, x: Bits<19>, y: Bits<19>, z: Bits<19>, k: Bits<32> }
         out { valid_out: Bit, nx: Bits<19>, ny: Bits<19>, nz: Bits<19> }
         // Coefficients, with half an output LSB folded into the constants that are added
         // anyway: t1 drops 12 LSBs, f drops 10.
@@ -378,7 +389,7 @@ crate::hw_block! {
         // Combinational intermediates, each exactly sized (rust-hdl wraps per op, Verilog per
         // context).
         c2k_half: Signal<Local, Bits<32>>, t1_wide: Signal<Local, Bits<32>>,
-        k_ext: Signal<Local, Bits<20>>, low5_shift: Signal<Local, Bits<32>>,
+        k_ext: Signal<Local, Bits<24>>, low5_shift: Signal<Local, Bits<32>>,
         t1k_half: Signal<Local, Bits<32>>, f_wide: Signal<Local, Bits<32>>,
     }
     new(c: &NormalizerCoeffs);
@@ -424,7 +435,7 @@ impl Logic for NormalizerK {
         // to Q4.28 and added to c0 (+ half LSB of Q1.18) in the clock Mul5's product arrives.
         self.mul5.a.next = self.t1.q.val().get_bits::<16>(3);
         self.mul5.b.next = self.k_narrow_p2.q.val();
-        self.k_ext.next = bit_cast::<20, 16>(self.k_narrow_p2.q.val());
+        self.k_ext.next = bit_cast::<24, 16>(self.k_narrow_p2.q.val());
         self.low5.v.next = self.k_ext.val();
         self.low5.m.next = self.t1.q.val().get_bits::<3>(0);
         self.low5_shift.next = self.low5.p.val() >> 4;
@@ -460,21 +471,24 @@ const F_LATENCY: usize = 4 + SIGNED_MUL_LATENCY;
 
 crate::hw_block! {
     /// One output component of [`NormalizerK`], stages B6 and B7: `n = x·f` (Mul6, Mul7 or
-    /// Mul8), signed Q2.14 × unsigned Q1.18, rounded and saturated to Q2.17. f is split: its
-    /// top 16 bits fh (Q1.15) go through the multiplier (x·fh, signed Q3.29, exact), its three
-    /// low bits fl through a shift-add (x·fl, units 2⁻³², exact), floored to Q3.29 and added
-    /// with the half output LSB. `x` enters with the vector's `valid_in` and waits
-    /// [`F_LATENCY`] clocks for `f`; `n` is registered, [`ScaleLane::LATENCY_FROM_F`] clocks
-    /// after `f`.
+    /// Mul8), signed Q2.17 × unsigned Q1.18, rounded and saturated to Q2.17. Both words are
+    /// split, x = 8·xh + xl and f = 8·fh + fl: the top 16 bits go through the multiplier
+    /// (xh·fh, signed Q3.29, exact), the low parts through two shift-adds (x·fl and xl·fh,
+    /// exact; units 2⁻³⁵ and 2⁻³²), whose sum T = x·fl + 8·xl·fh is floored to Q3.29, so that
+    /// xh·fh + ⌊T/64⌋ = ⌊x·f⌋ in Q3.29 exactly; then the half output LSB. `x` enters with the
+    /// vector's `valid_in` and waits [`F_LATENCY`] clocks for `f`; `n` is registered,
+    /// [`ScaleLane::LATENCY_FROM_F`] clocks after `f`.
     struct ScaleLane(clock) {
-        in { x: Bits<16>, f: Bits<19> }
+        in { x: Bits<19>, f: Bits<19> }
         out { n: Bits<19> }
-        x_to_f: Delay<Bits<16>, F_LATENCY>, mul: MulSignedUnsignedPipe,
-        low: MulLow3Pipe, corr: DFF<Bits<32>>,
+        x_to_f: Delay<Bits<19>, F_LATENCY>, mul: MulSignedUnsignedPipe,
+        low: MulLow3Pipe, low_f: MulLow3Pipe, corr: DFF<Bits<32>>,
         half_lsb: Constant<Bits<32>> = Constant::new((1u64 << 11).into()),
-        sign3: Constant<Bits<32>> = Constant::new(0xE000_0000u64.into()),
-        sign4: Constant<Bits<20>> = Constant::new(0xF_0000u64.into()),
-        x_ext: Signal<Local, Bits<20>>, low_shift: Signal<Local, Bits<32>>,
+        sign6: Constant<Bits<32>> = Constant::new(0xFC00_0000u64.into()),
+        sign5: Constant<Bits<24>> = Constant::new(0xF8_0000u64.into()),
+        x_ext: Signal<Local, Bits<24>>, fh_ext: Signal<Local, Bits<24>>,
+        low_f_sh: Signal<Local, Bits<32>>, low_sum: Signal<Local, Bits<32>>,
+        low_shift: Signal<Local, Bits<32>>,
         sum: Signal<Local, Bits<32>>,
         sat: SatToQ2_17, n_q: DFF<Bits<19>>,
     }
@@ -488,32 +502,80 @@ impl ScaleLane {
 impl Logic for ScaleLane {
     #[hdl_gen]
     fn update(&mut self) {
-        clock!(self, clock, x_to_f, mul, low, corr, n_q);
+        clock!(self, clock, x_to_f, mul, low, low_f, corr, n_q);
         self.x_to_f.d.next = self.x.val();
-        // B6: x·fh, signed Q2.14 × unsigned Q1.15 → signed Q3.29 (three clocks).
-        self.mul.a.next = self.x_to_f.q.val();
+        // B6: xh·fh, signed Q2.14 × unsigned Q1.15 → signed Q3.29 (three clocks).
+        self.mul.a.next = self.x_to_f.q.val().get_bits::<16>(3);
         self.mul.b.next = self.f.val().get_bits::<16>(3);
-        // Beside it: x·fl (x sign-extended; |x·fl| < 2¹⁸) in two clocks, then
-        // corr = floor(x·fl / 8) + 2¹¹ (Q3.29, with the half output LSB) in the third.
-        if self.x_to_f.q.val().get_bit(15) {
-            self.x_ext.next = bit_cast::<20, 16>(self.x_to_f.q.val()) | self.sign4.val();
+        // Beside it, in two clocks: x·fl (x sign-extended to 24 bits; |x·fl| < 2²¹) and
+        // xl·fh (fh zero-extended; < 2¹⁹); in the third, T = x·fl + 8·xl·fh (< 2²³ in
+        // magnitude) and corr = ⌊T / 64⌋ + 2¹¹ (Q3.29, with the half output LSB).
+        if self.x_to_f.q.val().get_bit(18) {
+            self.x_ext.next = bit_cast::<24, 19>(self.x_to_f.q.val()) | self.sign5.val();
         } else {
-            self.x_ext.next = bit_cast::<20, 16>(self.x_to_f.q.val());
+            self.x_ext.next = bit_cast::<24, 19>(self.x_to_f.q.val());
         }
         self.low.v.next = self.x_ext.val();
         self.low.m.next = self.f.val().get_bits::<3>(0);
-        if self.low.p.val().get_bit(31) {
-            self.low_shift.next = (self.low.p.val() >> 3) | self.sign3.val();
+        self.fh_ext.next = bit_cast::<24, 16>(self.f.val().get_bits::<16>(3));
+        self.low_f.v.next = self.fh_ext.val();
+        self.low_f.m.next = self.x_to_f.q.val().get_bits::<3>(0);
+        self.low_f_sh.next = self.low_f.p.val() << 3;
+        self.low_sum.next = self.low.p.val() + self.low_f_sh.val();
+        if self.low_sum.val().get_bit(31) {
+            self.low_shift.next = (self.low_sum.val() >> 6) | self.sign6.val();
         } else {
-            self.low_shift.next = self.low.p.val() >> 3;
+            self.low_shift.next = self.low_sum.val() >> 6;
         }
         self.corr.d.next = self.low_shift.val() + self.half_lsb.val();
-        // B7: Q3.29 → Q2.17, saturate (|x·fh| ≤ 2³¹ − 2¹⁵ and |corr| < 2¹⁵: the sum cannot
-        // wrap).
+        // B7: Q3.29 → Q2.17, saturate (|xh·fh| ≤ 2³¹ − 2¹⁵ and −2¹⁵ < corr < 2¹⁷, with
+        // xh·fh + corr ≤ 2³¹ − 2¹⁶ − 2¹⁵ + 88 064: the sum cannot wrap).
         self.sum.next = self.mul.p.val() + self.corr.q.val();
         self.sat.wide.next = self.sum.val();
         self.n_q.d.next = self.sat.narrow.val();
         self.n.next = self.n_q.q.val();
+    }
+}
+
+crate::hw_block! {
+    /// One squarer of [`Normalizer`]'s S1 for a signed Q2.17 component x = 8·xh + xl (xh its
+    /// top 16 bits, signed Q2.14; xl its three low bits): x²/64 = xh² + xl·(16·xh + xl)/64.
+    /// `sq` = xh² (Mul1, Mul2 or Mul3: signed Q4.28, exact), [`SIGNED_MUL_LATENCY`] clocks
+    /// after `x`; `xterm` = xl·(16·xh + xl) (units 2⁻³⁴, exact, |xterm| < 2²²) by shift-add,
+    /// [`MUL_LOW_LATENCY`](crate::primitives::MUL_LOW_LATENCY) clocks after `x` — 16·xh + xl is x's bits with a zero inserted
+    /// above xl (wiring).
+    struct Square19(clock) {
+        in { x: Bits<19> }
+        out { sq: Bits<32>, xterm: Bits<32> }
+        mul: MulSignedPipe, low: MulLow3Pipe,
+        lo_mask: Constant<Bits<24>> = Constant::new(0x7u64.into()),
+        hi_mask: Constant<Bits<24>> = Constant::new(0xFF_FFF8u64.into()),
+        sign5: Constant<Bits<24>> = Constant::new(0xF8_0000u64.into()),
+        x_wide: Signal<Local, Bits<24>>, x_hi: Signal<Local, Bits<24>>,
+        x_hi_sh: Signal<Local, Bits<24>>, x_lo: Signal<Local, Bits<24>>,
+    }
+}
+
+impl Logic for Square19 {
+    #[hdl_gen]
+    fn update(&mut self) {
+        clock!(self, clock, mul, low);
+        self.mul.a.next = self.x.val().get_bits::<16>(3);
+        self.mul.b.next = self.x.val().get_bits::<16>(3);
+        self.sq.next = self.mul.p.val();
+        // v = 16·xh + xl = {x[18:3], 0, x[2:0]} sign-extended to 24 bits, m = xl: x
+        // sign-extended, its top part shifted up one bit over the inserted zero.
+        if self.x.val().get_bit(18) {
+            self.x_wide.next = bit_cast::<24, 19>(self.x.val()) | self.sign5.val();
+        } else {
+            self.x_wide.next = bit_cast::<24, 19>(self.x.val());
+        }
+        self.x_hi.next = self.x_wide.val() & self.hi_mask.val();
+        self.x_hi_sh.next = self.x_hi.val() << 1;
+        self.x_lo.next = self.x_wide.val() & self.lo_mask.val();
+        self.low.v.next = self.x_hi_sh.val() | self.x_lo.val();
+        self.low.m.next = self.x.val().get_bits::<3>(0);
+        self.xterm.next = self.low.p.val();
     }
 }
 
@@ -523,17 +585,22 @@ crate::hw_block! {
         summary: "N in, N·f(|N|²) out: squarers, Horner f(K), scaling; no division or root (SPEC §1)",
         latency: SIGNED_MUL_LATENCY + 1 + NormalizerK::LATENCY => "valid_in to valid_out, one input per clock",
         multipliers: 8,
-        in { valid_in: Bit, x: Bits<16>, y: Bits<16>, z: Bits<16> }
+        in { valid_in: Bit, x: Bits<19>, y: Bits<19>, z: Bits<19> }
         out { valid_out: Bit, nx: Bits<19>, ny: Bits<19>, nz: Bits<19> }
-        // S1 (the squares are the multipliers' registered outputs)
-        mul1: MulSignedPipe, mul2: MulSignedPipe, mul3: MulSignedPipe,
+        // S1: one squarer per component (xh² on the multiplier, the cross term by shift-add),
+        // the cross terms' sum floored to Q4.28 and registered.
+        sq_x: Square19, sq_y: Square19, sq_z: Square19,
+        xterm_sum: Signal<Local, Bits<32>>, xterm_shift: Signal<Local, Bits<32>>,
+        xterm_q: DFF<Bits<32>>,
+        k_xy: Signal<Local, Bits<32>>, k_zc: Signal<Local, Bits<32>>,
+        sign6: Constant<Bits<32>> = Constant::new(0xFC00_0000u64.into()),
         // S2
         k_full: DFF<Bits<32>>,
         // The vector and its valid wait for K (S1, S2).
         valid_p4: Delay<Bit, { SIGNED_MUL_LATENCY + 1 }>,
-        x_p4: Delay<Bits<16>, { SIGNED_MUL_LATENCY + 1 }>,
-        y_p4: Delay<Bits<16>, { SIGNED_MUL_LATENCY + 1 }>,
-        z_p4: Delay<Bits<16>, { SIGNED_MUL_LATENCY + 1 }>,
+        x_p4: Delay<Bits<19>, { SIGNED_MUL_LATENCY + 1 }>,
+        y_p4: Delay<Bits<19>, { SIGNED_MUL_LATENCY + 1 }>,
+        z_p4: Delay<Bits<19>, { SIGNED_MUL_LATENCY + 1 }>,
         // B1..B7
         scale: NormalizerK = NormalizerK::new(c),
     }
@@ -543,16 +610,26 @@ crate::hw_block! {
 impl Logic for Normalizer {
     #[hdl_gen]
     fn update(&mut self) {
-        clock!(self, clock, mul1, mul2, mul3, k_full, valid_p4, x_p4, y_p4, z_p4, scale);
-        // S1 (Mul1-3): signed squares, Q2.14² → Q4.28, exact.
-        self.mul1.a.next = self.x.val();
-        self.mul1.b.next = self.x.val();
-        self.mul2.a.next = self.y.val();
-        self.mul2.b.next = self.y.val();
-        self.mul3.a.next = self.z.val();
-        self.mul3.b.next = self.z.val();
-        // S2 (Sm1): K = x² + y² + z² ≤ 3·2³⁰ < 2³², exact.
-        self.k_full.d.next = self.mul1.p.val() + self.mul2.p.val() + self.mul3.p.val();
+        clock!(self, clock, sq_x, sq_y, sq_z, xterm_q, k_full, valid_p4, x_p4, y_p4, z_p4, scale);
+        // S1 (Mul1-3): xh², Q2.14² → Q4.28, exact, in three clocks; the cross terms
+        // xl·(16·xh + xl) (units 2⁻³⁴) in two, their sum floored to Q4.28 in the third.
+        self.sq_x.x.next = self.x.val();
+        self.sq_y.x.next = self.y.val();
+        self.sq_z.x.next = self.z.val();
+        self.xterm_sum.next = self.sq_x.xterm.val() + self.sq_y.xterm.val() + self.sq_z.xterm.val();
+        if self.xterm_sum.val().get_bit(31) {
+            self.xterm_shift.next = (self.xterm_sum.val() >> 6) | self.sign6.val();
+        } else {
+            self.xterm_shift.next = self.xterm_sum.val() >> 6;
+        }
+        self.xterm_q.d.next = self.xterm_shift.val();
+        // S2 (Sm1): K = ⌊x² + y² + z²⌋ in Q4.28 (< 12, cannot overflow), as
+        // xh² + yh² + zh² + ⌊Σ xl·(16·xh + xl) / 64⌋.
+        // Two adds side by side, then their sum: two carry chains deep, as the three-operand
+        // Sm1 was.
+        self.k_xy.next = self.sq_x.sq.val() + self.sq_y.sq.val();
+        self.k_zc.next = self.sq_z.sq.val() + self.xterm_q.q.val();
+        self.k_full.d.next = self.k_xy.val() + self.k_zc.val();
         self.valid_p4.d.next = self.valid_in.val();
         self.x_p4.d.next = self.x.val();
         self.y_p4.d.next = self.y.val();

@@ -210,7 +210,7 @@ crate::hw_block! {
         pub addr: AddressBlock,
         pub normal: VectorInterpolator,
         pub depth: IntensityChannel,
-        n_reg: [Delay<Bits<16>, NORMAL_REGISTER>; 3],
+        n_reg: [Delay<Bits<19>, NORMAL_REGISTER>; 3],
         n_valid_reg: Delay<Bit, NORMAL_REGISTER>,
         pub light: LightingUnit = LightingUnit::new(&p.coeffs),
         pub bump: Brzssk = Brzssk::new(&p.bump),

@@ -9,7 +9,6 @@
 //! |------------------------|--------------------------|----------------------------------------------------|---------|
 //! | [`Delay<T, N>`]        | `d` → `q`                | q = d delayed N clocks (N registers, reset 0)      | N       |
 //! | [`SatToQ2_14`]         | `wide` (32) → `narrow` (16) | signed Q3.29 + ½ LSB → signed Q2.14: drop 15 LSBs, saturate | 0 |
-//! | [`RoundToQ2_14`]       | `wide` (32) → `narrow` (16) | signed Q3.29 → signed Q2.14: add ½ LSB (2¹⁴), then [`SatToQ2_14`] | 0 |
 //! | [`RoundToUQ1_15`]      | `wide` (32) → `narrow` (16) | unsigned Q4.28 → unsigned Q1.15: add ½ LSB (2¹²), drop 13 LSBs, saturate | 0 |
 //! | [`MulSignedUnsigned`]  | `a` (16), `b` (16) → `p` (32) | `a·b = ua·ub − [a<0]·(ub ≪ 16)` mod 2³² (one multiplier) | 0 |
 //! | [`MulPipe`]            | `a` (16), `b` (16) → `p` (32) | a·b unsigned, exact: operands registered, product registered | 2 |
@@ -18,8 +17,9 @@
 //! | [`MulSignedPipe`]      | `a` (16), `b` (16) → `p` (32) | `a·b = ua·ub − ([a<0]·ub + [b<0]·ua) ≪ 16` mod 2³², pipelined the same way; with `b = a` the signed square | 3 |
 //! | [`RoundProductToUQ1_15`] | `wide` (32) → `narrow` (16) | unsigned Q2.30 → unsigned Q1.15: add ½ LSB (2¹⁴), drop 15 LSBs, saturate | 0 |
 //! | [`SatToQ2_17`]         | `wide` (32) → `narrow` (19) | signed Q3.29 + ½ LSB → signed Q2.17: drop 12 LSBs, saturate | 0 |
+//! | [`RoundToQ2_17`]       | `wide` (32) → `narrow` (19) | signed Q3.29 → signed Q2.17: add ½ LSB (2¹¹), then [`SatToQ2_17`] | 0 |
 //! | [`SatToUQ1_18`]        | `wide` (32) → `narrow` (19) | signed Q4.28 + ½ LSB → unsigned Q1.18: drop 10 LSBs, clamp to [0, 2 − 2⁻¹⁸] | 0 |
-//! | [`MulLow3Pipe`]        | `v` (20), `m` (3) → `p` (32) | v·m for a 3-bit unsigned m, by shift and add in 20 bits (no multiplier), sign-extended: the low part of a 19-bit operand split 16 + 3 | 2 |
+//! | [`MulLow3Pipe`]        | `v` (24), `m` (3) → `p` (32) | v·m for a 3-bit unsigned m, by shift and add in 24 bits (no multiplier), sign-extended: the low part of a 19-bit operand split 16 + 3 | 2 |
 //!
 //! Rounding is to nearest with ties toward +∞ (add half an output LSB, then drop the LSBs), the
 //! rule of [`crate::fixed`]. The `Sat…` narrowings take a word that already carries the half LSB
@@ -221,28 +221,6 @@ impl Logic for SatToQ2_14 {
 }
 
 crate::hw_block! {
-    /// Signed Q3.29 → signed Q2.14, rounded to nearest (ties toward +∞) and saturated:
-    /// `rounded = wide + 2¹⁴` (32-bit; wraps only for `wide` ≥ 2³¹ − 2¹⁴, which no 16×16
-    /// product reaches), then [`SatToQ2_14`]. Combinational.
-    pub struct RoundToQ2_14 {
-        in { wide: Bits<32> }
-        out { narrow: Bits<16> }
-        half_lsb: Constant<Bits<32>> = Constant::new((1u64 << 14).into()),
-        rounded: Signal<Local, Bits<32>>,
-        sat: SatToQ2_14,
-    }
-}
-
-impl Logic for RoundToQ2_14 {
-    #[hdl_gen]
-    fn update(&mut self) {
-        self.rounded.next = self.wide.val() + self.half_lsb.val();
-        self.sat.wide.next = self.rounded.val();
-        self.narrow.next = self.sat.narrow.val();
-    }
-}
-
-crate::hw_block! {
     /// Unsigned Q4.28 → unsigned Q1.15, rounded to nearest (ties toward +∞) and saturated:
     /// bits 28..13 of `wide + 2¹²`, or 0xFFFF (2 − 2⁻¹⁵) when `wide` ≥ 2 − 2⁻¹⁶ (it would
     /// round to 2.0). That test is `wide` ≥ 2 (bits 31..29) or bits 28..12 all ones — bit tests
@@ -349,6 +327,29 @@ impl Logic for SatToQ2_17 {
 }
 
 crate::hw_block! {
+    /// Signed Q3.29 → signed Q2.17 (19 bits), rounded to nearest (ties toward +∞) and
+    /// saturated: `rounded = wide + 2¹¹` (32-bit; wraps only for `wide` ≥ 2³¹ − 2¹¹, i.e. a
+    /// value within 2⁻¹⁸ of 4, which the vector interpolator's plane values of unit normals
+    /// never reach), then [`SatToQ2_17`]. Combinational.
+    pub struct RoundToQ2_17 {
+        in { wide: Bits<32> }
+        out { narrow: Bits<19> }
+        half_lsb: Constant<Bits<32>> = Constant::new((1u64 << 11).into()),
+        rounded: Signal<Local, Bits<32>>,
+        sat: SatToQ2_17,
+    }
+}
+
+impl Logic for RoundToQ2_17 {
+    #[hdl_gen]
+    fn update(&mut self) {
+        self.rounded.next = self.wide.val() + self.half_lsb.val();
+        self.sat.wide.next = self.rounded.val();
+        self.narrow.next = self.sat.narrow.val();
+    }
+}
+
+crate::hw_block! {
     /// Signed Q4.28 → unsigned Q1.18 (19 bits), for a word that already carries the half output
     /// LSB (2⁹): negative → 0; ≥ 2 (bit 30 or 29 set) → 0x7FFFF (2 − 2⁻¹⁸); else bits 28..10.
     /// Combinational.
@@ -377,23 +378,25 @@ impl Logic for SatToUQ1_18 {
 pub const MUL_LOW_LATENCY: usize = 2;
 
 crate::hw_block! {
-    /// `p = v·m` for a 20-bit two's-complement `v` (a 16-bit word, sign- or zero-extended by the
-    /// caller) and a 3-bit unsigned `m`, by shift and add (no multiplier): `v` and `m`
-    /// registered; `(m₀·v + m₁·2v) + m₂·4v` in 20 bits, registered; `p` is that word
-    /// sign-extended to 32 bits (wiring). Exact when |v·m| < 2¹⁹, which holds for every 16-bit
-    /// word, signed or unsigned, times m ≤ 7. It multiplies the three low bits of a 19-bit
-    /// operand split into 16 + 3 (the 16 go through a multiplier). Latency
-    /// [`MUL_LOW_LATENCY`], one product per clock.
+    /// `p = v·m` for a 24-bit two's-complement `v` (a 16- to 20-bit word, sign- or
+    /// zero-extended by the caller) and a 3-bit unsigned `m`, by shift and add (no multiplier):
+    /// `v` and `m` registered; `(m₀·v + m₁·2v) + m₂·4v` in 24 bits, registered; `p` is that
+    /// word sign-extended to 32 bits (wiring). Exact when |v·m| < 2²³, which holds for every
+    /// word of up to 20 bits (|v| ≤ 2²⁰), signed or unsigned, times m ≤ 7. It multiplies the
+    /// three low bits of a 19-bit operand split into 16 + 3 (the 16 go through a multiplier),
+    /// or a whole 19-bit word by another's three low bits. Latency [`MUL_LOW_LATENCY`], one
+    /// product per clock. (It was 20 bits wide, enough for 16-bit words, until the
+    /// normalizer's input N became 19 bits.)
     pub struct MulLow3Pipe(clock) {
-        in { v: Bits<20>, m: Bits<3> }
+        in { v: Bits<24>, m: Bits<3> }
         out { p: Bits<32> }
-        v_q: DFF<Bits<20>>,
+        v_q: DFF<Bits<24>>,
         m_q: DFF<Bits<3>>,
-        t0: Signal<Local, Bits<20>>,
-        t1: Signal<Local, Bits<20>>,
-        t2: Signal<Local, Bits<20>>,
-        p_q: DFF<Bits<20>>,
-        sign12: Constant<Bits<32>> = Constant::new(0xFFF0_0000u64.into()),
+        t0: Signal<Local, Bits<24>>,
+        t1: Signal<Local, Bits<24>>,
+        t2: Signal<Local, Bits<24>>,
+        p_q: DFF<Bits<24>>,
+        sign8: Constant<Bits<32>> = Constant::new(0xFF00_0000u64.into()),
     }
 }
 
@@ -416,10 +419,10 @@ impl Logic for MulLow3Pipe {
             self.t2.next = self.v_q.q.val() << 2;
         }
         self.p_q.d.next = self.t0.val() + self.t1.val() + self.t2.val();
-        if self.p_q.q.val().get_bit(19) {
-            self.p.next = bit_cast::<32, 20>(self.p_q.q.val()) | self.sign12.val();
+        if self.p_q.q.val().get_bit(23) {
+            self.p.next = bit_cast::<32, 24>(self.p_q.q.val()) | self.sign8.val();
         } else {
-            self.p.next = bit_cast::<32, 20>(self.p_q.q.val());
+            self.p.next = bit_cast::<32, 24>(self.p_q.q.val());
         }
     }
 }
@@ -624,7 +627,8 @@ mod tests {
     #[test]
     fn narrowings_match_the_fixed_rules() {
         let mut sat_s = SatToQ2_14::default();
-        let mut round_s = RoundToQ2_14::default();
+        let mut round_17 = RoundToQ2_17::default();
+        round_17.connect_all();
         let mut sat_u = SatToUQ1_18::default();
         let mut sat_17 = SatToQ2_17::default();
         sat_17.connect_all();
@@ -632,29 +636,30 @@ mod tests {
         let mut round_p = RoundProductToUQ1_15::default();
         round_p.connect_all();
         sat_s.connect_all();
-        round_s.connect_all();
         sat_u.connect_all();
         round_u.connect_all();
         // Signed Q4.28 (f's wide format).
         let f_wide = QFormat::signed(4, 28);
         for w in words32() {
-            round_s.wide.next = (w as u64).into();
-            settle(&mut round_s);
-            if !(0x7FFF_C000..=0x7FFF_FFFF).contains(&w) {
-                assert_eq!(
-                    round_s.narrow.val().to_u64(),
-                    reference(PRODUCT, NORMAL, w),
-                    "RoundToQ2_14 {w:#x}"
-                );
-            }
             // The Sat… forms see the word with the half LSB already added.
             sat_s.wide.next = (w.wrapping_add(1 << 14) as u64).into();
             settle(&mut sat_s);
-            assert_eq!(
-                sat_s.narrow.val(),
-                round_s.narrow.val(),
-                "SatToQ2_14 {w:#x}"
-            );
+            if !(0x7FFF_C000..=0x7FFF_FFFF).contains(&w) {
+                assert_eq!(
+                    sat_s.narrow.val().to_u64(),
+                    reference(PRODUCT, NORMAL, w),
+                    "SatToQ2_14 {w:#x}"
+                );
+            }
+            round_17.wide.next = (w as u64).into();
+            settle(&mut round_17);
+            if !(0x7FFF_F800..=0x7FFF_FFFF).contains(&w) {
+                assert_eq!(
+                    round_17.narrow.val().to_u64(),
+                    reference(PRODUCT, NORMALIZED, w),
+                    "RoundToQ2_17 {w:#x}"
+                );
+            }
             if (w as i32) < i32::MAX - (1 << 9) {
                 sat_u.wide.next = (w.wrapping_add(1 << 9) as u64).into();
                 settle(&mut sat_u);
@@ -717,7 +722,8 @@ mod tests {
     }
 
     /// The shift-add of a 3-bit factor: v·m (exact, as a 32-bit word) of the words presented
-    /// `MUL_LOW_LATENCY` clocks earlier, for every m and signed and unsigned 16-bit v.
+    /// `MUL_LOW_LATENCY` clocks earlier, for every m and signed and unsigned 16-bit v, and
+    /// 20-bit v at the ends of their range (|v| ≤ 2²⁰, the widest a caller gives).
     #[test]
     fn low_part_shift_add_is_exact_after_its_latency() {
         let mut low = MulLow3Pipe::default();
@@ -725,13 +731,22 @@ mod tests {
         // Every 16-bit word as a signed and as an unsigned value, in the 20-bit input.
         let mut values: Vec<i64> = vec![0, 1, -1, 0x7FFF, -0x8000, 0xFFFF, 0x8000, 0x1234];
         values.extend((0..600i64).map(|i| ((i * 40503) & 0xFFFF) - (i % 2) * 0x8000));
+        values.extend([
+            1 << 20,
+            -(1 << 20),
+            (1 << 20) - 1,
+            -(1 << 19),
+            (1 << 19) - 1,
+            0xA_BCDE,
+        ]);
+        values.extend((0..300i64).map(|i| ((i * 2_654_435) & 0xF_FFFF) - (i % 2) * 0x8_0000));
         let pairs: Vec<(i64, i64)> = values
             .iter()
             .flat_map(|&v| (0..8i64).map(move |m| (v, m)))
             .collect();
         for c in 0..pairs.len() + MUL_LOW_LATENCY {
             let (v, m) = pairs.get(c).copied().unwrap_or((0, 0));
-            low.v.next = ((v as u64) & 0xF_FFFF).into();
+            low.v.next = ((v as u64) & 0xFF_FFFF).into();
             low.m.next = (m as u64).into();
             low.clock.next = Clock { clk: false };
             settle(&mut low);
@@ -844,7 +859,7 @@ mod tests {
     fn primitives_export_valid_verilog() {
         let v = crate::export::raw_verilog(Delay::<Bit, 2>::default()).unwrap();
         assert!(v.contains("stage$1$q"), "{v}");
-        assert!(crate::export::raw_verilog(RoundToQ2_14::default()).is_ok());
+        assert!(crate::export::raw_verilog(RoundToQ2_17::default()).is_ok());
         assert!(crate::export::raw_verilog(MulSignedUnsigned::default()).is_ok());
     }
 }

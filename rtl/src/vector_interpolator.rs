@@ -11,7 +11,8 @@
 //! and `line` = dir·a along a line), and the value at the first line start. The hardware adds
 //! one of them per event, exactly as the BVI does for an intensity: the block *is* a BVI
 //! ([`IntensityInterpolator`]: per component RG1–RG5, a shadow bank, the adder Sm), its words read
-//! as Q3.29 instead of Q16.16, followed by a rounding stage per component.
+//! as Q3.29 instead of Q16.16, followed by a rounding stage per component to Q2.17 (19 bits;
+//! Q2.14 until the lit methods' 2-LSB bound, `docs/bump-precision.md`).
 //! K for the normalizer is not formed here: the pipeline squares the rounded N (the
 //! normalizer's own squarers), which keeps K exact for the vector the normalizer scales.
 //!
@@ -23,7 +24,7 @@
 //! | `x_start x_short x_long x_line`, `y_…`, `z_…` | in | signed Q3.29 words, wrapping (`golden::vector_interpolator::setup`) |
 //! | `valid_in`, `row_start_in`, `step_in` (2), `carry_in` | in | the address block's `valid`, `row_start`, `step`, `carry` |
 //! | `valid_out` | out | `valid_in` one clock later |
-//! | `nx ny nz` | out | signed Q2.14: the running word RG4 rounded to nearest (ties toward +∞), saturated |
+//! | `nx ny nz` | out | signed Q2.17 (19 bits): the running word RG4 rounded to nearest (ties toward +∞), saturated |
 //!
 //! Latency 1 clock (`valid_in` → `valid_out`, the BVI's; the output rounding is combinational
 //! after its RG4 registers); throughput one pixel per clock; no stall. The shadow bank is
@@ -35,24 +36,24 @@
 //! Words wrap modulo 2³² on purpose (the sum of the quantized start and increments is exact
 //! modulo 2³², so a sliver's giant increment wraps and unwraps without loss); only the pixel
 //! values must be in range, and |N_k| ≤ 1 for interpolated unit normals (Q3.29 holds ±4). The
-//! output saturates to [−2, 2 − 2⁻¹⁴] (`RoundToQ2_14`) rather than wrap.
+//! output saturates to [−2, 2 − 2⁻¹⁷] (`RoundToQ2_17`) rather than wrap.
 //!
 //! # Error budget
 //!
 //! Each quantized term is off by ≤ 2⁻³⁰; a pixel reached by n ≤ 8189 additions is within
-//! n·2⁻³⁰ ≤ 7.6·10⁻⁶ (0.125 LSB of Q2.14) of the plane value before the output rounding, which
-//! adds ≤ 2⁻¹⁵: in all ≤ n·2⁻³⁰ + 2⁻¹⁵ (`golden::vector_interpolator::error_bound`).
+//! n·2⁻³⁰ ≤ 7.6·10⁻⁶ (1 LSB of Q2.17) of the plane value before the output rounding, which
+//! adds ≤ 2⁻¹⁸: in all ≤ n·2⁻³⁰ + 2⁻¹⁸ (`golden::vector_interpolator::error_bound`).
 
 use rust_hdl::prelude::*;
 
 use crate::intensity_interpolator::IntensityInterpolator;
-use crate::primitives::RoundToQ2_14;
+use crate::primitives::RoundToQ2_17;
 
 crate::hw_block! {
     /// The vector interpolator: the BVI's three accumulators on Q3.29 words, each rounded to
-    /// Q2.14.
+    /// Q2.17.
     pub struct VectorInterpolator(clock) as "vector-interpolator" {
-        summary: "the address block's step information in, the interpolated normal N (Q2.14) per pixel out (SPEC §1)",
+        summary: "the address block's step information in, the interpolated normal N (Q2.17) per pixel out (SPEC §1)",
         latency: 1 => "valid_in to valid_out, one pixel per clock",
         multipliers: 0,
         in {
@@ -62,12 +63,12 @@ crate::hw_block! {
             z_start: Bits<32>, z_short: Bits<32>, z_long: Bits<32>, z_line: Bits<32>,
             valid_in: Bit, row_start_in: Bit, step_in: Bits<2>, carry_in: Bit,
         }
-        out { valid_out: Bit, nx: Bits<16>, ny: Bits<16>, nz: Bits<16> }
+        out { valid_out: Bit, nx: Bits<19>, ny: Bits<19>, nz: Bits<19> }
         /// The accumulators: the BVI itself, its red, green, blue channels carrying x, y, z
         /// (its 8-bit outputs are unused and removed by synthesis).
         pub acc: IntensityInterpolator,
-        /// The output rounding of each component to Q2.14.
-        round: [RoundToQ2_14; 3],
+        /// The output rounding of each component to Q2.17.
+        round: [RoundToQ2_17; 3],
     }
 }
 

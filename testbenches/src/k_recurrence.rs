@@ -6,7 +6,7 @@
 use proptest::prelude::*;
 use proptest::strategy::ValueTree;
 use proptest::test_runner::TestRunner;
-use rtl::fixed::{K_FULL, NORMAL, NORMALIZED};
+use rtl::fixed::{INTERPOLATED, K_FULL, NORMAL, NORMALIZED};
 use rtl::k_recurrence::{span_setup, KRecurrence, SpanNormalizer};
 use rtl::normalizer::Normalizer;
 
@@ -241,7 +241,9 @@ pub fn span_rows(
                         JUNK32,
                     ]);
                 }
-                let e = saturating_model(sp.vector(i).map(raw16), coeffs);
+                // The normalizer's model takes Q2.17 words: the Q2.14 vector times 8.
+                let e =
+                    saturating_model(sp.vector(i).map(|x| INTERPOLATED.from_int(x * 8)), coeffs);
                 per_input.push(vec![
                     Expected::Word(1),
                     Expected::Real(e[0]),
@@ -274,14 +276,15 @@ pub fn span_rows(
     (rows, harness::delay_expectations(&per_input, lat, &idle))
 }
 
-/// The same pixel sequence as normalizer rows (valid_in, x, y, z), for the bit-exact
-/// comparison of SpanNormalizer with Normalizer.
+/// The same pixel sequence as normalizer rows (valid_in, x, y, z: the Q2.14 vectors as the
+/// normalizer's signed Q2.17 input, three zero LSBs), for the bit-exact comparison of
+/// SpanNormalizer with Normalizer.
 pub fn normalizer_rows(spans: &[Span], sched: &[Clock]) -> Vec<Vec<u64>> {
     let mut rows: Vec<Vec<u64>> = sched
         .iter()
         .map(|c| match *c {
             Clock::Pixel { s, i } => {
-                let v = spans[s].vector(i).map(|x| NORMAL.from_int(x));
+                let v = spans[s].vector(i).map(|x| INTERPOLATED.from_int(x * 8));
                 vec![1, v[0], v[1], v[2]]
             }
             Clock::Idle => vec![0, JUNK16, JUNK16, JUNK16],

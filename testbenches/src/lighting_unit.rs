@@ -13,13 +13,13 @@ use glam::DVec3;
 use golden::lighting_unit::{error_bound, twin::LightingTwin, COS_MAX};
 use proptest::prelude::*;
 use proptest::strategy::ValueTree;
-use rtl::fixed::{NORMAL, SCALE};
+use rtl::fixed::{INTERPOLATED, NORMAL, SCALE};
 use rtl::lighting_unit::LightingUnit;
 use rtl::normalizer::NormalizerCoeffs;
 
 use crate::harness::{Compare, Expected, Tolerance};
 use crate::normalizer::{
-    dequantize, domain_budget, domain_vector, edge_cases, quantize, saturating_model, seeded_runner,
+    domain_budget, domain_vector, edge_cases, quantize, saturating_model, seeded_runner,
 };
 use crate::registry::{Bench, Stimulus, Twin};
 
@@ -38,7 +38,17 @@ fn unit_vector() -> impl Strategy<Value = [f64; 3]> {
     })
 }
 
-/// One input row: valid, N, L, H (raw words).
+/// Raw signed Q2.14 words of a unit vector (L, H).
+fn quantize_unit(v: [f64; 3]) -> [u64; 3] {
+    v.map(|c| NORMAL.quantize(c))
+}
+
+/// Real values of raw Q2.14 words (L, H).
+fn dequantize_unit(raw: [u64; 3]) -> [f64; 3] {
+    raw.map(|r| NORMAL.to_f64(r))
+}
+
+/// One input row: valid, N (signed Q2.17), L, H (signed Q2.14) as raw words.
 fn row(valid: bool, n: [u64; 3], l: [u64; 3], h: [u64; 3]) -> Vec<u64> {
     let mut r = vec![valid as u64];
     r.extend(n);
@@ -77,8 +87,8 @@ fn golden_cos(n: [u64; 3], l: [u64; 3], h: [u64; 3], c: &NormalizerCoeffs) -> (f
     let np = to_vec(saturating_model(n, c.requested));
     let clamp = |v: f64| v.clamp(0.0, COS_MAX);
     (
-        clamp(np.dot(to_vec(dequantize(l)))),
-        clamp(np.dot(to_vec(dequantize(h)))),
+        clamp(np.dot(to_vec(dequantize_unit(l)))),
+        clamp(np.dot(to_vec(dequantize_unit(h)))),
     )
 }
 
@@ -88,7 +98,8 @@ impl Twin for LightingRows {
     fn step(&mut self, r: &[u64]) -> Vec<u64> {
         let (v, d, s) = self.0.outputs();
         let w = |i: usize| [r[i], r[i + 1], r[i + 2]].map(|x| NORMAL.to_int(x));
-        self.0.clock(r[0] != 0, w(1), w(4), w(7));
+        let n = [r[1], r[2], r[3]].map(|x| INTERPOLATED.to_int(x));
+        self.0.clock(r[0] != 0, n, w(4), w(7));
         vec![v as u64, d as u64, s as u64]
     }
 }
@@ -100,15 +111,15 @@ impl Bench for LightingUnit {
         let mut r = seeded_runner(seed);
         let mut rows: Vec<Vec<u64>> = named_cases()
             .into_iter()
-            .map(|(_, v, l, h)| row(true, quantize(v), quantize(l), quantize(h)))
+            .map(|(_, v, l, h)| row(true, quantize(v), quantize_unit(l), quantize_unit(h)))
             .collect();
         let nv = domain_vector();
         let uv = unit_vector();
         let (mut l, mut h) = ([0; 3], [0; 3]);
         for i in 0..n {
             if i % LIGHT_PERIOD == 0 {
-                l = quantize(uv.new_tree(&mut r).expect("no rejection").current());
-                h = quantize(uv.new_tree(&mut r).expect("no rejection").current());
+                l = quantize_unit(uv.new_tree(&mut r).expect("no rejection").current());
+                h = quantize_unit(uv.new_tree(&mut r).expect("no rejection").current());
             }
             let v = quantize(nv.new_tree(&mut r).expect("no rejection").current());
             // One clock in eight idle: valid_out must follow.
@@ -137,7 +148,7 @@ impl Bench for LightingUnit {
                     let l = [at[4], at[5], at[6]];
                     let h = [at[7], at[8], at[9]];
                     for u in [l, h] {
-                        let u = to_vec(dequantize(u));
+                        let u = to_vec(dequantize_unit(u));
                         worst = worst.max(error_bound(budget.component_max, u));
                         worst_rms = worst_rms.max(
                             (u.x.abs() + u.y.abs() + u.z.abs()) * budget.component_rms
@@ -168,7 +179,7 @@ impl Bench for LightingUnit {
     }
     fn edge_rows(_: &NormalizerCoeffs, seed: u64) -> Vec<Vec<u64>> {
         let mut r = seeded_runner(seed ^ 0x11_6417);
-        let words = prop::array::uniform10(any::<u16>());
+        let words = prop::array::uniform10(any::<u32>());
         let mut rows: Vec<Vec<u64>> = crate::normalizer::extreme_cases()
             .into_iter()
             .flat_map(|(_, v)| {
@@ -179,11 +190,13 @@ impl Bench for LightingUnit {
             })
             .collect();
         for _ in 0..3000 {
-            let w = words.new_tree(&mut r).expect("no rejection").current();
-            let w = w.map(|x| x as u64);
+            let raw = words.new_tree(&mut r).expect("no rejection").current();
+            // N 19 bits, L and H 16.
+            let n = |x: u32| (x & 0x7_FFFF) as u64;
+            let w = raw.map(|x| (x & 0xFFFF) as u64);
             rows.push(row(
                 w[9] & 3 != 0,
-                [w[0], w[1], w[2]],
+                [n(raw[0]), n(raw[1]), n(raw[2])],
                 [w[3], w[4], w[5]],
                 [w[6], w[7], w[8]],
             ));

@@ -7,17 +7,18 @@ use golden::normalizer::{twin, Coeffs};
 use proptest::prelude::*;
 use proptest::strategy::ValueTree;
 use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
-use rtl::fixed::{HORNER_T1, K_NARROW, NORMAL, NORMALIZED, NORM_SCALE};
+use rtl::fixed::{HORNER_T1, INTERPOLATED, K_NARROW, NORMALIZED, NORM_SCALE};
 use rtl::normalizer::{error_budget, ErrorBudget, Normalizer, NormalizerCoeffs, NormalizerK};
 
 use crate::harness::{self, CheckSpec, Compare, Expected, Failure, Report, Tolerance};
 use crate::registry::{Bench, Stimulus, Twin};
 
 /// K range of quantized domain vectors: interpolating unit vectors ≤ 90° apart gives
-/// K ∈ [0.5, 1]; rounding each component to Q2.14 moves |N| by ≤ √3·2⁻¹⁵.
+/// K ∈ [0.5, 1]; rounding each component to Q2.17 moves |N| by ≤ √3·2⁻¹⁸ (the bounds
+/// below were set for Q2.14, √3·2⁻¹⁵, and still hold).
 pub const DOMAIN_K: (f64, f64) = (0.499, 1.0 + 1.0 / 4096.0);
-/// Largest |component| of a quantized domain vector.
-pub const DOMAIN_X_MAX: f64 = 1.0 + 1.0 / 16384.0;
+/// Largest |component| of a quantized domain vector (Q2.17: one LSB above 1).
+pub const DOMAIN_X_MAX: f64 = 1.0 + 1.0 / 131072.0;
 
 /// A runner seeded with `seed` exactly as `golden::testing::runner` seeds its runners.
 pub fn seeded_runner(seed: u64) -> TestRunner {
@@ -110,46 +111,59 @@ pub fn edge_cases() -> Vec<(&'static str, [f64; 3])> {
             ],
         ),
         ("K~0.75 t=1/4", [0.75, 0.25, 0.0]),
-        ("one LSB off +x axis", [1.0, 1.0 / 16384.0, -1.0 / 16384.0]),
+        (
+            "one LSB off +x axis",
+            [1.0, 1.0 / 131072.0, -1.0 / 131072.0],
+        ),
+        (
+            "one Q2.14 LSB off +x axis",
+            [1.0, 1.0 / 16384.0, -1.0 / 16384.0],
+        ),
     ]
 }
 
-/// Named raw inputs outside the domain, checked against the documented saturation behaviour
-/// ([`saturating_model`]).
+/// Named raw inputs (signed Q2.17 words) outside the domain, checked against the documented
+/// saturation behaviour ([`saturating_model`]).
 pub fn extreme_cases() -> Vec<(&'static str, [u64; 3])> {
     vec![
         ("zero vector (K=0, f saturates at 2)", [0, 0, 0]),
         (
             "most negative components -2,-2,-2 (K=12)",
-            [0x8000, 0x8000, 0x8000],
+            [0x4_0000, 0x4_0000, 0x4_0000],
         ),
-        ("most positive components (K≈12)", [0x7FFF, 0x7FFF, 0x7FFF]),
-        ("-2 on x only (K=4)", [0x8000, 0, 0]),
-        ("max on y only (K≈4)", [0, 0x7FFF, 0]),
-        ("one LSB (K=2^-28)", [1, 0, 0]),
-        ("minus one LSB", [0, 0, 0xFFFF]),
-        ("K just below 2 - 2^-16 (no K saturation)", [0x5A82, 0, 0]),
-        ("K just above 2 - 2^-16 (K saturates)", [0x5A83, 0, 0]),
-        ("K=0.25 (f = 1.77, below the domain)", [0x2000, 0, 0]),
-        ("K=0.0625 (f saturates at 2)", [0x1000, 0, 0]),
-        ("K=1.5", [0x4000, 0x2D41, 0]),
+        (
+            "most positive components (K≈12)",
+            [0x3_FFFF, 0x3_FFFF, 0x3_FFFF],
+        ),
+        ("-2 on x only (K=4)", [0x4_0000, 0, 0]),
+        ("max on y only (K≈4)", [0, 0x3_FFFF, 0]),
+        ("one LSB (K=2^-34, floored to 0)", [1, 0, 0]),
+        ("minus one LSB", [0, 0, 0x7_FFFF]),
+        ("one LSB on each (K floored to 0)", [1, 0x7_FFFF, 1]),
+        ("eight LSBs (K=2^-28)", [8, 0, 0]),
+        ("low bits all ones, x = 1 - 2^-17", [0x1_FFFF, 0, 0]),
+        ("K just below 2 - 2^-16 (no K saturation)", [0x2_D413, 0, 0]),
+        ("K just above 2 - 2^-16 (K saturates)", [0x2_D414, 0, 0]),
+        ("K=0.25 (f = 1.77, below the domain)", [0x1_0000, 0, 0]),
+        ("K=0.0625 (f saturates at 2)", [0x8000, 0, 0]),
+        ("K=1.5", [0x2_0000, 0x1_6A08, 0]),
         // K saturates but the outputs do not: the only way to see the K saturation alone.
         (
             "K=2.5 (K saturates, outputs in range)",
-            [0x4000, 0x4000, 0x2D41],
+            [0x2_0000, 0x2_0000, 0x1_6A08],
         ),
-        ("mixed extremes", [0x8000, 0x7FFF, 0x0001]),
+        ("mixed extremes", [0x4_0000, 0x3_FFFF, 0x0_0001]),
     ]
 }
 
-/// Raw Q2.14 words of a vector (round to nearest, saturate).
+/// Raw Q2.17 words of an interpolated normal (round to nearest, saturate).
 pub fn quantize(v: [f64; 3]) -> [u64; 3] {
-    v.map(|c| NORMAL.quantize(c))
+    v.map(|c| INTERPOLATED.quantize(c))
 }
 
-/// Real values of raw Q2.14 words (the inputs).
+/// Real values of raw Q2.17 words (the inputs).
 pub fn dequantize(raw: [u64; 3]) -> [f64; 3] {
-    raw.map(|r| NORMAL.to_f64(r))
+    raw.map(|r| INTERPOLATED.to_f64(r))
 }
 
 /// Real values of raw Q2.17 words (the outputs, N').
@@ -324,15 +338,22 @@ pub fn formula_max_error(c: Coeffs, lo: f64, hi: f64) -> f64 {
         .fold(0.0, f64::max)
 }
 
-/// Extra error bound vs the f64 (unquantized) vector: rounding N to Q2.14 moves N/|N| by at
-/// most ‖δ‖/|N| ≤ √3·2⁻¹⁵/√K_min.
+/// Extra error bound vs the f64 (unquantized) vector: rounding N to Q2.17 moves N/|N| by at
+/// most ‖δ‖/|N| ≤ √3·2⁻¹⁸/√K_min.
 pub fn input_quantization_bound() -> f64 {
-    3f64.sqrt() * NORMAL.lsb() / 2.0 / DOMAIN_K.0.sqrt()
+    3f64.sqrt() * INTERPOLATED.lsb() / 2.0 / DOMAIN_K.0.sqrt()
 }
 
-/// The normalizer's input word of a signed Q2.14 component, as the twin takes it.
-fn signed16(w: u64) -> i64 {
-    NORMAL.to_int(w)
+/// The normalizer's input word of a signed Q2.17 component, as the twin takes it.
+fn signed19(w: u64) -> i64 {
+    INTERPOLATED.to_int(w)
+}
+
+/// K of a vector of raw Q2.17 words as `NormalizerK` takes it: x² + y² + z² (units 2⁻³⁴)
+/// floored to Q4.28, as the full normalizer's squarers form it.
+fn k_word(raw: [u64; 3]) -> u64 {
+    let v = raw.map(signed19);
+    ((v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) >> 6) as u64
 }
 
 fn vector_out(valid: bool, n: [i64; 3]) -> Vec<u64> {
@@ -347,7 +368,7 @@ struct NormalizerRows(twin::NormalizerTwin);
 impl Twin for NormalizerRows {
     fn step(&mut self, r: &[u64]) -> Vec<u64> {
         let (v, n) = self.0.outputs();
-        self.0.clock(r[0] != 0, [r[1], r[2], r[3]].map(signed16));
+        self.0.clock(r[0] != 0, [r[1], r[2], r[3]].map(signed19));
         vector_out(v, n)
     }
 }
@@ -359,13 +380,14 @@ impl Twin for NormalizerKRows {
     fn step(&mut self, r: &[u64]) -> Vec<u64> {
         let (v, n) = self.0.outputs();
         self.0
-            .clock(r[0] != 0, [r[1], r[2], r[3]].map(signed16), r[4] as i64);
+            .clock(r[0] != 0, [r[1], r[2], r[3]].map(signed19), r[4] as i64);
         vector_out(v, n)
     }
 }
 
 /// `n` seeded domain vectors as normalizer rows with golden expectations (plus, for
-/// [`NormalizerK`], K as a fifth input: the exact sum of squares of the quantized vector).
+/// [`NormalizerK`], K as a fifth input: the sum of squares of the quantized vector, floored to
+/// Q4.28).
 fn vector_stimulus(
     c: &NormalizerCoeffs,
     n: usize,
@@ -382,8 +404,8 @@ fn vector_stimulus(
     let expected = expectations(&rows, latency, c.requested);
     if with_k {
         for row in &mut rows {
-            let i = [row[1], row[2], row[3]].map(signed16);
-            row.push((i[0] * i[0] + i[1] * i[1] + i[2] * i[2]) as u64);
+            let k = k_word([row[1], row[2], row[3]]);
+            row.push(k);
         }
     }
     Stimulus {
@@ -397,7 +419,7 @@ fn vector_stimulus(
 /// raw words (K up to 12, every saturation path), valid toggling at random.
 pub fn raw_rows(seed: u64, n: usize, with_k: bool) -> Vec<Vec<u64>> {
     let mut r = seeded_runner(seed ^ 0x5a5a_5a5a);
-    let words = prop::array::uniform4(any::<u16>());
+    let words = prop::array::uniform4(any::<u32>());
     let mut rows: Vec<Vec<u64>> = extreme_cases()
         .iter()
         .map(|(_, v)| vec![1, v[0], v[1], v[2]])
@@ -406,15 +428,14 @@ pub fn raw_rows(seed: u64, n: usize, with_k: bool) -> Vec<Vec<u64>> {
         let w = words.new_tree(&mut r).expect("no rejection").current();
         rows.push(vec![
             (w[3] & 3 != 0) as u64,
-            w[0] as u64,
-            w[1] as u64,
-            w[2] as u64,
+            (w[0] & 0x7_FFFF) as u64,
+            (w[1] & 0x7_FFFF) as u64,
+            (w[2] & 0x7_FFFF) as u64,
         ]);
     }
     if with_k {
         for (i, row) in rows.iter_mut().enumerate() {
-            let v = [row[1], row[2], row[3]].map(signed16);
-            let k = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) as u64;
+            let k = k_word([row[1], row[2], row[3]]);
             // Every fourth clock a random 32-bit K instead of the exact one (K saturation).
             let k = if i % 4 == 3 {
                 (k.wrapping_mul(0x9E37_79B9) ^ (k >> 7)) & 0xFFFF_FFFF

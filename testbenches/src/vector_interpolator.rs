@@ -4,8 +4,8 @@
 //! Stimulus: seeded random triangles ([`triangle_strategy`]) with random unit vertex normals
 //! in the viewer's hemisphere, driven by the golden address block's stream (the BVI's rows:
 //! the vector interpolator's input ports are laid out like the BVI's).
-//! Tolerances: `valid_out` exact; `nx ny nz` (signed Q2.14) within the run's largest
-//! `golden::vector_interpolator::error_bound` (n·2⁻³⁰ + 2⁻¹⁵ for a pixel reached by n additions),
+//! Tolerances: `valid_out` exact; `nx ny nz` (signed Q2.17) within the run's largest
+//! `golden::vector_interpolator::error_bound` (n·2⁻³⁰ + 2⁻¹⁸ for a pixel reached by n additions),
 //! RMS within the RMS of those bounds.
 
 use golden::intensity_interpolator::additions;
@@ -15,7 +15,7 @@ use golden::vector_interpolator::{error_bound, setup, VectorTwin};
 use pipeline::gouraud::{row_words, TriangleJob};
 use proptest::prelude::*;
 use proptest::strategy::ValueTree;
-use rtl::fixed::NORMAL;
+use rtl::fixed::INTERPOLATED;
 use rtl::registry::NoParams;
 use rtl::vector_interpolator::VectorInterpolator;
 
@@ -67,7 +67,7 @@ impl Twin for VectorRows {
         let w = row_words(r, 1);
         self.0.clock((r[0] != 0).then_some(&w), &row_event(r));
         std::iter::once(valid as u64)
-            .chain(n.map(|x| NORMAL.from_int(x)))
+            .chain(n.map(|x| INTERPOLATED.from_int(x)))
             .collect()
     }
 }
@@ -106,7 +106,7 @@ impl Bench for VectorInterpolator {
             rms: (bounds.iter().map(|b| b * b).sum::<f64>() / bounds.len().max(1) as f64).sqrt(),
         };
         let fixed = Compare::Fixed {
-            format: NORMAL,
+            format: INTERPOLATED,
             tol,
         };
         triangle_run((rows, expected, vec![Compare::Exact, fixed, fixed, fixed]))

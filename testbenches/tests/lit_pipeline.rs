@@ -29,6 +29,11 @@ fn quarter_lsb_rounding_errors_are_caught_by_the_twins() {
     check400("lighting-unit", Options::new().with("coeffs", "fit"), &[
         Mutant { what: "cosine rounding + ¼ LSB", module: "lighting_unit", from: "localparam  half_lsb = 32'h1000;", to: "localparam  half_lsb = 32'h1800;" },
     ]);
+    // The vector interpolator's output rounding (x component), since N is Q2.17.
+    #[rustfmt::skip]
+    check("vector-interpolator", &Options::new(), 8, &[
+        Mutant { what: "N output rounding + ¼ LSB", module: "vector_interpolator__round__0", from: "localparam  half_lsb = 32'h800;", to: "localparam  half_lsb = 32'hc00;" },
+    ]);
     #[rustfmt::skip]
     check400("colour-combine", Options::new(), &[
         Mutant { what: "colour rounding + ¼ LSB", module: "colour_combine", from: "localparam  half_lsb = 32'h400000;", to: "localparam  half_lsb = 32'h600000;" },

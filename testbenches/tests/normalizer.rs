@@ -3,7 +3,7 @@
 use golden::normalizer::{FIT, K_DOMAIN, PUBLISHED};
 use golden::testing::{runner, seed_for};
 use proptest::strategy::{Strategy, ValueTree};
-use rtl::fixed::{K_FULL, NORMAL};
+use rtl::fixed::{INTERPOLATED, K_FULL};
 use rtl::normalizer::{CoeffError, ErrorBudget, Normalizer, NormalizerCoeffs, NormalizerK};
 use testbenches::harness::{self, Expected};
 use testbenches::normalizer::*;
@@ -49,7 +49,7 @@ fn domain_run(coeffs: &NormalizerCoeffs, name: &str) -> (f64, f64, f64) {
         100.0 * e.max_vs_float
     );
     println!(
-        "[{name}] formula alone: max {:.4} %; datapath bound {:.4} % [+ {:.4} % for rounding the input to Q2.14]",
+        "[{name}] formula alone: max {:.4} %; datapath bound {:.4} % [+ {:.4} % for rounding the input to Q2.17]",
         100.0 * formula,
         100.0 * b.vector_max,
         100.0 * input_quantization_bound()
@@ -116,8 +116,8 @@ fn normalizer_named_domain_cases() {
     }
     // The K = 0.5 and K = 1 cases really have those K after quantization.
     let k = |v: [f64; 3]| {
-        let q = quantize(v).map(|r| NORMAL.to_int(r));
-        (q[0] * q[0] + q[1] * q[1] + q[2] * q[2]) as f64 * K_FULL.lsb()
+        let q = quantize(v).map(|r| INTERPOLATED.to_int(r));
+        (q[0] * q[0] + q[1] * q[1] + q[2] * q[2]) as f64 * INTERPOLATED.lsb().powi(2)
     };
     assert_eq!(k([0.5, 0.5, 0.0]), 0.5);
     assert_eq!(k([-1.0, 0.0, 0.0]), 1.0);
@@ -132,7 +132,7 @@ fn normalizer_extreme_inputs_saturate_as_documented() {
     }
     // Spot checks of the rules themselves (not of the hardware): -2 on x gives K = 4 → K
     // saturates, f(2 − 2⁻¹⁵) ≈ 1.42 → x·f = −2.85 saturates to −2.
-    let e = saturating_model([0x8000, 0, 0], PUBLISHED);
+    let e = saturating_model([0x4_0000, 0, 0], PUBLISHED);
     assert_eq!(e[0], -2.0);
     let zero = saturating_model([0, 0, 0], PUBLISHED);
     assert_eq!(zero, [0.0, 0.0, 0.0]);
@@ -147,7 +147,7 @@ fn normalizer_valid_gaps_and_junk() {
     let c = NormalizerCoeffs::published();
     let b = domain_budget(&c);
     let vectors = domain_vectors(&mut r, 20_000);
-    let junk = (0u64..0x10000, 0u64..0x10000, 0u64..0x10000, 0u8..4);
+    let junk = (0u64..0x8_0000, 0u64..0x8_0000, 0u64..0x8_0000, 0u8..4);
     let mut slots = Vec::new();
     for v in &vectors {
         let (a, b2, c2, gap) = junk.new_tree(&mut r).unwrap().current();
@@ -165,7 +165,8 @@ fn normalizer_valid_gaps_and_junk() {
 #[test]
 fn normalizer_k_takes_exact_k() {
     // The back end alone (its registry bench): 10 000 domain vectors, each with K = x² + y² + z²
-    // of the quantized vector as the fifth input, checked every clock against the golden model.
+    // of the quantized (Q2.17) vector, floored to Q4.28, as the fifth input, checked every clock
+    // against the golden model.
     use rtl::registry::RtlBlock;
     use testbenches::registry::Bench;
     let name = "normalizer_k";
@@ -173,12 +174,9 @@ fn normalizer_k_takes_exact_k() {
     let c = NormalizerCoeffs::published();
     let stim = NormalizerK::stimulus(&c, 10_000, seed);
     for r in stim.rows.iter().filter(|r| r[0] == 1) {
-        let i = [r[1], r[2], r[3]].map(|w| NORMAL.to_int(w));
-        assert_eq!(
-            r[4],
-            (i[0] * i[0] + i[1] * i[1] + i[2] * i[2]) as u64,
-            "K column"
-        );
+        let i = [r[1], r[2], r[3]].map(|w| INTERPOLATED.to_int(w));
+        let k = (i[0] * i[0] + i[1] * i[1] + i[2] * i[2]) as f64 * INTERPOLATED.lsb().powi(2);
+        assert_eq!(r[4], (k / K_FULL.lsb()).floor() as u64, "K column");
     }
     let spec = harness::CheckSpec {
         name: name.into(),

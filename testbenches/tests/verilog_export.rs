@@ -124,7 +124,8 @@ fn broken_export_is_caught() {
     // One flipped operator each (inside a shared primitive: the instance named).
     #[rustfmt::skip]
     let mutants = [
-        Mutant { what: "K sum: + → -", module: "", from: "k_full$d = mul1$p + mul2$p", to: "k_full$d = mul1$p - mul2$p" },
+        Mutant { what: "K sum: + → -", module: "", from: "k_xy = sq_x$sq + sq_y$sq", to: "k_xy = sq_x$sq - sq_y$sq" },
+        Mutant { what: "K's cross terms: + → -", module: "", from: "xterm_sum = sq_x$xterm + sq_y$xterm", to: "xterm_sum = sq_x$xterm - sq_y$xterm" },
         Mutant { what: "sign correction of Mul6 (x·f): - → +", module: "normalizer__scale__lane_x__mul", from: "p_q$d = raw$q - corr_w", to: "p_q$d = raw$q + corr_w" },
         Mutant { what: "K rounding: + → -", module: "normalizer__scale__k_round", from: "rounded = wide + half_lsb", to: "rounded = wide - half_lsb" },
         Mutant { what: "K saturation test: | → &", module: "normalizer__scale__k_round", from: "|wide[(29)+:(3)] | &wide[", to: "|wide[(29)+:(3)] & &wide[" },
