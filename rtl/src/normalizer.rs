@@ -542,8 +542,8 @@ crate::hw_block! {
     /// top 16 bits, signed Q2.14; xl its three low bits): x²/64 = xh² + xl·(16·xh + xl)/64.
     /// `sq` = xh² (Mul1, Mul2 or Mul3: signed Q4.28, exact), [`SIGNED_MUL_LATENCY`] clocks
     /// after `x`; `xterm` = xl·(16·xh + xl) (units 2⁻³⁴, exact, |xterm| < 2²²) by shift-add,
-    /// [`MUL_LOW_LATENCY`](crate::primitives::MUL_LOW_LATENCY) clocks after `x` — 16·xh + xl is x's bits with a zero inserted
-    /// above xl (wiring).
+    /// [`MUL_LOW_LATENCY`](crate::primitives::MUL_LOW_LATENCY) clocks after `x` — 16·xh + xl
+    /// is x's bits with a zero inserted above xl (wiring).
     struct Square19(clock) {
         in { x: Bits<19> }
         out { sq: Bits<32>, xterm: Bits<32> }
