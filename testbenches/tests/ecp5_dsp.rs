@@ -59,29 +59,38 @@ fn mapped_multipliers_are_bit_exact_with_the_simulation() {
     if !tools::require(&[Tool::Iverilog, Tool::Vvp], "ecp5_dsp") {
         return;
     }
-    let mut checked = 0;
-    for b in BLOCKS {
-        for o in b.test_sets() {
-            let (v, products) = mapped(*b, &o);
-            if products == 0 {
-                continue;
-            }
-            // Every product the registry counts as a multiplier is in the mapping's reach:
-            // a 16×16 one between registers (the Horner unit's composed 32×16 products are not).
-            let label = format!("ecp5-dsp-{}-{}", b.name(), checked);
-            let seed = seed_for(&label);
-            let rep = run(*b, &o, &v, &label)
-                .unwrap_or_else(|e| panic!("{}: {e} (seed {seed})", b.name()));
-            println!(
-                "[{label}] {} ({:?}, seed {seed}): {products} products on MULT18X18D, bit-exact over {} clocks × {} ports",
-                b.name(),
-                o,
-                rep.cycles,
-                rep.ports
-            );
-            checked += 1;
+    // Every build with products, in registry order (its index names it and seeds it); two
+    // Icarus runs at a time (one core each).
+    let builds: Vec<(&dyn Entry, Options, String, usize)> = BLOCKS
+        .iter()
+        .flat_map(|b| b.test_sets().into_iter().map(move |o| (*b, o)))
+        .filter_map(|(b, o)| {
+            let (v, products) = mapped(b, &o);
+            (products > 0).then_some((b, o, v, products))
+        })
+        .collect();
+    let checked = builds.len();
+    let work = std::sync::Mutex::new(builds.into_iter().enumerate());
+    std::thread::scope(|s| {
+        for _ in 0..2 {
+            s.spawn(|| loop {
+                let Some((i, (b, o, v, products))) = work.lock().unwrap().next() else {
+                    break;
+                };
+                let label = format!("ecp5-dsp-{}-{}", b.name(), i);
+                let seed = seed_for(&label);
+                let rep = run(b, &o, &v, &label)
+                    .unwrap_or_else(|e| panic!("{}: {e} (seed {seed})", b.name()));
+                println!(
+                    "[{label}] {} ({:?}, seed {seed}): {products} products on MULT18X18D, bit-exact over {} clocks × {} ports",
+                    b.name(),
+                    o,
+                    rep.cycles,
+                    rep.ports
+                );
+            });
         }
-    }
+    });
     // The lit path's blocks all have such products; a mapping that found none would pass
     // vacuously.
     assert!(

@@ -25,6 +25,15 @@ fn quarter_lsb_rounding_errors_are_caught_by_the_twins() {
     ) {
         return;
     }
+    // Two Icarus runs at a time (one core each).
+    std::thread::scope(|s| {
+        s.spawn(lit_units);
+        span_units();
+    });
+}
+
+/// The lit path's units.
+fn lit_units() {
     #[rustfmt::skip]
     check400("lighting-unit", Options::new().with("coeffs", "fit"), &[
         Mutant { what: "cosine rounding + ¼ LSB", module: "lighting_unit", from: "localparam  half_lsb = 32'h1000;", to: "localparam  half_lsb = 32'h1800;" },
@@ -51,6 +60,10 @@ fn quarter_lsb_rounding_errors_are_caught_by_the_twins() {
         Mutant { what: "perturbed cosine rounding + ¼ LSB", module: "brzssk", from: "localparam  half_lsb = 32'h4000;", to: "localparam  half_lsb = 32'h6000;" },
         Mutant { what: "sin γ interpolation rounding + ¼ LSB", module: "brzssk", from: "d_rnd = d_prod + 16'h8;", to: "d_rnd = d_prod + 16'hc;" },
     ]);
+}
+
+/// The span units, the Horner unit and the quadric unit.
+fn span_units() {
     // The span units (issue 10).
     #[rustfmt::skip]
     check("cos-v-accumulator", &Options::new(), 60, &[
