@@ -35,3 +35,7 @@ pub mod stream_layout;
 pub mod subdivision_raster;
 pub mod subdivision_stream;
 pub mod vector_interpolator;
+
+/// A hash of every source the exported Verilog depends on (this crate, `golden`, the vendored
+/// rust-hdl-core, Cargo.lock), made by `build.rs`: the in-process Verilator cache keys on it.
+pub const SOURCE_FINGERPRINT: &str = env!("SHADECORE_RTL_FINGERPRINT");

@@ -197,6 +197,108 @@ impl<D: Dut> Stepper<D> {
     }
 }
 
+/// A simulated block as the drivers and benches see it, whatever simulates it: rust-hdl
+/// ([`Stepper`]) or the exported Verilog under Verilator in process (the `verilated` crate).
+/// Rows are raw words in the port order of [`Dut::inputs`] / [`Dut::outputs`]; the timing of a
+/// step is [`Stepper::step`]'s.
+pub trait Model {
+    /// Input ports, in row order.
+    fn inputs(&self) -> &[Port];
+    /// Output ports, in row order.
+    fn outputs(&self) -> &[Port];
+    /// One clock (see [`Stepper::step`]).
+    fn step(&mut self, inputs: &[u64], outputs: &mut [u64]) -> Result<(), String>;
+    /// Output port `k` as it stands between clocks (after the last rising edge settled, before
+    /// the next inputs): what a registered output such as `ready` shows the driver.
+    fn peek(&self, k: usize) -> u64;
+    /// Clocks stepped so far.
+    fn cycle(&self) -> u64;
+    /// Trace every following clock into `w` as a VCD; an error where the simulator cannot.
+    fn start_vcd(&mut self, w: Box<dyn Write>) -> Result<(), String>;
+    /// Stop tracing (flushes the writer); nothing when not tracing.
+    fn stop_vcd(&mut self);
+    /// Which simulator this is, for messages: `"rust-hdl"` or `"verilator"`.
+    fn simulator(&self) -> &'static str;
+}
+
+/// A [`Stepper`] with its port lists, as a [`Model`].
+pub struct RustHdlModel<D: Dut> {
+    stepper: Stepper<D>,
+    inputs: Vec<Port>,
+    outputs: Vec<Port>,
+}
+
+impl<D: Dut> RustHdlModel<D> {
+    /// Connect, check and settle `dut` (see [`Stepper::new`]).
+    pub fn new(dut: D) -> Result<Self, String> {
+        Self::from_stepper(Stepper::new(dut)?)
+    }
+    pub fn from_stepper(stepper: Stepper<D>) -> Result<Self, String> {
+        let inputs = stepper.dut().inputs();
+        let outputs = stepper.dut().outputs();
+        Ok(Self {
+            stepper,
+            inputs,
+            outputs,
+        })
+    }
+    pub fn stepper(&self) -> &Stepper<D> {
+        &self.stepper
+    }
+    pub fn stepper_mut(&mut self) -> &mut Stepper<D> {
+        &mut self.stepper
+    }
+}
+
+impl<D: Dut> Model for RustHdlModel<D> {
+    fn inputs(&self) -> &[Port] {
+        &self.inputs
+    }
+    fn outputs(&self) -> &[Port] {
+        &self.outputs
+    }
+    fn step(&mut self, inputs: &[u64], outputs: &mut [u64]) -> Result<(), String> {
+        self.stepper.step(inputs, outputs)
+    }
+    fn peek(&self, k: usize) -> u64 {
+        let mut row = [0u64; 64];
+        let n = self.outputs.len();
+        if n <= row.len() {
+            self.stepper.dut().sample(&mut row[..n]);
+            row[k]
+        } else {
+            let mut v = vec![0; n];
+            self.stepper.dut().sample(&mut v);
+            v[k]
+        }
+    }
+    fn cycle(&self) -> u64 {
+        self.stepper.cycle()
+    }
+    fn start_vcd(&mut self, w: Box<dyn Write>) -> Result<(), String> {
+        self.stepper.start_vcd(w);
+        Ok(())
+    }
+    fn stop_vcd(&mut self) {
+        self.stepper.stop_vcd();
+    }
+    fn simulator(&self) -> &'static str {
+        "rust-hdl"
+    }
+}
+
+/// Run `rows` through `model` from its current state, one output row per input row.
+pub fn run_model(model: &mut dyn Model, rows: &[Vec<u64>]) -> Result<Vec<Vec<u64>>, String> {
+    let n_out = model.outputs().len();
+    let mut out = Vec::with_capacity(rows.len());
+    for r in rows {
+        let mut o = vec![0; n_out];
+        model.step(r, &mut o)?;
+        out.push(o);
+    }
+    Ok(out)
+}
+
 /// Run `rows` through a fresh `dut`, returning one output row per input row.
 pub fn simulate_rows<D: Dut>(dut: D, rows: &[Vec<u64>]) -> Result<Vec<Vec<u64>>, String> {
     let mut s = Stepper::new(dut)?;

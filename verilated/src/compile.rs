@@ -1,0 +1,593 @@
+//! Building a [`Design`] into `lib.so`, and the cache that keeps the builds.
+//!
+//! A cache entry is a directory `target/verilated/<module>-<hash>/` holding `lib.so` and
+//! `lib.sum` (its size and FNV-1a hash). `<hash>` covers the design's key, the Verilator and C++
+//! compiler versions, the flags and the wrapper's ABI version. Built in a temporary directory
+//! beside it and renamed into place, so an entry is whole or absent; a load checks `lib.sum`, the
+//! ABI version and the port list, and a broken entry is removed and built again (with a notice on
+//! stderr). Builds of one key are serialised by an advisory lock on `<entry>.lock`.
+
+use std::fmt::Write as _;
+use std::fs::File;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::{Arc, Mutex, OnceLock};
+
+use rtl::sim::Port;
+
+use crate::model::Library;
+use crate::Design;
+
+/// Version of the C ABI [`wrapper`] generates (part of every cache key).
+pub(crate) const ABI_VERSION: u32 = 1;
+
+/// C++ optimisation of the model's evaluation code and of its construction code (Verilator's own
+/// makefile uses `-Os` and none). `-O1` is within a few per cent of `-O2` in speed here
+/// and compiles in about half the time (the cold build is what a test run from a clean clone
+/// pays).
+const OPT_FAST: &str = "-O1";
+const OPT_SLOW: &str = "-O0";
+
+/// FNV-1a, 64 bits.
+pub(crate) fn fnv(bytes: &[u8]) -> u64 {
+    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+    for &b in bytes {
+        h ^= b as u64;
+        h = h.wrapping_mul(0x0100_0000_01b3);
+    }
+    h
+}
+
+/// The installed Verilator and C++ compiler.
+#[derive(Clone, Debug)]
+pub struct Toolchain {
+    /// `verilator --getenv VERILATOR_ROOT`: its `include/` has the runtime sources.
+    pub root: PathBuf,
+    /// The C++ compiler (`$CXX`, else `g++`).
+    pub cxx: String,
+    /// First lines of `verilator --version` and `<cxx> --version`.
+    pub versions: String,
+}
+
+fn first_line(cmd: &str, args: &[&str]) -> Result<String, String> {
+    let out = Command::new(cmd)
+        .args(args)
+        .output()
+        .map_err(|e| format!("cannot run {cmd}: {e}"))?;
+    if !out.status.success() {
+        return Err(format!("{cmd} {} failed ({})", args.join(" "), out.status));
+    }
+    Ok(String::from_utf8_lossy(&out.stdout)
+        .lines()
+        .next()
+        .unwrap_or("")
+        .trim()
+        .to_string())
+}
+
+/// Verilator and a C++ compiler, probed once per process; the error says what is missing and
+/// how to install it.
+pub fn toolchain() -> Result<&'static Toolchain, String> {
+    static TOOLS: OnceLock<Result<Toolchain, String>> = OnceLock::new();
+    TOOLS
+        .get_or_init(|| {
+            let v = first_line("verilator", &["--version"])
+                .map_err(|_| "verilator is not installed (apt-get install verilator)".to_string())?;
+            let root = first_line("verilator", &["--getenv", "VERILATOR_ROOT"])?;
+            let cxx = std::env::var("CXX").unwrap_or_else(|_| "g++".into());
+            let c = first_line(&cxx, &["--version"]).map_err(|_| {
+                format!("{cxx}, the C++ compiler Verilator's models need, is not installed (apt-get install g++)")
+            })?;
+            let root = PathBuf::from(root);
+            if !root.join("include/verilated.cpp").exists() {
+                return Err(format!(
+                    "Verilator's runtime sources are not in {}/include",
+                    root.display()
+                ));
+            }
+            Ok(Toolchain {
+                root,
+                cxx,
+                versions: format!("{v} / {c}"),
+            })
+        })
+        .as_ref()
+        .map_err(Clone::clone)
+}
+
+/// `target/verilated/` (`$CARGO_TARGET_DIR/verilated/` when that is set).
+pub fn cache_dir() -> PathBuf {
+    let target = match std::env::var_os("CARGO_TARGET_DIR") {
+        Some(d) => PathBuf::from(d),
+        None => PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+            .parent()
+            .map(|p| p.join("target"))
+            .unwrap_or_else(|| "target".into()),
+    };
+    target.join("verilated")
+}
+
+fn safe(s: &str) -> String {
+    s.chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || c == '_' {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect()
+}
+
+/// The port list a library states (`sc_ports()`), checked on every load.
+pub(crate) fn port_list(inputs: &[Port], outputs: &[Port]) -> String {
+    let side = |ps: &[Port]| {
+        ps.iter()
+            .map(|p| format!("{}/{}", p.name, p.width))
+            .collect::<Vec<_>>()
+            .join(",")
+    };
+    format!("v{ABI_VERSION};in:{};out:{}", side(inputs), side(outputs))
+}
+
+fn c_type(width: usize) -> &'static str {
+    match width {
+        0..=8 => "CData",
+        9..=16 => "SData",
+        17..=32 => "IData",
+        _ => "QData",
+    }
+}
+
+fn mask(width: usize) -> String {
+    if width >= 64 {
+        "~0ULL".into()
+    } else {
+        format!("0x{:x}ULL", (1u64 << width) - 1)
+    }
+}
+
+/// The C++ of the C ABI around the Verilated model `Vdut` of a top with these ports:
+/// `sc_abi`, `sc_ports`, `sc_new`, `sc_delete`, `sc_step` (one clock with the harness's
+/// timing), `sc_peek` (one output between clocks), and `sc_bench` (the same clocks driven from
+/// memory by a C++ loop: the ceiling the in-process stepping is measured against).
+pub fn wrapper(inputs: &[Port], outputs: &[Port]) -> Result<String, String> {
+    for p in inputs.iter().chain(outputs) {
+        if p.width == 0 || p.width > 64 {
+            return Err(format!(
+                "port {} is {} bits wide: the in-process model carries 1 to 64",
+                p.name, p.width
+            ));
+        }
+        if p.name == "clock" {
+            return Err("the clock is not a data port".into());
+        }
+    }
+    let mut set_inputs = String::new();
+    for (k, p) in inputs.iter().enumerate() {
+        let _ = writeln!(
+            set_inputs,
+            "    t.{n} = ({ty})(in[{k}] & {m});",
+            n = p.name,
+            ty = c_type(p.width),
+            m = mask(p.width)
+        );
+    }
+    let mut get_outputs = String::new();
+    let mut peek_cases = String::new();
+    let mut fold_outputs = String::new();
+    for (k, p) in outputs.iter().enumerate() {
+        let _ = writeln!(get_outputs, "    out[{k}] = (uint64_t)t.{};", p.name);
+        let _ = writeln!(peek_cases, "    case {k}: return (uint64_t)t.{};", p.name);
+        let _ = writeln!(
+            fold_outputs,
+            "        sum = sum * 0x100000001b3ULL ^ (uint64_t)t.{};",
+            p.name
+        );
+    }
+    let n_in = inputs.len();
+    let ports = port_list(inputs, outputs);
+    Ok(format!(
+        r#"// Generated by shadecore's `verilated` crate: the C ABI of one Verilated top. Do not edit.
+#include "Vdut.h"
+#include "verilated.h"
+#include <cstdint>
+
+#define SC_API extern "C" __attribute__((visibility("default")))
+
+namespace {{
+struct Model {{
+    VerilatedContext ctx;
+    Vdut top;
+    Model() : top(&ctx, "dut") {{}}
+}};
+
+inline void apply(Vdut& t, const uint64_t* in) {{
+{set_inputs}}}
+}}  // namespace
+
+SC_API uint32_t sc_abi() {{ return {ABI_VERSION}; }}
+
+SC_API const char* sc_ports() {{ return "{ports}"; }}
+
+SC_API void* sc_new() {{
+    Model* m = new Model;
+    m->top.clock = 0;
+    m->top.eval();
+    return m;
+}}
+
+SC_API void sc_delete(void* p) {{
+    Model* m = static_cast<Model*>(p);
+    m->top.final();
+    delete m;
+}}
+
+// One clock: the inputs with the clock low, settle, sample, the rising edge, settle.
+SC_API void sc_step(void* p, const uint64_t* in, uint64_t* out) {{
+    Vdut& t = static_cast<Model*>(p)->top;
+    apply(t, in);
+    t.clock = 0;
+    t.eval();
+{get_outputs}    t.clock = 1;
+    t.eval();
+}}
+
+SC_API uint64_t sc_peek(void* p, uint32_t k) {{
+    Vdut& t = static_cast<Model*>(p)->top;
+    switch (k) {{
+{peek_cases}    default: return 0;
+    }}
+}}
+
+// `n` rows of {n_in} words from memory through the same clocks; returns a hash of every output
+// of every clock (so the compiler cannot drop the sampling).
+SC_API uint64_t sc_bench(void* p, const uint64_t* rows, uint64_t n) {{
+    Vdut& t = static_cast<Model*>(p)->top;
+    uint64_t sum = 0xcbf29ce484222325ULL;
+    for (uint64_t c = 0; c < n; ++c) {{
+        apply(t, rows + c * {n_in});
+        t.clock = 0;
+        t.eval();
+{fold_outputs}        t.clock = 1;
+        t.eval();
+    }}
+    return sum;
+}}
+"#
+    ))
+}
+
+/// Key of `design` with the toolchain: the entry's directory name.
+fn entry_name(design: &Design, tools: &Toolchain) -> String {
+    let all = format!(
+        "{}\n{}\n{}\n{OPT_FAST} {OPT_SLOW}\nabi {ABI_VERSION}\n{}",
+        design.key,
+        tools.versions,
+        design.module,
+        port_list(&design.inputs, &design.outputs)
+    );
+    format!("{}-{:016x}", safe(&design.module), fnv(all.as_bytes()))
+}
+
+fn run(dir: &Path, program: &str, args: &[String], what: &str) -> Result<(), String> {
+    let out = Command::new(program)
+        .args(args)
+        .current_dir(dir)
+        .output()
+        .map_err(|e| format!("cannot run {program}: {e}"))?;
+    if out.status.success() {
+        return Ok(());
+    }
+    let mut text = String::from_utf8_lossy(&out.stdout).to_string();
+    text += &String::from_utf8_lossy(&out.stderr);
+    let tail: Vec<&str> = text.lines().rev().take(20).collect();
+    let tail: Vec<&str> = tail.into_iter().rev().collect();
+    let _ = std::fs::write(dir.join(format!("{what}.log")), &text);
+    Err(format!(
+        "{what} failed ({}) in {}:\n{}",
+        out.status,
+        dir.display(),
+        tail.join("\n")
+    ))
+}
+
+static TMP_COUNTER: AtomicU64 = AtomicU64::new(0);
+
+/// A fresh temporary directory in `cache` (same file system as the entries, for the rename).
+fn temp_dir(cache: &Path, tag: &str) -> Result<PathBuf, String> {
+    let n = TMP_COUNTER.fetch_add(1, Ordering::SeqCst);
+    let d = cache.join(format!(".tmp-{tag}-{}-{n}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).map_err(|e| format!("cannot create {}: {e}", d.display()))?;
+    Ok(d)
+}
+
+fn cxx_flags(tools: &Toolchain) -> Vec<String> {
+    let inc = tools.root.join("include");
+    [
+        "-std=gnu++17",
+        "-fPIC",
+        "-fvisibility=hidden",
+        "-fvisibility-inlines-hidden",
+        "-faligned-new",
+        "-fcf-protection=none",
+        "-w",
+        "-DVM_COVERAGE=0",
+        "-DVM_SC=0",
+        "-DVM_TRACE=0",
+        "-DVM_TRACE_FST=0",
+        "-DVM_TRACE_VCD=0",
+    ]
+    .iter()
+    .map(|s| s.to_string())
+    .chain([
+        format!("-I{}", inc.display()),
+        format!("-I{}", inc.join("vltstd").display()),
+    ])
+    .collect()
+}
+
+/// Take the advisory lock of `path` (created if missing), waiting for whoever holds it.
+fn lock(path: &Path) -> Result<File, String> {
+    let f = File::options()
+        .create(true)
+        .truncate(false)
+        .write(true)
+        .open(path)
+        .map_err(|e| format!("cannot open the lock {}: {e}", path.display()))?;
+    if f.try_lock().is_err() {
+        eprintln!(
+            "verilated: waiting for another build of {} to finish",
+            path.display()
+        );
+        f.lock()
+            .map_err(|e| format!("cannot lock {}: {e}", path.display()))?;
+    }
+    Ok(f)
+}
+
+/// The Verilator runtime (`verilated.cpp`, `verilated_threads.cpp`) compiled once per toolchain
+/// into `target/verilated/runtime-<hash>/` and linked into every model.
+fn runtime(cache: &Path, tools: &Toolchain) -> Result<Vec<PathBuf>, String> {
+    const UNITS: [&str; 2] = ["verilated", "verilated_threads"];
+    let name = format!(
+        "runtime-{:016x}",
+        fnv(format!("{}\n{OPT_FAST}\nabi {ABI_VERSION}", tools.versions).as_bytes())
+    );
+    let dir = cache.join(&name);
+    let objects: Vec<PathBuf> = UNITS.iter().map(|u| dir.join(format!("{u}.o"))).collect();
+    if objects.iter().all(|o| o.exists()) {
+        return Ok(objects);
+    }
+    let _guard = lock(&cache.join(format!("{name}.lock")))?;
+    if objects.iter().all(|o| o.exists()) {
+        return Ok(objects);
+    }
+    let tmp = temp_dir(cache, "runtime")?;
+    let flags = cxx_flags(tools);
+    std::thread::scope(|s| {
+        let jobs: Vec<_> = UNITS
+            .iter()
+            .map(|u| {
+                let tmp = &tmp;
+                let flags = &flags;
+                s.spawn(move || {
+                    let src = tools.root.join("include").join(format!("{u}.cpp"));
+                    let mut args = flags.clone();
+                    args.extend([
+                        OPT_FAST.to_string(),
+                        "-c".into(),
+                        src.display().to_string(),
+                        "-o".into(),
+                        format!("{u}.o"),
+                    ]);
+                    run(tmp, &tools.cxx, &args, &format!("compiling {u}.cpp"))
+                })
+            })
+            .collect();
+        jobs.into_iter()
+            .map(|j| {
+                j.join()
+                    .unwrap_or_else(|_| Err("a compile thread panicked".into()))
+            })
+            .collect::<Result<Vec<()>, String>>()
+    })?;
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::rename(&tmp, &dir)
+        .map_err(|e| format!("cannot move the runtime into {}: {e}", dir.display()))?;
+    Ok(objects)
+}
+
+/// Compile `design` into `<tmp>/lib.so`.
+fn compile_into(
+    tmp: &Path,
+    design: &Design,
+    tools: &Toolchain,
+    cache: &Path,
+) -> Result<(), String> {
+    let verilog = (design.verilog)()?;
+    let write = |name: &str, text: &str| {
+        std::fs::write(tmp.join(name), text)
+            .map_err(|e| format!("cannot write {}: {e}", tmp.join(name).display()))
+    };
+    write("dut.v", &verilog)?;
+    write("wrapper.cpp", &wrapper(&design.inputs, &design.outputs)?)?;
+    let args: Vec<String> = [
+        "--cc",
+        "dut.v",
+        "--top-module",
+        &design.module,
+        "--prefix",
+        "Vdut",
+        "--Mdir",
+        "obj",
+        "-O3",
+        "-Wno-fatal",
+        "-Wno-lint",
+        "-Wno-style",
+    ]
+    .iter()
+    .map(|s| s.to_string())
+    .collect();
+    run(tmp, "verilator", &args, "verilator")?;
+    let runtime = runtime(cache, tools)?;
+    let mut sources: Vec<PathBuf> = std::fs::read_dir(tmp.join("obj"))
+        .map_err(|e| format!("cannot list {}: {e}", tmp.join("obj").display()))?
+        .flatten()
+        .map(|e| e.path())
+        .filter(|p| p.extension().is_some_and(|x| x == "cpp"))
+        .collect();
+    sources.push(tmp.join("wrapper.cpp"));
+    sources.sort();
+    let flags = cxx_flags(tools);
+    let objects: Vec<PathBuf> = sources.iter().map(|s| s.with_extension("o")).collect();
+    // One compiler per source, at most as many at a time as there are cores.
+    let cores = std::thread::available_parallelism().map_or(2, |n| n.get());
+    let queue = Mutex::new(sources.iter().zip(&objects));
+    std::thread::scope(|s| {
+        let workers: Vec<_> = (0..cores.min(sources.len()))
+            .map(|_| {
+                s.spawn(|| -> Result<(), String> {
+                    loop {
+                        let Some((src, obj)) = queue.lock().expect("queue").next() else {
+                            return Ok(());
+                        };
+                        let file = src.file_name().map(|f| f.to_string_lossy().to_string());
+                        let file = file.unwrap_or_default();
+                        // Construction and symbol tables run once: no optimisation (as
+                        // Verilator's own makefile treats its `__Slow` and `__Syms` files).
+                        let slow = file.contains("__Slow") || file.contains("__Syms");
+                        let mut args = flags.clone();
+                        args.extend([
+                            (if slow { OPT_SLOW } else { OPT_FAST }).to_string(),
+                            format!("-I{}", tmp.join("obj").display()),
+                            "-c".into(),
+                            src.display().to_string(),
+                            "-o".into(),
+                            obj.display().to_string(),
+                        ]);
+                        run(tmp, &tools.cxx, &args, &format!("compiling {file}"))?;
+                    }
+                })
+            })
+            .collect();
+        workers
+            .into_iter()
+            .map(|w| {
+                w.join()
+                    .unwrap_or_else(|_| Err("a compile thread panicked".into()))
+            })
+            .collect::<Result<Vec<()>, String>>()
+    })?;
+    let mut link: Vec<String> = vec![
+        "-shared".into(),
+        "-Wl,-Bsymbolic".into(),
+        "-o".into(),
+        "lib.so".into(),
+    ];
+    link.extend(objects.iter().map(|o| o.display().to_string()));
+    link.extend(runtime.iter().map(|o| o.display().to_string()));
+    link.extend(["-pthread".into(), "-latomic".into()]);
+    run(tmp, &tools.cxx, &link, "linking lib.so")?;
+    let lib = std::fs::read(tmp.join("lib.so")).map_err(|e| format!("cannot read lib.so: {e}"))?;
+    write("lib.sum", &format!("{} {:016x}\n", lib.len(), fnv(&lib)))?;
+    // The objects and generated C++ are megabytes; the entry keeps the library, its sum and the
+    // Verilog it was made from.
+    let _ = std::fs::remove_dir_all(tmp.join("obj"));
+    let _ = std::fs::remove_file(tmp.join("wrapper.o"));
+    Ok(())
+}
+
+/// Why the entry in `dir` cannot serve (`None`: it is whole).
+fn broken(dir: &Path) -> Option<String> {
+    let sum = match std::fs::read_to_string(dir.join("lib.sum")) {
+        Ok(s) => s,
+        Err(e) => return Some(format!("no lib.sum ({e})")),
+    };
+    let lib = match std::fs::read(dir.join("lib.so")) {
+        Ok(b) => b,
+        Err(e) => return Some(format!("no lib.so ({e})")),
+    };
+    let want = format!("{} {:016x}", lib.len(), fnv(&lib));
+    (sum.trim() != want).then(|| {
+        format!(
+            "lib.so does not match lib.sum (found {want}, recorded {})",
+            sum.trim()
+        )
+    })
+}
+
+/// Libraries already loaded by this process, by entry name.
+fn loaded() -> &'static Mutex<std::collections::HashMap<String, Arc<Library>>> {
+    static LOADED: OnceLock<Mutex<std::collections::HashMap<String, Arc<Library>>>> =
+        OnceLock::new();
+    LOADED.get_or_init(Default::default)
+}
+
+/// The library of `design`: loaded from the cache, or built first (Verilator, then the C++
+/// compiler; a large top takes tens of seconds). A broken entry is rebuilt.
+pub fn build(design: &Design) -> Result<Arc<Library>, String> {
+    let tools = toolchain()?;
+    let name = entry_name(design, tools);
+    if let Some(l) = loaded().lock().expect("loaded").get(&name) {
+        return Ok(l.clone());
+    }
+    let cache = cache_dir();
+    std::fs::create_dir_all(&cache)
+        .map_err(|e| format!("cannot create {}: {e}", cache.display()))?;
+    let dir = cache.join(&name);
+    let expected = port_list(&design.inputs, &design.outputs);
+    let _guard = lock(&cache.join(format!("{name}.lock")))?;
+    // Another thread of this process may have loaded it while this one waited.
+    if let Some(l) = loaded().lock().expect("loaded").get(&name) {
+        return Ok(l.clone());
+    }
+    for attempt in 0..2 {
+        if dir.exists() {
+            let why = match broken(&dir) {
+                None => match Library::open(&dir.join("lib.so"), &expected) {
+                    Ok(l) => {
+                        let l = Arc::new(l);
+                        loaded()
+                            .lock()
+                            .expect("loaded")
+                            .insert(name.clone(), l.clone());
+                        return Ok(l);
+                    }
+                    Err(e) => e,
+                },
+                Some(why) => why,
+            };
+            if attempt > 0 {
+                return Err(format!(
+                    "the Verilator build of {} in {} does not load: {why}",
+                    design.name,
+                    dir.display()
+                ));
+            }
+            eprintln!(
+                "verilated: the cache entry {} is broken ({why}); rebuilding it",
+                dir.display()
+            );
+            std::fs::remove_dir_all(&dir)
+                .map_err(|e| format!("cannot remove {}: {e}", dir.display()))?;
+        }
+        let tmp = temp_dir(&cache, &safe(&design.module))?;
+        let t = std::time::Instant::now();
+        if let Err(e) = compile_into(&tmp, design, tools, &cache) {
+            return Err(format!("Verilator build of {}: {e}", design.name));
+        }
+        std::fs::rename(&tmp, &dir)
+            .map_err(|e| format!("cannot move the build into {}: {e}", dir.display()))?;
+        if std::env::var_os("SHADECORE_VERILATED_QUIET").is_none() {
+            eprintln!(
+                "verilated: built {} in {:.1} s",
+                design.name,
+                t.elapsed().as_secs_f64()
+            );
+        }
+    }
+    unreachable!("the second attempt returns")
+}
