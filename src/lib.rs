@@ -4,4 +4,4 @@ pub mod cmd;
 pub mod output;
 pub mod rtl_engine;
 pub mod setup;
-pub mod verilator_engine;
+pub mod sim;

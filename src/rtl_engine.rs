@@ -27,7 +27,7 @@ use golden::shade::ShadeContext;
 use golden::types::{Plane, ScreenTriangle, MAX_ADDRESS};
 use indicatif::ProgressBar;
 
-use crate::verilator_engine::Sim;
+use pipeline::engine::Sim;
 use pipeline::gouraud::{clock_budget, Pipe, PipeStats, TriangleJob};
 use pipeline::lit::{lit_clock_budget, LitJob, LitPipe, ShadingRegs, LIT_METHODS};
 use pipeline::span::{span_clock_budget, span_jobs, SpanPipe, SPAN_METHODS};
@@ -95,13 +95,13 @@ pub(crate) fn check_addresses(tris: &[ScreenTriangle], width: u32, height: u32) 
 }
 
 /// Build choices of the RTL engine beyond the method.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct RtlBuild {
     /// `cubic` through the pipelined Horner units (one pixel per clock) instead of the serial
     /// fig. 2.6 unit (three clocks per pixel).
     pub horner_pipelined: bool,
-    /// The simulator: rust-hdl (default) or the exported Verilog under Verilator.
-    pub sim: crate::verilator_engine::Sim,
+    /// The simulator: the exported Verilog under Verilator in process, or rust-hdl.
+    pub sim: Sim,
     /// The address block `gouraud` goes through: the single block (one address per clock,
     /// default) or the four-triangle block (four lanes, a BVI each). `subdivision` always
     /// takes the four-triangle block; the other methods only the single one.
@@ -111,6 +111,49 @@ pub struct RtlBuild {
     pub lit_top: LitTop,
     /// The order the lit methods' triangles are sent in (`--setup-order`).
     pub setup_order: SetupOrder,
+}
+
+impl Default for RtlBuild {
+    /// Every choice at its default; the simulator the fastest installed ([`Sim::fastest`]).
+    fn default() -> Self {
+        RtlBuild {
+            horner_pipelined: false,
+            sim: Sim::fastest(),
+            address: Address::default(),
+            lit_top: LitTop::default(),
+            setup_order: SetupOrder::default(),
+        }
+    }
+}
+
+/// The Verilator designs rendering `methods` with `build` steps (to compile them before the
+/// run, in parallel).
+pub fn designs(methods: &[Method], build: RtlBuild) -> Result<Vec<verilated::Design>> {
+    let mut out: Vec<verilated::Design> = Vec::new();
+    for &m in methods {
+        if m == Method::Flat {
+            continue;
+        }
+        let four = matches!(
+            (m, build.address),
+            (Method::Gouraud, Address::FourTriangle) | (Method::Subdivision, _)
+        );
+        let d = if four {
+            pipeline::subdivision::SubPipe::design(build.lit_top == LitTop::Stream)
+        } else if m == Method::Gouraud {
+            Pipe::design(build.lit_top.resolve() == LitTop::Stream)
+        } else if SPAN_METHODS.contains(&m) {
+            SpanPipe::design(m, build.horner_pipelined, build.lit_top == LitTop::Stream)
+                .map_err(|e| anyhow::anyhow!(e))?
+        } else {
+            LitPipe::design(m, build.lit_top.resolve() == LitTop::Stream)
+                .map_err(|e| anyhow::anyhow!(e))?
+        };
+        if !out.iter().any(|o| o.key == d.key) {
+            out.push(d);
+        }
+    }
+    Ok(out)
 }
 
 /// The order in which the driver sends the lit methods' triangles (`--setup-order`). The
@@ -144,7 +187,8 @@ impl SetupOrder {
 /// The top the lit methods' and `gouraud`'s frames go through (`--lit-top`).
 #[derive(clap::ValueEnum, Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum LitTop {
-    /// `stream` under rust-hdl, `pipeline` under Verilator (whose replay drives the ports).
+    /// `stream` for the lit methods and `gouraud` (single address block), `pipeline` for the
+    /// span methods and `subdivision`.
     #[default]
     Default,
     /// `pixel-stream` / `gouraud-stream` / `cubic-stream` / `angular-stream` / `fast-stream` /
@@ -157,15 +201,11 @@ pub enum LitTop {
 }
 
 impl LitTop {
-    /// The top used with simulator `sim`.
-    pub fn resolve(self, sim: Sim) -> Result<LitTop> {
-        match (self, sim) {
-            (LitTop::Default, Sim::RustHdl) => Ok(LitTop::Stream),
-            (LitTop::Default, Sim::Verilator) => Ok(LitTop::Pipeline),
-            (LitTop::Stream, Sim::Verilator) => Err(anyhow::anyhow!(
-                "--lit-top stream runs under rust-hdl only (the Verilator engine replays pixel-pipeline's and gouraud-raster's ports); use --lit-top pipeline or --sim rust-hdl"
-            )),
-            (t, _) => Ok(t),
+    /// The top of the lit methods and `gouraud` (single address block).
+    pub fn resolve(self) -> LitTop {
+        match self {
+            LitTop::Default => LitTop::Stream,
+            t => t,
         }
     }
 }
@@ -297,18 +337,9 @@ pub fn render_lit_rtl_with(
     let order = build.setup_order.of(&jobs);
     let sent: Vec<LitJob> = order.iter().map(|&i| jobs[i]).collect();
     let mut writer = FrameWriter::new(width, height);
-    let top = build.lit_top.resolve(build.sim)?;
-    let mut pipe = match build.sim {
-        Sim::RustHdl if top == LitTop::Stream => {
-            LitPipe::stream(method).map_err(|e| anyhow::anyhow!("RTL set-up: {e}"))?
-        }
-        Sim::RustHdl => LitPipe::new(method).map_err(|e| anyhow::anyhow!("RTL set-up: {e}"))?,
-        Sim::Verilator => {
-            let o = pipeline::lit::method_options(method)
-                .ok_or_else(|| anyhow::anyhow!("no lit pipeline build for {method}"))?;
-            LitPipe::replay(crate::verilator_engine::lit_replay(&o, &sent, &regs)?)
-        }
-    };
+    let stream = build.lit_top.resolve() == LitTop::Stream;
+    let mut pipe = LitPipe::on(method, build.sim, stream)
+        .map_err(|e| anyhow::anyhow!("RTL set-up: {e}"))?;
     let stats = pipe
         .run(
             &sent,
@@ -357,23 +388,12 @@ pub fn render_span_rtl(
     // (`--lit-top stream`, rust-hdl): a line's record is 12 set-up words, so on meshes whose triangles
     // give lines of a few pixels the stream is set-up bound (the default scene: see the
     // README) and the main job keeps `cubic-pipeline`'s ports.
-    build.lit_top.resolve(build.sim)?;
-    let mut pipe = if method == Method::Cubic && build.lit_top == LitTop::Stream {
-        SpanPipe::cubic_stream(build.horner_pipelined)
-    } else if matches!(
-        method,
-        Method::Angular | Method::Fast | Method::FastFit | Method::Quadric
-    ) && build.lit_top == LitTop::Stream
-    {
-        // `angular-stream`, `fast-stream` and `quadric-stream` likewise: a line's record is 14,
-        // 20 or 5 words (a quadric triangle's first line 41) and a line of m + 1 pixels takes
-        // ⌊m/2⌋ + 1 clocks, so lines under 27, 39 or 9 pixels are set-up bound.
-        SpanPipe::span_stream(method)
-    } else {
-        SpanPipe::with_horner(method, build.horner_pipelined)
-    }
-    .map_err(|e| anyhow::anyhow!("RTL set-up: {e}"))?;
-    let kind = pipe.kind();
+    // `angular-stream`, `fast-stream` and `quadric-stream` likewise: a line's record is 14,
+    // 20 or 5 words (a quadric triangle's first line 41) and a line of m + 1 pixels takes
+    // ⌊m/2⌋ + 1 clocks, so lines under 27, 39 or 9 pixels are set-up bound.
+    let stream = build.lit_top == LitTop::Stream;
+    let mut pipe = SpanPipe::on(method, build.horner_pipelined, build.sim, stream)
+        .map_err(|e| anyhow::anyhow!("RTL set-up: {e}"))?;
     let mut spans = Vec::new();
     let mut depth = Vec::with_capacity(tris.len());
     for (i, t) in tris.iter().enumerate() {
@@ -386,12 +406,6 @@ pub fn render_span_rtl(
     }
     progress.set_length(spans.len() as u64);
     progress.set_position(0);
-    if build.sim == Sim::Verilator {
-        pipe = SpanPipe::replay(
-            kind,
-            crate::verilator_engine::span_replay(kind, &spans, &regs)?,
-        );
-    }
     let mut writer = FrameWriter::new(width, height);
     let stats = pipe
         .run(
@@ -520,14 +534,9 @@ pub fn render_gouraud_rtl_with(
         .setup_order
         .of_addrs(&jobs.iter().map(|j| j.addr).collect::<Vec<_>>());
     let sent: Vec<TriangleJob> = order.iter().map(|&i| jobs[i]).collect();
-    let top = build.lit_top.resolve(build.sim)?;
-    let mut pipe = match build.sim {
-        Sim::RustHdl if top == LitTop::Stream => {
-            Pipe::stream().map_err(|e| anyhow::anyhow!("RTL set-up: {e}"))?
-        }
-        Sim::RustHdl => Pipe::new().map_err(|e| anyhow::anyhow!("RTL set-up: {e}"))?,
-        Sim::Verilator => Pipe::replay(crate::verilator_engine::gouraud_replay(&sent)?),
-    };
+    let stream = build.lit_top.resolve() == LitTop::Stream;
+    let mut pipe =
+        Pipe::on(build.sim, stream).map_err(|e| anyhow::anyhow!("RTL set-up: {e}"))?;
     let mut winner = vec![usize::MAX; width as usize * height as usize];
     let stats = pipe
         .run(
@@ -585,14 +594,8 @@ pub fn render_subdivision_rtl(
     progress.set_length(jobs.len() as u64);
     progress.set_position(0);
     let mut frame = Frame::new(width, height);
-    build.lit_top.resolve(build.sim)?;
-    let mut pipe = match build.sim {
-        Sim::RustHdl if build.lit_top == LitTop::Stream => {
-            SubPipe::stream().map_err(|e| anyhow::anyhow!("RTL set-up: {e}"))?
-        }
-        Sim::RustHdl => SubPipe::new().map_err(|e| anyhow::anyhow!("RTL set-up: {e}"))?,
-        Sim::Verilator => SubPipe::replay(crate::verilator_engine::subdivision_replay(&jobs)?),
-    };
+    let mut pipe = SubPipe::on(build.sim, build.lit_top == LitTop::Stream)
+        .map_err(|e| anyhow::anyhow!("RTL set-up: {e}"))?;
     let stats = pipe
         .run(
             &jobs,

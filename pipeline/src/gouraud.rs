@@ -15,7 +15,9 @@ use golden::intensity_interpolator::{self as gbvi, ChannelWords};
 use golden::shade::ShadeContext;
 use golden::types::{Plane, ScreenTriangle};
 use rtl::gouraud_raster::GouraudRaster;
-use rtl::sim::Stepper;
+use rtl::sim::Model;
+
+use crate::engine::Sim;
 
 /// One triangle's complete set-up for the raster pipe.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -138,77 +140,59 @@ impl PipeStats {
     }
 }
 
-enum PipeSim {
-    Rust(Box<Stepper<GouraudRaster>>),
-    /// The AXI4-Stream top `gouraud-stream` (triangle records in, fragment beats out).
-    Stream(Box<Stepper<rtl::gouraud_stream::GouraudStream>>),
-    Replay(crate::replay::Replay),
-}
-
-/// The raster pipe, stepped by hand through [`Stepper`] (or a recorded run replayed).
+/// The raster pipe, `gouraud-raster` or its AXI4-Stream top `gouraud-stream`, on either
+/// simulator ([`Sim`]).
 pub struct Pipe {
-    sim: PipeSim,
+    model: Box<dyn Model>,
+    stream: bool,
 }
 
 impl Pipe {
+    /// `gouraud-raster` on rust-hdl.
     pub fn new() -> Result<Pipe, String> {
-        Ok(Pipe {
-            sim: PipeSim::Rust(Box::new(Stepper::new(GouraudRaster::default())?)),
-        })
+        Pipe::on(Sim::RustHdl, false)
     }
 
-    /// The AXI4-Stream top `gouraud-stream`: [`Pipe::run`] sends every triangle record on its
-    /// set-up stream (one word per clock while `s_axis_tready`) and takes every fragment beat
-    /// (`m_axis_tready` high).
+    /// The AXI4-Stream top `gouraud-stream` on rust-hdl: [`Pipe::run`] sends every triangle
+    /// record on its set-up stream (one word per clock while `s_axis_tready`) and takes every
+    /// fragment beat (`m_axis_tready` high).
     pub fn stream() -> Result<Pipe, String> {
-        Ok(Pipe {
-            sim: PipeSim::Stream(Box::new(Stepper::new(
-                rtl::gouraud_stream::GouraudStream::default(),
-            )?)),
-        })
+        Pipe::on(Sim::RustHdl, true)
     }
 
-    /// A recorded run of the pipe (see [`crate::replay`]).
-    pub fn replay(r: crate::replay::Replay) -> Pipe {
-        Pipe {
-            sim: PipeSim::Replay(r),
+    /// `gouraud-raster` (or `gouraud-stream` if `stream`) on `sim`.
+    pub fn on(sim: Sim, stream: bool) -> Result<Pipe, String> {
+        let model = if stream {
+            crate::engine::model::<rtl::gouraud_stream::GouraudStream>(&Default::default(), sim)?
+        } else {
+            crate::engine::model::<GouraudRaster>(&Default::default(), sim)?
+        };
+        Ok(Pipe { model, stream })
+    }
+
+    /// The design [`Pipe::on`] builds under Verilator.
+    pub fn design(stream: bool) -> verilated::Design {
+        if stream {
+            crate::engine::design::<rtl::gouraud_stream::GouraudStream>(&Default::default())
+        } else {
+            crate::engine::design::<GouraudRaster>(&Default::default())
         }
     }
 
-    /// Trace every following clock into `w` (rust-hdl only).
-    pub fn start_vcd(&mut self, w: Box<dyn Write>) {
-        match &mut self.sim {
-            PipeSim::Rust(s) => s.start_vcd(w),
-            PipeSim::Stream(s) => s.start_vcd(w),
-            PipeSim::Replay(_) => {}
-        }
-    }
-
-    fn ready(&self) -> bool {
-        match &self.sim {
-            PipeSim::Rust(s) => s.dut().ready.val(),
-            PipeSim::Replay(r) => r.ready(),
-            PipeSim::Stream(_) => unreachable!("the stream top is run by run_stream"),
-        }
-    }
-
-    fn step(&mut self, row: &[u64], out: &mut [u64]) -> Result<(), String> {
-        match &mut self.sim {
-            PipeSim::Rust(s) => s.step(row, out),
-            PipeSim::Replay(r) => r.step(row, out),
-            PipeSim::Stream(_) => unreachable!("the stream top is run by run_stream"),
-        }
+    /// Trace every following clock into `w` (rust-hdl only: an error on Verilator).
+    pub fn start_vcd(&mut self, w: Box<dyn Write>) -> Result<(), String> {
+        self.model.start_vcd(w)
     }
 
     /// [`Pipe::run`] through the stream top.
     fn run_stream(
-        s: &mut Stepper<rtl::gouraud_stream::GouraudStream>,
+        s: &mut dyn Model,
         jobs: &[TriangleJob],
         max_clocks: u64,
         pixel: &mut dyn FnMut(usize, u32, u32, [u8; 3]),
         progress: &mut dyn FnMut(u64),
     ) -> Result<PipeStats, String> {
-        crate::stream::drive(
+        crate::stream::drive::<rtl::gouraud_stream::GouraudStream>(
             s,
             "gouraud-stream",
             "triangles",
@@ -232,9 +216,16 @@ impl Pipe {
         mut pixel: impl FnMut(usize, u32, u32, [u8; 3]),
         mut progress: impl FnMut(u64),
     ) -> Result<PipeStats, String> {
-        if let PipeSim::Stream(s) = &mut self.sim {
-            return Self::run_stream(s, jobs, max_clocks, &mut pixel, &mut progress);
+        if self.stream {
+            return Self::run_stream(
+                self.model.as_mut(),
+                jobs,
+                max_clocks,
+                &mut pixel,
+                &mut progress,
+            );
         }
+        crate::stream::first_output_is(self.model.as_ref(), "ready")?;
         let mut st = PipeStats::default();
         let mut out = vec![0u64; 8];
         let idle = pipe_row(None);
@@ -248,11 +239,11 @@ impl Pipe {
                 ));
             }
             // `ready` is a register output: its value for this clock is already settled.
-            let load = (self.ready() && next < jobs.len()).then(|| &jobs[next]);
+            let load = (self.model.peek(0) != 0 && next < jobs.len()).then(|| &jobs[next]);
             next += load.is_some() as usize;
             match load {
-                Some(j) => self.step(&pipe_row(Some(j)), &mut out)?,
-                None => self.step(&idle, &mut out)?,
+                Some(j) => self.model.step(&pipe_row(Some(j)), &mut out)?,
+                None => self.model.step(&idle, &mut out)?,
             }
             st.clocks += 1;
             if out[1] != 0 {
@@ -269,9 +260,7 @@ impl Pipe {
                 progress(st.triangles);
             }
         }
-        if let PipeSim::Rust(s) = &mut self.sim {
-            s.stop_vcd();
-        }
+        self.model.stop_vcd();
         Ok(st)
     }
 }

@@ -19,7 +19,9 @@ use golden::vector_interpolator as gvi;
 use rtl::fixed::NORMAL;
 use rtl::pixel_pipeline::PixelPipeline;
 use rtl::registry::{BlockParams, Options, RtlBlock};
-use rtl::sim::Stepper;
+use rtl::sim::Model;
+
+use crate::engine::Sim;
 
 use crate::gouraud::{row_setup, setup_row, PipeStats};
 
@@ -219,81 +221,68 @@ pub struct Fragment {
     pub clock: u64,
 }
 
-enum LitSim {
-    Rust(Box<Stepper<PixelPipeline>>),
-    /// The AXI4-Stream top `pixel-stream` (set-up records in, fragment beats out).
-    Stream(Box<Stepper<rtl::pixel_stream::PixelStream>>),
-    Replay(crate::replay::Replay),
-}
-
-/// The lit pipeline, stepped by hand (or a recorded run replayed).
+/// The lit pipeline, `pixel-pipeline` or its AXI4-Stream top `pixel-stream`, on either
+/// simulator ([`crate::engine::Sim`]).
 pub struct LitPipe {
-    sim: LitSim,
+    model: Box<dyn Model>,
+    /// `pixel-stream` (records in, beats out) rather than `pixel-pipeline`'s ports.
+    stream: bool,
 }
 
 impl LitPipe {
-    /// The pipeline built for `method` (one of [`LIT_METHODS`]).
+    /// The pipeline built for `method` (one of [`LIT_METHODS`]), on rust-hdl.
     pub fn new(method: Method) -> Result<LitPipe, String> {
-        let p = pipeline_params(method)?;
-        Ok(LitPipe {
-            sim: LitSim::Rust(Box::new(Stepper::new(PixelPipeline::new(&p))?)),
-        })
+        LitPipe::on(method, Sim::RustHdl, false)
     }
 
-    /// The AXI4-Stream top `pixel-stream` built for `method`: [`LitPipe::run`] sends the
-    /// register record and every triangle record on its set-up stream (one word per clock
-    /// while `s_axis_tready`) and takes every fragment beat (`m_axis_tready` high).
+    /// The AXI4-Stream top `pixel-stream` built for `method`, on rust-hdl: [`LitPipe::run`]
+    /// sends the register record and every triangle record on its set-up stream (one word per
+    /// clock while `s_axis_tready`) and takes every fragment beat (`m_axis_tready` high).
     pub fn stream(method: Method) -> Result<LitPipe, String> {
+        LitPipe::on(method, Sim::RustHdl, true)
+    }
+
+    /// `pixel-pipeline` (or `pixel-stream` if `stream`) built for `method`, on `sim`.
+    pub fn on(method: Method, sim: Sim, stream: bool) -> Result<LitPipe, String> {
         let p = pipeline_params(method)?;
-        Ok(LitPipe {
-            sim: LitSim::Stream(Box::new(Stepper::new(
-                rtl::pixel_stream::PixelStream::new(&p),
-            )?)),
+        let model = if stream {
+            crate::engine::model::<rtl::pixel_stream::PixelStream>(&p, sim)?
+        } else {
+            crate::engine::model::<PixelPipeline>(&p, sim)?
+        };
+        Ok(LitPipe { model, stream })
+    }
+
+    /// The design [`LitPipe::on`] builds under Verilator (to compile ahead of a run).
+    pub fn design(method: Method, stream: bool) -> Result<verilated::Design, String> {
+        let p = pipeline_params(method)?;
+        Ok(if stream {
+            crate::engine::design::<rtl::pixel_stream::PixelStream>(&p)
+        } else {
+            crate::engine::design::<PixelPipeline>(&p)
         })
     }
 
-    /// A recorded run of the pipeline (see [`crate::replay`]).
-    pub fn replay(r: crate::replay::Replay) -> LitPipe {
-        LitPipe {
-            sim: LitSim::Replay(r),
-        }
+    /// Trace every following clock into `w` (rust-hdl only: an error on Verilator).
+    pub fn start_vcd(&mut self, w: Box<dyn Write>) -> Result<(), String> {
+        self.model.start_vcd(w)
     }
 
-    /// Trace every following clock into `w` (rust-hdl only).
-    pub fn start_vcd(&mut self, w: Box<dyn Write>) {
-        match &mut self.sim {
-            LitSim::Rust(s) => s.start_vcd(w),
-            LitSim::Stream(s) => s.start_vcd(w),
-            LitSim::Replay(_) => {}
-        }
-    }
-
-    fn ready(&self) -> bool {
-        match &self.sim {
-            LitSim::Rust(s) => s.dut().ready.val(),
-            LitSim::Replay(r) => r.ready(),
-            LitSim::Stream(_) => unreachable!("the stream top is run by run_stream"),
-        }
-    }
-
-    fn step(&mut self, row: &[u64], out: &mut [u64]) -> Result<(), String> {
-        match &mut self.sim {
-            LitSim::Rust(s) => s.step(row, out),
-            LitSim::Replay(r) => r.step(row, out),
-            LitSim::Stream(_) => unreachable!("the stream top is run by run_stream"),
-        }
+    /// The simulated top, for a caller that steps it itself.
+    pub fn model(&mut self) -> &mut dyn Model {
+        self.model.as_mut()
     }
 
     /// [`LitPipe::run`] through the stream top.
     fn run_stream(
-        s: &mut Stepper<rtl::pixel_stream::PixelStream>,
+        s: &mut dyn Model,
         jobs: &[LitJob],
         regs: &ShadingRegs,
         max_clocks: u64,
         fragment: &mut dyn FnMut(Fragment),
         progress: &mut dyn FnMut(u64),
     ) -> Result<PipeStats, String> {
-        crate::stream::drive(
+        crate::stream::drive::<rtl::pixel_stream::PixelStream>(
             s,
             "pixel-stream",
             "triangles",
@@ -325,8 +314,15 @@ impl LitPipe {
         mut fragment: impl FnMut(Fragment),
         mut progress: impl FnMut(u64),
     ) -> Result<PipeStats, String> {
-        if let LitSim::Stream(s) = &mut self.sim {
-            return Self::run_stream(s, jobs, regs, max_clocks, &mut fragment, &mut progress);
+        if self.stream {
+            return Self::run_stream(
+                self.model.as_mut(),
+                jobs,
+                regs,
+                max_clocks,
+                &mut fragment,
+                &mut progress,
+            );
         }
         let mut st = PipeStats::default();
         let mut out = vec![0u64; 9];
@@ -340,11 +336,13 @@ impl LitPipe {
                     jobs.len()
                 ));
             }
-            let load = (self.ready() && next < jobs.len()).then(|| &jobs[next]);
+            // `ready` (output 0) is a register output: settled before the clock's step.
+            let ready = self.model.peek(0) != 0;
+            let load = (ready && next < jobs.len()).then(|| &jobs[next]);
             next += load.is_some() as usize;
             match load {
-                Some(j) => self.step(&lit_row(Some(j), regs), &mut out)?,
-                None => self.step(&idle, &mut out)?,
+                Some(j) => self.model.step(&lit_row(Some(j), regs), &mut out)?,
+                None => self.model.step(&idle, &mut out)?,
             }
             st.clocks += 1;
             if out[1] != 0 {
@@ -363,9 +361,7 @@ impl LitPipe {
                 progress(st.triangles);
             }
         }
-        if let LitSim::Rust(s) = &mut self.sim {
-            s.stop_vcd();
-        }
+        self.model.stop_vcd();
         Ok(st)
     }
 }

@@ -29,7 +29,9 @@ use rtl::horner_unit::HornerParams;
 use rtl::quadric_stream::QuadricStream;
 use rtl::quadric_unit::QuadricUnit;
 use rtl::registry::{BlockParams, Options, RtlBlock};
-use rtl::sim::Stepper;
+use rtl::sim::Model;
+
+use crate::engine::Sim;
 use rtl::span_pipeline::{AngularPipeline, FastPipeline, FastPipelineParams};
 
 use crate::gouraud::PipeStats;
@@ -348,178 +350,151 @@ pub struct SpanFragment {
     pub lane_b: bool,
 }
 
-enum Top {
-    Angular(Box<Stepper<AngularPipeline>>),
-    Fast(Box<Stepper<FastPipeline>>),
-    Cubic(Box<Stepper<CubicPipeline>>),
-    /// The cubic pipeline's AXI4-Stream top (line records in, fragment beats out).
-    CubicStream(Box<Stepper<CubicStream>>),
-    /// The angular pipeline's AXI4-Stream top (line and register records in, a fragment
-    /// stream per lane out).
-    AngularStream(Box<Stepper<AngularStream>>),
-    /// The fast pipeline's AXI4-Stream top (as `angular-stream`).
-    FastStream(Box<Stepper<FastStream>>),
-    /// The quadric unit's AXI4-Stream top (as `angular-stream`, without registers).
-    QuadricStream(Box<Stepper<QuadricStream>>),
-    Quadric(Box<Stepper<QuadricUnit>>),
-    Replay(crate::replay::Replay),
+/// How a span top is driven.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Shape {
+    /// A pipeline's ports (`angular-pipeline`, `fast-pipeline`, `cubic-pipeline`,
+    /// `quadric-unit`): a line loaded whenever `ready`.
+    Ports,
+    /// `cubic-stream`: line records in, one fragment stream out.
+    CubicStream,
+    /// A two-lane stream top: `angular-stream`, `fast-stream`, `quadric-stream`.
+    AngularStream,
+    FastStream,
+    QuadricStream,
 }
 
-/// A span pipeline, stepped by hand.
+/// A span pipeline or its stream top, on either simulator ([`Sim`]).
 pub struct SpanPipe {
     kind: SpanKind,
-    top: Top,
+    model: Box<dyn Model>,
+    shape: Shape,
+    latency: usize,
+}
+
+fn span_kind(method: Method, pipelined: bool) -> Result<SpanKind, String> {
+    SpanKind::of(method)
+        .map(|k| k.with_horner(pipelined))
+        .ok_or_else(|| {
+            format!(
+                "the RTL span pipelines do not compute {method} (they have: {})",
+                SPAN_METHODS.map(|m| m.name()).join(", ")
+            )
+        })
+}
+
+/// A top for `kind` in `shape`, on `sim` (`design`: its Verilator design instead).
+fn top_of(kind: SpanKind, shape: Shape, sim: Option<Sim>) -> Result<(Option<Box<dyn Model>>, Option<verilated::Design>, usize), String> {
+    use crate::engine::{design, model};
+    fn one<B: RtlBlock + 'static>(
+        p: &B::Params,
+        sim: Option<Sim>,
+    ) -> Result<(Option<Box<dyn Model>>, Option<verilated::Design>, usize), String> {
+        Ok(match sim {
+            Some(sim) => (Some(model::<B>(p, sim)?), None, B::LATENCY),
+            None => (None, Some(design::<B>(p)), B::LATENCY),
+        })
+    }
+    let cubic = |pipelined| CubicParams(HornerParams { pipelined });
+    match (shape, kind) {
+        (Shape::Ports, SpanKind::Angular) => one::<AngularPipeline>(&Default::default(), sim),
+        (Shape::Ports, SpanKind::Fast(_)) => one::<FastPipeline>(&kind.fast_params(), sim),
+        (Shape::Ports, SpanKind::Cubic { pipelined }) => one::<CubicPipeline>(&cubic(pipelined), sim),
+        (Shape::Ports, SpanKind::Quadric) => one::<QuadricUnit>(&Default::default(), sim),
+        (Shape::CubicStream, SpanKind::Cubic { pipelined }) => one::<CubicStream>(&cubic(pipelined), sim),
+        (Shape::AngularStream, _) => one::<AngularStream>(&Default::default(), sim),
+        (Shape::FastStream, _) => one::<FastStream>(&kind.fast_params(), sim),
+        (Shape::QuadricStream, _) => one::<QuadricStream>(&Default::default(), sim),
+        _ => Err(format!("no {shape:?} top for {kind:?}")),
+    }
+}
+
+/// The two-lane stream top of `kind`, if it has one.
+fn lane_shape(kind: SpanKind) -> Option<Shape> {
+    match kind {
+        SpanKind::Angular => Some(Shape::AngularStream),
+        SpanKind::Fast(_) => Some(Shape::FastStream),
+        SpanKind::Quadric => Some(Shape::QuadricStream),
+        SpanKind::Cubic { .. } => None,
+    }
 }
 
 impl SpanPipe {
     /// The span pipeline for `method` (one of [`SPAN_METHODS`]; `cubic` with the serial Horner
-    /// unit).
+    /// unit), on rust-hdl.
     pub fn new(method: Method) -> Result<SpanPipe, String> {
         SpanPipe::with_horner(method, false)
     }
 
     /// As [`SpanPipe::new`], `cubic` through the pipelined Horner units if `pipelined`.
     pub fn with_horner(method: Method, pipelined: bool) -> Result<SpanPipe, String> {
-        let kind = SpanKind::of(method)
-            .map(|k| k.with_horner(pipelined))
-            .ok_or_else(|| {
-                format!(
-                    "the RTL span pipelines do not compute {method} (they have: {})",
-                    SPAN_METHODS.map(|m| m.name()).join(", ")
-                )
-            })?;
-        let top = match kind {
-            SpanKind::Angular => Top::Angular(Box::new(Stepper::new(AngularPipeline::default())?)),
-            SpanKind::Fast(_) => Top::Fast(Box::new(Stepper::new(FastPipeline::new(
-                &kind.fast_params(),
-            ))?)),
-            SpanKind::Cubic { pipelined } => Top::Cubic(Box::new(Stepper::new(
-                CubicPipeline::new(&CubicParams(HornerParams { pipelined })),
-            )?)),
-            SpanKind::Quadric => Top::Quadric(Box::new(Stepper::new(QuadricUnit::default())?)),
-        };
-        Ok(SpanPipe { kind, top })
+        SpanPipe::on(method, pipelined, Sim::RustHdl, false)
+    }
+
+    /// The span top for `method` on `sim`: its pipeline's ports, or with `stream` its AXI4-Stream
+    /// top (`cubic-stream`, or the two-lane `angular-stream`, `fast-stream`, `quadric-stream`).
+    /// `pipelined` picks the Horner units of `cubic`.
+    pub fn on(method: Method, pipelined: bool, sim: Sim, stream: bool) -> Result<SpanPipe, String> {
+        let kind = span_kind(method, pipelined)?;
+        let shape = SpanPipe::shape(kind, stream)?;
+        let (model, _, latency) = top_of(kind, shape, Some(sim))?;
+        Ok(SpanPipe {
+            kind,
+            model: model.expect("built on a simulator"),
+            shape,
+            latency,
+        })
+    }
+
+    fn shape(kind: SpanKind, stream: bool) -> Result<Shape, String> {
+        Ok(match (stream, kind) {
+            (false, _) => Shape::Ports,
+            (true, SpanKind::Cubic { .. }) => Shape::CubicStream,
+            (true, k) => lane_shape(k).ok_or_else(|| format!("{k:?} has no stream top"))?,
+        })
+    }
+
+    /// The design [`SpanPipe::on`] builds under Verilator.
+    pub fn design(method: Method, pipelined: bool, stream: bool) -> Result<verilated::Design, String> {
+        let kind = span_kind(method, pipelined)?;
+        let (_, d, _) = top_of(kind, SpanPipe::shape(kind, stream)?, None)?;
+        Ok(d.expect("a design"))
     }
 
     /// `cubic` through its AXI4-Stream top `cubic-stream` (pipelined Horner units if
-    /// `pipelined`): [`SpanPipe::run`] sends every line's record on the set-up stream (one
-    /// word per clock while `s_axis_tready`) and takes every fragment beat (`m_axis_tready`
-    /// high).
+    /// `pipelined`), on rust-hdl: [`SpanPipe::run`] sends every line's record on the set-up
+    /// stream (one word per clock while `s_axis_tready`) and takes every fragment beat
+    /// (`m_axis_tready` high).
     pub fn cubic_stream(pipelined: bool) -> Result<SpanPipe, String> {
-        Ok(SpanPipe {
-            kind: SpanKind::Cubic { pipelined },
-            top: Top::CubicStream(Box::new(Stepper::new(CubicStream::new(&CubicParams(
-                HornerParams { pipelined },
-            )))?)),
-        })
+        SpanPipe::on(Method::Cubic, pipelined, Sim::RustHdl, true)
     }
 
     /// `angular`, `fast`, `fast-fit` or `quadric` through its AXI4-Stream top
-    /// (`angular-stream`, `fast-stream`, `quadric-stream`): [`SpanPipe::run`] sends the register
-    /// record (not to the quadric's) and every line's record on the set-up stream (one word per
-    /// clock while `s_axis_tready`) and takes every beat of both lanes (both `m_axis_*_tready`
-    /// high).
+    /// (`angular-stream`, `fast-stream`, `quadric-stream`), on rust-hdl: [`SpanPipe::run`] sends
+    /// the register record (not to the quadric's) and every line's record on the set-up stream
+    /// (one word per clock while `s_axis_tready`) and takes every beat of both lanes (both
+    /// `m_axis_*_tready` high).
     pub fn span_stream(method: Method) -> Result<SpanPipe, String> {
-        let kind = SpanKind::of(method);
-        let top = match kind {
-            Some(SpanKind::Angular) => {
-                Top::AngularStream(Box::new(Stepper::new(AngularStream::default())?))
-            }
-            Some(k @ SpanKind::Fast(_)) => {
-                Top::FastStream(Box::new(Stepper::new(FastStream::new(&k.fast_params()))?))
-            }
-            Some(SpanKind::Quadric) => {
-                Top::QuadricStream(Box::new(Stepper::new(QuadricStream::default())?))
-            }
-            _ => {
-                return Err(format!(
-                    "{method} has no two-lane stream top (angular, fast, fast-fit and quadric have)"
-                ))
-            }
-        };
-        Ok(SpanPipe {
-            kind: kind.expect("matched"),
-            top,
-        })
+        match SpanKind::of(method).and_then(lane_shape) {
+            Some(_) => SpanPipe::on(method, false, Sim::RustHdl, true),
+            None => Err(format!(
+                "{method} has no two-lane stream top (angular, fast, fast-fit and quadric have)"
+            )),
+        }
     }
 
     pub fn kind(&self) -> SpanKind {
         self.kind
     }
 
-    /// A recorded run of the top for `kind` (see [`crate::replay`]).
-    pub fn replay(kind: SpanKind, r: crate::replay::Replay) -> SpanPipe {
-        SpanPipe {
-            kind,
-            top: Top::Replay(r),
-        }
-    }
-
     /// Load → first fragments.
     pub fn latency(&self) -> usize {
-        match self.top {
-            Top::Angular(_) => AngularPipeline::LATENCY,
-            Top::Fast(_) => <FastPipeline as RtlBlock>::LATENCY,
-            Top::Cubic(_) => <CubicPipeline as RtlBlock>::LATENCY,
-            Top::CubicStream(_) => <CubicStream as RtlBlock>::LATENCY,
-            Top::AngularStream(_) => <AngularStream as RtlBlock>::LATENCY,
-            Top::FastStream(_) => <FastStream as RtlBlock>::LATENCY,
-            Top::QuadricStream(_) => <QuadricStream as RtlBlock>::LATENCY,
-            Top::Quadric(_) => QuadricUnit::LATENCY,
-            Top::Replay(_) => match self.kind {
-                SpanKind::Angular => AngularPipeline::LATENCY,
-                SpanKind::Fast(_) => <FastPipeline as RtlBlock>::LATENCY,
-                SpanKind::Cubic { .. } => <CubicPipeline as RtlBlock>::LATENCY,
-                SpanKind::Quadric => QuadricUnit::LATENCY,
-            },
-        }
+        self.latency
     }
 
-    /// Trace every following clock into `w`.
-    pub fn start_vcd(&mut self, w: Box<dyn Write>) {
-        match &mut self.top {
-            Top::Angular(s) => s.start_vcd(w),
-            Top::Fast(s) => s.start_vcd(w),
-            Top::Cubic(s) => s.start_vcd(w),
-            Top::CubicStream(s) => s.start_vcd(w),
-            Top::AngularStream(s) => s.start_vcd(w),
-            Top::FastStream(s) => s.start_vcd(w),
-            Top::QuadricStream(s) => s.start_vcd(w),
-            Top::Quadric(s) => s.start_vcd(w),
-            Top::Replay(_) => {}
-        }
-    }
-
-    fn ready(&self) -> bool {
-        match &self.top {
-            Top::Angular(s) => s.dut().ready.val(),
-            Top::Fast(s) => s.dut().ready.val(),
-            Top::Cubic(s) => s.dut().ready.val(),
-            Top::CubicStream(_)
-            | Top::AngularStream(_)
-            | Top::FastStream(_)
-            | Top::QuadricStream(_) => {
-                unreachable!("a stream top is run by its own driver")
-            }
-            Top::Quadric(s) => s.dut().ready.val(),
-            Top::Replay(r) => r.ready(),
-        }
-    }
-
-    fn step(&mut self, row: &[u64], out: &mut [u64]) -> Result<(), String> {
-        match &mut self.top {
-            Top::Angular(s) => s.step(row, out),
-            Top::Fast(s) => s.step(row, out),
-            Top::Cubic(s) => s.step(row, out),
-            Top::CubicStream(_)
-            | Top::AngularStream(_)
-            | Top::FastStream(_)
-            | Top::QuadricStream(_) => {
-                unreachable!("a stream top is run by its own driver")
-            }
-            Top::Quadric(s) => s.step(row, out),
-            Top::Replay(r) => r.step(row, out),
-        }
+    /// Trace every following clock into `w` (rust-hdl only: an error on Verilator).
+    pub fn start_vcd(&mut self, w: Box<dyn Write>) -> Result<(), String> {
+        self.model.start_vcd(w)
     }
 
     /// Run `spans` (from [`span_jobs`], in order) with registers `regs`, each loaded in the clock
@@ -534,16 +509,22 @@ impl SpanPipe {
         mut fragment: impl FnMut(SpanFragment),
         mut progress: impl FnMut(u64),
     ) -> Result<PipeStats, String> {
-        if let Top::CubicStream(s) = &mut self.top {
-            return run_cubic_stream(s, spans, max_clocks, &mut fragment, &mut progress);
-        }
         let (kind, f, p) = (self.kind, &mut fragment, &mut progress);
-        match &mut self.top {
-            Top::AngularStream(s) => return run_lanes(s, kind, spans, regs, max_clocks, f, p),
-            Top::FastStream(s) => return run_lanes(s, kind, spans, regs, max_clocks, f, p),
-            Top::QuadricStream(s) => return run_lanes(s, kind, spans, regs, max_clocks, f, p),
-            _ => {}
+        let s = self.model.as_mut();
+        match self.shape {
+            Shape::CubicStream => return run_cubic_stream(s, spans, max_clocks, f, p),
+            Shape::AngularStream => {
+                return run_lanes::<AngularStream>(s, kind, spans, regs, max_clocks, f, p)
+            }
+            Shape::FastStream => {
+                return run_lanes::<FastStream>(s, kind, spans, regs, max_clocks, f, p)
+            }
+            Shape::QuadricStream => {
+                return run_lanes::<QuadricStream>(s, kind, spans, regs, max_clocks, f, p)
+            }
+            Shape::Ports => {}
         }
+        crate::stream::first_output_is(self.model.as_ref(), "ready")?;
         let mut st = PipeStats::default();
         let mut out = vec![0u64; OUTPUTS];
         let idle = span_row(self.kind, None, regs);
@@ -557,15 +538,15 @@ impl SpanPipe {
                     spans.len()
                 ));
             }
-            let load = (self.ready() && next < spans.len()).then(|| &spans[next]);
+            let load = (self.model.peek(0) != 0 && next < spans.len()).then(|| &spans[next]);
             match load {
                 Some(j) => {
                     in_flight.push_back(j.triangle);
                     next += 1;
                     let row = span_row(self.kind, Some(j), regs);
-                    self.step(&row, &mut out)?;
+                    self.model.step(&row, &mut out)?;
                 }
-                None => self.step(&idle, &mut out)?,
+                None => self.model.step(&idle, &mut out)?,
             }
             st.clocks += 1;
             let triangle = in_flight.front().copied().unwrap_or(usize::MAX);
@@ -593,17 +574,7 @@ impl SpanPipe {
                 }
             }
         }
-        match &mut self.top {
-            Top::Angular(s) => s.stop_vcd(),
-            Top::Fast(s) => s.stop_vcd(),
-            Top::Cubic(s) => s.stop_vcd(),
-            Top::CubicStream(s) => s.stop_vcd(),
-            Top::AngularStream(s) => s.stop_vcd(),
-            Top::FastStream(s) => s.stop_vcd(),
-            Top::QuadricStream(s) => s.stop_vcd(),
-            Top::Quadric(s) => s.stop_vcd(),
-            Top::Replay(_) => {}
-        }
+        self.model.stop_vcd();
         Ok(st)
     }
 }
@@ -611,14 +582,14 @@ impl SpanPipe {
 /// [`SpanPipe::run`] through `cubic-stream`: the lines' records on the set-up stream, every
 /// beat taken; a line ends with its `tlast`.
 fn run_cubic_stream(
-    s: &mut Stepper<CubicStream>,
+    s: &mut dyn Model,
     spans: &[SpanJob],
     max_clocks: u64,
     fragment: &mut dyn FnMut(SpanFragment),
     progress: &mut dyn FnMut(u64),
 ) -> Result<PipeStats, String> {
     let n = spans.len() as u64;
-    crate::stream::drive(
+    crate::stream::drive::<CubicStream>(
         s,
         "cubic-stream",
         "lines",
@@ -649,7 +620,7 @@ fn run_cubic_stream(
 /// taken; a line ends with both lanes' `tlast`.
 #[allow(clippy::too_many_arguments)]
 fn run_lanes<T: crate::stream::LaneTop>(
-    s: &mut Stepper<T>,
+    s: &mut dyn Model,
     kind: SpanKind,
     spans: &[SpanJob],
     regs: &ShadingRegs,
@@ -658,7 +629,7 @@ fn run_lanes<T: crate::stream::LaneTop>(
     progress: &mut dyn FnMut(u64),
 ) -> Result<PipeStats, String> {
     let n = spans.len() as u64;
-    crate::stream::drive_lanes(
+    crate::stream::drive_lanes::<T>(
         s,
         &crate::stream::span_stream_words(kind, spans, regs),
         n,

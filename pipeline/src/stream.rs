@@ -187,6 +187,18 @@ pub fn balanced_order_of(addrs: &[golden::address_block::AddressSetup]) -> Vec<u
     order
 }
 
+/// An error unless `model`'s first output is `name` (the register output a driver reads with
+/// [`rtl::sim::Model::peek`] before each clock).
+pub fn first_output_is(model: &dyn rtl::sim::Model, name: &str) -> Result<(), String> {
+    match model.outputs().first() {
+        Some(p) if p.name == name => Ok(()),
+        other => Err(format!(
+            "the driver reads {name} as output 0, which is {:?}",
+            other.map(|p| p.name)
+        )),
+    }
+}
+
 /// One fragment beat read back.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Beat {
@@ -228,31 +240,21 @@ impl Beat {
     }
 }
 
-/// The set-up side's `s_axis_tready` of a stream top (a register output: settled before the
-/// clock's step), for [`drive`].
+/// What [`drive`] needs to know of a single-stream top (its outputs start with
+/// `s_axis_tready`, a register output).
 pub trait StreamTop: rtl::sim::Dut {
-    fn s_axis_tready(&self) -> bool;
     /// Whether the fragment beat has `m_axis_tuser` (the depth) among the outputs.
     const TUSER: bool = true;
 }
 
 impl StreamTop for rtl::pixel_stream::PixelStream {
-    fn s_axis_tready(&self) -> bool {
-        self.s_axis_tready.val()
-    }
 }
 
 impl StreamTop for rtl::gouraud_stream::GouraudStream {
-    fn s_axis_tready(&self) -> bool {
-        self.s_axis_tready.val()
-    }
     const TUSER: bool = false;
 }
 
 impl StreamTop for rtl::cubic_stream::CubicStream {
-    fn s_axis_tready(&self) -> bool {
-        self.s_axis_tready.val()
-    }
 }
 
 /// The stream tops with a fragment stream per lane (`angular-stream`, `fast-stream`,
@@ -267,28 +269,18 @@ pub trait LaneTop: rtl::sim::Dut {
     const TUSER: bool = true;
     /// What one record loads, for messages ("lines", "parents").
     const RECORDS: &'static str = "lines";
-    fn s_axis_tready(&self) -> bool;
 }
 
 impl LaneTop for rtl::angular_stream::AngularStream {
     const NAME: &'static str = "angular-stream";
-    fn s_axis_tready(&self) -> bool {
-        self.s_axis_tready.val()
-    }
 }
 
 impl LaneTop for rtl::quadric_stream::QuadricStream {
     const NAME: &'static str = "quadric-stream";
-    fn s_axis_tready(&self) -> bool {
-        self.s_axis_tready.val()
-    }
 }
 
 impl LaneTop for rtl::fast_stream::FastStream {
     const NAME: &'static str = "fast-stream";
-    fn s_axis_tready(&self) -> bool {
-        self.s_axis_tready.val()
-    }
 }
 
 impl LaneTop for rtl::subdivision_stream::SubdivisionStream {
@@ -296,9 +288,6 @@ impl LaneTop for rtl::subdivision_stream::SubdivisionStream {
     const LANES: usize = 4;
     const TUSER: bool = false;
     const RECORDS: &'static str = "parents";
-    fn s_axis_tready(&self) -> bool {
-        self.s_axis_tready.val()
-    }
 }
 
 /// [`drive`] for a top's per-lane fragment streams (every `m_axis_*_tready` high):
@@ -307,13 +296,14 @@ impl LaneTop for rtl::subdivision_stream::SubdivisionStream {
 /// record's `tlast`. `records` counts the load records (lines, parents; a register record at
 /// the start is not one).
 pub fn drive_lanes<T: LaneTop>(
-    s: &mut rtl::sim::Stepper<T>,
+    s: &mut dyn rtl::sim::Model,
     words: &[Word],
     records: u64,
     max_clocks: u64,
     fragment: &mut dyn FnMut(usize, Beat, u64, usize),
     record_done: &mut dyn FnMut(u64),
 ) -> Result<crate::gouraud::PipeStats, String> {
+    first_output_is(s, "s_axis_tready")?;
     let mut st = crate::gouraud::PipeStats::default();
     // Outputs: s_axis_tready; per lane tvalid, tdata, [tuser,] tlast; error.
     let per = 3 + T::TUSER as usize;
@@ -330,7 +320,9 @@ pub fn drive_lanes<T: LaneTop>(
                 T::RECORDS
             ));
         }
-        let taken = s.dut().s_axis_tready();
+        // `s_axis_tready` (output 0, checked above) is a register output: settled before the
+        // clock's step.
+        let taken = s.peek(0) != 0;
         let mut row = ready_row.clone();
         if let Some(&(w, last)) = words.get(next) {
             row[..3].copy_from_slice(&[w as u64, 1, last as u64]);
@@ -372,7 +364,7 @@ pub fn drive_lanes<T: LaneTop>(
 /// record. Stops the VCD (if any) at the end.
 #[allow(clippy::too_many_arguments)]
 pub fn drive<T: StreamTop>(
-    s: &mut rtl::sim::Stepper<T>,
+    s: &mut dyn rtl::sim::Model,
     top: &str,
     what: &str,
     words: &[Word],
@@ -381,6 +373,7 @@ pub fn drive<T: StreamTop>(
     fragment: &mut dyn FnMut(usize, Beat, u64),
     record_done: &mut dyn FnMut(u64),
 ) -> Result<crate::gouraud::PipeStats, String> {
+    first_output_is(s, "s_axis_tready")?;
     let mut st = crate::gouraud::PipeStats::default();
     // Outputs: s_axis_tready, m_axis_tvalid, m_axis_tdata, [m_axis_tuser,] m_axis_tlast, error.
     let n_out = if T::TUSER { 6 } else { 5 };
@@ -393,7 +386,9 @@ pub fn drive<T: StreamTop>(
                 st.triangles
             ));
         }
-        let taken = s.dut().s_axis_tready();
+        // `s_axis_tready` (output 0, checked above) is a register output: settled before the
+        // clock's step.
+        let taken = s.peek(0) != 0;
         let row = match words.get(next) {
             Some(&(w, last)) => [w as u64, 1, last as u64, 1],
             None => [0, 0, 0, 1],

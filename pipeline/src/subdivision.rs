@@ -17,7 +17,9 @@ use golden::four_triangle::{EdgeIncrements, FourTriangleSetup, LaneSetup, LANES}
 use golden::intensity_interpolator::{self as gbvi, ChannelWords};
 use golden::shade::ShadeContext;
 use golden::types::{Plane, ScreenTriangle};
-use rtl::sim::Stepper;
+use rtl::sim::Model;
+
+use crate::engine::Sim;
 use rtl::subdivision_raster::SubdivisionRaster;
 
 use crate::gouraud::{row_words, words_row, PipeStats};
@@ -143,57 +145,45 @@ pub fn row_job(row: &[u64]) -> Option<SubJob> {
 /// Output ports of the pipe: `ready`, then per lane valid x y red green blue done.
 pub const OUTPUTS: usize = 1 + 7 * LANES;
 
-enum SubSim {
-    Rust(Box<Stepper<SubdivisionRaster>>),
-    Replay(crate::replay::Replay),
-    /// Through the stream top `subdivision-stream` (parent records in, a fragment stream per
-    /// lane out).
-    Stream(Box<Stepper<rtl::subdivision_stream::SubdivisionStream>>),
-}
-
-/// The subdivision raster pipe, stepped by hand (or a recorded run replayed).
+/// The subdivision raster pipe, `subdivision-raster` or its AXI4-Stream top
+/// `subdivision-stream`, on either simulator ([`Sim`]).
 pub struct SubPipe {
-    sim: SubSim,
+    model: Box<dyn Model>,
+    stream: bool,
 }
 
 impl SubPipe {
+    /// `subdivision-raster` on rust-hdl.
     pub fn new() -> Result<SubPipe, String> {
-        Ok(SubPipe {
-            sim: SubSim::Rust(Box::new(Stepper::new(SubdivisionRaster::default())?)),
-        })
+        SubPipe::on(Sim::RustHdl, false)
     }
 
-    /// The pipe through its AXI4-Stream top `subdivision-stream`: each parent a 72-word
-    /// record on the set-up stream, each lane's fragments on its own stream (every `tready`
-    /// high).
+    /// The pipe through its AXI4-Stream top `subdivision-stream` on rust-hdl: each parent a
+    /// 72-word record on the set-up stream, each lane's fragments on its own stream (every
+    /// `tready` high).
     pub fn stream() -> Result<SubPipe, String> {
-        Ok(SubPipe {
-            sim: SubSim::Stream(Box::new(Stepper::new(
-                rtl::subdivision_stream::SubdivisionStream::default(),
-            )?)),
-        })
+        SubPipe::on(Sim::RustHdl, true)
     }
 
-    /// A recorded run (see [`crate::replay`]).
-    pub fn replay(r: crate::replay::Replay) -> SubPipe {
-        SubPipe {
-            sim: SubSim::Replay(r),
-        }
+    /// `subdivision-raster` (or `subdivision-stream` if `stream`) on `sim`.
+    pub fn on(sim: Sim, stream: bool) -> Result<SubPipe, String> {
+        let model = if stream {
+            crate::engine::model::<rtl::subdivision_stream::SubdivisionStream>(
+                &Default::default(),
+                sim,
+            )?
+        } else {
+            crate::engine::model::<SubdivisionRaster>(&Default::default(), sim)?
+        };
+        Ok(SubPipe { model, stream })
     }
 
-    fn ready(&self) -> bool {
-        match &self.sim {
-            SubSim::Rust(s) => s.dut().ready.val(),
-            SubSim::Replay(r) => r.ready(),
-            SubSim::Stream(_) => unreachable!("the stream top is driven by its stream"),
-        }
-    }
-
-    fn step(&mut self, row: &[u64], out: &mut [u64]) -> Result<(), String> {
-        match &mut self.sim {
-            SubSim::Rust(s) => s.step(row, out),
-            SubSim::Replay(r) => r.step(row, out),
-            SubSim::Stream(_) => unreachable!("the stream top is driven by its stream"),
+    /// The design [`SubPipe::on`] builds under Verilator.
+    pub fn design(stream: bool) -> verilated::Design {
+        if stream {
+            crate::engine::design::<rtl::subdivision_stream::SubdivisionStream>(&Default::default())
+        } else {
+            crate::engine::design::<SubdivisionRaster>(&Default::default())
         }
     }
 
@@ -208,10 +198,10 @@ impl SubPipe {
         mut pixel: impl FnMut(usize, u32, u32, [u8; 3]),
         mut progress: impl FnMut(u64),
     ) -> Result<PipeStats, String> {
-        if let SubSim::Stream(s) = &mut self.sim {
+        if self.stream {
             let n = jobs.len() as u64;
-            return crate::stream::drive_lanes(
-                s,
+            return crate::stream::drive_lanes::<rtl::subdivision_stream::SubdivisionStream>(
+                self.model.as_mut(),
                 &crate::stream::subdivision_words(jobs),
                 n,
                 max_clocks,
@@ -219,6 +209,7 @@ impl SubPipe {
                 &mut |done| progress(done),
             );
         }
+        crate::stream::first_output_is(self.model.as_ref(), "ready")?;
         let mut st = PipeStats::default();
         let mut out = vec![0u64; OUTPUTS];
         let idle = pipe_row(None);
@@ -231,11 +222,11 @@ impl SubPipe {
                     "subdivision pipe: lanes done {dones:?} of {n} parents after {max_clocks} clocks"
                 ));
             }
-            let load = (self.ready() && next < n).then(|| &jobs[next]);
+            let load = (self.model.peek(0) != 0 && next < n).then(|| &jobs[next]);
             next += load.is_some() as usize;
             match load {
-                Some(j) => self.step(&pipe_row(Some(j)), &mut out)?,
-                None => self.step(&idle, &mut out)?,
+                Some(j) => self.model.step(&pipe_row(Some(j)), &mut out)?,
+                None => self.model.step(&idle, &mut out)?,
             }
             st.clocks += 1;
             let before = *dones.iter().min().unwrap();

@@ -39,10 +39,11 @@ pub struct Args {
     /// Write a waveform (VCD) of the RTL run here (RTL engine under rust-hdl only).
     #[arg(long)]
     pub vcd: Option<PathBuf>,
-    /// With `--engine rtl`: the simulator — rust-hdl, or the exported Verilog under verilator
-    /// (the same CSV, clock for clock).
-    #[arg(long, value_enum, default_value = "rust-hdl")]
-    pub sim: crate::verilator_engine::Sim,
+    /// With `--engine rtl`: the simulator — verilator (the exported Verilog in process) or
+    /// rust-hdl (the same CSV, clock for clock). Default: verilator when it is installed, and
+    /// rust-hdl with `--vcd` (only rust-hdl writes a waveform).
+    #[arg(long, value_enum)]
+    pub sim: Option<crate::sim::SimArg>,
     /// The address block: single (SPEC §5, one address per clock) or four-triangle (SPEC §7,
     /// the four midpoint sub-triangles, up to four addresses per clock).
     #[arg(long, value_enum, default_value = "single")]
@@ -61,20 +62,22 @@ pub fn four_clocks(
     tri: &ScreenTriangle,
     engine: Engine,
     vcd: Option<&std::path::Path>,
-    sim: crate::verilator_engine::Sim,
+    sim: crate::sim::Sim,
 ) -> Result<Vec<golden::four_triangle::FourOutputs>> {
     use golden::four_triangle::FourTriangleSetup;
     let setup = FourTriangleSetup::new(tri);
-    if vcd.is_some() && (engine == Engine::Golden || sim == crate::verilator_engine::Sim::Verilator)
+    if vcd.is_some() && (engine == Engine::Golden || sim == crate::sim::Sim::Verilator)
     {
         bail!("--vcd needs --engine rtl --sim rust-hdl (only that run writes a waveform)");
     }
     match (engine, sim) {
         (Engine::Golden, _) => Ok(golden::four_triangle::run(&[setup]).0),
-        (Engine::Rtl, crate::verilator_engine::Sim::Verilator) => {
-            crate::verilator_engine::four_triangle_outputs(&[setup])
+        (Engine::Rtl, crate::sim::Sim::Verilator) => {
+            let budget = four_budget(&setup);
+            testbenches::four_triangle::run_reactive_on(crate::sim::Sim::Verilator, &[setup], budget)
+                .map_err(|e| anyhow::anyhow!("RTL simulation: {e}"))
         }
-        (Engine::Rtl, crate::verilator_engine::Sim::RustHdl) => {
+        (Engine::Rtl, crate::sim::Sim::RustHdl) => {
             let trace: Option<Box<dyn Write>> = match vcd {
                 Some(p) => Some(Box::new(std::io::BufWriter::new(
                     std::fs::File::create(p)
@@ -82,17 +85,23 @@ pub fn four_clocks(
                 ))),
                 None => None,
             };
-            let rows = setup
-                .lanes
-                .iter()
-                .map(|l| l.rows as usize)
-                .max()
-                .unwrap_or(0);
-            let budget = 16 + (rows + 1) * (MAX_ADDRESS as usize + 2);
+            let budget = four_budget(&setup);
             testbenches::four_triangle::run_reactive(&[setup], budget, trace)
                 .map_err(|e| anyhow::anyhow!("RTL simulation: {e}"))
         }
     }
+}
+
+/// Every row of the tallest lane at full width plus latency: a hung block stops instead of
+/// spinning.
+fn four_budget(setup: &golden::four_triangle::FourTriangleSetup) -> usize {
+    let rows = setup
+        .lanes
+        .iter()
+        .map(|l| l.rows as usize)
+        .max()
+        .unwrap_or(0);
+    16 + (rows + 1) * (MAX_ADDRESS as usize + 2)
 }
 
 /// The CSV text of a four-triangle run.
@@ -153,7 +162,7 @@ pub fn walk_clocks(
     engine: Engine,
     vcd: Option<&std::path::Path>,
 ) -> Result<Vec<AddressOutputs>> {
-    walk_clocks_with(tri, engine, vcd, crate::verilator_engine::Sim::RustHdl)
+    walk_clocks_with(tri, engine, vcd, crate::sim::Sim::RustHdl)
 }
 
 /// [`walk_clocks`] with the RTL under the simulator `sim`.
@@ -161,14 +170,16 @@ pub fn walk_clocks_with(
     tri: &ScreenTriangle,
     engine: Engine,
     vcd: Option<&std::path::Path>,
-    sim: crate::verilator_engine::Sim,
+    sim: crate::sim::Sim,
 ) -> Result<Vec<AddressOutputs>> {
     let setup = AddressSetup::new(tri);
-    if engine == Engine::Rtl && sim == crate::verilator_engine::Sim::Verilator {
+    if engine == Engine::Rtl && sim == crate::sim::Sim::Verilator {
         if vcd.is_some() {
             bail!("--vcd needs --sim rust-hdl (the Verilator run writes no waveform)");
         }
-        return crate::verilator_engine::address_outputs(&[setup]);
+        let budget = 16 + (setup.rows as usize + 1) * (MAX_ADDRESS as usize + 2);
+        return testbenches::address_block::run_reactive_on(crate::sim::Sim::Verilator, &[setup], budget)
+            .map_err(|e| anyhow::anyhow!("RTL simulation: {e}"));
     }
     match engine {
         Engine::Golden => {
@@ -223,15 +234,19 @@ pub fn csv(out: &[AddressOutputs]) -> String {
 
 pub fn run(a: Args) -> Result<()> {
     let tri = parse_tri(&a.tri)?;
+    let sim = match (a.sim, &a.vcd, a.engine) {
+        (None, Some(_), _) | (_, _, Engine::Golden) => crate::sim::Sim::RustHdl,
+        (arg, _, _) => crate::sim::resolve(arg)?,
+    };
     let (text, clocks, pixels, rows) = match a.address {
         RasterAddress::Single => {
-            let out = walk_clocks_with(&tri, a.engine, a.vcd.as_deref(), a.sim)?;
+            let out = walk_clocks_with(&tri, a.engine, a.vcd.as_deref(), sim)?;
             let pixels = out.iter().filter(|o| o.valid).count();
             let rows = out.iter().filter(|o| o.row_start).count();
             (csv(&out), out.len(), pixels, rows)
         }
         RasterAddress::FourTriangle => {
-            let out = four_clocks(&tri, a.engine, a.vcd.as_deref(), a.sim)?;
+            let out = four_clocks(&tri, a.engine, a.vcd.as_deref(), sim)?;
             let pixels = out.iter().map(|o| o.addresses()).sum();
             let rows = out
                 .iter()
@@ -292,7 +307,7 @@ mod tests {
     #[test]
     fn four_triangle_rtl_and_golden_agree_and_cover_the_parent() {
         let t = parse_tri("3,1,40,7,11,30").unwrap();
-        let sim = crate::verilator_engine::Sim::RustHdl;
+        let sim = crate::sim::Sim::RustHdl;
         let r = four_clocks(&t, Engine::Rtl, None, sim).unwrap();
         let g = four_clocks(&t, Engine::Golden, None, sim).unwrap();
         assert_eq!(r, g);

@@ -55,11 +55,12 @@ pub struct Args {
     /// The images are identical; the clock counts differ.
     #[arg(long, value_enum, default_value = "serial")]
     pub horner: Horner,
-    /// With the RTL engine (`rtl`, `both`): the simulator — rust-hdl (stepped by hand) or verilator (the
-    /// exported Verilog, compiled once per block and cached under target/verilator-engine;
-    /// the frames are bit-identical).
-    #[arg(long, value_enum, default_value = "rust-hdl")]
-    pub sim: crate::verilator_engine::Sim,
+    /// With the RTL engine (`rtl`, `both`): the simulator — verilator (the exported Verilog,
+    /// verilated once per block into a library cached under target/verilated and stepped in
+    /// process) or rust-hdl (stepped by hand, about 400 times slower). Default: verilator when
+    /// it is installed. The frames are bit-identical.
+    #[arg(long, value_enum)]
+    pub sim: Option<crate::sim::SimArg>,
     /// With the RTL engine (`rtl`, `both`): the address block — single (SPEC §5, one address per clock) or
     /// four-triangle (SPEC §7, four lanes with a BVI each: gouraud and subdivision only).
     /// Default: single, four-triangle for subdivision.
@@ -73,7 +74,7 @@ pub struct Args {
     /// span pipelines, `subdivision-raster`: set-up on load ports). Default: stream under
     /// rust-hdl for the lit methods and gouraud (the span methods and subdivision: pipeline, as
     /// their per-line and per-parent records make the stream set-up bound on short lines and
-    /// small triangles), pipeline under verilator. The images are identical; the clock counts
+    /// small triangles). The images are identical; the clock counts
     /// differ (the set-up stream carries 26 words per lit triangle, 22 per Gouraud one, 12 per
     /// cubic line, 72 per subdivision parent).
     #[arg(long, value_enum, default_value = "default", hide_default_value = true)]
@@ -357,6 +358,7 @@ fn render_frames(
         let hw = crate::rtl_engine::rtl_methods();
         let idx: Vec<usize> = (0..n).filter(|&i| hw.contains(&methods[i])).collect();
         let ms: Vec<Method> = idx.iter().map(|&i| methods[i]).collect();
+        crate::sim::prepare(build.sim, crate::rtl_engine::designs(&ms, build)?, &multi)?;
         for (i, f) in idx
             .into_iter()
             .zip(render_rtl_parallel(setup, &ms, build, &multi)?)
@@ -613,10 +615,14 @@ pub fn run(args: Args) -> Result<()> {
     }
     std::fs::create_dir_all(&args.out)
         .with_context(|| format!("creating output directory {}", args.out.display()))?;
-    args.lit_top.resolve(args.sim)?;
+    let sim = if args.engine == Engine::Golden {
+        crate::sim::Sim::RustHdl
+    } else {
+        crate::sim::resolve(args.sim)?
+    };
     let build = crate::rtl_engine::RtlBuild {
         horner_pipelined: args.horner == Horner::Pipelined,
-        sim: args.sim,
+        sim,
         address: args.address,
         lit_top: args.lit_top,
         setup_order: args.setup_order,

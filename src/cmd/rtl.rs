@@ -92,9 +92,13 @@ pub struct SimArgs {
     /// SHADECORE_SEED overrides that default).
     #[arg(long)]
     pub seed: Option<u64>,
-    /// VCD file to write (default target/sims/<block>.vcd).
+    /// VCD file to write (rust-hdl only; default under rust-hdl target/sims/<block>.vcd).
     #[arg(long)]
     pub vcd: Option<PathBuf>,
+    /// The simulator: verilator (the exported Verilog in process, no VCD) or rust-hdl (writes
+    /// the VCD). Default: verilator when it is installed, rust-hdl with --vcd.
+    #[arg(long, value_enum)]
+    pub sim: Option<crate::sim::SimArg>,
     #[command(flatten)]
     pub build: BuildArgs,
 }
@@ -232,15 +236,31 @@ pub fn sim(a: SimArgs) -> anyhow::Result<()> {
     let seed = a
         .seed
         .unwrap_or_else(|| golden::seed::seed_for("shadecore-sim"));
-    let vcd = a.vcd.unwrap_or_else(|| {
-        testbenches::harness::target_dir()
-            .join("sims")
-            .join(format!("{}.vcd", block.name()))
+    let sim = match (a.sim, &a.vcd) {
+        (None, Some(_)) => crate::sim::Sim::RustHdl,
+        (Some(crate::sim::SimArg::Verilator), Some(_)) => {
+            bail!("--vcd needs --sim rust-hdl (the Verilator run writes no waveform)")
+        }
+        (arg, _) => crate::sim::resolve(arg)?,
+    };
+    let vcd = (sim == crate::sim::Sim::RustHdl).then(|| {
+        a.vcd.clone().unwrap_or_else(|| {
+            testbenches::harness::target_dir()
+                .join("sims")
+                .join(format!("{}.vcd", block.name()))
+        })
     });
-    if let Some(dir) = vcd.parent().filter(|d| !d.as_os_str().is_empty()) {
+    if let Some(dir) = vcd
+        .as_ref()
+        .and_then(|v| v.parent())
+        .filter(|d| !d.as_os_str().is_empty())
+    {
         std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
     }
-    if n > SIM_WARN_FACTOR * block.default_items() {
+    if sim == crate::sim::Sim::Verilator {
+        crate::sim::prepare(sim, vec![block.design(&o).map_err(|e| anyhow!(e))?], &indicatif::MultiProgress::new())?;
+    }
+    if let (Some(vcd), true) = (&vcd, n > SIM_WARN_FACTOR * block.default_items()) {
         eprintln!(
             "warning: {n} {} is over {SIM_WARN_FACTOR} × {}'s default: the VCD at {} grows with every clock (about 3 kB per normalizer vector)",
             block.items(),
@@ -261,7 +281,7 @@ pub fn sim(a: SimArgs) -> anyhow::Result<()> {
     let per = block.default_items().max(1) as u64;
     let mut batches = 0u64;
     let out = block
-        .sim_stream(&o, n, seed, Some(&vcd), &mut |clocks| {
+        .sim_stream(&o, n, seed, vcd.as_deref(), sim, &mut |clocks| {
             batches += 1;
             bar.set_position((batches * per).min(n as u64));
             bar.set_message(format!("({clocks} clocks)"));
@@ -287,7 +307,12 @@ pub fn sim(a: SimArgs) -> anyhow::Result<()> {
         block.latency(),
         t.elapsed()
     )?;
-    crate::outln!("VCD: {}", vcd.display())?;
+    match &vcd {
+        Some(v) => crate::outln!("VCD: {}", v.display())?,
+        None => crate::outln!(
+            "VCD: none (Verilator writes no waveform; --sim rust-hdl or --vcd PATH for one)"
+        )?,
+    }
     Ok(())
 }
 

@@ -33,6 +33,11 @@ pub struct Args {
     /// per pixel) or pipelined (one pixel per clock).
     #[arg(long, value_enum, default_value = "serial")]
     pub horner: crate::cmd::render::Horner,
+    /// The simulator whose beats are written (each run is checked against the twin clock for
+    /// clock): verilator (the exported Verilog in process) or rust-hdl. Default: verilator when
+    /// it is installed.
+    #[arg(long, value_enum)]
+    pub sim: Option<crate::sim::SimArg>,
     /// Output directory: setup.txt, beats.txt, and the top's Verilog (pixel_stream.v,
     /// gouraud_stream.v or cubic_stream.v).
     #[arg(long, default_value = "target/stream")]
@@ -76,6 +81,7 @@ pub fn run(a: Args) -> Result<()> {
         &run.outputs,
         &words,
         &order,
+        crate::sim::resolve(a.sim)?,
     )?;
     crate::outln!(
         "pixel-stream ({}): {} triangles, {} set-up words, {} beats ({} fragments) in {} clocks -> {}",
@@ -115,6 +121,7 @@ fn run_cubic(a: &Args) -> Result<()> {
         &run.outputs,
         &words,
         "walk",
+        crate::sim::resolve(a.sim)?,
     )?;
     crate::outln!(
         "cubic-stream ({}): {} lines, {} set-up words, {} beats in {} clocks -> {}",
@@ -140,15 +147,16 @@ fn simulate_and_write(
     twin: &[Vec<u64>],
     words: &[Word],
     order: &str,
+    sim: crate::sim::Sim,
 ) -> Result<Vec<Beat>> {
     let top = rtl::stream_layout::TOPS
         .iter()
         .find(|t| t.block == block)
         .ok_or_else(|| anyhow!("{block} is not a stream top"))?;
     let b = testbenches::registry::find(block).map_err(|e| anyhow!(e))?;
-    let out = b.simulate(o, rows).map_err(|e| anyhow!(e))?;
+    let out = b.simulate_on(o, rows, sim).map_err(|e| anyhow!(e))?;
     if out != twin {
-        bail!("the rust-hdl simulation of {block} disagrees with its twin");
+        bail!("the {sim} simulation of {block} disagrees with its twin");
     }
     // Outputs: s_axis_tready, m_axis_tvalid, tdata, [tuser,] tlast, error.
     let tuser = top.tuser.is_some();
@@ -227,6 +235,7 @@ fn run_gouraud(a: &Args) -> Result<()> {
         &run.outputs,
         &words,
         &order,
+        crate::sim::resolve(a.sim)?,
     )?;
     crate::outln!(
         "gouraud-stream: {} triangles, {} set-up words, {} beats ({} fragments) in {} clocks -> {}",

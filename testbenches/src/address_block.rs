@@ -7,7 +7,8 @@
 //! that is not ready when the model is fails at that clock). [`run_reactive`] instead lets the
 //! RTL's own `ready` pace the loads (what the `raster` command and the renderer do).
 
-use crate::harness::{CheckSpec, Compare, Expected, Failure, Report, Stepper};
+use crate::harness::{CheckSpec, Compare, Expected, Failure, Report};
+use rtl::sim::Model as _;
 use crate::normalizer::seeded_runner;
 use crate::registry::{self, Bench, Twin};
 use golden::address_block::{AddressBlockModel, AddressOutputs, AddressSetup};
@@ -139,10 +140,30 @@ pub fn run_reactive(
     max_clocks: usize,
     vcd: Option<Box<dyn Write>>,
 ) -> Result<Vec<AddressOutputs>, String> {
-    let mut s = Stepper::new(AddressBlock::default())?;
+    let mut s = rtl::sim::RustHdlModel::new(AddressBlock::default())?;
     if let Some(w) = vcd {
-        s.start_vcd(w);
+        s.start_vcd(w)?;
     }
+    run_reactive_model(&mut s, setups, max_clocks)
+}
+
+/// [`run_reactive`] on a simulator of the caller's choice (`pipeline::engine::model`).
+pub fn run_reactive_on(
+    sim: pipeline::engine::Sim,
+    setups: &[AddressSetup],
+    max_clocks: usize,
+) -> Result<Vec<AddressOutputs>, String> {
+    let mut m = pipeline::engine::model::<AddressBlock>(&Default::default(), sim)?;
+    run_reactive_model(m.as_mut(), setups, max_clocks)
+}
+
+/// [`run_reactive`] on any simulated address block (`ready` its output 0).
+pub fn run_reactive_model(
+    s: &mut dyn rtl::sim::Model,
+    setups: &[AddressSetup],
+    max_clocks: usize,
+) -> Result<Vec<AddressOutputs>, String> {
+    pipeline::stream::first_output_is(s, "ready")?;
     let mut out = Vec::new();
     let mut row = vec![0u64; 9];
     let (mut next, mut dones) = (0, 0);
@@ -151,7 +172,7 @@ pub fn run_reactive(
             return Err(format!("no `done` after {max_clocks} clocks"));
         }
         // `ready` is a register output: its value for this clock is already settled.
-        let load = (s.dut().ready.val() && next < setups.len()).then(|| &setups[next]);
+        let load = (s.peek(0) != 0 && next < setups.len()).then(|| &setups[next]);
         next += load.is_some() as usize;
         s.step(&address_row(load, false), &mut row)?;
         let o = row_outputs(&row);

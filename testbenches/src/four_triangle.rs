@@ -4,7 +4,8 @@
 //! (its `ready`), and predicts every output port exactly; [`run_reactive`] lets the RTL's own
 //! `ready` pace the loads instead (what `raster --address four-triangle` and the renderer do).
 
-use crate::harness::{CheckSpec, Compare, Expected, Failure, Report, Stepper};
+use crate::harness::{CheckSpec, Compare, Expected, Failure, Report};
+use rtl::sim::Model as _;
 use crate::normalizer::seeded_runner;
 use crate::registry::{self, Bench, Twin};
 use golden::address_block::AddressOutputs;
@@ -111,17 +112,38 @@ pub fn run_reactive(
     run_reactive_held(setups, max_clocks, vcd, |_| false).map(|(_, o)| o)
 }
 
+/// [`run_reactive`] on a simulator of the caller's choice (`pipeline::engine::model`).
+pub fn run_reactive_on(
+    sim: pipeline::engine::Sim,
+    setups: &[FourTriangleSetup],
+    max_clocks: usize,
+) -> Result<Vec<FourOutputs>, String> {
+    let mut m = pipeline::engine::model::<FourTriangle>(&Default::default(), sim)?;
+    run_reactive_model(m.as_mut(), setups, max_clocks, |_| false).map(|(_, o)| o)
+}
+
 /// [`run_reactive`] with `hold(clock)` on the stall input: the input rows and the outputs.
 pub fn run_reactive_held(
     setups: &[FourTriangleSetup],
     max_clocks: usize,
     vcd: Option<Box<dyn Write>>,
+    hold: impl FnMut(usize) -> bool,
+) -> Result<(Vec<Vec<u64>>, Vec<FourOutputs>), String> {
+    let mut s = rtl::sim::RustHdlModel::new(FourTriangle::default())?;
+    if let Some(w) = vcd {
+        s.start_vcd(w)?;
+    }
+    run_reactive_model(&mut s, setups, max_clocks, hold)
+}
+
+/// [`run_reactive_held`] on any simulated four-triangle block (`ready` its output 0).
+pub fn run_reactive_model(
+    s: &mut dyn rtl::sim::Model,
+    setups: &[FourTriangleSetup],
+    max_clocks: usize,
     mut hold: impl FnMut(usize) -> bool,
 ) -> Result<(Vec<Vec<u64>>, Vec<FourOutputs>), String> {
-    let mut s = Stepper::new(FourTriangle::default())?;
-    if let Some(w) = vcd {
-        s.start_vcd(w);
-    }
+    pipeline::stream::first_output_is(s, "ready")?;
     let (mut out, mut rows) = (Vec::new(), Vec::new());
     let mut row = vec![0u64; OUTPUTS];
     let (mut next, mut dones) = (0, [0usize; 4]);
@@ -129,7 +151,7 @@ pub fn run_reactive_held(
         if out.len() >= max_clocks {
             return Err(format!("not every lane done after {max_clocks} clocks"));
         }
-        let load = (s.dut().ready.val() && next < setups.len()).then(|| &setups[next]);
+        let load = (s.peek(0) != 0 && next < setups.len()).then(|| &setups[next]);
         next += load.is_some() as usize;
         let input = four_row(load, hold(out.len()));
         s.step(&input, &mut row)?;

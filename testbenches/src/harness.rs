@@ -414,17 +414,34 @@ pub struct StreamReport {
 pub fn run_stream<D: Dut>(
     dut: D,
     spec: &CheckSpec,
-    mut next_batch: impl FnMut(usize) -> Option<Batch>,
+    next_batch: impl FnMut(usize) -> Option<Batch>,
     twin: &mut dyn FnMut(&[u64]) -> Vec<u64>,
     vcd: Option<Box<dyn std::io::Write>>,
+    progress: impl FnMut(u64),
+) -> Result<StreamReport, Failure> {
+    let dash = || "-".to_string();
+    use rtl::sim::Model as _;
+    let mut s = rtl::sim::RustHdlModel::new(dut)
+        .map_err(|e| spec.failure(0, "(set-up)", dash(), dash(), e))?;
+    if let Some(w) = vcd {
+        s.start_vcd(w)
+            .map_err(|e| spec.failure(0, "(set-up)", dash(), dash(), e))?;
+    }
+    run_stream_on(&mut s, spec, next_batch, twin, progress)
+}
+
+/// [`run_stream`] on any simulated block (rust-hdl or Verilator: `pipeline::engine::model`),
+/// from its current state; a VCD, if any, is the caller's to start.
+#[allow(clippy::result_large_err)]
+pub fn run_stream_on(
+    s: &mut dyn rtl::sim::Model,
+    spec: &CheckSpec,
+    mut next_batch: impl FnMut(usize) -> Option<Batch>,
+    twin: &mut dyn FnMut(&[u64]) -> Vec<u64>,
     mut progress: impl FnMut(u64),
 ) -> Result<StreamReport, Failure> {
     let dash = || "-".to_string();
-    let mut s = Stepper::new(dut).map_err(|e| spec.failure(0, "(set-up)", dash(), dash(), e))?;
-    if let Some(w) = vcd {
-        s.start_vcd(w);
-    }
-    let ports = s.dut().outputs();
+    let ports = s.outputs().to_vec();
     let valid_ports: Vec<usize> = ports
         .iter()
         .enumerate()

@@ -86,18 +86,36 @@ pub trait Entry: Sync {
     fn twin_rows(&self, o: &Options, rows: &[Vec<u64>]) -> Result<Vec<Vec<u64>>, String>;
     /// The rust-hdl simulation's output rows for `rows`.
     fn simulate(&self, o: &Options, rows: &[Vec<u64>]) -> Result<Vec<Vec<u64>>, String>;
+    /// A fresh instance built with `o` on `sim` (Verilator: compiled first when not cached).
+    fn model(
+        &self,
+        o: &Options,
+        sim: pipeline::engine::Sim,
+    ) -> Result<Box<dyn rtl::sim::Model>, String>;
+    /// The Verilator design of the block built with `o`.
+    fn design(&self, o: &Options) -> Result<verilated::Design, String>;
+    /// [`Entry::simulate`] on `sim`.
+    fn simulate_on(
+        &self,
+        o: &Options,
+        rows: &[Vec<u64>],
+        sim: pipeline::engine::Sim,
+    ) -> Result<Vec<Vec<u64>>, String> {
+        rtl::sim::run_model(self.model(o, sim)?.as_mut(), rows)
+    }
     /// Replay `rows` writing a VCD of the whole run (every signal) to `path`.
     fn write_vcd(&self, o: &Options, rows: &[Vec<u64>], path: &Path) -> Result<(), String>;
     /// `n` seeded items in constant memory: batches of the block's default size (batch k
     /// seeded `seed + k`) driven back to back into one simulation, checked every clock against
-    /// the twin (exactly) and the golden model, the VCD written to `vcd` as the clocks go;
-    /// `progress(clocks)` after each batch. A failure's VCD is that file.
+    /// the twin (exactly) and the golden model, on `sim`, the VCD written to `vcd` as the clocks
+    /// go (rust-hdl only); `progress(clocks)` after each batch. A failure's VCD is that file.
     fn sim_stream(
         &self,
         o: &Options,
         n: usize,
         seed: u64,
         vcd: Option<&Path>,
+        sim: pipeline::engine::Sim,
         progress: &mut dyn FnMut(u64),
     ) -> Result<crate::harness::StreamReport, String>;
 }
@@ -123,7 +141,7 @@ fn failure(name: &str, seed: u64, detail: String) -> Box<Failure> {
     })
 }
 
-impl<B: Bench> Entry for Registered<B> {
+impl<B: Bench + 'static> Entry for Registered<B> {
     fn name(&self) -> &'static str {
         B::NAME
     }
@@ -206,6 +224,16 @@ impl<B: Bench> Entry for Registered<B> {
     fn simulate(&self, o: &Options, rows: &[Vec<u64>]) -> Result<Vec<Vec<u64>>, String> {
         harness::simulate_rows(B::build(&B::Params::from_options(o)?), rows)
     }
+    fn model(
+        &self,
+        o: &Options,
+        sim: pipeline::engine::Sim,
+    ) -> Result<Box<dyn rtl::sim::Model>, String> {
+        pipeline::engine::model::<B>(&B::Params::from_options(o)?, sim)
+    }
+    fn design(&self, o: &Options) -> Result<verilated::Design, String> {
+        Ok(verilated::design::<B>(&B::Params::from_options(o)?))
+    }
     fn write_vcd(&self, o: &Options, rows: &[Vec<u64>], path: &Path) -> Result<(), String> {
         let dut = B::build(&B::Params::from_options(o)?);
         harness::write_vcd_window(dut, rows, 0, rows.len() as u64, path)
@@ -216,6 +244,7 @@ impl<B: Bench> Entry for Registered<B> {
         n: usize,
         seed: u64,
         vcd: Option<&Path>,
+        sim: pipeline::engine::Sim,
         progress: &mut dyn FnMut(u64),
     ) -> Result<crate::harness::StreamReport, String> {
         let p = B::Params::from_options(o)?;
@@ -242,19 +271,17 @@ impl<B: Bench> Entry for Registered<B> {
             })
         };
         let mut twin = B::twin(&p);
-        let writer: Option<Box<dyn std::io::Write>> = match vcd {
-            Some(path) => Some(Box::new(std::io::BufWriter::new(
-                std::fs::File::create(path)
-                    .map_err(|e| format!("cannot create {}: {e}", path.display()))?,
-            ))),
-            None => None,
-        };
-        harness::run_stream(
-            B::build(&p),
+        let mut model = pipeline::engine::model::<B>(&p, sim)?;
+        if let Some(path) = vcd {
+            let f = std::fs::File::create(path)
+                .map_err(|e| format!("cannot create {}: {e}", path.display()))?;
+            model.start_vcd(Box::new(std::io::BufWriter::new(f)))?;
+        }
+        harness::run_stream_on(
+            model.as_mut(),
             &spec,
             next,
             &mut |row| twin.step(row),
-            writer,
             progress,
         )
         .map_err(|mut f| {

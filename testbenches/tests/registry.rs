@@ -407,7 +407,7 @@ fn every_block_streams_batches_back_to_back() {
             });
         let mut seen = 0;
         let r = b
-            .sim_stream(&Options::new(), n, seed, vcd.as_deref(), &mut |_| seen += 1)
+            .sim_stream(&Options::new(), n, seed, vcd.as_deref(), pipeline::engine::Sim::RustHdl, &mut |_| seen += 1)
             .unwrap_or_else(|e| panic!("{}: {e}", b.name()));
         assert_eq!((r.batches, seen), (3, 3), "{}", b.name());
         assert!(r.valid_clocks > 0, "{}: nothing valid", b.name());

@@ -295,6 +295,14 @@ fn run(dir: &Path, program: &str, args: &[String], what: &str) -> Result<(), Str
 
 static TMP_COUNTER: AtomicU64 = AtomicU64::new(0);
 
+static QUIET: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
+
+/// Whether [`build`] says on stderr what it built and how long it took (it does by default; a
+/// caller that shows its own progress turns it off).
+pub fn set_quiet(quiet: bool) {
+    QUIET.store(quiet, Ordering::Relaxed);
+}
+
 /// A fresh temporary directory in `cache` (same file system as the entries, for the rename).
 fn temp_dir(cache: &Path, tag: &str) -> Result<PathBuf, String> {
     let n = TMP_COUNTER.fetch_add(1, Ordering::SeqCst);
@@ -581,7 +589,7 @@ pub fn build(design: &Design) -> Result<Arc<Library>, String> {
         }
         std::fs::rename(&tmp, &dir)
             .map_err(|e| format!("cannot move the build into {}: {e}", dir.display()))?;
-        if std::env::var_os("SHADECORE_VERILATED_QUIET").is_none() {
+        if !QUIET.load(Ordering::Relaxed) {
             eprintln!(
                 "verilated: built {} in {:.1} s",
                 design.name,

@@ -23,7 +23,7 @@
 mod compile;
 mod model;
 
-pub use compile::{build, cache_dir, toolchain, wrapper, Toolchain};
+pub use compile::{build, cache_dir, set_quiet, toolchain, wrapper, Toolchain};
 pub use model::{Library, VModel};
 
 use rtl::registry::{module_name, BlockParams, RtlBlock};
