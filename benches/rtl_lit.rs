@@ -157,40 +157,6 @@ fn run_plain(jobs: &[LitJob], regs: &ShadingRegs) -> pipeline::gouraud::PipeStat
     run(Method::NormalizerFit, jobs, regs)
 }
 
-/// The lit pipeline under both simulators in one run: clocks per second of rust-hdl's
-/// hand-stepped simulation and of the exported Verilog under Verilator (build cached before
-/// the timed run; the stream goes through a text file both ways), and their ratio.
-fn simulator_figures() {
-    use shadecore::verilator_engine::lit_replay;
-    if !testbenches::tools::available(testbenches::tools::Tool::Verilator) {
-        println!("verilator not installed: the simulator comparison is not run");
-        return;
-    }
-    let (tris, ctx) = default_scene();
-    let jobs = lit_jobs(&tris);
-    let regs = ShadingRegs::of(&ctx).unwrap();
-    let o = pipeline::lit::method_options(Method::NormalizerFit).unwrap();
-    // Warm the build cache on one triangle.
-    lit_replay(&o, &jobs[..1], &regs).unwrap();
-    let t0 = Instant::now();
-    let replay = lit_replay(&o, &jobs, &regs).unwrap();
-    let v = LitPipe::replay(replay)
-        .run(&jobs, &regs, lit_clock_budget(&jobs), |_| {}, |_| {})
-        .unwrap();
-    let tv = t0.elapsed().as_secs_f64();
-    let t0 = Instant::now();
-    let r = run(Method::NormalizerFit, &jobs, &regs);
-    let tr = t0.elapsed().as_secs_f64();
-    assert_eq!(v.clocks, r.clocks);
-    println!(
-        "pixel pipeline normalizer-fit, default scene, {} clocks: verilator {tv:.1} s ({:.0} clocks/s, stimulus and outputs through text files), rust-hdl {tr:.1} s ({:.0} clocks/s): {:.1}×",
-        r.clocks,
-        r.clocks as f64 / tv,
-        r.clocks as f64 / tr,
-        tr / tv
-    );
-}
-
 fn bench(c: &mut Criterion) {
     // `SHADECORE_BENCH_ONLY=stream` prints only the stream top's figure.
     if std::env::var("SHADECORE_BENCH_ONLY").as_deref() == Ok("stream") {
@@ -198,7 +164,6 @@ fn bench(c: &mut Criterion) {
         return;
     }
     figures();
-    simulator_figures();
     stream_figures();
     let (tris, ctx) = default_scene();
     let jobs = lit_jobs(&tris);

@@ -25,7 +25,7 @@ use shadecore::setup::{build, SceneArgs};
 /// same, [`serial_and_pipelined_horner_give_the_same_image`]).
 const PIPELINED: RtlBuild = RtlBuild {
     horner_pipelined: true,
-    sim: shadecore::verilator_engine::Sim::RustHdl,
+    sim: pipeline::engine::Sim::RustHdl,
     address: shadecore::rtl_engine::Address::Default,
     lit_top: shadecore::rtl_engine::LitTop::Default,
     setup_order: shadecore::rtl_engine::SetupOrder::Balanced,

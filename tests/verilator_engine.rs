@@ -1,14 +1,14 @@
-//! The Verilator engine (`render --engine rtl --sim verilator`) gives the same frames as the
-//! rust-hdl simulation, bit for bit, with the same clock counts, for every pipeline: the
-//! Gouraud pipe, the lit pipeline (two builds), the span tops, the quadric unit and the cubic
-//! pipeline (both Horner variants). Skips with a notice without Verilator (fails when `CI` is
-//! set).
+//! The Verilator engine (`render --engine rtl --sim verilator`, the exported Verilog in
+//! process) gives the same frames as the rust-hdl simulation, bit for bit, with the same clock
+//! counts, for every pipeline: the Gouraud pipe, the lit pipeline (two builds), the span tops,
+//! the quadric unit and the cubic pipeline (both Horner variants), through the render's default
+//! tops. Skips with a notice without Verilator (fails when `CI` is set).
 
 use golden::methods::Method;
 use indicatif::ProgressBar;
 use shadecore::rtl_engine::{render_rtl_with, RtlBuild};
 use shadecore::setup::{build, SceneArgs};
-use shadecore::verilator_engine::Sim;
+use shadecore::sim::Sim;
 use testbenches::tools::{self, Tool};
 
 #[test]
@@ -45,10 +45,6 @@ fn verilator_frames_equal_rust_hdl_frames() {
                 RtlBuild {
                     horner_pipelined: pipelined,
                     sim,
-                    // The Verilator engine replays pixel-pipeline's ports: compare the same
-                    // top clock for clock (pixel-stream's frames are pixel-pipeline's,
-                    // tests/rtl_lit.rs).
-                    lit_top: shadecore::rtl_engine::LitTop::Pipeline,
                     ..RtlBuild::default()
                 },
             )
