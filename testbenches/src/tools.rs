@@ -97,6 +97,20 @@ pub fn require(tools: &[Tool], what: &str) -> bool {
     false
 }
 
+/// A visible skip of `what` because of `why`: written to the process's stderr directly (libtest
+/// hides the output of passing tests, `println!` and `eprintln!` alike); a panic when `CI` is
+/// set, so a skipped check never looks like a pass there.
+pub fn skip(what: &str, why: &str) {
+    if in_ci() {
+        panic!("{what}: {why} (CI is set, so this is a failure)");
+    }
+    use std::io::Write;
+    let _ = writeln!(
+        std::io::stderr(),
+        "SKIPPED {what}: {why} (set CI=1 to make this a failure)"
+    );
+}
+
 static DIR_COUNTER: AtomicU64 = AtomicU64::new(0);
 
 /// A fresh directory `target/tool-runs/<tag>-<pid>-<n>` (unique per process and call, so

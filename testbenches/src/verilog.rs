@@ -298,6 +298,27 @@ impl std::fmt::Display for Mismatch {
 }
 
 /// Compare output rows; `Err` names the first differing clock and port.
+/// Two simulations' output rows (e.g. rust-hdl's and the in-process Verilator model's): the
+/// first clock and port where they differ, in one line.
+pub fn compare_outputs(outputs: &[Port], a: &[Vec<u64>], b: &[Vec<u64>]) -> Result<(), String> {
+    if a.len() != b.len() {
+        return Err(format!("{} clocks against {}", a.len(), b.len()));
+    }
+    for (c, (ra, rb)) in a.iter().zip(b).enumerate() {
+        for (k, p) in outputs.iter().enumerate() {
+            if ra.get(k) != rb.get(k) {
+                return Err(format!(
+                    "clock {c}, port {}: {:#x} against {:#x}",
+                    p.name,
+                    ra.get(k).copied().unwrap_or(0),
+                    rb.get(k).copied().unwrap_or(0)
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
 pub fn compare_rows(
     outputs: &[Port],
     rust_hdl: &[Vec<u64>],
