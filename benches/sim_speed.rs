@@ -72,13 +72,23 @@ fn scene() -> (Vec<LitJob>, ShadingRegs) {
         light: golden::scene::light_direction(90.0).unwrap(),
         ..ShadeContext::default()
     };
-    let jobs: Vec<LitJob> = tris.iter().filter_map(|t| LitJob::new(t).unwrap()).collect();
+    let jobs: Vec<LitJob> = tris
+        .iter()
+        .filter_map(|t| LitJob::new(t).unwrap())
+        .collect();
     let order = pipeline::stream::balanced_order(&jobs);
-    (order.iter().map(|&i| jobs[i]).collect(), ShadingRegs::of(&ctx).unwrap())
+    (
+        order.iter().map(|&i| jobs[i]).collect(),
+        ShadingRegs::of(&ctx).unwrap(),
+    )
 }
 
 /// (clocks, fragments, seconds, recorder) of `jobs` through `pixel-stream` on `inner`.
-fn drive(inner: Box<dyn Model>, jobs: &[LitJob], regs: &ShadingRegs) -> (u64, Vec<(usize, u32, u32, [u8; 3], u64)>, f64, Recorder) {
+fn drive(
+    inner: Box<dyn Model>,
+    jobs: &[LitJob],
+    regs: &ShadingRegs,
+) -> (u64, Vec<(usize, u32, u32, [u8; 3], u64)>, f64, Recorder) {
     let mut rec = Recorder {
         inner,
         rows: Vec::new(),
@@ -128,7 +138,11 @@ fn main() {
     // Compile (or load) before timing.
     drop(model::<PixelStream>(&p, Sim::Verilator).unwrap());
 
-    let (clocks, frags, t_in, rec) = drive(model::<PixelStream>(&p, Sim::Verilator).unwrap(), &jobs, &regs);
+    let (clocks, frags, t_in, rec) = drive(
+        model::<PixelStream>(&p, Sim::Verilator).unwrap(),
+        &jobs,
+        &regs,
+    );
     let in_process = clocks as f64 / t_in;
 
     let mut ceiling_model = verilated::model::<PixelStream>(&p).unwrap();
@@ -136,17 +150,27 @@ fn main() {
     let hash = ceiling_model.bench_flat(&rec.rows);
     let t_ceiling = t.elapsed().as_secs_f64();
     let ceiling = clocks as f64 / t_ceiling;
-    assert_eq!(hash, rec.hash, "the C++ loop's outputs differ from the in-process run's");
+    assert_eq!(
+        hash, rec.hash,
+        "the C++ loop's outputs differ from the in-process run's"
+    );
 
     let n_rust: usize = std::env::var("SHADECORE_BENCH_RUST_HDL_TRIANGLES")
         .ok()
         .and_then(|s| s.parse().ok())
         .unwrap_or(jobs.len())
         .min(jobs.len());
-    let (rc, rfrags, t_rust, _) = drive(model::<PixelStream>(&p, Sim::RustHdl).unwrap(), &jobs[..n_rust], &regs);
+    let (rc, rfrags, t_rust, _) = drive(
+        model::<PixelStream>(&p, Sim::RustHdl).unwrap(),
+        &jobs[..n_rust],
+        &regs,
+    );
     let rust = rc as f64 / t_rust;
     if n_rust == jobs.len() {
-        assert_eq!(rfrags, frags, "rust-hdl and Verilator deliver other fragments");
+        assert_eq!(
+            rfrags, frags,
+            "rust-hdl and Verilator deliver other fragments"
+        );
     }
 
     let date = std::process::Command::new("date")
@@ -180,7 +204,10 @@ fn main() {
     let dir = root.join("docs/measurements");
     let _ = std::fs::create_dir_all(&dir);
     let tmp = dir.join(".sim-speed.md.tmp");
-    if std::fs::write(&tmp, &table).and_then(|_| std::fs::rename(&tmp, dir.join("sim-speed.md"))).is_err() {
+    if std::fs::write(&tmp, &table)
+        .and_then(|_| std::fs::rename(&tmp, dir.join("sim-speed.md")))
+        .is_err()
+    {
         eprintln!("could not write docs/measurements/sim-speed.md");
     }
 }

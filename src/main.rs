@@ -37,6 +37,8 @@ enum Command {
 }
 
 fn main() {
+    // Model builds show as progress bars (`shadecore::sim::prepare`), not as lines on stderr.
+    verilated::set_quiet(true);
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
         Err(e) => {

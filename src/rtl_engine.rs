@@ -338,8 +338,8 @@ pub fn render_lit_rtl_with(
     let sent: Vec<LitJob> = order.iter().map(|&i| jobs[i]).collect();
     let mut writer = FrameWriter::new(width, height);
     let stream = build.lit_top.resolve() == LitTop::Stream;
-    let mut pipe = LitPipe::on(method, build.sim, stream)
-        .map_err(|e| anyhow::anyhow!("RTL set-up: {e}"))?;
+    let mut pipe =
+        LitPipe::on(method, build.sim, stream).map_err(|e| anyhow::anyhow!("RTL set-up: {e}"))?;
     let stats = pipe
         .run(
             &sent,
@@ -535,8 +535,7 @@ pub fn render_gouraud_rtl_with(
         .of_addrs(&jobs.iter().map(|j| j.addr).collect::<Vec<_>>());
     let sent: Vec<TriangleJob> = order.iter().map(|&i| jobs[i]).collect();
     let stream = build.lit_top.resolve() == LitTop::Stream;
-    let mut pipe =
-        Pipe::on(build.sim, stream).map_err(|e| anyhow::anyhow!("RTL set-up: {e}"))?;
+    let mut pipe = Pipe::on(build.sim, stream).map_err(|e| anyhow::anyhow!("RTL set-up: {e}"))?;
     let mut winner = vec![usize::MAX; width as usize * height as usize];
     let stats = pipe
         .run(

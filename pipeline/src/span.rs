@@ -384,7 +384,11 @@ fn span_kind(method: Method, pipelined: bool) -> Result<SpanKind, String> {
 }
 
 /// A top for `kind` in `shape`, on `sim` (`design`: its Verilator design instead).
-fn top_of(kind: SpanKind, shape: Shape, sim: Option<Sim>) -> Result<(Option<Box<dyn Model>>, Option<verilated::Design>, usize), String> {
+fn top_of(
+    kind: SpanKind,
+    shape: Shape,
+    sim: Option<Sim>,
+) -> Result<(Option<Box<dyn Model>>, Option<verilated::Design>, usize), String> {
     use crate::engine::{design, model};
     fn one<B: RtlBlock + 'static>(
         p: &B::Params,
@@ -399,9 +403,13 @@ fn top_of(kind: SpanKind, shape: Shape, sim: Option<Sim>) -> Result<(Option<Box<
     match (shape, kind) {
         (Shape::Ports, SpanKind::Angular) => one::<AngularPipeline>(&Default::default(), sim),
         (Shape::Ports, SpanKind::Fast(_)) => one::<FastPipeline>(&kind.fast_params(), sim),
-        (Shape::Ports, SpanKind::Cubic { pipelined }) => one::<CubicPipeline>(&cubic(pipelined), sim),
+        (Shape::Ports, SpanKind::Cubic { pipelined }) => {
+            one::<CubicPipeline>(&cubic(pipelined), sim)
+        }
         (Shape::Ports, SpanKind::Quadric) => one::<QuadricUnit>(&Default::default(), sim),
-        (Shape::CubicStream, SpanKind::Cubic { pipelined }) => one::<CubicStream>(&cubic(pipelined), sim),
+        (Shape::CubicStream, SpanKind::Cubic { pipelined }) => {
+            one::<CubicStream>(&cubic(pipelined), sim)
+        }
         (Shape::AngularStream, _) => one::<AngularStream>(&Default::default(), sim),
         (Shape::FastStream, _) => one::<FastStream>(&kind.fast_params(), sim),
         (Shape::QuadricStream, _) => one::<QuadricStream>(&Default::default(), sim),
@@ -455,7 +463,11 @@ impl SpanPipe {
     }
 
     /// The design [`SpanPipe::on`] builds under Verilator.
-    pub fn design(method: Method, pipelined: bool, stream: bool) -> Result<verilated::Design, String> {
+    pub fn design(
+        method: Method,
+        pipelined: bool,
+        stream: bool,
+    ) -> Result<verilated::Design, String> {
         let kind = span_kind(method, pipelined)?;
         let (_, d, _) = top_of(kind, SpanPipe::shape(kind, stream)?, None)?;
         Ok(d.expect("a design"))

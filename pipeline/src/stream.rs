@@ -247,15 +247,13 @@ pub trait StreamTop: rtl::sim::Dut {
     const TUSER: bool = true;
 }
 
-impl StreamTop for rtl::pixel_stream::PixelStream {
-}
+impl StreamTop for rtl::pixel_stream::PixelStream {}
 
 impl StreamTop for rtl::gouraud_stream::GouraudStream {
     const TUSER: bool = false;
 }
 
-impl StreamTop for rtl::cubic_stream::CubicStream {
-}
+impl StreamTop for rtl::cubic_stream::CubicStream {}
 
 /// The stream tops with a fragment stream per lane (`angular-stream`, `fast-stream`,
 /// `quadric-stream`: two lanes with `tuser`; `subdivision-stream`: four without), for

@@ -66,16 +66,19 @@ pub fn four_clocks(
 ) -> Result<Vec<golden::four_triangle::FourOutputs>> {
     use golden::four_triangle::FourTriangleSetup;
     let setup = FourTriangleSetup::new(tri);
-    if vcd.is_some() && (engine == Engine::Golden || sim == crate::sim::Sim::Verilator)
-    {
+    if vcd.is_some() && (engine == Engine::Golden || sim == crate::sim::Sim::Verilator) {
         bail!("--vcd needs --engine rtl --sim rust-hdl (only that run writes a waveform)");
     }
     match (engine, sim) {
         (Engine::Golden, _) => Ok(golden::four_triangle::run(&[setup]).0),
         (Engine::Rtl, crate::sim::Sim::Verilator) => {
             let budget = four_budget(&setup);
-            testbenches::four_triangle::run_reactive_on(crate::sim::Sim::Verilator, &[setup], budget)
-                .map_err(|e| anyhow::anyhow!("RTL simulation: {e}"))
+            testbenches::four_triangle::run_reactive_on(
+                crate::sim::Sim::Verilator,
+                &[setup],
+                budget,
+            )
+            .map_err(|e| anyhow::anyhow!("RTL simulation: {e}"))
         }
         (Engine::Rtl, crate::sim::Sim::RustHdl) => {
             let trace: Option<Box<dyn Write>> = match vcd {
@@ -178,8 +181,12 @@ pub fn walk_clocks_with(
             bail!("--vcd needs --sim rust-hdl (the Verilator run writes no waveform)");
         }
         let budget = 16 + (setup.rows as usize + 1) * (MAX_ADDRESS as usize + 2);
-        return testbenches::address_block::run_reactive_on(crate::sim::Sim::Verilator, &[setup], budget)
-            .map_err(|e| anyhow::anyhow!("RTL simulation: {e}"));
+        return testbenches::address_block::run_reactive_on(
+            crate::sim::Sim::Verilator,
+            &[setup],
+            budget,
+        )
+        .map_err(|e| anyhow::anyhow!("RTL simulation: {e}"));
     }
     match engine {
         Engine::Golden => {
@@ -238,6 +245,17 @@ pub fn run(a: Args) -> Result<()> {
         (None, Some(_), _) | (_, _, Engine::Golden) => crate::sim::Sim::RustHdl,
         (arg, _, _) => crate::sim::resolve(arg)?,
     };
+    if sim == crate::sim::Sim::Verilator {
+        let d = match a.address {
+            RasterAddress::Single => {
+                verilated::design::<rtl::address_block::AddressBlock>(&Default::default())
+            }
+            RasterAddress::FourTriangle => {
+                verilated::design::<rtl::four_triangle::FourTriangle>(&Default::default())
+            }
+        };
+        crate::sim::prepare(sim, vec![d], &indicatif::MultiProgress::new())?;
+    }
     let (text, clocks, pixels, rows) = match a.address {
         RasterAddress::Single => {
             let out = walk_clocks_with(&tri, a.engine, a.vcd.as_deref(), sim)?;

@@ -258,7 +258,11 @@ pub fn sim(a: SimArgs) -> anyhow::Result<()> {
         std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
     }
     if sim == crate::sim::Sim::Verilator {
-        crate::sim::prepare(sim, vec![block.design(&o).map_err(|e| anyhow!(e))?], &indicatif::MultiProgress::new())?;
+        crate::sim::prepare(
+            sim,
+            vec![block.design(&o).map_err(|e| anyhow!(e))?],
+            &indicatif::MultiProgress::new(),
+        )?;
     }
     if let (Some(vcd), true) = (&vcd, n > SIM_WARN_FACTOR * block.default_items()) {
         eprintln!(

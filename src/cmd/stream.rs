@@ -154,6 +154,8 @@ fn simulate_and_write(
         .find(|t| t.block == block)
         .ok_or_else(|| anyhow!("{block} is not a stream top"))?;
     let b = testbenches::registry::find(block).map_err(|e| anyhow!(e))?;
+    let design = b.design(o).map_err(|e| anyhow!(e))?;
+    crate::sim::prepare(sim, vec![design], &indicatif::MultiProgress::new())?;
     let out = b.simulate_on(o, rows, sim).map_err(|e| anyhow!(e))?;
     if out != twin {
         bail!("the {sim} simulation of {block} disagrees with its twin");

@@ -8,7 +8,6 @@
 //! RTL's own `ready` pace the loads (what the `raster` command and the renderer do).
 
 use crate::harness::{CheckSpec, Compare, Expected, Failure, Report};
-use rtl::sim::Model as _;
 use crate::normalizer::seeded_runner;
 use crate::registry::{self, Bench, Twin};
 use golden::address_block::{AddressBlockModel, AddressOutputs, AddressSetup};
@@ -20,6 +19,7 @@ use proptest::prelude::*;
 use proptest::strategy::ValueTree;
 use rtl::address_block::AddressBlock;
 use rtl::registry::NoParams;
+use rtl::sim::Model as _;
 use std::io::Write;
 
 pub use pipeline::gouraud::setup_row;

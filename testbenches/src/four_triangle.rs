@@ -5,7 +5,6 @@
 //! `ready` pace the loads instead (what `raster --address four-triangle` and the renderer do).
 
 use crate::harness::{CheckSpec, Compare, Expected, Failure, Report};
-use rtl::sim::Model as _;
 use crate::normalizer::seeded_runner;
 use crate::registry::{self, Bench, Twin};
 use golden::address_block::AddressOutputs;
@@ -14,6 +13,7 @@ use golden::types::ScreenTriangle;
 use proptest::strategy::{Strategy, ValueTree};
 use rtl::four_triangle::FourTriangle;
 use rtl::registry::NoParams;
+use rtl::sim::Model as _;
 use std::io::Write;
 
 /// Output ports: `ready`, then eight per lane.

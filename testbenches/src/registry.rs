@@ -467,7 +467,9 @@ pub enum Placement {
 }
 
 /// The differential check of a registered block: `rows` through the rust-hdl simulation and
-/// through its exported Verilog (built with `o`) under `sim`; identical outputs every clock.
+/// through its exported Verilog (built with `o`) under `sim` — Verilator in process (the
+/// cached library, no files), Icarus through a generated testbench; identical outputs every
+/// clock.
 pub fn differential(
     block: &dyn Entry,
     o: &Options,
@@ -476,8 +478,32 @@ pub fn differential(
     tag: &str,
 ) -> Result<crate::verilog::DiffReport, crate::verilog::DiffError> {
     use crate::verilog::DiffError;
-    let v = block.verilog(o).map_err(DiffError::Tool)?;
     let rust_rows = block.simulate(o, rows).map_err(DiffError::Tool)?;
+    if sim == crate::verilog::Simulator::Verilator {
+        let t = std::time::Instant::now();
+        let v = block
+            .simulate_on(o, rows, pipeline::engine::Sim::Verilator)
+            .map_err(DiffError::Tool)?;
+        let outputs = block.ports().1;
+        for (c, (r, w)) in rust_rows.iter().zip(&v).enumerate() {
+            if let Some(k) = (0..outputs.len()).find(|&k| r[k] != w[k]) {
+                return Err(DiffError::Mismatch(crate::verilog::Mismatch {
+                    cycle: c,
+                    port: outputs[k].name.into(),
+                    rust_hdl: r[k],
+                    verilog: format!("{:x}", w[k]),
+                    dir: verilated::cache_dir(),
+                }));
+            }
+        }
+        return Ok(crate::verilog::DiffReport {
+            cycles: rows.len(),
+            ports: outputs.len(),
+            verilog_sim_time: t.elapsed(),
+            dir: verilated::cache_dir(),
+        });
+    }
+    let v = block.verilog(o).map_err(DiffError::Tool)?;
     crate::verilog::differential_rows(
         &v,
         &block.module_name(),

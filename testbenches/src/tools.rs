@@ -111,6 +111,24 @@ pub fn skip(what: &str, why: &str) {
     );
 }
 
+/// The simulator for a long run of test `what`: Verilator in process (proven bit-exact against
+/// rust-hdl by the registry's test) when it is installed; otherwise rust-hdl — the same
+/// verdict, minutes slower — with a notice on stderr, or a failure when `CI` is set.
+pub fn fast_sim(what: &str) -> pipeline::engine::Sim {
+    if verilated::available() {
+        return pipeline::engine::Sim::Verilator;
+    }
+    if in_ci() {
+        panic!("{what}: Verilator is not installed (CI is set, so this is a failure)");
+    }
+    use std::io::Write;
+    let _ = writeln!(
+        std::io::stderr(),
+        "SLOW {what}: Verilator is not installed, so this runs on rust-hdl (apt-get install verilator g++)"
+    );
+    pipeline::engine::Sim::RustHdl
+}
+
 static DIR_COUNTER: AtomicU64 = AtomicU64::new(0);
 
 /// A fresh directory `target/tool-runs/<tag>-<pid>-<n>` (unique per process and call, so

@@ -31,7 +31,13 @@ fn options(pipelined: bool) -> Options {
 /// The beats the RTL (rust-hdl) delivers for the run's input rows, and its `error` at the end.
 fn rtl_beats(pipelined: bool, run: &CubicStreamRun) -> (Vec<Beat>, bool) {
     let b = find("cubic-stream").unwrap();
-    let out = b.simulate(&options(pipelined), &run.rows).unwrap();
+    let out = b
+        .simulate_on(
+            &options(pipelined),
+            &run.rows,
+            testbenches::tools::fast_sim("cubic_stream"),
+        )
+        .unwrap();
     // The twin that made the rows (record reader, banks, FIFO, hold) agrees every clock,
     // bad records and stalls included.
     if let Some(c) = (0..out.len()).find(|&c| out[c] != run.outputs[c]) {
@@ -340,7 +346,11 @@ fn latency_from_last_word_to_first_beat() {
             rows.extend(std::iter::repeat_n(vec![0, 0, 0, 1], latency + 10));
             let out = find("cubic-stream")
                 .unwrap()
-                .simulate(&options(pipelined), &rows)
+                .simulate_on(
+                    &options(pipelined),
+                    &rows,
+                    testbenches::tools::fast_sim("cubic_stream"),
+                )
                 .unwrap();
             assert!(
                 out[..=last]

@@ -20,6 +20,7 @@ fn last_checksum(log_dir: &std::path::Path) -> String {
 }
 
 #[test]
+#[ignore = "full tier: nextpnr-ecp5"]
 fn the_placer_seed_reaches_nextpnr() {
     if !require_ecp5("the_placer_seed_reaches_nextpnr") {
         return;

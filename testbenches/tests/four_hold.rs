@@ -122,7 +122,9 @@ fn subdivision_hold_keeps_every_pixel_and_matches_the_twin() {
     let o = Options::new();
     let entry = find("subdivision-raster").unwrap();
     let lanes = |rows: &[Vec<u64>]| -> Vec<Vec<LanePixel>> {
-        let out = entry.simulate(&o, rows).unwrap();
+        let out = entry
+            .simulate_on(&o, rows, testbenches::tools::fast_sim("four_hold"))
+            .unwrap();
         let mut px = vec![Vec::new(); LANES];
         for (c, r) in out.iter().enumerate() {
             assert_eq!(r.len(), OUTPUTS);

@@ -18,7 +18,13 @@ use testbenches::verilog::Simulator;
 /// The beats the RTL (rust-hdl) delivers for the run's input rows, and its `error` at the end.
 fn rtl_beats(run: &GouraudStreamRun) -> (Vec<Beat>, bool) {
     let b = find("gouraud-stream").unwrap();
-    let out = b.simulate(&Options::new(), &run.rows).unwrap();
+    let out = b
+        .simulate_on(
+            &Options::new(),
+            &run.rows,
+            testbenches::tools::fast_sim("gouraud_stream"),
+        )
+        .unwrap();
     // The twin that made the rows (record reader, banks, FIFO, hold) agrees every clock,
     // bad records and stalls included.
     if let Some(c) = (0..out.len()).find(|&c| out[c] != run.outputs[c]) {
@@ -142,7 +148,7 @@ fn back_pressure_keeps_every_fragment_in_order() {
 }
 
 /// Long stretches: `tready` low for 3 000 clocks in the middle of a triangle, twice, and the
-/// exported Verilog bit-exact with the rust-hdl simulation under that pattern (Icarus).
+/// exported Verilog bit-exact with the rust-hdl simulation under that pattern (Verilator, in process).
 #[test]
 fn long_stalls_lose_nothing_and_the_verilog_agrees() {
     let seed = seed_for("long_stalls_lose_nothing_and_the_verilog_agrees");
@@ -166,7 +172,7 @@ fn long_stalls_lose_nothing_and_the_verilog_agrees() {
         run.consumer_stalls,
         run.held
     );
-    if !Simulator::Icarus.require("long_stalls_lose_nothing_and_the_verilog_agrees") {
+    if !Simulator::Verilator.require("long_stalls_lose_nothing_and_the_verilog_agrees") {
         return;
     }
     let b = find("gouraud-stream").unwrap();
@@ -174,12 +180,12 @@ fn long_stalls_lose_nothing_and_the_verilog_agrees() {
         b,
         &Options::new(),
         &run.rows,
-        Simulator::Icarus,
+        Simulator::Verilator,
         "gouraud-stream-long-stalls",
     )
     .unwrap_or_else(|e| panic!("{e}"));
     println!(
-        "Icarus bit-exact: {} clocks × {} ports",
+        "Verilator bit-exact: {} clocks × {} ports",
         rep.cycles, rep.ports
     );
 }
@@ -264,7 +270,11 @@ fn latency_from_last_word_to_first_beat() {
     rows.extend(std::iter::repeat_n(vec![0, 0, 0, 1], latency + 10));
     let out = find("gouraud-stream")
         .unwrap()
-        .simulate(&Options::new(), &rows)
+        .simulate_on(
+            &Options::new(),
+            &rows,
+            testbenches::tools::fast_sim("gouraud_stream"),
+        )
         .unwrap();
     assert!(
         out[..=last]

@@ -20,7 +20,9 @@ fn params() -> (PipelineParams, Options) {
 /// The beats the RTL (rust-hdl) delivers for the run's input rows, and its `error` at the end.
 fn rtl_beats(run: &StreamRun, o: &Options) -> (Vec<Beat>, bool) {
     let b = find("pixel-stream").unwrap();
-    let out = b.simulate(o, &run.rows).unwrap();
+    let out = b
+        .simulate_on(o, &run.rows, testbenches::tools::fast_sim("pixel_stream"))
+        .unwrap();
     // The twin that made the rows (record reader, banks, FIFO, hold) agrees every clock,
     // bad records and stalls included.
     if let Some(c) = (0..out.len()).find(|&c| out[c] != run.outputs[c]) {
@@ -75,7 +77,7 @@ fn back_pressure_keeps_every_fragment_in_order() {
 }
 
 /// Long stretches: `tready` low for 3 000 clocks in the middle of a triangle, twice, and the
-/// exported Verilog bit-exact with the rust-hdl simulation under that pattern (Icarus).
+/// exported Verilog bit-exact with the rust-hdl simulation under that pattern (Verilator, in process).
 #[test]
 fn long_stalls_lose_nothing_and_the_verilog_agrees() {
     let seed = seed_for("long_stalls_lose_nothing_and_the_verilog_agrees");
@@ -104,7 +106,7 @@ fn long_stalls_lose_nothing_and_the_verilog_agrees() {
         run.consumer_stalls,
         run.held
     );
-    if !Simulator::Icarus.require("long_stalls_lose_nothing_and_the_verilog_agrees") {
+    if !Simulator::Verilator.require("long_stalls_lose_nothing_and_the_verilog_agrees") {
         return;
     }
     let b = find("pixel-stream").unwrap();
@@ -112,12 +114,12 @@ fn long_stalls_lose_nothing_and_the_verilog_agrees() {
         b,
         &o,
         &run.rows,
-        Simulator::Icarus,
+        Simulator::Verilator,
         "pixel-stream-long-stalls",
     )
     .unwrap_or_else(|e| panic!("{e}"));
     println!(
-        "Icarus bit-exact: {} clocks × {} ports",
+        "Verilator bit-exact: {} clocks × {} ports",
         rep.cycles, rep.ports
     );
 }
@@ -213,7 +215,10 @@ fn latency_from_last_word_to_first_beat() {
     let last = rows.len() - 1;
     let latency = rtl::pixel_stream::PixelStream::LATENCY;
     rows.extend(std::iter::repeat_n(vec![0, 0, 0, 1], latency + 10));
-    let out = find("pixel-stream").unwrap().simulate(&o, &rows).unwrap();
+    let out = find("pixel-stream")
+        .unwrap()
+        .simulate_on(&o, &rows, testbenches::tools::fast_sim("pixel_stream"))
+        .unwrap();
     assert!(
         out[..=last]
             .iter()

@@ -305,7 +305,6 @@ fn every_block_verilog_is_bit_exact_under_icarus() {
     verilog_bit_exact(Simulator::Icarus, "icarus_bit_exact");
 }
 
-
 /// The latencies the registry states are what the RTL does: one fixed triangle, loaded in
 /// clock 0; its first row has pixels.
 #[test]
@@ -444,7 +443,14 @@ fn every_block_streams_batches_back_to_back() {
             });
         let mut seen = 0;
         let r = b
-            .sim_stream(&Options::new(), n, seed, vcd.as_deref(), pipeline::engine::Sim::RustHdl, &mut |_| seen += 1)
+            .sim_stream(
+                &Options::new(),
+                n,
+                seed,
+                vcd.as_deref(),
+                pipeline::engine::Sim::RustHdl,
+                &mut |_| seen += 1,
+            )
             .unwrap_or_else(|e| panic!("{}: {e}", b.name()));
         assert_eq!((r.batches, seen), (3, 3), "{}", b.name());
         assert!(r.valid_clocks > 0, "{}: nothing valid", b.name());

@@ -38,7 +38,10 @@ fn block(kind: SpanKind) -> (&'static str, Options) {
 /// clock), each with the number of `last` flags before it (its line).
 fn rtl_pixels(kind: SpanKind, run: &HeldRun) -> Vec<Pixel> {
     let (name, o) = block(kind);
-    let out = find(name).unwrap().simulate(&o, &run.rows).unwrap();
+    let out = find(name)
+        .unwrap()
+        .simulate_on(&o, &run.rows, testbenches::tools::fast_sim("span_hold"))
+        .unwrap();
     let mut px = Vec::new();
     let mut line = 0;
     let (lanes, y, last) = pipeline::span::output_columns(kind);

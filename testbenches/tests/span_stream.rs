@@ -68,7 +68,14 @@ impl Top {
 /// Each lane's beats the RTL (rust-hdl) delivers for the run's input rows, and its `error` at
 /// the end.
 fn rtl_beats(top: &Top, run: &SpanStreamRun) -> ([Vec<Beat>; 2], bool) {
-    let out = top.entry().simulate(&top.options, &run.rows).unwrap();
+    let out = top
+        .entry()
+        .simulate_on(
+            &top.options,
+            &run.rows,
+            testbenches::tools::fast_sim("span_stream"),
+        )
+        .unwrap();
     // The twin that made the rows (record reader, banks, registers, FIFOs, hold) agrees every
     // clock, bad records and stalls included.
     if let Some(c) = (0..out.len()).find(|&c| out[c] != run.outputs[c]) {
@@ -490,7 +497,14 @@ fn latency_from_last_word_to_first_beat() {
         }
         let last = rows.len() - 1;
         rows.extend(std::iter::repeat_n(idle, top.latency + 10));
-        let out = top.entry().simulate(&top.options, &rows).unwrap();
+        let out = top
+            .entry()
+            .simulate_on(
+                &top.options,
+                &rows,
+                testbenches::tools::fast_sim("span_stream"),
+            )
+            .unwrap();
         assert!(
             out[..=last]
                 .iter()

@@ -25,7 +25,11 @@ use testbenches::verilog::Simulator;
 fn rtl_beats(run: &SubdivisionStreamRun) -> ([Vec<Beat>; LANES], bool) {
     let out = find("subdivision-stream")
         .unwrap()
-        .simulate(&Options::new(), &run.rows)
+        .simulate_on(
+            &Options::new(),
+            &run.rows,
+            testbenches::tools::fast_sim("subdivision_stream"),
+        )
         .unwrap();
     // The twin that made the rows (record reader, banks, FIFOs, hold) agrees every clock, bad
     // records and stalls included.
@@ -308,7 +312,11 @@ fn latency_from_last_word_to_first_beat() {
     rows.extend(std::iter::repeat_n(idle, latency + 10));
     let out = find("subdivision-stream")
         .unwrap()
-        .simulate(&Options::new(), &rows)
+        .simulate_on(
+            &Options::new(),
+            &rows,
+            testbenches::tools::fast_sim("subdivision_stream"),
+        )
         .unwrap();
     assert!(
         out[..=last]
