@@ -42,7 +42,7 @@ fn without_verilator_the_default_falls_back_and_the_switch_fails_in_one_line() {
         err.contains("verilator is not installed") && err.contains("rust-hdl"),
         "no notice: {err}"
     );
-    assert!(out.path().join("gouraud-rtl.png").exists());
+    assert!(out.path().join("gouraud.png").exists());
     let forced = run(&["--sim", "verilator"]);
     let (_, err) = text(&forced);
     assert!(!forced.status.success());

@@ -151,29 +151,58 @@ fn parent_at(t: &ScreenTriangle, x: f64, y: f64) -> ([f64; 3], f64) {
     (normal, l0 * t.v[0].z + l1 * t.v[1].z + l2 * t.v[2].z)
 }
 
-/// Refining one triangle whose normals are far apart: every vertex of every child lies on the
-/// parent's planes — its normal points where the parent's interpolated normal points at that
-/// address (the direction, not only the length), and its depth is the parent's there.
+/// Whether (x, y) lies in `t` (barycentric coordinates ≥ 0).
+fn inside(t: &ScreenTriangle, x: f64, y: f64) -> bool {
+    let [a, b, c] = t.v.map(|v| (v.x as f64, v.y as f64));
+    let det = (b.0 - a.0) * (c.1 - a.1) - (c.0 - a.0) * (b.1 - a.1);
+    let l1 = ((x - a.0) * (c.1 - a.1) - (c.0 - a.0) * (y - a.1)) / det;
+    let l2 = ((b.0 - a.0) * (y - a.1) - (x - a.0) * (b.1 - a.1)) / det;
+    l1 >= -1e-9 && l2 >= -1e-9 && 1.0 - l1 - l2 >= -1e-9
+}
+
+/// Refining a fan whose normals tilt outwards (its spokes are interior edges, split at every
+/// level): every vertex of every child lies on its parent's planes — the parent being the
+/// fan triangle that holds the child's centroid — so its normal points where the parent's
+/// interpolated normal points at that address (the direction, not only the length), and its
+/// depth is the parent's there.
 #[test]
 fn refined_vertices_keep_the_parents_normal_direction_and_depth() {
     let v = |x, y, z, n: DVec3| ScreenVertex { x, y, z, normal: n };
-    let t = ScreenTriangle {
-        v: [
-            v(10, 10, 0.25, DVec3::new(-0.8, -0.3, 0.5).normalize()),
-            v(90, 25, 0.5, DVec3::new(0.7, -0.2, 0.6).normalize()),
-            v(35, 80, 0.75, DVec3::new(0.1, 0.9, 0.4).normalize()),
-        ],
-    };
+    let ring: Vec<(i32, i32)> = (0..8)
+        .map(|k| {
+            let a = k as f64 * std::f64::consts::TAU / 8.0;
+            ((50.0 + 40.0 * a.cos()).round() as i32, (50.0 + 40.0 * a.sin()).round() as i32)
+        })
+        .collect();
+    let n = |p: (i32, i32)| DVec3::new((p.0 - 50) as f64, (p.1 - 50) as f64, 45.0).normalize();
+    let depth = |p: (i32, i32)| 0.5 + 0.002 * (p.0 + 2 * p.1) as f64;
+    let c = v(50, 50, depth((50, 50)), DVec3::new(0.1, -0.1, 1.0).normalize());
+    let fan: Vec<ScreenTriangle> = (0..8)
+        .map(|k| {
+            let (p, q) = (ring[k], ring[(k + 1) % 8]);
+            ScreenTriangle {
+                v: [c, v(p.0, p.1, depth(p), n(p)), v(q.0, q.1, depth(q), n(q))],
+            }
+        })
+        .collect();
     for mode in [Subdivide::Levels(1), Subdivide::Levels(2), Subdivide::Auto] {
-        let kids = refine(&[t], mode);
-        assert!(kids.len() >= 4, "{mode}: not split");
+        let kids = refine(&fan, mode);
+        assert!(kids.len() > fan.len(), "{mode}: not split");
         let mut off_vertex = 0;
         for k in &kids {
+            let (cx, cy) = (
+                k.v.iter().map(|p| p.x as f64).sum::<f64>() / 3.0,
+                k.v.iter().map(|p| p.y as f64).sum::<f64>() / 3.0,
+            );
+            let t = fan
+                .iter()
+                .find(|t| inside(t, cx, cy))
+                .unwrap_or_else(|| panic!("{mode}: a child outside the fan at ({cx}, {cy})"));
             for p in &k.v {
-                let (want, z) = parent_at(&t, p.x as f64, p.y as f64);
+                let (want, z) = parent_at(t, p.x as f64, p.y as f64);
                 let (got, lw) = (arr(p.normal), length(want));
-                let cos =
-                    (got[0] * want[0] + got[1] * want[1] + got[2] * want[2]) / (length(got) * lw);
+                let cos = (got[0] * want[0] + got[1] * want[1] + got[2] * want[2])
+                    / (length(got) * lw);
                 assert!(
                     cos > 1.0 - 1e-12,
                     "{mode}: ({}, {}): normal {got:?} points away from {want:?}",
@@ -187,7 +216,10 @@ fn refined_vertices_keep_the_parents_normal_direction_and_depth() {
                     p.y,
                     p.z
                 );
-                off_vertex += t.v.iter().all(|q| (q.x, q.y) != (p.x, p.y)) as usize;
+                off_vertex += fan
+                    .iter()
+                    .all(|f| f.v.iter().all(|q| (q.x, q.y) != (p.x, p.y)))
+                    as usize;
             }
         }
         assert!(off_vertex > 0, "{mode}: no midpoint vertex checked");
