@@ -386,6 +386,53 @@ where
     }
 }
 
+/// Check recorded `outputs` (one row per clock, from a run of `inputs` on any simulator) against
+/// `expected` under `spec`, as [`run`] checks them as the clocks go (every clock's bound, then
+/// RMS), without simulating again — unless a check fails: then `make`'s design replays the
+/// inputs into the failure's VCD. `expected` may be shorter than `outputs` (clocks past it are
+/// not checked).
+#[allow(clippy::result_large_err)]
+pub fn check_recorded<D: Dut>(
+    make: impl Fn() -> D,
+    spec: &CheckSpec,
+    inputs: &[Vec<u64>],
+    outputs: &[Vec<u64>],
+    expected: &[Vec<Expected>],
+) -> Result<Report, Failure> {
+    let ports = make().outputs();
+    assert_eq!(
+        ports.len(),
+        spec.compare.len(),
+        "CheckSpec.compare needs one entry per output port"
+    );
+    let mut stats: Vec<PortStats> = ports
+        .iter()
+        .map(|p| PortStats {
+            name: p.name.to_string(),
+            ..Default::default()
+        })
+        .collect();
+    for (c, (out, exp)) in outputs.iter().zip(expected).enumerate() {
+        for (k, (e, cmp)) in exp.iter().zip(&spec.compare).enumerate() {
+            if let Some((want, detail)) = check_port(e, cmp, out[k], &mut stats[k], c as u64) {
+                let f = spec.failure(c as u64, ports[k].name, want, describe(cmp, out[k]), detail);
+                return Err(with_vcd(f, make, inputs, &spec.name));
+            }
+        }
+    }
+    if let Some(f) = check_rms(spec, &stats) {
+        return Err(with_vcd(f, make, inputs, &spec.name));
+    }
+    Ok(Report {
+        name: spec.name.clone(),
+        seed: spec.seed,
+        cycles: outputs.len() as u64,
+        ports: stats,
+        inputs: inputs.to_vec(),
+        outputs: outputs.to_vec(),
+    })
+}
+
 /// One batch of a streamed run ([`run_stream`]): input rows and their golden expectations.
 pub struct Batch {
     pub rows: Vec<Vec<u64>>,

@@ -77,6 +77,16 @@ pub trait Entry: Sync {
     fn stimulus(&self, o: &Options, n: usize, seed: u64) -> Result<Stimulus, String>;
     /// Run `stim` through the RTL, checking every clock against the golden expectations.
     fn run_golden(&self, o: &Options, stim: &Stimulus, name: &str, seed: u64) -> Checked;
+    /// Check `outputs`, recorded from `stim.rows` (a longer run may follow them), against the
+    /// golden expectations without simulating again (a failure replays into a VCD).
+    fn check_golden(
+        &self,
+        o: &Options,
+        stim: &Stimulus,
+        outputs: &[Vec<u64>],
+        name: &str,
+        seed: u64,
+    ) -> Checked;
     /// [`Bench::edge_rows`].
     fn edge_rows(&self, o: &Options, seed: u64) -> Result<Vec<Vec<u64>>, String>;
     /// Run `rows` through the RTL, requiring every output port in every clock to equal the
@@ -196,6 +206,24 @@ impl<B: Bench + 'static> Entry for Registered<B> {
             compare: stim.compare.clone(),
         };
         harness::run_rows(|| B::build(&p), &spec, &stim.rows, &stim.expected).map_err(Box::new)
+    }
+    fn check_golden(
+        &self,
+        o: &Options,
+        stim: &Stimulus,
+        outputs: &[Vec<u64>],
+        name: &str,
+        seed: u64,
+    ) -> Checked {
+        let p = B::Params::from_options(o).map_err(|e| failure(name, seed, e))?;
+        let spec = CheckSpec {
+            name: name.into(),
+            seed,
+            compare: stim.compare.clone(),
+        };
+        let n = stim.rows.len().min(outputs.len());
+        harness::check_recorded(|| B::build(&p), &spec, &stim.rows[..n], &outputs[..n], &stim.expected)
+            .map_err(Box::new)
     }
     fn edge_rows(&self, o: &Options, seed: u64) -> Result<Vec<Vec<u64>>, String> {
         Ok(B::edge_rows(&B::Params::from_options(o)?, seed))

@@ -145,18 +145,15 @@ fn fast_hold_loses_no_pixel_and_matches_the_twin() {
 }
 
 /// The exported Verilog of each top under a 40 % random hold pattern: bit-exact with the
-/// rust-hdl simulation every clock (Verilator; Icarus on the quadric unit, whose run is short
-/// enough for it). The cubic pipeline in both Horner variants.
+/// rust-hdl simulation every clock (Verilator in process). The cubic pipeline in both Horner
+/// variants.
 #[test]
 fn held_verilog_is_bit_exact() {
     let seed = seed_for("held_verilog_is_bit_exact");
     println!("seed {seed} (SHADECORE_SEED overrides)");
     let tris = triangles(2, seed);
     for (kind, sims) in [
-        (
-            SpanKind::Quadric,
-            &[Simulator::Verilator, Simulator::Icarus][..],
-        ),
+        (SpanKind::Quadric, &[Simulator::Verilator][..]),
         (SpanKind::Angular, &[Simulator::Verilator][..]),
         (SpanKind::Fast("chebyshev"), &[Simulator::Verilator][..]),
         (

@@ -74,7 +74,11 @@ fn verilator_wall_is_clean_on_every_exported_block() {
             let named = sub.join(format!("{}.v", b.module_name()));
             std::fs::write(&named, &text).unwrap();
             linted += 1;
-            unwaived += lint(&sub, &b.module_name(), &named, None).len();
+            // Without the waivers until one export shows the file is not vacuous (each lint
+            // is a Verilator run; the waived lint below is the check).
+            if unwaived == 0 {
+                unwaived += lint(&sub, &b.module_name(), &named, None).len();
+            }
             let w = lint(&sub, &b.module_name(), &named, Some(&waivers));
             if !w.is_empty() {
                 failures.push(format!(
@@ -88,7 +92,7 @@ fn verilator_wall_is_clean_on_every_exported_block() {
     }
     println!(
         "verilator -Wall: {linted} distinct exports of {} blocks; {unwaived} warnings without \
-         the waiver file, {} with it",
+         the waiver file on the first that has any, {} with it",
         BLOCKS.len(),
         failures.len()
     );
