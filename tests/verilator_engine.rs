@@ -130,3 +130,67 @@ fn verilator_four_triangle_raster_equals_rust_hdl() {
         println!("{t}: {} clocks identical", r.len());
     }
 }
+
+/// The main job (`render`, every method golden and through the RTL) on a small scene writes the
+/// same files on both engines: every image byte for byte, and `report.json` equal but for the
+/// wall times (`seconds`).
+#[test]
+fn main_job_files_are_identical_on_both_engines() {
+    if !tools::require(
+        &[Tool::Verilator],
+        "main_job_files_are_identical_on_both_engines",
+    ) {
+        return;
+    }
+    let dirs = [tempfile::tempdir().unwrap(), tempfile::tempdir().unwrap()];
+    for (dir, sim) in dirs.iter().zip(["verilator", "rust-hdl"]) {
+        let o = std::process::Command::new(env!("CARGO_BIN_EXE_shadecore"))
+            .args([
+                "render", "--rez", "8", "--size", "64x64", "--sim", sim, "--out",
+            ])
+            .arg(dir.path())
+            .output()
+            .unwrap();
+        assert!(
+            o.status.success(),
+            "{sim}: {}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+    }
+    let list = |d: &std::path::Path| {
+        let mut v: Vec<String> = std::fs::read_dir(d)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().to_string())
+            .collect();
+        v.sort();
+        v
+    };
+    let files = list(dirs[0].path());
+    assert_eq!(files, list(dirs[1].path()));
+    assert!(
+        files.iter().filter(|f| f.ends_with("-rtl.png")).count() >= 13,
+        "{files:?}"
+    );
+    fn without_seconds(v: &mut serde_json::Value) {
+        match v {
+            serde_json::Value::Object(m) => {
+                m.remove("seconds");
+                m.values_mut().for_each(without_seconds);
+            }
+            serde_json::Value::Array(a) => a.iter_mut().for_each(without_seconds),
+            _ => {}
+        }
+    }
+    for f in &files {
+        let [a, b] = [0, 1].map(|k| std::fs::read(dirs[k].path().join(f)).unwrap());
+        if f == "report.json" {
+            let [mut a, mut b]: [serde_json::Value; 2] =
+                [a, b].map(|t| serde_json::from_slice(&t).unwrap());
+            without_seconds(&mut a);
+            without_seconds(&mut b);
+            assert_eq!(a, b, "report.json differs beyond the wall times");
+        } else {
+            assert!(a == b, "{f} differs between the engines");
+        }
+    }
+}

@@ -122,13 +122,11 @@ fn subdivision_planes_take_the_midpoint_intensities_at_every_lane_vertex() {
                     })
                     .unwrap_or_else(|| panic!("lane {lane} vertex ({x2}, {y2})/2 is neither"));
                 let want = ctx.exact_intensity(normal);
-                for c in 0..3 {
-                    let pl = s.planes[lane][c];
+                for (c, (pl, w)) in s.planes[lane].iter().zip(want).enumerate() {
                     let got = pl.a * x2 as f64 / 2.0 + pl.b * y2 as f64 / 2.0 + pl.c;
                     assert!(
-                        (got - want[c]).abs() < 1e-9,
-                        "lane {lane} channel {c} at ({x2}, {y2})/2: {got} against {}",
-                        want[c]
+                        (got - w).abs() < 1e-9,
+                        "lane {lane} channel {c} at ({x2}, {y2})/2: {got} against {w}"
                     );
                 }
                 seen += 1;
@@ -171,12 +169,20 @@ fn refined_vertices_keep_the_parents_normal_direction_and_depth() {
     let ring: Vec<(i32, i32)> = (0..8)
         .map(|k| {
             let a = k as f64 * std::f64::consts::TAU / 8.0;
-            ((50.0 + 40.0 * a.cos()).round() as i32, (50.0 + 40.0 * a.sin()).round() as i32)
+            (
+                (50.0 + 40.0 * a.cos()).round() as i32,
+                (50.0 + 40.0 * a.sin()).round() as i32,
+            )
         })
         .collect();
     let n = |p: (i32, i32)| DVec3::new((p.0 - 50) as f64, (p.1 - 50) as f64, 45.0).normalize();
     let depth = |p: (i32, i32)| 0.5 + 0.002 * (p.0 + 2 * p.1) as f64;
-    let c = v(50, 50, depth((50, 50)), DVec3::new(0.1, -0.1, 1.0).normalize());
+    let c = v(
+        50,
+        50,
+        depth((50, 50)),
+        DVec3::new(0.1, -0.1, 1.0).normalize(),
+    );
     let fan: Vec<ScreenTriangle> = (0..8)
         .map(|k| {
             let (p, q) = (ring[k], ring[(k + 1) % 8]);
@@ -201,8 +207,8 @@ fn refined_vertices_keep_the_parents_normal_direction_and_depth() {
             for p in &k.v {
                 let (want, z) = parent_at(t, p.x as f64, p.y as f64);
                 let (got, lw) = (arr(p.normal), length(want));
-                let cos = (got[0] * want[0] + got[1] * want[1] + got[2] * want[2])
-                    / (length(got) * lw);
+                let cos =
+                    (got[0] * want[0] + got[1] * want[1] + got[2] * want[2]) / (length(got) * lw);
                 assert!(
                     cos > 1.0 - 1e-12,
                     "{mode}: ({}, {}): normal {got:?} points away from {want:?}",

@@ -17,8 +17,12 @@ pub enum Sim {
 }
 
 impl Sim {
-    /// Verilator when it (and a C++ compiler) is installed, else rust-hdl.
+    /// Verilator when it (and a C++ compiler) is installed, else rust-hdl; `SHADECORE_SIM=rust-hdl`
+    /// in the environment asks for rust-hdl (to run the tests' long runs on it).
     pub fn fastest() -> Sim {
+        if std::env::var("SHADECORE_SIM").as_deref() == Ok("rust-hdl") {
+            return Sim::RustHdl;
+        }
         if verilated::available() {
             Sim::Verilator
         } else {

@@ -383,17 +383,14 @@ fn span_kind(method: Method, pipelined: bool) -> Result<SpanKind, String> {
         })
 }
 
-/// A top for `kind` in `shape`, on `sim` (`design`: its Verilator design instead).
-fn top_of(
-    kind: SpanKind,
-    shape: Shape,
-    sim: Option<Sim>,
-) -> Result<(Option<Box<dyn Model>>, Option<verilated::Design>, usize), String> {
+/// A span top made by [`top_of`]: the simulated model (or, asked for no simulator, its Verilator
+/// design) and its latency.
+type Made = (Option<Box<dyn Model>>, Option<verilated::Design>, usize);
+
+/// A top for `kind` in `shape`, on `sim` (`None`: its Verilator design instead).
+fn top_of(kind: SpanKind, shape: Shape, sim: Option<Sim>) -> Result<Made, String> {
     use crate::engine::{design, model};
-    fn one<B: RtlBlock + 'static>(
-        p: &B::Params,
-        sim: Option<Sim>,
-    ) -> Result<(Option<Box<dyn Model>>, Option<verilated::Design>, usize), String> {
+    fn one<B: RtlBlock + 'static>(p: &B::Params, sim: Option<Sim>) -> Result<Made, String> {
         Ok(match sim {
             Some(sim) => (Some(model::<B>(p, sim)?), None, B::LATENCY),
             None => (None, Some(design::<B>(p)), B::LATENCY),

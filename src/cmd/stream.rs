@@ -139,6 +139,7 @@ fn run_cubic(a: &Args) -> Result<()> {
 /// twin's input rows (it must agree with the twin's outputs clock for clock), then `setup.txt` (the words, sent
 /// in `order`), `beats.txt` (the beats the simulation delivers; z = 0 for a top without
 /// `m_axis_tuser`) and the top's Verilog. Returns the beats.
+#[allow(clippy::too_many_arguments)]
 fn simulate_and_write(
     dir: &std::path::Path,
     block: &str,

@@ -222,8 +222,14 @@ impl<B: Bench + 'static> Entry for Registered<B> {
             compare: stim.compare.clone(),
         };
         let n = stim.rows.len().min(outputs.len());
-        harness::check_recorded(|| B::build(&p), &spec, &stim.rows[..n], &outputs[..n], &stim.expected)
-            .map_err(Box::new)
+        harness::check_recorded(
+            || B::build(&p),
+            &spec,
+            &stim.rows[..n],
+            &outputs[..n],
+            &stim.expected,
+        )
+        .map_err(Box::new)
     }
     fn edge_rows(&self, o: &Options, seed: u64) -> Result<Vec<Vec<u64>>, String> {
         Ok(B::edge_rows(&B::Params::from_options(o)?, seed))

@@ -114,7 +114,11 @@ pub fn skip(what: &str, why: &str) {
 /// The simulator for a long run of test `what`: Verilator in process (proven bit-exact against
 /// rust-hdl by the registry's test) when it is installed; otherwise rust-hdl — the same
 /// verdict, minutes slower — with a notice on stderr, or a failure when `CI` is set.
+/// `SHADECORE_SIM=rust-hdl` runs them on rust-hdl on purpose (the one switch for the tests).
 pub fn fast_sim(what: &str) -> pipeline::engine::Sim {
+    if std::env::var("SHADECORE_SIM").as_deref() == Ok("rust-hdl") {
+        return pipeline::engine::Sim::RustHdl;
+    }
     if verilated::available() {
         return pipeline::engine::Sim::Verilator;
     }

@@ -495,7 +495,10 @@ fn ecp5_smoke_place_and_route() {
 #[test]
 #[ignore = "full tier: Yosys and nextpnr-ice40 (about 1 min)"]
 fn ice40_smoke_place_and_route() {
-    if !tools::require(&[Tool::Yosys, Tool::NextpnrIce40], "ice40_smoke_place_and_route") {
+    if !tools::require(
+        &[Tool::Yosys, Tool::NextpnrIce40],
+        "ice40_smoke_place_and_route",
+    ) {
         return;
     }
     let b = registry::find("normalizer").unwrap();
