@@ -5,7 +5,9 @@
 //! compiler versions, the flags and the wrapper's ABI version. Built in a temporary directory
 //! beside it and renamed into place, so an entry is whole or absent; a load checks `lib.sum`, the
 //! ABI version and the port list, and a broken entry is removed and built again (with a notice on
-//! stderr). Builds of one key are serialised by an advisory lock on `<entry>.lock`.
+//! stderr). Builds of one key are serialised by an advisory lock on `<entry>.lock`. A new build
+//! of a registered block removes the entries of the same block and parameters made from older
+//! RTL sources.
 
 use std::fmt::Write as _;
 use std::fs::File;
@@ -304,7 +306,21 @@ pub fn set_quiet(quiet: bool) {
 }
 
 /// A fresh temporary directory in `cache` (same file system as the entries, for the rename).
+/// Temporary directories over an hour old (a build killed midway) are removed first.
 fn temp_dir(cache: &Path, tag: &str) -> Result<PathBuf, String> {
+    if let Ok(entries) = std::fs::read_dir(cache) {
+        for e in entries.flatten() {
+            let old = e
+                .metadata()
+                .and_then(|m| m.modified())
+                .ok()
+                .and_then(|t| t.elapsed().ok())
+                .is_some_and(|age| age.as_secs() > 3600);
+            if old && e.file_name().to_string_lossy().starts_with(".tmp-") {
+                let _ = std::fs::remove_dir_all(e.path());
+            }
+        }
+    }
     let n = TMP_COUNTER.fetch_add(1, Ordering::SeqCst);
     let d = cache.join(format!(".tmp-{tag}-{}-{n}", std::process::id()));
     let _ = std::fs::remove_dir_all(&d);
@@ -421,6 +437,7 @@ fn compile_into(
             .map_err(|e| format!("cannot write {}: {e}", tmp.join(name).display()))
     };
     write("dut.v", &verilog)?;
+    write("key.txt", &design.key)?;
     write("wrapper.cpp", &wrapper(&design.inputs, &design.outputs)?)?;
     let args: Vec<String> = [
         "--cc",
@@ -527,6 +544,36 @@ fn broken(dir: &Path) -> Option<String> {
     })
 }
 
+/// Remove the entries `design` supersedes: the same block and parameters built from other RTL
+/// sources (a key `block:NAME|PARAMS|FINGERPRINT` equal but for its last field), so that editing
+/// the RTL does not grow the cache by a build of every block each time. A process still using
+/// a removed library keeps its mapping; one about to load it builds it again.
+fn evict_superseded(cache: &Path, design: &Design, keep: &str) {
+    let Some((stem, _)) = design.key.rsplit_once('|') else {
+        return;
+    };
+    if !design.key.starts_with("block:") {
+        return;
+    }
+    let prefix = format!("{}-", safe(&design.module));
+    let Ok(entries) = std::fs::read_dir(cache) else {
+        return;
+    };
+    for e in entries.flatten() {
+        let name = e.file_name().to_string_lossy().to_string();
+        if name == keep || !name.starts_with(&prefix) || name.ends_with(".lock") {
+            continue;
+        }
+        let Ok(key) = std::fs::read_to_string(e.path().join("key.txt")) else {
+            continue;
+        };
+        if key.rsplit_once('|').is_some_and(|(s, _)| s == stem) && key != design.key {
+            let _ = std::fs::remove_dir_all(e.path());
+            let _ = std::fs::remove_file(cache.join(format!("{name}.lock")));
+        }
+    }
+}
+
 /// Libraries already loaded by this process, by entry name.
 fn loaded() -> &'static Mutex<std::collections::HashMap<String, Arc<Library>>> {
     static LOADED: OnceLock<Mutex<std::collections::HashMap<String, Arc<Library>>>> =
@@ -589,6 +636,7 @@ pub fn build(design: &Design) -> Result<Arc<Library>, String> {
         }
         std::fs::rename(&tmp, &dir)
             .map_err(|e| format!("cannot move the build into {}: {e}", dir.display()))?;
+        evict_superseded(&cache, design, &name);
         if !QUIET.load(Ordering::Relaxed) {
             eprintln!(
                 "verilated: built {} in {:.1} s",

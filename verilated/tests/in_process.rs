@@ -135,3 +135,51 @@ fn two_threads_building_one_design_share_one_build() {
     // Two processes at once and a broken entry: tests/engine_errors.rs (through the CLI, on a
     // cache of its own).
 }
+
+/// A build of a registered block made from newer RTL sources removes the entry of the same
+/// block and parameters made from older ones (the cache does not grow with every RTL edit);
+/// other entries stay.
+#[test]
+fn a_newer_build_of_a_block_supersedes_the_older_one() {
+    if !require("a_newer_build_of_a_block_supersedes_the_older_one") {
+        return;
+    }
+    let fresh = fresh_design();
+    // Not starting with the other test's stamp (that test removes what it stamped).
+    let text = format!("// eviction test\n{}", (fresh.verilog)().unwrap());
+    // Two "generations" of one block and parameters (keys equal but for the fingerprint), and a
+    // third design with other parameters.
+    let tag = format!("evict{}", std::process::id());
+    let make = |key: String| verilated::Design {
+        name: format!("eviction test {key}"),
+        key,
+        module: fresh.module.clone(),
+        inputs: fresh.inputs.clone(),
+        outputs: fresh.outputs.clone(),
+        verilog: Box::new({
+            let t = text.clone();
+            move || Ok(t.clone())
+        }),
+    };
+    let old = make(format!("block:{tag}|P1|old"));
+    let other = make(format!("block:{tag}|P2|old"));
+    let new = make(format!("block:{tag}|P1|new"));
+    let dir_of = |key: &str| {
+        std::fs::read_dir(verilated::cache_dir())
+            .unwrap()
+            .flatten()
+            .map(|e| e.path())
+            .find(|p| std::fs::read_to_string(p.join("key.txt")).is_ok_and(|k| k == key))
+    };
+    verilated::build(&old).unwrap();
+    verilated::build(&other).unwrap();
+    let old_dir = dir_of(&old.key).expect("the old entry");
+    verilated::build(&new).unwrap();
+    assert!(!old_dir.exists(), "the superseded entry is still there");
+    assert!(dir_of(&new.key).is_some() && dir_of(&other.key).is_some());
+    for d in [&new, &other] {
+        let p = dir_of(&d.key).unwrap();
+        std::fs::remove_dir_all(&p).unwrap();
+        let _ = std::fs::remove_file(p.with_extension("lock"));
+    }
+}
