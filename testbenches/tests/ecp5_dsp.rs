@@ -55,7 +55,7 @@ fn run(
 }
 
 #[test]
-#[ignore = "full tier: the ECP5 multiplier mapping under Icarus (about 2 min)"]
+#[ignore = "full tier: the ECP5 multiplier mapping under Icarus"]
 fn mapped_multipliers_are_bit_exact_with_the_simulation() {
     if !tools::require(&[Tool::Iverilog, Tool::Vvp], "ecp5_dsp") {
         return;
@@ -103,7 +103,7 @@ fn mapped_multipliers_are_bit_exact_with_the_simulation() {
 }
 
 #[test]
-#[ignore = "full tier: the ECP5 multiplier mapping under Icarus (about 2 min)"]
+#[ignore = "full tier: the ECP5 multiplier mapping under Icarus"]
 fn the_power_unit_maps_every_product_and_a_clock_off_is_caught() {
     if !tools::require(&[Tool::Iverilog, Tool::Vvp], "ecp5_dsp") {
         return;

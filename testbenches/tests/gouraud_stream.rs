@@ -312,7 +312,7 @@ fn layout_fields_are_the_raster_ports() {
 /// I/O), `gouraud-raster` with its flat set-up ports does not place (more pins than the
 /// package has), while `gouraud-stream` places and routes on its own pins and keeps ≥ 100 MHz.
 #[test]
-#[ignore = "full tier: nextpnr-ecp5 on a package's pins (about 30 s)"]
+#[ignore = "full tier: nextpnr-ecp5 on a package's pins"]
 fn the_stream_top_places_on_its_own_pins_and_the_flat_top_does_not() {
     use testbenches::synth::{ecp5_on_pins, require_ecp5, ECP5_PARTS};
     let what = "the_stream_top_places_on_its_own_pins_and_the_flat_top_does_not";

@@ -18,7 +18,7 @@ fn check400(block: &str, o: Options, mutants: &[Mutant]) {
 }
 
 #[test]
-#[ignore = "full tier: fourteen Verilog mutants under Icarus (about 3 min)"]
+#[ignore = "full tier: the quarter-LSB Verilog mutants under Icarus"]
 fn quarter_lsb_rounding_errors_are_caught_by_the_twins() {
     if !tools::require(
         Simulator::Icarus.tools(),

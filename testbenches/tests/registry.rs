@@ -183,7 +183,7 @@ const INSIDE_STREAM: [(&str, &str); 7] = [
 ];
 
 #[test]
-#[ignore = "full tier: Yosys over every block (about 9 min)"]
+#[ignore = "full tier: Yosys over every block"]
 fn yosys_synthesizes_every_block_with_its_multipliers() {
     if !tools::require(
         &[Tool::Yosys],
@@ -294,7 +294,7 @@ fn verilog_bit_exact(sim: Simulator, test: &str) {
 }
 
 #[test]
-#[ignore = "full tier: Icarus over every block (about 4 min)"]
+#[ignore = "full tier: Icarus over every block"]
 fn every_block_verilog_is_bit_exact_under_icarus() {
     verilog_bit_exact(Simulator::Icarus, "icarus_bit_exact");
 }
@@ -477,7 +477,7 @@ fn every_block_streams_batches_back_to_back() {
 /// multipliers mapped to MULT18X18D. Every block's figures come from `shadecore synth --block
 /// all --target ecp5`, not from tests.
 #[test]
-#[ignore = "full tier: nextpnr-ecp5 (about 1 min)"]
+#[ignore = "full tier: nextpnr-ecp5"]
 fn ecp5_smoke_place_and_route() {
     use testbenches::synth::require_ecp5;
     if !require_ecp5("ecp5_smoke_place_and_route") {
@@ -493,7 +493,7 @@ fn ecp5_smoke_place_and_route() {
 /// nextpnr-ice40 on the UP5K: it fits, its multipliers are SB_MAC16, and it routes with an
 /// Fmax in a plausible range. Every block's figures come from `shadecore synth --block all`.
 #[test]
-#[ignore = "full tier: Yosys and nextpnr-ice40 (about 1 min)"]
+#[ignore = "full tier: Yosys and nextpnr-ice40"]
 fn ice40_smoke_place_and_route() {
     if !tools::require(
         &[Tool::Yosys, Tool::NextpnrIce40],

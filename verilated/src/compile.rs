@@ -25,9 +25,9 @@ use crate::Design;
 pub(crate) const ABI_VERSION: u32 = 1;
 
 /// C++ optimisation of the model's evaluation code and of its construction code (Verilator's own
-/// makefile uses `-Os` and none). `-O1` is within a few per cent of `-O2` in speed here
-/// and compiles in about half the time (the cold build is what a test run from a clean clone
-/// pays).
+/// makefile uses `-Os` and none). `-O1` is a compromise for the cold build, which a test run
+/// from a clean clone pays: with it `pixel-stream` runs at about 1.6 M clocks/s in process
+/// (docs/measurements/sim-speed.md); other levels were not measured.
 const OPT_FAST: &str = "-O1";
 const OPT_SLOW: &str = "-O0";
 
