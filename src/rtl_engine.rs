@@ -385,7 +385,7 @@ pub fn render_span_rtl(
     };
     // `cubic` goes through its stream top `cubic-stream` (and `angular`, `fast`, `fast-fit`,
     // `quadric` through `angular-stream`, `fast-stream`, `quadric-stream`) only when asked
-    // (`--lit-top stream`, rust-hdl): a line's record is 12 set-up words, so on meshes whose triangles
+    // (`--lit-top stream`): a line's record is 12 set-up words, so on meshes whose triangles
     // give lines of a few pixels the stream is set-up bound (the default scene: see the
     // README) and the main job keeps `cubic-pipeline`'s ports.
     // `angular-stream`, `fast-stream` and `quadric-stream` likewise: a line's record is 14,
@@ -571,7 +571,7 @@ pub fn render_gouraud_rtl_with(
 /// four-triangle address block and a BVI per lane): `gouraud` (every lane interpolates the
 /// parent's planes) or `subdivision` (each lane its sub-triangle's). Depth as in
 /// [`render_gouraud_rtl`] (the parent's f64 depth plane at the pixel centre). `progress`
-/// counts parents every lane has finished. With `--lit-top stream` (rust-hdl) through the
+/// counts parents every lane has finished. With `--lit-top stream` through the
 /// stream top `subdivision-stream` (a 72-word record per parent, a fragment stream per lane);
 /// by default through the pipe's ports, as the records make small parents set-up bound.
 pub fn render_subdivision_rtl(

@@ -71,8 +71,8 @@ pub struct Args {
     /// subdivision go through — stream (`pixel-stream`, `gouraud-stream`, `cubic-stream`,
     /// `angular-stream`, `fast-stream`, `quadric-stream`, `subdivision-stream`: AXI4-Stream
     /// set-up records and fragment beats) or pipeline (`pixel-pipeline`, `gouraud-raster`, the
-    /// span pipelines, `subdivision-raster`: set-up on load ports). Default: stream under
-    /// rust-hdl for the lit methods and gouraud (the span methods and subdivision: pipeline, as
+    /// span pipelines, `subdivision-raster`: set-up on load ports). Default: stream for
+    /// the lit methods and gouraud (the span methods and subdivision: pipeline, as
     /// their per-line and per-parent records make the stream set-up bound on short lines and
     /// small triangles). The images are identical; the clock counts
     /// differ (the set-up stream carries 26 words per lit triangle, 22 per Gouraud one, 12 per
