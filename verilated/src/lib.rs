@@ -15,11 +15,14 @@
 //!   [`rtl::sim::RustHdlModel`], with the same clock timing: inputs applied with the clock low,
 //!   outputs sampled, then the rising edge.
 //!
-//! Why `libloading` rather than a crate made for driving Verilator models from Rust: those
-//! (e.g. `marlin-verilator`, `verilated`) describe a module's ports by a Rust type written at
-//! compile time; here the port lists come from the registry at run time (a block and its option
-//! set), and the C ABI needed is five functions, generated with the model.
-
+//! Why `libloading` rather than a crate made for driving Verilator models from Rust: `verilated`
+//! / `verilator` (0.1, Rust 2015) describe a module's ports as a Rust type in `build.rs` and a
+//! proc macro, while our port lists come from the registry at run time (a block and its option
+//! set); `marlin-verilator` has dynamic models (ports by name at run time, also through
+//! `libloading`) whose ports are reached by name one at a time, where a clock here moves every
+//! port in one `sc_step` call. It was not tried; the C ABI needed is seven functions, generated
+//! with the model.
+//!
 mod compile;
 mod model;
 
