@@ -463,3 +463,34 @@ fn stream_methods_are_the_stream_tops() {
     let records = setup.lines().filter(|l| l.ends_with(" 1")).count();
     assert_eq!(words, 22 * records, "22 words per Gouraud triangle record");
 }
+
+/// `synth --table` writes the figures as a Markdown table (whole, with the command and date):
+/// one row per block synthesized, its LUT4 and multiplier counts those printed.
+#[test]
+fn synth_table_writes_one_row_per_block() {
+    use testbenches::tools::{self, Tool};
+    if !tools::require(&[Tool::Yosys], "synth_table_writes_one_row_per_block") {
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let table = dir.path().join("sub").join("fpga.md");
+    let o = shadecore_ok(&[
+        "synth",
+        "--block",
+        "colour-combine",
+        "--no-pnr",
+        "--table",
+        table.to_str().unwrap(),
+    ]);
+    let printed = String::from_utf8_lossy(&o.stdout).to_string();
+    let text = std::fs::read_to_string(&table).unwrap();
+    assert!(text.contains("`shadecore synth --block colour-combine --target ice40 --no-pnr`"));
+    let rows: Vec<&str> = text.lines().filter(|l| l.starts_with("| `")).collect();
+    assert_eq!(rows.len(), 1, "{text}");
+    let cells: Vec<&str> = rows[0].split('|').map(str::trim).collect();
+    assert_eq!(cells[1], "`colour-combine`");
+    let luts: u64 = cells[3].parse().unwrap();
+    assert!(luts > 0 && printed.contains(&luts.to_string()), "{printed}\n{text}");
+    assert!(cells[5].ends_with("SB_MAC16") && cells[6] == "—");
+    assert!(!dir.path().join("sub").join("fpga.md.tmp").exists());
+}

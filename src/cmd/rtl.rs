@@ -139,6 +139,11 @@ pub struct SynthArgs {
     /// exported).
     #[arg(long, value_enum)]
     pub mult_regs: Option<MultRegsArg>,
+    /// Also write the figures as a Markdown table (block, part, LUT4, flip-flops, multipliers,
+    /// Fmax) with the date and the machine, e.g. `--block all --table
+    /// docs/measurements/fpga-ice40.md`. Written whole when every block is done.
+    #[arg(long)]
+    pub table: Option<PathBuf>,
 }
 
 /// `synth --mult-regs`.
@@ -322,6 +327,13 @@ pub fn sim(a: SimArgs) -> anyhow::Result<()> {
 
 pub fn synth(a: SynthArgs) -> anyhow::Result<()> {
     let (blocks, o) = selection(&a.block, &a.build)?;
+    let mut rows: Vec<String> = Vec::new();
+    if let Some(t) = &a.table {
+        if let Some(dir) = t.parent().filter(|d| !d.as_os_str().is_empty()) {
+            std::fs::create_dir_all(dir)
+                .with_context(|| format!("cannot create {}", dir.display()))?;
+        }
+    }
     if a.target == Target::Ecp5 {
         if !testbenches::tools::available(testbenches::tools::Tool::Yosys) {
             bail!("yosys is not installed (apt-get install yosys)");
@@ -347,6 +359,15 @@ pub fn synth(a: SynthArgs) -> anyhow::Result<()> {
             spin.finish_and_clear();
             let rep = rep?;
             crate::outln!("{rep}")?;
+            rows.push(format!(
+                "| `{}` | {} | {} | {} | {} MULT18X18D | {} |",
+                b.name(),
+                rep.part.name,
+                rep.luts(),
+                rep.ffs(),
+                rep.mult18(),
+                rep.fmax.map_or("not placed".into(), |f| format!("{f:.1} MHz"))
+            ));
             if a.pins {
                 // The smallest package of this die or a larger one that has the top's pins.
                 let part = testbenches::synth::ecp5_part_for_pins(
@@ -390,7 +411,7 @@ pub fn synth(a: SynthArgs) -> anyhow::Result<()> {
                 )?;
             }
         }
-        return Ok(());
+        return write_table(&a, &rows);
     }
     if a.device.is_some() {
         bail!("--device names an ECP5 part: use it with --target ecp5");
@@ -414,6 +435,19 @@ pub fn synth(a: SynthArgs) -> anyhow::Result<()> {
         spin.finish_and_clear();
         let (rep, placement) = result?;
         crate::out!("{rep}")?;
+        rows.push(format!(
+            "| `{}` | UP5K | {} | {} | {} SB_MAC16 | {} |",
+            b.name(),
+            rep.luts(),
+            rep.ffs(),
+            rep.mac16(),
+            match &placement {
+                registry::Placement::Fmax(f) => format!("{f:.1} MHz"),
+                registry::Placement::DoesNotFit(why) => format!("does not fit: {why}"),
+                registry::Placement::NoTool => "no nextpnr-ice40".into(),
+                registry::Placement::NotAsked => "—".into(),
+            }
+        ));
         match placement {
             registry::Placement::Fmax(f) => crate::outln!(
                 "{}: nextpnr-ice40 --up5k (sg48, timing shell): max clock {f:.1} MHz",
@@ -428,6 +462,50 @@ pub fn synth(a: SynthArgs) -> anyhow::Result<()> {
             registry::Placement::NotAsked => Ok(()),
         }?;
     }
+    write_table(&a, &rows)
+}
+
+/// `synth --table`: the rows as a Markdown table with the command, date and machine, written
+/// to a temporary file beside the target and renamed over it (whole or not at all).
+fn write_table(a: &SynthArgs, rows: &[String]) -> anyhow::Result<()> {
+    let Some(path) = &a.table else {
+        return Ok(());
+    };
+    let date = std::process::Command::new("date")
+        .args(["-u", "+%Y-%m-%d %H:%M UTC"])
+        .output()
+        .map(|o| String::from_utf8_lossy(&o.stdout).trim().to_string())
+        .unwrap_or_default();
+    let cpu = std::fs::read_to_string("/proc/cpuinfo")
+        .ok()
+        .and_then(|t| {
+            t.lines()
+                .find(|l| l.starts_with("model name"))
+                .and_then(|l| l.split(':').nth(1))
+                .map(|s| s.trim().to_string())
+        })
+        .unwrap_or_else(|| "unknown CPU".into());
+    let cores = std::thread::available_parallelism().map_or(0, |n| n.get());
+    let target = match a.target {
+        Target::Ecp5 => "ECP5 (Yosys `synth_ecp5`, nextpnr-ecp5 in a timing shell, speed grade 6)",
+        Target::Ice40 => "iCE40 UP5K (Yosys `synth_ice40 -dsp`, nextpnr-ice40 in a timing shell)",
+    };
+    let text = format!(
+        "# FPGA figures: {target}\n\nWritten by `shadecore synth --block {} --target {}{}` on {date}, \
+         {cpu}, {cores} cores. Figures, not tests: Fmax moves with placement.\n\n\
+         | block | part | LUT4 | flip-flops | multipliers | Fmax |\n|---|---|---:|---:|---|---|\n{}\n",
+        a.block,
+        match a.target {
+            Target::Ecp5 => "ecp5",
+            Target::Ice40 => "ice40",
+        },
+        if a.no_pnr { " --no-pnr" } else { "" },
+        rows.join("\n")
+    );
+    let tmp = path.with_extension("md.tmp");
+    std::fs::write(&tmp, text).with_context(|| format!("cannot write {}", tmp.display()))?;
+    std::fs::rename(&tmp, path).with_context(|| format!("cannot write {}", path.display()))?;
+    crate::outln!("table: {}", path.display())?;
     Ok(())
 }
 
