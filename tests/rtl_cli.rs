@@ -490,7 +490,10 @@ fn synth_table_writes_one_row_per_block() {
     let cells: Vec<&str> = rows[0].split('|').map(str::trim).collect();
     assert_eq!(cells[1], "`colour-combine`");
     let luts: u64 = cells[3].parse().unwrap();
-    assert!(luts > 0 && printed.contains(&luts.to_string()), "{printed}\n{text}");
+    assert!(
+        luts > 0 && printed.contains(&luts.to_string()),
+        "{printed}\n{text}"
+    );
     assert!(cells[5].ends_with("SB_MAC16") && cells[6] == "—");
     assert!(!dir.path().join("sub").join("fpga.md.tmp").exists());
 }

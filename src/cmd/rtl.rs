@@ -366,7 +366,8 @@ pub fn synth(a: SynthArgs) -> anyhow::Result<()> {
                 rep.luts(),
                 rep.ffs(),
                 rep.mult18(),
-                rep.fmax.map_or("not placed".into(), |f| format!("{f:.1} MHz"))
+                rep.fmax
+                    .map_or("not placed".into(), |f| format!("{f:.1} MHz"))
             ));
             if a.pins {
                 // The smallest package of this die or a larger one that has the top's pins.
