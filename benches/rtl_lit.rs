@@ -38,7 +38,7 @@ fn lit_jobs(tris: &[ScreenTriangle]) -> Vec<LitJob> {
         .collect()
 }
 
-fn run(method: Method, jobs: &[LitJob], regs: &ShadingRegs) -> pipeline::gouraud::PipeStats {
+fn run(method: Method, jobs: &[LitJob], regs: &ShadingRegs) -> pipeline::axis::PipeStats {
     LitPipe::new(method)
         .unwrap()
         .run(jobs, regs, lit_clock_budget(jobs), |_| {}, |_| {})
@@ -103,7 +103,7 @@ fn figures() {
 
 /// The AXI4-Stream top on the default scene with `m_axis_tready` always high: fragments per
 /// clock beside `pixel-pipeline`'s in the same run, with the triangles in mesh order and in the
-/// driver's balanced order (`pipeline::stream::balanced_order`, the default of `render`), from
+/// driver's balanced order (`pipeline::lit::balanced_order`, the default of `render`), from
 /// the rust-hdl simulation (checked clock for clock against the twin that paces the producer).
 fn stream_figures() {
     use rtl::registry::BlockParams;
@@ -112,12 +112,12 @@ fn stream_figures() {
     let regs = ShadingRegs::of(&ctx).unwrap();
     let o = pipeline::lit::method_options(Method::NormalizerFit).unwrap();
     let p = rtl::pixel_pipeline::PipelineParams::from_options(&o).unwrap();
-    let balanced: Vec<LitJob> = pipeline::stream::balanced_order(&mesh)
+    let balanced: Vec<LitJob> = pipeline::lit::balanced_order(&mesh)
         .iter()
         .map(|&i| mesh[i])
         .collect();
     for (label, jobs) in [("mesh order", &mesh), ("balanced order", &balanced)] {
-        let words = pipeline::stream::scene_words(jobs, &regs);
+        let words = pipeline::lit::scene_words(jobs, &regs);
         let run = testbenches::pixel_stream::drive(
             &p,
             &words,
@@ -153,7 +153,7 @@ fn stream_figures() {
     }
 }
 
-fn run_plain(jobs: &[LitJob], regs: &ShadingRegs) -> pipeline::gouraud::PipeStats {
+fn run_plain(jobs: &[LitJob], regs: &ShadingRegs) -> pipeline::axis::PipeStats {
     run(Method::NormalizerFit, jobs, regs)
 }
 

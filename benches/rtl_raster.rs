@@ -14,7 +14,8 @@ use glam::DQuat;
 use golden::raster::walk;
 use golden::shade::ShadeContext;
 use golden::types::{ScreenTriangle, ScreenVertex};
-use pipeline::gouraud::{clock_budget, Pipe, PipeStats, TriangleJob};
+use pipeline::axis::PipeStats;
+use pipeline::gouraud::{clock_budget, Pipe, TriangleJob};
 use pipeline::subdivision::{clock_budget as sub_budget, SubJob, SubPipe};
 
 fn default_scene() -> (Vec<ScreenTriangle>, ShadeContext) {

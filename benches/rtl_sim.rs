@@ -7,12 +7,12 @@
 use std::time::Duration;
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
+use flow::tools::{self, Tool};
+use flow::verilog::{compare_rows, compile, Simulator, VerilogRun};
 use rtl::export;
 use rtl::normalizer::{Normalizer, NormalizerCoeffs};
 use rtl::sim::{simulate_rows, Dut, Stepper};
 use testbenches::registry::Bench;
-use testbenches::tools::{self, Tool};
-use testbenches::verilog::{compare_rows, compile, Simulator, VerilogRun};
 
 const CYCLES: usize = 20_000;
 

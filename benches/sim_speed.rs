@@ -3,7 +3,7 @@
 //! high), measured in one run on three simulators of the same hardware:
 //!
 //! 1. **in process**: the exported Verilog verilated into a shared library (`verilated`),
-//!    stepped a clock per call by the same driver the render uses (`pipeline::stream::drive`);
+//!    stepped a clock per call by the same driver the render uses (`pipeline::axis::drive`);
 //! 2. **rust-hdl**: the same driver over rust-hdl's simulation;
 //! 3. **ceiling**: the same compiled model driven from memory by a C++ loop (no call per
 //!    clock), on the input rows the in-process run recorded.
@@ -17,10 +17,10 @@
 
 use std::time::Instant;
 
+use flow::engine::{model, Sim};
 use glam::DQuat;
 use golden::methods::Method;
 use golden::shade::ShadeContext;
-use pipeline::engine::{model, Sim};
 use pipeline::lit::{lit_clock_budget, method_options, LitJob, ShadingRegs};
 use rtl::pixel_pipeline::PipelineParams;
 use rtl::pixel_stream::PixelStream;
@@ -76,7 +76,7 @@ fn scene() -> (Vec<LitJob>, ShadingRegs) {
         .iter()
         .filter_map(|t| LitJob::new(t).unwrap())
         .collect();
-    let order = pipeline::stream::balanced_order(&jobs);
+    let order = pipeline::lit::balanced_order(&jobs);
     (
         order.iter().map(|&i| jobs[i]).collect(),
         ShadingRegs::of(&ctx).unwrap(),
@@ -94,10 +94,10 @@ fn drive(
         rows: Vec::new(),
         hash: 0xcbf29ce484222325,
     };
-    let words = pipeline::stream::scene_words(jobs, regs);
+    let words = pipeline::lit::scene_words(jobs, regs);
     let mut frags = Vec::new();
     let t = Instant::now();
-    let st = pipeline::stream::drive::<PixelStream>(
+    let st = pipeline::axis::drive::<PixelStream>(
         &mut rec,
         "pixel-stream",
         "triangles",

@@ -24,8 +24,12 @@ enum Command {
     Sweep(cmd::sweep::Args),
     /// Write synthesizable Verilog of RTL blocks.
     ExportVerilog(cmd::rtl::ExportArgs),
-    /// Simulate an RTL block on random vectors and write a VCD.
-    Sim(cmd::rtl::SimArgs),
+    /// Moved to `shadecore-sim` (the testbenches crate): says how to run it.
+    #[command(hide = true, disable_help_flag = true)]
+    Sim {
+        #[arg(trailing_var_arg = true, allow_hyphen_values = true)]
+        args: Vec<String>,
+    },
     /// Synthesize a block with Yosys and print cell counts.
     Synth(cmd::rtl::SynthArgs),
     /// Walk one triangle through the address block (RTL or golden) and dump one row per clock.
@@ -62,7 +66,10 @@ fn main() {
         Command::Accuracy(a) => cmd::accuracy::run(a),
         Command::Sweep(a) => cmd::sweep::run(a),
         Command::ExportVerilog(a) => cmd::rtl::export(a),
-        Command::Sim(a) => cmd::rtl::sim(a),
+        Command::Sim { args } => Err(anyhow::anyhow!(
+            "`sim` checks a block against its testbench, which lives in the testbenches crate: run `cargo run --release -p testbenches --bin shadecore-sim --{}`",
+            args.iter().map(|a| format!(" {a}")).collect::<String>()
+        )),
         Command::Synth(a) => cmd::rtl::synth(a),
         Command::Raster(a) => cmd::raster::run(a),
         Command::Blocks => cmd::rtl::blocks(),

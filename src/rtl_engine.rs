@@ -27,8 +27,9 @@ use golden::shade::ShadeContext;
 use golden::types::{Plane, ScreenTriangle, MAX_ADDRESS};
 use indicatif::ProgressBar;
 
-use pipeline::engine::Sim;
-use pipeline::gouraud::{clock_budget, Pipe, PipeStats, TriangleJob};
+use flow::engine::Sim;
+use pipeline::axis::PipeStats;
+use pipeline::gouraud::{clock_budget, Pipe, TriangleJob};
 use pipeline::lit::{lit_clock_budget, LitJob, LitPipe, ShadingRegs, LIT_METHODS};
 use pipeline::span::{span_clock_budget, span_jobs, SpanPipe, SPAN_METHODS};
 
@@ -161,7 +162,7 @@ pub fn designs(methods: &[Method], build: RtlBuild) -> Result<Vec<verilated::Des
 /// counts do.
 #[derive(clap::ValueEnum, Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum SetupOrder {
-    /// Large and small walks alternately (`pipeline::stream::balanced_order`), so the 26-word
+    /// Large and small walks alternately (`pipeline::lit::balanced_order`), so the 26-word
     /// set-up records of small triangles stream in while large ones are walked.
     #[default]
     Balanced,
@@ -178,7 +179,7 @@ impl SetupOrder {
     /// The order of triangles given by their address set-ups.
     pub fn of_addrs(self, addrs: &[golden::address_block::AddressSetup]) -> Vec<usize> {
         match self {
-            SetupOrder::Balanced => pipeline::stream::balanced_order_of(addrs),
+            SetupOrder::Balanced => pipeline::axis::balanced_order_of(addrs),
             SetupOrder::Mesh => (0..addrs.len()).collect(),
         }
     }

@@ -197,11 +197,8 @@ fn bad_cli_arguments_are_one_line_errors() {
     assert_clean_error(&["render", "--out", out, "--scene", "cube"], "cube");
     assert_clean_error(&["render", "--out", out, "--lighting", "toon"], "toon");
     assert_clean_error(&["frobnicate"], "frobnicate");
-    // A simulation too large to hold (it used to grow memory without bound).
-    assert_clean_error(
-        &["sim", "--block", "normalizer", "--vectors", "100000000"],
-        "limit",
-    );
+    // `sim` moved to the testbenches crate: the old command says where.
+    assert_clean_error(&["sim", "--block", "normalizer"], "shadecore-sim");
 }
 
 #[test]
@@ -320,13 +317,7 @@ fn closed_standard_output_is_a_one_line_error() {
         ],
         &["export-verilog", "--block", "normalizer", "--out", out],
         &[
-            "sim",
-            "--block",
-            "normalizer",
-            "--vectors",
-            "50",
-            "--vcd",
-            &format!("{out}/n.vcd"),
+            "stream", "--size", "40x40", "--rez", "6", "--method", "gouraud", "--out", out,
         ],
         &["raster", "--tri", "3,1,40,12,9,30"],
     ];

@@ -13,7 +13,7 @@
 use std::path::Path;
 use std::process::Command;
 
-use testbenches::tools::{self, Tool};
+use flow::tools::{self, Tool};
 
 fn cocotb(python: &Path, dir: &Path, verilog: &Path, build: &str, top: &str) -> (bool, String) {
     let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("testbenches/cocotb/run.py");

@@ -6,7 +6,7 @@
 
 use std::process::{Command, Output};
 
-use testbenches::tools::{self, Tool};
+use flow::tools::{self, Tool};
 
 fn shadecore() -> Command {
     Command::new(env!("CARGO_BIN_EXE_shadecore"))
@@ -52,29 +52,17 @@ fn without_verilator_the_default_falls_back_and_the_switch_fails_in_one_line() {
     assert!(!err.contains("panicked"));
 }
 
-fn sim_normalizer(target: &std::path::Path) -> Command {
+/// One triangle through the address block under Verilator: its per-clock CSV on stdout.
+fn raster_on_verilator(target: &std::path::Path) -> Command {
     let mut c = shadecore();
-    c.args([
-        "sim",
-        "--block",
-        "normalizer",
-        "--sim",
-        "verilator",
-        "--vectors",
-        "200",
-    ])
-    .env("CARGO_TARGET_DIR", target);
+    c.args(["raster", "--tri", "3,1,40,12,9,30", "--sim", "verilator"])
+        .env("CARGO_TARGET_DIR", target);
     c
 }
 
-/// The `[sim-normalizer] …` result lines (not the timing).
+/// The run's result: every CSV row.
 fn result_lines(stdout: &str) -> Vec<String> {
-    stdout
-        .lines()
-        .filter(|l| !l.contains(" clocks in ") || l.starts_with('['))
-        .filter(|l| !l.contains("checked every clock"))
-        .map(str::to_string)
-        .collect()
+    stdout.lines().map(str::to_string).collect()
 }
 
 fn entries(target: &std::path::Path) -> Vec<String> {
@@ -98,7 +86,7 @@ fn two_processes_share_one_build_and_a_broken_entry_is_rebuilt() {
     }
     let target = tempfile::tempdir().unwrap();
     let spawn = || {
-        sim_normalizer(target.path())
+        raster_on_verilator(target.path())
             .stdout(std::process::Stdio::piped())
             .stderr(std::process::Stdio::piped())
             .spawn()
@@ -111,7 +99,10 @@ fn two_processes_share_one_build_and_a_broken_entry_is_rebuilt() {
     }
     assert_eq!(result_lines(&text(&a).0), result_lines(&text(&b).0));
     let e = entries(target.path());
-    let models: Vec<&String> = e.iter().filter(|n| n.starts_with("normalizer-")).collect();
+    let models: Vec<&String> = e
+        .iter()
+        .filter(|n| n.starts_with("address_block-"))
+        .collect();
     assert_eq!(models.len(), 1, "one cache entry for the block: {e:?}");
     assert!(
         e.iter().all(|n| !n.starts_with(".tmp")),
@@ -129,7 +120,7 @@ fn two_processes_share_one_build_and_a_broken_entry_is_rebuilt() {
     let cut = lib.with_extension("cut");
     std::fs::write(&cut, &whole[..whole.len() / 3]).unwrap();
     std::fs::rename(&cut, &lib).unwrap();
-    let again = sim_normalizer(target.path()).output().unwrap();
+    let again = raster_on_verilator(target.path()).output().unwrap();
     let (out, err) = text(&again);
     assert!(again.status.success(), "{err}");
     assert!(

@@ -214,96 +214,6 @@ fn raster_degenerate_triangles_say_why_no_pixel() {
     );
 }
 
-/// Values of `names` (under scope `uut`) sampled on every rising clock edge of a VCD, parsed
-/// with the `vcd` crate (independent of the simulator's writer).
-fn sample_vcd(path: &std::path::Path, names: &[&str]) -> Vec<Vec<u64>> {
-    use vcd::{Command, Value};
-    let mut parser = vcd::Parser::new(std::io::BufReader::new(std::fs::File::open(path).unwrap()));
-    let header = parser.parse_header().expect("VCD header");
-    let code = |n: &str| {
-        header
-            .find_var(&["uut", n])
-            .unwrap_or_else(|| panic!("port {n} missing from the VCD"))
-            .code
-    };
-    let clock = code("clock");
-    let codes: Vec<_> = names.iter().map(|n| code(n)).collect();
-    let mut now = vec![0u64; names.len()];
-    let mut samples = Vec::new();
-    let mut clock_high = false;
-    for cmd in parser {
-        match cmd.expect("VCD body") {
-            // The writer lists a rising clock before the register updates it causes, so the
-            // values in force at that moment are the ones the flip-flops sample.
-            Command::ChangeScalar(id, v) if id == clock => {
-                let high = v == Value::V1;
-                if high && !clock_high {
-                    samples.push(now.clone());
-                }
-                clock_high = high;
-            }
-            Command::ChangeScalar(id, v) => {
-                if let Some(k) = codes.iter().position(|c| *c == id) {
-                    now[k] = (v == Value::V1) as u64;
-                }
-            }
-            Command::ChangeVector(id, bits) => {
-                if let Some(k) = codes.iter().position(|c| *c == id) {
-                    now[k] = bits
-                        .iter()
-                        .fold(0, |acc, b| acc << 1 | (b == Value::V1) as u64);
-                }
-            }
-            _ => {}
-        }
-    }
-    samples
-}
-
-/// `shadecore sim --vcd` writes a waveform a viewer can open: the ports are there, `valid`
-/// travels 15 clocks (the normalizer's stated latency), one vector per clock comes out, and
-/// every output vector is a unit vector to the formula's 0.36 % plus quantization.
-#[test]
-fn sim_writes_a_readable_normalizer_vcd() {
-    let dir = tempfile::tempdir().unwrap();
-    let vcd_path = dir.path().join("n.vcd");
-    shadecore_ok(&[
-        "sim",
-        "--block",
-        "normalizer",
-        "--vectors",
-        "200",
-        "--seed",
-        "11",
-        "--vcd",
-        vcd_path.to_str().unwrap(),
-    ]);
-    let s = sample_vcd(&vcd_path, &["valid_in", "valid_out", "x", "nx", "ny", "nz"]);
-    let first_in = s
-        .iter()
-        .position(|r| r[0] == 1)
-        .expect("valid_in never high");
-    let first_out = s
-        .iter()
-        .position(|r| r[1] == 1)
-        .expect("valid_out never high");
-    assert_eq!(first_out - first_in, 15, "latency");
-    assert_eq!(
-        s.iter().filter(|r| r[1] == 1).count(),
-        200,
-        "one output per input vector"
-    );
-    // N' is signed Q2.17 (19 bits).
-    let q217 = |w: u64| (((w << 45) as i64) >> 45) as f64 / 131072.0;
-    for r in s.iter().filter(|r| r[1] == 1) {
-        let len = (q217(r[3]).powi(2) + q217(r[4]).powi(2) + q217(r[5]).powi(2)).sqrt();
-        assert!(
-            (len - 1.0).abs() < 0.0036 + 3.0 * 2f64.powi(-17),
-            "|N'| = {len}"
-        );
-    }
-}
-
 #[test]
 fn export_verilog_writes_modules() {
     let dir = tempfile::tempdir().unwrap();
@@ -468,7 +378,7 @@ fn stream_methods_are_the_stream_tops() {
 /// one row per block synthesized, its LUT4 and multiplier counts those printed.
 #[test]
 fn synth_table_writes_one_row_per_block() {
-    use testbenches::tools::{self, Tool};
+    use flow::tools::{self, Tool};
     if !tools::require(&[Tool::Yosys], "synth_table_writes_one_row_per_block") {
         return;
     }

@@ -4,12 +4,12 @@
 //! the quadric unit and the cubic pipeline (both Horner variants), through the render's default
 //! tops. Skips with a notice without Verilator (fails when `CI` is set).
 
+use flow::tools::{self, Tool};
 use golden::methods::Method;
 use indicatif::ProgressBar;
 use shadecore::rtl_engine::{render_rtl_with, RtlBuild};
 use shadecore::setup::{build, SceneArgs};
 use shadecore::sim::Sim;
-use testbenches::tools::{self, Tool};
 
 #[test]
 fn verilator_frames_equal_rust_hdl_frames() {

@@ -10,14 +10,16 @@
 //! Every public item is re-exported here, so `scene::X` names it whatever module it lives in;
 //! [`SceneError`] is shared by all four.
 
+pub mod camera;
 pub mod mesh;
 pub mod obj;
 pub mod projection;
 pub mod snap;
 
+pub use camera::Camera;
 pub use mesh::{torus, uv_sphere, Mesh, REZ_RANGE, TORUS_MAJOR, TORUS_MINOR};
 pub use obj::{load_obj, load_obj_counting, MAX_OBJ_BYTES};
-pub use projection::{light_direction, project, Camera, LIGHT_ELEVATION_DEG, MAX_CANVAS};
+pub use projection::{light_direction, project, LIGHT_ELEVATION_DEG, MAX_CANVAS};
 pub use snap::screen_addresses;
 
 /// Everything that can go wrong building or projecting a scene. Messages are one line.

@@ -19,6 +19,16 @@ pub use crate::seed::seed_for;
 pub fn runner(name: &str, cases: u32) -> TestRunner {
     let seed = seed_for(name);
     println!("[{name}] seed {seed} (replay with SHADECORE_SEED={seed})");
+    with_seed(seed, cases)
+}
+
+/// A runner seeded with `seed` exactly as [`runner`] seeds its runners (for stimulus drawn
+/// from strategies with a seed of the caller's).
+pub fn seeded_runner(seed: u64) -> TestRunner {
+    with_seed(seed, Config::default().cases)
+}
+
+fn with_seed(seed: u64, cases: u32) -> TestRunner {
     let mut bytes = [0u8; 32];
     bytes[..8].copy_from_slice(&seed.to_le_bytes());
     let config = Config {

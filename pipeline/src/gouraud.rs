@@ -17,7 +17,9 @@ use golden::types::{Plane, ScreenTriangle};
 use rtl::gouraud_raster::GouraudRaster;
 use rtl::sim::Model;
 
-use crate::engine::Sim;
+use crate::axis::{with_last, PipeStats, Word};
+use flow::engine::Sim;
+use rtl::stream_layout::{pack, GOURAUD_TRIANGLE};
 
 /// One triangle's complete set-up for the raster pipe.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -125,21 +127,6 @@ pub fn pipe_row(job: Option<&TriangleJob>) -> Vec<u64> {
 /// Index of `hold` in a [`pipe_row`].
 pub const PIPE_HOLD_AT: usize = 32;
 
-/// Counters of one pipe run.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct PipeStats {
-    /// Clocks from the first load to the clock showing the last triangle's `done`, inclusive.
-    pub clocks: u64,
-    pub pixels: u64,
-    pub triangles: u64,
-}
-
-impl PipeStats {
-    pub fn pixels_per_clock(&self) -> f64 {
-        self.pixels as f64 / self.clocks.max(1) as f64
-    }
-}
-
 /// The raster pipe, `gouraud-raster` or its AXI4-Stream top `gouraud-stream`, on either
 /// simulator ([`Sim`]).
 pub struct Pipe {
@@ -163,9 +150,9 @@ impl Pipe {
     /// `gouraud-raster` (or `gouraud-stream` if `stream`) on `sim`.
     pub fn on(sim: Sim, stream: bool) -> Result<Pipe, String> {
         let model = if stream {
-            crate::engine::model::<rtl::gouraud_stream::GouraudStream>(&Default::default(), sim)?
+            flow::engine::model::<rtl::gouraud_stream::GouraudStream>(&Default::default(), sim)?
         } else {
-            crate::engine::model::<GouraudRaster>(&Default::default(), sim)?
+            flow::engine::model::<GouraudRaster>(&Default::default(), sim)?
         };
         Ok(Pipe { model, stream })
     }
@@ -173,9 +160,9 @@ impl Pipe {
     /// The design [`Pipe::on`] builds under Verilator.
     pub fn design(stream: bool) -> verilated::Design {
         if stream {
-            crate::engine::design::<rtl::gouraud_stream::GouraudStream>(&Default::default())
+            flow::engine::design::<rtl::gouraud_stream::GouraudStream>(&Default::default())
         } else {
-            crate::engine::design::<GouraudRaster>(&Default::default())
+            flow::engine::design::<GouraudRaster>(&Default::default())
         }
     }
 
@@ -192,11 +179,11 @@ impl Pipe {
         pixel: &mut dyn FnMut(usize, u32, u32, [u8; 3]),
         progress: &mut dyn FnMut(u64),
     ) -> Result<PipeStats, String> {
-        crate::stream::drive::<rtl::gouraud_stream::GouraudStream>(
+        crate::axis::drive::<rtl::gouraud_stream::GouraudStream>(
             s,
             "gouraud-stream",
             "triangles",
-            &crate::stream::gouraud_words(jobs),
+            &crate::gouraud::gouraud_words(jobs),
             jobs.len() as u64,
             max_clocks,
             &mut |job, b, _| pixel(job, b.x, b.y, b.rgb),
@@ -225,7 +212,7 @@ impl Pipe {
                 &mut progress,
             );
         }
-        crate::stream::first_output_is(self.model.as_ref(), "ready")?;
+        crate::axis::first_output_is(self.model.as_ref(), "ready")?;
         let mut st = PipeStats::default();
         let mut out = vec![0u64; 8];
         let idle = pipe_row(None);
@@ -271,6 +258,18 @@ pub fn clock_budget(jobs: &[TriangleJob]) -> u64 {
     jobs.iter().map(|j| 8 + j.addr.rows as u64 * 4097).sum()
 }
 
+/// The `gouraud-stream` record of `job` (the same field values `gouraud-raster`'s load row
+/// carries).
+pub fn gouraud_record(job: &TriangleJob) -> Vec<Word> {
+    let row = pipe_row(Some(job));
+    with_last(pack(&GOURAUD_TRIANGLE, &row[1..PIPE_HOLD_AT]))
+}
+
+/// A Gouraud scene's set-up stream: every triangle, in order.
+pub fn gouraud_words(jobs: &[TriangleJob]) -> Vec<Word> {
+    jobs.iter().flat_map(gouraud_record).collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -306,5 +305,30 @@ mod tests {
             line: u32::MAX - k,
         });
         assert_eq!(row_words(&words_row(Some(&w)), 0), w);
+    }
+}
+
+#[cfg(test)]
+mod record_tests {
+    use super::*;
+    use rtl::stream_layout::unpack;
+
+    #[test]
+    fn gouraud_records_carry_the_load_row() {
+        let t = golden::types::ScreenTriangle::from_points([(3, 1), (40, 7), (11, 30)]);
+        let ctx = golden::shade::ShadeContext::default();
+        let job = TriangleJob::gouraud(&t, &ctx).unwrap();
+        let rec = gouraud_record(&job);
+        assert_eq!(rec.len(), 22);
+        assert_eq!(rec[0], (1, false));
+        assert!(rec.last().unwrap().1);
+        assert!(rec[..21].iter().all(|w| !w.1));
+        let payload: Vec<u32> = rec[1..].iter().map(|w| w.0).collect();
+        let row = pipe_row(Some(&job));
+        assert_eq!(
+            unpack(&GOURAUD_TRIANGLE, &payload),
+            row[1..PIPE_HOLD_AT].to_vec()
+        );
+        assert_eq!(gouraud_words(&[job, job]).len(), 44);
     }
 }

@@ -8,15 +8,15 @@
 
 //! - [`lit`]: the lit pixel pipeline (`rtl::pixel_pipeline`): [`lit::LitJob`] set-up,
 //!   [`lit::ShadingRegs`], and [`lit::LitPipe`], which runs jobs to fragments with depth.
-//! - [`engine`]: the simulator switch ([`engine::Sim`]: rust-hdl or Verilator in process) and
-//!   the one place a driver's top is made.
+//! - The simulator switch is `flow::engine` ([`flow::engine::Sim`]: rust-hdl or Verilator in
+//!   process), the one place a driver's top is made.
 //! - [`span`]: the span pipelines (`rtl::span_pipeline`, angular and fast): the span front end
 //!   ([`span::span_jobs`], one set-up per raster line) and [`span::SpanPipe`], two fragments
 //!   per clock.
 
-pub mod engine;
+pub mod axis;
 pub mod gouraud;
 pub mod lit;
 pub mod span;
-pub mod stream;
 pub mod subdivision;
+pub mod walkers;

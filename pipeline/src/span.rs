@@ -31,11 +31,15 @@ use rtl::quadric_unit::QuadricUnit;
 use rtl::registry::{BlockParams, Options, RtlBlock};
 use rtl::sim::Model;
 
-use crate::engine::Sim;
+use flow::engine::Sim;
 use rtl::span_pipeline::{AngularPipeline, FastPipeline, FastPipelineParams};
 
-use crate::gouraud::PipeStats;
+use crate::axis::PipeStats;
+use crate::axis::{with_last, Word};
 use crate::lit::{check_depths, ShadingRegs};
+use rtl::stream_layout::{
+    pack, ANGULAR_LINE, CUBIC_LINE, FAST_LINE, QUADRIC_LINE, QUADRIC_TRIANGLE, SPAN_REGISTERS,
+};
 
 /// The methods the span pipelines render.
 pub const SPAN_METHODS: [Method; 5] = [
@@ -389,7 +393,7 @@ type Made = (Option<Box<dyn Model>>, Option<verilated::Design>, usize);
 
 /// A top for `kind` in `shape`, on `sim` (`None`: its Verilator design instead).
 fn top_of(kind: SpanKind, shape: Shape, sim: Option<Sim>) -> Result<Made, String> {
-    use crate::engine::{design, model};
+    use flow::engine::{design, model};
     fn one<B: RtlBlock + 'static>(p: &B::Params, sim: Option<Sim>) -> Result<Made, String> {
         Ok(match sim {
             Some(sim) => (Some(model::<B>(p, sim)?), None, B::LATENCY),
@@ -533,7 +537,7 @@ impl SpanPipe {
             }
             Shape::Ports => {}
         }
-        crate::stream::first_output_is(self.model.as_ref(), "ready")?;
+        crate::axis::first_output_is(self.model.as_ref(), "ready")?;
         let mut st = PipeStats::default();
         let mut out = vec![0u64; OUTPUTS];
         let idle = span_row(self.kind, None, regs);
@@ -598,11 +602,11 @@ fn run_cubic_stream(
     progress: &mut dyn FnMut(u64),
 ) -> Result<PipeStats, String> {
     let n = spans.len() as u64;
-    crate::stream::drive::<CubicStream>(
+    crate::axis::drive::<CubicStream>(
         s,
         "cubic-stream",
         "lines",
-        &crate::stream::cubic_words(spans),
+        &crate::span::cubic_words(spans),
         n,
         max_clocks,
         &mut |line, b, clock| {
@@ -628,7 +632,7 @@ fn run_cubic_stream(
 /// register record and the lines' records on the set-up stream, every beat of both lanes
 /// taken; a line ends with both lanes' `tlast`.
 #[allow(clippy::too_many_arguments)]
-fn run_lanes<T: crate::stream::LaneTop>(
+fn run_lanes<T: crate::axis::LaneTop>(
     s: &mut dyn Model,
     kind: SpanKind,
     spans: &[SpanJob],
@@ -638,9 +642,9 @@ fn run_lanes<T: crate::stream::LaneTop>(
     progress: &mut dyn FnMut(u64),
 ) -> Result<PipeStats, String> {
     let n = spans.len() as u64;
-    crate::stream::drive_lanes::<T>(
+    crate::axis::drive_lanes::<T>(
         s,
-        &crate::stream::span_stream_words(kind, spans, regs),
+        &crate::span::span_stream_words(kind, spans, regs),
         n,
         max_clocks,
         &mut |line, b, clock, lane| {
@@ -719,6 +723,78 @@ pub fn span_schedule(spans: &[SpanJob]) -> (u64, u64) {
     )
 }
 
+/// The `cubic-stream` record of a cubic line (`span` from `crate::span::span_jobs` with a
+/// cubic kind): the same field values `cubic-pipeline`'s load row carries.
+pub fn cubic_record(span: &SpanJob) -> Vec<Word> {
+    let kind = match span.words {
+        JobWords::Cubic { pipelined, .. } => SpanKind::Cubic { pipelined },
+        _ => panic!("cubic_record: not a cubic line"),
+    };
+    let row = span_row(kind, Some(span), &ShadingRegs::default());
+    let fields = CUBIC_LINE.fields.len();
+    debug_assert_eq!(row.len(), fields + 2, "load, the fields, hold");
+    with_last(pack(&CUBIC_LINE, &row[1..=fields]))
+}
+
+/// A cubic scene's set-up stream: every line, in walk order.
+pub fn cubic_words(spans: &[SpanJob]) -> Vec<Word> {
+    spans.iter().flat_map(cubic_record).collect()
+}
+
+/// The line record of the two-lane span stream top of `kind` (`angular-stream` for
+/// [`SpanKind::Angular`], `fast-stream` for [`SpanKind::Fast`]) for `span` (from
+/// `crate::span::span_jobs` with that kind): the same field values the span pipeline's load row
+/// carries.
+pub fn span_line_record(kind: SpanKind, span: &SpanJob) -> Vec<Word> {
+    let row = span_row(kind, Some(span), &ShadingRegs::default());
+    if kind == SpanKind::Quadric {
+        // Row: load, y, x0, dir, m, first, 18 coefficient words, z0, dz, hold. A triangle's
+        // first line carries its coefficients (type 2), a later line only its base (type 1).
+        let base = [row[1], row[2], row[3], row[4], row[24], row[25]];
+        return with_last(if row[5] != 0 {
+            let mut v = base.to_vec();
+            v.extend(&row[6..24]);
+            pack(&QUADRIC_TRIANGLE, &v)
+        } else {
+            pack(&QUADRIC_LINE, &base)
+        });
+    }
+    let line = span_line_layout(kind);
+    with_last(pack(&line, &row[1..=line.fields.len()]))
+}
+
+/// The line layout of the span stream top of `kind`.
+pub fn span_line_layout(kind: SpanKind) -> rtl::stream_layout::Record {
+    match kind {
+        SpanKind::Angular => ANGULAR_LINE,
+        SpanKind::Fast(_) => FAST_LINE,
+        SpanKind::Quadric => QUADRIC_LINE,
+        _ => panic!("{kind:?} has no two-lane stream top"),
+    }
+}
+
+/// The span stream tops' register record of `regs` (n and the nine colour weights; L and H
+/// are in each line's words).
+pub fn span_register_record(regs: &ShadingRegs) -> Vec<Word> {
+    let mut values = vec![regs.n];
+    values.extend(regs.weights);
+    with_last(pack(&SPAN_REGISTERS, &values))
+}
+
+/// A span scene's set-up stream for the stream top of `kind`: the registers (not for the
+/// quadric, lit in the set-up), then every line in walk order.
+pub fn span_stream_words(kind: SpanKind, spans: &[SpanJob], regs: &ShadingRegs) -> Vec<Word> {
+    let mut w = if kind == SpanKind::Quadric {
+        Vec::new()
+    } else {
+        span_register_record(regs)
+    };
+    for s in spans {
+        w.extend(span_line_record(kind, s));
+    }
+    w
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -759,5 +835,62 @@ mod tests {
             .unwrap_err()
             .contains("depth"));
         assert!(SpanKind::of(Method::Gouraud).is_none());
+    }
+}
+
+#[cfg(test)]
+mod record_tests {
+    use super::*;
+    use rtl::stream_layout::unpack;
+
+    #[test]
+    fn cubic_records_carry_the_load_row() {
+        let t = golden::types::ScreenTriangle::from_points([(3, 1), (40, 7), (11, 30)]);
+        let ctx = golden::shade::ShadeContext::default();
+        let kind = SpanKind::Cubic { pipelined: true };
+        let spans = crate::span::span_jobs(&t, 0, kind, &ctx).unwrap();
+        let rec = cubic_record(&spans[3]);
+        assert_eq!(rec.len(), 12);
+        assert_eq!(rec[0], (1, false));
+        assert!(rec[..11].iter().all(|w| !w.1) && rec[11].1);
+        let payload: Vec<u32> = rec[1..].iter().map(|w| w.0).collect();
+        let row = span_row(kind, Some(&spans[3]), &ShadingRegs::default());
+        assert_eq!(
+            unpack(&CUBIC_LINE, &payload),
+            row[1..row.len() - 1].to_vec()
+        );
+        assert_eq!(cubic_words(&spans).len(), 12 * spans.len());
+    }
+
+    #[test]
+    fn span_records_carry_the_load_row() {
+        let t = golden::types::ScreenTriangle::from_points([(3, 1), (40, 7), (11, 30)]);
+        let ctx = golden::shade::ShadeContext::default();
+        let regs = ShadingRegs::of(&ctx).unwrap();
+        for (kind, words) in [(SpanKind::Angular, 14), (SpanKind::Fast("fit"), 20)] {
+            let spans = crate::span::span_jobs(&t, 0, kind, &ctx).unwrap();
+            let rec = span_line_record(kind, &spans[3]);
+            assert_eq!(rec.len(), words, "{kind:?}");
+            assert_eq!(rec[0], (1, false));
+            assert!(rec[..words - 1].iter().all(|w| !w.1) && rec[words - 1].1);
+            let payload: Vec<u32> = rec[1..].iter().map(|w| w.0).collect();
+            let row = span_row(kind, Some(&spans[3]), &regs);
+            let line = span_line_layout(kind);
+            let fields = line.fields.len();
+            assert_eq!(unpack(&line, &payload), row[1..=fields].to_vec());
+            // The register record carries the row's material registers (before `hold`).
+            let r = span_register_record(&regs);
+            assert_eq!(r.len(), 6);
+            assert_eq!(r[0], (2, false));
+            let payload: Vec<u32> = r[1..].iter().map(|w| w.0).collect();
+            assert_eq!(
+                unpack(&SPAN_REGISTERS, &payload),
+                row[fields + 1..row.len() - 1].to_vec()
+            );
+            assert_eq!(
+                span_stream_words(kind, &spans, &regs).len(),
+                6 + words * spans.len()
+            );
+        }
     }
 }

@@ -19,10 +19,13 @@ use golden::shade::ShadeContext;
 use golden::types::{Plane, ScreenTriangle};
 use rtl::sim::Model;
 
-use crate::engine::Sim;
+use flow::engine::Sim;
 use rtl::subdivision_raster::SubdivisionRaster;
 
-use crate::gouraud::{row_words, words_row, PipeStats};
+use crate::axis::PipeStats;
+use crate::axis::{with_last, Word};
+use crate::gouraud::{row_words, words_row};
+use rtl::stream_layout::{pack, SUBDIVISION_PARENT};
 
 /// One parent's complete set-up for the subdivision pipe.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -168,12 +171,12 @@ impl SubPipe {
     /// `subdivision-raster` (or `subdivision-stream` if `stream`) on `sim`.
     pub fn on(sim: Sim, stream: bool) -> Result<SubPipe, String> {
         let model = if stream {
-            crate::engine::model::<rtl::subdivision_stream::SubdivisionStream>(
+            flow::engine::model::<rtl::subdivision_stream::SubdivisionStream>(
                 &Default::default(),
                 sim,
             )?
         } else {
-            crate::engine::model::<SubdivisionRaster>(&Default::default(), sim)?
+            flow::engine::model::<SubdivisionRaster>(&Default::default(), sim)?
         };
         Ok(SubPipe { model, stream })
     }
@@ -181,9 +184,9 @@ impl SubPipe {
     /// The design [`SubPipe::on`] builds under Verilator.
     pub fn design(stream: bool) -> verilated::Design {
         if stream {
-            crate::engine::design::<rtl::subdivision_stream::SubdivisionStream>(&Default::default())
+            flow::engine::design::<rtl::subdivision_stream::SubdivisionStream>(&Default::default())
         } else {
-            crate::engine::design::<SubdivisionRaster>(&Default::default())
+            flow::engine::design::<SubdivisionRaster>(&Default::default())
         }
     }
 
@@ -200,16 +203,16 @@ impl SubPipe {
     ) -> Result<PipeStats, String> {
         if self.stream {
             let n = jobs.len() as u64;
-            return crate::stream::drive_lanes::<rtl::subdivision_stream::SubdivisionStream>(
+            return crate::axis::drive_lanes::<rtl::subdivision_stream::SubdivisionStream>(
                 self.model.as_mut(),
-                &crate::stream::subdivision_words(jobs),
+                &crate::subdivision::subdivision_words(jobs),
                 n,
                 max_clocks,
                 &mut |k, b, _, _| pixel(k, b.x, b.y, b.rgb),
                 &mut |done| progress(done),
             );
         }
-        crate::stream::first_output_is(self.model.as_ref(), "ready")?;
+        crate::axis::first_output_is(self.model.as_ref(), "ready")?;
         let mut st = PipeStats::default();
         let mut out = vec![0u64; OUTPUTS];
         let idle = pipe_row(None);
@@ -270,6 +273,21 @@ pub fn clock_budget(jobs: &[SubJob]) -> u64 {
         .sum()
 }
 
+/// The `subdivision-stream` record of a parent (the same field values `subdivision-raster`'s
+/// load row carries).
+pub fn subdivision_record(job: &crate::subdivision::SubJob) -> Vec<Word> {
+    let row = crate::subdivision::pipe_row(Some(job));
+    with_last(pack(
+        &SUBDIVISION_PARENT,
+        &row[1..crate::subdivision::PIPE_HOLD_AT],
+    ))
+}
+
+/// A subdivision scene's set-up stream: every parent, in order.
+pub fn subdivision_words(jobs: &[crate::subdivision::SubJob]) -> Vec<Word> {
+    jobs.iter().flat_map(subdivision_record).collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -283,5 +301,31 @@ mod tests {
         assert_eq!(pipe_row(Some(&j))[PIPE_HOLD_AT], 0);
         assert_eq!(row_job(&pipe_row(Some(&j))), Some(j));
         assert_eq!(row_job(&pipe_row(None)), None);
+    }
+}
+
+#[cfg(test)]
+mod record_tests {
+    use super::*;
+    use rtl::stream_layout::unpack;
+
+    #[test]
+    fn subdivision_records_carry_the_load_row() {
+        let mut t = golden::types::ScreenTriangle::from_points([(3, 1), (40, 7), (11, 30)]);
+        t.v[1].normal = glam::DVec3::new(0.3, 0.1, 1.0).normalize();
+        let ctx = golden::shade::ShadeContext::default();
+        let job = crate::subdivision::SubJob::subdivision(&t, &ctx).unwrap();
+        let rec = subdivision_record(&job);
+        assert_eq!(rec.len(), 72);
+        assert_eq!(rec[0], (1, false));
+        assert!(rec.last().unwrap().1);
+        assert!(rec[..71].iter().all(|w| !w.1));
+        let payload: Vec<u32> = rec[1..].iter().map(|w| w.0).collect();
+        let row = crate::subdivision::pipe_row(Some(&job));
+        assert_eq!(
+            unpack(&SUBDIVISION_PARENT, &payload),
+            row[1..crate::subdivision::PIPE_HOLD_AT].to_vec()
+        );
+        assert_eq!(subdivision_words(&[job, job]).len(), 144);
     }
 }

@@ -51,7 +51,7 @@
 //!   silhouette) gives 0.885 fragments per clock against `pixel-pipeline`'s 0.986; more
 //!   buffering does not help (input FIFOs of 64 to 100 000 words measured: unchanged). The
 //!   driver therefore sends large and small triangles alternately
-//!   (`pipeline::stream::balanced_order`): 0.985, 114 847 clocks against `pixel-pipeline`'s
+//!   (`pipeline::lit::balanced_order`): 0.985, 114 847 clocks against `pixel-pipeline`'s
 //!   114 808 (`cargo bench --bench rtl_lit`, both orders printed).
 //! - Latency: a triangle record's last word accepted in clock t → its first beat offered in
 //!   clock t + 92 (the record is complete in t + 1, moves to the load bank in t + 1, loads in

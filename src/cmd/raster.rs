@@ -73,7 +73,7 @@ pub fn four_clocks(
         (Engine::Golden, _) => Ok(golden::four_triangle::run(&[setup]).0),
         (Engine::Rtl, crate::sim::Sim::Verilator) => {
             let budget = four_budget(&setup);
-            testbenches::four_triangle::run_reactive_on(
+            pipeline::walkers::four_triangle::run_reactive_on(
                 crate::sim::Sim::Verilator,
                 &[setup],
                 budget,
@@ -89,7 +89,7 @@ pub fn four_clocks(
                 None => None,
             };
             let budget = four_budget(&setup);
-            testbenches::four_triangle::run_reactive(&[setup], budget, trace)
+            pipeline::walkers::four_triangle::run_reactive(&[setup], budget, trace)
                 .map_err(|e| anyhow::anyhow!("RTL simulation: {e}"))
         }
     }
@@ -181,7 +181,7 @@ pub fn walk_clocks_with(
             bail!("--vcd needs --sim rust-hdl (the Verilator run writes no waveform)");
         }
         let budget = 16 + (setup.rows as usize + 1) * (MAX_ADDRESS as usize + 2);
-        return testbenches::address_block::run_reactive_on(
+        return pipeline::walkers::address::run_reactive_on(
             crate::sim::Sim::Verilator,
             &[setup],
             budget,
@@ -193,7 +193,7 @@ pub fn walk_clocks_with(
             if vcd.is_some() {
                 bail!("--vcd needs --engine rtl (the golden model has no waveform)");
             }
-            Ok(testbenches::address_block::run_model(&[setup]))
+            Ok(pipeline::walkers::address::run_model(&[setup]))
         }
         Engine::Rtl => {
             let trace: Option<Box<dyn Write>> = match vcd {
@@ -205,7 +205,7 @@ pub fn walk_clocks_with(
             };
             // Every row at full width plus latency: a hung block stops instead of spinning.
             let budget = 16 + (setup.rows as usize + 1) * (MAX_ADDRESS as usize + 2);
-            testbenches::address_block::run_reactive(&[setup], budget, trace)
+            pipeline::walkers::address::run_reactive(&[setup], budget, trace)
                 .map_err(|e| anyhow::anyhow!("RTL simulation: {e}"))
         }
     }

@@ -219,7 +219,7 @@ struct Frames {
 
 /// The hardware's counters of one RTL method render.
 struct RtlStats {
-    pipe: pipeline::gouraud::PipeStats,
+    pipe: pipeline::axis::PipeStats,
     visibility_mismatches: usize,
     seconds: f64,
 }

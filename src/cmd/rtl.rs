@@ -1,16 +1,18 @@
-//! RTL commands: `export-verilog`, `sim`, `synth`.
+//! RTL commands: `export-verilog`, `synth`, `blocks` (`sim` is `shadecore-sim`, in the
+//! testbenches crate).
 
 use std::path::PathBuf;
 
 use anyhow::{anyhow, bail, Context};
+use flow::blocks::{self, Block};
+pub use flow::cli::BuildArgs;
 use rtl::registry::Options;
-use testbenches::registry::{self, Entry};
 
 /// The blocks named by `--block` (`NAME` or `all`) and the build options of the command line
 /// ([`BuildArgs`]: `--coeffs` is `coeffs=…`, read by the normalizer blocks, and so on),
 /// checked against each other.
-fn selection(block: &str, build: &BuildArgs) -> anyhow::Result<(Vec<&'static dyn Entry>, Options)> {
-    let blocks = registry::select(block).map_err(|e| anyhow!(e))?;
+fn selection(block: &str, build: &BuildArgs) -> anyhow::Result<(Vec<&'static dyn Block>, Options)> {
+    let blocks = blocks::select(block).map_err(|e| anyhow!(e))?;
     let o = build.options();
     // A block ignores the options it does not read (their defaults apply to every command).
     for b in &blocks {
@@ -19,43 +21,6 @@ fn selection(block: &str, build: &BuildArgs) -> anyhow::Result<(Vec<&'static dyn
         }
     }
     Ok((blocks, o))
-}
-
-/// The build options every RTL command takes (each block reads the ones it knows).
-#[derive(clap::Args, Debug)]
-pub struct BuildArgs {
-    /// Normalizer coefficients: published (0.822, −2.046, 2.227) or fit (golden FIT).
-    #[arg(long, default_value = "published")]
-    pub coeffs: String,
-    /// Power unit mode: exact (cos^n) or w4, w8, w16 (W(n, γ) with that k).
-    #[arg(long, default_value = "exact")]
-    pub power: String,
-    /// BRZSSK on or off (default: on for `brzssk`, off in `pixel-pipeline`).
-    #[arg(long)]
-    pub bump: Option<String>,
-    /// The fast unit's 1/sqrt(M+1) set: chebyshev, shift-add or fit.
-    #[arg(long, default_value = "chebyshev")]
-    pub inv_sqrt: String,
-    /// The Horner unit's variant: serial (fig. 2.6, one multiplier, 3 clocks per pixel) or
-    /// pipelined (three multipliers, one pixel per clock).
-    #[arg(long, default_value = "serial")]
-    pub horner: String,
-}
-
-impl BuildArgs {
-    /// The options as `key=value` pairs; without --bump each block keeps its own default (on
-    /// for brzssk, off in the pipeline).
-    fn options(&self) -> Options {
-        let o = Options::new()
-            .with("coeffs", &self.coeffs)
-            .with("power", &self.power)
-            .with("inv-sqrt", &self.inv_sqrt)
-            .with("horner", &self.horner);
-        match &self.bump {
-            Some(b) => o.with("bump", b),
-            None => o,
-        }
-    }
 }
 
 #[derive(clap::Args, Debug)]
@@ -74,33 +39,6 @@ pub struct ExportArgs {
     /// beside it (`MULT18X18D_model.v`; Yosys ships only a black box).
     #[arg(long)]
     pub ecp5_dsp: bool,
-}
-
-#[derive(clap::Args, Debug)]
-pub struct SimArgs {
-    /// Block name (`shadecore blocks` lists them).
-    #[arg(long, default_value = "normalizer")]
-    pub block: String,
-    /// Random items to simulate, in the block's unit (`shadecore blocks`): the block's default
-    /// (vectors, pixels, spans or triangles). Longer runs go in batches of the default size
-    /// through one simulation, in constant memory, with the VCD written as the clocks go; above
-    /// 20 times the default a warning gives the VCD's expected size, above 1000 times the run
-    /// is refused (the VCD of every signal grows with it: about 3 kB per normalizer vector).
-    #[arg(long)]
-    pub vectors: Option<usize>,
-    /// Seed of the stimulus (default: the test runner's seed for "shadecore-sim";
-    /// SHADECORE_SEED overrides that default).
-    #[arg(long)]
-    pub seed: Option<u64>,
-    /// VCD file to write (rust-hdl only; default under rust-hdl target/sims/<block>.vcd).
-    #[arg(long)]
-    pub vcd: Option<PathBuf>,
-    /// The simulator: verilator (the exported Verilog in process, no VCD) or rust-hdl (writes
-    /// the VCD). Default: verilator when it is installed, rust-hdl with --vcd.
-    #[arg(long, value_enum)]
-    pub sim: Option<crate::sim::SimArg>,
-    #[command(flatten)]
-    pub build: BuildArgs,
 }
 
 #[derive(clap::Args, Debug)]
@@ -153,7 +91,7 @@ pub enum MultRegsArg {
     Fabric,
 }
 
-impl From<MultRegsArg> for testbenches::synth::MultRegs {
+impl From<MultRegsArg> for flow::synth::MultRegs {
     fn from(a: MultRegsArg) -> Self {
         match a {
             MultRegsArg::Dsp => Self::Dsp,
@@ -217,114 +155,6 @@ fn spinner(what: String) -> indicatif::ProgressBar {
     p
 }
 
-/// `sim` simulates at most this many times a block's default number of items (the VCD's
-/// size, not memory, is the limit: the run streams).
-pub const SIM_LIMIT_FACTOR: usize = 1000;
-/// Above this many times the default, `sim` warns about the VCD's size.
-pub const SIM_WARN_FACTOR: usize = 20;
-
-pub fn sim(a: SimArgs) -> anyhow::Result<()> {
-    let block = registry::find(&a.block).map_err(|e| anyhow!(e))?;
-    let (_, o) = selection(block.name(), &a.build)?;
-    let n = a.vectors.unwrap_or(block.default_items());
-    if n == 0 {
-        bail!("--vectors must be at least 1");
-    }
-    let limit = SIM_LIMIT_FACTOR * block.default_items();
-    if n > limit {
-        bail!(
-            "--vectors {n} is above {}'s limit of {limit} {} ({SIM_LIMIT_FACTOR} × its default: the VCD of every signal grows with the run, about 3 kB per normalizer vector)",
-            block.name(),
-            block.items()
-        );
-    }
-    let seed = a
-        .seed
-        .unwrap_or_else(|| golden::seed::seed_for("shadecore-sim"));
-    let sim = match (a.sim, &a.vcd) {
-        (None, Some(_)) => crate::sim::Sim::RustHdl,
-        (Some(crate::sim::SimArg::Verilator), Some(_)) => {
-            bail!("--vcd needs --sim rust-hdl (the Verilator run writes no waveform)")
-        }
-        (arg, _) => crate::sim::resolve(arg)?,
-    };
-    let vcd = (sim == crate::sim::Sim::RustHdl).then(|| {
-        a.vcd.clone().unwrap_or_else(|| {
-            testbenches::harness::target_dir()
-                .join("sims")
-                .join(format!("{}.vcd", block.name()))
-        })
-    });
-    if let Some(dir) = vcd
-        .as_ref()
-        .and_then(|v| v.parent())
-        .filter(|d| !d.as_os_str().is_empty())
-    {
-        std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
-    }
-    if sim == crate::sim::Sim::Verilator {
-        crate::sim::prepare(
-            sim,
-            vec![block.design(&o).map_err(|e| anyhow!(e))?],
-            &indicatif::MultiProgress::new(),
-        )?;
-    }
-    if let (Some(vcd), true) = (&vcd, n > SIM_WARN_FACTOR * block.default_items()) {
-        eprintln!(
-            "warning: {n} {} is over {SIM_WARN_FACTOR} × {}'s default: the VCD at {} grows with every clock (about 3 kB per normalizer vector)",
-            block.items(),
-            block.name(),
-            vcd.display()
-        );
-    }
-    let t = std::time::Instant::now();
-    let bar = indicatif::ProgressBar::new(n as u64).with_style(
-        indicatif::ProgressStyle::with_template(&format!(
-            "sim {} [{{bar:40}}] {{pos}}/{{len}} {} {{msg}} {{elapsed}} (eta {{eta}})",
-            block.name(),
-            block.items()
-        ))
-        .expect("static template")
-        .progress_chars("=> "),
-    );
-    let per = block.default_items().max(1) as u64;
-    let mut batches = 0u64;
-    let out = block
-        .sim_stream(&o, n, seed, vcd.as_deref(), sim, &mut |clocks| {
-            batches += 1;
-            bar.set_position((batches * per).min(n as u64));
-            bar.set_message(format!("({clocks} clocks)"));
-        })
-        .map_err(|e| anyhow!(e));
-    bar.finish_and_clear();
-    let out = out?;
-    crate::outln!(
-        "[{}] {} clocks in {} batch{}, seed {}",
-        out.name,
-        out.cycles,
-        out.batches,
-        if out.batches == 1 { "" } else { "es" },
-        out.seed
-    )?;
-    for p in &out.ports {
-        crate::outln!("  {p}")?;
-    }
-    crate::outln!(
-        "{}: {n} {} checked every clock against the bit-exact twin and the golden model (latency {}), seed {seed}, {:.2?}",
-        block.name(),
-        block.items(),
-        block.latency(),
-        t.elapsed()
-    )?;
-    match &vcd {
-        Some(v) => crate::outln!("VCD: {}", v.display())?,
-        None => crate::outln!(
-            "VCD: none (Verilator writes no waveform; --sim rust-hdl or --vcd PATH for one)"
-        )?,
-    }
-    Ok(())
-}
-
 pub fn synth(a: SynthArgs) -> anyhow::Result<()> {
     let (blocks, o) = selection(&a.block, &a.build)?;
     let mut rows: Vec<String> = Vec::new();
@@ -335,7 +165,7 @@ pub fn synth(a: SynthArgs) -> anyhow::Result<()> {
         }
     }
     if a.target == Target::Ecp5 {
-        if !testbenches::tools::available(testbenches::tools::Tool::Yosys) {
+        if !flow::tools::available(flow::tools::Tool::Yosys) {
             bail!("yosys is not installed (apt-get install yosys)");
         }
         for b in blocks {
@@ -345,7 +175,7 @@ pub fn synth(a: SynthArgs) -> anyhow::Result<()> {
             ));
             let v = b.verilog(&o).map_err(|e| anyhow!(e));
             let rep = v.and_then(|v| {
-                testbenches::synth::ecp5_with(
+                flow::synth::ecp5_with(
                     &v,
                     &b.module_name(),
                     &b.ports(),
@@ -371,10 +201,8 @@ pub fn synth(a: SynthArgs) -> anyhow::Result<()> {
             ));
             if a.pins {
                 // The smallest package of this die or a larger one that has the top's pins.
-                let part = testbenches::synth::ecp5_part_for_pins(
-                    rep.part,
-                    testbenches::synth::top_pins(&b.ports()),
-                );
+                let part =
+                    flow::synth::ecp5_part_for_pins(rep.part, flow::synth::top_pins(&b.ports()));
                 let spin = spinner(format!(
                     "synth {}: on its own pins of the {} ({})",
                     b.name(),
@@ -382,7 +210,7 @@ pub fn synth(a: SynthArgs) -> anyhow::Result<()> {
                     part.package
                 ));
                 let v = b.verilog(&o).map_err(|e| anyhow!(e))?;
-                let pins = testbenches::synth::ecp5_on_pins_with(
+                let pins = flow::synth::ecp5_on_pins_with(
                     &v,
                     &b.module_name(),
                     &b.ports(),
@@ -432,7 +260,7 @@ pub fn synth(a: SynthArgs) -> anyhow::Result<()> {
             b.name(),
             if a.no_pnr { "" } else { ", then nextpnr-ice40" }
         ));
-        let result = registry::synth_block(b, &o, !a.no_pnr).map_err(|e| anyhow!(e));
+        let result = blocks::synth_block(b, &o, !a.no_pnr).map_err(|e| anyhow!(e));
         spin.finish_and_clear();
         let (rep, placement) = result?;
         crate::out!("{rep}")?;
@@ -443,24 +271,24 @@ pub fn synth(a: SynthArgs) -> anyhow::Result<()> {
             rep.ffs(),
             rep.mac16(),
             match &placement {
-                registry::Placement::Fmax(f) => format!("{f:.1} MHz"),
-                registry::Placement::DoesNotFit(why) => format!("does not fit: {why}"),
-                registry::Placement::NoTool => "no nextpnr-ice40".into(),
-                registry::Placement::NotAsked => "—".into(),
+                blocks::Placement::Fmax(f) => format!("{f:.1} MHz"),
+                blocks::Placement::DoesNotFit(why) => format!("does not fit: {why}"),
+                blocks::Placement::NoTool => "no nextpnr-ice40".into(),
+                blocks::Placement::NotAsked => "—".into(),
             }
         ));
         match placement {
-            registry::Placement::Fmax(f) => crate::outln!(
+            blocks::Placement::Fmax(f) => crate::outln!(
                 "{}: nextpnr-ice40 --up5k (sg48, timing shell): max clock {f:.1} MHz",
                 rep.top
             ),
-            registry::Placement::DoesNotFit(why) => {
+            blocks::Placement::DoesNotFit(why) => {
                 crate::outln!("{}: not placed: {why} (no Fmax estimate)", rep.top)
             }
-            registry::Placement::NoTool => {
+            blocks::Placement::NoTool => {
                 crate::outln!("{}: nextpnr-ice40 not installed: no Fmax estimate", rep.top)
             }
-            registry::Placement::NotAsked => Ok(()),
+            blocks::Placement::NotAsked => Ok(()),
         }?;
     }
     write_table(&a, &rows)
@@ -512,6 +340,6 @@ fn write_table(a: &SynthArgs, rows: &[String]) -> anyhow::Result<()> {
 
 /// `shadecore blocks`: the registry as the README's Markdown table.
 pub fn blocks() -> anyhow::Result<()> {
-    crate::out!("{}", registry::markdown_table())?;
+    crate::out!("{}", blocks::markdown_table())?;
     Ok(())
 }

@@ -15,8 +15,8 @@ use rtl::brzssk::{Brzssk, BrzsskParams};
 use rtl::fixed::SCALE;
 
 use crate::harness::{Compare, Expected, Tolerance};
-use crate::normalizer::seeded_runner;
 use crate::registry::{Bench, Stimulus, Twin};
+use golden::testing::seeded_runner;
 
 const ONE: u64 = 0x8000;
 

@@ -16,8 +16,8 @@ use rtl::fixed::LEVEL;
 use rtl::registry::NoParams;
 
 use crate::harness::{Compare, Expected, Tolerance};
-use crate::normalizer::seeded_runner;
 use crate::registry::{Bench, Stimulus, Twin};
+use golden::testing::seeded_runner;
 
 const WEIGHT_PERIOD: usize = 64;
 const ONE: u64 = 1 << 15;

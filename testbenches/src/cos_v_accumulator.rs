@@ -20,9 +20,9 @@ use rtl::fixed::SCALE;
 use rtl::registry::NoParams;
 
 use crate::harness::{Compare, Expected, Tolerance};
-use crate::normalizer::seeded_runner;
 use crate::registry::{Bench, Stimulus, Twin};
 use crate::span::{random_span_vectors, span_run};
+use golden::testing::seeded_runner;
 
 const MASK: i64 = (1 << 32) - 1;
 

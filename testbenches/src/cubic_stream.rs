@@ -10,8 +10,9 @@
 //! bench checks against the golden `cubic` method and the f64 depth plane every clock (and
 //! `tests/cubic_stream.rs` against its RTL run through its own ports).
 
+use pipeline::axis::{Beat, Word};
+use pipeline::span::cubic_words;
 use pipeline::span::{span_row, SpanJob, SpanKind};
-use pipeline::stream::{cubic_words, Beat, Word};
 use rtl::cubic_pipeline::CubicParams;
 use rtl::cubic_stream::{CubicStream, FIFO_DEPTH, HOLD_ABOVE};
 use rtl::stream_layout::{pack_fragment, unpack, CUBIC_LINE, CUBIC_STREAM};

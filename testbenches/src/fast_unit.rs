@@ -16,9 +16,9 @@ use rtl::fast_unit::{FastParams, FastUnit};
 use rtl::fixed::SCALE;
 
 use crate::harness::{Compare, Expected, Tolerance};
-use crate::normalizer::seeded_runner;
 use crate::registry::{Bench, Stimulus, Twin};
 use crate::span::{random_span_vectors, span_run};
+use golden::testing::seeded_runner;
 
 const M32: i64 = (1 << 32) - 1;
 const M48: i64 = (1 << 48) - 1;

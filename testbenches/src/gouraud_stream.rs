@@ -9,8 +9,9 @@
 //! `gouraud-raster`'s events without stalls, whose colours `tests/gouraud_stream.rs` checks
 //! against the golden f64 Gouraud planes (within 1 LSB, addresses exact).
 
+use pipeline::axis::{Beat, Word};
+use pipeline::gouraud::gouraud_words;
 use pipeline::gouraud::{TriangleJob, PIPE_HOLD_AT};
-use pipeline::stream::{gouraud_words, Beat, Word};
 use rtl::gouraud_stream::{GouraudStream, FIFO_DEPTH, HOLD_ABOVE};
 use rtl::registry::NoParams;
 use rtl::stream_layout::{pack_fragment, unpack, GOURAUD_STREAM, GOURAUD_TRIANGLE};

@@ -174,30 +174,7 @@ impl std::fmt::Display for Failure {
 
 impl std::error::Error for Failure {}
 
-/// The workspace's `target/` directory (`CARGO_TARGET_DIR` if set).
-pub fn target_dir() -> PathBuf {
-    if let Some(d) = std::env::var_os("CARGO_TARGET_DIR") {
-        return PathBuf::from(d);
-    }
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .parent()
-        .map(|p| p.join("target"))
-        .unwrap_or_else(|| "target".into())
-}
-
-/// `name` with every character other than ASCII letters, digits, `-` and `_` replaced by `_`
-/// (a file name on any system).
-pub fn file_safe(name: &str) -> String {
-    name.chars()
-        .map(|c| {
-            if c.is_ascii_alphanumeric() || c == '-' || c == '_' {
-                c
-            } else {
-                '_'
-            }
-        })
-        .collect()
-}
+pub use flow::{file_safe, target_dir};
 
 /// `target/sims/<name>.vcd`.
 pub fn vcd_path(name: &str) -> PathBuf {
@@ -477,7 +454,7 @@ pub fn run_stream<D: Dut>(
     run_stream_on(&mut s, spec, next_batch, twin, progress)
 }
 
-/// [`run_stream`] on any simulated block (rust-hdl or Verilator: `pipeline::engine::model`),
+/// [`run_stream`] on any simulated block (rust-hdl or Verilator: `flow::engine::model`),
 /// from its current state; a VCD, if any, is the caller's to start.
 #[allow(clippy::result_large_err)]
 pub fn run_stream_on(

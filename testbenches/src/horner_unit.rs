@@ -19,8 +19,8 @@ use rtl::fixed::LEVEL;
 use rtl::horner_unit::{HornerParams, HornerUnit};
 
 use crate::harness::{Compare, Expected, Tolerance};
-use crate::normalizer::seeded_runner;
 use crate::registry::{Bench, Stimulus, Twin};
+use golden::testing::seeded_runner;
 
 /// Named spans: (name, words).
 pub fn named_spans() -> Vec<(&'static str, HornerWords)> {

@@ -4,9 +4,10 @@
 //! exact normalization.
 
 use golden::normalizer::{twin, Coeffs};
+pub use golden::testing::seeded_runner;
 use proptest::prelude::*;
 use proptest::strategy::ValueTree;
-use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
+use proptest::test_runner::TestRunner;
 use rtl::fixed::{HORNER_T1, INTERPOLATED, K_NARROW, NORMALIZED, NORM_SCALE};
 use rtl::normalizer::{error_budget, ErrorBudget, Normalizer, NormalizerCoeffs, NormalizerK};
 
@@ -19,17 +20,6 @@ use crate::registry::{Bench, Stimulus, Twin};
 pub const DOMAIN_K: (f64, f64) = (0.499, 1.0 + 1.0 / 4096.0);
 /// Largest |component| of a quantized domain vector (Q2.17: one LSB above 1).
 pub const DOMAIN_X_MAX: f64 = 1.0 + 1.0 / 131072.0;
-
-/// A runner seeded with `seed` exactly as `golden::testing::runner` seeds its runners.
-pub fn seeded_runner(seed: u64) -> TestRunner {
-    let mut bytes = [0u8; 32];
-    bytes[..8].copy_from_slice(&seed.to_le_bytes());
-    let config = Config {
-        failure_persistence: None,
-        ..Config::default()
-    };
-    TestRunner::new_with_rng(config, TestRng::from_seed(RngAlgorithm::ChaCha, &bytes))
-}
 
 fn unit(z: f64, phi: f64) -> [f64; 3] {
     let r = (1.0 - z * z).max(0.0).sqrt();

@@ -31,8 +31,8 @@ use rtl::pixel_pipeline::{PipelineParams, PixelPipeline, EVENT_TO_BRZSSK, EVENT_
 
 use crate::address_block::triangle_strategy;
 use crate::harness::{Compare, Expected, Tolerance};
-use crate::normalizer::seeded_runner;
 use crate::registry::{Bench, Stimulus, Twin};
+use golden::testing::seeded_runner;
 
 /// A delay line of `n` registers (reset 0): `out` is what went in `n` clocks ago.
 pub(crate) struct DelayLine(VecDeque<u64>);

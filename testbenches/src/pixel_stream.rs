@@ -10,8 +10,9 @@
 //! against the golden methods): [`reference_beats`], compared by `tests/pixel_stream.rs`.
 
 use golden::shade::ShadeContext;
+use pipeline::axis::{Beat, Word};
+use pipeline::lit::scene_words;
 use pipeline::lit::{LitJob, ShadingRegs, HOLD_AT, ROW_WIDTH};
-use pipeline::stream::{scene_words, Beat, Word};
 use rtl::pixel_pipeline::PipelineParams;
 use rtl::pixel_stream::{PixelStream, FIFO_DEPTH, HOLD_ABOVE};
 use rtl::stream_layout::{pack_fragment, payload_words, unpack, PIXEL_STREAM, REGISTERS, TRIANGLE};

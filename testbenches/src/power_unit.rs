@@ -19,8 +19,8 @@ use rtl::fixed::SCALE;
 use rtl::power_unit::{PowerParams, PowerUnit};
 
 use crate::harness::{Compare, Expected, Tolerance};
-use crate::normalizer::seeded_runner;
 use crate::registry::{Bench, Stimulus, Twin};
+use golden::testing::seeded_runner;
 
 const ONE: u64 = 0x8000;
 

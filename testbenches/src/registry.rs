@@ -1,18 +1,19 @@
-//! The block registry: every exportable block, once. `shadecore export-verilog`, `synth`, `sim`
-//! (with its VCD), the generic tests (twin every clock, golden every clock, Yosys, Icarus,
-//! Verilator differential, SB_MAC16 count) and the README's block table are all driven from
-//! [`BLOCKS`].
+//! The bench side of the block list: every block of `flow::blocks::BLOCKS` with its stimulus,
+//! golden expectations and bit-exact twin. `shadecore-sim` (with its VCD) and the generic tests
+//! (twin every clock, golden every clock, Yosys, Icarus, Verilator differential, SB_MAC16
+//! count) are driven from [`BLOCKS`].
 //!
 //! A block implements [`rtl::registry::RtlBlock`] in its `rtl/src` file (name, parameters,
 //! latency, multipliers, build) and [`Bench`] in its `testbenches/src` file (stimulus with
-//! golden expectations, its bit-exact twin); then one line in [`BLOCKS`] registers it.
+//! golden expectations, its bit-exact twin); then one line in [`flow::with_blocks!`] lists it.
 
-use std::marker::PhantomData;
 use std::path::Path;
 
-use rtl::registry::{module_name, BlockParams, Options, RtlBlock};
+use flow::blocks::{Block, Registered};
+use flow::engine::Sim;
+use rtl::registry::{BlockParams, Options, RtlBlock};
 
-use crate::harness::{self, CheckSpec, Compare, Expected, Failure, Port, Report};
+use crate::harness::{self, CheckSpec, Compare, Expected, Failure, Report};
 
 /// A checked run: its report, or the first failure (with its VCD).
 pub type Checked = Result<Report, Box<Failure>>;
@@ -50,30 +51,11 @@ pub trait Bench: RtlBlock {
     }
 }
 
-/// A registered block, object-safe: what the commands and generic tests call.
-pub trait Entry: Sync {
-    fn name(&self) -> &'static str;
-    fn module_name(&self) -> String {
-        module_name(self.name())
-    }
-    fn summary(&self) -> &'static str;
-    fn latency(&self) -> usize;
-    fn latency_meaning(&self) -> &'static str;
-    /// Multipliers of the default build (the README table's figure).
-    fn multipliers(&self) -> usize;
-    /// Multipliers of the build with `o`.
-    fn multipliers_with(&self, o: &Options) -> Result<usize, String>;
-    /// The option sets the generic tests build and check ([`BlockParams::test_sets`]).
-    fn test_sets(&self) -> Vec<Options>;
+/// A registered block with its bench side, object-safe: what the generic tests call. The
+/// product side ([`Block`]: ports, Verilog, models, synthesis) is `flow::blocks`'.
+pub trait Entry: Block {
     fn items(&self) -> &'static str;
     fn default_items(&self) -> usize;
-    /// The [`Options`] keys the block's parameters read.
-    fn param_keys(&self) -> &'static [&'static str];
-    /// Check that the options build this block (errors name the problem).
-    fn check_options(&self, o: &Options) -> Result<(), String>;
-    /// Input and output ports (the harness's row order).
-    fn ports(&self) -> (Vec<Port>, Vec<Port>);
-    fn verilog(&self, o: &Options) -> Result<String, String>;
     fn stimulus(&self, o: &Options, n: usize, seed: u64) -> Result<Stimulus, String>;
     /// Run `stim` through the RTL, checking every clock against the golden expectations.
     fn run_golden(&self, o: &Options, stim: &Stimulus, name: &str, seed: u64) -> Checked;
@@ -94,27 +76,6 @@ pub trait Entry: Sync {
     fn run_twin(&self, o: &Options, rows: &[Vec<u64>], name: &str, seed: u64) -> Checked;
     /// The twin's output rows for `rows` (what the hardware must show, clock by clock).
     fn twin_rows(&self, o: &Options, rows: &[Vec<u64>]) -> Result<Vec<Vec<u64>>, String>;
-    /// The rust-hdl simulation's output rows for `rows`.
-    fn simulate(&self, o: &Options, rows: &[Vec<u64>]) -> Result<Vec<Vec<u64>>, String>;
-    /// A fresh instance built with `o` on `sim` (Verilator: compiled first when not cached).
-    fn model(
-        &self,
-        o: &Options,
-        sim: pipeline::engine::Sim,
-    ) -> Result<Box<dyn rtl::sim::Model>, String>;
-    /// The Verilator design of the block built with `o`.
-    fn design(&self, o: &Options) -> Result<verilated::Design, String>;
-    /// [`Entry::simulate`] on `sim`.
-    fn simulate_on(
-        &self,
-        o: &Options,
-        rows: &[Vec<u64>],
-        sim: pipeline::engine::Sim,
-    ) -> Result<Vec<Vec<u64>>, String> {
-        rtl::sim::run_model(self.model(o, sim)?.as_mut(), rows)
-    }
-    /// Replay `rows` writing a VCD of the whole run (every signal) to `path`.
-    fn write_vcd(&self, o: &Options, rows: &[Vec<u64>], path: &Path) -> Result<(), String>;
     /// `n` seeded items in constant memory: batches of the block's default size (batch k
     /// seeded `seed + k`) driven back to back into one simulation, checked every clock against
     /// the twin (exactly) and the golden model, on `sim`, the VCD written to `vcd` as the clocks
@@ -125,17 +86,9 @@ pub trait Entry: Sync {
         n: usize,
         seed: u64,
         vcd: Option<&Path>,
-        sim: pipeline::engine::Sim,
+        sim: Sim,
         progress: &mut dyn FnMut(u64),
     ) -> Result<crate::harness::StreamReport, String>;
-}
-
-/// The [`Entry`] of a block type.
-pub struct Registered<B>(PhantomData<fn() -> B>);
-
-/// The registry entry of `B` (used in [`BLOCKS`]).
-pub const fn entry<B: Bench>() -> Registered<B> {
-    Registered(PhantomData)
 }
 
 fn failure(name: &str, seed: u64, detail: String) -> Box<Failure> {
@@ -152,48 +105,11 @@ fn failure(name: &str, seed: u64, detail: String) -> Box<Failure> {
 }
 
 impl<B: Bench + 'static> Entry for Registered<B> {
-    fn name(&self) -> &'static str {
-        B::NAME
-    }
-    fn summary(&self) -> &'static str {
-        B::SUMMARY
-    }
-    fn latency(&self) -> usize {
-        B::LATENCY
-    }
-    fn latency_meaning(&self) -> &'static str {
-        B::LATENCY_MEANING
-    }
-    fn multipliers(&self) -> usize {
-        B::MULTIPLIERS
-    }
-    fn multipliers_with(&self, o: &Options) -> Result<usize, String> {
-        Ok(B::Params::from_options(o)?
-            .multipliers()
-            .unwrap_or(B::MULTIPLIERS))
-    }
-    fn test_sets(&self) -> Vec<Options> {
-        B::Params::test_sets()
-    }
     fn items(&self) -> &'static str {
         B::ITEMS
     }
     fn default_items(&self) -> usize {
         B::DEFAULT_ITEMS
-    }
-    fn param_keys(&self) -> &'static [&'static str] {
-        B::Params::KEYS
-    }
-    fn check_options(&self, o: &Options) -> Result<(), String> {
-        B::Params::from_options(o).map(|_| ())
-    }
-    fn ports(&self) -> (Vec<Port>, Vec<Port>) {
-        // Ports do not depend on the parameters; build with the defaults.
-        let d = B::build(&B::Params::from_options(&Options::new()).expect("default parameters"));
-        (d.inputs(), d.outputs())
-    }
-    fn verilog(&self, o: &Options) -> Result<String, String> {
-        rtl::export::verilog::<B>(&B::Params::from_options(o)?)
     }
     fn stimulus(&self, o: &Options, n: usize, seed: u64) -> Result<Stimulus, String> {
         Ok(B::stimulus(&B::Params::from_options(o)?, n, seed))
@@ -255,30 +171,13 @@ impl<B: Bench + 'static> Entry for Registered<B> {
         let mut twin = B::twin(&B::Params::from_options(o)?);
         Ok(rows.iter().map(|r| twin.step(r)).collect())
     }
-    fn simulate(&self, o: &Options, rows: &[Vec<u64>]) -> Result<Vec<Vec<u64>>, String> {
-        harness::simulate_rows(B::build(&B::Params::from_options(o)?), rows)
-    }
-    fn model(
-        &self,
-        o: &Options,
-        sim: pipeline::engine::Sim,
-    ) -> Result<Box<dyn rtl::sim::Model>, String> {
-        pipeline::engine::model::<B>(&B::Params::from_options(o)?, sim)
-    }
-    fn design(&self, o: &Options) -> Result<verilated::Design, String> {
-        Ok(verilated::design::<B>(&B::Params::from_options(o)?))
-    }
-    fn write_vcd(&self, o: &Options, rows: &[Vec<u64>], path: &Path) -> Result<(), String> {
-        let dut = B::build(&B::Params::from_options(o)?);
-        harness::write_vcd_window(dut, rows, 0, rows.len() as u64, path)
-    }
     fn sim_stream(
         &self,
         o: &Options,
         n: usize,
         seed: u64,
         vcd: Option<&Path>,
-        sim: pipeline::engine::Sim,
+        sim: Sim,
         progress: &mut dyn FnMut(u64),
     ) -> Result<crate::harness::StreamReport, String> {
         let p = B::Params::from_options(o)?;
@@ -305,7 +204,7 @@ impl<B: Bench + 'static> Entry for Registered<B> {
             })
         };
         let mut twin = B::twin(&p);
-        let mut model = pipeline::engine::model::<B>(&p, sim)?;
+        let mut model = flow::engine::model::<B>(&p, sim)?;
         if let Some(path) = vcd {
             let f = std::fs::File::create(path)
                 .map_err(|e| format!("cannot create {}: {e}", path.display()))?;
@@ -325,39 +224,16 @@ impl<B: Bench + 'static> Entry for Registered<B> {
     }
 }
 
-/// Every exportable block. Adding a block: its `rtl/src` file (with `impl RtlBlock`), its
-/// `testbenches/src` file (with `impl Bench`), and one line here.
-pub static BLOCKS: &[&dyn Entry] = &[
-    &entry::<rtl::normalizer::Normalizer>(),
-    &entry::<rtl::normalizer::NormalizerK>(),
-    &entry::<rtl::k_recurrence::KRecurrence>(),
-    &entry::<rtl::k_recurrence::SpanNormalizer>(),
-    &entry::<rtl::address_block::AddressBlock>(),
-    &entry::<rtl::intensity_interpolator::IntensityInterpolator>(),
-    &entry::<rtl::gouraud_raster::GouraudRaster>(),
-    &entry::<rtl::gouraud_stream::GouraudStream>(),
-    &entry::<rtl::four_triangle::FourTriangle>(),
-    &entry::<rtl::subdivision_raster::SubdivisionRaster>(),
-    &entry::<rtl::subdivision_stream::SubdivisionStream>(),
-    &entry::<rtl::vector_interpolator::VectorInterpolator>(),
-    &entry::<rtl::lighting_unit::LightingUnit>(),
-    &entry::<rtl::colour_combine::ColourCombine>(),
-    &entry::<rtl::power_unit::PowerUnit>(),
-    &entry::<rtl::brzssk::Brzssk>(),
-    &entry::<rtl::pixel_pipeline::PixelPipeline>(),
-    &entry::<rtl::pixel_stream::PixelStream>(),
-    &entry::<rtl::cos_v_accumulator::CosVAccumulator>(),
-    &entry::<rtl::fast_unit::FastUnit>(),
-    &entry::<rtl::span_pipeline::AngularPipeline>(),
-    &entry::<rtl::span_pipeline::FastPipeline>(),
-    &entry::<rtl::horner_unit::HornerUnit>(),
-    &entry::<rtl::cubic_pipeline::CubicPipeline>(),
-    &entry::<rtl::cubic_stream::CubicStream>(),
-    &entry::<rtl::angular_stream::AngularStream>(),
-    &entry::<rtl::fast_stream::FastStream>(),
-    &entry::<rtl::quadric_stream::QuadricStream>(),
-    &entry::<rtl::quadric_unit::QuadricUnit>(),
-];
+macro_rules! entry_list {
+    ($($t:ty),* $(,)?) => {
+        &[$(&flow::blocks::block::<$t>()),*]
+    };
+}
+
+/// Every exportable block with its bench: `flow::blocks`' one list ([`flow::with_blocks!`]).
+/// Adding a block: its `rtl/src` file (with `impl RtlBlock`), its `testbenches/src` file (with
+/// `impl Bench`), and one line in that list.
+pub static BLOCKS: &[&dyn Entry] = flow::with_blocks!(entry_list);
 
 /// The entry named `name`.
 pub fn find(name: &str) -> Result<&'static dyn Entry, String> {
@@ -419,136 +295,6 @@ pub fn sim_to_vcd(
     })
 }
 
-/// `shadecore synth`: Yosys cell counts, and the nextpnr UP5K Fmax when `pnr` and
-/// nextpnr-ice40 is installed (`None` otherwise).
-pub fn synth_block(
-    block: &dyn Entry,
-    o: &Options,
-    pnr: bool,
-) -> Result<(crate::synth::SynthReport, Placement), String> {
-    use crate::tools::{self, Tool};
-    if !tools::available(Tool::Yosys) {
-        return Err("yosys is not installed (apt-get install yosys)".into());
-    }
-    let v = block.verilog(o)?;
-    let module = block.module_name();
-    let rep = crate::synth::check_and_synth(&v, &module, &format!("synth-{}", block.name()))?;
-    let placement = if !pnr {
-        Placement::NotAsked
-    } else if rep.mac16() > UP5K_MAC16 {
-        Placement::DoesNotFit(format!(
-            "{} SB_MAC16 > the iCE40 UP5K's {UP5K_MAC16}",
-            rep.mac16()
-        ))
-    } else if rep.luts() > UP5K_LUT4 {
-        Placement::DoesNotFit(format!(
-            "{} LUT4 > the iCE40 UP5K's {UP5K_LUT4}",
-            rep.luts()
-        ))
-    } else if rep.ffs() > UP5K_LUT4 {
-        // One flip-flop per logic cell.
-        Placement::DoesNotFit(format!(
-            "{} flip-flops > the iCE40 UP5K's {UP5K_LUT4} logic cells",
-            rep.ffs()
-        ))
-    } else if !tools::available(Tool::NextpnrIce40) {
-        Placement::NoTool
-    } else {
-        let tag = format!("pnr-{}", block.name());
-        match crate::synth::fmax_ice40_up5k(&v, &module, &block.ports(), &tag) {
-            Ok(f) => Placement::Fmax(f),
-            // LUTs and flip-flops that do not pack into the part's logic cells together.
-            Err(e) if e.contains("Unable to place cell") => Placement::DoesNotFit(format!(
-                "nextpnr-ice40 ran out of the UP5K's {UP5K_LUT4} logic cells ({} LUT4 and {} \
-                 flip-flops do not pack)",
-                rep.luts(),
-                rep.ffs()
-            )),
-            // The analytic placer's legaliser gives up ("design is probably at utilisation
-            // limit"): `gouraud-stream` since the BVI's side-by-side sums, with 3 912 of the
-            // 5 280 logic cells packed (seed 1; seed 2 had not legalised after 4 minutes, nor
-            // had the annealing placer finished its initial placement after 3).
-            Err(e) if e.contains("Unable to find legal placement") => {
-                Placement::DoesNotFit(format!(
-                    "nextpnr-ice40 found no legal placement in the UP5K's {UP5K_LUT4} logic \
-                     cells ({} LUT4, {} flip-flops)",
-                    rep.luts(),
-                    rep.ffs()
-                ))
-            }
-            Err(e) => return Err(e),
-        }
-    };
-    Ok((rep, placement))
-}
-
-/// SB_MAC16 blocks of the iCE40 UP5K, the part `synth` places into.
-pub const UP5K_MAC16: u64 = 8;
-/// Logic cells (LUT4) of the iCE40 UP5K.
-pub const UP5K_LUT4: u64 = 5280;
-
-/// What place-and-route said about a block (`synth_block`).
-#[derive(Clone, Debug, PartialEq)]
-pub enum Placement {
-    /// nextpnr-ice40's maximum clock after routing, MHz.
-    Fmax(f64),
-    /// More SB_MAC16 or LUT4 than the UP5K has (which, and how many): not placed.
-    DoesNotFit(String),
-    /// nextpnr-ice40 is not installed.
-    NoTool,
-    /// `--no-pnr`.
-    NotAsked,
-}
-
-/// The differential check of a registered block: `rows` through the rust-hdl simulation and
-/// through its exported Verilog (built with `o`) under `sim` — Verilator in process (the
-/// cached library, no files), Icarus through a generated testbench; identical outputs every
-/// clock.
-pub fn differential(
-    block: &dyn Entry,
-    o: &Options,
-    rows: &[Vec<u64>],
-    sim: crate::verilog::Simulator,
-    tag: &str,
-) -> Result<crate::verilog::DiffReport, crate::verilog::DiffError> {
-    use crate::verilog::DiffError;
-    let rust_rows = block.simulate(o, rows).map_err(DiffError::Tool)?;
-    if sim == crate::verilog::Simulator::Verilator {
-        let t = std::time::Instant::now();
-        let v = block
-            .simulate_on(o, rows, pipeline::engine::Sim::Verilator)
-            .map_err(DiffError::Tool)?;
-        let outputs = block.ports().1;
-        for (c, (r, w)) in rust_rows.iter().zip(&v).enumerate() {
-            if let Some(k) = (0..outputs.len()).find(|&k| r[k] != w[k]) {
-                return Err(DiffError::Mismatch(crate::verilog::Mismatch {
-                    cycle: c,
-                    port: outputs[k].name.into(),
-                    rust_hdl: r[k],
-                    verilog: format!("{:x}", w[k]),
-                    dir: verilated::cache_dir(),
-                }));
-            }
-        }
-        return Ok(crate::verilog::DiffReport {
-            cycles: rows.len(),
-            ports: outputs.len(),
-            verilog_sim_time: t.elapsed(),
-            dir: verilated::cache_dir(),
-        });
-    }
-    let v = block.verilog(o).map_err(DiffError::Tool)?;
-    crate::verilog::differential_rows(
-        &v,
-        &block.module_name(),
-        block.ports(),
-        rows,
-        &rust_rows,
-        sim,
-        tag,
-    )
-}
-
 /// The rows every generic test of a block drives: `n` items of its seeded stimulus, then its
 /// edge rows.
 pub fn test_rows(
@@ -562,45 +308,15 @@ pub fn test_rows(
     Ok(rows)
 }
 
-/// The README's block table, generated from [`BLOCKS`] (`shadecore blocks` prints it; a test
-/// keeps the README's copy identical).
-pub fn markdown_table() -> String {
-    let mut s = String::from(
-        "| block | what it is | latency (clocks) | measured from | 16×16 multipliers | parameters |\n\
-         |---|---|---:|---|---:|---|\n",
-    );
-    for b in BLOCKS {
-        let params = if b.param_keys().is_empty() {
-            "—".to_string()
-        } else {
-            b.param_keys()
-                .iter()
-                .map(|k| format!("`{k}`"))
-                .collect::<Vec<_>>()
-                .join(", ")
-        };
-        s.push_str(&format!(
-            "| `{}` | {} | {} | {} | {} | {} |\n",
-            b.name(),
-            b.summary().replace('|', "\\|"),
-            b.latency(),
-            b.latency_meaning(),
-            b.multipliers(),
-            params
-        ));
-    }
-    s
-}
-
 /// The mutation check of a block's export: on `rows` under Icarus, the unmodified Verilog
 /// equals the rust-hdl simulation, and every one of `mutants` differs from it somewhere
 /// (panics otherwise, naming the mutant). Prints where each was caught.
 pub fn assert_mutants_caught(
     block: &dyn Entry,
     rows: &[Vec<u64>],
-    mutants: &[crate::verilog::Mutant],
+    mutants: &[flow::verilog::Mutant],
 ) {
-    use crate::verilog::{differential_rows, DiffError, Simulator};
+    use flow::verilog::{differential_rows, DiffError, Simulator};
     let o = Options::new();
     let good = block.verilog(&o).expect("export");
     let expected = block.simulate(&o, rows).expect("rust-hdl simulation");
@@ -638,9 +354,9 @@ pub fn assert_mutants_caught_by_twin(
     block: &str,
     o: &Options,
     n: usize,
-    mutants: &[crate::verilog::Mutant],
+    mutants: &[flow::verilog::Mutant],
 ) {
-    use crate::verilog::{differential_rows, DiffError, Simulator};
+    use flow::verilog::{differential_rows, DiffError, Simulator};
     let b = find(block).unwrap();
     let name = format!("quarter-lsb-{block}");
     let seed = golden::seed::seed_for(&name);

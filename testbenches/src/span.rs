@@ -8,7 +8,7 @@ use glam::DVec3;
 use proptest::strategy::{Strategy, ValueTree};
 
 use crate::harness::Expected;
-use crate::normalizer::seeded_runner;
+use golden::testing::seeded_runner;
 
 /// The unit vector at height `z` and azimuth `phi`.
 fn unit(z: f64, phi: f64) -> DVec3 {

@@ -14,9 +14,10 @@
 //! its own ports).
 
 use golden::quadric_unit::twin::QuadricTwin;
+use pipeline::axis::{Beat, Word};
 use pipeline::lit::ShadingRegs;
+use pipeline::span::span_stream_words;
 use pipeline::span::{SpanJob, SpanKind};
-use pipeline::stream::{span_stream_words, Beat, Word};
 use rtl::angular_stream::AngularStream;
 use rtl::fast_stream::FastStream;
 use rtl::quadric_stream::QuadricStream;

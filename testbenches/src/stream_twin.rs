@@ -6,7 +6,7 @@
 
 use std::collections::VecDeque;
 
-use pipeline::stream::{Beat, Word};
+use pipeline::axis::{Beat, Word};
 use rtl::stream_layout::{payload_words, Record};
 
 use crate::registry::Twin;

@@ -8,12 +8,12 @@
 
 use crate::harness::{Compare, Expected};
 use crate::intensity_interpolator::LEVEL_1LSB;
-use crate::normalizer::seeded_runner;
 use crate::registry::{Bench, Stimulus, Twin};
 use golden::four_triangle::{FourOutputs, FourTriangleModel, LANES};
 use golden::intensity_interpolator::BviTwin;
 use golden::shade::{to_u8, ShadeContext};
 use golden::subdivision::SubdivisionSetup;
+use golden::testing::seeded_runner;
 use golden::types::ScreenTriangle;
 use pipeline::subdivision::{pipe_row, row_job, SubJob, OUTPUTS, PIPE_HOLD_AT};
 use proptest::prelude::*;

@@ -13,7 +13,8 @@
 
 use golden::four_triangle::LANES;
 use golden::subdivision::SubdivisionSetup;
-use pipeline::stream::{subdivision_words, Beat, Word};
+use pipeline::axis::{Beat, Word};
+use pipeline::subdivision::subdivision_words;
 use pipeline::subdivision::{SubJob, PIPE_HOLD_AT};
 use rtl::registry::NoParams;
 use rtl::stream_layout::{pack_fragment, unpack, SUBDIVISION_PARENT, SUBDIVISION_STREAM};

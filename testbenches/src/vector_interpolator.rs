@@ -22,8 +22,8 @@ use rtl::vector_interpolator::VectorInterpolator;
 use crate::address_block::{triangle_run, triangle_strategy, GoldenPixel};
 use crate::harness::{Compare, Expected, Tolerance};
 use crate::intensity_interpolator::{bvi_rows, row_event};
-use crate::normalizer::seeded_runner;
 use crate::registry::{Bench, Stimulus, Twin};
+use golden::testing::seeded_runner;
 
 /// A unit normal facing the viewer (z ≥ 0.05), uniform in angle.
 fn unit_normal() -> impl Strategy<Value = [f64; 3]> {

@@ -100,11 +100,11 @@ fn random_triangles_match_model_and_walk() {
 // ---------------------------------------------------------------------------------------------
 // Exported Verilog: Yosys, Icarus/Verilator differential (bit-exact every clock), mutants.
 
+use flow::tools;
+use flow::verilog::{Mutant, Simulator};
 use proptest::strategy::ValueTree;
 use testbenches::address_block::stimulus;
 use testbenches::registry::assert_mutants_caught;
-use testbenches::tools;
-use testbenches::verilog::{Mutant, Simulator};
 
 fn block(name: &str) -> &'static dyn testbenches::registry::Entry {
     testbenches::registry::find(name).unwrap()
@@ -139,7 +139,7 @@ fn differential_run(sim: Simulator, n: usize, tag: &str) {
         return;
     }
     let rows = stimulus(&differential_setups(n)).rows;
-    let rep = testbenches::registry::differential(
+    let rep = flow::blocks::differential(
         block("address-block"),
         &rtl::registry::Options::new(),
         &rows,

@@ -5,18 +5,20 @@
 //! `m_axis_tready` always high the pipeline is never held. (The generic tests — twin every
 //! clock, golden, Icarus, Verilator, lint — are the registry's.)
 
+use flow::blocks::differential;
+use flow::verilog::Simulator;
 use golden::methods::Method;
 use golden::testing::seed_for;
+use pipeline::axis::{Beat, Word};
 use pipeline::lit::ShadingRegs;
+use pipeline::span::{cubic_record, cubic_words};
 use pipeline::span::{span_clock_budget, SpanJob, SpanPipe};
-use pipeline::stream::{cubic_record, cubic_words, Beat, Word};
 use rtl::cubic_pipeline::CubicParams;
 use rtl::horner_unit::HornerParams;
 use rtl::registry::Options;
 use testbenches::cubic_stream::{drive, load_row, reference_beats, scene, CubicStreamRun};
-use testbenches::registry::{differential, find};
+use testbenches::registry::find;
 use testbenches::stall::StallPattern;
-use testbenches::verilog::Simulator;
 
 const VARIANTS: [(&str, bool); 2] = [("serial", false), ("pipelined", true)];
 
@@ -35,7 +37,7 @@ fn rtl_beats(pipelined: bool, run: &CubicStreamRun) -> (Vec<Beat>, bool) {
         .simulate_on(
             &options(pipelined),
             &run.rows,
-            testbenches::tools::fast_sim("cubic_stream"),
+            flow::tools::fast_sim("cubic_stream"),
         )
         .unwrap();
     // The twin that made the rows (record reader, banks, FIFO, hold) agrees every clock,
@@ -349,7 +351,7 @@ fn latency_from_last_word_to_first_beat() {
                 .simulate_on(
                     &options(pipelined),
                     &rows,
-                    testbenches::tools::fast_sim("cubic_stream"),
+                    flow::tools::fast_sim("cubic_stream"),
                 )
                 .unwrap();
             assert!(

@@ -8,11 +8,11 @@
 //! Skips with a notice without Icarus (fails when `CI` is set). `SHADECORE_SEED` varies the
 //! seeds.
 
+use flow::tools::{self, Tool};
+use flow::verilog::{differential_rows, DiffError, Simulator};
 use golden::testing::seed_for;
 use rtl::registry::Options;
 use testbenches::registry::{self, test_rows, Entry, BLOCKS};
-use testbenches::tools::{self, Tool};
-use testbenches::verilog::{differential_rows, DiffError, Simulator};
 
 /// Stimulus items per block (fewer than the registry's generic tests: this checks the
 /// mapping's wiring, which every product exercises every clock).
@@ -39,7 +39,7 @@ fn run(
     o: &Options,
     verilog: &str,
     tag: &str,
-) -> Result<testbenches::verilog::DiffReport, DiffError> {
+) -> Result<flow::verilog::DiffReport, DiffError> {
     let seed = seed_for(tag);
     let rows = test_rows(b, o, items(b), seed).unwrap();
     let expected = b.simulate(o, &rows).unwrap();

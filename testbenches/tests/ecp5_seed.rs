@@ -4,9 +4,9 @@
 //!
 //! Skips with a notice without Yosys or nextpnr-ecp5 (fails when `CI` is set).
 
+use flow::synth::{ecp5_with, require_ecp5, MultRegs};
 use rtl::registry::Options;
 use testbenches::registry;
-use testbenches::synth::{ecp5_with, require_ecp5, MultRegs};
 
 /// The last "Checksum: 0x…" nextpnr printed (after placement and routing).
 fn last_checksum(log_dir: &std::path::Path) -> String {

@@ -151,7 +151,7 @@ fn tiled_region_every_pixel_exactly_once() {
     let name = "four_triangle_tiled";
     let seed = seed_for(name);
     println!("[{name}] seed {seed} (replay with SHADECORE_SEED={seed})");
-    let mut r = testbenches::normalizer::seeded_runner(seed);
+    let mut r = golden::testing::seeded_runner(seed);
     let (nx, ny, cell) = (8, 6, 12);
     let jitter = (-4..=4i32, -4..=4i32);
     let mut grid = vec![vec![(0, 0); nx + 1]; ny + 1];
@@ -222,8 +222,8 @@ fn culled_sphere_every_pixel_exactly_once() {
 // Exported Verilog: a broken export must be caught (the bit-exact runs themselves are the
 // registry's generic tests).
 
+use flow::verilog::{Mutant, Simulator};
 use testbenches::registry::assert_mutants_caught;
-use testbenches::verilog::{Mutant, Simulator};
 
 #[test]
 fn broken_four_triangle_export_is_caught() {

@@ -5,15 +5,17 @@
 //! dropped with `error`; with `m_axis_tready` always high the address block is never held.
 //! (The generic tests — twin every clock, golden, Icarus, Verilator, lint — are the registry's.)
 
+use flow::blocks::differential;
+use flow::verilog::Simulator;
 use golden::shade::to_u8;
 use golden::testing::seed_for;
+use pipeline::axis::{Beat, Word};
+use pipeline::gouraud::{gouraud_record, gouraud_words};
 use pipeline::gouraud::{Pipe, TriangleJob};
-use pipeline::stream::{gouraud_record, gouraud_words, Beat, Word};
 use rtl::registry::Options;
 use testbenches::gouraud_stream::{drive, reference_beats, scene, GouraudStreamRun};
-use testbenches::registry::{differential, find};
+use testbenches::registry::find;
 use testbenches::stall::StallPattern;
-use testbenches::verilog::Simulator;
 
 /// The beats the RTL (rust-hdl) delivers for the run's input rows, and its `error` at the end.
 fn rtl_beats(run: &GouraudStreamRun) -> (Vec<Beat>, bool) {
@@ -22,7 +24,7 @@ fn rtl_beats(run: &GouraudStreamRun) -> (Vec<Beat>, bool) {
         .simulate_on(
             &Options::new(),
             &run.rows,
-            testbenches::tools::fast_sim("gouraud_stream"),
+            flow::tools::fast_sim("gouraud_stream"),
         )
         .unwrap();
     // The twin that made the rows (record reader, banks, FIFO, hold) agrees every clock,
@@ -273,7 +275,7 @@ fn latency_from_last_word_to_first_beat() {
         .simulate_on(
             &Options::new(),
             &rows,
-            testbenches::tools::fast_sim("gouraud_stream"),
+            flow::tools::fast_sim("gouraud_stream"),
         )
         .unwrap();
     assert!(
@@ -314,7 +316,7 @@ fn layout_fields_are_the_raster_ports() {
 #[test]
 #[ignore = "full tier: nextpnr-ecp5 on a package's pins"]
 fn the_stream_top_places_on_its_own_pins_and_the_flat_top_does_not() {
-    use testbenches::synth::{ecp5_on_pins, require_ecp5, ECP5_PARTS};
+    use flow::synth::{ecp5_on_pins, require_ecp5, ECP5_PARTS};
     let what = "the_stream_top_places_on_its_own_pins_and_the_flat_top_does_not";
     if !require_ecp5(what) {
         return;

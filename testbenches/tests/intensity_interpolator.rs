@@ -292,12 +292,12 @@ fn tilted_sphere_write_counts_match_reference() {
 // ---------------------------------------------------------------------------------------------
 // Exported Verilog of the BVI and of the whole pipe: Yosys, Icarus differential, mutants.
 
+use flow::synth::check_and_synth;
+use flow::tools::{self, Tool};
+use flow::verilog::{Mutant, Simulator};
 use proptest::strategy::ValueTree;
 use testbenches::intensity_interpolator::{bvi_rows, pipe_rows};
 use testbenches::registry::assert_mutants_caught;
-use testbenches::synth::check_and_synth;
-use testbenches::tools::{self, Tool};
-use testbenches::verilog::{Mutant, Simulator};
 
 fn block(name: &str) -> &'static dyn testbenches::registry::Entry {
     testbenches::registry::find(name).unwrap()
@@ -366,7 +366,7 @@ fn bvi_and_pipe_differential_icarus() {
         ("gouraud-raster", pipe_rows(&differential_jobs(30))),
     ];
     for (name, rows) in runs {
-        let rep = testbenches::registry::differential(
+        let rep = flow::blocks::differential(
             block(name),
             &rtl::registry::Options::new(),
             &rows,

@@ -8,10 +8,10 @@
 //!
 //! Skips with a notice without Icarus (fails when `CI` is set).
 
+use flow::tools;
+use flow::verilog::{Mutant, Simulator};
 use rtl::registry::Options;
 use testbenches::registry::assert_mutants_caught_by_twin as check;
-use testbenches::tools;
-use testbenches::verilog::{Mutant, Simulator};
 
 fn check400(block: &str, o: Options, mutants: &[Mutant]) {
     check(block, &o, 400, mutants);

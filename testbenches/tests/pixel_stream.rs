@@ -3,14 +3,16 @@
 //! are dropped with `error`; with `m_axis_tready` always high the address block is never held.
 //! (The generic tests — twin every clock, golden, Icarus, Verilator, lint — are the registry's.)
 
+use flow::blocks::differential;
+use flow::verilog::Simulator;
 use golden::testing::seed_for;
-use pipeline::stream::{register_record, scene_words, triangle_record, Beat, Word};
+use pipeline::axis::{Beat, Word};
+use pipeline::lit::{register_record, scene_words, triangle_record};
 use rtl::pixel_pipeline::PipelineParams;
 use rtl::registry::{BlockParams, Options};
 use testbenches::pixel_stream::{drive, reference_beats, scene, StreamRun};
-use testbenches::registry::{differential, find};
+use testbenches::registry::find;
 use testbenches::stall::StallPattern;
-use testbenches::verilog::Simulator;
 
 fn params() -> (PipelineParams, Options) {
     let o = Options::new();
@@ -21,7 +23,7 @@ fn params() -> (PipelineParams, Options) {
 fn rtl_beats(run: &StreamRun, o: &Options) -> (Vec<Beat>, bool) {
     let b = find("pixel-stream").unwrap();
     let out = b
-        .simulate_on(o, &run.rows, testbenches::tools::fast_sim("pixel_stream"))
+        .simulate_on(o, &run.rows, flow::tools::fast_sim("pixel_stream"))
         .unwrap();
     // The twin that made the rows (record reader, banks, FIFO, hold) agrees every clock,
     // bad records and stalls included.
@@ -217,7 +219,7 @@ fn latency_from_last_word_to_first_beat() {
     rows.extend(std::iter::repeat_n(vec![0, 0, 0, 1], latency + 10));
     let out = find("pixel-stream")
         .unwrap()
-        .simulate_on(&o, &rows, testbenches::tools::fast_sim("pixel_stream"))
+        .simulate_on(&o, &rows, flow::tools::fast_sim("pixel_stream"))
         .unwrap();
     assert!(
         out[..=last]

@@ -10,12 +10,13 @@
 //! Tests needing a tool skip with a notice when it is missing, and fail when `CI` is set.
 //! `SHADECORE_SEED` replays or varies the seeds.
 
+use flow::blocks::differential;
+use flow::synth::check_and_map_ice40;
+use flow::tools::{self, Tool};
+use flow::verilog::Simulator;
 use golden::testing::seed_for;
 use rtl::registry::Options;
-use testbenches::registry::{self, differential, test_rows, Entry, BLOCKS};
-use testbenches::synth::check_and_map_ice40;
-use testbenches::tools::{self, Tool};
-use testbenches::verilog::Simulator;
+use testbenches::registry::{self, test_rows, Entry, BLOCKS};
 
 /// Items of stimulus per block in the generic tests (triangles take 1000–2000 clocks each).
 fn items(b: &dyn Entry) -> usize {
@@ -113,9 +114,9 @@ fn every_block_equals_its_twin_golden_and_verilog_every_clock() {
                     .all(|p| p.checked > 0 || p.name.contains("word")));
                 let verilog = if verilator {
                     let v = b
-                        .simulate_on(&o, &rows, pipeline::engine::Sim::Verilator)
+                        .simulate_on(&o, &rows, flow::engine::Sim::Verilator)
                         .unwrap_or_else(|e| panic!("{label}: {e}"));
-                    testbenches::verilog::compare_outputs(&b.ports().1, &rep.outputs, &v)
+                    flow::verilog::compare_outputs(&b.ports().1, &rep.outputs, &v)
                         .unwrap_or_else(|e| {
                             panic!("{label}: the Verilog under Verilator differs from rust-hdl: {e} (seed {seed})")
                         });
@@ -358,7 +359,7 @@ fn every_block_simulates_and_the_check_can_fail() {
             .join(format!("test-blocks-{}.vcd", b.name()));
         let out = sim_to_vcd(*b, &o, n, seed, &vcd).unwrap_or_else(|e| panic!("{}: {e}", b.name()));
         let (ins, outs) = b.ports();
-        let vars = testbenches::vcd_check::variables(&vcd).unwrap();
+        let vars = flow::vcd_check::variables(&vcd).unwrap();
         for p in ins.iter().chain(&outs) {
             let full = format!("uut.{}", p.name);
             assert!(
@@ -446,7 +447,7 @@ fn every_block_streams_batches_back_to_back() {
                 vcd.as_deref(),
                 // The VCD needs rust-hdl; the other blocks' three batches run in process.
                 if vcd.is_some() {
-                    pipeline::engine::Sim::RustHdl
+                    flow::engine::Sim::RustHdl
                 } else {
                     tools::fast_sim("every_block_streams_batches_back_to_back")
                 },
@@ -479,7 +480,7 @@ fn every_block_streams_batches_back_to_back() {
 #[test]
 #[ignore = "full tier: nextpnr-ecp5"]
 fn ecp5_smoke_place_and_route() {
-    use testbenches::synth::require_ecp5;
+    use flow::synth::require_ecp5;
     if !require_ecp5("ecp5_smoke_place_and_route") {
         return;
     }
@@ -502,11 +503,11 @@ fn ice40_smoke_place_and_route() {
         return;
     }
     let b = registry::find("normalizer").unwrap();
-    let (rep, placement) = registry::synth_block(b, &Options::new(), true).unwrap();
+    let (rep, placement) = flow::blocks::synth_block(b, &Options::new(), true).unwrap();
     println!("{rep}\n{placement:?}");
     assert_eq!(rep.mac16() as usize, b.multipliers());
     match placement {
-        registry::Placement::Fmax(mhz) => assert!(mhz > 10.0 && mhz < 300.0, "{mhz} MHz"),
+        flow::blocks::Placement::Fmax(mhz) => assert!(mhz > 10.0 && mhz < 300.0, "{mhz} MHz"),
         other => panic!("the normalizer did not place on the UP5K: {other:?}"),
     }
 }
@@ -514,7 +515,7 @@ fn ice40_smoke_place_and_route() {
 /// Places and times each (block, options, label suffix, held to 100 MHz) on `part`, the
 /// smallest die that holds it, and checks the report.
 fn ecp5_runs<'a>(runs: impl Iterator<Item = (&'a str, Options, &'a str, bool)>, part: &str) {
-    use testbenches::synth::ecp5;
+    use flow::synth::ecp5;
     for (name, o, variant, held) in runs {
         let b = registry::find(name).unwrap();
         let v = b.verilog(&o).unwrap();

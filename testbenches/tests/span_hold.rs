@@ -9,14 +9,15 @@
 //! twin, Icarus, Verilator, lint — are the registry's; the span units' edge rows hold in a
 //! quarter of their clocks.)
 
+use flow::blocks::differential;
+use flow::verilog::Simulator;
 use golden::testing::seed_for;
 use pipeline::span::SpanKind;
 use rtl::registry::Options;
 use testbenches::quadric_unit::triangles;
-use testbenches::registry::{differential, find};
-use testbenches::span_pipeline::{held_run, HeldRun};
+use testbenches::registry::find;
+use testbenches::span_held::{held_run, HeldRun};
 use testbenches::stall::StallPattern;
-use testbenches::verilog::Simulator;
 
 /// A pixel shown: (line number, x, y, z, r, g, b).
 type Pixel = (usize, u64, u64, u64, [u64; 3]);
@@ -40,7 +41,7 @@ fn rtl_pixels(kind: SpanKind, run: &HeldRun) -> Vec<Pixel> {
     let (name, o) = block(kind);
     let out = find(name)
         .unwrap()
-        .simulate_on(&o, &run.rows, testbenches::tools::fast_sim("span_hold"))
+        .simulate_on(&o, &run.rows, flow::tools::fast_sim("span_hold"))
         .unwrap();
     let mut px = Vec::new();
     let mut line = 0;

@@ -7,18 +7,20 @@
 //! header's latency. (The generic tests — twin every clock, golden, Icarus, Verilator, lint —
 //! are the registry's.)
 
+use flow::blocks::differential;
+use flow::verilog::Simulator;
 use golden::methods::Method;
 use golden::testing::seed_for;
+use pipeline::axis::{Beat, Word};
 use pipeline::lit::ShadingRegs;
 use pipeline::span::{span_clock_budget, SpanJob, SpanKind, SpanPipe};
-use pipeline::stream::{span_line_record, span_register_record, span_stream_words, Beat, Word};
+use pipeline::span::{span_line_record, span_register_record, span_stream_words};
 use rtl::fragment_fifo::FIFO_DEPTH;
 use rtl::registry::{Options, RtlBlock};
+use testbenches::registry::find;
 use testbenches::registry::Entry;
-use testbenches::registry::{differential, find};
 use testbenches::span_stream::{drive, reference_beats, scene, stalls, SpanStreamRun};
 use testbenches::stall::StallPattern;
-use testbenches::verilog::Simulator;
 
 /// A two-lane stream top under test: its registry name, build options, span kind, the wrapped
 /// pipeline's method and latency.
@@ -73,7 +75,7 @@ fn rtl_beats(top: &Top, run: &SpanStreamRun) -> ([Vec<Beat>; 2], bool) {
         .simulate_on(
             &top.options,
             &run.rows,
-            testbenches::tools::fast_sim("span_stream"),
+            flow::tools::fast_sim("span_stream"),
         )
         .unwrap();
     // The twin that made the rows (record reader, banks, registers, FIFOs, hold) agrees every
@@ -499,11 +501,7 @@ fn latency_from_last_word_to_first_beat() {
         rows.extend(std::iter::repeat_n(idle, top.latency + 10));
         let out = top
             .entry()
-            .simulate_on(
-                &top.options,
-                &rows,
-                testbenches::tools::fast_sim("span_stream"),
-            )
+            .simulate_on(&top.options, &rows, flow::tools::fast_sim("span_stream"))
             .unwrap();
         assert!(
             out[..=last]

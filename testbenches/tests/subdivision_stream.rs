@@ -6,19 +6,21 @@
 //! every `tready` high the four-triangle block is never held; the header's latency. (The
 //! generic tests — twin every clock, golden, Icarus, Verilator, lint — are the registry's.)
 
+use flow::blocks::differential;
+use flow::verilog::Simulator;
 use golden::four_triangle::LANES;
 use golden::shade::to_u8;
 use golden::testing::seed_for;
-use pipeline::stream::{subdivision_record, subdivision_words, Beat, Word};
+use pipeline::axis::{Beat, Word};
 use pipeline::subdivision::{clock_budget, SubJob, SubPipe};
+use pipeline::subdivision::{subdivision_record, subdivision_words};
 use rtl::fragment_fifo::FIFO_DEPTH;
 use rtl::registry::Options;
-use testbenches::registry::{differential, find};
+use testbenches::registry::find;
 use testbenches::stall::StallPattern;
 use testbenches::subdivision_stream::{
     drive, reference_beats, scene, stalls, SubdivisionStreamRun, INPUTS, OUTPUTS,
 };
-use testbenches::verilog::Simulator;
 
 /// Each lane's beats the RTL (rust-hdl) delivers for the run's input rows, and its `error` at
 /// the end.
@@ -28,7 +30,7 @@ fn rtl_beats(run: &SubdivisionStreamRun) -> ([Vec<Beat>; LANES], bool) {
         .simulate_on(
             &Options::new(),
             &run.rows,
-            testbenches::tools::fast_sim("subdivision_stream"),
+            flow::tools::fast_sim("subdivision_stream"),
         )
         .unwrap();
     // The twin that made the rows (record reader, banks, FIFOs, hold) agrees every clock, bad
@@ -315,7 +317,7 @@ fn latency_from_last_word_to_first_beat() {
         .simulate_on(
             &Options::new(),
             &rows,
-            testbenches::tools::fast_sim("subdivision_stream"),
+            flow::tools::fast_sim("subdivision_stream"),
         )
         .unwrap();
     assert!(

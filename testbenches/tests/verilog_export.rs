@@ -7,16 +7,17 @@
 //!
 //! Tests needing a tool skip with a notice when it is missing, and fail when `CI` is set.
 
+use flow::blocks::differential;
+use flow::synth::{check_and_map_ice40, check_and_synth};
+use flow::tools::{self, Tool};
+use flow::verilog::{self as verilog, DiffError, Mutant, Simulator};
 use golden::testing::seed_for;
 use rtl::export;
 use rtl::normalizer::{Normalizer, NormalizerCoeffs};
 use rtl::registry::Options;
 use testbenches::k_recurrence::{krec_rows, span_rows, spans_and_schedule};
 use testbenches::normalizer::*;
-use testbenches::registry::{self, assert_mutants_caught, differential};
-use testbenches::synth::{check_and_map_ice40, check_and_synth};
-use testbenches::tools::{self, Tool};
-use testbenches::verilog::{self as verilog, DiffError, Mutant, Simulator};
+use testbenches::registry::{self, assert_mutants_caught};
 
 fn icarus(test: &str) -> bool {
     tools::require(Simulator::Icarus.tools(), test)

@@ -9,10 +9,10 @@ use std::collections::BTreeSet;
 use std::path::Path;
 use std::process::Command;
 
+use flow::tools::{self, Tool};
 use rtl::export;
 use rtl::registry::Options;
 use testbenches::registry::{self, BLOCKS};
-use testbenches::tools::{self, Tool};
 
 /// The `%Warning`/`%Error` lines of `verilator --lint-only -Wall [waivers] --top-module m file`.
 fn lint(dir: &Path, module: &str, file: &Path, waivers: Option<&Path>) -> Vec<String> {

@@ -2,11 +2,11 @@
 //! the function the command calls) read back with an independent parser: the ports are
 //! declared and the sampled values equal the simulation's, clock by clock.
 
+use flow::vcd_check::{sample, variables};
 use golden::testing::seed_for;
 use rtl::registry::Options;
 use testbenches::harness::{target_dir, CLOCK_PERIOD_PS};
 use testbenches::registry::{find, sim_to_vcd};
-use testbenches::vcd_check::{sample, variables};
 
 fn check_vcd_of(block: &str, n: usize) {
     let block = find(block).unwrap();

@@ -21,8 +21,7 @@ use rtl::sim::Port;
 use crate::model::Library;
 use crate::Design;
 
-/// Version of the C ABI [`wrapper`] generates (part of every cache key).
-pub(crate) const ABI_VERSION: u32 = 1;
+use crate::ABI_VERSION;
 
 /// C++ optimisation of the model's evaluation code and of its construction code (Verilator's own
 /// makefile uses `-Os` and none). `-O1` is a compromise for the cold build, which a test run

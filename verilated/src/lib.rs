@@ -22,7 +22,7 @@
 //! `libloading`) whose ports are reached by name one at a time, where a clock here moves every
 //! port in one `sc_step` call. It was not tried; the C ABI needed is seven functions, generated
 //! with the model.
-//!
+
 mod compile;
 mod model;
 
@@ -31,6 +31,9 @@ pub use model::{Library, VModel};
 
 use rtl::registry::{module_name, BlockParams, RtlBlock};
 use rtl::sim::Port;
+
+/// Version of the C ABI [`wrapper`] generates (part of every cache key).
+pub(crate) const ABI_VERSION: u32 = 1;
 
 /// What to build: see the crate's documentation.
 pub struct Design {

@@ -60,11 +60,11 @@ impl Library {
                     .map_err(|e| format!("{e}"))
             };
             let abi: AbiFn = std::mem::transmute(sym(b"sc_abi\0")?);
-            if abi() != crate::compile::ABI_VERSION {
+            if abi() != crate::ABI_VERSION {
                 return Err(format!(
                     "ABI {} where {} is expected",
                     abi(),
-                    crate::compile::ABI_VERSION
+                    crate::ABI_VERSION
                 ));
             }
             let ports: PortsFn = std::mem::transmute(sym(b"sc_ports\0")?);

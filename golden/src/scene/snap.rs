@@ -6,8 +6,8 @@ use std::collections::HashMap;
 
 use glam::DVec2;
 
+use super::camera::Camera;
 use super::mesh::Mesh;
-use super::projection::Camera;
 use crate::types::MAX_ADDRESS;
 
 /// Integer screen addresses of every mesh vertex: the continuous screen positions rounded to the

@@ -16,8 +16,8 @@ use std::fmt::Write as _;
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
-use crate::harness::{simulate_rows, Dut, Port};
 use crate::tools::{self, Tool};
+use rtl::sim::{simulate_rows, Dut, Port};
 
 /// Which Verilog simulator runs the testbench.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

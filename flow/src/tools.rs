@@ -115,12 +115,12 @@ pub fn skip(what: &str, why: &str) {
 /// rust-hdl by the registry's test) when it is installed; otherwise rust-hdl — the same
 /// verdict, minutes slower — with a notice on stderr, or a failure when `CI` is set.
 /// `SHADECORE_SIM=rust-hdl` runs them on rust-hdl on purpose (the one switch for the tests).
-pub fn fast_sim(what: &str) -> pipeline::engine::Sim {
+pub fn fast_sim(what: &str) -> crate::engine::Sim {
     if std::env::var("SHADECORE_SIM").as_deref() == Ok("rust-hdl") {
-        return pipeline::engine::Sim::RustHdl;
+        return crate::engine::Sim::RustHdl;
     }
     if verilated::available() {
-        return pipeline::engine::Sim::Verilator;
+        return crate::engine::Sim::Verilator;
     }
     if in_ci() {
         panic!("{what}: Verilator is not installed (CI is set, so this is a failure)");
@@ -130,7 +130,7 @@ pub fn fast_sim(what: &str) -> pipeline::engine::Sim {
         std::io::stderr(),
         "SLOW {what}: Verilator is not installed, so this runs on rust-hdl (apt-get install verilator g++)"
     );
-    pipeline::engine::Sim::RustHdl
+    crate::engine::Sim::RustHdl
 }
 
 static DIR_COUNTER: AtomicU64 = AtomicU64::new(0);
@@ -139,8 +139,8 @@ static DIR_COUNTER: AtomicU64 = AtomicU64::new(0);
 /// parallel tests never share files).
 pub fn unique_dir(tag: &str) -> Result<PathBuf, String> {
     let n = DIR_COUNTER.fetch_add(1, Ordering::SeqCst);
-    let safe = crate::harness::file_safe(tag);
-    let dir = crate::harness::target_dir()
+    let safe = crate::file_safe(tag);
+    let dir = crate::target_dir()
         .join("tool-runs")
         .join(format!("{safe}-{}-{n}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
@@ -185,7 +185,7 @@ pub fn cocotb_python() -> Option<PathBuf> {
     static FOUND: OnceLock<Option<PathBuf>> = OnceLock::new();
     FOUND
         .get_or_init(|| {
-            let venv = crate::harness::target_dir()
+            let venv = crate::target_dir()
                 .parent()
                 .map(|root| root.join(".venv/bin/python"));
             std::env::var_os("SHADECORE_PYTHON")

@@ -3,6 +3,7 @@
 //! ([`verilated::VModel`], proven bit-exact against rust-hdl by the differential tests). Every
 //! driver of this crate steps a `Box<dyn Model>` made here.
 
+use indicatif::{MultiProgress, ProgressBar, ProgressStyle};
 use rtl::registry::RtlBlock;
 use rtl::sim::{Model, RustHdlModel};
 
@@ -65,4 +66,68 @@ pub fn model<B: RtlBlock + 'static>(p: &B::Params, sim: Sim) -> Result<Box<dyn M
 /// The design `verilated` builds for `B` with `p` (to compile several at once before a run).
 pub fn design<B: RtlBlock>(p: &B::Params) -> verilated::Design {
     verilated::design::<B>(p)
+}
+
+/// The simulator a command asked for (`None`: the fastest installed). `--sim verilator` without
+/// Verilator is an error; the default without it falls back to rust-hdl with a notice on
+/// stderr.
+pub fn resolve(arg: Option<Sim>) -> Result<Sim, String> {
+    match arg {
+        Some(Sim::RustHdl) => Ok(Sim::RustHdl),
+        Some(Sim::Verilator) => {
+            verilated::toolchain().map_err(|e| format!("--sim verilator: {e}"))?;
+            Ok(Sim::Verilator)
+        }
+        None => match verilated::toolchain() {
+            Ok(_) => Ok(Sim::Verilator),
+            Err(e) => {
+                eprintln!(
+                    "note: {e}; simulating on rust-hdl instead, about 400 times slower (the main job: minutes instead of seconds); --sim rust-hdl silences this"
+                );
+                Ok(Sim::RustHdl)
+            }
+        },
+    }
+}
+
+/// Compile (or find in the cache) every design in `designs`, two at a time with a progress
+/// bar when any needs building. Nothing to do on rust-hdl.
+pub fn prepare(
+    sim: Sim,
+    designs: Vec<verilated::Design>,
+    multi: &MultiProgress,
+) -> Result<(), String> {
+    if sim != Sim::Verilator || designs.is_empty() {
+        return Ok(());
+    }
+    let bar = multi.add(ProgressBar::new(designs.len() as u64));
+    bar.set_style(
+        ProgressStyle::with_template(
+            "verilator models [{bar:30}] {pos}/{len} {msg} {elapsed} (a cold build takes about a minute; cached under target/verilated)",
+        )
+        .expect("static template")
+        .progress_chars("=> "),
+    );
+    verilated::set_quiet(true);
+    let queue = std::sync::Mutex::new(designs.iter());
+    let first_error = std::sync::Mutex::new(None);
+    std::thread::scope(|s| {
+        for _ in 0..2 {
+            s.spawn(|| loop {
+                let Some(d) = queue.lock().expect("queue").next() else {
+                    return;
+                };
+                bar.set_message(d.name.clone());
+                if let Err(e) = verilated::build(d) {
+                    first_error.lock().expect("error").get_or_insert(e);
+                }
+                bar.inc(1);
+            });
+        }
+    });
+    bar.finish_and_clear();
+    match first_error.into_inner().expect("error") {
+        Some(e) => Err(e),
+        None => Ok(()),
+    }
 }
