@@ -72,6 +72,8 @@
 //! clock has not left the pipeline) is 16 bits, at most 2 in practice; the data are
 //! `angular-pipeline`'s, bit for bit (colours within its bound of the golden `angular`, depth
 //! within 0.0157 model units of the f64 plane).
+//!
+//! Latency (the block's `LATENCY`): 64 clocks, a line record's last word to its first fragment beats, two fragments per clock.
 
 use rust_hdl::prelude::*;
 

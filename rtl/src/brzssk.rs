@@ -18,7 +18,7 @@
 //! | `valid_in` | in | 1 = the cosines hold a pixel |
 //! | `cos_phi`, `cos_gamma` | in | unsigned Q1.15, ≥ 0 (the lighting unit's) |
 //! | `x`, `y` | in | the pixel's 12-bit address (bits 3..0 address the code ROM) |
-//! | `valid_out` | out | `valid_in` four clocks later |
+//! | `valid_out` | out | `valid_in` seven clocks later |
 //! | `cos_phi_out`, `cos_gamma_out` | out | unsigned Q1.15, registered |
 //!
 //! # Pipeline (PROMs are synchronous: a read takes the clock edge, as block RAM does)

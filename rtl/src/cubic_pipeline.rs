@@ -44,6 +44,8 @@
 //! keeps depths within ±2¹⁴). Colours against the golden `cubic`: the units' bound
 //! (`golden::horner_unit::HornerWords::error_bound`) plus the sample words' rounding (2⁻⁶ LSB
 //! each, through the cubic's weights).
+//!
+//! Latency (the block's `LATENCY`): 15 clocks, load to the first fragment; serial 3 clocks per pixel, pipelined 1.
 
 use rust_hdl::prelude::*;
 

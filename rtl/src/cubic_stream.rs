@@ -62,6 +62,8 @@
 //! None of its own: the FIFO cannot overflow (above); the data are `cubic-pipeline`'s, bit for
 //! bit (colours within its units' bound of the golden `cubic`, depth within 4096·2⁻¹⁷ + 2⁻¹⁶
 //! of the f64 plane).
+//!
+//! Latency (the block's `LATENCY`): 19 clocks, a line record's last word to its first fragment beat (pipelined units; serial: up to 2 more).
 
 use rust_hdl::prelude::*;
 

@@ -48,6 +48,8 @@
 //! # Error budget (vs `golden::fast_unit::FastWords::values` of the same words)
 //! `golden::fast_unit::error_bound`: ≤ 2.0·10⁻⁴ for the published Chebyshev set on the domain
 //! M ∈ [−0.5, 0], |p| ≤ 1.
+//!
+//! Latency (the block's `LATENCY`): 14 clocks, load to the first pixels, two pixels per clock.
 
 use golden::normalizer::Coeffs;
 use rust_hdl::prelude::*;

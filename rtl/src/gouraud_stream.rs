@@ -53,6 +53,8 @@
 //! # Overflow, error budget
 //! None of its own: the FIFO cannot overflow (above); the data are `gouraud-raster`'s, bit
 //! for bit (addresses exact, colours within 1 LSB of the rounded plane value).
+//!
+//! Latency (the block's `LATENCY`): 8 clocks, a triangle record's last word to its first fragment beat, one fragment per clock.
 
 use rust_hdl::prelude::*;
 

@@ -73,6 +73,8 @@
 //! samples at p = t/m)
 //! ½ LSB (output rounding) + 3·2⁻¹³ (product roundings) + (3|A| + 2|B| + |C|)·2⁻¹⁵ (p's error:
 //! accumulated step ≤ m·2⁻²⁸, rounding to UQ1.15 2⁻¹⁶): `HornerWords::error_bound`.
+//!
+//! Latency (the block's `LATENCY`): 14 clocks, load to the first pixel; serial 3 clocks per pixel, pipelined 1.
 
 use rust_hdl::prelude::*;
 

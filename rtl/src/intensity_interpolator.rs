@@ -68,6 +68,8 @@
 //! so its word differs from (I + ½)·2^16 by at most (1 + k + i)·2^-17 ≤ 0.0625 LSB, and the
 //! 8-bit output differs from round(I) (clamped) by at most 1 LSB — by exactly 0 unless I lies
 //! within that bound of a half-integer.
+//!
+//! Latency (the block's `LATENCY`): 1 clocks, in_valid to valid_out, one pixel per clock.
 
 use rust_hdl::prelude::*;
 

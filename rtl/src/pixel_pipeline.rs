@@ -54,6 +54,8 @@
 //! the cosines, power and colours saturate. Depth words wrap like the BVI's: the set-up keeps
 //! every vertex depth within ±2¹⁵. Against the golden method of the same name the colour is
 //! within the chained budgets; the bench and the image tests measure it (≤ 2 LSB required).
+//!
+//! Latency (the block's `LATENCY`): 88 clocks, load to the first fragment, one fragment per clock.
 
 use rust_hdl::prelude::*;
 

@@ -65,6 +65,8 @@
 //! None of its own: the FIFO cannot overflow (above), counters are wide enough (`outstanding`
 //! 16 bits: triangles loaded and not finished, at most 2 in practice); the data are
 //! `pixel-pipeline`'s, bit for bit.
+//!
+//! Latency (the block's `LATENCY`): 92 clocks, a triangle record's last word to its first fragment beat, one fragment per clock.
 
 use rust_hdl::prelude::*;
 

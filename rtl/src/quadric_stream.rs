@@ -56,6 +56,8 @@
 //! None of its own: the FIFOs cannot overflow (above); the data are `quadric-unit`'s, bit for
 //! bit (colours within its bound of the golden `quadric`, depth within 4096·2⁻¹⁷ + 2⁻¹⁶ of the
 //! f64 plane).
+//!
+//! Latency (the block's `LATENCY`): 8 clocks, a line record's last word to its first fragment beats (the unit ready, no move to the line's start), two fragments per clock.
 
 use rust_hdl::prelude::*;
 

@@ -117,6 +117,8 @@
 //! # Error budget (vs `golden::quadric::row_kernel`, f64)
 //! The words' rounding (2⁻³¹ each) grows with the walk as a quadratic in the distance: ≤ 1.5·N²·2⁻³¹
 //! for a triangle N pixels across (≤ 0.012 LSB at N = 4096); the output rounding ½ LSB.
+//!
+//! Latency (the block's `LATENCY`): 4 clocks, load of a triangle's first line to its first two pixels, two pixels per clock along a line.
 
 use rust_hdl::prelude::*;
 

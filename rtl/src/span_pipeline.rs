@@ -53,6 +53,9 @@
 //! (the set-up keeps depths within ±2¹⁴). z: ≤ 2⁻¹⁷ per step from the rounded dz, ≤ 2048 steps
 //! from either end: ≤ 0.0157 model units. Colours against the golden method: the span unit's
 //! bound through the power (n·cos^(n−1)·δ) and the combine's half LSB; measured ≤ 2 LSB.
+//!
+//! Latency (`angular-pipeline`: the block's `LATENCY`): 60 clocks, load to the first fragments, two fragments per clock.
+//! Latency (`fast-pipeline`: the block's `LATENCY`): 68 clocks, load to the first fragments, two fragments per clock.
 
 use rust_hdl::prelude::*;
 

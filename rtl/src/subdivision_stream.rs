@@ -67,6 +67,8 @@
 //! # Overflow, error budget
 //! None of its own: the FIFOs cannot overflow (above); the data are `subdivision-raster`'s,
 //! bit for bit (addresses exact, colours within 1 LSB of the rounded plane value).
+//!
+//! Latency (the block's `LATENCY`): 8 clocks, a parent record's last word to its first fragment beats, up to four fragments per clock.
 
 use rust_hdl::prelude::*;
 

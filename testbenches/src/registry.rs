@@ -235,33 +235,15 @@ macro_rules! entry_list {
 /// `impl Bench`), and one line in that list.
 pub static BLOCKS: &[&dyn Entry] = flow::with_blocks!(entry_list);
 
-/// The entry named `name`.
+/// The entry named `name` (the same lookup and error as [`flow::blocks::find`]: both lists are
+/// made from one).
 pub fn find(name: &str) -> Result<&'static dyn Entry, String> {
-    BLOCKS
+    let b = flow::blocks::find(name)?;
+    Ok(BLOCKS
         .iter()
         .copied()
-        .find(|b| b.name() == name)
-        .ok_or_else(|| format!("unknown block {name:?} (expected one of: {})", names()))
-}
-
-/// `NAME` or `all`.
-pub fn select(name: &str) -> Result<Vec<&'static dyn Entry>, String> {
-    if name == "all" {
-        Ok(BLOCKS.to_vec())
-    } else {
-        find(name)
-            .map(|b| vec![b])
-            .map_err(|e| format!("{e}, or all"))
-    }
-}
-
-/// The block names, comma-separated.
-pub fn names() -> String {
-    BLOCKS
-        .iter()
-        .map(|b| b.name())
-        .collect::<Vec<_>>()
-        .join(", ")
+        .find(|e| e.name() == b.name())
+        .expect("the bench list is the block list"))
 }
 
 /// Outcome of [`sim_to_vcd`].

@@ -163,7 +163,7 @@ fn registry_names_are_unique_and_lookups_fail_clearly() {
         .err()
         .unwrap()
         .contains("expected one of"));
-    assert_eq!(registry::select("all").unwrap().len(), BLOCKS.len());
+    assert_eq!(flow::blocks::select("all").unwrap().len(), BLOCKS.len());
     let o = Options::new().with("coeffs", "nope");
     let e = registry::find("normalizer")
         .unwrap()
