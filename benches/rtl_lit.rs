@@ -1,4 +1,4 @@
-//! Throughput of the lit pixel pipeline (`rtl::pixel_pipeline`):
+//! Throughput of the lit pixel pipeline (`rtl::pipelines::pixel_pipeline`):
 //!
 //! - printed once (clock counts of the simulated hardware, not timings): fragments per clock
 //!   over the default scene (sphere rez 50, 400×400, light 90°) for each build, the latency
@@ -66,7 +66,7 @@ fn figures() {
     println!(
         "pixel pipeline latency: load in clock 0, first fragment shown in clock {} (registry: {})",
         first.unwrap(),
-        rtl::pixel_pipeline::PixelPipeline::LATENCY
+        rtl::pipelines::pixel_pipeline::PixelPipeline::LATENCY
     );
     let g_jobs: Vec<TriangleJob> = tris
         .iter()
@@ -106,19 +106,19 @@ fn figures() {
 /// driver's balanced order (`pipeline::lit::balanced_order`, the default of `render`), from
 /// the rust-hdl simulation (checked clock for clock against the twin that paces the producer).
 fn stream_figures() {
-    use rtl::registry::BlockParams;
+    use rtl::core::registry::BlockParams;
     let (tris, ctx) = default_scene();
     let mesh = lit_jobs(&tris);
     let regs = ShadingRegs::of(&ctx).unwrap();
     let o = pipeline::lit::method_options(Method::NormalizerFit).unwrap();
-    let p = rtl::pixel_pipeline::PipelineParams::from_options(&o).unwrap();
+    let p = rtl::pipelines::pixel_pipeline::PipelineParams::from_options(&o).unwrap();
     let balanced: Vec<LitJob> = pipeline::lit::balanced_order(&mesh)
         .iter()
         .map(|&i| mesh[i])
         .collect();
     for (label, jobs) in [("mesh order", &mesh), ("balanced order", &balanced)] {
         let words = pipeline::lit::scene_words(jobs, &regs);
-        let run = testbenches::pixel_stream::drive(
+        let run = testbenches::stream::pixel_stream::drive(
             &p,
             &words,
             1,

@@ -1,9 +1,9 @@
-//! Throughput of the Gouraud raster pipe (address block + BVI, `rtl::gouraud_raster`):
+//! Throughput of the Gouraud raster pipe (address block + BVI, `rtl::pipelines::gouraud_raster`):
 //!
 //! - printed once (clock counts of the simulated hardware, not timings): pixels per clock over
 //!   the default scene (sphere rez 50, 400×400, light 90°) and over large triangles
 //!   (≥ 1000 pixels), and the clocks each raster line costs beyond its pixels;
-//! - the same figures through the four-triangle block (`rtl::subdivision_raster`: four
+//! - the same figures through the four-triangle block (`rtl::pipelines::subdivision_raster`: four
 //!   address lanes and a BVI each, SPEC §7), side by side with the single address block in
 //!   one run: addresses per clock on the default scene and on triangles of ≥ 1000 pixels;
 //! - measured by criterion: simulated clocks per second of the hand-stepped rust-hdl model of

@@ -1,5 +1,5 @@
 //! Simulated clock cycles per second of the normalizer: the hand-stepped rust-hdl harness
-//! (`rtl::sim::Stepper`) versus the exported Verilog under Verilator and Icarus
+//! (`rtl::core::sim::Stepper`) versus the exported Verilog under Verilator and Icarus
 //! (compiled once, outside the timed loop; each timed run is the whole testbench process:
 //! reading the stimulus file and writing one output line per clock, like the differential
 //! test). Run with `cargo bench --bench rtl_sim`; criterion reports "elements/s" = clocks/s.
@@ -9,9 +9,9 @@ use std::time::Duration;
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use flow::tools::{self, Tool};
 use flow::verilog::{compare_rows, compile, Simulator, VerilogRun};
-use rtl::export;
-use rtl::normalizer::{Normalizer, NormalizerCoeffs};
-use rtl::sim::{simulate_rows, Dut, Stepper};
+use rtl::core::export;
+use rtl::core::sim::{simulate_rows, Dut, Stepper};
+use rtl::units::normalizer::{Normalizer, NormalizerCoeffs};
 use testbenches::registry::Bench;
 
 const CYCLES: usize = 20_000;

@@ -1,7 +1,7 @@
 //! Throughput of the span units (issue 10) — the cos v accumulator
-//! (`rtl::cos_v_accumulator`) and the fast two-point unit (`rtl::fast_unit`), fed the default
+//! (`rtl::units::cos_v_accumulator`) and the fast two-point unit (`rtl::units::fast_unit`), fed the default
 //! scene's spans (sphere rez 50, 400×400, light
-//! 90°): per-span set-up by `golden::angular::span_setup` for H (the specular vector) and L,
+//! 90°): per-span set-up by `golden::shading::angular::span_setup` for H (the specular vector) and L,
 //! spans loaded whenever `ready` is high.
 //!
 //! Printed once (clock counts of the simulated hardware, not timings):
@@ -25,20 +25,20 @@
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use glam::{DQuat, DVec3};
-use golden::angular::span_setup;
-use golden::cos_v_accumulator::SpanWords;
-use golden::fast_unit::FastWords;
 use golden::methods::span_end_normals;
 use golden::methods::Method;
 use golden::shade::ShadeContext;
+use golden::shading::angular::span_setup;
 use golden::types::ScreenTriangle;
+use golden::units::cos_v_accumulator::SpanWords;
+use golden::units::fast_unit::FastWords;
 use pipeline::gouraud::{clock_budget, Pipe, TriangleJob};
 use pipeline::lit::{lit_clock_budget, LitJob, LitPipe, ShadingRegs};
 use pipeline::span::{span_clock_budget, span_jobs, span_schedule, SpanJob, SpanPipe};
-use rtl::cos_v_accumulator::CosVAccumulator;
-use rtl::fast_unit::{FastParams, FastUnit};
-use rtl::registry::{BlockParams, Options};
-use rtl::sim::Stepper;
+use rtl::core::registry::{BlockParams, Options};
+use rtl::core::sim::Stepper;
+use rtl::units::cos_v_accumulator::CosVAccumulator;
+use rtl::units::fast_unit::{FastParams, FastUnit};
 
 /// The default scene's end normals per span, with its context.
 fn span_normals() -> (Vec<(DVec3, DVec3, u32)>, golden::shade::ShadeContext) {
@@ -109,7 +109,9 @@ fn fast_figures() {
     let (n, ctx) = span_normals();
     let words: Vec<FastWords> = n
         .iter()
-        .map(|&(na, nb, m)| FastWords::new(&golden::fast::span_setup(na, nb, ctx.half(), m)))
+        .map(|&(na, nb, m)| {
+            FastWords::new(&golden::shading::fast::span_setup(na, nb, ctx.half(), m))
+        })
         .collect();
     let long: Vec<FastWords> = words.iter().copied().filter(|w| w.m >= 15).collect();
     let (c, p) = run_fast(&words);
@@ -409,7 +411,8 @@ fn horner_figures() {
             .iter()
             .filter(|s| {
                 s.clocks()
-                    < 1 + rtl::stream_layout::payload_words(&rtl::stream_layout::CUBIC_LINE) as u64
+                    < 1 + rtl::stream::layout::payload_words(&rtl::stream::layout::CUBIC_LINE)
+                        as u64
             })
             .count();
         println!(

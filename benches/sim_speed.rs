@@ -22,10 +22,10 @@ use glam::DQuat;
 use golden::methods::Method;
 use golden::shade::ShadeContext;
 use pipeline::lit::{lit_clock_budget, method_options, LitJob, ShadingRegs};
-use rtl::pixel_pipeline::PipelineParams;
-use rtl::pixel_stream::PixelStream;
-use rtl::registry::BlockParams;
-use rtl::sim::{Model, Port};
+use rtl::core::registry::BlockParams;
+use rtl::core::sim::{Model, Port};
+use rtl::pipelines::pixel_pipeline::PipelineParams;
+use rtl::stream::pixel_stream::PixelStream;
 
 /// A model that records every input row it is stepped with, and hashes every output.
 struct Recorder {

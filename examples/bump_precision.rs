@@ -9,8 +9,8 @@
 //! is a design tool, not a test: nothing here is asserted.
 //!
 //! The front end is modelled stage by stage, each word rounded to nearest (ties up) at its
-//! fraction bits (`None` = kept exact), as in `rtl/src/normalizer.rs` and
-//! `rtl/src/lighting_unit.rs`:
+//! fraction bits (`None` = kept exact), as in `rtl/src/units/normalizer.rs` and
+//! `rtl/src/units/lighting_unit.rs`:
 //!
 //! ```text
 //!                                              built            before
@@ -25,7 +25,7 @@
 //! ```
 //! N went to Q2.17 a session after t1, f and N' (the "previous build" row keeps N at Q2.14).
 //! The first design runs the built words through the bit-exact integer twin of the lighting
-//! unit (`golden::lighting_unit::twin`) instead of the model, so the model can be compared
+//! unit (`golden::units::lighting_unit::twin`) instead of the model, so the model can be compared
 //! with it (the twin also floors the low parts of the 19-bit words' products, < 2⁻²⁸).
 //! The twin gives cos γ only after its output rounding, so that row's |Δcos γ| includes it.
 //!
@@ -39,7 +39,7 @@
 //! under one LSB of Q1.15.
 
 use glam::DVec3;
-use golden::bump::{perturb, BumpMap, SinProm};
+use golden::shading::bump::{perturb, BumpMap, SinProm};
 use shadecore::setup::{build, SceneArgs};
 
 /// Fraction bits of each front-end word (`None`: exact).
@@ -66,7 +66,7 @@ const BEFORE: Formats = Formats {
     c: 15,
 };
 
-/// The formats built (`rtl/src/normalizer.rs`, `rtl/src/vector_interpolator.rs`): N Q2.17,
+/// The formats built (`rtl/src/units/normalizer.rs`, `rtl/src/units/vector_interpolator.rs`): N Q2.17,
 /// t1 Q2.17, f Q1.18 and N' Q2.17, 19-bit words split 16 + 3 at their multipliers.
 const BUILT: Formats = Formats {
     n: Some(17),
@@ -119,9 +119,9 @@ fn model(n: DVec3, h: DVec3, c: [f64; 3], f: &Formats) -> f64 {
 }
 
 /// cos γ, after the output rounding, from the bit-exact integer twin of the lighting unit
-/// (`golden::lighting_unit::twin`: the normalizer, the dot products, the Q1.15 narrowing).
+/// (`golden::units::lighting_unit::twin`: the normalizer, the dot products, the Q1.15 narrowing).
 fn twin(n: DVec3, h: DVec3, c: [f64; 3]) -> f64 {
-    use golden::lighting_unit::twin::LightingTwin;
+    use golden::units::lighting_unit::twin::LightingTwin;
     let q = |v: DVec3, scale: f64| [v.x, v.y, v.z].map(|x| (x * scale + 0.5).floor() as i64);
     let h = q(h, 16384.0);
     let mut t = LightingTwin::new(c);
@@ -150,14 +150,14 @@ struct Outcome {
 
 fn run(args: &SceneArgs, formats: Option<&Formats>) -> Outcome {
     let s = build(args).expect("scene");
-    let coeffs = golden::normalizer::FIT;
+    let coeffs = golden::units::normalizer::FIT;
     let half = s.ctx.half();
     let map = BumpMap::default();
-    let (phi, _) = golden::bump::default_proms();
+    let (phi, _) = golden::shading::bump::default_proms();
     let fm = formats.unwrap_or(&BUILT);
     let prom = SinProm {
-        addr_bits: golden::bump::SIN_ADDR_BITS,
-        interp_bits: fm.c - golden::bump::SIN_ADDR_BITS,
+        addr_bits: golden::shading::bump::SIN_ADDR_BITS,
+        interp_bits: fm.c - golden::shading::bump::SIN_ADDR_BITS,
     };
     let top = (1i64 << (fm.c + 1)) - 1;
     let scale = (fm.c as f64).exp2();
@@ -169,18 +169,18 @@ fn run(args: &SceneArgs, formats: Option<&Formats>) -> Outcome {
     };
     for t in &s.tris {
         let w = golden::raster::walk(t);
-        let Some(setup) = golden::normalizer::setup(t, &w) else {
+        let Some(setup) = golden::units::normalizer::setup(t, &w) else {
             continue;
         };
-        for p in golden::normalizer::interpolate(&setup, &w) {
-            let (d, c_gold) = golden::normalizer::cosines(&p, &s.ctx, coeffs);
+        for p in golden::units::normalizer::interpolate(&setup, &w) {
+            let (d, c_gold) = golden::units::normalizer::cosines(&p, &s.ctx, coeffs);
             let c_hw = match formats {
                 Some(f) => model(p.n, half, coeffs, f),
                 None => twin(p.n, half, coeffs),
             };
             // Both clamped as the lighting unit's output is: a negative c only ever enters
             // the colour as 0.
-            let clamp = |c: f64| c.clamp(0.0, golden::lighting_unit::COS_MAX);
+            let clamp = |c: f64| c.clamp(0.0, golden::units::lighting_unit::COS_MAX);
             o.dc_max = o.dc_max.max((clamp(c_hw) - clamp(c_gold)).abs() * 32768.0);
             let c_word = ((c_hw * scale + 0.5).floor() as i64).clamp(0, top) as f64 / scale;
             let code = map.code(p.x, p.y);

@@ -6,10 +6,10 @@
 //!
 //! Every triangle the golden renderer would draw (the same list, in the same order; zero-area
 //! triangles skipped as `golden::render::render` skips them) gets its set-up in software —
-//! `golden::address_block::AddressSetup` for the address block, `golden::gouraud::setup` planes
-//! quantized by `golden::intensity_interpolator` for the BVI — and is fed to the rust-hdl
-//! raster pipe (`rtl::gouraud_raster`: address block + BVI), stepped clock by clock: by default
-//! through its AXI4-Stream top `rtl::gouraud_stream` (set-up records in, fragment beats out),
+//! `golden::units::address_block::AddressSetup` for the address block, `golden::shading::gouraud::setup` planes
+//! quantized by `golden::units::intensity_interpolator` for the BVI — and is fed to the rust-hdl
+//! raster pipe (`rtl::pipelines::gouraud_raster`: address block + BVI), stepped clock by clock: by default
+//! through its AXI4-Stream top `rtl::stream::gouraud_stream` (set-up records in, fragment beats out),
 //! with `--lit-top pipeline` through its ports. Each pixel the pipe emits goes into a
 //! `golden::render::Frame`.
 //!
@@ -177,7 +177,7 @@ impl SetupOrder {
     }
 
     /// The order of triangles given by their address set-ups.
-    pub fn of_addrs(self, addrs: &[golden::address_block::AddressSetup]) -> Vec<usize> {
+    pub fn of_addrs(self, addrs: &[golden::units::address_block::AddressSetup]) -> Vec<usize> {
         match self {
             SetupOrder::Balanced => pipeline::axis::balanced_order_of(addrs),
             SetupOrder::Mesh => (0..addrs.len()).collect(),
@@ -280,7 +280,7 @@ pub fn render_rtl_with(
     }
 }
 
-/// Render `tris` with a lit method through the pixel pipeline (`rtl::pixel_pipeline`) built
+/// Render `tris` with a lit method through the pixel pipeline (`rtl::pipelines::pixel_pipeline`) built
 /// for it. The triangles are sent in the build's [`SetupOrder`] (balanced by default). Depth
 /// is the hardware's: each fragment's z word is tested against a z-buffer here (the frame
 /// writer, memory outside the pipeline; nearer wins, and at equal depth the lower triangle
@@ -357,8 +357,8 @@ pub fn render_lit_rtl_with(
 }
 
 /// Render `tris` with a span method through the span pipeline built for it — `angular`,
-/// `fast`, `fast-fit` through `rtl::span_pipeline` (two fragments per clock), `cubic` through
-/// `rtl::cubic_pipeline` (Horner variant from `build`): the span front end
+/// `fast`, `fast-fit` through `rtl::pipelines::span_pipeline` (two fragments per clock), `cubic` through
+/// `rtl::pipelines::cubic_pipeline` (Horner variant from `build`): the span front end
 /// (`pipeline::span::span_jobs`, the golden method's per-line set-up in software) loads one
 /// raster line at a time and the frame writer takes every fragment (z-buffer as in
 /// [`render_lit_rtl`]). `progress` counts spans.
@@ -568,7 +568,7 @@ pub fn render_gouraud_rtl_with(
     })
 }
 
-/// Render `tris` through the subdivision raster pipe (`rtl::subdivision_raster`: the
+/// Render `tris` through the subdivision raster pipe (`rtl::pipelines::subdivision_raster`: the
 /// four-triangle address block and a BVI per lane): `gouraud` (every lane interpolates the
 /// parent's planes) or `subdivision` (each lane its sub-triangle's). Depth as in
 /// [`render_gouraud_rtl`] (the parent's f64 depth plane at the pixel centre). `progress`

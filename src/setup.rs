@@ -57,11 +57,11 @@ pub struct SceneArgs {
     #[arg(long, value_enum, default_value = "blinn")]
     pub lighting: Lighting,
     /// Adaptive subdivision of the projected mesh before every method (set-up software,
-    /// `golden::refine`): 0 (off), 1 or 2 levels of midpoint splits of every interior edge,
+    /// `golden::shading::refine`): 0 (off), 1 or 2 levels of midpoint splits of every interior edge,
     /// or auto (split edges whose normals are more than 15° apart, up to 4 levels). The
     /// reference is always the undivided mesh.
     #[arg(long, default_value = "0")]
-    pub subdivide: golden::refine::Subdivide,
+    pub subdivide: golden::shading::refine::Subdivide,
 }
 
 impl Default for SceneArgs {
@@ -73,7 +73,7 @@ impl Default for SceneArgs {
             light_deg: 90.0,
             size: (400, 400),
             lighting: Lighting::Blinn,
-            subdivide: golden::refine::Subdivide::OFF,
+            subdivide: golden::shading::refine::Subdivide::OFF,
         }
     }
 }
@@ -124,7 +124,7 @@ impl SceneArgs {
     /// One line for reports: the scene, and its tessellation when it is procedural.
     pub fn describe(&self) -> String {
         let sub = match self.subdivide {
-            golden::refine::Subdivide::Levels(0) => String::new(),
+            golden::shading::refine::Subdivide::Levels(0) => String::new(),
             s => format!(" subdivide {s}"),
         };
         if self.is_obj() {
@@ -167,7 +167,7 @@ pub fn build(args: &SceneArgs) -> Result<Setup> {
     let camera = Camera::fit(&mesh, width, height, rotation);
     let base = scene::project(&mesh, &camera, width, height)
         .with_context(|| format!("projecting scene {:?}", args.scene))?;
-    let tris = golden::refine::refine(&base, args.subdivide);
+    let tris = golden::shading::refine::refine(&base, args.subdivide);
     let light = scene::light_direction(args.light_deg)?;
     let ctx = ShadeContext::new(
         Material {

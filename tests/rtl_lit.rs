@@ -19,18 +19,19 @@ use shadecore::setup::{build, SceneArgs};
 
 /// The pixels where `bump` is ill-conditioned: cos(γ ± dγ) = c·cos dγ ∓ √(1 − c²)·sin dγ has
 /// the slope cos dγ ± sin dγ·c/√(1 − c²) in c, unbounded as c → 1 (the highlight's centre),
-/// so the lighting unit's own error on c (`golden::lighting_unit::error_bound` of the
+/// so the lighting unit's own error on c (`golden::units::lighting_unit::error_bound` of the
 /// normalizer's format-derived budget: ≤ 6.1·10⁻⁵ with the fitted coefficients) moves S by up to
 /// n·S^((n−1)/n)·sin|dγ|·c/√(1 − c²)·Δc. Where that exceeds one 8-bit LSB of the specular
 /// colour, no implementation whose c is off by Δc can stay within 2 LSB of the f64 golden.
 /// Computed from the golden front end's c at each pixel of every triangle.
 fn ill_conditioned(s: &shadecore::setup::Setup) -> Vec<bool> {
-    use golden::bump::BumpMap;
+    use golden::shading::bump::BumpMap;
     // The lighting unit's bound on cos γ, from the normalizer's format-derived budget on its
     // domain (fitted coefficients) and the half vector it is dotted with.
-    let coeffs = rtl::normalizer::NormalizerCoeffs::new(golden::normalizer::FIT).unwrap();
-    let budget = testbenches::normalizer::domain_budget(&coeffs);
-    let dc = golden::lighting_unit::error_bound(budget.component_max, s.ctx.half());
+    let coeffs =
+        rtl::units::normalizer::NormalizerCoeffs::new(golden::units::normalizer::FIT).unwrap();
+    let budget = testbenches::units::normalizer::domain_budget(&coeffs);
+    let dc = golden::units::lighting_unit::error_bound(budget.component_max, s.ctx.half());
     let n = s.ctx.n() as f64;
     let spec = s.ctx.material.ks * s.ctx.material.specular.iter().cloned().fold(0.0, f64::max);
     let map = BumpMap::default();
@@ -41,16 +42,16 @@ fn ill_conditioned(s: &shadecore::setup::Setup) -> Vec<bool> {
         }
         let w = golden::raster::walk(t);
         let mut hits = Vec::new();
-        golden::normalizer::shade_front_end(
+        golden::units::normalizer::shade_front_end(
             t,
             &w,
             &s.ctx,
-            golden::normalizer::FIT,
+            golden::units::normalizer::FIT,
             &mut |_, _, _| {},
             |x, y, _, c| {
                 let c = c.clamp(0.0, 1.0);
                 let sd = map.d_gamma(x, y).abs().sin();
-                let (_, cp) = golden::brzssk::brzssk(0.0, c, x, y);
+                let (_, cp) = golden::units::brzssk::brzssk(0.0, c, x, y);
                 let slope = sd * c / (1.0 - c * c).max(1e-30).sqrt();
                 let ds = n * cp.max(0.0).powf((n - 1.0) / n) * slope * dc;
                 if spec * ds > 1.0 {

@@ -8,8 +8,8 @@
 //! 1 LSB of the golden image of the same method.
 
 use golden::methods::Method;
-use golden::refine::Subdivide;
 use golden::render::render;
+use golden::shading::refine::Subdivide;
 use indicatif::ProgressBar;
 use shadecore::rtl_engine::{max_channel_diff, render_rtl};
 use shadecore::setup::{build, SceneArgs};

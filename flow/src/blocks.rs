@@ -3,14 +3,14 @@
 //! (`testbenches::registry`, which adds stimulus, golden comparison and the bit-exact twin to
 //! the same list), are all driven from [`BLOCKS`].
 //!
-//! A block implements [`rtl::registry::RtlBlock`] in its `rtl/src` file (name, parameters,
+//! A block implements [`rtl::core::registry::RtlBlock`] in its `rtl/src` file (name, parameters,
 //! latency, multipliers, build); one line in [`with_blocks!`](crate::with_blocks) lists it.
 
 use std::marker::PhantomData;
 use std::path::Path;
 
-use rtl::registry::{module_name, BlockParams, Options, RtlBlock};
-use rtl::sim::{Model, Port};
+use rtl::core::registry::{module_name, BlockParams, Options, RtlBlock};
+use rtl::core::sim::{Model, Port};
 
 use crate::engine::Sim;
 
@@ -21,35 +21,35 @@ use crate::engine::Sim;
 macro_rules! with_blocks {
     ($m:ident) => {
         $m![
-            rtl::normalizer::Normalizer,
-            rtl::normalizer::NormalizerK,
-            rtl::k_recurrence::KRecurrence,
-            rtl::k_recurrence::SpanNormalizer,
-            rtl::address_block::AddressBlock,
-            rtl::intensity_interpolator::IntensityInterpolator,
-            rtl::gouraud_raster::GouraudRaster,
-            rtl::gouraud_stream::GouraudStream,
-            rtl::four_triangle::FourTriangle,
-            rtl::subdivision_raster::SubdivisionRaster,
-            rtl::subdivision_stream::SubdivisionStream,
-            rtl::vector_interpolator::VectorInterpolator,
-            rtl::lighting_unit::LightingUnit,
-            rtl::colour_combine::ColourCombine,
-            rtl::power_unit::PowerUnit,
-            rtl::brzssk::Brzssk,
-            rtl::pixel_pipeline::PixelPipeline,
-            rtl::pixel_stream::PixelStream,
-            rtl::cos_v_accumulator::CosVAccumulator,
-            rtl::fast_unit::FastUnit,
-            rtl::span_pipeline::AngularPipeline,
-            rtl::span_pipeline::FastPipeline,
-            rtl::horner_unit::HornerUnit,
-            rtl::cubic_pipeline::CubicPipeline,
-            rtl::cubic_stream::CubicStream,
-            rtl::angular_stream::AngularStream,
-            rtl::fast_stream::FastStream,
-            rtl::quadric_stream::QuadricStream,
-            rtl::quadric_unit::QuadricUnit,
+            rtl::units::normalizer::Normalizer,
+            rtl::units::normalizer::NormalizerK,
+            rtl::units::k_recurrence::KRecurrence,
+            rtl::units::k_recurrence::SpanNormalizer,
+            rtl::units::address_block::AddressBlock,
+            rtl::units::intensity_interpolator::IntensityInterpolator,
+            rtl::pipelines::gouraud_raster::GouraudRaster,
+            rtl::stream::gouraud_stream::GouraudStream,
+            rtl::units::four_triangle::FourTriangle,
+            rtl::pipelines::subdivision_raster::SubdivisionRaster,
+            rtl::stream::subdivision_stream::SubdivisionStream,
+            rtl::units::vector_interpolator::VectorInterpolator,
+            rtl::units::lighting_unit::LightingUnit,
+            rtl::units::colour_combine::ColourCombine,
+            rtl::units::power_unit::PowerUnit,
+            rtl::units::brzssk::Brzssk,
+            rtl::pipelines::pixel_pipeline::PixelPipeline,
+            rtl::stream::pixel_stream::PixelStream,
+            rtl::units::cos_v_accumulator::CosVAccumulator,
+            rtl::units::fast_unit::FastUnit,
+            rtl::pipelines::span_pipeline::AngularPipeline,
+            rtl::pipelines::span_pipeline::FastPipeline,
+            rtl::units::horner_unit::HornerUnit,
+            rtl::pipelines::cubic_pipeline::CubicPipeline,
+            rtl::stream::cubic_stream::CubicStream,
+            rtl::stream::angular_stream::AngularStream,
+            rtl::stream::fast_stream::FastStream,
+            rtl::stream::quadric_stream::QuadricStream,
+            rtl::units::quadric_unit::QuadricUnit,
         ]
     };
 }
@@ -89,7 +89,7 @@ pub trait Block: Sync {
         rows: &[Vec<u64>],
         sim: Sim,
     ) -> Result<Vec<Vec<u64>>, String> {
-        rtl::sim::run_model(self.model(o, sim)?.as_mut(), rows)
+        rtl::core::sim::run_model(self.model(o, sim)?.as_mut(), rows)
     }
     /// Replay `rows` under rust-hdl writing a VCD of the whole run (every signal) to `path`.
     fn write_vcd(&self, o: &Options, rows: &[Vec<u64>], path: &Path) -> Result<(), String>;
@@ -139,10 +139,10 @@ impl<B: RtlBlock + 'static> Block for Registered<B> {
         (d.inputs(), d.outputs())
     }
     fn verilog(&self, o: &Options) -> Result<String, String> {
-        rtl::export::verilog::<B>(&B::Params::from_options(o)?)
+        rtl::core::export::verilog::<B>(&B::Params::from_options(o)?)
     }
     fn simulate(&self, o: &Options, rows: &[Vec<u64>]) -> Result<Vec<Vec<u64>>, String> {
-        rtl::sim::simulate_rows(B::build(&B::Params::from_options(o)?), rows)
+        rtl::core::sim::simulate_rows(B::build(&B::Params::from_options(o)?), rows)
     }
     fn model(&self, o: &Options, sim: Sim) -> Result<Box<dyn Model>, String> {
         crate::engine::model::<B>(&B::Params::from_options(o)?, sim)
@@ -152,7 +152,7 @@ impl<B: RtlBlock + 'static> Block for Registered<B> {
     }
     fn write_vcd(&self, o: &Options, rows: &[Vec<u64>], path: &Path) -> Result<(), String> {
         let dut = B::build(&B::Params::from_options(o)?);
-        rtl::sim::write_vcd_window(dut, rows, 0, rows.len() as u64, path)
+        rtl::core::sim::write_vcd_window(dut, rows, 0, rows.len() as u64, path)
     }
 }
 

@@ -1,7 +1,7 @@
 //! The command-line vocabulary shared by `shadecore` and `shadecore-sim`: the build options of
 //! a block and the simulator switch.
 
-use rtl::registry::Options;
+use rtl::core::registry::Options;
 
 use crate::engine::Sim;
 

@@ -1,11 +1,11 @@
 //! Which simulator runs the hardware, chosen by one switch: rust-hdl's own simulation
-//! ([`rtl::sim::RustHdlModel`]) or the exported Verilog under Verilator in process
+//! ([`rtl::core::sim::RustHdlModel`]) or the exported Verilog under Verilator in process
 //! ([`verilated::VModel`], proven bit-exact against rust-hdl by the differential tests). Every
 //! driver of this crate steps a `Box<dyn Model>` made here.
 
 use indicatif::{MultiProgress, ProgressBar, ProgressStyle};
-use rtl::registry::RtlBlock;
-use rtl::sim::{Model, RustHdlModel};
+use rtl::core::registry::RtlBlock;
+use rtl::core::sim::{Model, RustHdlModel};
 
 /// A simulator of the RTL.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]

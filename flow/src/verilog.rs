@@ -17,7 +17,7 @@ use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
 use crate::tools::{self, Tool};
-use rtl::sim::{simulate_rows, Dut, Port};
+use rtl::core::sim::{simulate_rows, Dut, Port};
 
 /// Which Verilog simulator runs the testbench.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -13,8 +13,8 @@
 //!
 //! Also here: the derivation of the fitted coefficients ([`derive_tangent_fit`]).
 
-use crate::normalizer::{self, Coeffs};
-use crate::{brdf, cubic, fast};
+use crate::units::normalizer::{self, Coeffs};
+use crate::{shading::brdf, shading::cubic, shading::fast};
 use serde::Serialize;
 
 /// Samples of the dense scan (endpoints included).

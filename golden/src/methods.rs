@@ -8,20 +8,20 @@
 //!
 //! | method | file | per pixel |
 //! |---|---|---|
-//! | reference, flat | [`crate::phong`] | exact normalization / one normal per face |
-//! | gouraud | [`crate::gouraud`] | plane per colour channel |
-//! | subdivision | [`crate::subdivision`] (§7) | four sub-triangles, a plane each |
-//! | normalizer, normalizer-fit | [`crate::normalizer`] (§1) | N·f(K), K by recurrence |
-//! | fast, fast-fit | [`crate::fast`] (§3) | p/√q, two points per step |
-//! | angular | [`crate::angular`] (§4) | cos β·cos(ψ − tΔφ) |
-//! | quadric | [`crate::quadric`] (§8) | forward differences |
-//! | cubic | [`crate::cubic`] (§9) | Horner per span |
-//! | brdf-k4/8/16 | [`crate::brdf`] (§2) | W(n, γ) |
-//! | bump | [`crate::bump`] (§2) | cos(γ ± dγ) |
+//! | reference, flat | [`crate::shading::phong`] | exact normalization / one normal per face |
+//! | gouraud | [`crate::shading::gouraud`] | plane per colour channel |
+//! | subdivision | [`crate::shading::subdivision`] (§7) | four sub-triangles, a plane each |
+//! | normalizer, normalizer-fit | [`crate::units::normalizer`] (§1) | N·f(K), K by recurrence |
+//! | fast, fast-fit | [`crate::shading::fast`] (§3) | p/√q, two points per step |
+//! | angular | [`crate::shading::angular`] (§4) | cos β·cos(ψ − tΔφ) |
+//! | quadric | [`crate::shading::quadric`] (§8) | forward differences |
+//! | cubic | [`crate::shading::cubic`] (§9) | Horner per span |
+//! | brdf-k4/8/16 | [`crate::shading::brdf`] (§2) | W(n, γ) |
+//! | bump | [`crate::shading::bump`] (§2) | cos(γ ± dγ) |
 
 use crate::shade::ShadeContext;
-use crate::types::{Row, ScreenTriangle, VecPlane, Walk};
-use glam::DVec3;
+pub use crate::shading::{row_end, row_xs, span_end_normals, Emit};
+use crate::types::{ScreenTriangle, Walk};
 use std::fmt;
 use std::str::FromStr;
 
@@ -36,11 +36,11 @@ pub enum Method {
     Subdivision,
     /// SPEC §1 with the published f(K) = 0.822K² − 2.046K + 2.227.
     Normalizer,
-    /// SPEC §1 with [`crate::normalizer::FIT`] (same hardware, exact at K = 1).
+    /// SPEC §1 with [`crate::units::normalizer::FIT`] (same hardware, exact at K = 1).
     NormalizerFit,
     /// SPEC §3 with the published Chebyshev 1/√(M+1) ≈ 1.003 − 0.403M + 0.82M².
     Fast,
-    /// SPEC §3 with [`crate::fast::FIT`] (same hardware, exact at M = 0).
+    /// SPEC §3 with [`crate::shading::fast::FIT`] (same hardware, exact at M = 0).
     FastFit,
     Angular,
     Quadric,
@@ -128,9 +128,6 @@ impl FromStr for Method {
     }
 }
 
-/// Where a method sends its pixels: (x, y, colour).
-pub type Emit<'a> = &'a mut dyn FnMut(i32, i32, [u8; 3]);
-
 /// Shade one triangle: emits exactly one colour for every pixel of `walk.pixels()`, in walk
 /// order. `walk` must be the golden walk of `tri` (SPEC §5 contract in [`crate::types::Row`]).
 /// A zero-area triangle has no pixels and emits nothing.
@@ -141,7 +138,8 @@ pub fn shade_triangle(
     ctx: &ShadeContext,
     emit: &mut dyn FnMut(i32, i32, [u8; 3]),
 ) {
-    use crate::*;
+    use crate::shading::*;
+    use crate::units::normalizer;
     if walk.pixel_count() == 0 {
         return;
     }
@@ -161,32 +159,5 @@ pub fn shade_triangle(
         Method::BrdfK8 => brdf::shade(tri, walk, ctx, 8, emit),
         Method::BrdfK16 => brdf::shade(tri, walk, ctx, 16, emit),
         Method::Bump => bump::shade(tri, walk, ctx, emit),
-    }
-}
-
-/// The pixels of one raster line in walk order: `x_start + i·dir`, i in 0..len.
-pub fn row_xs(row: &Row) -> impl Iterator<Item = i32> + '_ {
-    (0..row.len as i32).map(move |i| row.x_start + i * row.dir as i32)
-}
-
-/// x of the last pixel of a non-empty raster line.
-pub fn row_end(row: &Row) -> i32 {
-    row.x_start + (row.len as i32 - 1) * row.dir as i32
-}
-
-/// Span set-up shared by the span methods (fast, angular, cubic): the exactly normalized
-/// interpolated normals at the first and last pixel of the line (software side). `None` when
-/// either is zero (only possible with opposite vertex normals).
-pub fn span_end_normals(plane: &VecPlane, row: &Row) -> Option<(DVec3, DVec3)> {
-    let a = crate::shade::unit(plane.at_pixel(row.x_start, row.y))?;
-    let b = crate::shade::unit(plane.at_pixel(row_end(row), row.y))?;
-    Some((a, b))
-}
-
-/// Emit the ambient-only colour for every pixel of a row (used when a set-up degenerates).
-pub(crate) fn emit_row_ambient(row: &Row, ctx: &ShadeContext, emit: Emit) {
-    let rgb = ctx.combine(0.0, 0.0);
-    for x in row_xs(row) {
-        emit(x, row.y, rgb);
     }
 }

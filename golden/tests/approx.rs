@@ -4,9 +4,9 @@
 //! another variable) to three significant digits.
 
 use golden::accuracy::{self, Report};
-use golden::normalizer::Coeffs;
 use golden::testing::runner;
-use golden::{brdf, cubic, fast, normalizer};
+use golden::units::normalizer::Coeffs;
+use golden::{shading::brdf, shading::cubic, shading::fast, units::normalizer};
 use proptest::prelude::*;
 use std::sync::OnceLock;
 

@@ -497,7 +497,7 @@ fn flat_normal_triangle_agrees_with_the_reference() {
 
 #[test]
 fn constant_increments_reproduce_the_normal_plane_and_k_equals_length_squared() {
-    use golden::normalizer;
+    use golden::units::normalizer;
     on_random_setups(
         "k_recurrence_equals_length_squared",
         |tri, _| {
@@ -532,7 +532,7 @@ fn constant_increments_reproduce_the_normal_plane_and_k_equals_length_squared() 
 
 #[test]
 fn diagonal_increment_is_the_sum_of_horizontal_and_vertical() {
-    use golden::normalizer;
+    use golden::units::normalizer;
     // A steep and a shallow working edge: between them the walks use every step type.
     let steep = simple_triangle();
     let shallow = ScreenTriangle {
@@ -575,7 +575,7 @@ fn diagonal_increment_is_the_sum_of_horizontal_and_vertical() {
 
 #[test]
 fn gouraud_planes_pass_through_the_vertex_intensities() {
-    use golden::gouraud;
+    use golden::shading::gouraud;
     on_random_setups(
         "gouraud_planes_through_vertices",
         gouraud::setup,
@@ -599,7 +599,7 @@ fn gouraud_planes_pass_through_the_vertex_intensities() {
 
 #[test]
 fn quadric_fits_the_six_nodes_and_forward_differences_match_the_direct_form() {
-    use golden::quadric;
+    use golden::shading::quadric;
     on_random_setups(
         "quadric_nodes_and_forward_differences",
         quadric::setup,
@@ -636,7 +636,7 @@ fn quadric_fits_the_six_nodes_and_forward_differences_match_the_direct_form() {
 
 #[test]
 fn cubic_coefficients_interpolate_the_four_samples() {
-    use golden::cubic;
+    use golden::shading::cubic;
     runner("cubic_interpolates_samples", 1000)
         .run(
             &(0.0f64..300.0, 0.0f64..300.0, 0.0f64..300.0, 0.0f64..300.0),
@@ -665,7 +665,7 @@ fn cubic_coefficients_interpolate_the_four_samples() {
 
 #[test]
 fn printed_grouping_of_the_third_breaks_a_constant_intensity() {
-    use golden::cubic;
+    use golden::shading::cubic;
     let i = 200.0;
     let ours = cubic::coefficients(i, i, i, i, cubic::THIRD);
     let printed = cubic::coefficients_as_printed(i, i, i, i, cubic::THIRD);
@@ -681,7 +681,7 @@ fn printed_grouping_of_the_third_breaks_a_constant_intensity() {
 /// (slerp), dotted with X.
 #[test]
 fn angular_kernel_is_x_dot_slerp() {
-    use golden::angular;
+    use golden::shading::angular;
     let strat = (
         near(DVec3::Z),
         near(DVec3::Z),
@@ -717,7 +717,7 @@ fn angular_kernel_is_x_dot_slerp() {
 
 #[test]
 fn w_is_exact_when_k_equals_n_and_zero_past_its_root() {
-    use golden::brdf;
+    use golden::shading::brdf;
     for k in brdf::KS {
         for c in [1.0, 0.999, 0.99, 0.9, 0.5, 0.1] {
             assert!((brdf::w_exact(k, k, c) - c.powi(k as i32)).abs() < 1e-12);
@@ -733,7 +733,7 @@ fn w_is_exact_when_k_equals_n_and_zero_past_its_root() {
 
 #[test]
 fn bump_perturbation_matches_the_angle_sum_within_the_prom_error() {
-    use golden::bump::{self, BumpMap, SinProm};
+    use golden::shading::bump::{self, BumpMap, SinProm};
     let map = BumpMap::default();
     let prom = SinProm {
         addr_bits: bump::SIN_PHI_ADDR_BITS,
@@ -815,7 +815,7 @@ fn sphere_nmse_other_lighting_models() {
 /// the tangent fit gives the lower NMSE on coarse and fine spheres, dull and shiny.
 #[test]
 fn tangent_fit_beats_value_only_minimax_on_spheres() {
-    use golden::normalizer;
+    use golden::units::normalizer;
     // Value-only minimax: f = 1 + d·u + c·u², u = K − 1, found by a nested search (see report).
     let (d, c) = (-0.4220610653335927f64, 0.7922035433590682f64);
     let value_only = [c, d - 2.0 * c, 1.0 - d + c];
@@ -826,7 +826,7 @@ fn tangent_fit_beats_value_only_minimax_on_spheres() {
             let tris = sphere_scene(rez, size);
             let ctx = ctx_for(n, 90.0, LightingModel::Blinn);
             let reference = render(&tris, Method::Reference, &ctx, size, size);
-            let nmse_of = |co: golden::normalizer::Coeffs| {
+            let nmse_of = |co: golden::units::normalizer::Coeffs| {
                 let rgb = render_with(&tris, size, size, |tri, walk, emit| {
                     normalizer::shade(tri, walk, &ctx, co, emit)
                 });

@@ -4,8 +4,8 @@
 //! from SPEC §7 without calling the code under test.
 
 use glam::DVec3;
-use golden::refine::{refine, Subdivide};
 use golden::shade::ShadeContext;
+use golden::shading::refine::{refine, Subdivide};
 use golden::types::{ScreenTriangle, ScreenVertex};
 
 /// |v|, written out.
@@ -37,7 +37,7 @@ fn close(a: [f64; 3], b: [f64; 3], tol: f64) -> bool {
 
 #[test]
 fn midpoint_normal_is_the_bisector_of_the_two_directions() {
-    use golden::subdivision::midpoint_normal;
+    use golden::shading::subdivision::midpoint_normal;
     // Known values: the bisector of x and y; of 2x and 5z (lengths must not weigh in: the
     // plain mean (2, 0, 5)/√29 would be wrong).
     let h = std::f64::consts::FRAC_1_SQRT_2;
@@ -99,7 +99,7 @@ fn subdivision_planes_take_the_midpoint_intensities_at_every_lane_vertex() {
             v.normal = nn;
         }
         let ctx = ShadeContext::default();
-        let s = golden::subdivision::setup(&tri, &ctx).expect("non-degenerate");
+        let s = golden::shading::subdivision::setup(&tri, &ctx).expect("non-degenerate");
         let p: Vec<(i64, i64)> = tri.v.iter().map(|v| (v.x as i64, v.y as i64)).collect();
         let unit = |k: usize| {
             let v = arr(tri.v[k].normal);

@@ -1,10 +1,10 @@
 //! The AXI4-Stream side of the stream tops (`pixel-stream`, `gouraud-stream`, `cubic-stream`,
 //! `angular-stream`, `fast-stream`, `quadric-stream`, `subdivision-stream`), independent of
 //! any method: set-up words, fragment beats read back with the one layout table
-//! (`rtl::stream_layout`), and the drivers that step a top. Each method packs its own records
+//! (`rtl::stream::layout`), and the drivers that step a top. Each method packs its own records
 //! beside its job types (`lit::scene_words`, `gouraud::gouraud_words`, …).
 
-use rtl::stream_layout::unpack_fragment;
+use rtl::stream::layout::unpack_fragment;
 
 /// One set-up word and its `tlast`.
 pub type Word = (u32, bool);
@@ -35,10 +35,14 @@ impl PipeStats {
 }
 
 /// `crate::lit::balanced_order` of triangles given by their address set-ups (the Gouraud jobs' too).
-pub fn balanced_order_of(addrs: &[golden::address_block::AddressSetup]) -> Vec<usize> {
+pub fn balanced_order_of(addrs: &[golden::units::address_block::AddressSetup]) -> Vec<usize> {
     let walk: Vec<usize> = addrs
         .iter()
-        .map(|a| golden::address_block::run(std::slice::from_ref(a)).0.len())
+        .map(|a| {
+            golden::units::address_block::run(std::slice::from_ref(a))
+                .0
+                .len()
+        })
         .collect();
     let mut by_size: Vec<usize> = (0..addrs.len()).collect();
     by_size.sort_by_key(|&i| std::cmp::Reverse(walk[i]));
@@ -56,8 +60,8 @@ pub fn balanced_order_of(addrs: &[golden::address_block::AddressSetup]) -> Vec<u
 }
 
 /// An error unless `model`'s first output is `name` (the register output a driver reads with
-/// [`rtl::sim::Model::peek`] before each clock).
-pub fn first_output_is(model: &dyn rtl::sim::Model, name: &str) -> Result<(), String> {
+/// [`rtl::core::sim::Model::peek`] before each clock).
+pub fn first_output_is(model: &dyn rtl::core::sim::Model, name: &str) -> Result<(), String> {
     match model.outputs().first() {
         Some(p) if p.name == name => Ok(()),
         other => Err(format!(
@@ -84,7 +88,7 @@ pub struct Beat {
 impl Beat {
     /// The beat's `m_axis_tdata` (the inverse of [`Beat::read`]'s).
     pub fn tdata(&self) -> u64 {
-        rtl::stream_layout::pack_fragment(&[
+        rtl::stream::layout::pack_fragment(&[
             self.x as u64,
             self.y as u64,
             self.pixel as u64,
@@ -110,23 +114,23 @@ impl Beat {
 
 /// What [`drive`] needs to know of a single-stream top (its outputs start with
 /// `s_axis_tready`, a register output).
-pub trait StreamTop: rtl::sim::Dut {
+pub trait StreamTop: rtl::core::sim::Dut {
     /// Whether the fragment beat has `m_axis_tuser` (the depth) among the outputs.
     const TUSER: bool = true;
 }
 
-impl StreamTop for rtl::pixel_stream::PixelStream {}
+impl StreamTop for rtl::stream::pixel_stream::PixelStream {}
 
-impl StreamTop for rtl::gouraud_stream::GouraudStream {
+impl StreamTop for rtl::stream::gouraud_stream::GouraudStream {
     const TUSER: bool = false;
 }
 
-impl StreamTop for rtl::cubic_stream::CubicStream {}
+impl StreamTop for rtl::stream::cubic_stream::CubicStream {}
 
 /// The stream tops with a fragment stream per lane (`angular-stream`, `fast-stream`,
 /// `quadric-stream`: two lanes with `tuser`; `subdivision-stream`: four without), for
 /// [`drive_lanes`].
-pub trait LaneTop: rtl::sim::Dut {
+pub trait LaneTop: rtl::core::sim::Dut {
     /// Its registry name.
     const NAME: &'static str;
     /// Fragment streams.
@@ -137,19 +141,19 @@ pub trait LaneTop: rtl::sim::Dut {
     const RECORDS: &'static str = "lines";
 }
 
-impl LaneTop for rtl::angular_stream::AngularStream {
+impl LaneTop for rtl::stream::angular_stream::AngularStream {
     const NAME: &'static str = "angular-stream";
 }
 
-impl LaneTop for rtl::quadric_stream::QuadricStream {
+impl LaneTop for rtl::stream::quadric_stream::QuadricStream {
     const NAME: &'static str = "quadric-stream";
 }
 
-impl LaneTop for rtl::fast_stream::FastStream {
+impl LaneTop for rtl::stream::fast_stream::FastStream {
     const NAME: &'static str = "fast-stream";
 }
 
-impl LaneTop for rtl::subdivision_stream::SubdivisionStream {
+impl LaneTop for rtl::stream::subdivision_stream::SubdivisionStream {
     const NAME: &'static str = "subdivision-stream";
     const LANES: usize = 4;
     const TUSER: bool = false;
@@ -162,7 +166,7 @@ impl LaneTop for rtl::subdivision_stream::SubdivisionStream {
 /// record's `tlast`. `records` counts the load records (lines, parents; a register record at
 /// the start is not one).
 pub fn drive_lanes<T: LaneTop>(
-    s: &mut dyn rtl::sim::Model,
+    s: &mut dyn rtl::core::sim::Model,
     words: &[Word],
     records: u64,
     max_clocks: u64,
@@ -230,7 +234,7 @@ pub fn drive_lanes<T: LaneTop>(
 /// record. Stops the VCD (if any) at the end.
 #[allow(clippy::too_many_arguments)]
 pub fn drive<T: StreamTop>(
-    s: &mut dyn rtl::sim::Model,
+    s: &mut dyn rtl::core::sim::Model,
     top: &str,
     what: &str,
     words: &[Word],
@@ -254,7 +258,7 @@ pub fn drive<T: StreamTop>(
 /// [`drive`] reporting every beat the top delivers, `beat(beat, clock)`, fragments and
 /// end-of-record beats alike (what `shadecore stream` writes).
 pub fn drive_beats<T: StreamTop>(
-    s: &mut dyn rtl::sim::Model,
+    s: &mut dyn rtl::core::sim::Model,
     top: &str,
     what: &str,
     words: &[Word],

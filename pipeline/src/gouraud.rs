@@ -1,6 +1,6 @@
-//! The Gouraud raster pipe (`rtl::gouraud_raster`: address block + BVI) as a render driver:
-//! triangle set-up in software (`golden::address_block::AddressSetup` for the address block,
-//! `golden::intensity_interpolator` words for the BVI), loaded whenever the pipe's `ready` is
+//! The Gouraud raster pipe (`rtl::pipelines::gouraud_raster`: address block + BVI) as a render driver:
+//! triangle set-up in software (`golden::units::address_block::AddressSetup` for the address block,
+//! `golden::units::intensity_interpolator` words for the BVI), loaded whenever the pipe's `ready` is
 //! high, pixels out in the order the hardware emits them.
 //!
 //! Row layouts (the order of the blocks' input ports, `rtl::impl_dut!` beside each block):
@@ -10,16 +10,16 @@
 
 use std::io::Write;
 
-use golden::address_block::{AddressSetup, EdgeSetup};
-use golden::intensity_interpolator::{self as gbvi, ChannelWords};
 use golden::shade::ShadeContext;
 use golden::types::{Plane, ScreenTriangle};
-use rtl::gouraud_raster::GouraudRaster;
-use rtl::sim::Model;
+use golden::units::address_block::{AddressSetup, EdgeSetup};
+use golden::units::intensity_interpolator::{self as gbvi, ChannelWords};
+use rtl::core::sim::Model;
+use rtl::pipelines::gouraud_raster::GouraudRaster;
 
 use crate::axis::{with_last, PipeStats, Word};
 use flow::engine::Sim;
-use rtl::stream_layout::{pack, GOURAUD_TRIANGLE};
+use rtl::stream::layout::{pack, GOURAUD_TRIANGLE};
 
 /// One triangle's complete set-up for the raster pipe.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -36,9 +36,9 @@ impl TriangleJob {
         TriangleJob { addr, words }
     }
 
-    /// Gouraud set-up of `tri` under `ctx` (`golden::gouraud`); `None` for zero area.
+    /// Gouraud set-up of `tri` under `ctx` (`golden::shading::gouraud`); `None` for zero area.
     pub fn gouraud(tri: &ScreenTriangle, ctx: &ShadeContext) -> Option<TriangleJob> {
-        golden::gouraud::setup(tri, ctx).map(|g| TriangleJob::new(tri, &g.planes))
+        golden::shading::gouraud::setup(tri, ctx).map(|g| TriangleJob::new(tri, &g.planes))
     }
 }
 
@@ -150,7 +150,10 @@ impl Pipe {
     /// `gouraud-raster` (or `gouraud-stream` if `stream`) on `sim`.
     pub fn on(sim: Sim, stream: bool) -> Result<Pipe, String> {
         let model = if stream {
-            flow::engine::model::<rtl::gouraud_stream::GouraudStream>(&Default::default(), sim)?
+            flow::engine::model::<rtl::stream::gouraud_stream::GouraudStream>(
+                &Default::default(),
+                sim,
+            )?
         } else {
             flow::engine::model::<GouraudRaster>(&Default::default(), sim)?
         };
@@ -160,7 +163,7 @@ impl Pipe {
     /// The design [`Pipe::on`] builds under Verilator.
     pub fn design(stream: bool) -> verilated::Design {
         if stream {
-            flow::engine::design::<rtl::gouraud_stream::GouraudStream>(&Default::default())
+            flow::engine::design::<rtl::stream::gouraud_stream::GouraudStream>(&Default::default())
         } else {
             flow::engine::design::<GouraudRaster>(&Default::default())
         }
@@ -179,7 +182,7 @@ impl Pipe {
         pixel: &mut dyn FnMut(usize, u32, u32, [u8; 3]),
         progress: &mut dyn FnMut(u64),
     ) -> Result<PipeStats, String> {
-        crate::axis::drive::<rtl::gouraud_stream::GouraudStream>(
+        crate::axis::drive::<rtl::stream::gouraud_stream::GouraudStream>(
             s,
             "gouraud-stream",
             "triangles",
@@ -311,7 +314,7 @@ mod tests {
 #[cfg(test)]
 mod record_tests {
     use super::*;
-    use rtl::stream_layout::unpack;
+    use rtl::stream::layout::unpack;
 
     #[test]
     fn gouraud_records_carry_the_load_row() {

@@ -1,16 +1,16 @@
 //! Render drivers: the software side that feeds triangles through the simulated hardware
-//! (`rtl`, stepped by `rtl::sim::Stepper`) into a frame, and the input-row layouts of the
+//! (`rtl`, stepped by `rtl::core::sim::Stepper`) into a frame, and the input-row layouts of the
 //! blocks' set-up ports, shared by the drivers, the benches and the CLI.
 //!
 //! - [`gouraud`]: the Gouraud raster pipe (address block + BVI): per-triangle set-up words
 //!   ([`gouraud::TriangleJob`]), the row layouts, and [`gouraud::Pipe`], which runs a list of
 //!   jobs to fragments.
 
-//! - [`lit`]: the lit pixel pipeline (`rtl::pixel_pipeline`): [`lit::LitJob`] set-up,
+//! - [`lit`]: the lit pixel pipeline (`rtl::pipelines::pixel_pipeline`): [`lit::LitJob`] set-up,
 //!   [`lit::ShadingRegs`], and [`lit::LitPipe`], which runs jobs to fragments with depth.
 //! - The simulator switch is `flow::engine` ([`flow::engine::Sim`]: rust-hdl or Verilator in
 //!   process), the one place a driver's top is made.
-//! - [`span`]: the span pipelines (`rtl::span_pipeline`, angular and fast): the span front end
+//! - [`span`]: the span pipelines (`rtl::pipelines::span_pipeline`, angular and fast): the span front end
 //!   ([`span::span_jobs`], one set-up per raster line) and [`span::SpanPipe`], two fragments
 //!   per clock.
 

@@ -1,4 +1,4 @@
-//! The lit pixel pipeline (`rtl::pixel_pipeline`) as a render driver: per-triangle set-up in
+//! The lit pixel pipeline (`rtl::pipelines::pixel_pipeline`) as a render driver: per-triangle set-up in
 //! software (address block set-up, the normal planes' Q3.29 words, the depth plane's Q16.16
 //! words), per-frame registers (L, H, n, colour weights), fragments out in hardware order.
 //!
@@ -9,24 +9,24 @@
 
 use std::io::Write;
 
-use golden::address_block::AddressSetup;
-use golden::colour_combine::Weights;
-use golden::intensity_interpolator::{ChannelSetup, ChannelWords};
 use golden::methods::Method;
 use golden::shade::{LightingModel, ShadeContext};
 use golden::types::ScreenTriangle;
-use golden::vector_interpolator as gvi;
-use rtl::fixed::NORMAL;
-use rtl::pixel_pipeline::PixelPipeline;
-use rtl::registry::{BlockParams, Options, RtlBlock};
-use rtl::sim::Model;
+use golden::units::address_block::AddressSetup;
+use golden::units::colour_combine::Weights;
+use golden::units::intensity_interpolator::{ChannelSetup, ChannelWords};
+use golden::units::vector_interpolator as gvi;
+use rtl::core::fixed::NORMAL;
+use rtl::core::registry::{BlockParams, Options, RtlBlock};
+use rtl::core::sim::Model;
+use rtl::pipelines::pixel_pipeline::PixelPipeline;
 
 use flow::engine::Sim;
 
 use crate::axis::PipeStats;
 use crate::axis::{balanced_order_of, with_last, Word};
 use crate::gouraud::{row_setup, setup_row};
-use rtl::stream_layout::{pack, REGISTERS, TRIANGLE};
+use rtl::stream::layout::{pack, REGISTERS, TRIANGLE};
 
 /// Input words per row: load + 19 address + 12 normal + 4 depth + 16 registers + hold.
 pub const ROW_WIDTH: usize = 53;
@@ -160,7 +160,7 @@ pub fn check_depths(tri: &ScreenTriangle) -> Result<(), String> {
 /// The depth plane's words: signed Q16.16 in model units, rounded to nearest, without the
 /// BVI's +½ display bias (depth is compared, never displayed).
 pub fn depth_words(s: &ChannelSetup) -> ChannelWords {
-    use golden::intensity_interpolator::quantize;
+    use golden::units::intensity_interpolator::quantize;
     ChannelWords {
         start: quantize(s.start),
         short: quantize(s.short),
@@ -249,7 +249,7 @@ impl LitPipe {
     pub fn on(method: Method, sim: Sim, stream: bool) -> Result<LitPipe, String> {
         let p = pipeline_params(method)?;
         let model = if stream {
-            flow::engine::model::<rtl::pixel_stream::PixelStream>(&p, sim)?
+            flow::engine::model::<rtl::stream::pixel_stream::PixelStream>(&p, sim)?
         } else {
             flow::engine::model::<PixelPipeline>(&p, sim)?
         };
@@ -260,7 +260,7 @@ impl LitPipe {
     pub fn design(method: Method, stream: bool) -> Result<verilated::Design, String> {
         let p = pipeline_params(method)?;
         Ok(if stream {
-            flow::engine::design::<rtl::pixel_stream::PixelStream>(&p)
+            flow::engine::design::<rtl::stream::pixel_stream::PixelStream>(&p)
         } else {
             flow::engine::design::<PixelPipeline>(&p)
         })
@@ -285,7 +285,7 @@ impl LitPipe {
         fragment: &mut dyn FnMut(Fragment),
         progress: &mut dyn FnMut(u64),
     ) -> Result<PipeStats, String> {
-        crate::axis::drive::<rtl::pixel_stream::PixelStream>(
+        crate::axis::drive::<rtl::stream::pixel_stream::PixelStream>(
             s,
             "pixel-stream",
             "triangles",
@@ -412,7 +412,7 @@ pub fn scene_words(jobs: &[LitJob], regs: &ShadingRegs) -> Vec<Word> {
 /// mesh-order first writer), whatever the arrival order.
 ///
 /// The walk length is the address block's clock count for the triangle alone
-/// (`golden::address_block::run`, the cycle model), so the order is set-up software only.
+/// (`golden::units::address_block::run`, the cycle model), so the order is set-up software only.
 /// Ties keep mesh order (a stable sort), so the order is deterministic.
 pub fn balanced_order(jobs: &[LitJob]) -> Vec<usize> {
     balanced_order_of(&jobs.iter().map(|j| j.addr).collect::<Vec<_>>())
@@ -448,7 +448,7 @@ mod tests {
 #[cfg(test)]
 mod record_tests {
     use super::*;
-    use rtl::stream_layout::{unpack, FRAGMENT};
+    use rtl::stream::layout::{unpack, FRAGMENT};
 
     #[test]
     fn records_carry_the_load_row() {

@@ -1,6 +1,6 @@
-//! The span pipelines (`rtl::span_pipeline`) as a render driver: the span front end — per
+//! The span pipelines (`rtl::pipelines::span_pipeline`) as a render driver: the span front end — per
 //! raster line of the triangle walk, the software set-up of the golden method (end normals,
-//! then `golden::angular::span_setup` or `golden::fast::span_setup` for L and H, quantized to
+//! then `golden::shading::angular::span_setup` or `golden::shading::fast::span_setup` for L and H, quantized to
 //! the span unit's words) and the line's depth words — then the spans fed back to back, two
 //! fragments per clock out.
 //!
@@ -12,32 +12,32 @@
 use std::collections::VecDeque;
 use std::io::Write;
 
-use golden::cos_v_accumulator::SpanWords;
-use golden::fast_unit::FastWords;
-use golden::horner_unit::HornerWords;
-use golden::intensity_interpolator::quantize;
 use golden::methods::{row_end, span_end_normals, Method};
-use golden::quadric_unit::{check_line, triangle_words, QuadricWords};
 use golden::raster::walk;
 use golden::shade::ShadeContext;
 use golden::types::ScreenTriangle;
-use rtl::angular_stream::AngularStream;
-use rtl::cubic_pipeline::{CubicParams, CubicPipeline};
-use rtl::cubic_stream::CubicStream;
-use rtl::fast_stream::FastStream;
-use rtl::horner_unit::HornerParams;
-use rtl::quadric_stream::QuadricStream;
-use rtl::quadric_unit::QuadricUnit;
-use rtl::registry::{BlockParams, Options, RtlBlock};
-use rtl::sim::Model;
+use golden::units::cos_v_accumulator::SpanWords;
+use golden::units::fast_unit::FastWords;
+use golden::units::horner_unit::HornerWords;
+use golden::units::intensity_interpolator::quantize;
+use golden::units::quadric_unit::{check_line, triangle_words, QuadricWords};
+use rtl::core::registry::{BlockParams, Options, RtlBlock};
+use rtl::core::sim::Model;
+use rtl::pipelines::cubic_pipeline::{CubicParams, CubicPipeline};
+use rtl::stream::angular_stream::AngularStream;
+use rtl::stream::cubic_stream::CubicStream;
+use rtl::stream::fast_stream::FastStream;
+use rtl::stream::quadric_stream::QuadricStream;
+use rtl::units::horner_unit::HornerParams;
+use rtl::units::quadric_unit::QuadricUnit;
 
 use flow::engine::Sim;
-use rtl::span_pipeline::{AngularPipeline, FastPipeline, FastPipelineParams};
+use rtl::pipelines::span_pipeline::{AngularPipeline, FastPipeline, FastPipelineParams};
 
 use crate::axis::PipeStats;
 use crate::axis::{with_last, Word};
 use crate::lit::{check_depths, ShadingRegs};
-use rtl::stream_layout::{
+use rtl::stream::layout::{
     pack, ANGULAR_LINE, CUBIC_LINE, FAST_LINE, QUADRIC_LINE, QUADRIC_TRIANGLE, SPAN_REGISTERS,
 };
 
@@ -55,7 +55,7 @@ pub const SPAN_METHODS: [Method; 5] = [
 pub const OUTPUTS: usize = 15;
 
 /// Where a span top's outputs are: the lanes' `valid` columns (x, z, r, g, b follow each), then
-/// the line's `y` and `last` columns. One lane for the cubic pipeline, two for the others.
+/// the line's `y` and `done` columns. One lane for the cubic pipeline, two for the others.
 pub fn output_columns(kind: SpanKind) -> (&'static [usize], usize, usize) {
     match kind {
         SpanKind::Cubic { .. } => (&[1], 7, 8),
@@ -128,16 +128,16 @@ impl UnitWords {
         m: u32,
     ) -> UnitWords {
         match (kind, ends) {
-            (SpanKind::Angular, Some((a, b))) => {
-                UnitWords::Angular(SpanWords::new(&golden::angular::span_setup(a, b, x, m)))
-            }
+            (SpanKind::Angular, Some((a, b))) => UnitWords::Angular(SpanWords::new(
+                &golden::shading::angular::span_setup(a, b, x, m),
+            )),
             (SpanKind::Angular, None) => UnitWords::Angular(SpanWords {
                 m,
                 ..SpanWords::default()
             }),
-            (SpanKind::Fast(_), Some((a, b))) => {
-                UnitWords::Fast(FastWords::new(&golden::fast::span_setup(a, b, x, m)))
-            }
+            (SpanKind::Fast(_), Some((a, b))) => UnitWords::Fast(FastWords::new(
+                &golden::shading::fast::span_setup(a, b, x, m),
+            )),
             (SpanKind::Fast(_), None) | (SpanKind::Cubic { .. } | SpanKind::Quadric, _) => {
                 UnitWords::Fast(FastWords {
                     m,
@@ -233,7 +233,7 @@ pub fn span_jobs(
     };
     let spec = ctx.specular_vector();
     let quadric = match kind {
-        SpanKind::Quadric => match golden::quadric::setup(tri, ctx) {
+        SpanKind::Quadric => match golden::shading::quadric::setup(tri, ctx) {
             Some(q) => Some(q),
             None => return Ok(Vec::new()), // the golden method draws nothing either
         },
@@ -264,7 +264,7 @@ pub fn span_jobs(
                     }
                 }
                 SpanKind::Cubic { pipelined } => JobWords::Cubic {
-                    channels: golden::cubic::span_samples(&plane, row, ctx)
+                    channels: golden::shading::cubic::span_samples(&plane, row, ctx)
                         .map(|s| HornerWords::new(s, m)),
                     pipelined,
                 },
@@ -512,7 +512,7 @@ impl SpanPipe {
 
     /// Run `spans` (from [`span_jobs`], in order) with registers `regs`, each loaded in the clock
     /// `ready` is high; `fragment` for every valid lane, `progress(spans_done)` every 256 spans.
-    /// [`PipeStats::triangles`] counts spans here. Stops after the last span's `last`, or with
+    /// [`PipeStats::triangles`] counts spans here. Stops after the last span's `done`, or with
     /// an error after `max_clocks`.
     pub fn run(
         &mut self,
@@ -672,8 +672,8 @@ pub fn span_clock_budget(spans: &[SpanJob]) -> u64 {
     // A line through a stream top takes at least its record's words (one per clock; the fast
     // line's, the longer of the two span records); the span stream tops' register record
     // comes first.
-    let words = 1 + rtl::stream_layout::payload_words(&rtl::stream_layout::CUBIC_LINE) as u64;
-    let pair_words = 1 + rtl::stream_layout::payload_words(&rtl::stream_layout::FAST_LINE) as u64;
+    let words = 1 + rtl::stream::layout::payload_words(&rtl::stream::layout::CUBIC_LINE) as u64;
+    let pair_words = 1 + rtl::stream::layout::payload_words(&rtl::stream::layout::FAST_LINE) as u64;
     spans
         .iter()
         .map(|s| match s.words {
@@ -684,10 +684,10 @@ pub fn span_clock_budget(spans: &[SpanJob]) -> u64 {
         .sum::<u64>()
         + 64
         + 1
-        + rtl::stream_layout::payload_words(&rtl::stream_layout::SPAN_REGISTERS) as u64
+        + rtl::stream::layout::payload_words(&rtl::stream::layout::SPAN_REGISTERS) as u64
 }
 
-/// The quadric unit's timing (the header of `rtl::quadric_unit`), written apart from its twin:
+/// The quadric unit's timing (the header of `rtl::units::quadric_unit`), written apart from its twin:
 /// for each line (loaded whenever `ready` is high) the clock its load is taken and the clock the
 /// tracker hands it to the generator. A line is taken in its predecessor's hand-over clock; the
 /// tracker reaches its start 1 + (Δy − 1) + ⌈|Δx0|/2⌉ clocks after the load (the first line of a
@@ -764,7 +764,7 @@ pub fn span_line_record(kind: SpanKind, span: &SpanJob) -> Vec<Word> {
 }
 
 /// The line layout of the span stream top of `kind`.
-pub fn span_line_layout(kind: SpanKind) -> rtl::stream_layout::Record {
+pub fn span_line_layout(kind: SpanKind) -> rtl::stream::layout::Record {
     match kind {
         SpanKind::Angular => ANGULAR_LINE,
         SpanKind::Fast(_) => FAST_LINE,
@@ -841,7 +841,7 @@ mod tests {
 #[cfg(test)]
 mod record_tests {
     use super::*;
-    use rtl::stream_layout::unpack;
+    use rtl::stream::layout::unpack;
 
     #[test]
     fn cubic_records_carry_the_load_row() {

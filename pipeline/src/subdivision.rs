@@ -1,31 +1,31 @@
-//! The subdivision raster pipe (`rtl::subdivision_raster`: four-triangle block + one BVI per
+//! The subdivision raster pipe (`rtl::pipelines::subdivision_raster`: four-triangle block + one BVI per
 //! lane) as a render driver: per parent, the four-triangle set-up in software
-//! (`golden::four_triangle::FourTriangleSetup`) and each lane's BVI words, loaded whenever the
+//! (`golden::units::four_triangle::FourTriangleSetup`) and each lane's BVI words, loaded whenever the
 //! pipe's `ready` is high; up to four pixels per clock out.
 //!
 //! Two job kinds, the same hardware: [`SubJob::gouraud`] (Gouraud through the four-triangle
 //! block: every lane interpolates the parent's planes) and [`SubJob::subdivision`] (the
 //! `subdivision` method: lane K interpolates sub-triangle K's own planes,
-//! `golden::subdivision`).
+//! `golden::shading::subdivision`).
 //!
 //! Row layouts (the order of the blocks' input ports): [`setup_row`] is the four-triangle
 //! block's (`load`, the shared increments of the parent's working, adjacent and third edge as
 //! f r d, then per lane w_b0 w_e0 a_b0 a_e0 a_third t_b0 t_e0 t_adjacent y_top rows
 //! y_switch dir_neg); [`pipe_row`] the pipe's (that, then each lane's twelve BVI words).
 
-use golden::four_triangle::{EdgeIncrements, FourTriangleSetup, LaneSetup, LANES};
-use golden::intensity_interpolator::{self as gbvi, ChannelWords};
 use golden::shade::ShadeContext;
 use golden::types::{Plane, ScreenTriangle};
-use rtl::sim::Model;
+use golden::units::four_triangle::{EdgeIncrements, FourTriangleSetup, LaneSetup, LANES};
+use golden::units::intensity_interpolator::{self as gbvi, ChannelWords};
+use rtl::core::sim::Model;
 
 use flow::engine::Sim;
-use rtl::subdivision_raster::SubdivisionRaster;
+use rtl::pipelines::subdivision_raster::SubdivisionRaster;
 
 use crate::axis::PipeStats;
 use crate::axis::{with_last, Word};
 use crate::gouraud::{row_words, words_row};
-use rtl::stream_layout::{pack, SUBDIVISION_PARENT};
+use rtl::stream::layout::{pack, SUBDIVISION_PARENT};
 
 /// One parent's complete set-up for the subdivision pipe.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -45,14 +45,14 @@ impl SubJob {
     }
 
     /// Gouraud through the four-triangle block: every lane takes the parent's planes
-    /// (`golden::gouraud`); `None` for zero area.
+    /// (`golden::shading::gouraud`); `None` for zero area.
     pub fn gouraud(tri: &ScreenTriangle, ctx: &ShadeContext) -> Option<SubJob> {
-        golden::gouraud::setup(tri, ctx).map(|g| SubJob::new(tri, &[g.planes; LANES]))
+        golden::shading::gouraud::setup(tri, ctx).map(|g| SubJob::new(tri, &[g.planes; LANES]))
     }
 
-    /// The `subdivision` method (`golden::subdivision`); `None` for zero area.
+    /// The `subdivision` method (`golden::shading::subdivision`); `None` for zero area.
     pub fn subdivision(tri: &ScreenTriangle, ctx: &ShadeContext) -> Option<SubJob> {
-        golden::subdivision::setup(tri, ctx).map(|s| SubJob::new(tri, &s.planes))
+        golden::shading::subdivision::setup(tri, ctx).map(|s| SubJob::new(tri, &s.planes))
     }
 }
 
@@ -171,7 +171,7 @@ impl SubPipe {
     /// `subdivision-raster` (or `subdivision-stream` if `stream`) on `sim`.
     pub fn on(sim: Sim, stream: bool) -> Result<SubPipe, String> {
         let model = if stream {
-            flow::engine::model::<rtl::subdivision_stream::SubdivisionStream>(
+            flow::engine::model::<rtl::stream::subdivision_stream::SubdivisionStream>(
                 &Default::default(),
                 sim,
             )?
@@ -184,7 +184,9 @@ impl SubPipe {
     /// The design [`SubPipe::on`] builds under Verilator.
     pub fn design(stream: bool) -> verilated::Design {
         if stream {
-            flow::engine::design::<rtl::subdivision_stream::SubdivisionStream>(&Default::default())
+            flow::engine::design::<rtl::stream::subdivision_stream::SubdivisionStream>(
+                &Default::default(),
+            )
         } else {
             flow::engine::design::<SubdivisionRaster>(&Default::default())
         }
@@ -203,7 +205,7 @@ impl SubPipe {
     ) -> Result<PipeStats, String> {
         if self.stream {
             let n = jobs.len() as u64;
-            return crate::axis::drive_lanes::<rtl::subdivision_stream::SubdivisionStream>(
+            return crate::axis::drive_lanes::<rtl::stream::subdivision_stream::SubdivisionStream>(
                 self.model.as_mut(),
                 &crate::subdivision::subdivision_words(jobs),
                 n,
@@ -307,7 +309,7 @@ mod tests {
 #[cfg(test)]
 mod record_tests {
     use super::*;
-    use rtl::stream_layout::unpack;
+    use rtl::stream::layout::unpack;
 
     #[test]
     fn subdivision_records_carry_the_load_row() {

@@ -1,40 +1,8 @@
-pub mod address_block;
-pub mod angular_stream;
-pub mod brzssk;
-pub mod colour_combine;
-pub mod cos_v_accumulator;
-pub mod cubic_pipeline;
-pub mod cubic_stream;
-pub mod declare;
-pub mod ecp5_dsp;
-pub mod export;
-pub mod fast_stream;
-pub mod fast_unit;
-pub mod fixed;
-pub mod four_triangle;
-pub mod fragment_fifo;
-pub mod gouraud_raster;
-pub mod gouraud_stream;
-pub mod horner_unit;
-pub mod intensity_interpolator;
-pub mod k_recurrence;
-pub mod lighting_unit;
-pub mod line_interpolator;
-pub mod normalizer;
-pub mod pixel_pipeline;
-pub mod pixel_stream;
-pub mod power_unit;
-pub mod primitives;
-pub mod quadric_stream;
-pub mod quadric_unit;
-pub mod record_reader;
-pub mod registry;
-pub mod sim;
-pub mod span_pipeline;
-pub mod stream_layout;
-pub mod subdivision_raster;
-pub mod subdivision_stream;
-pub mod vector_interpolator;
+pub mod core;
+pub mod pipelines;
+pub mod stream;
+pub mod targets;
+pub mod units;
 
 /// A hash of every source the exported Verilog depends on (this crate, `golden`, the vendored
 /// rust-hdl-core, Cargo.lock), made by `build.rs`: the in-process Verilator cache keys on it.

@@ -13,15 +13,15 @@ use std::io::Write;
 use std::path::PathBuf;
 
 use anyhow::{bail, Context, Result};
-use golden::address_block::{AddressOutputs, AddressSetup};
 use golden::types::{ScreenTriangle, ScreenVertex, MAX_ADDRESS};
+use golden::units::address_block::{AddressOutputs, AddressSetup};
 
 /// Which implementation walks the triangle.
 #[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Engine {
     /// The rust-hdl address block, simulated clock by clock.
     Rtl,
-    /// The cycle-accurate golden model (`golden::address_block`).
+    /// The cycle-accurate golden model (`golden::units::address_block`).
     Golden,
 }
 
@@ -63,14 +63,14 @@ pub fn four_clocks(
     engine: Engine,
     vcd: Option<&std::path::Path>,
     sim: crate::sim::Sim,
-) -> Result<Vec<golden::four_triangle::FourOutputs>> {
-    use golden::four_triangle::FourTriangleSetup;
+) -> Result<Vec<golden::units::four_triangle::FourOutputs>> {
+    use golden::units::four_triangle::FourTriangleSetup;
     let setup = FourTriangleSetup::new(tri);
     if vcd.is_some() && (engine == Engine::Golden || sim == crate::sim::Sim::Verilator) {
         bail!("--vcd needs --engine rtl --sim rust-hdl (only that run writes a waveform)");
     }
     match (engine, sim) {
-        (Engine::Golden, _) => Ok(golden::four_triangle::run(&[setup]).0),
+        (Engine::Golden, _) => Ok(golden::units::four_triangle::run(&[setup]).0),
         (Engine::Rtl, crate::sim::Sim::Verilator) => {
             let budget = four_budget(&setup);
             pipeline::walkers::four_triangle::run_reactive_on(
@@ -97,7 +97,7 @@ pub fn four_clocks(
 
 /// Every row of the tallest lane at full width plus latency: a hung block stops instead of
 /// spinning.
-fn four_budget(setup: &golden::four_triangle::FourTriangleSetup) -> usize {
+fn four_budget(setup: &golden::units::four_triangle::FourTriangleSetup) -> usize {
     let rows = setup
         .lanes
         .iter()
@@ -108,7 +108,7 @@ fn four_budget(setup: &golden::four_triangle::FourTriangleSetup) -> usize {
 }
 
 /// The CSV text of a four-triangle run.
-pub fn four_csv(out: &[golden::four_triangle::FourOutputs]) -> String {
+pub fn four_csv(out: &[golden::units::four_triangle::FourOutputs]) -> String {
     let mut s = String::from("cycle");
     for k in 0..4 {
         s.push_str(&format!(
@@ -248,10 +248,10 @@ pub fn run(a: Args) -> Result<()> {
     if sim == crate::sim::Sim::Verilator {
         let d = match a.address {
             RasterAddress::Single => {
-                verilated::design::<rtl::address_block::AddressBlock>(&Default::default())
+                verilated::design::<rtl::units::address_block::AddressBlock>(&Default::default())
             }
             RasterAddress::FourTriangle => {
-                verilated::design::<rtl::four_triangle::FourTriangle>(&Default::default())
+                verilated::design::<rtl::units::four_triangle::FourTriangle>(&Default::default())
             }
         };
         crate::sim::prepare(sim, vec![d], &indicatif::MultiProgress::new())?;

@@ -6,7 +6,7 @@ use std::path::PathBuf;
 use anyhow::{anyhow, bail, Context};
 use flow::blocks::{self, Block};
 pub use flow::cli::BuildArgs;
-use rtl::registry::Options;
+use rtl::core::registry::Options;
 
 /// The blocks named by `--block` (`NAME` or `all`) and the build options of the command line
 /// ([`BuildArgs`]: `--coeffs` is `coeffs=…`, read by the normalizer blocks, and so on),
@@ -72,7 +72,7 @@ pub struct SynthArgs {
     #[arg(long)]
     pub seed: Option<u64>,
     /// With `--target ecp5`: where a registered 16×16 product's registers go — dsp (the
-    /// MULT18X18D's own input and output registers; `rtl::ecp5_dsp` rewrites the exported
+    /// MULT18X18D's own input and output registers; `rtl::targets::ecp5_dsp` rewrites the exported
     /// Verilog for the flow; the default) or fabric (flip-flops, as Yosys maps the Verilog as
     /// exported).
     #[arg(long, value_enum)]
@@ -113,11 +113,11 @@ pub fn export(a: ExportArgs) -> anyhow::Result<()> {
         let mut text = b.verilog(&o).map_err(|e| anyhow!(e))?;
         let mut dsp = String::new();
         if a.ecp5_dsp {
-            let m = rtl::ecp5_dsp::map_multipliers(&text);
+            let m = rtl::targets::ecp5_dsp::map_multipliers(&text);
             text = m.verilog;
             dsp = format!(", {} products on registered MULT18X18D", m.products);
         }
-        let path = rtl::export::write(b.name(), &text, &a.out).map_err(|e| anyhow!(e))?;
+        let path = rtl::core::export::write(b.name(), &text, &a.out).map_err(|e| anyhow!(e))?;
         crate::outln!(
             "{}: module {} (latency {} clocks{dsp}) -> {}",
             b.name(),
@@ -128,14 +128,14 @@ pub fn export(a: ExportArgs) -> anyhow::Result<()> {
     }
     if a.ecp5_dsp {
         let model = a.out.join("MULT18X18D_model.v");
-        std::fs::write(&model, rtl::ecp5_dsp::sim_model())
+        std::fs::write(&model, rtl::targets::ecp5_dsp::sim_model())
             .map_err(|e| anyhow!("cannot write {}: {e}", model.display()))?;
         crate::outln!(
             "MULT18X18D simulation model (not for synthesis: synth_ecp5 has the cell) -> {}",
             model.display()
         )?;
     }
-    let waivers = rtl::export::write_waivers(&a.out).map_err(|e| anyhow!(e))?;
+    let waivers = rtl::core::export::write_waivers(&a.out).map_err(|e| anyhow!(e))?;
     crate::outln!(
         "lint: verilator --lint-only -Wall {} <module>.v reports nothing (each waiver says why)",
         waivers.display()

@@ -67,7 +67,7 @@ pub fn run(a: Args) -> Result<()> {
     let jobs: Vec<LitJob> = a.setup_order.of(&jobs).iter().map(|&i| jobs[i]).collect();
     let words = scene_words(&jobs, &regs);
     let order = format!("{:?}", a.setup_order).to_lowercase();
-    let (beats, clocks) = simulate_and_write::<rtl::pixel_stream::PixelStream>(
+    let (beats, clocks) = simulate_and_write::<rtl::stream::pixel_stream::PixelStream>(
         &a.out,
         &o,
         &words,
@@ -101,9 +101,9 @@ fn run_cubic(a: &Args) -> Result<()> {
         spans.extend(span_jobs(t, i, kind, &s.ctx).map_err(|e| anyhow!("triangle {i}: {e}"))?);
     }
     let words = pipeline::span::cubic_words(&spans);
-    let o = rtl::registry::Options::new()
+    let o = rtl::core::registry::Options::new()
         .with("horner", if pipelined { "pipelined" } else { "serial" });
-    let (beats, clocks) = simulate_and_write::<rtl::cubic_stream::CubicStream>(
+    let (beats, clocks) = simulate_and_write::<rtl::stream::cubic_stream::CubicStream>(
         &a.out,
         &o,
         &words,
@@ -127,16 +127,16 @@ fn run_cubic(a: &Args) -> Result<()> {
 /// `o`, fed `words` until `records` records have ended, then `setup.txt` (the words, sent in
 /// `order`), `beats.txt` (the beats the simulation delivers; z = 0 for a top without
 /// `m_axis_tuser`) and the top's Verilog. Returns the beats and the clocks to the last one.
-fn simulate_and_write<T: StreamTop + rtl::registry::RtlBlock>(
+fn simulate_and_write<T: StreamTop + rtl::core::registry::RtlBlock>(
     dir: &std::path::Path,
-    o: &rtl::registry::Options,
+    o: &rtl::core::registry::Options,
     words: &[Word],
     records: u64,
     order: &str,
     sim: crate::sim::Sim,
 ) -> Result<(Vec<Beat>, u64)> {
     let block = T::NAME;
-    let top = rtl::stream_layout::TOPS
+    let top = rtl::stream::layout::TOPS
         .iter()
         .find(|t| t.block == block)
         .ok_or_else(|| anyhow!("{block} is not a stream top"))?;
@@ -212,8 +212,8 @@ fn run_gouraud(a: &Args) -> Result<()> {
     let jobs: Vec<TriangleJob> = order.iter().map(|&i| jobs[i]).collect();
     let words = pipeline::gouraud::gouraud_words(&jobs);
     let order = format!("{:?}", a.setup_order).to_lowercase();
-    let o = rtl::registry::Options::new();
-    let (beats, clocks) = simulate_and_write::<rtl::gouraud_stream::GouraudStream>(
+    let o = rtl::core::registry::Options::new();
+    let (beats, clocks) = simulate_and_write::<rtl::stream::gouraud_stream::GouraudStream>(
         &a.out,
         &o,
         &words,

@@ -36,7 +36,7 @@ pub struct Args {
     pub out: PathBuf,
     /// Adaptive subdivision before every method: 0, 1, 2 or auto (as `render --subdivide`).
     #[arg(long, default_value = "0")]
-    pub subdivide: golden::refine::Subdivide,
+    pub subdivide: golden::shading::refine::Subdivide,
 }
 
 pub fn run(args: Args) -> Result<()> {

@@ -47,7 +47,7 @@ def read_beats(path):
 
 
 def unpack(tdata, tuser, tlast):
-    # The layout of rtl::stream_layout::FRAGMENT (rtl/README.md); no tuser: z = 0.
+    # The layout of rtl::stream::layout::FRAGMENT (rtl/README.md); no tuser: z = 0.
     tuser = 0 if tuser is None else tuser
     return (
         tdata & 0xFFF,

@@ -1,11 +1,11 @@
-//! Cycle-by-cycle harness: drives a block through `rtl::sim` (the hand-stepped simulation:
+//! Cycle-by-cycle harness: drives a block through `rtl::core::sim` (the hand-stepped simulation:
 //! [`Dut`], [`Stepper`], re-exported here), one input row per clock, records one output row
 //! per clock, and compares every clock with the golden model.
 //!
 //! Layers (use the lowest one that fits):
 //! 1. [`Dut`] (implemented beside each block in `rtl/src` with `rtl::impl_dut!`): a block's
 //!    clock, input ports and output ports as raw words (`u64`, one per port, LSB-aligned).
-//! 2. [`Stepper`]: `step(&inputs, &mut outputs)` runs one clock (timing in `rtl::sim`).
+//! 2. [`Stepper`]: `step(&inputs, &mut outputs)` runs one clock (timing in `rtl::core::sim`).
 //! 3. [`run`] / [`run_rows`]: drive a stimulus (a row list, or a closure that may react to the
 //!    previous outputs), compare with per-clock [`Expected`] values (exact words, or reals
 //!    within a [`Tolerance`]), keep max and RMS error per port, and on the first mismatch
@@ -14,9 +14,9 @@
 
 use std::path::PathBuf;
 
-pub use rtl::fixed::QFormat;
+pub use rtl::core::fixed::QFormat;
 
-pub use rtl::sim::{
+pub use rtl::core::sim::{
     simulate_rows, width_of, write_vcd_window, Dut, Port, Stepper, Word, CLOCK_PERIOD_PS,
 };
 
@@ -444,8 +444,8 @@ pub fn run_stream<D: Dut>(
     progress: impl FnMut(u64),
 ) -> Result<StreamReport, Failure> {
     let dash = || "-".to_string();
-    use rtl::sim::Model as _;
-    let mut s = rtl::sim::RustHdlModel::new(dut)
+    use rtl::core::sim::Model as _;
+    let mut s = rtl::core::sim::RustHdlModel::new(dut)
         .map_err(|e| spec.failure(0, "(set-up)", dash(), dash(), e))?;
     if let Some(w) = vcd {
         s.start_vcd(w)
@@ -458,7 +458,7 @@ pub fn run_stream<D: Dut>(
 /// from its current state; a VCD, if any, is the caller's to start.
 #[allow(clippy::result_large_err)]
 pub fn run_stream_on(
-    s: &mut dyn rtl::sim::Model,
+    s: &mut dyn rtl::core::sim::Model,
     spec: &CheckSpec,
     mut next_batch: impl FnMut(usize) -> Option<Batch>,
     twin: &mut dyn FnMut(&[u64]) -> Vec<u64>,

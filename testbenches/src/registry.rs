@@ -3,7 +3,7 @@
 //! (twin every clock, golden every clock, Yosys, Icarus, Verilator differential, SB_MAC16
 //! count) are driven from [`BLOCKS`].
 //!
-//! A block implements [`rtl::registry::RtlBlock`] in its `rtl/src` file (name, parameters,
+//! A block implements [`rtl::core::registry::RtlBlock`] in its `rtl/src` file (name, parameters,
 //! latency, multipliers, build) and [`Bench`] in its `testbenches/src` file (stimulus with
 //! golden expectations, its bit-exact twin); then one line in [`flow::with_blocks!`] lists it.
 
@@ -11,7 +11,7 @@ use std::path::Path;
 
 use flow::blocks::{Block, Registered};
 use flow::engine::Sim;
-use rtl::registry::{BlockParams, Options, RtlBlock};
+use rtl::core::registry::{BlockParams, Options, RtlBlock};
 
 use crate::harness::{self, CheckSpec, Compare, Expected, Failure, Report};
 
@@ -27,7 +27,7 @@ pub struct Stimulus {
 
 /// A block's bit-exact integer twin, written independently of the RTL (same rounding and
 /// saturation): one input row per clock in, the output row the block shows in that clock
-/// (sampled before the rising edge, as `rtl::sim::Stepper::step` samples) out. It starts
+/// (sampled before the rising edge, as `rtl::core::sim::Stepper::step` samples) out. It starts
 /// from the reset state (every register 0, as rust-hdl's and the exported Verilog's).
 pub trait Twin {
     fn step(&mut self, inputs: &[u64]) -> Vec<u64>;

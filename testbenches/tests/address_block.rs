@@ -2,16 +2,16 @@
 //! the golden walk and the edge-function rasterizer (same set, no duplicates, same order and
 //! step types), over named edge cases and seeded random triangles.
 
-use golden::address_block::{stream_pixels, AddressOutputs, AddressSetup};
 use golden::raster::{edge_function_pixels, walk};
 use golden::testing::runner;
 use golden::testing::seed_for;
 use golden::types::ScreenTriangle;
+use golden::units::address_block::{stream_pixels, AddressOutputs, AddressSetup};
 use proptest::prelude::*;
 use proptest::test_runner::TestCaseError;
-use rtl::address_block::AddressBlock;
+use rtl::units::address_block::AddressBlock;
 use std::collections::HashSet;
-use testbenches::address_block::{check as check_rtl, triangle_strategy};
+use testbenches::units::address_block::{check as check_rtl, triangle_strategy};
 
 type Tri = [(i32, i32); 3];
 
@@ -103,8 +103,8 @@ fn random_triangles_match_model_and_walk() {
 use flow::tools;
 use flow::verilog::{Mutant, Simulator};
 use proptest::strategy::ValueTree;
-use testbenches::address_block::stimulus;
 use testbenches::registry::assert_mutants_caught;
+use testbenches::units::address_block::stimulus;
 
 fn block(name: &str) -> &'static dyn testbenches::registry::Entry {
     testbenches::registry::find(name).unwrap()
@@ -141,7 +141,7 @@ fn differential_run(sim: Simulator, n: usize, tag: &str) {
     let rows = stimulus(&differential_setups(n)).rows;
     let rep = flow::blocks::differential(
         block("address-block"),
-        &rtl::registry::Options::new(),
+        &rtl::core::registry::Options::new(),
         &rows,
         sim,
         tag,
@@ -187,9 +187,9 @@ fn broken_address_block_export_is_caught() {
 /// the events with the held clocks removed are exactly the events of the run without stalls.
 #[test]
 fn held_address_block_emits_the_same_events_with_gaps() {
-    use testbenches::address_block::{address_run, address_run_held, triangle_jobs};
     use testbenches::harness::{run_rows, CheckSpec, Compare, Expected};
     use testbenches::stall::StallPattern;
+    use testbenches::units::address_block::{address_run, address_run_held, triangle_jobs};
     let seed = seed_for("held_address_block_emits_the_same_events_with_gaps");
     let (jobs, _) = triangle_jobs(seed, 40);
     let (rows0, exp0, _) = address_run(&jobs);

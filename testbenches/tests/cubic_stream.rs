@@ -13,12 +13,12 @@ use pipeline::axis::{Beat, Word};
 use pipeline::lit::ShadingRegs;
 use pipeline::span::{cubic_record, cubic_words};
 use pipeline::span::{span_clock_budget, SpanJob, SpanPipe};
-use rtl::cubic_pipeline::CubicParams;
-use rtl::horner_unit::HornerParams;
-use rtl::registry::Options;
-use testbenches::cubic_stream::{drive, load_row, reference_beats, scene, CubicStreamRun};
+use rtl::core::registry::Options;
+use rtl::pipelines::cubic_pipeline::CubicParams;
+use rtl::units::horner_unit::HornerParams;
 use testbenches::registry::find;
 use testbenches::stall::StallPattern;
+use testbenches::stream::cubic_stream::{drive, load_row, reference_beats, scene, CubicStreamRun};
 
 const VARIANTS: [(&str, bool); 2] = [("serial", false), ("pipelined", true)];
 
@@ -221,7 +221,7 @@ fn long_stalls_lose_nothing_and_the_verilog_agrees() {
             run.consumer_stalls,
             run.held,
             run.max_level,
-            rtl::cubic_stream::FIFO_DEPTH
+            rtl::stream::cubic_stream::FIFO_DEPTH
         );
         if !Simulator::Verilator.require("cubic_long_stalls_lose_nothing_and_the_verilog_agrees") {
             return;
@@ -333,7 +333,7 @@ fn tready_high_never_holds_the_units() {
 /// serial ones (both banks free, the units idle, `tready` high).
 #[test]
 fn latency_from_last_word_to_first_beat() {
-    let latency = rtl::cubic_stream::CubicStream::LATENCY;
+    let latency = rtl::stream::cubic_stream::CubicStream::LATENCY;
     for (variant, pipelined) in VARIANTS {
         let p = params(pipelined);
         let spans = scene(&p, 7, 1);
@@ -381,7 +381,7 @@ fn latency_from_last_word_to_first_beat() {
 /// order (between `load` and `hold`), and a record carries the driver's load row.
 #[test]
 fn layout_fields_are_the_pipeline_ports() {
-    use rtl::stream_layout::{unpack, CUBIC_LINE};
+    use rtl::stream::layout::{unpack, CUBIC_LINE};
     let (ins, _) = find("cubic-pipeline").unwrap().ports();
     let ports: Vec<(String, usize)> = ins.iter().map(|p| (p.name.to_string(), p.width)).collect();
     let fields: Vec<(String, usize)> = CUBIC_LINE

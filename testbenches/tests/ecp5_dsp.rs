@@ -1,4 +1,4 @@
-//! The ECP5 multiplier mapping (`rtl::ecp5_dsp`: registered 16×16 products rewritten as
+//! The ECP5 multiplier mapping (`rtl::targets::ecp5_dsp`: registered 16×16 products rewritten as
 //! MULT18X18D instances holding their operand and product registers, what `synth --target
 //! ecp5` places) computes what the exported Verilog computes: for every block with such
 //! products, the mapped Verilog with the behavioural MULT18X18D model runs under Icarus
@@ -11,7 +11,7 @@
 use flow::tools::{self, Tool};
 use flow::verilog::{differential_rows, DiffError, Simulator};
 use golden::testing::seed_for;
-use rtl::registry::Options;
+use rtl::core::registry::Options;
 use testbenches::registry::{self, test_rows, Entry, BLOCKS};
 
 /// Stimulus items per block (fewer than the registry's generic tests: this checks the
@@ -27,9 +27,9 @@ fn items(b: &dyn Entry) -> usize {
 /// The mapped Verilog of `b` with the model appended, and the number of products mapped.
 fn mapped(b: &dyn Entry, o: &Options) -> (String, usize) {
     let v = b.verilog(o).unwrap();
-    let m = rtl::ecp5_dsp::map_multipliers(&v);
+    let m = rtl::targets::ecp5_dsp::map_multipliers(&v);
     (
-        format!("{}\n{}", m.verilog, rtl::ecp5_dsp::sim_model()),
+        format!("{}\n{}", m.verilog, rtl::targets::ecp5_dsp::sim_model()),
         m.products,
     )
 }

@@ -5,7 +5,7 @@
 //! Skips with a notice without Yosys or nextpnr-ecp5 (fails when `CI` is set).
 
 use flow::synth::{ecp5_with, require_ecp5, MultRegs};
-use rtl::registry::Options;
+use rtl::core::registry::Options;
 use testbenches::registry;
 
 /// The last "Checksum: 0x…" nextpnr printed (after placement and routing).

@@ -5,16 +5,16 @@
 //! pixels of the unheld run, in the same order. (The generic tests — twin, Icarus, Verilator,
 //! lint — are the registry's; both blocks' edge rows hold in a quarter of their clocks.)
 
-use golden::address_block::AddressOutputs;
-use golden::four_triangle::{FourTriangleSetup, LANES};
 use golden::testing::seed_for;
+use golden::units::address_block::AddressOutputs;
+use golden::units::four_triangle::{FourTriangleSetup, LANES};
 use pipeline::subdivision::{pipe_row, SubJob, OUTPUTS, PIPE_HOLD_AT};
-use rtl::registry::{NoParams, Options};
-use rtl::subdivision_raster::SubdivisionRaster;
-use testbenches::four_triangle::{random_triangles, run_reactive_held, HOLD_AT};
+use rtl::core::registry::{NoParams, Options};
+use rtl::pipelines::subdivision_raster::SubdivisionRaster;
+use testbenches::pipelines::subdivision_raster::random_jobs;
 use testbenches::registry::{find, Bench};
 use testbenches::stall::StallPattern;
-use testbenches::subdivision_raster::random_jobs;
+use testbenches::units::four_triangle::{random_triangles, run_reactive_held, HOLD_AT};
 
 /// Random holds (probability 0.3) plus the clocks 2..40 and 300..900.
 fn stalls(seed: u64) -> impl FnMut(usize) -> bool {
@@ -54,15 +54,16 @@ fn four_triangle_hold_keeps_every_event_and_matches_the_twin() {
         }
     }
     // Each lane's events (every clock whose outputs are not all quiet), in order.
-    let events = |out: &[golden::four_triangle::FourOutputs], k: usize| -> Vec<AddressOutputs> {
-        out.iter()
-            .map(|o| AddressOutputs {
-                ready: false,
-                ..o.lanes[k]
-            })
-            .filter(|l| *l != quiet)
-            .collect()
-    };
+    let events =
+        |out: &[golden::units::four_triangle::FourOutputs], k: usize| -> Vec<AddressOutputs> {
+            out.iter()
+                .map(|o| AddressOutputs {
+                    ready: false,
+                    ..o.lanes[k]
+                })
+                .filter(|l| *l != quiet)
+                .collect()
+        };
     let mut total = 0;
     for k in 0..LANES {
         let (a, b) = (events(&free, k), events(&out, k));

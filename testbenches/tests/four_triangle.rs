@@ -3,17 +3,17 @@
 //! (no address twice, none lost), over named cases, seeded random parents of every family, a
 //! tiled region and a back-face-culled sphere; a broken export must be caught.
 
-use golden::address_block::AddressOutputs;
-use golden::four_triangle::{self as g4, FourOutputs, FourTriangleSetup, LANES};
 use golden::raster::edge_function_pixels;
 use golden::testing::{runner, seed_for};
 use golden::types::ScreenTriangle;
+use golden::units::address_block::AddressOutputs;
+use golden::units::four_triangle::{self as g4, FourOutputs, FourTriangleSetup, LANES};
 use proptest::prelude::*;
 use proptest::strategy::ValueTree;
 use proptest::test_runner::TestCaseError;
 use std::collections::{HashMap, HashSet};
-use testbenches::address_block::triangle_strategy;
-use testbenches::four_triangle::{check as check_rtl, run_reactive, stimulus};
+use testbenches::units::address_block::triangle_strategy;
+use testbenches::units::four_triangle::{check as check_rtl, run_reactive, stimulus};
 
 type Tri = [(i32, i32); 3];
 
@@ -49,7 +49,7 @@ fn check_pixels(ts: &[ScreenTriangle], out: &[FourOutputs]) -> Result<(), String
         let subs = g4::subdivide(t);
         let mut seen = HashSet::new();
         for k in 0..LANES {
-            let got = golden::address_block::stream_pixels(&segs[k][i]);
+            let got = golden::units::address_block::stream_pixels(&segs[k][i]);
             let expect = subs.map(|s| g4::walk(&s[k]).pixels()).unwrap_or_default();
             if got != expect {
                 return Err(format!(
@@ -241,7 +241,7 @@ fn broken_four_triangle_export_is_caught() {
     .collect();
     let rows = stimulus(&tris).0;
     let b = testbenches::registry::find("four-triangle").unwrap();
-    let v = b.verilog(&rtl::registry::Options::new()).unwrap();
+    let v = b.verilog(&rtl::core::registry::Options::new()).unwrap();
     for m in ["lane3$a_f = t_f", "all_ready = "] {
         assert!(v.contains(m), "mutant anchor {m:?} not in the export");
     }

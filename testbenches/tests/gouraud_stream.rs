@@ -12,10 +12,10 @@ use golden::testing::seed_for;
 use pipeline::axis::{Beat, Word};
 use pipeline::gouraud::{gouraud_record, gouraud_words};
 use pipeline::gouraud::{Pipe, TriangleJob};
-use rtl::registry::Options;
-use testbenches::gouraud_stream::{drive, reference_beats, scene, GouraudStreamRun};
+use rtl::core::registry::Options;
 use testbenches::registry::find;
 use testbenches::stall::StallPattern;
+use testbenches::stream::gouraud_stream::{drive, reference_beats, scene, GouraudStreamRun};
 
 /// The beats the RTL (rust-hdl) delivers for the run's input rows, and its `error` at the end.
 fn rtl_beats(run: &GouraudStreamRun) -> (Vec<Beat>, bool) {
@@ -268,7 +268,7 @@ fn latency_from_last_word_to_first_beat() {
         rows.push(vec![w as u64, 1, last as u64, 1]);
     }
     let last = rows.len() - 1;
-    let latency = rtl::gouraud_stream::GouraudStream::LATENCY;
+    let latency = rtl::stream::gouraud_stream::GouraudStream::LATENCY;
     rows.extend(std::iter::repeat_n(vec![0, 0, 0, 1], latency + 10));
     let out = find("gouraud-stream")
         .unwrap()
@@ -297,7 +297,7 @@ fn latency_from_last_word_to_first_beat() {
 /// port order (between `load` and `hold`).
 #[test]
 fn layout_fields_are_the_raster_ports() {
-    use rtl::stream_layout::GOURAUD_TRIANGLE;
+    use rtl::stream::layout::GOURAUD_TRIANGLE;
     let (ins, _) = find("gouraud-raster").unwrap().ports();
     let ports: Vec<(String, usize)> = ins.iter().map(|p| (p.name.to_string(), p.width)).collect();
     let fields: Vec<(String, usize)> = GOURAUD_TRIANGLE

@@ -1,7 +1,10 @@
-//! Every block's header states its latency, and states the one its `LATENCY` constant has: the
-//! `//!` header of the file declaring the block (`… as "name"`) must name `LATENCY` clocks on a
-//! line about latency, and a port row saying `valid_out` is `valid_in` N clocks later must say
-//! N = `LATENCY`. A header left behind by a re-timed block fails here.
+//! What every block's header and port list must say, read from the sources and the block list:
+//! - its latency, the one its `LATENCY` constant has: the `//!` header of the file declaring
+//!   the block (`… as "name"`) names `LATENCY` clocks on a line about latency, and a port row
+//!   saying `valid_out` is `valid_in` N clocks later says N = `LATENCY`;
+//! - the one control vocabulary of `rtl/README.md` ("Shared handshake"): `valid_in`/`valid_out`
+//!   for streams of items, `load`/`ready`/`hold` and `done` for walkers, lanes as a suffix
+//!   (`_a`, `_b`, `_l0` … `_l3`), AXI4-Stream names at a stream top's boundary.
 
 use flow::blocks::BLOCKS;
 
@@ -101,6 +104,72 @@ fn every_header_states_the_latency_of_its_block() {
                             .collect::<Vec<_>>()
                             .join(", ")
                     ));
+                }
+            }
+        }
+    }
+    assert!(wrong.is_empty(), "{}", wrong.join("\n"));
+}
+
+/// Lane suffixes: two-lane blocks `_a`, `_b`; four-lane blocks `_l0` … `_l3`.
+const LANES: [&str; 6] = ["_a", "_b", "_l0", "_l1", "_l2", "_l3"];
+
+/// `name` without its lane suffix.
+fn base(name: &str) -> &str {
+    LANES
+        .iter()
+        .find_map(|l| name.strip_suffix(l))
+        .unwrap_or(name)
+}
+
+#[test]
+fn every_block_speaks_the_one_control_vocabulary() {
+    let mut wrong = Vec::new();
+    for b in BLOCKS {
+        let (ins, outs) = b.ports();
+        let names: Vec<&str> = ins.iter().chain(&outs).map(|p| p.name).collect();
+        let has = |n: &str| names.iter().any(|&p| p == n || base(p) == n);
+        let mut bad = |why: String| wrong.push(format!("{}: {why}", b.name()));
+        for &p in &names {
+            if p.starts_with("s_axis_") || p.starts_with("m_axis_") {
+                let t = p.rsplit('_').next().unwrap_or("");
+                if !["tdata", "tvalid", "tready", "tlast", "tuser"].contains(&t) {
+                    bad(format!("{p}: not an AXI4-Stream signal name"));
+                }
+                continue;
+            }
+            if p.starts_with("in_") {
+                bad(format!(
+                    "{p}: an input is marked by the suffix `_in`, not a prefix"
+                ));
+            }
+            if base(p) == "last" || p.ends_with("_last") {
+                bad(format!(
+                    "{p}: a run ends in `done` (`tlast` only on AXI4-Stream)"
+                ));
+            }
+            if p.len() > 3
+                && p.as_bytes()[0] == b'l'
+                && p.as_bytes()[1].is_ascii_digit()
+                && p.as_bytes()[2] == b'_'
+            {
+                bad(format!("{p}: a lane is a suffix (`_l0`), not a prefix"));
+            }
+            if let Some(rest) = p.strip_prefix("valid_") {
+                if !["in", "out"].contains(&rest) && !LANES.contains(&format!("_{rest}").as_str()) {
+                    bad(format!(
+                        "{p}: `valid_in`, `valid_out` or `valid` with a lane suffix"
+                    ));
+                }
+            }
+        }
+        if has("valid_in") != has("valid_out") && !has("load") {
+            bad("a stream of items carries `valid_in` and `valid_out` both".into());
+        }
+        if has("ready") && !b.name().ends_with("-stream") {
+            for n in ["load", "hold", "done"] {
+                if !has(n) {
+                    bad(format!("a walker (it has `ready`) needs `{n}`"));
                 }
             }
         }

@@ -5,17 +5,17 @@
 //! within 1 LSB of golden Gouraud.
 
 use glam::{DQuat, DVec3};
-use golden::intensity_interpolator::{additions, interpolate};
 use golden::raster::{edge_function_pixels, walk};
 use golden::shade::ShadeContext;
 use golden::testing::{runner, seed_for};
 use golden::types::{Plane, ScreenTriangle, ScreenVertex};
+use golden::units::intensity_interpolator::{additions, interpolate};
 use pipeline::gouraud::{clock_budget, Pipe, TriangleJob};
 use proptest::prelude::*;
 use proptest::test_runner::TestCaseError;
 use std::collections::HashMap;
-use testbenches::address_block::{channel_planes, triangle_strategy, GoldenPixel};
-use testbenches::intensity_interpolator::{check_bvi as run_bvi, check_words};
+use testbenches::units::address_block::{channel_planes, triangle_strategy, GoldenPixel};
+use testbenches::units::intensity_interpolator::{check_bvi as run_bvi, check_words};
 
 type Tri = [(i32, i32); 3];
 
@@ -157,7 +157,7 @@ fn check_colours(
     let mut max_diff = 0;
     let mut seen: HashMap<(u32, u32), usize> = HashMap::new();
     for t in tris {
-        let Some(g) = golden::gouraud::setup(t, ctx) else {
+        let Some(g) = golden::shading::gouraud::setup(t, ctx) else {
             continue;
         };
         for (x, y) in edge_function_pixels(t) {
@@ -165,7 +165,7 @@ fn check_colours(
             let k = seen.entry(key).or_default();
             let got = px[&key][*k];
             *k += 1;
-            let want = golden::gouraud::pixel(&g, x, y);
+            let want = golden::shading::gouraud::pixel(&g, x, y);
             for c in 0..3 {
                 let d = (got[c] as i32 - want[c] as i32).unsigned_abs() as usize;
                 assert!(
@@ -296,8 +296,8 @@ use flow::synth::check_and_synth;
 use flow::tools::{self, Tool};
 use flow::verilog::{Mutant, Simulator};
 use proptest::strategy::ValueTree;
-use testbenches::intensity_interpolator::{bvi_rows, pipe_rows};
 use testbenches::registry::assert_mutants_caught;
+use testbenches::units::intensity_interpolator::{bvi_rows, pipe_rows};
 
 fn block(name: &str) -> &'static dyn testbenches::registry::Entry {
     testbenches::registry::find(name).unwrap()
@@ -346,7 +346,7 @@ fn yosys_keeps_the_bvi_registers() {
         return;
     }
     let v = block("intensity-interpolator")
-        .verilog(&rtl::registry::Options::new())
+        .verilog(&rtl::core::registry::Options::new())
         .unwrap();
     let rep = check_and_synth(&v, "intensity_interpolator", "yosys-bvi")
         .unwrap_or_else(|e| panic!("{e}"));
@@ -368,7 +368,7 @@ fn bvi_and_pipe_differential_icarus() {
     for (name, rows) in runs {
         let rep = flow::blocks::differential(
             block(name),
-            &rtl::registry::Options::new(),
+            &rtl::core::registry::Options::new(),
             &rows,
             Simulator::Icarus,
             &format!("diff-{name}"),

@@ -1,11 +1,11 @@
-//! The K recurrence (`rtl::k_recurrence`): exact K along spans, and the span normalizer.
+//! The K recurrence (`rtl::units::k_recurrence`): exact K along spans, and the span normalizer.
 
 use golden::testing::seed_for;
-use rtl::k_recurrence::{KRecurrence, SpanNormalizer};
-use rtl::normalizer::{Normalizer, NormalizerCoeffs};
+use rtl::units::k_recurrence::{KRecurrence, SpanNormalizer};
+use rtl::units::normalizer::{Normalizer, NormalizerCoeffs};
 use testbenches::harness::{self, simulate_rows, CheckSpec, Compare};
-use testbenches::k_recurrence::*;
-use testbenches::normalizer::check_spec;
+use testbenches::units::k_recurrence::*;
+use testbenches::units::normalizer::check_spec;
 
 #[test]
 fn span_vectors_stay_in_the_formula_domain() {
@@ -15,7 +15,7 @@ fn span_vectors_stay_in_the_formula_domain() {
     let (mut lo, mut hi) = (f64::MAX, 0.0f64);
     for s in &spans {
         for i in 0..s.len {
-            let k = s.k_direct(i) as f64 * rtl::fixed::K_FULL.lsb();
+            let k = s.k_direct(i) as f64 * rtl::core::fixed::K_FULL.lsb();
             lo = lo.min(k);
             hi = hi.max(k);
         }

@@ -10,7 +10,7 @@
 
 use flow::tools;
 use flow::verilog::{Mutant, Simulator};
-use rtl::registry::Options;
+use rtl::core::registry::Options;
 use testbenches::registry::assert_mutants_caught_by_twin as check;
 
 fn check400(block: &str, o: Options, mutants: &[Mutant]) {

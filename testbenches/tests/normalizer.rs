@@ -1,12 +1,12 @@
-//! Cycle-by-cycle tests of the normalizer (`rtl::normalizer`) against `golden::normalizer`.
+//! Cycle-by-cycle tests of the normalizer (`rtl::units::normalizer`) against `golden::units::normalizer`.
 
-use golden::normalizer::{FIT, K_DOMAIN, PUBLISHED};
 use golden::testing::{runner, seed_for};
+use golden::units::normalizer::{FIT, K_DOMAIN, PUBLISHED};
 use proptest::strategy::{Strategy, ValueTree};
-use rtl::fixed::{INTERPOLATED, K_FULL};
-use rtl::normalizer::{CoeffError, ErrorBudget, Normalizer, NormalizerCoeffs, NormalizerK};
+use rtl::core::fixed::{INTERPOLATED, K_FULL};
+use rtl::units::normalizer::{CoeffError, ErrorBudget, Normalizer, NormalizerCoeffs, NormalizerK};
 use testbenches::harness::{self, Expected};
-use testbenches::normalizer::*;
+use testbenches::units::normalizer::*;
 
 /// Runs the 100k domain vectors through the normalizer; returns (measured end-to-end max vs
 /// the quantized vector, vs the f64 vector, datapath bound).
@@ -167,7 +167,7 @@ fn normalizer_k_takes_exact_k() {
     // The back end alone (its registry bench): 10 000 domain vectors, each with K = x² + y² + z²
     // of the quantized (Q2.17) vector, floored to Q4.28, as the fifth input, checked every clock
     // against the golden model.
-    use rtl::registry::RtlBlock;
+    use rtl::core::registry::RtlBlock;
     use testbenches::registry::Bench;
     let name = "normalizer_k";
     let seed = seed_for(name);
@@ -293,8 +293,8 @@ fn domain_strategy_stays_in_the_domain() {
 /// only the word comparison catches it reliably; the f64 bound never could.)
 #[test]
 fn twin_catches_a_one_lsb_coefficient_error() {
-    use golden::normalizer::twin::NormalizerKTwin;
-    use rtl::registry::RtlBlock;
+    use golden::units::normalizer::twin::NormalizerKTwin;
+    use rtl::core::registry::RtlBlock;
     use testbenches::registry::Bench;
     let words = |c: &NormalizerCoeffs| (c.c2_mag as i64, c.c2_neg, c.c1, c.c0);
     let seed = seed_for("twin_one_lsb_coefficient");

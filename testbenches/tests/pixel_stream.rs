@@ -8,11 +8,11 @@ use flow::verilog::Simulator;
 use golden::testing::seed_for;
 use pipeline::axis::{Beat, Word};
 use pipeline::lit::{register_record, scene_words, triangle_record};
-use rtl::pixel_pipeline::PipelineParams;
-use rtl::registry::{BlockParams, Options};
-use testbenches::pixel_stream::{drive, reference_beats, scene, StreamRun};
+use rtl::core::registry::{BlockParams, Options};
+use rtl::pipelines::pixel_pipeline::PipelineParams;
 use testbenches::registry::find;
 use testbenches::stall::StallPattern;
+use testbenches::stream::pixel_stream::{drive, reference_beats, scene, StreamRun};
 
 fn params() -> (PipelineParams, Options) {
     let o = Options::new();
@@ -215,7 +215,7 @@ fn latency_from_last_word_to_first_beat() {
         rows.push(vec![w as u64, 1, last as u64, 1]);
     }
     let last = rows.len() - 1;
-    let latency = rtl::pixel_stream::PixelStream::LATENCY;
+    let latency = rtl::stream::pixel_stream::PixelStream::LATENCY;
     rows.extend(std::iter::repeat_n(vec![0, 0, 0, 1], latency + 10));
     let out = find("pixel-stream")
         .unwrap()
@@ -232,15 +232,15 @@ fn latency_from_last_word_to_first_beat() {
     assert_eq!(first - last, latency);
 }
 
-/// `rtl/README.md` shows the layout the table gives (`rtl::stream_layout::markdown`).
+/// `rtl/README.md` shows the layout the table gives (`rtl::stream::layout::markdown`).
 #[test]
 fn readme_shows_the_generated_layout() {
     let readme =
         std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../rtl/README.md")).unwrap();
     assert!(
-        readme.contains(&rtl::stream_layout::markdown()),
-        "rtl/README.md's stream layout differs from rtl::stream_layout::markdown(): paste it\n{}",
-        rtl::stream_layout::markdown()
+        readme.contains(&rtl::stream::layout::markdown()),
+        "rtl/README.md's stream layout differs from rtl::stream::layout::markdown(): paste it\n{}",
+        rtl::stream::layout::markdown()
     );
 }
 
@@ -248,7 +248,7 @@ fn readme_shows_the_generated_layout() {
 /// and widths, in port order (between `load` and `hold`).
 #[test]
 fn layout_fields_are_the_pipeline_ports() {
-    use rtl::stream_layout::{REGISTERS, TRIANGLE};
+    use rtl::stream::layout::{REGISTERS, TRIANGLE};
     let (ins, _) = find("pixel-pipeline").unwrap().ports();
     let ports: Vec<(String, usize)> = ins.iter().map(|p| (p.name.to_string(), p.width)).collect();
     let fields: Vec<(String, usize)> = TRIANGLE

@@ -15,7 +15,7 @@ use flow::synth::check_and_map_ice40;
 use flow::tools::{self, Tool};
 use flow::verilog::Simulator;
 use golden::testing::seed_for;
-use rtl::registry::Options;
+use rtl::core::registry::Options;
 use testbenches::registry::{self, test_rows, Entry, BLOCKS};
 
 /// Items of stimulus per block in the generic tests (triangles take 1000–2000 clocks each).
@@ -306,12 +306,12 @@ fn every_block_verilog_is_bit_exact_under_icarus() {
 fn triangle_block_latencies_match_the_rtl() {
     use golden::types::{Plane, ScreenTriangle};
     use pipeline::gouraud::{pipe_row, TriangleJob};
-    use rtl::address_block::AddressBlock;
-    use rtl::gouraud_raster::GouraudRaster;
-    use rtl::intensity_interpolator::IntensityInterpolator;
-    use rtl::sim::simulate_rows;
-    use testbenches::address_block::address_run;
-    use testbenches::intensity_interpolator::{bvi_rows, pipe_rows};
+    use rtl::core::sim::simulate_rows;
+    use rtl::pipelines::gouraud_raster::GouraudRaster;
+    use rtl::units::address_block::AddressBlock;
+    use rtl::units::intensity_interpolator::IntensityInterpolator;
+    use testbenches::units::address_block::address_run;
+    use testbenches::units::intensity_interpolator::{bvi_rows, pipe_rows};
     let t = ScreenTriangle::from_points([(3, 1), (40, 7), (11, 30)]);
     let ramp = |c: f64| Plane { a: 1.0, b: 2.0, c };
     let job = TriangleJob::new(&t, &[ramp(10.0), ramp(20.0), ramp(30.0)]);

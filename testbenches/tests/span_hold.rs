@@ -13,11 +13,11 @@ use flow::blocks::differential;
 use flow::verilog::Simulator;
 use golden::testing::seed_for;
 use pipeline::span::SpanKind;
-use rtl::registry::Options;
-use testbenches::quadric_unit::triangles;
+use rtl::core::registry::Options;
+use testbenches::pipelines::span_held::{held_run, HeldRun};
 use testbenches::registry::find;
-use testbenches::span_held::{held_run, HeldRun};
 use testbenches::stall::StallPattern;
+use testbenches::units::quadric_unit::triangles;
 
 /// A pixel shown: (line number, x, y, z, r, g, b).
 type Pixel = (usize, u64, u64, u64, [u64; 3]);
@@ -36,7 +36,7 @@ fn block(kind: SpanKind) -> (&'static str, Options) {
 }
 
 /// The pixels the RTL (rust-hdl) shows for the run, in order (lane A before lane B in a
-/// clock), each with the number of `last` flags before it (its line).
+/// clock), each with the number of `done` flags before it (its line).
 fn rtl_pixels(kind: SpanKind, run: &HeldRun) -> Vec<Pixel> {
     let (name, o) = block(kind);
     let out = find(name)

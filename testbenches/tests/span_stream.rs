@@ -15,12 +15,12 @@ use pipeline::axis::{Beat, Word};
 use pipeline::lit::ShadingRegs;
 use pipeline::span::{span_clock_budget, SpanJob, SpanKind, SpanPipe};
 use pipeline::span::{span_line_record, span_register_record, span_stream_words};
-use rtl::fragment_fifo::FIFO_DEPTH;
-use rtl::registry::{Options, RtlBlock};
+use rtl::core::registry::{Options, RtlBlock};
+use rtl::stream::fragment_fifo::FIFO_DEPTH;
 use testbenches::registry::find;
 use testbenches::registry::Entry;
-use testbenches::span_stream::{drive, reference_beats, scene, stalls, SpanStreamRun};
 use testbenches::stall::StallPattern;
+use testbenches::stream::span_stream::{drive, reference_beats, scene, stalls, SpanStreamRun};
 
 /// A two-lane stream top under test: its registry name, build options, span kind, the wrapped
 /// pipeline's method and latency.
@@ -39,21 +39,21 @@ fn tops() -> [Top; 3] {
             options: Options::new(),
             kind: SpanKind::Angular,
             method: Method::Angular,
-            latency: <rtl::angular_stream::AngularStream as RtlBlock>::LATENCY,
+            latency: <rtl::stream::angular_stream::AngularStream as RtlBlock>::LATENCY,
         },
         Top {
             block: "fast-stream",
             options: Options::new().with("inv-sqrt", "fit"),
             kind: SpanKind::Fast("fit"),
             method: Method::FastFit,
-            latency: <rtl::fast_stream::FastStream as RtlBlock>::LATENCY,
+            latency: <rtl::stream::fast_stream::FastStream as RtlBlock>::LATENCY,
         },
         Top {
             block: "quadric-stream",
             options: Options::new(),
             kind: SpanKind::Quadric,
             method: Method::Quadric,
-            latency: <rtl::quadric_stream::QuadricStream as RtlBlock>::LATENCY,
+            latency: <rtl::stream::quadric_stream::QuadricStream as RtlBlock>::LATENCY,
         },
     ]
 }
@@ -525,7 +525,7 @@ fn latency_from_last_word_to_first_beat() {
 /// widths, in port order (between `load` and `hold`).
 #[test]
 fn layout_fields_are_the_pipeline_ports() {
-    use rtl::stream_layout::{ANGULAR_STREAM, FAST_STREAM};
+    use rtl::stream::layout::{ANGULAR_STREAM, FAST_STREAM};
     for layout in [ANGULAR_STREAM, FAST_STREAM] {
         let (ins, _) = find(layout.wraps).unwrap().ports();
         let ports: Vec<(String, usize)> =
@@ -548,7 +548,7 @@ fn layout_fields_are_the_pipeline_ports() {
 /// type) and `hold`, the same names and widths.
 #[test]
 fn quadric_layout_fields_are_the_unit_ports() {
-    use rtl::stream_layout::QUADRIC_STREAM;
+    use rtl::stream::layout::QUADRIC_STREAM;
     let (ins, _) = find("quadric-unit").unwrap().ports();
     let mut ports: Vec<(String, usize)> = ins
         .iter()

@@ -8,17 +8,17 @@
 
 use flow::blocks::differential;
 use flow::verilog::Simulator;
-use golden::four_triangle::LANES;
 use golden::shade::to_u8;
 use golden::testing::seed_for;
+use golden::units::four_triangle::LANES;
 use pipeline::axis::{Beat, Word};
 use pipeline::subdivision::{clock_budget, SubJob, SubPipe};
 use pipeline::subdivision::{subdivision_record, subdivision_words};
-use rtl::fragment_fifo::FIFO_DEPTH;
-use rtl::registry::Options;
+use rtl::core::registry::Options;
+use rtl::stream::fragment_fifo::FIFO_DEPTH;
 use testbenches::registry::find;
 use testbenches::stall::StallPattern;
-use testbenches::subdivision_stream::{
+use testbenches::stream::subdivision_stream::{
     drive, reference_beats, scene, stalls, SubdivisionStreamRun, INPUTS, OUTPUTS,
 };
 
@@ -310,7 +310,7 @@ fn latency_from_last_word_to_first_beat() {
         rows.push(r);
     }
     let last = rows.len() - 1;
-    let latency = rtl::subdivision_stream::SubdivisionStream::LATENCY;
+    let latency = rtl::stream::subdivision_stream::SubdivisionStream::LATENCY;
     rows.extend(std::iter::repeat_n(idle, latency + 10));
     let out = find("subdivision-stream")
         .unwrap()
@@ -338,7 +338,7 @@ fn latency_from_last_word_to_first_beat() {
 /// port order (between `load` and `hold`).
 #[test]
 fn layout_fields_are_the_raster_ports() {
-    use rtl::stream_layout::SUBDIVISION_PARENT;
+    use rtl::stream::layout::SUBDIVISION_PARENT;
     let (ins, _) = find("subdivision-raster").unwrap().ports();
     let ports: Vec<(String, usize)> = ins.iter().map(|p| (p.name.to_string(), p.width)).collect();
     let fields: Vec<(String, usize)> = SUBDIVISION_PARENT

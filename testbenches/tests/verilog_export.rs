@@ -12,12 +12,12 @@ use flow::synth::{check_and_map_ice40, check_and_synth};
 use flow::tools::{self, Tool};
 use flow::verilog::{self as verilog, DiffError, Mutant, Simulator};
 use golden::testing::seed_for;
-use rtl::export;
-use rtl::normalizer::{Normalizer, NormalizerCoeffs};
-use rtl::registry::Options;
-use testbenches::k_recurrence::{krec_rows, span_rows, spans_and_schedule};
-use testbenches::normalizer::*;
+use rtl::core::export;
+use rtl::core::registry::Options;
+use rtl::units::normalizer::{Normalizer, NormalizerCoeffs};
 use testbenches::registry::{self, assert_mutants_caught};
+use testbenches::units::k_recurrence::{krec_rows, span_rows, spans_and_schedule};
+use testbenches::units::normalizer::*;
 
 fn icarus(test: &str) -> bool {
     tools::require(Simulator::Icarus.tools(), test)
@@ -150,8 +150,8 @@ fn broken_export_is_caught() {
 /// bit-exact twin on the first vectors; the unmodified export equals the twin every clock.
 #[test]
 fn twin_catches_a_quarter_lsb_output_bias() {
-    use rtl::registry::RtlBlock;
-    use rtl::sim::Dut;
+    use rtl::core::registry::RtlBlock;
+    use rtl::core::sim::Dut;
     use testbenches::registry::Bench;
     if !icarus("twin_catches_a_quarter_lsb_output_bias") {
         return;

@@ -10,8 +10,8 @@ use std::path::Path;
 use std::process::Command;
 
 use flow::tools::{self, Tool};
-use rtl::export;
-use rtl::registry::Options;
+use rtl::core::export;
+use rtl::core::registry::Options;
 use testbenches::registry::{self, BLOCKS};
 
 /// The `%Warning`/`%Error` lines of `verilator --lint-only -Wall [waivers] --top-module m file`.

@@ -4,7 +4,7 @@
 
 use flow::vcd_check::{sample, variables};
 use golden::testing::seed_for;
-use rtl::registry::Options;
+use rtl::core::registry::Options;
 use testbenches::harness::{target_dir, CLOCK_PERIOD_PS};
 use testbenches::registry::{find, sim_to_vcd};
 

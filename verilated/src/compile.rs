@@ -16,7 +16,7 @@ use std::process::Command;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, Mutex, OnceLock};
 
-use rtl::sim::Port;
+use rtl::core::sim::Port;
 
 use crate::model::Library;
 use crate::Design;

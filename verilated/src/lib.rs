@@ -11,8 +11,8 @@
 //!   in a temporary directory and renamed into place (whole or not at all), checked on every
 //!   load (size and checksum, ABI version, port list) and rebuilt when broken. A lock file makes
 //!   a second process (or thread) wait for a build under way instead of repeating it.
-//! - [`VModel`]: one instance of the model, a [`rtl::sim::Model`] like rust-hdl's
-//!   [`rtl::sim::RustHdlModel`], with the same clock timing: inputs applied with the clock low,
+//! - [`VModel`]: one instance of the model, a [`rtl::core::sim::Model`] like rust-hdl's
+//!   [`rtl::core::sim::RustHdlModel`], with the same clock timing: inputs applied with the clock low,
 //!   outputs sampled, then the rising edge.
 //!
 //! Why `libloading` rather than a crate made for driving Verilator models from Rust: `verilated`
@@ -29,8 +29,8 @@ mod model;
 pub use compile::{build, cache_dir, set_quiet, toolchain, wrapper, Toolchain};
 pub use model::{Library, VModel};
 
-use rtl::registry::{module_name, BlockParams, RtlBlock};
-use rtl::sim::Port;
+use rtl::core::registry::{module_name, BlockParams, RtlBlock};
+use rtl::core::sim::Port;
 
 /// Version of the C ABI [`wrapper`] generates (part of every cache key).
 pub(crate) const ABI_VERSION: u32 = 1;
@@ -74,7 +74,10 @@ impl Design {
 /// The design of block `B` built with `p`.
 pub fn design<B: RtlBlock>(p: &B::Params) -> Design {
     let dut = B::build(p);
-    let (inputs, outputs) = (rtl::sim::Dut::inputs(&dut), rtl::sim::Dut::outputs(&dut));
+    let (inputs, outputs) = (
+        rtl::core::sim::Dut::inputs(&dut),
+        rtl::core::sim::Dut::outputs(&dut),
+    );
     let name = match p.describe() {
         Some(d) => format!("{} ({d})", B::NAME),
         None => B::NAME.to_string(),
@@ -86,7 +89,7 @@ pub fn design<B: RtlBlock>(p: &B::Params) -> Design {
         module: module_name(B::NAME),
         inputs,
         outputs,
-        verilog: Box::new(move || rtl::export::verilog::<B>(&params)),
+        verilog: Box::new(move || rtl::core::export::verilog::<B>(&params)),
     }
 }
 

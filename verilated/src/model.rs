@@ -5,7 +5,7 @@ use std::io::Write;
 use std::path::Path;
 use std::sync::Arc;
 
-use rtl::sim::{Model, Port};
+use rtl::core::sim::{Model, Port};
 
 type AbiFn = unsafe extern "C" fn() -> u32;
 type PortsFn = unsafe extern "C" fn() -> *const std::ffi::c_char;

@@ -2,8 +2,8 @@
 //! two builds of one design at once). Needs Verilator: without it each test says so on stderr
 //! and returns; with `CI` set it fails.
 
-use rtl::registry::{BlockParams, Options, RtlBlock};
-use rtl::sim::{Model, RustHdlModel};
+use rtl::core::registry::{BlockParams, Options, RtlBlock};
+use rtl::core::sim::{Model, RustHdlModel};
 
 fn require(test: &str) -> bool {
     match verilated::toolchain() {
@@ -66,16 +66,16 @@ fn normalizer_equals_rust_hdl_every_clock() {
     if !require("normalizer_equals_rust_hdl_every_clock") {
         return;
     }
-    let p =
-        <rtl::normalizer::Normalizer as RtlBlock>::Params::from_options(&Options::new()).unwrap();
-    let mut v = same_as_rust_hdl::<rtl::normalizer::Normalizer>(&p, 3000);
+    let p = <rtl::units::normalizer::Normalizer as RtlBlock>::Params::from_options(&Options::new())
+        .unwrap();
+    let mut v = same_as_rust_hdl::<rtl::units::normalizer::Normalizer>(&p, 3000);
     assert_eq!(v.cycle(), 3000);
     // The ceiling loop runs the same clocks (it returns a hash; two fresh instances agree).
     let widths: Vec<usize> = v.inputs().iter().map(|p| p.width).collect();
     let r = rows(9, 500, &widths);
     let h1 = v.bench_rows(&r).unwrap();
-    let mut w = verilated::model::<rtl::normalizer::Normalizer>(&p).unwrap();
-    let mut x = verilated::model::<rtl::normalizer::Normalizer>(&p).unwrap();
+    let mut w = verilated::model::<rtl::units::normalizer::Normalizer>(&p).unwrap();
+    let mut x = verilated::model::<rtl::units::normalizer::Normalizer>(&p).unwrap();
     let (h2, h3) = (w.bench_rows(&r).unwrap(), x.bench_rows(&r).unwrap());
     assert_eq!(h2, h3);
     assert_ne!(
@@ -88,9 +88,11 @@ fn normalizer_equals_rust_hdl_every_clock() {
 /// A design only this run knows (a comment with the process id and time in its Verilog), so
 /// the cache has no entry for it.
 fn fresh_design() -> verilated::Design {
-    let p = <rtl::address_block::AddressBlock as RtlBlock>::Params::from_options(&Options::new())
-        .unwrap();
-    let d = verilated::design::<rtl::address_block::AddressBlock>(&p);
+    let p = <rtl::units::address_block::AddressBlock as RtlBlock>::Params::from_options(
+        &Options::new(),
+    )
+    .unwrap();
+    let d = verilated::design::<rtl::units::address_block::AddressBlock>(&p);
     let text = (d.verilog)().unwrap();
     let stamp = format!(
         "// fresh {} {:?}\n",

@@ -304,7 +304,7 @@ pub fn ecp5(
 /// Where the ECP5 flow puts a 16×16 product's operand and product registers.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum MultRegs {
-    /// Inside the MULT18X18D (its input and output registers): [`rtl::ecp5_dsp::map_multipliers`]
+    /// Inside the MULT18X18D (its input and output registers): [`rtl::targets::ecp5_dsp::map_multipliers`]
     /// rewrites the exported Verilog first. The default.
     Dsp,
     /// In fabric flip-flops, as Yosys's `synth_ecp5` maps the Verilog as exported (the figures
@@ -317,7 +317,7 @@ pub enum MultRegs {
 pub fn ecp5_verilog(verilog: &str, regs: MultRegs) -> (String, usize) {
     match regs {
         MultRegs::Dsp => {
-            let m = rtl::ecp5_dsp::map_multipliers(verilog);
+            let m = rtl::targets::ecp5_dsp::map_multipliers(verilog);
             (m.verilog, m.products)
         }
         MultRegs::Fabric => (verilog.to_string(), 0),

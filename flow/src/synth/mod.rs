@@ -19,7 +19,7 @@ use std::fmt::Write as _;
 use std::path::PathBuf;
 
 use crate::tools;
-use rtl::sim::Port;
+use rtl::core::sim::Port;
 
 /// Cell counts from a Yosys `stat`.
 pub type CellCounts = BTreeMap<String, u64>;
@@ -204,7 +204,7 @@ mod tests {
         let part = ECP5_PARTS[0];
         let ports = |bits: usize| {
             (
-                vec![rtl::sim::Port {
+                vec![rtl::core::sim::Port {
                     name: "a",
                     width: bits,
                 }],

@@ -1,10 +1,10 @@
-//! The address block (`rtl::address_block`, SPEC §5) from the driver's side: its input and
+//! The address block (`rtl::units::address_block`, SPEC §5) from the driver's side: its input and
 //! output rows, the golden model's schedule of a list of set-ups, and the reactive walk, in
 //! which the block's own `ready` paces the loads (what `raster` and the renderer do).
 
-use golden::address_block::{AddressBlockModel, AddressOutputs, AddressSetup};
-use rtl::address_block::AddressBlock;
-use rtl::sim::Model as _;
+use golden::units::address_block::{AddressBlockModel, AddressOutputs, AddressSetup};
+use rtl::core::sim::Model as _;
+use rtl::units::address_block::AddressBlock;
 use std::io::Write;
 
 pub use crate::gouraud::setup_row;
@@ -101,7 +101,7 @@ pub fn run_reactive(
     max_clocks: usize,
     vcd: Option<Box<dyn Write>>,
 ) -> Result<Vec<AddressOutputs>, String> {
-    let mut s = rtl::sim::RustHdlModel::new(AddressBlock::default())?;
+    let mut s = rtl::core::sim::RustHdlModel::new(AddressBlock::default())?;
     if let Some(w) = vcd {
         s.start_vcd(w)?;
     }
@@ -120,7 +120,7 @@ pub fn run_reactive_on(
 
 /// [`run_reactive`] on any simulated address block (`ready` its output 0).
 pub fn run_reactive_model(
-    s: &mut dyn rtl::sim::Model,
+    s: &mut dyn rtl::core::sim::Model,
     setups: &[AddressSetup],
     max_clocks: usize,
 ) -> Result<Vec<AddressOutputs>, String> {

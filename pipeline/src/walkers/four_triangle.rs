@@ -1,11 +1,11 @@
-//! The four-triangle block (`rtl::four_triangle`, SPEC §7) from the driver's side: its input and
+//! The four-triangle block (`rtl::units::four_triangle`, SPEC §7) from the driver's side: its input and
 //! output rows, the golden model's schedule, and the reactive walk (the block's `ready` paces
 //! the loads; stops once every lane has shown its last `done`).
 
-use golden::address_block::AddressOutputs;
-use golden::four_triangle::{FourOutputs, FourTriangleSetup};
-use rtl::four_triangle::FourTriangle;
-use rtl::sim::Model as _;
+use golden::units::address_block::AddressOutputs;
+use golden::units::four_triangle::{FourOutputs, FourTriangleSetup};
+use rtl::core::sim::Model as _;
+use rtl::units::four_triangle::FourTriangle;
 use std::io::Write;
 
 /// Output ports: `ready`, then eight per lane.
@@ -66,7 +66,7 @@ pub fn row_outputs(r: &[u64]) -> FourOutputs {
 /// first clock the model is ready), up to the clock in which every lane has shown its last
 /// `done`.
 pub fn stimulus(setups: &[FourTriangleSetup]) -> (Vec<Vec<u64>>, Vec<FourOutputs>) {
-    golden::four_triangle::schedule(setups, 0)
+    golden::units::four_triangle::schedule(setups, 0)
         .into_iter()
         .map(|(o, load)| (four_row(load.map(|k| &setups[k]), false), o))
         .unzip()
@@ -99,7 +99,7 @@ pub fn run_reactive_held(
     vcd: Option<Box<dyn Write>>,
     hold: impl FnMut(usize) -> bool,
 ) -> Result<(Vec<Vec<u64>>, Vec<FourOutputs>), String> {
-    let mut s = rtl::sim::RustHdlModel::new(FourTriangle::default())?;
+    let mut s = rtl::core::sim::RustHdlModel::new(FourTriangle::default())?;
     if let Some(w) = vcd {
         s.start_vcd(w)?;
     }
@@ -108,7 +108,7 @@ pub fn run_reactive_held(
 
 /// [`run_reactive_held`] on any simulated four-triangle block (`ready` its output 0).
 pub fn run_reactive_model(
-    s: &mut dyn rtl::sim::Model,
+    s: &mut dyn rtl::core::sim::Model,
     setups: &[FourTriangleSetup],
     max_clocks: usize,
     mut hold: impl FnMut(usize) -> bool,

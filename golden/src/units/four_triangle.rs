@@ -1,0 +1,587 @@
+//! Four-triangle address block (SPEC §7, figs. 3.9–3.10): the midpoint subdivision of a
+//! triangle into four, the fill rule that makes the four sub-triangles tile the parent's pixel
+//! set exactly, the per-triangle set-up the software loads, and a cycle-accurate model of the
+//! block (`rtl/src/units/four_triangle.rs` matches [`FourTriangleModel`] bit for bit every clock).
+//!
+//! # Geometry
+//!
+//! Parent vertices sorted by (y, x): top T, middle M, bottom B (integer screen addresses).
+//! Edge midpoints `m_tm`, `m_tb`, `m_mb` lie on half-integers when an edge's extent is odd, so
+//! sub-triangles are kept in **doubled coordinates** (half-pixel units, all integers). Lanes:
+//!
+//! | lane | sub-triangle           | shape                        |
+//! |------|------------------------|------------------------------|
+//! | 0    | T, m_tm, m_tb          | half-size parent, at T       |
+//! | 1    | m_tm, M, m_mb          | the same shape, at m_tm      |
+//! | 2    | m_tb, m_mb, B          | the same shape, at m_tb      |
+//! | 3    | m_tm, m_mb, m_tb       | the same shape turned 180°   |
+//!
+//! # Fill rule (SPEC §7's open point)
+//!
+//! Every sub-triangle is rasterized under the **same top-left rule as the single address
+//! block, applied exactly to its half-integer vertices**: pixel (x, y) is sampled at its centre
+//! (2x + 1, 2y + 1) in doubled units; a centre strictly inside is in; a centre on an edge is
+//! in only for a *left* edge (interior on +x) or a *top* edge (horizontal, interior below).
+//! With half-integer vertices a centre *can* now lie on a horizontal edge or on a vertex; the
+//! rule is equivalent to moving the sample point by (ε, ε²) with ε → 0⁺, and a point that is in
+//! no line of the subdivision lies in exactly one sub-triangle. Hence the four sub-triangles
+//! tile the parent's pixel set ([`crate::raster::edge_function_pixels`]) exactly: no pixel
+//! twice, none lost (tested exhaustively on small triangles here, and on seeded random parents
+//! through the RTL in `testbenches/tests/four_triangle.rs`).
+//!
+//! Rows follow from the same rule: a sub-triangle owns the rows whose centre 2y + 1 lies in
+//! [Y_top, Y_bottom) (doubled), and the other side switches to the third edge on the first row
+//! whose centre is at or below the middle vertex (`row_of`).
+//!
+//! # Why the hardware shares increments but not error terms
+//!
+//! Every edge of every sub-triangle is parallel to one parent edge and half as long, so in
+//! doubled units its (Δx, Δy) is the parent edge's (Δx, Δy) in pixels: the DDA words f, r and
+//! D (`address_block` module doc) are **exactly the parent edge's** (the patent's CT1/CT2 holding
+//! the increments shifted right by one). The boundary and error term (b0, e0) differ per lane:
+//! the four shapes are translated by half-pixel offsets, and a translation by ½ changes which
+//! centres a shape covers, so one walker cannot stand for three corners unless every parent
+//! extent is even. The block therefore keeps one shared (f, r, D) per parent edge and one
+//! (b0, e0) register pair per lane and edge, and walks all four lanes in parallel.
+
+use crate::raster::{edge_steps, orientation};
+use crate::types::{Row, ScreenTriangle, Walk};
+use crate::units::address_block::{AddressBlockModel, AddressOutputs, AddressSetup, EdgeSetup};
+
+/// A point in doubled coordinates (half-pixel units).
+pub type P2 = (i64, i64);
+
+/// A sub-triangle: vertices in doubled coordinates.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct HalfTriangle {
+    pub v: [P2; 3],
+}
+
+/// Number of lanes (sub-triangles) of the block.
+pub const LANES: usize = 4;
+
+/// The lane of the middle sub-triangle (turned by 180°).
+pub const MIDDLE_LANE: usize = 3;
+
+fn div_ceil(n: i64, d: i64) -> i64 {
+    -((-n).div_euclid(d))
+}
+
+/// The first raster line whose pixel centre is at or below doubled height `y2`.
+pub fn row_of(y2: i64) -> i64 {
+    div_ceil(y2 - 1, 2)
+}
+
+/// Edge function of the directed edge a→b at p (doubled): ≥ 0 on the +x side of a downward
+/// edge.
+fn edge_fn(a: P2, b: P2, p: P2) -> i64 {
+    (p.0 - a.0) * (b.1 - a.1) - (p.1 - a.1) * (b.0 - a.0)
+}
+
+/// The four sub-triangles of `tri` in lane order (module doc); `None` for zero area.
+pub fn subdivide(tri: &ScreenTriangle) -> Option<[HalfTriangle; 4]> {
+    let o = orientation(tri)?;
+    let d = |p: (i32, i32)| (2 * p.0 as i64, 2 * p.1 as i64);
+    let mid = |a: (i32, i32), b: (i32, i32)| (a.0 as i64 + b.0 as i64, a.1 as i64 + b.1 as i64);
+    let (t, m, b) = (d(o.top), d(o.mid), d(o.bot));
+    let (m_tm, m_tb, m_mb) = (mid(o.top, o.mid), mid(o.top, o.bot), mid(o.mid, o.bot));
+    Some([
+        HalfTriangle { v: [t, m_tm, m_tb] },
+        HalfTriangle { v: [m_tm, m, m_mb] },
+        HalfTriangle { v: [m_tb, m_mb, b] },
+        HalfTriangle {
+            v: [m_tm, m_mb, m_tb],
+        },
+    ])
+}
+
+/// A half triangle's vertices sorted by (y, x) and whether the working edge is the left one.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct HalfOrientation {
+    pub top: P2,
+    pub mid: P2,
+    pub bot: P2,
+    pub left: bool,
+}
+
+impl HalfTriangle {
+    /// Twice the signed area in doubled units (4× the pixel-unit value).
+    pub fn area2(&self) -> i64 {
+        let [a, b, c] = self.v;
+        (b.0 - a.0) * (c.1 - a.1) - (c.0 - a.0) * (b.1 - a.1)
+    }
+
+    /// Sorted vertices and working-edge side; `None` for zero area.
+    pub fn orientation(&self) -> Option<HalfOrientation> {
+        if self.area2() == 0 {
+            return None;
+        }
+        let mut v = self.v;
+        v.sort_by_key(|&(x, y)| (y, x));
+        let side = edge_fn(v[0], v[2], v[1]);
+        Some(HalfOrientation {
+            top: v[0],
+            mid: v[1],
+            bot: v[2],
+            left: side > 0,
+        })
+    }
+
+    /// The centre of pixel (x, y) in doubled units.
+    fn centre(x: i64, y: i64) -> P2 {
+        (2 * x + 1, 2 * y + 1)
+    }
+
+    /// Reference rasterizer: every pixel whose centre passes the three edge functions under the
+    /// full top-left rule (module doc), row-major.
+    pub fn edge_function_pixels(&self) -> Vec<(i32, i32)> {
+        let area = self.area2();
+        if area == 0 {
+            return Vec::new();
+        }
+        let mut p = self.v;
+        if area > 0 {
+            p.swap(1, 2);
+        }
+        let edges: Vec<(P2, P2, bool)> = (0..3)
+            .map(|i| {
+                let (a, b) = (p[i], p[(i + 1) % 3]);
+                (a, b, b.1 > a.1 || (b.1 == a.1 && b.0 < a.0))
+            })
+            .collect();
+        let xs = self.v.map(|v| v.0);
+        let ys = self.v.map(|v| v.1);
+        let (x0, x1) = (
+            xs.iter().min().unwrap() / 2,
+            (xs.iter().max().unwrap() + 1) / 2,
+        );
+        let (y0, y1) = (
+            ys.iter().min().unwrap() / 2,
+            (ys.iter().max().unwrap() + 1) / 2,
+        );
+        let mut out = Vec::new();
+        for y in y0..=y1 {
+            for x in x0..=x1 {
+                let c = Self::centre(x, y);
+                let inside = edges.iter().all(|&(a, b, ties)| {
+                    let f = edge_fn(a, b, c);
+                    f > 0 || (f == 0 && ties)
+                });
+                if inside {
+                    out.push((x as i32, y as i32));
+                }
+            }
+        }
+        out
+    }
+}
+
+/// Smallest x whose centre on row y is on or right of the downward edge a→b (doubled),
+/// evaluated directly (no DDA): the golden walk's boundary.
+fn boundary(a: P2, b: P2, y: i64) -> i64 {
+    let (dx, dy) = (b.0 - a.0, b.1 - a.1);
+    // (2x + 1 − a.x)·dy − (2y + 1 − a.y)·dx ≥ 0
+    div_ceil((2 * y + 1 - a.1) * dx + (a.0 - 1) * dy, 2 * dy)
+}
+
+/// The SPEC §5 walk of a sub-triangle (the walk contract of [`Row`], with the rows and switch
+/// row of the module doc), computed from the edge functions row by row.
+pub fn walk(h: &HalfTriangle) -> Walk {
+    let Some(o) = h.orientation() else {
+        return Walk::default();
+    };
+    let dir: i8 = if o.left { 1 } else { -1 };
+    let (y0, y1) = (row_of(o.top.1), row_of(o.bot.1));
+    let mut rows = Vec::new();
+    let mut prev: Option<i64> = None;
+    for y in y0..y1 {
+        let bw = boundary(o.top, o.bot, y);
+        let bo = if 2 * y + 1 < o.mid.1 {
+            boundary(o.top, o.mid, y)
+        } else {
+            boundary(o.mid, o.bot, y)
+        };
+        let (x_start, len) = if o.left {
+            (bw, bo - bw)
+        } else {
+            (bw - 1, bw - bo)
+        };
+        let edge_steps = match prev {
+            None => Vec::new(),
+            Some(p) => edge_steps(x_start - p),
+        };
+        prev = Some(x_start);
+        rows.push(Row {
+            y: y as i32,
+            edge_steps,
+            x_start: x_start as i32,
+            len: len.max(0) as u32,
+            dir,
+        });
+    }
+    Walk { rows }
+}
+
+/// The DDA set-up of a sub-triangle's edge `upper`→`lower` (doubled, upper.y < lower.y) on
+/// its first row: `D = 2Δy`, `N(y) = (2y + 1 − Y0)·Δx + (X0 − 1)·Δy` (Δ in doubled units, which
+/// are the parent edge's Δ in pixels), `B = ⌈N/D⌉`, `e = B·D − N`, `f = ⌊Δx/Δy⌋`,
+/// `r = 2Δx − f·D`: the `address_block` form with half-integer end points.
+pub fn edge_setup(upper: P2, lower: P2) -> EdgeSetup {
+    let (dx, dy) = (lower.0 - upper.0, lower.1 - upper.1);
+    if dy <= 0 {
+        return EdgeSetup::default();
+    }
+    let y = row_of(upper.1);
+    let d = 2 * dy;
+    let n = (2 * y + 1 - upper.1) * dx + (upper.0 - 1) * dy;
+    let b0 = div_ceil(n, d);
+    let e0 = b0 * d - n;
+    let f = dx.div_euclid(dy);
+    let r = 2 * dx - f * d;
+    debug_assert!((0..d).contains(&e0) && (0..d).contains(&r));
+    EdgeSetup {
+        b0: b0.rem_euclid(4096) as u32,
+        e0: e0 as u32,
+        f: f as i32,
+        r: r as u32,
+        d: d as u32,
+    }
+}
+
+/// The single address block's set-up of a sub-triangle (what one lane of the block walks).
+pub fn address_setup(h: &HalfTriangle) -> AddressSetup {
+    let Some(o) = h.orientation() else {
+        let y = h.v.iter().map(|p| p.1).min().unwrap_or(0);
+        return AddressSetup {
+            y_top: row_of(y).clamp(0, 4095) as u32,
+            ..AddressSetup::default()
+        };
+    };
+    let (y_top, y_end, y_switch) = (row_of(o.top.1), row_of(o.bot.1), row_of(o.mid.1));
+    let w = edge_setup(o.top, o.bot);
+    let mut t = edge_setup(o.mid, o.bot);
+    if y_switch >= y_end {
+        // The third edge is never reached: keep its increments (shared words), no start.
+        t.b0 = 0;
+        t.e0 = 0;
+    }
+    let a = if y_switch > y_top {
+        edge_setup(o.top, o.mid)
+    } else {
+        t
+    };
+    AddressSetup {
+        w,
+        a,
+        t,
+        y_top: y_top as u32,
+        rows: (y_end - y_top) as u32,
+        y_switch: y_switch.rem_euclid(4096) as u32,
+        dir_neg: !o.left,
+    }
+}
+
+/// The increments of one edge DDA, shared by the lanes: f (12-bit word), r, D.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub struct EdgeIncrements {
+    pub f: i32,
+    pub r: u32,
+    pub d: u32,
+}
+
+impl EdgeIncrements {
+    fn of(e: &EdgeSetup) -> EdgeIncrements {
+        EdgeIncrements {
+            f: e.f,
+            r: e.r,
+            d: e.d,
+        }
+    }
+    pub fn f_word(&self) -> u32 {
+        (self.f as u32) & 0xFFF
+    }
+}
+
+/// One lane's own set-up words: (b0, e0) of its working, other and third edge, which shared
+/// increments its other and third edge use, and its rows.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub struct LaneSetup {
+    pub w_b0: u32,
+    pub w_e0: u32,
+    pub a_b0: u32,
+    pub a_e0: u32,
+    /// The other edge uses the parent's third-edge increments (else the adjacent edge's).
+    pub a_third: bool,
+    pub t_b0: u32,
+    pub t_e0: u32,
+    /// The third edge uses the parent's adjacent-edge increments (else the third edge's).
+    pub t_adjacent: bool,
+    pub y_top: u32,
+    pub rows: u32,
+    pub y_switch: u32,
+    pub dir_neg: bool,
+}
+
+/// One parent triangle's set-up for the four-triangle block.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub struct FourTriangleSetup {
+    /// Shared increments of the parent's working (T→B), adjacent (T→M) and third (M→B) edge.
+    pub w: EdgeIncrements,
+    pub a: EdgeIncrements,
+    pub t: EdgeIncrements,
+    pub lanes: [LaneSetup; 4],
+}
+
+impl FourTriangleSetup {
+    /// The set-up of `tri` (vertices in 0..=4095). A zero-area triangle loads four lanes
+    /// without rows.
+    pub fn new(tri: &ScreenTriangle) -> FourTriangleSetup {
+        let Some(subs) = subdivide(tri) else {
+            let y = tri.v.iter().map(|p| p.y).min().unwrap_or(0) as u32;
+            let mut s = FourTriangleSetup::default();
+            for l in &mut s.lanes {
+                l.y_top = y;
+            }
+            return s;
+        };
+        let o = orientation(tri).expect("non-zero area");
+        // A sub-edge's Δ in doubled units is its parent edge's Δ in pixels.
+        let inc = |a: (i32, i32), b: (i32, i32)| {
+            EdgeIncrements::of(&edge_setup(
+                (0, 0),
+                ((b.0 - a.0) as i64, (b.1 - a.1) as i64),
+            ))
+        };
+        let (w, a, t) = (inc(o.top, o.bot), inc(o.top, o.mid), inc(o.mid, o.bot));
+        let lanes = std::array::from_fn(|k| {
+            let s = address_setup(&subs[k]);
+            let (si_a, si_t) = (EdgeIncrements::of(&s.a), EdgeIncrements::of(&s.t));
+            assert_eq!(
+                EdgeIncrements::of(&s.w),
+                w,
+                "lane {k}: working edge not shared"
+            );
+            // Where two parent edges have equal increments either choice loads the same words.
+            let a_third = si_a != a;
+            let t_adjacent = si_t != t;
+            assert_eq!(
+                si_a,
+                if a_third { t } else { a },
+                "lane {k}: other edge not shared"
+            );
+            assert_eq!(
+                si_t,
+                if t_adjacent { a } else { t },
+                "lane {k}: third edge not shared"
+            );
+            LaneSetup {
+                w_b0: s.w.b0,
+                w_e0: s.w.e0,
+                a_b0: s.a.b0,
+                a_e0: s.a.e0,
+                a_third,
+                t_b0: s.t.b0,
+                t_e0: s.t.e0,
+                t_adjacent,
+                y_top: s.y_top,
+                rows: s.rows,
+                y_switch: s.y_switch,
+                dir_neg: s.dir_neg,
+            }
+        });
+        FourTriangleSetup { w, a, t, lanes }
+    }
+
+    /// The single-block set-up lane `k` walks: its (b0, e0) with the shared increments it
+    /// selects (exactly what the RTL wires into each lane's address block).
+    pub fn lane(&self, k: usize) -> AddressSetup {
+        let l = &self.lanes[k];
+        let edge = |b0: u32, e0: u32, i: &EdgeIncrements| EdgeSetup {
+            b0,
+            e0,
+            f: i.f,
+            r: i.r,
+            d: i.d,
+        };
+        AddressSetup {
+            w: edge(l.w_b0, l.w_e0, &self.w),
+            a: edge(l.a_b0, l.a_e0, if l.a_third { &self.t } else { &self.a }),
+            t: edge(l.t_b0, l.t_e0, if l.t_adjacent { &self.a } else { &self.t }),
+            y_top: l.y_top,
+            rows: l.rows,
+            y_switch: l.y_switch,
+            dir_neg: l.dir_neg,
+        }
+    }
+}
+
+/// The block's outputs in one clock: `ready` and one address-block output bundle per lane
+/// (lane k carries sub-triangle k; its `done` marks that sub-triangle's last event).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct FourOutputs {
+    pub ready: bool,
+    pub lanes: [AddressOutputs; 4],
+}
+
+impl FourOutputs {
+    /// Number of valid addresses in this clock (0..=4).
+    pub fn addresses(&self) -> usize {
+        self.lanes.iter().filter(|o| o.valid).count()
+    }
+}
+
+/// Cycle-accurate model: four address-block lanes loaded together when all are ready.
+#[derive(Clone, Debug, Default)]
+pub struct FourTriangleModel {
+    lanes: [AddressBlockModel; 4],
+}
+
+impl FourTriangleModel {
+    pub fn new() -> Self {
+        Self::default()
+    }
+    pub fn ready(&self) -> bool {
+        self.lanes.iter().all(|l| l.ready())
+    }
+    pub fn outputs(&self) -> FourOutputs {
+        self.outputs_held(false)
+    }
+    /// The outputs with the `hold` input at `hold`: every lane's address-block outputs under
+    /// it (a held clock shows no event on any lane; `ready` does not depend on it).
+    pub fn outputs_held(&self, hold: bool) -> FourOutputs {
+        FourOutputs {
+            ready: self.ready(),
+            lanes: std::array::from_fn(|k| {
+                let mut o = self.lanes[k].outputs_held(hold);
+                o.ready = self.ready();
+                o
+            }),
+        }
+    }
+    /// One rising edge; `load` is taken only when [`Self::ready`].
+    pub fn clock(&mut self, load: Option<&FourTriangleSetup>) {
+        self.clock_held(load, false)
+    }
+    /// [`Self::clock`] with the `hold` input, which every lane's address block receives.
+    pub fn clock_held(&mut self, load: Option<&FourTriangleSetup>, hold: bool) {
+        let load = load.filter(|_| self.ready());
+        for (k, l) in self.lanes.iter_mut().enumerate() {
+            let s = load.map(|s| s.lane(k));
+            l.clock_held(s.as_ref(), hold);
+        }
+    }
+}
+
+/// The block walking `setups` back to back, each loaded in the first clock with `ready`: per
+/// clock, the outputs and the index of the set-up loaded in that clock (if any), from the
+/// first load to the clock in which every lane has shown its last `done`, then `tail` more
+/// clocks without a load (for the pipelines behind the block to drain).
+pub fn schedule(setups: &[FourTriangleSetup], tail: usize) -> Vec<(FourOutputs, Option<usize>)> {
+    let mut m = FourTriangleModel::new();
+    let mut out = Vec::new();
+    let mut dones = [0usize; 4];
+    let mut next = 0;
+    let mut left = tail;
+    loop {
+        if dones.iter().all(|&d| d >= setups.len()) {
+            if left == 0 {
+                break;
+            }
+            left -= 1;
+        }
+        let o = m.outputs();
+        for (d, l) in dones.iter_mut().zip(&o.lanes) {
+            *d += l.done as usize;
+        }
+        let load = (o.ready && next < setups.len()).then_some(next);
+        next += load.is_some() as usize;
+        out.push((o, load));
+        m.clock(load.map(|k| &setups[k]));
+    }
+    out
+}
+
+/// Clock-by-clock outputs of the block walking `setups` back to back ([`schedule`] without a
+/// tail), and the cycle of each load.
+pub fn run(setups: &[FourTriangleSetup]) -> (Vec<FourOutputs>, Vec<usize>) {
+    let s = schedule(setups, 0);
+    let loads = s
+        .iter()
+        .enumerate()
+        .filter_map(|(c, (_, l))| l.map(|_| c))
+        .collect();
+    (s.into_iter().map(|(o, _)| o).collect(), loads)
+}
+
+/// The pixels of lane `k` in a clock stream, in emission order.
+pub fn lane_pixels(out: &[FourOutputs], k: usize) -> Vec<crate::types::WalkPixel> {
+    let lane: Vec<AddressOutputs> = out.iter().map(|o| o.lanes[k]).collect();
+    crate::units::address_block::stream_pixels(&lane)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::raster::edge_function_pixels;
+    use std::collections::HashSet;
+
+    fn check(p: [(i32, i32); 3]) {
+        let tri = ScreenTriangle::from_points(p);
+        let parent: HashSet<(i32, i32)> = edge_function_pixels(&tri).into_iter().collect();
+        let Some(subs) = subdivide(&tri) else {
+            assert!(parent.is_empty());
+            return;
+        };
+        let mut union = HashSet::new();
+        let setup = FourTriangleSetup::new(&tri);
+        let (out, _) = run(&[setup]);
+        for (k, h) in subs.iter().enumerate() {
+            let px = h.edge_function_pixels();
+            for q in &px {
+                assert!(union.insert(*q), "{p:?}: pixel {q:?} twice (lane {k})");
+            }
+            let w = walk(h);
+            let mut wp: Vec<_> = w.pixels().iter().map(|q| (q.x, q.y)).collect();
+            wp.sort_by_key(|&(x, y)| (y, x));
+            assert_eq!(wp, px, "{p:?} lane {k}: walk vs edge functions");
+            assert_eq!(
+                lane_pixels(&out, k),
+                w.pixels(),
+                "{p:?} lane {k}: model vs walk"
+            );
+            assert_eq!(
+                setup.lane(k),
+                address_setup(h),
+                "{p:?} lane {k}: shared words"
+            );
+        }
+        assert_eq!(union, parent, "{p:?}: union differs from the parent");
+    }
+
+    #[test]
+    fn named_triangles_tile_their_parent() {
+        check([(0, 0), (10, 0), (0, 10)]);
+        check([(0, 0), (11, 0), (0, 11)]);
+        check([(0, 0), (10, 0), (10, 10)]);
+        check([(5, 0), (0, 10), (10, 10)]);
+        check([(3, 1), (40, 7), (11, 30)]);
+        check([(40, 1), (3, 7), (11, 30)]);
+        check([(0, 0), (4095, 1), (0, 2)]);
+        check([(4095, 0), (0, 4095), (4095, 4095)]);
+        check([(0, 0), (1, 0), (0, 1)]);
+        check([(0, 0), (1, 1), (2, 2)]);
+        check([(1, 1), (2, 4), (5, 2)]);
+        check([(0, 0), (3, 1), (1, 3)]);
+    }
+
+    #[test]
+    fn small_triangles_exhaustively() {
+        for a in 0..5 {
+            for b in 0..25 {
+                for c in 0..25 {
+                    check([(a, 0), (b % 5, 1 + b / 5), (c % 5, c / 5)]);
+                }
+            }
+        }
+    }
+}

@@ -1,0 +1,15 @@
+//! The float face of each leaf block of `rtl::units` (same file name): its formula in f64 and, where the block has one, its bit-exact integer twin.
+
+pub mod address_block;
+pub mod brzssk;
+pub mod colour_combine;
+pub mod cos_v_accumulator;
+pub mod fast_unit;
+pub mod four_triangle;
+pub mod horner_unit;
+pub mod intensity_interpolator;
+pub mod lighting_unit;
+pub mod normalizer;
+pub mod power_unit;
+pub mod quadric_unit;
+pub mod vector_interpolator;

@@ -1,0 +1,165 @@
+//! Storage primitives: the delay line, the PROM (synchronous read, as block RAM) and the LUT RAM.
+
+use rust_hdl::prelude::*;
+
+/// `q` is `d` delayed by `N` clocks (`N` ≥ 1 registers in a chain, reset to 0). Latency `N`,
+/// one value per clock. Replaces hand-unrolled `_p1 … _pN` chains; name the field after the
+/// tap it gives (`x_p5: Delay<Bits<16>, 5>`).
+#[derive(LogicBlock)]
+pub struct Delay<T: Synth, const N: usize> {
+    pub clock: Signal<In, Clock>,
+    pub d: Signal<In, T>,
+    pub q: Signal<Out, T>,
+    /// `stage[i]` holds `d` of i + 1 clocks ago.
+    stage: [DFF<T>; N],
+}
+
+impl<T: Synth, const N: usize> Default for Delay<T, N> {
+    fn default() -> Self {
+        assert!(N >= 1, "a delay line needs at least one register");
+        Self {
+            clock: Default::default(),
+            d: Default::default(),
+            q: Default::default(),
+            stage: std::array::from_fn(|_| Default::default()),
+        }
+    }
+}
+
+impl<T: Synth, const N: usize> Logic for Delay<T, N> {
+    #[hdl_gen]
+    fn update(&mut self) {
+        for i in 0..N {
+            self.stage[i].clock.next = self.clock.val();
+        }
+        self.stage[0].d.next = self.d.val();
+        for i in 1..N {
+            self.stage[i].d.next = self.stage[i - 1].q.val();
+        }
+        // rust-hdl resolves an array index in Verilog only from a loop variable, so the last
+        // register is addressed by a one-step loop.
+        for i in (N - 1)..N {
+            self.q.next = self.stage[i].q.val();
+        }
+    }
+}
+
+/// A synchronous ROM (PROM): `data` = `contents[address]` of the previous clock edge, as FPGA
+/// block RAM reads; 0 before the first edge in every simulator (rust-hdl's `SyncROM` leaves
+/// the Verilog register uninitialised, which Icarus shows as `x`). Latency 1. Exported as a
+/// `reg` array with an `initial` block, which Yosys maps to block RAM (iCE40: SB_RAM40_4K).
+/// Every one of the 2^N addresses holds a word.
+#[derive(LogicBlock)]
+pub struct Prom<D: Synth, const N: usize> {
+    pub address: Signal<In, Bits<N>>,
+    pub clock: Signal<In, Clock>,
+    pub data: Signal<Out, D>,
+    // Boxed as rust-hdl's own SyncROM holds it (the derive treats `_` fields as opaque).
+    #[allow(clippy::box_collection)]
+    _contents: Box<std::collections::BTreeMap<Bits<N>, D>>,
+}
+
+impl<D: Synth, const N: usize> Prom<D, N> {
+    /// A PROM holding `words` from address 0 on.
+    pub fn new(words: impl IntoIterator<Item = D>) -> Self {
+        assert!(N < 20, "a PROM of 2^{N} words is not block RAM");
+        let contents: std::collections::BTreeMap<Bits<N>, D> = words
+            .into_iter()
+            .enumerate()
+            .map(|(i, w)| (Bits::<N>::from(i as u64), w))
+            .collect();
+        assert!(
+            contents.len() == 1 << N,
+            "a PROM of 2^{N} addresses needs 2^{N} words"
+        );
+        Self {
+            address: Signal::default(),
+            clock: Signal::default(),
+            data: Signal::new_with_default(D::default()),
+            _contents: Box::new(contents),
+        }
+    }
+}
+
+impl<D: Synth, const N: usize> Logic for Prom<D, N> {
+    fn update(&mut self) {
+        if self.clock.pos_edge() {
+            self.data.next = *self
+                ._contents
+                .get(&self.address.val())
+                .unwrap_or(&D::default());
+        }
+    }
+    fn connect(&mut self) {
+        self.data.connect();
+    }
+    fn hdl(&self) -> Verilog {
+        let init = self
+            ._contents
+            .iter()
+            .map(|(a, w)| format!("mem[{}] = {};", a.verilog(), w.verilog()))
+            .collect::<Vec<_>>()
+            .join("\n");
+        Verilog::Custom(format!(
+            "reg[{d}:0] mem [0:{last}];\n\ninitial begin\n{init}\ndata = 0;\nend\n\n\
+             always @(posedge clock) begin\n   data <= mem[address];\nend",
+            d = D::BITS - 1,
+            last = (1usize << N) - 1,
+        ))
+    }
+}
+
+/// A small RAM with synchronous write and asynchronous read (FPGA distributed RAM: ECP5
+/// TRELLIS_DPR16X4 slices, Xilinx LUTRAM): `mem[write_address] ← write_data` on the rising
+/// edge when `write_enable`; `read_data` = `mem[read_address]` at once (also the word written
+/// at the last edge). 2^N words, 0 in the rust-hdl simulation before their first write; the
+/// Verilog leaves them uninitialised, so a reader must not use a word before it is written
+/// (the FIFO in `pixel_stream` gates its output with its `valid`).
+#[derive(LogicBlock)]
+pub struct Lutram<D: Synth, const N: usize> {
+    pub clock: Signal<In, Clock>,
+    pub write_enable: Signal<In, Bit>,
+    pub write_address: Signal<In, Bits<N>>,
+    pub write_data: Signal<In, D>,
+    pub read_address: Signal<In, Bits<N>>,
+    pub read_data: Signal<Out, D>,
+    #[allow(clippy::box_collection)]
+    _mem: Box<Vec<D>>,
+}
+
+impl<D: Synth, const N: usize> Default for Lutram<D, N> {
+    fn default() -> Self {
+        assert!(N <= 8, "a distributed RAM of 2^{N} words is too deep");
+        Self {
+            clock: Signal::default(),
+            write_enable: Signal::default(),
+            write_address: Signal::default(),
+            write_data: Signal::default(),
+            read_address: Signal::default(),
+            read_data: Signal::new_with_default(D::default()),
+            _mem: Box::new(vec![D::default(); 1 << N]),
+        }
+    }
+}
+
+impl<D: Synth, const N: usize> Logic for Lutram<D, N> {
+    fn update(&mut self) {
+        if self.clock.pos_edge() && self.write_enable.val() {
+            let a = self.write_address.val().index();
+            self._mem[a] = self.write_data.val();
+        }
+        self.read_data.next = self._mem[self.read_address.val().index()];
+    }
+    fn connect(&mut self) {
+        self.read_data.connect();
+    }
+    fn hdl(&self) -> Verilog {
+        Verilog::Custom(format!(
+            "reg [{d}:0] mem [0:{last}];\n\n\
+             always @(posedge clock) begin\n   if (write_enable) mem[write_address] <= write_data;\nend\n\n\
+             always @(*) read_data = mem[read_address];",
+            d = D::BITS - 1,
+            last = (1usize << N) - 1,
+        ))
+    }
+}

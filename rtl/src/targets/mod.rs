@@ -1,0 +1,3 @@
+//! Vendor-specific mappings of the portable blocks (ECP5 DSP).
+
+pub mod ecp5_dsp;

@@ -1,0 +1,17 @@
+//! The benches of `rtl::units` (same file name): stimulus with golden expectations, edge rows and the bit-exact twin of each leaf block.
+
+pub mod address_block;
+pub mod brzssk;
+pub mod colour_combine;
+pub mod cos_v_accumulator;
+pub mod fast_unit;
+pub mod four_triangle;
+pub mod horner_unit;
+pub mod intensity_interpolator;
+pub mod k_recurrence;
+pub mod lighting_unit;
+pub mod normalizer;
+pub mod power_unit;
+pub mod quadric_unit;
+pub mod span;
+pub mod vector_interpolator;
