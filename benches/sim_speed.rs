@@ -83,12 +83,15 @@ fn scene() -> (Vec<LitJob>, ShadingRegs) {
     )
 }
 
+/// A fragment as the bench records it: (triangle, x, y, colour, clock).
+type Fragment = (usize, u32, u32, [u8; 3], u64);
+
 /// (clocks, fragments, seconds, recorder) of `jobs` through `pixel-stream` on `inner`.
 fn drive(
     inner: Box<dyn Model>,
     jobs: &[LitJob],
     regs: &ShadingRegs,
-) -> (u64, Vec<(usize, u32, u32, [u8; 3], u64)>, f64, Recorder) {
+) -> (u64, Vec<Fragment>, f64, Recorder) {
     let mut rec = Recorder {
         inner,
         rows: Vec::new(),

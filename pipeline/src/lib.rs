@@ -17,6 +17,7 @@
 pub mod axis;
 pub mod gouraud;
 pub mod lit;
+pub mod render;
 pub mod span;
 pub mod subdivision;
 pub mod walkers;
