@@ -37,7 +37,7 @@ pub trait Twin {
 pub trait Bench: RtlBlock {
     /// What one stimulus item is ("vectors", "pixels", "triangles").
     const ITEMS: &'static str;
-    /// Items `shadecore sim` simulates by default.
+    /// Items `shadecore-sim` simulates by default.
     const DEFAULT_ITEMS: usize;
     /// `n` items of seeded random stimulus (plus the block's named cases where it has them)
     /// with the golden (f64) expectation of every output port in every clock.
@@ -252,7 +252,7 @@ pub struct SimOutcome {
     pub vcd: std::path::PathBuf,
 }
 
-/// `shadecore sim`: `n` seeded items through `block`, checked every clock against its twin
+/// `shadecore-sim`: `n` seeded items through `block`, checked every clock against its twin
 /// (exactly) and the golden model (within the format's bound), then replayed into a VCD at
 /// `vcd`. A check failure is returned as the error (its own VCD is under `target/sims/`).
 pub fn sim_to_vcd(

@@ -340,7 +340,7 @@ fn triangle_block_latencies_match_the_rtl() {
     }
 }
 
-/// `shadecore sim` on every block: a checked run and a VCD declaring every port with its
+/// `shadecore-sim` on every block: a checked run and a VCD declaring every port with its
 /// width; and the check can fail (the first valid clock's expectation altered: a word + 1, or
 /// a real + 2 LSB of its format).
 #[test]
@@ -419,7 +419,7 @@ fn every_block_simulates_and_the_check_can_fail() {
     }
 }
 
-/// `shadecore sim` streams: 2 × default + 1 items go in three batches back to back through
+/// `shadecore-sim` streams: 2 × default + 1 items go in three batches back to back through
 /// one simulation (no reset between them), checked every clock against the twin and the
 /// golden model, the VCD written as the clocks go; only per-port statistics are kept.
 #[test]

@@ -1,4 +1,4 @@
-//! `shadecore sim … --vcd FILE`: the VCD it writes (through `testbenches::registry::sim_to_vcd`,
+//! `shadecore-sim … --vcd FILE`: the VCD it writes (through `testbenches::registry::sim_to_vcd`,
 //! the function the command calls) read back with an independent parser: the ports are
 //! declared and the sampled values equal the simulation's, clock by clock.
 

@@ -111,7 +111,7 @@ fn stimulus(p: &CubicParams, tris: &[ScreenTriangle]) -> Stimulus {
         }
     }
     // Serial: idle to a multiple of three clocks, so a batch that follows in the same
-    // simulation (`shadecore sim` streams) starts in the first clock of a slot.
+    // simulation (`shadecore-sim` streams) starts in the first clock of a slot.
     let end = rows.len() + delay + 2;
     while rows.len() < end || (!p.0.pipelined && rows.len() % 3 != 0) {
         rows.push(span_row(kind, None, regs));

@@ -132,7 +132,7 @@ pub fn drive(
     let limit = 200 + words.len() * 200 + 400_000;
     // Serial units take a line in the last clock of a three-clock slot, their phase running
     // free from reset: a run ends on a slot boundary, so a batch that follows in the same
-    // simulation (`shadecore sim` streams) meets the phase a fresh twin has.
+    // simulation (`shadecore-sim` streams) meets the phase a fresh twin has.
     while idle_clocks < tail || !run.rows.len().is_multiple_of(3) {
         assert!(run.rows.len() < limit, "the stream does not drain");
         if !showing && next < words.len() {

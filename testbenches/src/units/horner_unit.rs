@@ -112,7 +112,7 @@ fn run(p: &HornerParams, spans: &[HornerWords]) -> (Vec<Vec<u64>>, Vec<Vec<Expec
         }
     }
     // Serial: idle to a multiple of three clocks, so a batch that follows in the same
-    // simulation (`shadecore sim` streams) starts in the first clock of a slot.
+    // simulation (`shadecore-sim` streams) starts in the first clock of a slot.
     let end = rows.len() + delay + 2;
     while rows.len() < end || (!p.pipelined && rows.len() % 3 != 0) {
         rows.push(load_row(None));

@@ -11,7 +11,7 @@
 //! (`m_axis_l0_*` … `m_axis_l3_*`, without `tuser`).
 //!
 //! Everything that reads or writes these words comes from the tables here:
-//! - the driver packs records with [`pack`] (`pipeline::stream`), and reads fragments with
+//! - the driver packs records with [`pack`] (`pipeline::lit::scene_words` and the other methods' packers), and reads fragments with
 //!   [`unpack_fragment`];
 //! - each top's field selects and fragment packing (`rtl/src/stream/pixel_stream.rs`,
 //!   `rtl/src/stream/gouraud_stream.rs`, `rtl/src/stream/cubic_stream.rs`, `rtl/src/stream/angular_stream.rs`,
