@@ -1,12 +1,11 @@
 //! ECP5: the LFE5U parts, Yosys `synth_ecp5`, nextpnr-ecp5 place and route inside the timing
 //! shell, and the MULT18X18D register mapping.
 
-#[allow(unused_imports)]
-use super::*;
-#[allow(unused_imports)]
-use std::fmt::Write as _;
-#[allow(unused_imports)]
 use std::path::{Path, PathBuf};
+
+use super::{parse_stat, timing_shell, yosys, CellCounts};
+use crate::tools;
+use rtl::core::sim::Port;
 
 /// An ECP5 part `synth --target ecp5` can place into: its size, package and the resources the
 /// fit is judged by.

@@ -1,10 +1,9 @@
 //! iCE40: Yosys `synth_ice40 -dsp` cell counts with the structural checks, and nextpnr-ice40
 //! placement of a block on an UP5K inside the timing shell.
 
-#[allow(unused_imports)]
-use super::*;
-#[allow(unused_imports)]
-use std::path::{Path, PathBuf};
+use super::{parse_stat, timing_shell, yosys, SynthReport};
+use crate::tools;
+use rtl::core::sim::Port;
 
 /// Read `verilog` into Yosys, elaborate `top` and fail on latches, undriven or multiply
 /// driven wires and combinational loops (`check -assert`, before and after synthesis);

@@ -1,10 +1,12 @@
 //! Pin fitting: a top's own ports on a package's pins (no timing shell), and the package that
 //! holds them.
 
-#[allow(unused_imports)]
-use super::*;
-#[allow(unused_imports)]
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
+
+use super::ecp5::{ecp5_verilog, nextpnr_ecp5, run_nextpnr_ecp5, Ecp5Part, MultRegs, ECP5_PARTS};
+use super::yosys;
+use crate::tools;
+use rtl::core::sim::Port;
 
 /// The larger packages of the same dies, for a top whose own pins exceed its part's package
 /// (`synth --pins`): user I/O per the ECP5 family data sheet, smallest die first, then the
