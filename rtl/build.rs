@@ -3,6 +3,8 @@
 //! Cargo.lock for the rust-hdl version). The in-process Verilator cache (`verilated`) keys its
 //! builds on it with the block's name and parameters, so a warm run never regenerates Verilog
 //! only to find its cache entry, and any edit of the RTL's sources makes a new entry.
+//!
+//! Not a block: no ports, no latency.
 
 use std::path::{Path, PathBuf};
 

@@ -1,4 +1,8 @@
 //! The fixed-point narrowings: round to nearest (ties up) and saturate, combinational.
+//!
+//! Formats and rules: the table in `primitives` (this folder's `mod.rs`). Latency 0: every
+//! narrowing here is combinational, one word per clock; error at most half an output LSB when it
+//! does not saturate.
 
 use rust_hdl::prelude::*;
 

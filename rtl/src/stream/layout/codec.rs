@@ -1,5 +1,7 @@
 //! Packing and unpacking by the tables: a record's words from its field values and back, and
 //! the fragment beat.
+//!
+//! Not a block: no ports, no latency (the stream tops' headers give theirs).
 
 use super::tables::*;
 

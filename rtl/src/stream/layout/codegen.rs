@@ -1,5 +1,7 @@
 //! The stream tops' generated regions: field selects and fragment packing written from the
 //! tables, and the check that each top's file holds what the tables give.
+//!
+//! Not a block: no ports, no latency (the stream tops' headers give theirs).
 
 use super::tables::*;
 

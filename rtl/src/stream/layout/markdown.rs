@@ -1,4 +1,6 @@
 //! The layout tables as Markdown (`rtl/README.md`'s copy is checked against it).
+//!
+//! Not a block: no ports, no latency (the stream tops' headers give theirs).
 
 use super::codec::*;
 use super::tables::*;

@@ -1,5 +1,7 @@
 //! The tables: every record of every stream top, field by field, the fragment beat, and the
 //! tops themselves.
+//!
+//! Not a block: no ports, no latency (the stream tops' headers give theirs).
 
 /// One field of a record: a port of `pixel-pipeline` (name, width in bits).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

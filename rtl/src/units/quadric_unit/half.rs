@@ -1,5 +1,13 @@
 //! One 32-bit half of the quadric unit's words (the tracker over the line starts and the line
 //! generator, three channels), and the bits that cross from the low half to the high half.
+//!
+//! Not exported alone. Ports: the clock's control (`ystep xstep neg big ld hand hdir gadv`), the
+//! load's 32-bit word halves per channel (`ri … bc`), the crossing bits in (`cin_r/g/b`, 29
+//! bits, indexed by [`cross`]); out: this clock's crossing bits (`cout_*`, combinational) and
+//! the generator pair's word halves (`p_*`, `q_*`, 32 bits, registers). Latency 1 clock: every
+//! word is a register stepped each clock (the unit feeds the high half the low half's
+//! registered `cout_*`, so the high half is one clock behind: see the unit's header); words
+//! wrap modulo 2³² by design.
 
 use rust_hdl::prelude::*;
 

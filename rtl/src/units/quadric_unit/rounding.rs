@@ -1,5 +1,10 @@
 //! The quadric unit's output rounding, split across the word halves: the low part's carry
 //! (`RoundLo`) and the high part with saturation to 8 bits (`RoundSat8Split`).
+//!
+//! Not exported alone. Formats: `RoundLo` takes bits 28..31 of a Q34.30 word and gives a 5-bit
+//! sum; `RoundSat8Split` takes the high half (Q34.30 bits 32..63) and that registered sum and gives
+//! an 8-bit level. Latency 0: both are combinational (the unit registers around them), one word
+//! per clock; the error budget is the unit's (its header).
 
 use rust_hdl::prelude::*;
 
