@@ -58,7 +58,9 @@ impl Model for Recorder {
     fn start_vcd(&mut self, w: Box<dyn std::io::Write>) -> Result<(), String> {
         self.inner.start_vcd(w)
     }
-    fn stop_vcd(&mut self) {}
+    fn stop_vcd(&mut self) -> Result<(), String> {
+        Ok(())
+    }
     fn simulator(&self) -> &'static str {
         self.inner.simulator()
     }

@@ -1,14 +1,172 @@
 //! Image output: PNG files and a labelled side-by-side contact sheet.
 
-use std::path::Path;
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result};
 
-/// Write an RGB image as PNG.
+/// Write an RGB image as PNG, whole or not at all (`golden::files`).
 pub fn save_png(path: &Path, width: u32, height: u32, rgb: &[[u8; 3]]) -> Result<()> {
     let buf: Vec<u8> = rgb.iter().flatten().copied().collect();
-    image::save_buffer(path, &buf, width, height, image::ExtendedColorType::Rgb8)
-        .with_context(|| format!("writing {}", path.display()))
+    save_rgb8(path, &buf, width, height)
+}
+
+/// Encode packed RGB bytes as PNG and write them whole (`golden::files`).
+pub fn save_rgb8(path: &Path, buf: &[u8], width: u32, height: u32) -> Result<()> {
+    let mut png = std::io::Cursor::new(Vec::new());
+    image::write_buffer_with_format(
+        &mut png,
+        buf,
+        width,
+        height,
+        image::ExtendedColorType::Rgb8,
+        image::ImageFormat::Png,
+    )
+    .with_context(|| format!("encoding {}", path.display()))?;
+    write_whole(path, png.get_ref())
+}
+
+/// Write `bytes` to `path` whole or not at all (`golden::files`): one-line error naming it.
+pub fn write_whole(path: &Path, bytes: &[u8]) -> Result<()> {
+    golden::files::write_whole(path, bytes).map_err(|e| anyhow::anyhow!(e))
+}
+
+/// The output folder of a render, owned for the run: locked against a second render, cleared
+/// of the previous render's files when opened, and closed by writing `report.json` last.
+///
+/// A folder therefore holds either no `report.json` (a render is running, failed or was
+/// killed: whatever PNGs are there are not a complete set) or one that lists every output file
+/// of the folder with its size and FNV-1a hash ([`RenderDir::finish`]).
+pub struct RenderDir {
+    dir: PathBuf,
+    /// Held (an advisory lock, released when the process ends, however it ends).
+    _lock: std::fs::File,
+}
+
+/// The lock file of a render folder.
+pub const LOCK_FILE: &str = ".shadecore.lock";
+/// The report a render writes last.
+pub const REPORT_FILE: &str = "report.json";
+
+/// One output file as `report.json` lists it.
+#[derive(serde::Serialize, serde::Deserialize, Debug, Clone, PartialEq, Eq)]
+pub struct FileEntry {
+    pub bytes: u64,
+    /// FNV-1a, 64 bits, of the contents, in hex.
+    pub fnv1a: String,
+}
+
+/// FNV-1a, 64 bits, of `bytes`, in hex.
+pub fn fnv1a(bytes: &[u8]) -> String {
+    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+    for &b in bytes {
+        h = (h ^ b as u64).wrapping_mul(0x0100_0000_01b3);
+    }
+    format!("{h:016x}")
+}
+
+/// Whether `name` is a file a render writes: `report.json`, `reference.png`, `sheet.png`, or
+/// `<method>[-diff|-rtl|-rtl-diff|-golden|-rtl-vs-golden-diff].png`.
+pub fn is_render_output(name: &str) -> bool {
+    if matches!(name, REPORT_FILE | "reference.png" | "sheet.png") {
+        return true;
+    }
+    let Some(stem) = name.strip_suffix(".png") else {
+        return false;
+    };
+    let method = ["-rtl-vs-golden-diff", "-rtl-diff", "-diff", "-rtl", "-golden"]
+        .iter()
+        .find_map(|s| stem.strip_suffix(s))
+        .unwrap_or(stem);
+    golden::methods::Method::ALL_NON_REFERENCE
+        .iter()
+        .any(|m| m.name() == method)
+}
+
+impl RenderDir {
+    /// Create (if needed) and lock `dir`, then remove the previous render's `report.json` first
+    /// and its other outputs after it (files named as a render names them; other files are
+    /// left alone), and temporary files a killed writer left.
+    pub fn open(dir: &Path) -> Result<RenderDir> {
+        std::fs::create_dir_all(dir)
+            .with_context(|| format!("creating output directory {}", dir.display()))?;
+        let lock_path = dir.join(LOCK_FILE);
+        let lock = std::fs::OpenOptions::new()
+            .create(true)
+            .truncate(false)
+            .write(true)
+            .open(&lock_path)
+            .with_context(|| format!("creating {}", lock_path.display()))?;
+        match lock.try_lock() {
+            Ok(()) => {
+                // Who holds it, for a user who finds the file.
+                let _ = (&lock).set_len(0);
+                let _ = std::io::Write::write_all(
+                    &mut &lock,
+                    format!("{}\n", std::process::id()).as_bytes(),
+                );
+            }
+            Err(std::fs::TryLockError::WouldBlock) => anyhow::bail!(
+                "another shadecore render is writing into {} (it holds {LOCK_FILE}): wait for it or choose another --out",
+                dir.display()
+            ),
+            Err(std::fs::TryLockError::Error(e)) => {
+                return Err(e).with_context(|| format!("locking {}", lock_path.display()))
+            }
+        }
+        let report = dir.join(REPORT_FILE);
+        match std::fs::remove_file(&report) {
+            Ok(()) => {}
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => {}
+            Err(e) => return Err(e).with_context(|| format!("removing {}", report.display())),
+        }
+        golden::files::remove_stale_temps(dir);
+        for e in std::fs::read_dir(dir).with_context(|| format!("reading {}", dir.display()))? {
+            let e = e.with_context(|| format!("reading {}", dir.display()))?;
+            let name = e.file_name().to_string_lossy().into_owned();
+            if is_render_output(&name) && e.file_type().is_ok_and(|t| t.is_file()) {
+                std::fs::remove_file(e.path())
+                    .with_context(|| format!("removing {}", e.path().display()))?;
+            }
+        }
+        Ok(RenderDir {
+            dir: dir.to_path_buf(),
+            _lock: lock,
+        })
+    }
+
+    pub fn path(&self) -> &Path {
+        &self.dir
+    }
+
+    /// Every render output in the folder (all written by this run: the folder was cleared
+    /// when opened, under the lock) with its size and hash.
+    pub fn files(&self) -> Result<BTreeMap<String, FileEntry>> {
+        let mut files = BTreeMap::new();
+        for e in std::fs::read_dir(&self.dir)
+            .with_context(|| format!("reading {}", self.dir.display()))?
+        {
+            let e = e.with_context(|| format!("reading {}", self.dir.display()))?;
+            let name = e.file_name().to_string_lossy().into_owned();
+            if name != REPORT_FILE && is_render_output(&name) {
+                let bytes = std::fs::read(e.path())
+                    .with_context(|| format!("reading {}", e.path().display()))?;
+                files.insert(
+                    name,
+                    FileEntry {
+                        bytes: bytes.len() as u64,
+                        fnv1a: fnv1a(&bytes),
+                    },
+                );
+            }
+        }
+        Ok(files)
+    }
+
+    /// Write `report.json` (whole), the last file of the render.
+    pub fn finish(self, json: &str) -> Result<()> {
+        write_whole(&self.dir.join(REPORT_FILE), json.as_bytes())
+    }
 }
 
 /// An RGB picture in memory.
@@ -88,4 +246,86 @@ macro_rules! out {
         write!(std::io::stdout().lock(), $($arg)*)
             .map_err(|e| anyhow::anyhow!("writing to standard output: {e}"))
     }};
+}
+
+/// Progress as plain lines on stderr when stderr is not a terminal (a log, CI, `2> file`),
+/// where the progress bars do not draw: every [`TICK_SECONDS`] a line with the position of
+/// each bar being watched. Stops when dropped.
+pub struct LogTicker {
+    bars: std::sync::Arc<std::sync::Mutex<Vec<(String, indicatif::ProgressBar)>>>,
+    stop: std::sync::Arc<std::sync::atomic::AtomicBool>,
+    thread: Option<std::thread::JoinHandle<()>>,
+}
+
+/// Seconds between two progress lines of a [`LogTicker`] (`SHADECORE_TICK_SECONDS` overrides
+/// it, e.g. for a test).
+pub const TICK_SECONDS: u64 = 5;
+
+impl LogTicker {
+    /// A ticker labelled `what` ("render"), running only when stderr is not a terminal.
+    pub fn start(what: &str) -> LogTicker {
+        use std::io::IsTerminal;
+        use std::sync::atomic::Ordering;
+        let bars: std::sync::Arc<std::sync::Mutex<Vec<(String, indicatif::ProgressBar)>>> =
+            Default::default();
+        let stop = std::sync::Arc::new(std::sync::atomic::AtomicBool::new(false));
+        let thread = (!std::io::stderr().is_terminal()).then(|| {
+            let (bars, stop, what) = (bars.clone(), stop.clone(), what.to_string());
+            let every = std::env::var("SHADECORE_TICK_SECONDS")
+                .ok()
+                .and_then(|s| s.parse::<f64>().ok())
+                .filter(|s| *s > 0.0)
+                .map_or(
+                    std::time::Duration::from_secs(TICK_SECONDS),
+                    std::time::Duration::from_secs_f64,
+                );
+            std::thread::spawn(move || {
+                let t0 = std::time::Instant::now();
+                let mut next = every;
+                while !stop.load(Ordering::Relaxed) {
+                    std::thread::sleep(std::time::Duration::from_millis(50));
+                    if t0.elapsed() < next {
+                        continue;
+                    }
+                    next += every;
+                    let parts: Vec<String> = bars
+                        .lock()
+                        .map(|b| {
+                            b.iter()
+                                .filter(|(_, bar)| !bar.is_finished())
+                                .map(|(l, bar)| {
+                                    format!("{l} {}/{}", bar.position(), bar.length().unwrap_or(0))
+                                })
+                                .collect()
+                        })
+                        .unwrap_or_default();
+                    if !parts.is_empty() {
+                        eprintln!(
+                            "progress: {what}, {:.0} s: {}",
+                            t0.elapsed().as_secs_f64(),
+                            parts.join(", ")
+                        );
+                    }
+                }
+            })
+        });
+        LogTicker { bars, stop, thread }
+    }
+
+    /// Report `bar` as `label` in the lines (while it is not finished).
+    pub fn watch(&self, label: &str, bar: &indicatif::ProgressBar) {
+        if let Ok(mut b) = self.bars.lock() {
+            b.push((label.to_string(), bar.clone()));
+        }
+    }
+}
+
+impl Drop for LogTicker {
+    fn drop(&mut self) {
+        self.stop
+            .store(true, std::sync::atomic::Ordering::Relaxed);
+        if let Some(t) = self.thread.take() {
+            let _ = t.join();
+        }
+    }
 }

@@ -113,6 +113,30 @@ fn lossy_path<S: serde::Serializer>(p: &Path, s: S) -> std::result::Result<S::Ok
     s.serialize_str(&p.to_string_lossy())
 }
 
+impl Setup {
+    /// An error unless some front-facing triangle covers a pixel of the canvas: a scene that
+    /// draws nothing would report every method "identical" on a black image (`render`,
+    /// `sweep`) or stream no triangle (`stream`). Empty work is an error everywhere.
+    pub fn ensure_drawn(&self) -> Result<()> {
+        let covered = golden::render::render(
+            &self.tris,
+            golden::methods::Method::Flat,
+            &self.ctx,
+            self.width,
+            self.height,
+        )
+        .fragments;
+        if covered.iter().all(|&n| n == 0) {
+            bail!(
+                "nothing to draw: no front-facing triangle of the scene covers a pixel of the {}x{} canvas",
+                self.width,
+                self.height
+            );
+        }
+        Ok(())
+    }
+}
+
 impl SceneArgs {
     /// The scene is an OBJ file (its name ends in `.obj`, any case).
     pub fn is_obj(&self) -> bool {

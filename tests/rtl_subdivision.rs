@@ -92,7 +92,7 @@ fn address_choices_a_method_cannot_take_are_one_line_errors() {
     for (args, what) in [
         (
             vec!["--method", "angular", "--address", "four-triangle"],
-            "renders gouraud and subdivision",
+            "--address has no effect here: it concerns gouraud or subdivision",
         ),
         (
             vec!["--method", "subdivision", "--address", "single"],

@@ -4,6 +4,7 @@
 //! the per-pixel kernels ("hardware side"), so the RTL pipeline is driven by the same set-up.
 
 pub mod accuracy;
+pub mod files;
 pub mod methods;
 pub mod nmse;
 pub mod raster;

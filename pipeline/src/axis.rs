@@ -222,7 +222,7 @@ pub fn drive_lanes<T: LaneTop>(
             record_done(st.triangles);
         }
     }
-    s.stop_vcd();
+    s.stop_vcd()?;
     Ok(st)
 }
 
@@ -304,6 +304,6 @@ pub fn drive_beats<T: StreamTop>(
             beat(b, st.clocks - 1);
         }
     }
-    s.stop_vcd();
+    s.stop_vcd()?;
     Ok(st)
 }

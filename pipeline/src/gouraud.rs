@@ -250,7 +250,7 @@ impl Pipe {
                 progress(st.triangles);
             }
         }
-        self.model.stop_vcd();
+        self.model.stop_vcd()?;
         Ok(st)
     }
 }

@@ -157,7 +157,7 @@ pub fn check_depths(tri: &ScreenTriangle) -> Result<(), String> {
     }
 }
 
-/// The depth plane's words: signed Q16.16 in model units, rounded to nearest, without the
+/// The depth plane's words: signed Q16.16 in pixels (the camera fit's depth), rounded to nearest, without the
 /// BVI's +½ display bias (depth is compared, never displayed).
 pub fn depth_words(s: &ChannelSetup) -> ChannelWords {
     use golden::units::intensity_interpolator::quantize;
@@ -364,7 +364,7 @@ impl LitPipe {
                 progress(st.triangles);
             }
         }
-        self.model.stop_vcd();
+        self.model.stop_vcd()?;
         Ok(st)
     }
 }

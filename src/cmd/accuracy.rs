@@ -284,8 +284,7 @@ pub fn plot_png(p: &Plot, path: &Path) -> Result<()> {
         ink,
     );
     draw_text(&mut buf, 8, TOP as i32 - 16, &p.y_label, 1, ink);
-    image::save_buffer(path, &buf, W, H, image::ExtendedColorType::Rgb8)
-        .with_context(|| format!("writing {}", path.display()))
+    crate::output::save_rgb8(path, &buf, W, H)
 }
 
 #[cfg(test)]

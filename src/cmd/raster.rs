@@ -81,16 +81,10 @@ pub fn four_clocks(
             .map_err(|e| anyhow::anyhow!("RTL simulation: {e}"))
         }
         (Engine::Rtl, crate::sim::Sim::RustHdl) => {
-            let trace: Option<Box<dyn Write>> = match vcd {
-                Some(p) => Some(Box::new(std::io::BufWriter::new(
-                    std::fs::File::create(p)
-                        .with_context(|| format!("cannot create {}", p.display()))?,
-                ))),
-                None => None,
-            };
             let budget = four_budget(&setup);
-            pipeline::walkers::four_triangle::run_reactive(&[setup], budget, trace)
-                .map_err(|e| anyhow::anyhow!("RTL simulation: {e}"))
+            with_vcd(vcd, |trace| {
+                pipeline::walkers::four_triangle::run_reactive(&[setup], budget, trace)
+            })
         }
     }
 }
@@ -196,19 +190,31 @@ pub fn walk_clocks_with(
             Ok(pipeline::walkers::address::run_model(&[setup]))
         }
         Engine::Rtl => {
-            let trace: Option<Box<dyn Write>> = match vcd {
-                Some(p) => Some(Box::new(std::io::BufWriter::new(
-                    std::fs::File::create(p)
-                        .with_context(|| format!("cannot create {}", p.display()))?,
-                ))),
-                None => None,
-            };
             // Every row at full width plus latency: a hung block stops instead of spinning.
             let budget = 16 + (setup.rows as usize + 1) * (MAX_ADDRESS as usize + 2);
-            pipeline::walkers::address::run_reactive(&[setup], budget, trace)
-                .map_err(|e| anyhow::anyhow!("RTL simulation: {e}"))
+            with_vcd(vcd, |trace| {
+                pipeline::walkers::address::run_reactive(&[setup], budget, trace)
+            })
         }
     }
+}
+
+/// Run `sim` with a VCD trace into `vcd` (written whole: `golden::files::write_through`) or
+/// without one.
+fn with_vcd<T>(
+    vcd: Option<&std::path::Path>,
+    sim: impl FnOnce(Option<Box<dyn Write>>) -> Result<T, String>,
+) -> Result<T> {
+    let run = |trace| sim(trace).map_err(|e| format!("RTL simulation: {e}"));
+    match vcd {
+        None => run(None),
+        Some(p) => golden::files::write_through(p, |temp| {
+            let f = std::fs::File::create(temp)
+                .map_err(|e| format!("cannot create {}: {e}", p.display()))?;
+            run(Some(Box::new(std::io::BufWriter::new(f))))
+        }),
+    }
+    .map_err(|e| anyhow::anyhow!(e))
 }
 
 /// Why a walk of `tri` emitted no pixel, in one line: zero area (collinear or repeated
@@ -241,6 +247,9 @@ pub fn csv(out: &[AddressOutputs]) -> String {
 
 pub fn run(a: Args) -> Result<()> {
     let tri = parse_tri(&a.tri)?;
+    if a.engine == Engine::Golden && a.sim.is_some() {
+        bail!("--sim has no effect with --engine golden (it chooses how the RTL is simulated: use --engine rtl)");
+    }
     let sim = match (a.sim, &a.vcd, a.engine) {
         (None, Some(_), _) | (_, _, Engine::Golden) => crate::sim::Sim::RustHdl,
         (arg, _, _) => crate::sim::resolve(arg)?,
@@ -280,7 +289,7 @@ pub fn run(a: Args) -> Result<()> {
     }
     match &a.dump {
         Some(p) => {
-            std::fs::write(p, text).with_context(|| format!("cannot write {}", p.display()))?;
+            crate::output::write_whole(p, text.as_bytes())?;
             crate::outln!(
                 "{}: {clocks} clocks, {pixels} pixels on {rows} raster lines{} ({:.3} pixels/clock); CSV in {}{}",
                 match a.engine {

@@ -53,8 +53,8 @@ pub struct Args {
     /// With the RTL engine (`rtl`, `both`): the Horner units `cubic` goes through — serial (fig. 2.6, one
     /// multiplier, 3 clocks per pixel) or pipelined (three multipliers, one pixel per clock).
     /// The images are identical; the clock counts differ.
-    #[arg(long, value_enum, default_value = "serial")]
-    pub horner: Horner,
+    #[arg(long, value_enum)]
+    pub horner: Option<Horner>,
     /// With the RTL engine (`rtl`, `both`): the simulator — verilator (the exported Verilog,
     /// verilated once per block into a library cached under target/verilated and stepped in
     /// process) or rust-hdl (stepped by hand, about 400 times slower). Default: verilator when
@@ -64,8 +64,8 @@ pub struct Args {
     /// With the RTL engine (`rtl`, `both`): the address block — single (SPEC §5, one address per clock) or
     /// four-triangle (SPEC §7, four lanes with a BVI each: gouraud and subdivision only).
     /// Default: single, four-triangle for subdivision.
-    #[arg(long, value_enum, default_value = "default", hide_default_value = true)]
-    pub address: crate::rtl_engine::Address,
+    #[arg(long, value_enum)]
+    pub address: Option<crate::rtl_engine::Address>,
     /// With the RTL engine: the top the lit methods (normalizer, normalizer-fit, brdf-k*,
     /// bump), gouraud, the span methods (cubic, angular, fast, fast-fit, quadric) and
     /// subdivision go through — stream (`pixel-stream`, `gouraud-stream`, `cubic-stream`,
@@ -77,14 +77,14 @@ pub struct Args {
     /// small triangles). The images are identical; the clock counts
     /// differ (the set-up stream carries 26 words per lit triangle, 22 per Gouraud one, 12 per
     /// cubic line, 72 per subdivision parent).
-    #[arg(long, value_enum, default_value = "default", hide_default_value = true)]
-    pub lit_top: crate::rtl_engine::LitTop,
+    #[arg(long, value_enum)]
+    pub lit_top: Option<crate::rtl_engine::LitTop>,
     /// With the RTL engine: the order the lit methods' and gouraud's triangles are sent in — balanced (large
     /// and small walks alternately, so small triangles' set-up words stream in while large
     /// ones are walked) or mesh. The images are identical (at equal depth the lower triangle
     /// index wins); the clock counts differ.
-    #[arg(long, value_enum, default_value = "balanced")]
-    pub setup_order: crate::rtl_engine::SetupOrder,
+    #[arg(long, value_enum)]
+    pub setup_order: Option<crate::rtl_engine::SetupOrder>,
 }
 
 /// The Horner unit variant of the cubic pipeline.
@@ -144,6 +144,9 @@ struct Report<'a> {
     engine: Engine,
     triangles: usize,
     methods: BTreeMap<String, MethodReport>,
+    /// Every other output file of the folder, with its size and hash: `report.json` is
+    /// written last, so a folder with a report holds exactly these files.
+    files: BTreeMap<String, crate::output::FileEntry>,
 }
 
 /// Parse `--method` names (empty = every method).
@@ -178,12 +181,21 @@ pub fn render_golden(setup: &Setup, methods: &[Method], bar: &ProgressBar) -> (F
     let frames = methods
         .par_iter()
         .map(|&m| {
-            let f = render(&setup.tris, m, &setup.ctx, setup.width, setup.height);
+            let f = colours_only(render(&setup.tris, m, &setup.ctx, setup.width, setup.height));
             bar.inc(1);
             f
         })
         .collect();
     (reference, frames)
+}
+
+/// `f` with its colours only: the depth and fragment counts (12 of a frame's 15 bytes a
+/// pixel) are not used once it is rendered, and a render holds a frame per method and
+/// engine until its images are written.
+fn colours_only(mut f: Frame) -> Frame {
+    f.depth = Vec::new();
+    f.fragments = Vec::new();
+    f
 }
 
 /// Compare a method's frame with the reference.
@@ -246,6 +258,7 @@ fn render_rtl_parallel(
     methods: &[Method],
     build: crate::rtl_engine::RtlBuild,
     multi: &MultiProgress,
+    ticker: &crate::output::LogTicker,
 ) -> Result<Vec<(Frame, RtlStats)>> {
     use std::sync::atomic::{AtomicUsize, Ordering};
     use std::sync::Mutex;
@@ -258,6 +271,7 @@ fn render_rtl_parallel(
         .map_or(1, |n| n.get())
         .min(methods.len().max(1));
     let overall = multi.add(ProgressBar::new(methods.len() as u64));
+    ticker.watch("rtl methods done", &overall);
     overall.set_style(
         ProgressStyle::with_template("rtl methods [{bar:40}] {pos}/{len} done {elapsed}")
             .expect("static template")
@@ -283,6 +297,7 @@ fn render_rtl_parallel(
                     .expect("static template")
                     .progress_chars("=> "),
                 );
+                ticker.watch(&format!("rtl {m}"), &bar);
                 let t0 = std::time::Instant::now();
                 let r = crate::rtl_engine::render_rtl_with(
                     &setup.tris,
@@ -296,7 +311,7 @@ fn render_rtl_parallel(
                 .with_context(|| format!("method {m}"))
                 .map(|rtl| {
                     (
-                        rtl.frame,
+                        colours_only(rtl.frame),
                         RtlStats {
                             pipe: rtl.stats,
                             visibility_mismatches: rtl.visibility_mismatches,
@@ -316,14 +331,13 @@ fn render_rtl_parallel(
         }
     });
     overall.finish_and_clear();
-    let mut out = Vec::with_capacity(methods.len());
-    for r in results.into_inner().expect("no worker panicked") {
-        match r {
-            Some(r) => out.push(r?),
-            None => anyhow::bail!("an RTL render stopped after another method's error"),
-        }
+    // The error that stopped the run names its method and cause, whichever method's slot
+    // comes first (methods after it in the list may not have started).
+    let results = results.into_inner().expect("no worker panicked");
+    if let Some(e) = results.iter().flatten().find_map(|r| r.as_ref().err()) {
+        return Err(anyhow::anyhow!("{e:#}"));
     }
-    Ok(out)
+    Ok(results.into_iter().flatten().flatten().collect())
 }
 
 /// Render the reference (always golden) and `methods` with `engine`.
@@ -335,6 +349,7 @@ fn render_frames(
 ) -> Result<Frames> {
     let n = methods.len();
     let multi = MultiProgress::new();
+    let ticker = crate::output::LogTicker::start("render");
     let (reference, golden) = if engine == Engine::Rtl {
         let (w, h) = (setup.width, setup.height);
         (
@@ -343,6 +358,7 @@ fn render_frames(
         )
     } else {
         let bar = multi.add(progress_bar(n, Engine::Golden));
+        ticker.watch("golden images", &bar);
         let (r, f) = render_golden(setup, methods, &bar);
         bar.finish_and_clear();
         (r, f.into_iter().map(Some).collect())
@@ -361,7 +377,7 @@ fn render_frames(
         crate::sim::prepare(build.sim, crate::rtl_engine::designs(&ms, build)?, &multi)?;
         for (i, f) in idx
             .into_iter()
-            .zip(render_rtl_parallel(setup, &ms, build, &multi)?)
+            .zip(render_rtl_parallel(setup, &ms, build, &multi, &ticker)?)
         {
             rtl[i] = Some(f);
         }
@@ -589,6 +605,62 @@ fn print_table(args: &Args, setup: &Setup, methods: &[Method], report: &Report) 
     Ok(())
 }
 
+/// An error naming the flag when an RTL engine flag is given that has no effect: with `--engine
+/// golden`, or when no method it concerns goes through the hardware.
+fn check_rtl_flags(args: &Args, methods: &[Method]) -> Result<()> {
+    use pipeline::{lit::LIT_METHODS, span::SPAN_METHODS};
+    let hw: Vec<Method> = if args.engine == Engine::Golden {
+        Vec::new()
+    } else {
+        let has = crate::rtl_engine::rtl_methods();
+        methods.iter().copied().filter(|m| has.contains(m)).collect()
+    };
+    let any = |f: &dyn Fn(Method) -> bool| hw.iter().any(|&m| f(m));
+    for (given, flag, concerns, applies) in [
+        (args.sim.is_some(), "--sim", "any hardware method", any(&|_| true)),
+        (
+            args.horner.is_some(),
+            "--horner",
+            "cubic",
+            any(&|m| m == Method::Cubic),
+        ),
+        (
+            args.address.is_some(),
+            "--address",
+            "gouraud or subdivision",
+            any(&|m| matches!(m, Method::Gouraud | Method::Subdivision)),
+        ),
+        (
+            args.lit_top.is_some(),
+            "--lit-top",
+            "the lit methods, gouraud, the span methods or subdivision",
+            any(&|m| {
+                LIT_METHODS.contains(&m)
+                    || SPAN_METHODS.contains(&m)
+                    || matches!(m, Method::Gouraud | Method::Subdivision)
+            }),
+        ),
+        (
+            args.setup_order.is_some(),
+            "--setup-order",
+            "the lit methods or gouraud",
+            any(&|m| LIT_METHODS.contains(&m) || m == Method::Gouraud),
+        ),
+    ] {
+        if given && !applies {
+            if args.engine == Engine::Golden {
+                anyhow::bail!(
+                    "{flag} has no effect with --engine golden (it chooses how the RTL engine renders: use --engine rtl or both)"
+                );
+            }
+            anyhow::bail!(
+                "{flag} has no effect here: it concerns {concerns}, and no such method is rendered through the hardware"
+            );
+        }
+    }
+    Ok(())
+}
+
 pub fn run(args: Args) -> Result<()> {
     let methods = if args.engine == Engine::Rtl && args.method.is_empty() {
         // The RTL engine's default: every method the hardware has.
@@ -596,36 +668,21 @@ pub fn run(args: Args) -> Result<()> {
     } else {
         parse_methods(&args.method)?
     };
+    check_rtl_flags(&args, &methods)?;
     let setup = build(&args.scene)?;
-    // A scene that covers no pixel would report every method "identical" on a black image.
-    let covered = render(
-        &setup.tris,
-        Method::Flat,
-        &setup.ctx,
-        setup.width,
-        setup.height,
-    )
-    .fragments;
-    if covered.iter().all(|&n| n == 0) {
-        anyhow::bail!(
-            "nothing to draw: no front-facing triangle of the scene covers a pixel of the {}x{} canvas",
-            setup.width,
-            setup.height
-        );
-    }
-    std::fs::create_dir_all(&args.out)
-        .with_context(|| format!("creating output directory {}", args.out.display()))?;
+    setup.ensure_drawn()?;
+    let dir = crate::output::RenderDir::open(&args.out)?;
     let sim = if args.engine == Engine::Golden {
         crate::sim::Sim::RustHdl
     } else {
         crate::sim::resolve(args.sim)?
     };
     let build = crate::rtl_engine::RtlBuild {
-        horner_pipelined: args.horner == Horner::Pipelined,
+        horner_pipelined: args.horner == Some(Horner::Pipelined),
         sim,
-        address: args.address,
-        lit_top: args.lit_top,
-        setup_order: args.setup_order,
+        address: args.address.unwrap_or_default(),
+        lit_top: args.lit_top.unwrap_or_default(),
+        setup_order: args.setup_order.unwrap_or_default(),
     };
     let t0 = std::time::Instant::now();
     let frames = render_frames(&setup, &methods, args.engine, build)?;
@@ -636,10 +693,10 @@ pub fn run(args: Args) -> Result<()> {
         engine: args.engine,
         triangles: setup.tris.len(),
         methods: reports,
+        files: dir.files()?,
     };
     let json = serde_json::to_string_pretty(&report).expect("report serializes");
-    std::fs::write(args.out.join("report.json"), json + "\n")
-        .with_context(|| format!("writing {}", args.out.join("report.json").display()))?;
+    dir.finish(&(json + "\n"))?;
     print_table(&args, &setup, &methods, &report)?;
     crate::outln!("wrote {} ({seconds:.1} s)", args.out.display())?;
     Ok(())

@@ -13,13 +13,7 @@ use rtl::core::registry::Options;
 /// checked against each other.
 fn selection(block: &str, build: &BuildArgs) -> anyhow::Result<(Vec<&'static dyn Block>, Options)> {
     let blocks = blocks::select(block).map_err(|e| anyhow!(e))?;
-    let o = build.options();
-    // A block ignores the options it does not read (their defaults apply to every command).
-    for b in &blocks {
-        if !b.param_keys().is_empty() {
-            b.check_options(&o).map_err(|e| anyhow!(e))?;
-        }
-    }
+    let o = build.checked_options(&blocks).map_err(|e| anyhow!(e))?;
     Ok((blocks, o))
 }
 
@@ -128,8 +122,7 @@ pub fn export(a: ExportArgs) -> anyhow::Result<()> {
     }
     if a.ecp5_dsp {
         let model = a.out.join("MULT18X18D_model.v");
-        std::fs::write(&model, rtl::targets::ecp5_dsp::sim_model())
-            .map_err(|e| anyhow!("cannot write {}: {e}", model.display()))?;
+        crate::output::write_whole(&model, rtl::targets::ecp5_dsp::sim_model().as_bytes())?;
         crate::outln!(
             "MULT18X18D simulation model (not for synthesis: synth_ecp5 has the cell) -> {}",
             model.display()
@@ -165,13 +158,20 @@ pub fn synth(a: SynthArgs) -> anyhow::Result<()> {
         }
     }
     if a.target == Target::Ecp5 {
+        if a.no_pnr && a.pins {
+            bail!("--pins places and routes on a package's pins: it cannot go with --no-pnr");
+        }
+        if a.no_pnr && a.seed.is_some() {
+            bail!("--seed is nextpnr-ecp5's placer seed: it has no effect with --no-pnr");
+        }
         if !flow::tools::available(flow::tools::Tool::Yosys) {
             bail!("yosys is not installed (apt-get install yosys)");
         }
         for b in blocks {
             let spin = spinner(format!(
-                "synth {}: Yosys synth_ecp5, then nextpnr-ecp5",
-                b.name()
+                "synth {}: Yosys synth_ecp5{}",
+                b.name(),
+                if a.no_pnr { "" } else { ", then nextpnr-ecp5" }
             ));
             let v = b.verilog(&o).map_err(|e| anyhow!(e));
             let rep = v.and_then(|v| {
@@ -183,6 +183,7 @@ pub fn synth(a: SynthArgs) -> anyhow::Result<()> {
                     &format!("ecp5-{}", b.name()),
                     a.seed.unwrap_or(1),
                     a.mult_regs.unwrap_or(MultRegsArg::Dsp).into(),
+                    !a.no_pnr,
                 )
                 .map_err(|e| anyhow!(e))
             });
@@ -331,9 +332,7 @@ fn write_table(a: &SynthArgs, rows: &[String]) -> anyhow::Result<()> {
         if a.no_pnr { " --no-pnr" } else { "" },
         rows.join("\n")
     );
-    let tmp = path.with_extension("md.tmp");
-    std::fs::write(&tmp, text).with_context(|| format!("cannot write {}", tmp.display()))?;
-    std::fs::rename(&tmp, path).with_context(|| format!("cannot write {}", path.display()))?;
+    crate::output::write_whole(path, text.as_bytes())?;
     crate::outln!("table: {}", path.display())?;
     Ok(())
 }

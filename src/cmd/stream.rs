@@ -5,7 +5,6 @@
 //! driven as the renderer drives it (`pipeline::axis`: a word every clock the top takes one,
 //! the consumer never stalls); the tests hold its beats to the bit-exact twin's.
 
-use std::io::Write;
 use std::path::PathBuf;
 
 use anyhow::{anyhow, bail, Context, Result};
@@ -57,6 +56,7 @@ pub fn run(a: Args) -> Result<()> {
         );
     };
     let s = crate::setup::build(&a.scene)?;
+    s.ensure_drawn()?;
     let regs = ShadingRegs::of(&s.ctx).map_err(|e| anyhow!(e))?;
     let mut jobs = Vec::new();
     for (i, t) in s.tris.iter().enumerate() {
@@ -94,6 +94,7 @@ fn run_cubic(a: &Args) -> Result<()> {
     use pipeline::span::{span_jobs, SpanKind};
     let pipelined = a.horner == crate::cmd::render::Horner::Pipelined;
     let s = crate::setup::build(&a.scene)?;
+    s.ensure_drawn()?;
     crate::rtl_engine::check_addresses(&s.tris, s.width, s.height)?;
     let kind = SpanKind::Cubic { pipelined };
     let mut spans = Vec::new();
@@ -188,10 +189,7 @@ fn simulate_and_write<T: StreamTop + rtl::core::registry::RtlBlock>(
 fn write_files(dir: &std::path::Path, files: &[(&str, &str)]) -> Result<()> {
     std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
     for (name, body) in files {
-        let path = dir.join(name);
-        std::fs::File::create(&path)
-            .and_then(|mut f| f.write_all(body.as_bytes()))
-            .with_context(|| format!("writing {}", path.display()))?;
+        crate::output::write_whole(&dir.join(name), body.as_bytes())?;
     }
     Ok(())
 }
@@ -201,6 +199,7 @@ fn write_files(dir: &std::path::Path, files: &[(&str, &str)]) -> Result<()> {
 fn run_gouraud(a: &Args) -> Result<()> {
     use pipeline::gouraud::TriangleJob;
     let s = crate::setup::build(&a.scene)?;
+    s.ensure_drawn()?;
     let jobs: Vec<TriangleJob> = s
         .tris
         .iter()

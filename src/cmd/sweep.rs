@@ -58,6 +58,10 @@ pub fn run(args: Args) -> Result<()> {
     }
     // Validate every configuration up front: a bad value fails before any work is done.
     let setups = configs.iter().map(build).collect::<Result<Vec<_>>>()?;
+    for (c, s) in configs.iter().zip(&setups) {
+        s.ensure_drawn()
+            .with_context(|| format!("{} shininess {} light {}°", c.describe(), c.shininess, c.light_deg))?;
+    }
     let methods = &Method::ALL_NON_REFERENCE[..];
     let bar = ProgressBar::new((configs.len() * (methods.len() + 1)) as u64).with_style(
         ProgressStyle::with_template("sweep [{bar:40}] {pos}/{len} images {elapsed}")
@@ -105,8 +109,8 @@ pub fn run(args: Args) -> Result<()> {
     }
     std::fs::create_dir_all(&args.out)
         .with_context(|| format!("creating output directory {}", args.out.display()))?;
-    std::fs::write(args.out.join("sweep.csv"), &csv).context("writing sweep.csv")?;
-    std::fs::write(args.out.join("sweep.md"), &md).context("writing sweep.md")?;
+    crate::output::write_whole(&args.out.join("sweep.csv"), csv.as_bytes())?;
+    crate::output::write_whole(&args.out.join("sweep.md"), md.as_bytes())?;
     crate::out!("{md}")?;
     crate::outln!(
         "wrote {} and {}",

@@ -490,7 +490,7 @@ pub fn run_stream_on(
                 .map_err(|e| spec.failure(c, "(set-up)", dash(), dash(), e))?;
             for k in 0..ports.len() {
                 if out[k] != want[k] {
-                    s.stop_vcd();
+                    let _ = s.stop_vcd();
                     return Err(spec.failure(
                         c,
                         ports[k].name,
@@ -511,7 +511,7 @@ pub fn run_stream_on(
                     continue;
                 }
                 if let Some((expected, detail)) = check_port(e, cmp, out[k], &mut stats[k], c) {
-                    s.stop_vcd();
+                    let _ = s.stop_vcd();
                     return Err(spec.failure(
                         c,
                         ports[k].name,
@@ -525,7 +525,8 @@ pub fn run_stream_on(
         }
         progress(s.cycle());
     }
-    s.stop_vcd();
+    s.stop_vcd()
+        .map_err(|e| spec.failure(s.cycle(), "(VCD)", dash(), dash(), e))?;
     if let Some(f) = check_rms(spec, &stats) {
         return Err(f);
     }

@@ -36,6 +36,7 @@ fn the_placer_seed_reaches_nextpnr() {
             tag,
             seed,
             MultRegs::Dsp,
+            true,
         )
         .unwrap_or_else(|e| panic!("seed {seed}: {e}"))
     };

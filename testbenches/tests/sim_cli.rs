@@ -42,6 +42,25 @@ fn bad_arguments_are_one_line_errors() {
     assert_clean_error(&["--block", "normaliser"], "normaliser");
     assert_clean_error(&["--block", "normalizer", "--vectors", "0"], "at least 1");
     assert_clean_error(&["--block", "normalizer", "--coeffs", "bogus"], "bogus");
+    // A flag the block does not read is refused, not ignored.
+    assert_clean_error(&["--block", "normalizer", "--power", "w4"], "--power");
+}
+
+/// A VCD that cannot be written (a full disk: /dev/full) is a one-line error, not a panic in
+/// rust-hdl's probe; the device stays a device.
+#[test]
+fn an_unwritable_vcd_is_a_one_line_error() {
+    if !std::path::Path::new("/dev/full").exists() {
+        eprintln!("SKIPPED: no /dev/full");
+        assert!(std::env::var_os("CI").is_none(), "no /dev/full under CI");
+        return;
+    }
+    assert_clean_error(
+        &["--block", "normalizer", "--vectors", "10", "--vcd", "/dev/full", "--sim", "rust-hdl"],
+        "No space left",
+    );
+    use std::os::unix::fs::FileTypeExt;
+    assert!(std::fs::metadata("/dev/full").unwrap().file_type().is_char_device());
 }
 
 /// A closed standard output is a one-line error, not a panic (the read end is closed before

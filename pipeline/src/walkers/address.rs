@@ -140,6 +140,6 @@ pub fn run_reactive_model(
         dones += o.done as usize;
         out.push(o);
     }
-    s.stop_vcd();
+    s.stop_vcd()?;
     Ok(out)
 }

@@ -132,6 +132,6 @@ pub fn run_reactive_model(
         }
         out.push(o);
     }
-    s.stop_vcd();
+    s.stop_vcd()?;
     Ok((rows, out))
 }

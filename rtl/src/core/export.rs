@@ -78,8 +78,7 @@ pub const WAIVERS_FILE: &str = "shadecore_waivers.vlt";
 pub fn write_waivers(dir: &Path) -> Result<PathBuf, String> {
     std::fs::create_dir_all(dir).map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
     let path = dir.join(WAIVERS_FILE);
-    std::fs::write(&path, VERILATOR_WAIVERS)
-        .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+    golden::files::write_whole(&path, VERILATOR_WAIVERS.as_bytes())?;
     Ok(path)
 }
 
@@ -87,7 +86,7 @@ pub fn write_waivers(dir: &Path) -> Result<PathBuf, String> {
 pub fn write(name: &str, text: &str, dir: &Path) -> Result<PathBuf, String> {
     std::fs::create_dir_all(dir).map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
     let path = dir.join(format!("{}.v", module_name(name)));
-    std::fs::write(&path, text).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+    golden::files::write_whole(&path, text.as_bytes())?;
     Ok(path)
 }
 

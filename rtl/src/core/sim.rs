@@ -125,10 +125,61 @@ pub struct Stepper<D: Dut> {
     dut: Box<D>,
     cycle: u64,
     vcd: Option<VCDProbe<Box<dyn Write>>>,
+    /// The writer under the probe and the first error it gave (see [`VcdSink`]).
+    vcd_sink: Option<VcdSink>,
 }
 
 /// `write_vcd_*` take the writer by value; a boxed writer lets the probe live in the stepper.
 type VCDProbe<W> = rust_hdl::core::vcd_probe::VCDProbe<W>;
+
+/// The writer a VCD probe writes through. rust-hdl's probe unwraps every write
+/// (`vendor/rust-hdl-core/src/vcd_probe.rs`), so a full disk or `/dev/full` would panic in
+/// it: this writer never reports an error to the probe. It keeps the first error, drops every
+/// later write, and the stepper returns that error from its next [`Stepper::step`] and from
+/// [`Stepper::stop_vcd`].
+#[derive(Clone)]
+struct VcdSink {
+    inner: std::rc::Rc<std::cell::RefCell<Box<dyn Write>>>,
+    error: std::rc::Rc<std::cell::RefCell<Option<std::io::Error>>>,
+}
+
+impl VcdSink {
+    fn new(w: Box<dyn Write>) -> Self {
+        Self {
+            inner: std::rc::Rc::new(std::cell::RefCell::new(w)),
+            error: Default::default(),
+        }
+    }
+    /// The first write error, as one line.
+    fn failed(&self) -> Result<(), String> {
+        match &*self.error.borrow() {
+            Some(e) => Err(format!("writing the VCD: {e}")),
+            None => Ok(()),
+        }
+    }
+    fn keep(&self, r: std::io::Result<()>) {
+        if let Err(e) = r {
+            self.error.borrow_mut().get_or_insert(e);
+        }
+    }
+}
+
+impl Write for VcdSink {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        if self.error.borrow().is_none() {
+            let r = self.inner.borrow_mut().write_all(buf);
+            self.keep(r);
+        }
+        Ok(buf.len())
+    }
+    fn flush(&mut self) -> std::io::Result<()> {
+        if self.error.borrow().is_none() {
+            let r = self.inner.borrow_mut().flush();
+            self.keep(r);
+        }
+        Ok(())
+    }
+}
 
 impl<D: Dut> Stepper<D> {
     /// Connect, check (open signals, loops) and settle `dut` with the clock low.
@@ -146,27 +197,42 @@ impl<D: Dut> Stepper<D> {
             dut,
             cycle: 0,
             vcd: None,
+            vcd_sink: None,
         })
     }
 
-    /// Start writing a VCD of every signal from the current cycle on.
+    /// Start writing a VCD of every signal from the current cycle on. A write error (a full
+    /// disk) is returned by the next [`Stepper::step`] and by [`Stepper::stop_vcd`].
     pub fn start_vcd(&mut self, w: Box<dyn Write>) {
-        let probe = write_vcd_header(w, self.dut.as_ref());
+        let sink = VcdSink::new(w);
+        self.vcd_sink = Some(sink.clone());
+        let probe = write_vcd_header(Box::new(sink) as Box<dyn Write>, self.dut.as_ref());
         let mut probe = write_vcd_dump(probe, self.dut.as_ref());
         let _ = probe.timestamp(self.cycle * CLOCK_PERIOD_PS);
         self.vcd = Some(probe);
     }
 
-    /// Stop tracing (flushes and drops the writer).
-    pub fn stop_vcd(&mut self) {
+    /// Stop tracing: flushes the writer and drops it; the first write error, if any.
+    pub fn stop_vcd(&mut self) -> Result<(), String> {
         self.vcd = None;
+        match self.vcd_sink.take() {
+            Some(mut sink) => {
+                let _ = sink.flush();
+                sink.failed()
+            }
+            None => Ok(()),
+        }
     }
 
-    fn trace(&mut self, t: u64) {
+    fn trace(&mut self, t: u64) -> Result<(), String> {
         if let Some(probe) = self.vcd.take() {
             let mut probe = probe;
             let _ = probe.timestamp(t);
             self.vcd = Some(write_vcd_change(probe, self.dut.as_ref()));
+        }
+        match &self.vcd_sink {
+            Some(sink) => sink.failed(),
+            None => Ok(()),
         }
     }
 
@@ -176,11 +242,11 @@ impl<D: Dut> Stepper<D> {
         self.dut.drive(inputs);
         self.dut.clock_mut().next = Clock { clk: false };
         settle(self.dut.as_mut())?;
-        self.trace(t0);
+        self.trace(t0)?;
         self.dut.sample(outputs);
         self.dut.clock_mut().next = Clock { clk: true };
         settle(self.dut.as_mut())?;
-        self.trace(t0 + CLOCK_PERIOD_PS / 2);
+        self.trace(t0 + CLOCK_PERIOD_PS / 2)?;
         self.cycle += 1;
         Ok(())
     }
@@ -215,8 +281,9 @@ pub trait Model {
     fn cycle(&self) -> u64;
     /// Trace every following clock into `w` as a VCD; an error where the simulator cannot.
     fn start_vcd(&mut self, w: Box<dyn Write>) -> Result<(), String>;
-    /// Stop tracing (flushes the writer); nothing when not tracing.
-    fn stop_vcd(&mut self);
+    /// Stop tracing (flushes the writer); nothing when not tracing. The first write error of
+    /// the trace, if any.
+    fn stop_vcd(&mut self) -> Result<(), String>;
     /// Which simulator this is, for messages: `"rust-hdl"` or `"verilator"`.
     fn simulator(&self) -> &'static str;
 }
@@ -279,8 +346,8 @@ impl<D: Dut> Model for RustHdlModel<D> {
         self.stepper.start_vcd(w);
         Ok(())
     }
-    fn stop_vcd(&mut self) {
-        self.stepper.stop_vcd();
+    fn stop_vcd(&mut self) -> Result<(), String> {
+        self.stepper.stop_vcd()
     }
     fn simulator(&self) -> &'static str {
         "rust-hdl"
@@ -324,18 +391,21 @@ pub fn write_vcd_window<D: Dut>(
         std::fs::create_dir_all(dir)
             .map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
     }
-    let mut file =
-        Some(File::create(path).map_err(|e| format!("cannot create {}: {e}", path.display()))?);
-    let mut s = Stepper::new(dut)?;
-    let mut out = vec![0; s.dut().outputs().len()];
-    for (c, r) in rows.iter().enumerate().take(to as usize) {
-        if c as u64 == from {
-            if let Some(f) = file.take() {
-                s.start_vcd(Box::new(BufWriter::new(f)));
+    // Written under a temporary name and renamed into place when whole (`golden::files`).
+    golden::files::write_through(path, |temp| {
+        let mut file = Some(
+            File::create(temp).map_err(|e| format!("cannot create {}: {e}", path.display()))?,
+        );
+        let mut s = Stepper::new(dut)?;
+        let mut out = vec![0; s.dut().outputs().len()];
+        for (c, r) in rows.iter().enumerate().take(to as usize) {
+            if c as u64 == from {
+                if let Some(f) = file.take() {
+                    s.start_vcd(Box::new(BufWriter::new(f)));
+                }
             }
+            s.step(r, &mut out)?;
         }
-        s.step(r, &mut out)?;
-    }
-    s.stop_vcd();
-    Ok(())
+        s.stop_vcd().map_err(|e| format!("{}: {e}", path.display()))
+    })
 }
