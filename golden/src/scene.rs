@@ -18,7 +18,10 @@ pub mod snap;
 
 pub use camera::Camera;
 pub use mesh::{torus, uv_sphere, Mesh, REZ_RANGE, TORUS_MAJOR, TORUS_MINOR};
-pub use obj::{load_obj, load_obj_counting, MAX_OBJ_BYTES};
+pub use obj::{
+    load_obj, load_obj_counting, read_regular_file, BYTES_PER_TRIANGLE, BYTES_PER_VERTEX,
+    MAX_COORDINATE, MAX_OBJ_BYTES, MAX_TRIANGLES, MAX_VERTICES, MEMORY_BUDGET_BYTES, MIN_EXTENT,
+};
 pub use projection::{light_direction, project, LIGHT_ELEVATION_DEG, MAX_CANVAS};
 pub use snap::screen_addresses;
 
@@ -48,6 +51,19 @@ pub enum SceneError {
         origin: String,
         vertex: usize,
         value: f64,
+    },
+    #[error("{origin}: vertex {vertex} has a coordinate {value:e}, beyond the range ±{max:e} (the camera fit squares distances)")]
+    CoordinateRange {
+        origin: String,
+        vertex: usize,
+        value: f64,
+        max: f64,
+    },
+    #[error("{origin}: the mesh's extent {extent:e} is too small to fit a camera to (its largest coordinate is {largest:e}; the extent must be at least 1e-30 and 1e-9 of that): scale the mesh up or move it to the origin")]
+    Extent {
+        origin: String,
+        extent: f64,
+        largest: f64,
     },
     #[error("{origin}: vertex {vertex} has a {problem} normal")]
     BadNormal {

@@ -96,7 +96,9 @@ fn projection_frames_the_mesh_and_culls_by_orientation() {
                     );
                     prop_assert!(v.x >= 0 && v.y >= 0 && v.x as u32 <= w && v.y as u32 <= h);
                     prop_assert!((v.normal.length() - 1.0).abs() < 1e-12);
-                    prop_assert!(v.z.abs() <= 1.5);
+                    // Depth takes the camera's scale: within the bounding sphere's radius in
+                    // pixels of the centre's depth 0.
+                    prop_assert!(v.z.abs() <= r_px * (1.0 + 1e-12), "depth {}", v.z);
                 }
             }
             // Culling against the exact screen area: rounding moves each vertex by at most √½ px
@@ -174,19 +176,21 @@ fn sphere_at_identity_shows_its_front_half() {
     );
     for t in &tris {
         for v in &t.v {
-            // A front face reaches at most one slice (7.2°) past the rim: sin 7.2° = 0.125.
-            assert!(v.z <= 0.126, "depth {}", v.z);
+            // A front face reaches at most one slice (7.2°) past the rim: sin 7.2° = 0.125 of
+            // the radius, in pixels (depth takes the camera's scale, 190 px per unit here).
+            assert!(v.z <= 0.126 * cam.scale, "depth {}", v.z);
             assert!(v.normal.z >= -0.126, "normal {}", v.normal);
         }
     }
-    // The vertex nearest the viewer is the one at +z: depth −1, straight at the viewer, drawn at
-    // the canvas centre.
+    // The vertex nearest the viewer is the one at +z: depth −1 unit, −190 px, straight at the
+    // viewer, drawn at the canvas centre.
     let nearest = tris
         .iter()
         .flat_map(|t| t.v)
         .min_by(|a, b| a.z.total_cmp(&b.z))
         .unwrap();
-    assert!((nearest.z + 1.0).abs() < 1e-12);
+    assert_eq!(cam.scale, 190.0);
+    assert!((nearest.z + 190.0).abs() < 1e-9, "{}", nearest.z);
     assert!((nearest.normal - DVec3::Z).length() < 1e-12);
     assert_eq!((nearest.x, nearest.y), (200, 200));
     // y up in view space, y down on screen: the north pole (+y) is drawn at the top.

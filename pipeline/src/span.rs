@@ -169,6 +169,34 @@ impl UnitWords {
     }
 }
 
+/// Memory a span render's set-up may hold (`golden::scene::MEMORY_BUDGET_BYTES`, 2 GiB): the
+/// span families build every raster line's [`SpanJob`] before the run.
+pub const SPAN_BUDGET_BYTES: u64 = golden::scene::MEMORY_BUDGET_BYTES;
+/// Peak memory per raster line of the span set-up, measured: `render --engine both --method
+/// cubic` (or `angular`) of 50 000 identical faces at 64×48, about 1.65 M lines, peaks at
+/// 326 MB (about 193 bytes a line, the vector's growth included); rounded up.
+pub const BYTES_PER_SPAN_LINE: u64 = 256;
+
+/// An error naming the budget when the raster lines of `tris` (each triangle's rows, an upper
+/// bound of its span jobs) would not fit [`SPAN_BUDGET_BYTES`].
+pub fn check_span_budget(tris: &[ScreenTriangle]) -> Result<(), String> {
+    let lines: u64 = tris
+        .iter()
+        .map(|t| {
+            let ys = t.v.map(|v| v.y as i64);
+            (ys.iter().max().unwrap() - ys.iter().min().unwrap() + 1) as u64
+        })
+        .sum();
+    let max = SPAN_BUDGET_BYTES / BYTES_PER_SPAN_LINE;
+    if lines > max {
+        return Err(format!(
+            "the triangles span {lines} raster lines, above the {max} whose per-line set-up ({BYTES_PER_SPAN_LINE} bytes each) fits the {} MiB memory budget: use fewer or smaller triangles, a smaller canvas, or a method that is not a span method",
+            SPAN_BUDGET_BYTES >> 20
+        ));
+    }
+    Ok(())
+}
+
 /// One raster line's set-up for a span pipeline.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SpanJob {
@@ -587,7 +615,7 @@ impl SpanPipe {
                 }
             }
         }
-        self.model.stop_vcd();
+        self.model.stop_vcd()?;
         Ok(st)
     }
 }

@@ -6,7 +6,9 @@ use glam::{DQuat, DVec2, DVec3};
 /// Orthographic camera. A model point p goes to view space as `rotation · (p − centre)`
 /// (viewer looking down −z, y up), then to the continuous screen position
 /// `(screen_centre.x + scale·v.x, screen_centre.y − scale·v.y)` (screen y down) with depth
-/// `−v.z` (smaller is nearer; 0 at `centre`, in model units).
+/// `−scale·v.z` (smaller is nearer; 0 at `centre`). Depth takes the same fit as x and y, so it
+/// is in pixels whatever the mesh's size: within ±`scale`·radius, under half the shorter canvas
+/// side (at most 2048 for a 4096² canvas), well inside the RTL's depth words.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Camera {
     pub rotation: DQuat,
@@ -67,7 +69,7 @@ impl Camera {
         DVec3::new(
             self.screen_centre.x + self.scale * v.x,
             self.screen_centre.y - self.scale * v.y,
-            -v.z,
+            -self.scale * v.z,
         )
     }
 }

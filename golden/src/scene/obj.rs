@@ -12,8 +12,42 @@ use super::SceneError;
 /// Largest OBJ file [`load_obj`] reads (256 MiB: several million triangles).
 pub const MAX_OBJ_BYTES: u64 = 256 << 20;
 
+/// Memory a loaded mesh may take, from the file's text to the rendered frames: the budget
+/// [`MAX_TRIANGLES`] and [`MAX_VERTICES`] are derived from (2 GiB).
+pub const MEMORY_BUDGET_BYTES: u64 = 2 << 30;
+/// Peak memory per triangle of the file, measured: `render --engine golden` (every method,
+/// 64×48) of 50 000 identical faces peaks at 49 MB, of 200 000 at 182 MB (about 880 bytes a
+/// face); rounded up. The RTL engine's span methods hold a set-up per raster line on top
+/// (`pipeline::span::BYTES_PER_SPAN_LINE`, capped there).
+pub const BYTES_PER_TRIANGLE: u64 = 1024;
+/// Peak memory per `v` line of the file, measured as [`BYTES_PER_TRIANGLE`]: 1 000 000
+/// vertices and one face peak at 57 MB (about 50 bytes a vertex with the file's text);
+/// rounded up.
+pub const BYTES_PER_VERTEX: u64 = 128;
+/// Most triangles a file may hold (after polygons are split into triangles), so that a mesh of
+/// that many fits in [`MEMORY_BUDGET_BYTES`].
+pub const MAX_TRIANGLES: u64 = MEMORY_BUDGET_BYTES / BYTES_PER_TRIANGLE;
+/// Most `v` lines a file may hold, as [`MAX_TRIANGLES`].
+pub const MAX_VERTICES: u64 = MEMORY_BUDGET_BYTES / BYTES_PER_VERTEX;
+
+/// Largest magnitude a coordinate of the file may have. The camera fit squares distances, so
+/// coordinates up to 1e30 keep every intermediate far inside f64's range.
+pub const MAX_COORDINATE: f64 = 1e30;
+/// Smallest extent (the bounding box's longest side) a mesh may have, absolutely and relative
+/// to its largest coordinate: below it, the vertices are not distinct enough in f64 to fit a
+/// camera (squared distances underflow, or positions far from the origin round together).
+pub const MIN_EXTENT: f64 = 1e-30;
+/// The extent relative to the largest coordinate below which the mesh is refused (see
+/// [`MIN_EXTENT`]); f64 keeps about 1e-16 of a coordinate.
+pub const MIN_RELATIVE_EXTENT: f64 = 1e-9;
+
 /// Loads a Wavefront OBJ through `tobj` (polygons triangulated, one index per vertex; points
-/// and lines ignored; materials ignored). All objects of the file are merged into one mesh.
+/// and lines ignored; materials ignored: an `mtllib` line opens nothing). All objects of the
+/// file are merged into one mesh. Coordinates are read as f64.
+///
+/// Only a regular file of at most [`MAX_OBJ_BYTES`] is read, holding at most [`MAX_TRIANGLES`]
+/// triangles and [`MAX_VERTICES`] vertices (the memory budget), with coordinates within
+/// ±[`MAX_COORDINATE`] and an extent of at least [`MIN_EXTENT`].
 ///
 /// Normals given in the file are normalized; an object without normals gets smooth,
 /// area-weighted vertex normals, accumulated over all triangles that share the vertex's
@@ -23,45 +57,106 @@ pub fn load_obj(path: &Path) -> Result<Mesh, SceneError> {
     load_obj_counting(path).map(|(mesh, _)| mesh)
 }
 
-/// [`load_obj`], also returning how many vertices got their first face's normal because the
-/// area-weighted sum of their faces' normals vanished (faces that cancel, common in scans).
-pub fn load_obj_counting(path: &Path) -> Result<(Mesh, usize), SceneError> {
+/// The bytes of the regular file `path`, at most `max` of them. `what` names the kind of file in
+/// errors ("OBJ file"). A device (/dev/zero) would be read until memory runs out and a named
+/// pipe would block forever, so only a regular file is opened for reading (checked on the open
+/// handle, so a file swapped in between is caught too), and at most `max + 1` bytes are read.
+pub fn read_regular_file(path: &Path, max: u64) -> Result<Vec<u8>, SceneError> {
+    use std::io::Read;
     let shown = path.display().to_string();
-    // Only a regular file of bounded size is read: a device (/dev/zero) would be read until
-    // memory runs out, a named pipe would block forever.
+    let unreadable = |reason: String| SceneError::ObjUnreadable {
+        path: shown.clone(),
+        reason,
+    };
+    // The type is checked before opening: opening a named pipe for reading blocks until a
+    // writer comes.
     let meta = match std::fs::metadata(path) {
         Ok(m) => m,
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
             return Err(SceneError::ObjMissing { path: shown })
         }
-        Err(e) => {
-            return Err(SceneError::ObjUnreadable {
-                path: shown,
-                reason: e.to_string(),
-            })
-        }
+        Err(e) => return Err(unreadable(e.to_string())),
     };
     if meta.is_dir() {
-        return Err(SceneError::ObjUnreadable {
-            path: shown,
-            reason: "is a directory".into(),
-        });
+        return Err(unreadable("is a directory".into()));
     }
+    let not_regular = || unreadable("is not a regular file (a device, pipe or socket)".into());
     if !meta.is_file() {
-        return Err(SceneError::ObjUnreadable {
-            path: shown,
-            reason: "is not a regular file (a device, pipe or socket)".into(),
-        });
+        return Err(not_regular());
     }
-    if meta.len() > MAX_OBJ_BYTES {
-        return Err(SceneError::ObjUnreadable {
-            path: shown,
+    let too_big = |len: u64| {
+        unreadable(format!(
+            "is {len} bytes ({:.1} MiB), above the {} MiB limit",
+            len as f64 / (1u64 << 20) as f64,
+            max >> 20
+        ))
+    };
+    if meta.len() > max {
+        return Err(too_big(meta.len()));
+    }
+    let file = std::fs::File::open(path).map_err(|e| unreadable(e.to_string()))?;
+    match file.metadata() {
+        Ok(m) if m.is_file() => {}
+        Ok(_) => return Err(not_regular()),
+        Err(e) => return Err(unreadable(e.to_string())),
+    }
+    let mut bytes = Vec::new();
+    file.take(max + 1)
+        .read_to_end(&mut bytes)
+        .map_err(|e| unreadable(e.to_string()))?;
+    if bytes.len() as u64 > max {
+        return Err(too_big(bytes.len() as u64));
+    }
+    Ok(bytes)
+}
+
+/// How many triangles and `v` lines `text` holds (a face of n corners is n − 2 triangles),
+/// counted before `tobj` allocates anything.
+fn count_elements(text: &str) -> (u64, u64) {
+    let (mut tris, mut verts) = (0u64, 0u64);
+    for line in text.lines() {
+        let mut words = line.split_whitespace();
+        match words.next() {
+            Some("f") => tris += (words.count() as u64).saturating_sub(2),
+            Some("v") => verts += 1,
+            _ => {}
+        }
+    }
+    (tris, verts)
+}
+
+/// [`load_obj`], also returning how many vertices got their first face's normal because the
+/// area-weighted sum of their faces' normals vanished (faces that cancel, common in scans).
+pub fn load_obj_counting(path: &Path) -> Result<(Mesh, usize), SceneError> {
+    let shown = path.display().to_string();
+    let bytes = read_regular_file(path, MAX_OBJ_BYTES)?;
+    let text = std::str::from_utf8(&bytes).map_err(|u| {
+        // An error means a bad byte exists at `valid_up_to`.
+        let at = u.valid_up_to();
+        SceneError::ObjUnreadable {
+            path: shown.clone(),
             reason: format!(
-                "is {} MiB, above the {} MiB limit",
-                meta.len() >> 20,
-                MAX_OBJ_BYTES >> 20
+                "is not UTF-8 text (byte 0x{:02x} at offset {at} is not valid UTF-8)",
+                bytes[at]
             ),
-        });
+        }
+    })?;
+    // A UTF-8 byte-order mark (some Windows tools write one) is no part of the first line.
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+    let (tris, verts) = count_elements(text);
+    let budget = MEMORY_BUDGET_BYTES >> 20;
+    for (count, max, what, per) in [
+        (tris, MAX_TRIANGLES, "triangles", BYTES_PER_TRIANGLE),
+        (verts, MAX_VERTICES, "vertices", BYTES_PER_VERTEX),
+    ] {
+        if count > max {
+            return Err(SceneError::ObjUnreadable {
+                path: shown,
+                reason: format!(
+                    "holds {count} {what}, above the limit of {max} that fits the {budget} MiB memory budget ({per} bytes each)"
+                ),
+            });
+        }
     }
     // `..Default::default()` keeps this compiling if a tobj feature adds option fields.
     #[allow(clippy::needless_update)]
@@ -72,13 +167,14 @@ pub fn load_obj_counting(path: &Path) -> Result<(Mesh, usize), SceneError> {
         ignore_lines: true,
         ..Default::default()
     };
-    let (models, _materials) = tobj::load_obj(path, &options).map_err(|e| match e {
-        tobj::LoadError::OpenFileFailed if !path.exists() => SceneError::ObjMissing {
+    // Materials are not used: `mtllib` names nothing that is opened.
+    let (models, _materials) = tobj::load_obj_buf(&mut text.as_bytes(), &options, |_| {
+        Err(tobj::LoadError::OpenFileFailed)
+    })
+    .map_err(|e| match e {
+        tobj::LoadError::ReadError => SceneError::ObjUnreadable {
             path: shown.clone(),
-        },
-        tobj::LoadError::OpenFileFailed | tobj::LoadError::ReadError => SceneError::ObjUnreadable {
-            path: shown.clone(),
-            reason: read_failure(path, &e),
+            reason: e.to_string(),
         },
         e => SceneError::ObjMalformed {
             path: shown.clone(),
@@ -86,25 +182,6 @@ pub fn load_obj_counting(path: &Path) -> Result<(Mesh, usize), SceneError> {
         },
     })?;
     from_models(&models, &shown)
-}
-
-/// Why `tobj` could not read `path`: its own message is a bare "read error" for a file that is
-/// not UTF-8 text (it reads lines), so that case names the first byte that is not.
-fn read_failure(path: &Path, e: &tobj::LoadError) -> String {
-    if matches!(e, tobj::LoadError::ReadError) {
-        // The size was checked above (≤ MAX_OBJ_BYTES), so reading it whole is bounded.
-        if let Ok(bytes) = std::fs::read(path) {
-            if let Err(u) = std::str::from_utf8(&bytes) {
-                // An error means a bad byte exists at `valid_up_to`.
-                let at = u.valid_up_to();
-                return format!(
-                    "is not UTF-8 text (byte 0x{:02x} at offset {at} is not valid UTF-8)",
-                    bytes[at]
-                );
-            }
-        }
-    }
-    e.to_string()
 }
 
 /// The mesh of the objects `tobj` loaded from the file `shown`: every check of [`load_obj`] that
@@ -121,7 +198,7 @@ fn from_models(models: &[tobj::Model], shown: &str) -> Result<(Mesh, usize), Sce
         mesh.positions.extend(
             m.positions
                 .chunks_exact(3)
-                .map(|c| DVec3::new(c[0] as f64, c[1] as f64, c[2] as f64)),
+                .map(|c| DVec3::new(c[0], c[1], c[2])),
         );
         let tris: Vec<[u32; 3]> = m
             .indices
@@ -145,6 +222,14 @@ fn from_models(models: &[tobj::Model], shown: &str) -> Result<(Mesh, usize), Sce
                 value,
             });
         }
+        if let Some((k, value)) = first_out_of_range(&mesh.positions[base..]) {
+            return Err(SceneError::CoordinateRange {
+                origin,
+                vertex: base + k,
+                value,
+                max: MAX_COORDINATE,
+            });
+        }
         if m.normals.is_empty() {
             let computed = smooth_normals(&mesh.positions[base..], &tris, base);
             for (k, n) in computed.into_iter().enumerate() {
@@ -160,7 +245,7 @@ fn from_models(models: &[tobj::Model], shown: &str) -> Result<(Mesh, usize), Sce
             }
         } else if m.normals.len() == m.positions.len() {
             for (k, c) in m.normals.chunks_exact(3).enumerate() {
-                let n = DVec3::new(c[0] as f64, c[1] as f64, c[2] as f64);
+                let n = DVec3::new(c[0], c[1], c[2]);
                 if let Some(problem) = normal_problem(n) {
                     return Err(SceneError::BadNormal {
                         origin,
@@ -182,8 +267,32 @@ fn from_models(models: &[tobj::Model], shown: &str) -> Result<(Mesh, usize), Sce
     if mesh.triangles.is_empty() {
         return Err(SceneError::ObjEmpty { path: shown.into() });
     }
+    let (lo, hi) = mesh.positions.iter().fold(
+        (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
+        |(lo, hi), &p| (lo.min(p), hi.max(p)),
+    );
+    let extent = (hi - lo).max_element();
+    let largest = lo.abs().max(hi.abs()).max_element();
+    if extent < MIN_EXTENT || extent < MIN_RELATIVE_EXTENT * largest {
+        return Err(SceneError::Extent {
+            origin,
+            extent,
+            largest,
+        });
+    }
     mesh.check(&origin)?;
     Ok((mesh, fallbacks))
+}
+
+/// The first position with a coordinate beyond ±[`MAX_COORDINATE`]: its number and that
+/// coordinate (as the file gives it: read as f64).
+fn first_out_of_range(positions: &[DVec3]) -> Option<(usize, f64)> {
+    positions.iter().enumerate().find_map(|(vertex, p)| {
+        p.to_array()
+            .iter()
+            .find(|c| c.abs() > MAX_COORDINATE)
+            .map(|&value| (vertex, value))
+    })
 }
 
 /// The unit normal of the first triangle of `tris` that uses vertex `v` and has an area.
@@ -430,7 +539,7 @@ mod tests {
     }
 
     /// A `tobj` object built by hand: `positions` and `normals` flattened, faces as given.
-    fn model(positions: &[[f32; 3]], normals: &[[f32; 3]], faces: &[[u32; 3]]) -> tobj::Model {
+    fn model(positions: &[[f64; 3]], normals: &[[f64; 3]], faces: &[[u32; 3]]) -> tobj::Model {
         let mesh = tobj::Mesh {
             positions: positions.concat(),
             normals: normals.concat(),

@@ -180,6 +180,7 @@ impl Family for Span {
         progress: &mut dyn FnMut(Tick),
     ) -> Result<Rendered, String> {
         check_addresses(s.tris, s.width, s.height)?;
+        crate::span::check_span_budget(s.tris)?;
         // The cubic's samples and the quadric's coefficients are lit in software (any lighting
         // model); the other span tops light in hardware and need the registers.
         let regs = if matches!(self.0, Method::Cubic | Method::Quadric) {

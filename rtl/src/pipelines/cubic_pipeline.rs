@@ -21,7 +21,7 @@
 //! | `y`, `x0`, `dir`, `m` | in | the line: y, first pixel's x, 1 = leftward (x0 − t), pixels − 1 |
 //! | `step` | in | round(2²⁷/m), UQ1.27 (28 bits) |
 //! | `r1` … `r4`, `g1` … `g4`, `b1` … `b4` | in | I(0), I(1), I(½), I(¼) per channel, signed Q11.5 |
-//! | `z0`, `dz` | in | depth at pixel 0 and per pixel step, signed Q16.16 model units |
+//! | `z0`, `dz` | in | depth at pixel 0 and per pixel step, signed Q16.16 pixels |
 //! | `hold` | in | back-pressure from a stream top, to the three units: no pixel enters them this clock, the walk does not move on, no line is taken (see `horner_unit`); pixels already issued run on |
 //! | `ready` | out | the units': a `load` now follows the current line without a gap |
 //! | `valid`, `x`, `z`, `red`, `green`, `blue` | out | one fragment |
@@ -40,7 +40,7 @@
 //!
 //! # Overflow, error budget
 //! The units': nothing wraps, the colours saturate. Depth: the z run adds dz per pixel from z0
-//! (≤ 4095 additions, ≤ 2⁻¹⁷ each: ≤ 0.032 model units), wrapping like the BVI's (the set-up
+//! (≤ 4095 additions, ≤ 2⁻¹⁷ each: ≤ 0.032 pixels), wrapping like the BVI's (the set-up
 //! keeps depths within ±2¹⁴). Colours against the golden `cubic`: the units' bound
 //! (`golden::units::horner_unit::HornerWords::error_bound`) plus the sample words' rounding (2⁻⁶ LSB
 //! each, through the cubic's weights).

@@ -17,7 +17,7 @@
 //! | `load` | in | accepted when `ready` is high: writes the address block and every shadow bank |
 //! | address set-up (`w_b0` … `dir_neg`) | in | the address block's (`address_block`) |
 //! | `x_start` … `z_line` | in | the normal planes, signed Q3.29 words (`vector_interpolator`) |
-//! | `d_start d_short d_long d_line` | in | the depth plane, signed Q16.16 words in model units (the BVI's channel format) |
+//! | `d_start d_short d_long d_line` | in | the depth plane, signed Q16.16 words in pixels (the BVI's channel format) |
 //! | `lx ly lz`, `hx hy hz` | in | unit L and H, signed Q2.14 (frame registers) |
 //! | `n` | in | specular exponent, 10 bits (material register; 1..1000) |
 //! | `amb_r` … `spc_b` | in | colour weights, unsigned Q8.8 (material registers, `colour_combine`) |
@@ -25,7 +25,7 @@
 //! | `ready` | out | the address block's: a `load` is accepted this clock |
 //! | `valid` | out | a fragment this clock |
 //! | `x`, `y` | out | 12-bit pixel address |
-//! | `z` | out | depth, signed Q16.16 model units (RG4 of the depth channel; smaller is nearer) |
+//! | `z` | out | depth, signed Q16.16 pixels (RG4 of the depth channel; smaller is nearer) |
 //! | `red green blue` | out | 8 bits |
 //! | `done` | out | the last event of a triangle (may come with `valid` low) |
 //!

@@ -31,7 +31,7 @@
 //! | `dir` | in | 0: pixel t is at x0 + t; 1: at x0 − t (the walk's direction) |
 //! | `m` | in | pixels − 1 (12 bits) |
 //! | L words, H words | in | the span unit's words for X = L and X = H (`cos_v_accumulator`, `fast_unit`) |
-//! | `z0`, `zm`, `dz` | in | depth at pixel 0 and pixel m, step per pixel; signed Q16.16 model units |
+//! | `z0`, `zm`, `dz` | in | depth at pixel 0 and pixel m, step per pixel; signed Q16.16 pixels |
 //! | `n`, `amb_r` … `spc_b` | in | material registers: exponent (10 bits), colour weights UQ8.8 |
 //! | `hold` | in | 1: both span units and the depth runs stand still this clock (no pixel enters the shading, no span is taken); the stages after the units run on, so a stream top holding on its FIFO's level loses nothing |
 //! | `ready` | out | the span units': a `load` now follows the current span without a gap (low while held) |
@@ -51,7 +51,7 @@
 //! # Overflow, error budget
 //! Those of the blocks: cosines, power and colours saturate; the z runs wrap like the BVI's
 //! (the set-up keeps depths within ±2¹⁴). z: ≤ 2⁻¹⁷ per step from the rounded dz, ≤ 2048 steps
-//! from either end: ≤ 0.0157 model units. Colours against the golden method: the span unit's
+//! from either end: ≤ 0.0157 pixels. Colours against the golden method: the span unit's
 //! bound through the power (n·cos^(n−1)·δ) and the combine's half LSB; measured ≤ 2 LSB.
 //!
 //! Latency (`angular-pipeline`: the block's `LATENCY`): 60 clocks, load to the first fragments, two fragments per clock.

@@ -21,7 +21,7 @@
 //! | `m_axis_a_tready`, `m_axis_b_tready` | in | each lane's consumer takes its beat on `tvalid & tready`; either may be low for any time |
 //! | `m_axis_a_tvalid`, `m_axis_b_tvalid` | out | a beat is offered on the lane (held, with its data, until taken) |
 //! | `m_axis_a_tdata`, `m_axis_b_tdata` | out | 64 bits: `x`, `y`, `pixel` (1: a fragment), `red`, `green`, `blue` (the `pixel-stream` beat) |
-//! | `m_axis_a_tuser`, `m_axis_b_tuser` | out | the fragment's depth `z`, 32 bits (signed Q16.16 model units) |
+//! | `m_axis_a_tuser`, `m_axis_b_tuser` | out | the fragment's depth `z`, 32 bits (signed Q16.16 pixels) |
 //! | `m_axis_a_tlast`, `m_axis_b_tlast` | out | the beat is from its line's last clock |
 //! | `error` | out | sticky: a record with an unknown type or the wrong length was dropped |
 //!
@@ -71,7 +71,7 @@
 //! None of its own: the FIFOs cannot overflow (above); `outstanding` (lines loaded whose last
 //! clock has not left the pipeline) is 16 bits, at most 2 in practice; the data are
 //! `angular-pipeline`'s, bit for bit (colours within its bound of the golden `angular`, depth
-//! within 0.0157 model units of the f64 plane).
+//! within 0.0157 pixels of the f64 plane).
 //!
 //! Latency (the block's `LATENCY`): 64 clocks, a line record's last word to its first fragment beats, two fragments per clock.
 

@@ -19,7 +19,7 @@
 //! | `m_axis_tready` | in | the consumer takes the beat on `tvalid & tready`; may be low for any time |
 //! | `m_axis_tvalid` | out | a beat is offered (held, with its data, until taken) |
 //! | `m_axis_tdata` | out | 64 bits: `x`, `y`, `pixel` (always 1 here), `red`, `green`, `blue` (the `pixel-stream` beat) |
-//! | `m_axis_tuser` | out | the fragment's depth `z`, 32 bits (signed Q16.16 model units) |
+//! | `m_axis_tuser` | out | the fragment's depth `z`, 32 bits (signed Q16.16 pixels) |
 //! | `m_axis_tlast` | out | the beat is its line's last pixel |
 //! | `error` | out | sticky: a record with an unknown type or the wrong length was dropped |
 //!

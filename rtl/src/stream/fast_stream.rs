@@ -50,7 +50,7 @@
 //! # Overflow, error budget
 //! None of its own: the FIFOs cannot overflow (above); `outstanding` is 16 bits, at most 2 in
 //! practice; the data are `fast-pipeline`'s, bit for bit (colours within its bound of the
-//! golden `fast` / `fast-fit`, depth within 0.0157 model units of the f64 plane).
+//! golden `fast` / `fast-fit`, depth within 0.0157 pixels of the f64 plane).
 //!
 //! Latency (the block's `LATENCY`): 72 clocks, a line record's last word to its first fragment beats, two fragments per clock.
 

@@ -18,7 +18,7 @@
 //! | `m_axis_tready` | in | the consumer takes the beat on `tvalid & tready`; may be low for any time |
 //! | `m_axis_tvalid` | out | a beat is offered (held, with its data, until taken) |
 //! | `m_axis_tdata` | out | 64 bits: `x`, `y`, `pixel` (1: a fragment), `red`, `green`, `blue` |
-//! | `m_axis_tuser` | out | the fragment's depth `z`, 32 bits (signed Q16.16 model units) |
+//! | `m_axis_tuser` | out | the fragment's depth `z`, 32 bits (signed Q16.16 pixels) |
 //! | `m_axis_tlast` | out | the beat is its triangle's last event (a beat with `pixel` = 0 carries only that) |
 //! | `error` | out | sticky: a record with an unknown type or the wrong length was dropped |
 //!

@@ -8,7 +8,7 @@
 //! L = (1,1,1)/√3, n = 50, the thesis material), loaded as soon as `ready` allows.
 //! Tolerances: `ready`, `valid`, `x`, `y`, `done` exact; colours within 2 LSB of the golden
 //! method's colour (the bound for the image), RMS 0.5 LSB; `z` within the depth
-//! channel's bound (n·2⁻¹⁷ for n ≤ 8189 additions, ≤ 0.0625 model units).
+//! channel's bound (n·2⁻¹⁷ for n ≤ 8189 additions, ≤ 0.0625 pixels).
 
 use std::collections::VecDeque;
 

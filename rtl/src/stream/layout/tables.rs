@@ -505,7 +505,7 @@ pub const FRAGMENT: &[Placed] = &[
 /// Width of `m_axis_tdata`.
 pub const FRAGMENT_BITS: u32 = 64;
 
-/// `m_axis_tuser`: the fragment's depth `z` (signed Q16.16 model units, as `pixel-pipeline`'s
+/// `m_axis_tuser`: the fragment's depth `z` (signed Q16.16 pixels, as `pixel-pipeline`'s
 /// `z` port), 32 bits.
 pub const TUSER: Field = Field {
     name: "z",
