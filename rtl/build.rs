@@ -4,9 +4,21 @@
 //! builds on it with the block's name and parameters, so a warm run never regenerates Verilog
 //! only to find its cache entry, and any edit of the RTL's sources makes a new entry.
 //!
+//!
+//! Also writes the stream tops' generated cores into `OUT_DIR` (one file per top,
+//! `rtl::stream::layout::core_file`), from the same tables the driver packs records with.
+//!
 //! Not a block: no ports, no latency.
 
 use std::path::{Path, PathBuf};
+
+// The layout tables and the code generator, shared with the crate (`rtl::stream::layout`).
+#[allow(dead_code)]
+#[path = "src/stream/layout/tables.rs"]
+mod tables;
+#[allow(dead_code)]
+#[path = "src/stream/layout/codegen.rs"]
+mod codegen;
 
 fn files(dir: &Path, out: &mut Vec<PathBuf>) {
     let Ok(entries) = std::fs::read_dir(dir) else {
@@ -64,4 +76,15 @@ fn main() {
         eat(&[0xff]);
     }
     println!("cargo:rustc-env=SHADECORE_RTL_FINGERPRINT={h:016x}");
+
+    let out = PathBuf::from(std::env::var("OUT_DIR").expect("set by cargo"));
+    for top in &tables::TOPS {
+        let path = out.join(codegen::core_file_name(top));
+        let text = codegen::core_file(top);
+        // Rewritten only when it changes, so an unchanged core does not rebuild the crate.
+        if std::fs::read_to_string(&path).ok().as_deref() != Some(text.as_str()) {
+            std::fs::write(&path, text)
+                .unwrap_or_else(|e| panic!("cannot write {}: {e}", path.display()));
+        }
+    }
 }

@@ -49,6 +49,7 @@ the default 400x400: about 1 s); with --sim rust-hdl the RTL images take about 4
 }
 
 fn main() {
+    flow::engine::set_thread_stack();
     // Model builds show as progress bars (`shadecore::sim::prepare`), not as lines on stderr.
     verilated::set_quiet(true);
     let cli = match Cli::try_parse() {

@@ -131,3 +131,15 @@ pub fn prepare(
         None => Ok(()),
     }
 }
+
+/// Stack for every thread the process spawns (64 MiB), unless `RUST_MIN_STACK` says otherwise.
+/// A rust-hdl block is one struct holding its whole hierarchy by value (a stream top is about
+/// 400 kB), built on the stack and moved a few times on its way to the heap: a thread's default
+/// 2 MiB does not hold a stream top with its generated core and pipeline. Call it first in
+/// `main`, before any thread starts (the workspace's `.cargo/config.toml` sets the same for
+/// `cargo test`).
+pub fn set_thread_stack() {
+    if std::env::var_os("RUST_MIN_STACK").is_none() {
+        std::env::set_var("RUST_MIN_STACK", (64usize << 20).to_string());
+    }
+}

@@ -163,6 +163,7 @@ fn sim(a: Args) -> anyhow::Result<()> {
 }
 
 fn main() {
+    flow::engine::set_thread_stack();
     verilated::set_quiet(true);
     let a = match Args::try_parse() {
         Ok(a) => a,

@@ -13,12 +13,10 @@
 //! Everything that reads or writes these words comes from the tables here:
 //! - the driver packs records with [`pack`] (`pipeline::lit::scene_words` and the other methods' packers), and reads fragments with
 //!   [`unpack_fragment`];
-//! - each top's field selects and fragment packing (`rtl/src/stream/pixel_stream.rs`,
-//!   `rtl/src/stream/gouraud_stream.rs`, `rtl/src/stream/cubic_stream.rs`, `rtl/src/stream/angular_stream.rs`,
-//!   `rtl/src/stream/fast_stream.rs`, `rtl/src/stream/quadric_stream.rs`, `rtl/src/stream/subdivision_stream.rs`)
-//!   are generated from the same tables
-//!   by [`generated_rtl`]; the tests `*_rtl_is_generated` fail if a file's generated regions
-//!   differ from what the tables give (set `SHADECORE_REGENERATE=1` to rewrite them);
+//! - each top's word banks, field selects and fragment packing are its generated core, a
+//!   whole file [`core_file`] writes and `rtl/build.rs` puts in `OUT_DIR`; the hand-written
+//!   top (`rtl/src/stream/pixel_stream.rs` and the other six: record reader, FIFOs, output
+//!   registers) includes it as its `core`;
 //! - `rtl/README.md`'s layout table is printed by [`markdown`] (checked by a test as well).
 //!
 //! Field names and widths are the wrapped top's input ports (`pixel-pipeline`'s,

@@ -192,7 +192,37 @@ pub struct StreamTop {
     /// wrapped top's `x_a`, `red_a`, …, `m_axis_b_*` from `x_b`, …). A field in `ports` is the
     /// same port for every lane (the line's `y`).
     pub lanes: &'static [&'static str],
+    /// The generated core of the top (`rtl/build.rs` writes it from these tables): the
+    /// record banks, the field selects into the wrapped top, the fragment packing.
+    pub core: Core,
 }
+
+/// What the generated core of a stream top wraps, and which of the wrapped top's control ports
+/// it passes to the hand-written top around it (the record reader, the FIFOs and the output
+/// registers stay hand-written there).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Core {
+    /// The core's type name (`PixelStreamCore`).
+    pub name: &'static str,
+    /// The wrapped top's type, as the top's module names it.
+    pub pipe: &'static str,
+    /// Its parameter type, when it is built from one (the core is then `new(p: &P)`).
+    pub params: Option<&'static str>,
+    /// Inputs of the wrapped top the outer top drives (the fragment side's `hold`), with their
+    /// types; `load` and `first` are the core's own.
+    pub inputs: &'static [(&'static str, &'static str)],
+    /// Outputs of the wrapped top the outer top reads, with their types.
+    pub outputs: &'static [(&'static str, &'static str)],
+}
+
+/// The control ports a span top passes through (`angular-stream`, `fast-stream`).
+const SPAN_OUTPUTS: &[(&str, &str)] = &[
+    ("done", "Bit"),
+    ("valid_a", "Bit"),
+    ("valid_b", "Bit"),
+    ("z_a", "Bits<32>"),
+    ("z_b", "Bits<32>"),
+];
 
 impl StreamTop {
     /// The record types, triangle first.
@@ -237,6 +267,13 @@ pub const PIXEL_STREAM: StreamTop = StreamTop {
     ports: &[],
     tlast: "the triangle's last event",
     lanes: &[""],
+    core: Core {
+        name: "PixelStreamCore",
+        pipe: "PixelPipeline",
+        params: Some("PipelineParams"),
+        inputs: &[("hold", "Bit")],
+        outputs: &[("done", "Bit"), ("valid", "Bit"), ("z", "Bits<32>")],
+    },
 };
 
 /// The Gouraud raster pipe's stream top.
@@ -251,6 +288,13 @@ pub const GOURAUD_STREAM: StreamTop = StreamTop {
     ports: &[],
     tlast: "the triangle's last event",
     lanes: &[""],
+    core: Core {
+        name: "GouraudStreamCore",
+        pipe: "GouraudRaster",
+        params: None,
+        inputs: &[("hold", "Bit")],
+        outputs: &[("done", "Bit"), ("valid", "Bit")],
+    },
 };
 
 /// The cubic span pipeline's stream top: one record per raster line.
@@ -265,6 +309,13 @@ pub const CUBIC_STREAM: StreamTop = StreamTop {
     ports: &[("y", "y_out")],
     tlast: "the line's last pixel",
     lanes: &[""],
+    core: Core {
+        name: "CubicStreamCore",
+        pipe: "CubicPipeline",
+        params: Some("CubicParams"),
+        inputs: &[("hold", "Bit")],
+        outputs: &[("done", "Bit"), ("valid", "Bit"), ("z", "Bits<32>")],
+    },
 };
 
 /// A raster line of the angular method (`angular-stream`): `angular-pipeline`'s load ports —
@@ -325,6 +376,13 @@ pub const ANGULAR_STREAM: StreamTop = StreamTop {
     ports: &[("y", "y_out")],
     tlast: "the line's last clock, on both lanes (a lane without a pixel then sends a beat with `pixel` = 0)",
     lanes: &["_a", "_b"],
+    core: Core {
+        name: "AngularStreamCore",
+        pipe: "AngularPipeline",
+        params: None,
+        inputs: &[("hold", "Bit")],
+        outputs: SPAN_OUTPUTS,
+    },
 };
 
 /// A raster line of the fast methods (`fast-stream`): `fast-pipeline`'s load ports — the
@@ -360,6 +418,12 @@ pub const FAST_STREAM: StreamTop = StreamTop {
     file: "stream/fast_stream.rs",
     wraps: "fast-pipeline",
     triangle: FAST_LINE,
+    core: Core {
+        name: "FastStreamCore",
+        pipe: "FastPipeline",
+        params: Some("FastPipelineParams"),
+        ..ANGULAR_STREAM.core
+    },
     ..ANGULAR_STREAM
 };
 
@@ -421,6 +485,13 @@ pub const QUADRIC_STREAM: StreamTop = StreamTop {
     triangle: QUADRIC_LINE,
     registers: None,
     full: Some(QUADRIC_TRIANGLE),
+    core: Core {
+        name: "QuadricStreamCore",
+        pipe: "QuadricUnit",
+        params: None,
+        inputs: &[("hold", "Bit")],
+        outputs: SPAN_OUTPUTS,
+    },
     ..ANGULAR_STREAM
 };
 
@@ -476,6 +547,22 @@ pub const SUBDIVISION_STREAM: StreamTop = StreamTop {
     tlast:
         "the lane's last event of the parent (a beat with `pixel` = 0 when that event has no pixel)",
     lanes: &["_l0", "_l1", "_l2", "_l3"],
+    core: Core {
+        name: "SubdivisionStreamCore",
+        pipe: "SubdivisionRaster",
+        params: None,
+        inputs: &[("hold", "Bit")],
+        outputs: &[
+            ("done_l0", "Bit"),
+            ("done_l1", "Bit"),
+            ("done_l2", "Bit"),
+            ("done_l3", "Bit"),
+            ("valid_l0", "Bit"),
+            ("valid_l1", "Bit"),
+            ("valid_l2", "Bit"),
+            ("valid_l3", "Bit"),
+        ],
+    },
 };
 
 /// Every stream top.
