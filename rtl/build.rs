@@ -14,11 +14,11 @@ use std::path::{Path, PathBuf};
 
 // The layout tables and the code generator, shared with the crate (`rtl::stream::layout`).
 #[allow(dead_code)]
-#[path = "src/stream/layout/tables.rs"]
-mod tables;
-#[allow(dead_code)]
 #[path = "src/stream/layout/codegen.rs"]
 mod codegen;
+#[allow(dead_code)]
+#[path = "src/stream/layout/tables.rs"]
+mod tables;
 
 fn files(dir: &Path, out: &mut Vec<PathBuf>) {
     let Ok(entries) = std::fs::read_dir(dir) else {

@@ -74,10 +74,16 @@ pub fn is_render_output(name: &str) -> bool {
     let Some(stem) = name.strip_suffix(".png") else {
         return false;
     };
-    let method = ["-rtl-vs-golden-diff", "-rtl-diff", "-diff", "-rtl", "-golden"]
-        .iter()
-        .find_map(|s| stem.strip_suffix(s))
-        .unwrap_or(stem);
+    let method = [
+        "-rtl-vs-golden-diff",
+        "-rtl-diff",
+        "-diff",
+        "-rtl",
+        "-golden",
+    ]
+    .iter()
+    .find_map(|s| stem.strip_suffix(s))
+    .unwrap_or(stem);
     golden::methods::Method::ALL_NON_REFERENCE
         .iter()
         .any(|m| m.name() == method)
@@ -322,8 +328,7 @@ impl LogTicker {
 
 impl Drop for LogTicker {
     fn drop(&mut self) {
-        self.stop
-            .store(true, std::sync::atomic::Ordering::Relaxed);
+        self.stop.store(true, std::sync::atomic::Ordering::Relaxed);
         if let Some(t) = self.thread.take() {
             let _ = t.join();
         }

@@ -81,10 +81,20 @@ fn assert_ok(out: &Output, what: &str) {
 
 /// A tetrahedron with its vertices scaled by `scale`, then `extra` lines.
 fn tetrahedron(scale: f64, extra: &str) -> String {
-    let v = [[0.0, 0.0, 1.0], [1.0, 0.0, -1.0], [-1.0, 1.0, -1.0], [-1.0, -1.0, -1.0]];
+    let v = [
+        [0.0, 0.0, 1.0],
+        [1.0, 0.0, -1.0],
+        [-1.0, 1.0, -1.0],
+        [-1.0, -1.0, -1.0],
+    ];
     let mut s = String::new();
     for p in v {
-        s += &format!("v {:e} {:e} {:e}\n", p[0] * scale, p[1] * scale, p[2] * scale);
+        s += &format!(
+            "v {:e} {:e} {:e}\n",
+            p[0] * scale,
+            p[1] * scale,
+            p[2] * scale
+        );
     }
     s + "f 1 2 3\nf 1 3 4\nf 1 4 2\nf 2 4 3\n" + extra
 }
@@ -103,17 +113,36 @@ const MINUTE: Duration = Duration::from_secs(60);
 fn mtllib_opens_nothing() {
     let tmp = tempfile::tempdir().unwrap();
     let d = tmp.path();
-    write(d, "zero.obj", &tetrahedron(1.0, "mtllib /dev/zero\nusemtl a\n"));
+    write(
+        d,
+        "zero.obj",
+        &tetrahedron(1.0, "mtllib /dev/zero\nusemtl a\n"),
+    );
     let fifo = d.join("fifo.mtl");
-    let made = Command::new("mkfifo").arg(&fifo).status().is_ok_and(|s| s.success());
+    let made = Command::new("mkfifo")
+        .arg(&fifo)
+        .status()
+        .is_ok_and(|s| s.success());
     assert!(made, "mkfifo failed");
     write(d, "fifo.obj", &tetrahedron(1.0, "mtllib fifo.mtl\n"));
     for scene in ["zero.obj", "fifo.obj"] {
         let size = ["--size", "64x48"];
         for args in [
-            vec!["render", "--engine", "golden", "--scene", scene, "--out", "r"],
-            vec!["sweep", "--rez", "10", "--shininess", "10", "--light-deg", "90"],
-            vec!["stream", "--sim", "rust-hdl", "--scene", scene, "--out", "s"],
+            vec![
+                "render", "--engine", "golden", "--scene", scene, "--out", "r",
+            ],
+            vec![
+                "sweep",
+                "--rez",
+                "10",
+                "--shininess",
+                "10",
+                "--light-deg",
+                "90",
+            ],
+            vec![
+                "stream", "--sim", "rust-hdl", "--scene", scene, "--out", "s",
+            ],
         ] {
             let mut args = args;
             if args[0] == "sweep" {
@@ -138,14 +167,25 @@ fn vcd_write_errors_are_one_line() {
     for address in ["single", "four-triangle"] {
         let out = run_in(
             tmp.path(),
-            &["raster", "--tri", "3,1,40,12,9,30", "--address", address, "--vcd", "/dev/full"],
+            &[
+                "raster",
+                "--tri",
+                "3,1,40,12,9,30",
+                "--address",
+                address,
+                "--vcd",
+                "/dev/full",
+            ],
             MINUTE,
         );
         assert_one_line_error(&out, "raster --vcd /dev/full", &["VCD", "no space"]);
     }
     // /dev/full is still the device (a rename into place would have replaced it).
     use std::os::unix::fs::FileTypeExt;
-    assert!(std::fs::metadata("/dev/full").unwrap().file_type().is_char_device());
+    assert!(std::fs::metadata("/dev/full")
+        .unwrap()
+        .file_type()
+        .is_char_device());
 }
 
 /// Item 3: the error of one method among several names that method and its cause.
@@ -155,8 +195,17 @@ fn an_error_names_its_method_and_cause() {
     let out = run_in(
         tmp.path(),
         &[
-            "render", "--lighting", "phong", "--method", "gouraud,flat,bump,normalizer",
-            "--sim", "rust-hdl", "--size", "64x48", "--out", "o",
+            "render",
+            "--lighting",
+            "phong",
+            "--method",
+            "gouraud,flat,bump,normalizer",
+            "--sim",
+            "rust-hdl",
+            "--size",
+            "64x48",
+            "--out",
+            "o",
         ],
         MINUTE,
     );
@@ -174,7 +223,17 @@ fn an_error_names_its_method_and_cause() {
 fn empty_work_is_an_error_everywhere() {
     let tmp = tempfile::tempdir().unwrap();
     for args in [
-        vec!["sweep", "--size", "2x1", "--rez", "10", "--shininess", "10", "--light-deg", "90"],
+        vec![
+            "sweep",
+            "--size",
+            "2x1",
+            "--rez",
+            "10",
+            "--shininess",
+            "10",
+            "--light-deg",
+            "90",
+        ],
         vec!["stream", "--size", "2x1", "--sim", "rust-hdl"],
         vec!["render", "--size", "2x1", "--engine", "golden"],
     ] {
@@ -248,8 +307,7 @@ fn report_agrees(dir: &Path) -> Option<Result<usize, String>> {
         let files = v["files"].as_object().ok_or("no files in report.json")?;
         for (name, f) in files {
             let bytes = std::fs::read(dir.join(name)).map_err(|e| format!("{name}: {e}"))?;
-            if f["bytes"] != bytes.len() as u64 || f["fnv1a"] != shadecore::output::fnv1a(&bytes)
-            {
+            if f["bytes"] != bytes.len() as u64 || f["fnv1a"] != shadecore::output::fnv1a(&bytes) {
                 return Err(format!("{name} differs from report.json"));
             }
         }
@@ -270,7 +328,9 @@ fn report_agrees(dir: &Path) -> Option<Result<usize, String>> {
 fn renders_killed_at_random_never_leave_a_disagreeing_report() {
     let tmp = tempfile::tempdir().unwrap();
     let d = tmp.path();
-    let all = ["render", "--engine", "golden", "--size", "160x120", "--out", "o"];
+    let all = [
+        "render", "--engine", "golden", "--size", "160x120", "--out", "o",
+    ];
     let t0 = Instant::now();
     assert_ok(&run_in(d, &all, MINUTE), "first render");
     let whole = t0.elapsed();
@@ -306,7 +366,9 @@ fn renders_killed_at_random_never_leave_a_disagreeing_report() {
 
 /// SIGTERM to `pid` through kill(1) (no libc dependency).
 fn unsafe_kill_term(pid: u32) {
-    let _ = Command::new("kill").args(["-TERM", &pid.to_string()]).status();
+    let _ = Command::new("kill")
+        .args(["-TERM", &pid.to_string()])
+        .status();
 }
 
 /// Item 5: two renders into one folder do not mix their files: the second is refused while
@@ -317,8 +379,17 @@ fn two_renders_do_not_share_a_folder() {
     let d = tmp.path();
     // A render of several seconds (two methods on rust-hdl at 800×600).
     let long = [
-        "render", "--engine", "rtl", "--sim", "rust-hdl", "--method", "gouraud,subdivision",
-        "--size", "800x600", "--out", "o",
+        "render",
+        "--engine",
+        "rtl",
+        "--sim",
+        "rust-hdl",
+        "--method",
+        "gouraud,subdivision",
+        "--size",
+        "800x600",
+        "--out",
+        "o",
     ];
     let mut first = Command::new(bin())
         .args(long)
@@ -335,13 +406,22 @@ fn two_renders_do_not_share_a_folder() {
     std::thread::sleep(Duration::from_millis(200));
     let second = run_in(
         d,
-        &["render", "--engine", "golden", "--size", "64x48", "--out", "o"],
+        &[
+            "render", "--engine", "golden", "--size", "64x48", "--out", "o",
+        ],
         MINUTE,
     );
     let still_running = first.try_wait().unwrap().is_none();
     assert!(first.wait().unwrap().success());
-    assert!(still_running, "the first render ended before the second did: no overlap to check");
-    assert_one_line_error(&second, "a second render into the folder", &["another shadecore render"]);
+    assert!(
+        still_running,
+        "the first render ended before the second did: no overlap to check"
+    );
+    assert_one_line_error(
+        &second,
+        "a second render into the folder",
+        &["another shadecore render"],
+    );
     // The folder holds the first render alone (two methods, both engines' files).
     assert!(report_agrees(&d.join("o")).is_some_and(|r| r.is_ok()));
 }
@@ -353,21 +433,104 @@ fn options_without_effect_or_value_are_refused() {
     let tmp = tempfile::tempdir().unwrap();
     let d = tmp.path();
     let cases: &[(&[&str], &[&str])] = &[
-        (&["export-verilog", "--block", "normalizer", "--power", "bogus"], &["--power"]),
-        (&["export-verilog", "--block", "power-unit", "--power", "bogus"], &["--power", "bogus"]),
-        (&["export-verilog", "--block", "fast-unit", "--inv-sqrt", "bogus"], &["--inv-sqrt"]),
-        (&["export-verilog", "--block", "brzssk", "--bump", "maybe"], &["--bump"]),
-        (&["export-verilog", "--block", "horner-unit", "--horner", "x"], &["--horner"]),
-        (&["export-verilog", "--block", "normalizer", "--horner", "pipelined"], &["--horner"]),
-        (&["synth", "--block", "normalizer", "--power", "w4"], &["--power"]),
-        (&["render", "--engine", "golden", "--sim", "verilator"], &["--sim"]),
-        (&["render", "--engine", "golden", "--lit-top", "stream"], &["--lit-top"]),
-        (&["render", "--engine", "golden", "--address", "four-triangle"], &["--address"]),
-        (&["render", "--engine", "golden", "--horner", "pipelined"], &["--horner"]),
-        (&["render", "--method", "flat,gouraud", "--horner", "pipelined"], &["--horner"]),
-        (&["render", "--method", "normalizer", "--address", "single"], &["--address"]),
-        (&["raster", "--tri", "3,1,40,12,9,30", "--engine", "golden", "--sim", "verilator"], &["--sim"]),
-        (&["synth", "--target", "ecp5", "--no-pnr", "--pins"], &["--pins"]),
+        (
+            &[
+                "export-verilog",
+                "--block",
+                "normalizer",
+                "--power",
+                "bogus",
+            ],
+            &["--power"],
+        ),
+        (
+            &[
+                "export-verilog",
+                "--block",
+                "power-unit",
+                "--power",
+                "bogus",
+            ],
+            &["--power", "bogus"],
+        ),
+        (
+            &[
+                "export-verilog",
+                "--block",
+                "fast-unit",
+                "--inv-sqrt",
+                "bogus",
+            ],
+            &["--inv-sqrt"],
+        ),
+        (
+            &["export-verilog", "--block", "brzssk", "--bump", "maybe"],
+            &["--bump"],
+        ),
+        (
+            &["export-verilog", "--block", "horner-unit", "--horner", "x"],
+            &["--horner"],
+        ),
+        (
+            &[
+                "export-verilog",
+                "--block",
+                "normalizer",
+                "--horner",
+                "pipelined",
+            ],
+            &["--horner"],
+        ),
+        (
+            &["synth", "--block", "normalizer", "--power", "w4"],
+            &["--power"],
+        ),
+        (
+            &["render", "--engine", "golden", "--sim", "verilator"],
+            &["--sim"],
+        ),
+        (
+            &["render", "--engine", "golden", "--lit-top", "stream"],
+            &["--lit-top"],
+        ),
+        (
+            &["render", "--engine", "golden", "--address", "four-triangle"],
+            &["--address"],
+        ),
+        (
+            &["render", "--engine", "golden", "--horner", "pipelined"],
+            &["--horner"],
+        ),
+        (
+            &[
+                "render",
+                "--method",
+                "flat,gouraud",
+                "--horner",
+                "pipelined",
+            ],
+            &["--horner"],
+        ),
+        (
+            &["render", "--method", "normalizer", "--address", "single"],
+            &["--address"],
+        ),
+        (
+            &[
+                "raster",
+                "--tri",
+                "3,1,40,12,9,30",
+                "--engine",
+                "golden",
+                "--sim",
+                "verilator",
+            ],
+            &["--sim"],
+        ),
+        (
+            &["synth", "--target", "ecp5", "--no-pnr", "--pins"],
+            &["--pins"],
+        ),
         (&["raster"], &["--tri"]),
     ];
     for (args, needles) in cases {
@@ -382,7 +545,10 @@ fn options_without_effect_or_value_are_refused() {
 #[test]
 fn no_pnr_skips_place_and_route_on_ecp5() {
     if !flow::tools::available(flow::tools::Tool::Yosys) {
-        flow::tools::skip("no_pnr_skips_place_and_route_on_ecp5", "yosys is not installed");
+        flow::tools::skip(
+            "no_pnr_skips_place_and_route_on_ecp5",
+            "yosys is not installed",
+        );
         return;
     }
     let tmp = tempfile::tempdir().unwrap();
@@ -397,13 +563,23 @@ fn no_pnr_skips_place_and_route_on_ecp5() {
     std::fs::set_permissions(&fake, std::fs::Permissions::from_mode(0o755)).unwrap();
     let out = run_env(
         d,
-        &["synth", "--target", "ecp5", "--block", "k-recurrence", "--no-pnr"],
+        &[
+            "synth",
+            "--target",
+            "ecp5",
+            "--block",
+            "k-recurrence",
+            "--no-pnr",
+        ],
         &[("SHADECORE_NEXTPNR_ECP5", fake.to_str().unwrap())],
         Duration::from_secs(300),
     );
     assert_ok(&out, "synth --target ecp5 --no-pnr");
     let stdout = String::from_utf8_lossy(&out.stdout);
-    assert!(stdout.contains("place and route skipped (--no-pnr)"), "{stdout}");
+    assert!(
+        stdout.contains("place and route skipped (--no-pnr)"),
+        "{stdout}"
+    );
     let calls = std::fs::read_to_string(&called).unwrap_or_default();
     assert!(
         calls.lines().all(|l| l.trim() == "--version"),
@@ -422,8 +598,19 @@ fn a_large_scale_mesh_renders_through_the_rtl() {
         let out = run_in(
             d,
             &[
-                "render", "--engine", "rtl", "--sim", "rust-hdl", "--method",
-                "gouraud,normalizer", "--scene", name, "--size", "64x48", "--out", "o",
+                "render",
+                "--engine",
+                "rtl",
+                "--sim",
+                "rust-hdl",
+                "--method",
+                "gouraud,normalizer",
+                "--scene",
+                name,
+                "--size",
+                "64x48",
+                "--out",
+                "o",
             ],
             MINUTE,
         );
@@ -437,18 +624,28 @@ fn a_large_scale_mesh_renders_through_the_rtl() {
 fn coordinates_are_f64_with_a_stated_range() {
     let tmp = tempfile::tempdir().unwrap();
     let d = tmp.path();
-    write(d, "huge.obj", &format!("v 1e308 0 0\n{}", &tetrahedron(1.0, "")[..]));
+    write(
+        d,
+        "huge.obj",
+        &format!("v 1e308 0 0\n{}", &tetrahedron(1.0, "")[..]),
+    );
     write(d, "tiny.obj", &tetrahedron(1e-300, ""));
     write(d, "fine.obj", &tetrahedron(1e-20, ""));
     let run = |scene: &str| {
         run_in(
             d,
-            &["render", "--engine", "golden", "--scene", scene, "--size", "64x48", "--out", "o"],
+            &[
+                "render", "--engine", "golden", "--scene", scene, "--size", "64x48", "--out", "o",
+            ],
             MINUTE,
         )
     };
     assert_one_line_error(&run("huge.obj"), "1e308", &["1e308", "1e30", "vertex 0"]);
-    assert_one_line_error(&run("tiny.obj"), "1e-300", &["extent", "too small", "scale"]);
+    assert_one_line_error(
+        &run("tiny.obj"),
+        "1e-300",
+        &["extent", "too small", "scale"],
+    );
     // Small but distinct in f64: drawn.
     assert_ok(&run("fine.obj"), "1e-20");
 }
@@ -470,10 +667,16 @@ fn faces_beyond_the_memory_budget_are_refused() {
     let t0 = Instant::now();
     let out = run_in(
         d,
-        &["render", "--engine", "golden", "--scene", "many.obj", "--size", "64x48", "--out", "o"],
+        &[
+            "render", "--engine", "golden", "--scene", "many.obj", "--size", "64x48", "--out", "o",
+        ],
         MINUTE,
     );
-    assert_one_line_error(&out, "too many faces", &[&n.to_string(), "2048 MiB", "budget"]);
+    assert_one_line_error(
+        &out,
+        "too many faces",
+        &[&n.to_string(), "2048 MiB", "budget"],
+    );
     assert!(t0.elapsed() < Duration::from_secs(20), "{:?}", t0.elapsed());
     // Quads count as two triangles each.
     let quads = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n".to_string()
@@ -481,7 +684,17 @@ fn faces_beyond_the_memory_budget_are_refused() {
     write(d, "quads.obj", &quads);
     let out = run_in(
         d,
-        &["render", "--engine", "golden", "--scene", "quads.obj", "--size", "64x48", "--out", "o"],
+        &[
+            "render",
+            "--engine",
+            "golden",
+            "--scene",
+            "quads.obj",
+            "--size",
+            "64x48",
+            "--out",
+            "o",
+        ],
         MINUTE,
     );
     assert_one_line_error(&out, "too many quads", &["triangles", "budget"]);
@@ -494,12 +707,27 @@ fn faces_beyond_the_memory_budget_are_refused() {
     let out = run_in(
         d,
         &[
-            "render", "--engine", "rtl", "--sim", "rust-hdl", "--method", "angular", "--scene",
-            "lines.obj", "--size", "64x48", "--out", "o",
+            "render",
+            "--engine",
+            "rtl",
+            "--sim",
+            "rust-hdl",
+            "--method",
+            "angular",
+            "--scene",
+            "lines.obj",
+            "--size",
+            "64x48",
+            "--out",
+            "o",
         ],
         MINUTE,
     );
-    assert_one_line_error(&out, "too many span lines", &["method angular", "raster lines", "MiB memory budget"]);
+    assert_one_line_error(
+        &out,
+        "too many span lines",
+        &["method angular", "raster lines", "MiB memory budget"],
+    );
 }
 
 /// Item 11: without a terminal, a long render prints a progress line every few seconds on
@@ -510,20 +738,25 @@ fn progress_shows_without_a_terminal() {
     let out = run_env(
         tmp.path(),
         &[
-            "render", "--method", "gouraud", "--sim", "rust-hdl", "--size", "128x96", "--out",
-            "o",
+            "render", "--method", "gouraud", "--sim", "rust-hdl", "--size", "128x96", "--out", "o",
         ],
         &[("SHADECORE_TICK_SECONDS", "0.1")],
         MINUTE,
     );
     assert_ok(&out, "render");
     let stderr = String::from_utf8_lossy(&out.stderr);
-    let lines: Vec<&str> = stderr.lines().filter(|l| l.starts_with("progress: render")).collect();
+    let lines: Vec<&str> = stderr
+        .lines()
+        .filter(|l| l.starts_with("progress: render"))
+        .collect();
     assert!(
         lines.len() >= 2 && lines.iter().all(|l| l.contains("rtl gouraud")),
         "{stderr}"
     );
-    let help = Command::new(bin()).args(["render", "--help"]).output().unwrap();
+    let help = Command::new(bin())
+        .args(["render", "--help"])
+        .output()
+        .unwrap();
     let help = String::from_utf8_lossy(&help.stdout);
     assert!(help.contains("4096x4096"), "{help}");
 }

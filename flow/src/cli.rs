@@ -66,8 +66,10 @@ impl BuildArgs {
     /// the flag.
     pub fn checked_options(&self, blocks: &[&'static dyn Block]) -> Result<Options, String> {
         for (key, flag, value) in self.given() {
-            let readers: Vec<&&dyn Block> =
-                blocks.iter().filter(|b| b.param_keys().contains(&key)).collect();
+            let readers: Vec<&&dyn Block> = blocks
+                .iter()
+                .filter(|b| b.param_keys().contains(&key))
+                .collect();
             let Some(first) = readers.first() else {
                 let names: Vec<&str> = blocks.iter().map(|b| b.name()).collect();
                 let users: Vec<&str> = crate::blocks::BLOCKS

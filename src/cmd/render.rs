@@ -181,7 +181,13 @@ pub fn render_golden(setup: &Setup, methods: &[Method], bar: &ProgressBar) -> (F
     let frames = methods
         .par_iter()
         .map(|&m| {
-            let f = colours_only(render(&setup.tris, m, &setup.ctx, setup.width, setup.height));
+            let f = colours_only(render(
+                &setup.tris,
+                m,
+                &setup.ctx,
+                setup.width,
+                setup.height,
+            ));
             bar.inc(1);
             f
         })
@@ -613,11 +619,20 @@ fn check_rtl_flags(args: &Args, methods: &[Method]) -> Result<()> {
         Vec::new()
     } else {
         let has = crate::rtl_engine::rtl_methods();
-        methods.iter().copied().filter(|m| has.contains(m)).collect()
+        methods
+            .iter()
+            .copied()
+            .filter(|m| has.contains(m))
+            .collect()
     };
     let any = |f: &dyn Fn(Method) -> bool| hw.iter().any(|&m| f(m));
     for (given, flag, concerns, applies) in [
-        (args.sim.is_some(), "--sim", "any hardware method", any(&|_| true)),
+        (
+            args.sim.is_some(),
+            "--sim",
+            "any hardware method",
+            any(&|_| true),
+        ),
         (
             args.horner.is_some(),
             "--horner",

@@ -59,8 +59,14 @@ pub fn run(args: Args) -> Result<()> {
     // Validate every configuration up front: a bad value fails before any work is done.
     let setups = configs.iter().map(build).collect::<Result<Vec<_>>>()?;
     for (c, s) in configs.iter().zip(&setups) {
-        s.ensure_drawn()
-            .with_context(|| format!("{} shininess {} light {}°", c.describe(), c.shininess, c.light_deg))?;
+        s.ensure_drawn().with_context(|| {
+            format!(
+                "{} shininess {} light {}°",
+                c.describe(),
+                c.shininess,
+                c.light_deg
+            )
+        })?;
     }
     let methods = &Method::ALL_NON_REFERENCE[..];
     let bar = ProgressBar::new((configs.len() * (methods.len() + 1)) as u64).with_style(

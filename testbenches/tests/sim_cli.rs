@@ -56,11 +56,23 @@ fn an_unwritable_vcd_is_a_one_line_error() {
         return;
     }
     assert_clean_error(
-        &["--block", "normalizer", "--vectors", "10", "--vcd", "/dev/full", "--sim", "rust-hdl"],
+        &[
+            "--block",
+            "normalizer",
+            "--vectors",
+            "10",
+            "--vcd",
+            "/dev/full",
+            "--sim",
+            "rust-hdl",
+        ],
         "No space left",
     );
     use std::os::unix::fs::FileTypeExt;
-    assert!(std::fs::metadata("/dev/full").unwrap().file_type().is_char_device());
+    assert!(std::fs::metadata("/dev/full")
+        .unwrap()
+        .file_type()
+        .is_char_device());
 }
 
 /// A closed standard output is a one-line error, not a panic (the read end is closed before

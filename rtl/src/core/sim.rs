@@ -393,9 +393,8 @@ pub fn write_vcd_window<D: Dut>(
     }
     // Written under a temporary name and renamed into place when whole (`golden::files`).
     golden::files::write_through(path, |temp| {
-        let mut file = Some(
-            File::create(temp).map_err(|e| format!("cannot create {}: {e}", path.display()))?,
-        );
+        let mut file =
+            Some(File::create(temp).map_err(|e| format!("cannot create {}: {e}", path.display()))?);
         let mut s = Stepper::new(dut)?;
         let mut out = vec![0; s.dut().outputs().len()];
         for (c, r) in rows.iter().enumerate().take(to as usize) {

@@ -195,5 +195,4 @@ mod tests {
             &extra,
         );
     }
-
 }

@@ -212,5 +212,4 @@ mod tests {
             assert!(text.contains(&want), "header lacks {want:?}");
         }
     }
-
 }

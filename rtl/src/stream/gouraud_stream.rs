@@ -193,5 +193,4 @@ mod tests {
             assert!(text.contains(&want), "header lacks {want:?}");
         }
     }
-
 }

@@ -216,5 +216,4 @@ mod tests {
             assert!(text.contains(&want), "header lacks {want:?}");
         }
     }
-
 }

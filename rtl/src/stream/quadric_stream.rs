@@ -182,5 +182,4 @@ mod tests {
             &extra,
         );
     }
-
 }

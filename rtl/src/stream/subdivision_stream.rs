@@ -270,5 +270,4 @@ mod tests {
             assert!(text.contains(&want), "header lacks {want:?}");
         }
     }
-
 }

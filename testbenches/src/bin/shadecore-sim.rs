@@ -61,7 +61,10 @@ const SIM_WARN_FACTOR: usize = 20;
 fn sim(a: Args) -> anyhow::Result<()> {
     let block = registry::find(&a.block).map_err(|e| anyhow!(e))?;
     let as_block: &'static dyn flow::blocks::Block = block;
-    let o = a.build.checked_options(&[as_block]).map_err(|e| anyhow!(e))?;
+    let o = a
+        .build
+        .checked_options(&[as_block])
+        .map_err(|e| anyhow!(e))?;
     let n = a.vectors.unwrap_or(block.default_items());
     if n == 0 {
         bail!("--vectors must be at least 1");

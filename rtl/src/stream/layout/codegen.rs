@@ -59,8 +59,16 @@ pub fn core_file(top: &StreamTop) -> String {
         len1: Constant<Bits<INDEX_BITS>> = Constant::new({}u64.into()),
         len2: Constant<Bits<INDEX_BITS>> = Constant::new({}u64.into()),
 ",
-        if second.is_some() { ", of type `type_b`" } else { "" },
-        if second.is_some() { " type_b: DFF<Bits<4>>," } else { "" },
+        if second.is_some() {
+            ", of type `type_b`"
+        } else {
+            ""
+        },
+        if second.is_some() {
+            " type_b: DFF<Bits<4>>,"
+        } else {
+            ""
+        },
         payload_words(&top.triangle),
         second.map_or(0, |r| payload_words(&r)),
     );
