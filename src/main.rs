@@ -21,8 +21,8 @@ enum Command {
         long_about = "Render a scene with the reference and the accelerated methods; write PNGs, diffs, NMSE report.\n\n\
 Time and memory grow with the canvas. Measured on a 2-core AMD EPYC (2026-11-27), every method, \
 Verilator models already built (building them first adds about a minute): a 4096x4096 render takes \
-59 s and 4.6 GB with --engine both, 12 s and 2.5 GB with --engine golden (2048x2048: 13 s and 1.3 GB; \
-the default 400x400: about 1 s); with --sim rust-hdl the RTL images take about 400 times longer \
+51 s and 2.6 GB with --engine both, 10 s and 1.2 GB with --engine golden (2048x2048: 12 s and 0.75 GB; \
+the default 400x400: 0.7 s); with --sim rust-hdl the RTL images take about 400 times longer \
 (hours). Without a terminal, progress is a line on stderr every 5 s."
     )]
     Render(cmd::render::Args),

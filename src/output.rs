@@ -185,13 +185,21 @@ pub struct Picture {
 const LABEL_H: u32 = 14;
 const GAP: u32 = 4;
 
+/// Largest side of a tile on the contact sheet: a larger image is shrunk by a whole factor
+/// (each tile pixel the mean of a block), so a 4096² render's sheet stays small (the full
+/// images are the PNGs beside it).
+pub const MAX_TILE: u32 = 512;
+
 /// Lay out `tiles` (label, image of `w`×`h`, or `None` for an empty cell) in a grid of `cols`
-/// columns, each with its label above it in an 8×8 bitmap font.
+/// columns, each with its label above it in an 8×8 bitmap font. Images larger than
+/// [`MAX_TILE`] are shrunk by the smallest whole factor that fits.
 pub fn sheet(tiles: &[(String, Option<&[[u8; 3]]>)], w: u32, h: u32, cols: u32) -> Picture {
+    let f = w.max(h).div_ceil(MAX_TILE).max(1);
+    let (tw, th) = (w.div_ceil(f), h.div_ceil(f));
     let cols = cols.max(1).min(tiles.len().max(1) as u32);
     let rows = (tiles.len() as u32).div_ceil(cols);
-    let cell_w = w + GAP;
-    let cell_h = h + LABEL_H + GAP;
+    let cell_w = tw + GAP;
+    let cell_h = th + LABEL_H + GAP;
     let width = cols * cell_w + GAP;
     let height = rows * cell_h + GAP;
     let mut pic = Picture {
@@ -204,10 +212,27 @@ pub fn sheet(tiles: &[(String, Option<&[[u8; 3]]>)], w: u32, h: u32, cols: u32) 
         let oy = GAP + (i as u32 / cols) * cell_h;
         draw_text(&mut pic, ox, oy + 3, label, [230, 230, 230]);
         let Some(img) = img else { continue };
-        for y in 0..h {
-            let src = (y * w) as usize;
+        for y in 0..th {
             let dst = ((oy + LABEL_H + y) * width + ox) as usize;
-            pic.rgb[dst..dst + w as usize].copy_from_slice(&img[src..src + w as usize]);
+            if f == 1 {
+                let src = (y * w) as usize;
+                pic.rgb[dst..dst + w as usize].copy_from_slice(&img[src..src + w as usize]);
+                continue;
+            }
+            for x in 0..tw {
+                // The mean of the f×f block (clipped at the image's edge).
+                let (mut sum, mut n) = ([0u32; 3], 0u32);
+                for sy in y * f..((y + 1) * f).min(h) {
+                    for sx in x * f..((x + 1) * f).min(w) {
+                        let p = img[(sy * w + sx) as usize];
+                        for c in 0..3 {
+                            sum[c] += p[c] as u32;
+                        }
+                        n += 1;
+                    }
+                }
+                pic.rgb[dst + x as usize] = sum.map(|s| ((s + n / 2) / n) as u8);
+            }
         }
     }
     pic
@@ -332,5 +357,42 @@ impl Drop for LogTicker {
         if let Some(t) = self.thread.take() {
             let _ = t.join();
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A tile pixel of the sheet, `(x, y)` inside cell `i`'s image.
+    fn at(p: &Picture, cols: u32, tw: u32, th: u32, i: u32, x: u32, y: u32) -> [u8; 3] {
+        let ox = GAP + (i % cols) * (tw + GAP);
+        let oy = GAP + (i / cols) * (th + LABEL_H + GAP);
+        p.rgb[((oy + LABEL_H + y) * p.width + ox + x) as usize]
+    }
+
+    #[test]
+    fn small_images_are_copied_and_large_ones_shrunk_by_block_means() {
+        // 400×300: copied as they are.
+        let (w, h) = (400u32, 300u32);
+        let img: Vec<[u8; 3]> = (0..w * h).map(|k| [(k % 251) as u8, 7, (k / w) as u8]).collect();
+        let p = sheet(&[("a".into(), Some(&img[..])), ("b".into(), None)], w, h, 5);
+        assert_eq!((p.width, p.height), (2 * (w + GAP) + GAP, h + LABEL_H + 2 * GAP));
+        for (x, y) in [(0, 0), (399, 299), (123, 45)] {
+            assert_eq!(at(&p, 2, w, h, 0, x, y), img[(y * w + x) as usize]);
+        }
+        // 1030×600: shrunk by 3 (⌈1030 / 512⌉) to 344×200; red is 90 on every third column,
+        // so a full block's mean is 30, and the last column's block (x = 1029, alone) is 0
+        // (1029 is a multiple of 3: 90).
+        let (w, h) = (1030u32, 600u32);
+        let img: Vec<[u8; 3]> = (0..w * h)
+            .map(|k| [if (k % w) % 3 == 0 { 90 } else { 0 }, 200, 0])
+            .collect();
+        let p = sheet(&[("big".into(), Some(&img[..]))], w, h, 5);
+        let (tw, th) = (344, 200);
+        assert_eq!((p.width, p.height), (tw + 2 * GAP, th + LABEL_H + 2 * GAP));
+        assert_eq!(at(&p, 1, tw, th, 0, 0, 0), [30, 200, 0]);
+        assert_eq!(at(&p, 1, tw, th, 0, 342, 199), [30, 200, 0]);
+        assert_eq!(at(&p, 1, tw, th, 0, 343, 0), [90, 200, 0]);
     }
 }
