@@ -57,8 +57,8 @@ pub fn load_obj(path: &Path) -> Result<Mesh, SceneError> {
     load_obj_counting(path).map(|(mesh, _)| mesh)
 }
 
-/// The bytes of the regular file `path`, at most `max` of them. `what` names the kind of file in
-/// errors ("OBJ file"). A device (/dev/zero) would be read until memory runs out and a named
+/// The bytes of the regular file `path`, at most `max` of them (errors are `SceneError`'s
+/// "OBJ file … cannot be read"). A device (/dev/zero) would be read until memory runs out and a named
 /// pipe would block forever, so only a regular file is opened for reading (checked on the open
 /// handle, so a file swapped in between is caught too), and at most `max + 1` bytes are read.
 pub fn read_regular_file(path: &Path, max: u64) -> Result<Vec<u8>, SceneError> {
