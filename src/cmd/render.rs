@@ -51,8 +51,8 @@ pub struct Args {
     #[arg(long, value_enum, default_value = "both")]
     pub engine: Engine,
     /// With the RTL engine (`rtl`, `both`): the Horner units `cubic` goes through — serial (fig. 2.6, one
-    /// multiplier, 3 clocks per pixel) or pipelined (three multipliers, one pixel per clock).
-    /// The images are identical; the clock counts differ.
+    /// multiplier, 3 clocks per pixel; the default) or pipelined (three multipliers, one pixel
+    /// per clock). The images are identical; the clock counts differ.
     #[arg(long, value_enum)]
     pub horner: Option<Horner>,
     /// With the RTL engine (`rtl`, `both`): the simulator — verilator (the exported Verilog,
@@ -81,8 +81,8 @@ pub struct Args {
     pub lit_top: Option<crate::rtl_engine::LitTop>,
     /// With the RTL engine: the order the lit methods' and gouraud's triangles are sent in — balanced (large
     /// and small walks alternately, so small triangles' set-up words stream in while large
-    /// ones are walked) or mesh. The images are identical (at equal depth the lower triangle
-    /// index wins); the clock counts differ.
+    /// ones are walked; the default) or mesh. The images are identical (at equal depth the
+    /// lower triangle index wins); the clock counts differ.
     #[arg(long, value_enum)]
     pub setup_order: Option<crate::rtl_engine::SetupOrder>,
 }
