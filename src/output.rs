@@ -375,9 +375,14 @@ mod tests {
     fn small_images_are_copied_and_large_ones_shrunk_by_block_means() {
         // 400×300: copied as they are.
         let (w, h) = (400u32, 300u32);
-        let img: Vec<[u8; 3]> = (0..w * h).map(|k| [(k % 251) as u8, 7, (k / w) as u8]).collect();
+        let img: Vec<[u8; 3]> = (0..w * h)
+            .map(|k| [(k % 251) as u8, 7, (k / w) as u8])
+            .collect();
         let p = sheet(&[("a".into(), Some(&img[..])), ("b".into(), None)], w, h, 5);
-        assert_eq!((p.width, p.height), (2 * (w + GAP) + GAP, h + LABEL_H + 2 * GAP));
+        assert_eq!(
+            (p.width, p.height),
+            (2 * (w + GAP) + GAP, h + LABEL_H + 2 * GAP)
+        );
         for (x, y) in [(0, 0), (399, 299), (123, 45)] {
             assert_eq!(at(&p, 2, w, h, 0, x, y), img[(y * w + x) as usize]);
         }
