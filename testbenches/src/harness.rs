@@ -451,11 +451,17 @@ pub fn run_stream<D: Dut>(
         s.start_vcd(w)
             .map_err(|e| spec.failure(0, "(set-up)", dash(), dash(), e))?;
     }
-    run_stream_on(&mut s, spec, next_batch, twin, progress)
+    let checked = run_stream_on(&mut s, spec, next_batch, twin, progress);
+    // The VCD ends with the run (up to a failing clock); a write error is the failure then.
+    let cycle = s.cycle();
+    s.stop_vcd()
+        .map_err(|e| spec.failure(cycle, "(VCD)", dash(), dash(), e))?;
+    checked
 }
 
 /// [`run_stream`] on any simulated block (rust-hdl or Verilator: `flow::engine::model`),
-/// from its current state; a VCD, if any, is the caller's to start.
+/// from its current state; a VCD, if any, is the caller's to start and to stop (after the
+/// run, which ends at the first failing clock).
 #[allow(clippy::result_large_err)]
 pub fn run_stream_on(
     s: &mut dyn rtl::core::sim::Model,
@@ -490,7 +496,6 @@ pub fn run_stream_on(
                 .map_err(|e| spec.failure(c, "(set-up)", dash(), dash(), e))?;
             for k in 0..ports.len() {
                 if out[k] != want[k] {
-                    let _ = s.stop_vcd();
                     return Err(spec.failure(
                         c,
                         ports[k].name,
@@ -511,7 +516,6 @@ pub fn run_stream_on(
                     continue;
                 }
                 if let Some((expected, detail)) = check_port(e, cmp, out[k], &mut stats[k], c) {
-                    let _ = s.stop_vcd();
                     return Err(spec.failure(
                         c,
                         ports[k].name,
@@ -525,8 +529,6 @@ pub fn run_stream_on(
         }
         progress(s.cycle());
     }
-    s.stop_vcd()
-        .map_err(|e| spec.failure(s.cycle(), "(VCD)", dash(), dash(), e))?;
     if let Some(f) = check_rms(spec, &stats) {
         return Err(f);
     }

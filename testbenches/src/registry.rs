@@ -212,37 +212,20 @@ impl<B: Bench + 'static> Entry for Registered<B> {
             None => run(model.as_mut()).map_err(|f| f.to_string()),
             // Written whole (`golden::files`): a failing check keeps its VCD, a write error
             // (a full disk) leaves none.
-            Some(path) => {
-                // A device or pipe (`/dev/full`) is written directly, never replaced.
-                let special = std::fs::metadata(path).is_ok_and(|m| !m.is_file());
-                let temp = if special {
-                    path.to_path_buf()
-                } else {
-                    golden::files::temp_beside(path)
-                };
-                let f = std::fs::File::create(&temp)
+            Some(path) => golden::files::write_through(path, |temp| {
+                let f = std::fs::File::create(temp)
                     .map_err(|e| format!("cannot create {}: {e}", path.display()))?;
                 model.start_vcd(Box::new(std::io::BufWriter::new(f)))?;
-                let r = run(model.as_mut());
-                let written = model
+                let checked = run(model.as_mut());
+                model
                     .stop_vcd()
-                    .map_err(|e| format!("{}: {e}", path.display()))
-                    .and_then(|()| match special {
-                        true => Ok(()),
-                        false => std::fs::rename(&temp, path)
-                            .map_err(|e| format!("cannot write {}: {e}", path.display())),
-                    });
-                if let Err(e) = written {
-                    if !special {
-                        let _ = std::fs::remove_file(&temp);
-                    }
-                    return Err(e);
-                }
-                r.map_err(|mut f| {
-                    f.vcd = Some(path.to_path_buf());
-                    f.to_string()
-                })
-            }
+                    .map_err(|e| format!("{}: {e}", path.display()))?;
+                Ok(checked)
+            })?
+            .map_err(|mut f| {
+                f.vcd = Some(path.to_path_buf());
+                f.to_string()
+            }),
         }
     }
 }
