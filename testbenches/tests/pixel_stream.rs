@@ -78,6 +78,46 @@ fn back_pressure_keeps_every_fragment_in_order() {
     }
 }
 
+/// A register record between triangles applies to the triangles after it only: it waits in
+/// the load bank until every triangle before it has left the pipeline (its `done` counted),
+/// so none of the first triangles' fragments takes the second set's colours.
+#[test]
+fn registers_apply_to_the_triangles_after_them() {
+    let seed = seed_for("pixel_registers_apply_to_the_triangles_after_them");
+    let (p, o) = params();
+    let (jobs, regs) = scene(seed, 6);
+    let half = jobs.len() / 2;
+    let mut other = regs;
+    other.n = 7;
+    other.weights = [40, 300, 900, 12_000, 200, 7_000, 65_535, 100, 30_000];
+    let mut words = register_record(&regs);
+    jobs[..half]
+        .iter()
+        .for_each(|j| words.extend(triangle_record(j)));
+    words.extend(register_record(&other));
+    jobs[half..]
+        .iter()
+        .for_each(|j| words.extend(triangle_record(j)));
+    let mut stalls = StallPattern::new(seed, 0.3);
+    let run = drive(&p, &words, seed, 0.0, &mut stalls, 8);
+    let (beats, error) = rtl_beats(&run, &o);
+    assert!(!error);
+    let mut want = reference_beats(&p, &jobs[..half], &regs);
+    want.extend(reference_beats(&p, &jobs[half..], &other));
+    assert_eq!(beats.len(), want.len(), "beat count");
+    // A beat without a pixel carries only its `tlast` (its other fields are whatever the
+    // pipeline's outputs hold then, which depends on what ran before).
+    let same = |a: &Beat, b: &Beat| (a.pixel, a.last) == (b.pixel, b.last) && (!a.pixel || a == b);
+    if let Some(i) = (0..want.len()).find(|&i| !same(&beats[i], &want[i])) {
+        panic!("beat {i} is {:?}, want {:?}", beats[i], want[i]);
+    }
+    // The second set changes the colours (else the test shows nothing).
+    assert!(
+        reference_beats(&p, &jobs[half..], &regs) != reference_beats(&p, &jobs[half..], &other),
+        "the two register sets give different colours"
+    );
+}
+
 /// Long stretches: `tready` low for 3 000 clocks in the middle of a triangle, twice, and the
 /// exported Verilog bit-exact with the rust-hdl simulation under that pattern (Verilator, in process).
 #[test]
