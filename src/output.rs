@@ -141,10 +141,6 @@ impl RenderDir {
         })
     }
 
-    pub fn path(&self) -> &Path {
-        &self.dir
-    }
-
     /// Every render output in the folder (all written by this run: the folder was cleared
     /// when opened, under the lock) with its size and hash.
     pub fn files(&self) -> Result<BTreeMap<String, FileEntry>> {

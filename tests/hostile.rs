@@ -354,7 +354,7 @@ fn renders_killed_at_random_never_leave_a_disagreeing_report() {
             .spawn()
             .unwrap();
         std::thread::sleep(at);
-        unsafe_kill_term(child.id());
+        sigterm(child.id());
         child.wait().unwrap();
         if let Some(r) = report_agrees(&d.join("o")) {
             r.unwrap_or_else(|e| panic!("killed after {at:?}: {e}"));
@@ -365,7 +365,7 @@ fn renders_killed_at_random_never_leave_a_disagreeing_report() {
 }
 
 /// SIGTERM to `pid` through kill(1) (no libc dependency).
-fn unsafe_kill_term(pid: u32) {
+fn sigterm(pid: u32) {
     let _ = Command::new("kill")
         .args(["-TERM", &pid.to_string()])
         .status();
