@@ -51,11 +51,13 @@
 //! # What stays hand-written
 //!
 //! `impl Logic` with its `#[hdl_gen] fn update`. `#[hdl_gen]` accepts no macro inside
-//! `update()` but `dff_setup!`/`clock!`, and an `update()` emitted by a `macro_rules!` does
-//! not compile: the `connect()`/`hdl()` that `#[hdl_gen]` adds take `self` with the
-//! expansion's hygiene, which cannot see the `self` of the statements. So a composite's
-//! forwarding into a child (`self.addr.w_b0.next = self.w_b0.val();`) is written out; it is
-//! type-checked against the child's ports, so widths cannot drift.
+//! `update()` but `dff_setup!`/`clock!`, and an `update()` whose statements a caller passes
+//! into a `macro_rules!` does not compile: the `connect()`/`hdl()` that `#[hdl_gen]` adds take
+//! `self` with the expansion's hygiene, which cannot see the `self` of the caller's
+//! statements. A whole `impl Logic` written in a macro's own text compiles (one hygiene):
+//! [`two_lane_stream!`](crate::two_lane_stream) declares three stream tops that way. So a
+//! composite's forwarding into a child (`self.addr.w_b0.next = self.w_b0.val();`) is written
+//! out; it is type-checked against the child's ports, so widths cannot drift.
 
 /// Declare a block once: struct, constructor, `Dut` view and registry facts. See the
 /// [module documentation](crate::core::declare) for the syntax.

@@ -11,3 +11,4 @@ pub mod pixel_stream;
 pub mod quadric_stream;
 pub mod record_reader;
 pub mod subdivision_stream;
+pub mod two_lane;

@@ -61,125 +61,19 @@
 
 use rust_hdl::prelude::*;
 
-use crate::core::registry::RtlBlock;
-use crate::stream::fragment_fifo::FragmentFifo;
-use crate::stream::record_reader::{RecordReader, INDEX_BITS};
 use crate::units::quadric_unit::QuadricUnit;
 
-/// Clocks from a pixel entering the span units to its fragment at `quadric-unit`'s
-/// outputs (at most its load-to-first-fragment latency).
-pub const EVENT_TO_FRAGMENT: usize = <QuadricUnit as RtlBlock>::LATENCY;
-/// Each lane's FIFO depth (entries).
-pub const FIFO_DEPTH: usize = crate::stream::fragment_fifo::FIFO_DEPTH;
-/// The FIFO level above which the pipeline is held (the clock after: `hold` is registered).
-pub const HOLD_ABOVE: usize = FIFO_DEPTH - EVENT_TO_FRAGMENT - 2;
-
-crate::hw_block! {
+crate::two_lane_stream! {
     /// The quadric unit with AXI4-Stream set-up and fragment streams (see the header).
-    pub struct QuadricStream(clock) as "quadric-stream" {
+    pub struct QuadricStream as "quadric-stream" {
         summary: "AXI4-Stream top of the quadric unit: 32-bit line records (a triangle's first line with its coefficients) in, two 64-bit fragment streams (one per lane, depth on tuser) out with back-pressure (a FIFO per lane and the generator's hold)",
-        latency: 2 + <QuadricUnit as RtlBlock>::LATENCY + 2
-            => "a line record's last word to its first fragment beats (the unit ready, no move to the line's start), two fragments per clock",
-        multipliers: <QuadricUnit as RtlBlock>::MULTIPLIERS,
-        in {
-            s_axis_tdata: Bits<32>, s_axis_tvalid: Bit, s_axis_tlast: Bit,
-            m_axis_a_tready: Bit, m_axis_b_tready: Bit,
-        }
-        out {
-            s_axis_tready: Bit,
-            m_axis_a_tvalid: Bit, m_axis_a_tdata: Bits<64>, m_axis_a_tuser: Bits<32>, m_axis_a_tlast: Bit,
-            m_axis_b_tvalid: Bit, m_axis_b_tdata: Bits<64>, m_axis_b_tuser: Bits<32>, m_axis_b_tlast: Bit,
-            error: Bit,
-        }
-        /// The record banks, the field selects and the wrapped top (`core.pipe`): generated.
-        pub core: QuadricStreamCore,
-        // Fragment side: a FIFO per lane, the hold from either's level.
-        lane_a: FragmentFifo, lane_b: FragmentFifo,
-        hold_above: Constant<Bits<8>> = Constant::new((HOLD_ABOVE as u64).into()),
-        hold_q: DFF<Bit>,
-        beat_a: Signal<Local, Bits<64>>, beat_b: Signal<Local, Bits<64>>,
-        tail_a: Signal<Local, Bits<33>>, tail_b: Signal<Local, Bits<33>>,
-        tlast_bit: Constant<Bits<33>> = Constant::new((1u64 << 32).into()),
-    }
-}
-
-impl Logic for QuadricStream {
-    #[hdl_gen]
-    fn update(&mut self) {
-        clock!(self, clock, core, lane_a, lane_b);
-        // The fragment beats the generated core packs.
-        self.beat_a.next = self.core.beat_a.val();
-        self.beat_b.next = self.core.beat_b.val();
-        dff_setup!(self, clock, hold_q);
-        // Set-up side: the generated core (record reader, load bank, word banks, field
-        // selects).
-        self.core.s_axis_tdata.next = self.s_axis_tdata.val();
-        self.core.s_axis_tvalid.next = self.s_axis_tvalid.val();
-        self.core.s_axis_tlast.next = self.s_axis_tlast.val();
-        self.s_axis_tready.next = self.core.s_axis_tready.val();
-        self.error.next = self.core.error.val();
-
-        // Fragment side: a beat per lane for each fragment, and for the line's last clock
-        // (lane B's beat then may carry only its `tlast`).
-        self.hold_q.d.next = self.lane_a.over.val() | self.lane_b.over.val();
-        self.core.hold.next = self.hold_q.q.val();
-        self.tail_a.next = bit_cast::<33, 32>(self.core.z_a.val());
-        self.tail_b.next = bit_cast::<33, 32>(self.core.z_b.val());
-        if self.core.done.val() {
-            self.tail_a.next = bit_cast::<33, 32>(self.core.z_a.val()) | self.tlast_bit.val();
-            self.tail_b.next = bit_cast::<33, 32>(self.core.z_b.val()) | self.tlast_bit.val();
-        }
-        self.lane_a.push.next = self.core.valid_a.val() | self.core.done.val();
-        self.lane_a.beat.next = self.beat_a.val();
-        self.lane_a.tail.next = self.tail_a.val();
-        self.lane_a.tready.next = self.m_axis_a_tready.val();
-        self.lane_a.hold_above.next = self.hold_above.val();
-        self.lane_b.push.next = self.core.valid_b.val() | self.core.done.val();
-        self.lane_b.beat.next = self.beat_b.val();
-        self.lane_b.tail.next = self.tail_b.val();
-        self.lane_b.tready.next = self.m_axis_b_tready.val();
-        self.lane_b.hold_above.next = self.hold_above.val();
-        self.m_axis_a_tvalid.next = self.lane_a.tvalid.val();
-        self.m_axis_a_tdata.next = self.lane_a.tdata.val();
-        self.m_axis_a_tuser.next = self.lane_a.tuser.val();
-        self.m_axis_a_tlast.next = self.lane_a.tlast.val();
-        self.m_axis_b_tvalid.next = self.lane_b.tvalid.val();
-        self.m_axis_b_tdata.next = self.lane_b.tdata.val();
-        self.m_axis_b_tuser.next = self.lane_b.tuser.val();
-        self.m_axis_b_tlast.next = self.lane_b.tlast.val();
-    }
-}
-
-/// The generated core: `rtl/build.rs` writes it from `rtl::stream::layout::QUADRIC_STREAM` (the
-/// record banks, the field selects into the wrapped top, the fragment packing).
-mod generated {
-    use super::*;
-    include!(concat!(env!("OUT_DIR"), "/quadric_stream_core.rs"));
-}
-pub use generated::QuadricStreamCore;
-
-#[cfg(test)]
-mod tests {
-    use crate::core::registry::RtlBlock;
-    use crate::units::quadric_unit::QuadricUnit;
-
-    /// The header's latency, FIFO and record figures are the constants'.
-    #[test]
-    fn header_figures_are_the_constants() {
-        let top = crate::stream::layout::QUADRIC_STREAM;
-        let full = crate::stream::layout::payload_words(&top.full.unwrap());
-        let extra = [
-            format!("first line {full}"),
-            format!("first line {})", full + 1),
-        ];
-        crate::stream::fragment_fifo::check_two_lane_header(
-            include_str!("quadric_stream.rs"),
-            &top,
-            super::HOLD_ABOVE,
-            super::EVENT_TO_FRAGMENT,
-            <super::QuadricStream as RtlBlock>::LATENCY,
-            <QuadricUnit as RtlBlock>::LATENCY,
-            &extra,
-        );
+        latency: "a line record's last word to its first fragment beats (the unit ready, no move to the line's start), two fragments per clock",
+        wraps: QuadricUnit,
+        core: QuadricStreamCore,
+        layout: QUADRIC_STREAM in "quadric_stream_core.rs",
+        header: "quadric_stream.rs" with |top| {
+            let full = crate::stream::layout::payload_words(&top.full.unwrap());
+            vec![format!("first line {full}"), format!("first line {})", full + 1)]
+        },
     }
 }
