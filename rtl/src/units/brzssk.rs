@@ -199,15 +199,10 @@ impl Logic for Brzssk {
         );
         self.frac_p1.clock.next = self.clock.val();
         for k in 0..2 {
-            self.top_p1[k].clock.next = self.clock.val();
-            self.cos_p1[k].clock.next = self.clock.val();
-            self.cos_p2[k].clock.next = self.clock.val();
-            self.sin_p3[k].clock.next = self.clock.val();
-            self.cos_p3[k].clock.next = self.clock.val();
-            self.cos_p4[k].clock.next = self.clock.val();
-            self.sum[k].clock.next = self.clock.val();
-            self.cos_p5[k].clock.next = self.clock.val();
-            self.out[k].clock.next = self.clock.val();
+            clock!(
+                self, clock, top_p1[k], cos_p1[k], cos_p2[k], sin_p3[k], cos_p3[k], cos_p4[k],
+                sum[k], cos_p5[k], out[k]
+            );
         }
         for k in 0..4 {
             self.prod[k].clock.next = self.clock.val();

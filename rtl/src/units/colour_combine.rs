@@ -80,11 +80,7 @@ impl Logic for ColourCombine {
     fn update(&mut self) {
         clock!(self, clock, valid_p1, valid_p2, valid_p3);
         for c in 0..3 {
-            self.lo[c].clock.next = self.clock.val();
-            self.hs[c].clock.next = self.clock.val();
-            self.pd[c].clock.next = self.clock.val();
-            self.ps[c].clock.next = self.clock.val();
-            self.rgb[c].clock.next = self.clock.val();
+            clock!(self, clock, lo[c], hs[c], pd[c], ps[c], rgb[c]);
         }
         // C1
         self.pd[0].a.next = self.dif_r.val();

@@ -132,17 +132,10 @@ impl Logic for CosVAccumulator {
         dff_setup!(self, clock, busy_a, busy_b, arg_a, arg_b, t_q, u_q, d_q, cb, ra, rb);
         clock!(self, clock, prom_a, prom_b, cb1, last1, last2, cb2, last_d);
         for k in 0..2 {
-            self.word2[k].clock.next = self.clock.val();
-            self.prod[k].clock.next = self.clock.val();
-            self.valid_d[k].clock.next = self.clock.val();
-            self.idx_d[k].clock.next = self.clock.val();
-            self.top_d[k].clock.next = self.clock.val();
-            self.valid1[k].clock.next = self.clock.val();
-            self.idx1[k].clock.next = self.clock.val();
-            self.top1[k].clock.next = self.clock.val();
-            self.valid2[k].clock.next = self.clock.val();
-            self.idx2[k].clock.next = self.clock.val();
-            self.cos2[k].clock.next = self.clock.val();
+            clock!(
+                self, clock, word2[k], prod[k], valid_d[k], idx_d[k], top_d[k], valid1[k], idx1[k],
+                top1[k], valid2[k], idx2[k], cos2[k]
+            );
         }
         // S0: which runs emit this clock, and whether any emits after it.
         self.m_plus2.next = bit_cast::<13, 12>(self.m.val()) + 2;

@@ -162,18 +162,13 @@ impl Logic for FastUnit {
         dff_setup!(self, clock, busy, x, m_q, pl, pr, g_q, big_m, delta, dd_q, rem);
         clock!(self, clock, mul_c2m, t1, mul_t1m, f, mul_l, mul_r, cos_lq, cos_rq);
         for i in 0..13 {
-            self.vl[i].clock.next = self.clock.val();
-            self.vr[i].clock.next = self.clock.val();
-            self.xl[i].clock.next = self.clock.val();
-            self.xr[i].clock.next = self.clock.val();
-            self.lst[i].clock.next = self.clock.val();
+            clock!(self, clock, vl[i], vr[i], xl[i], xr[i], lst[i]);
         }
         for i in 0..5 {
             self.mm[i].clock.next = self.clock.val();
         }
         for i in 0..9 {
-            self.p16l[i].clock.next = self.clock.val();
-            self.p16r[i].clock.next = self.clock.val();
+            clock!(self, clock, p16l[i], p16r[i]);
         }
         // S0: the step of this clock, and whether another follows.
         self.act.next = self.busy.q.val() & !self.rem.q.val().get_bit(13);

@@ -233,25 +233,19 @@ impl Logic for PowerUnit {
             w_valid_pad
         );
         for j in 0..50 {
-            self.e_valid[j].clock.next = self.clock.val();
-            self.e_acc[j].clock.next = self.clock.val();
+            clock!(self, clock, e_valid[j], e_acc[j]);
         }
         for j in 0..49 {
             self.e_n[j].clock.next = self.clock.val();
         }
         for j in 0..9 {
-            self.e_pw[j].clock.next = self.clock.val();
-            self.e_prod[j].clock.next = self.clock.val();
-            self.e_sq[j].clock.next = self.clock.val();
+            clock!(self, clock, e_pw[j], e_prod[j], e_sq[j]);
         }
         for i in 0..5 {
-            self.w_b[i].clock.next = self.clock.val();
-            self.w_valid[i].clock.next = self.clock.val();
+            clock!(self, clock, w_b[i], w_valid[i]);
         }
         for i in 0..4 {
-            self.w_sq[i].clock.next = self.clock.val();
-            self.w_bp[i].clock.next = self.clock.val();
-            self.w_valid_a[i].clock.next = self.clock.val();
+            clock!(self, clock, w_sq[i], w_bp[i], w_valid_a[i]);
         }
         // ---- exact: E0a (the square's operands enter MulPipeDeep with stage 0)
         self.e_valid[0].d.next = self.valid_in.val();

@@ -80,9 +80,14 @@ impl From<bool> for Clock {
 ///
 /// When you have many [DFF]s or several complex sub-circuits, the `clock!` macro can make it
 /// easier to read the source code.
+///
+/// shadecore patch: a sub-circuit may be an element of an array, `clock!(self, clock, lo[c])`
+/// inside `for c in 0..3`. `#[hdl_gen]` already parses each entry as an expression and names
+/// `lo[c]`'s clock as it names the written-out `self.lo[c].clock.next`; this rule lets the
+/// simulator's side of the macro take the same entry.
 #[macro_export]
 macro_rules! clock {
-    ($self: ident, $clock: ident, $($subs: ident), +) => {
-        $($self.$subs.clock.next = $self.$clock.val());+;
+    ($self: ident, $clock: ident, $($subs: ident $([$i: expr])?), +) => {
+        $($self.$subs$([$i])?.clock.next = $self.$clock.val());+;
     }
 }

@@ -223,11 +223,7 @@ impl Logic for QuadricUnit {
             self.whi[k].clock.next = self.clock.val();
         }
         for c in 0..3 {
-            self.carry[c].clock.next = self.clock.val();
-            self.plo[c].clock.next = self.clock.val();
-            self.qlo[c].clock.next = self.clock.val();
-            self.o_ca[c].clock.next = self.clock.val();
-            self.o_cb[c].clock.next = self.clock.val();
+            clock!(self, clock, carry[c], plo[c], qlo[c], o_ca[c], o_cb[c]);
         }
 
         // Generator status.
