@@ -343,191 +343,142 @@ impl<const U1: usize> Logic for SpanShader<U1> {
 pub const SHADER_MULTIPLIERS: usize =
     2 * (<PowerUnit as RtlBlock>::MULTIPLIERS + <ColourCombine as RtlBlock>::MULTIPLIERS);
 
-crate::hw_block! {
+/// Declare a span pipeline: two span units (`unit_l` for L, `unit_h` for H) and the shared
+/// back end ([`SpanShader`]). The ports are the same but for the units' own set-up words,
+/// given as `unit_l`/`unit_h` port ← pipeline port pairs in port order; `lanes` names the
+/// `unit_l` outputs that carry lane A's and lane B's parameter into the shader.
+///
+/// The whole `impl Logic` is in this macro's own text; the caller passes names only (see
+/// `crate::core::declare` on hygiene).
+macro_rules! span_pipeline {
+    (
+        $(#[$m:meta])*
+        pub struct $name:ident as $block:literal {
+            summary: $summary:literal,
+            latency_text: $latency_text:literal,
+            multipliers: $mults:expr,
+            unit: $unit:ident $(= $init:expr)?,
+            set_up { $($port:ident: $l:ident / $h:ident: $t:ty),* $(,)? }
+            lanes: $ta:ident / $tb:ident,
+        }
+        $(new($arg:ident : &$pt:ty);)?
+    ) => {
+        crate::hw_block! {
+            $(#[$m])*
+            pub struct $name(clock) as $block {
+                summary: $summary,
+                latency: $unit::LATENCY + SHADE_LATENCY => $latency_text,
+                multipliers: $mults,
+                in {
+                    load: Bit, span_base_ports!,
+                    $($l: $t,)*
+                    $($h: $t,)*
+                    z0: Bits<32>, zm: Bits<32>, dz: Bits<32>,
+                    material_registers!, hold: Bit,
+                }
+                out {
+                    ready: Bit,
+                    valid_a: Bit, x_a: Bits<12>, z_a: Bits<32>, red_a: Bits<8>, green_a: Bits<8>, blue_a: Bits<8>,
+                    valid_b: Bit, x_b: Bits<12>, z_b: Bits<32>, red_b: Bits<8>, green_b: Bits<8>, blue_b: Bits<8>,
+                    y_out: Bits<12>, done: Bit,
+                }
+                pub unit_l: $unit $(= $init)?,
+                pub unit_h: $unit $(= $init)?,
+                pub shader: SpanShader<{ $unit::LATENCY - 1 }>,
+                take: Signal<Local, Bit>,
+            }
+            $(new($arg: &$pt);)?
+        }
+
+        impl Logic for $name {
+            #[hdl_gen]
+            fn update(&mut self) {
+                clock!(self, clock, unit_l, unit_h, shader);
+                self.take.next = self.load.val() & self.unit_l.ready.val();
+                self.unit_l.hold.next = self.hold.val();
+                self.unit_h.hold.next = self.hold.val();
+                self.shader.hold.next = self.hold.val();
+                self.unit_l.load.next = self.load.val();
+                $(self.unit_l.$port.next = self.$l.val();)*
+                self.unit_l.m.next = self.m.val();
+                self.unit_h.load.next = self.load.val();
+                $(self.unit_h.$port.next = self.$h.val();)*
+                self.unit_h.m.next = self.m.val();
+
+                self.shader.take.next = self.take.val();
+                self.shader.x0.next = self.x0.val();
+                self.shader.y_in.next = self.y.val();
+                self.shader.dir.next = self.dir.val();
+                self.shader.z0.next = self.z0.val();
+                self.shader.zm.next = self.zm.val();
+                self.shader.dz.next = self.dz.val();
+                self.shader.va.next = self.unit_l.valid_a.val();
+                self.shader.ta.next = self.unit_l.$ta.val();
+                self.shader.cd_a.next = self.unit_l.cos_a.val();
+                self.shader.cs_a.next = self.unit_h.cos_a.val();
+                self.shader.vb.next = self.unit_l.valid_b.val();
+                self.shader.tb.next = self.unit_l.$tb.val();
+                self.shader.cd_b.next = self.unit_l.cos_b.val();
+                self.shader.cs_b.next = self.unit_h.cos_b.val();
+                self.shader.done_in.next = self.unit_l.done.val();
+                self.shader.n.next = self.n.val();
+                self.shader.w[0].next = self.amb_r.val();
+                self.shader.w[1].next = self.amb_g.val();
+                self.shader.w[2].next = self.amb_b.val();
+                self.shader.w[3].next = self.dif_r.val();
+                self.shader.w[4].next = self.dif_g.val();
+                self.shader.w[5].next = self.dif_b.val();
+                self.shader.w[6].next = self.spc_r.val();
+                self.shader.w[7].next = self.spc_g.val();
+                self.shader.w[8].next = self.spc_b.val();
+
+                self.ready.next = self.unit_l.ready.val();
+                self.valid_a.next = self.shader.valid_a.val();
+                self.x_a.next = self.shader.x_a.val();
+                self.z_a.next = self.shader.z_a.val();
+                self.red_a.next = self.shader.rgb_a[0].val();
+                self.green_a.next = self.shader.rgb_a[1].val();
+                self.blue_a.next = self.shader.rgb_a[2].val();
+                self.valid_b.next = self.shader.valid_b.val();
+                self.x_b.next = self.shader.x_b.val();
+                self.z_b.next = self.shader.z_b.val();
+                self.red_b.next = self.shader.rgb_b[0].val();
+                self.green_b.next = self.shader.rgb_b[1].val();
+                self.blue_b.next = self.shader.rgb_b[2].val();
+                self.y_out.next = self.shader.y.val();
+                self.done.next = self.shader.done.val();
+            }
+        }
+    };
+}
+
+span_pipeline! {
     /// The angular-interpolation span pipeline (see the module header).
-    pub struct AngularPipeline(clock) as "angular-pipeline" {
+    pub struct AngularPipeline as "angular-pipeline" {
         summary: "a raster line's angular set-up (ψ, Δφ, cos β for L and H) in, lit fragments out two per clock: cos v accumulators, power unit, colour combine (SPEC §4, §0)",
-        latency: CosVAccumulator::LATENCY + SHADE_LATENCY
-            => "load to the first fragments, two fragments per clock",
+        latency_text: "load to the first fragments, two fragments per clock",
         multipliers: 2 * 2 + 2 * (18 + 6),
-        in {
-            load: Bit, span_base_ports!,
-            lp: Bits<32>, lq: Bits<32>, ld: Bits<32>, lcb: Bits<16>,
-            hp: Bits<32>, hq: Bits<32>, hd: Bits<32>, hcb: Bits<16>,
-            z0: Bits<32>, zm: Bits<32>, dz: Bits<32>,
-            material_registers!, hold: Bit,
+        unit: CosVAccumulator,
+        set_up {
+            p: lp / hp: Bits<32>, q: lq / hq: Bits<32>, d: ld / hd: Bits<32>,
+            cos_beta: lcb / hcb: Bits<16>,
         }
-        out {
-            ready: Bit,
-            valid_a: Bit, x_a: Bits<12>, z_a: Bits<32>, red_a: Bits<8>, green_a: Bits<8>, blue_a: Bits<8>,
-            valid_b: Bit, x_b: Bits<12>, z_b: Bits<32>, red_b: Bits<8>, green_b: Bits<8>, blue_b: Bits<8>,
-            y_out: Bits<12>, done: Bit,
-        }
-        pub unit_l: CosVAccumulator,
-        pub unit_h: CosVAccumulator,
-        pub shader: SpanShader<{ CosVAccumulator::LATENCY - 1 }>,
-        take: Signal<Local, Bit>,
+        lanes: t / u,
     }
 }
 
-impl Logic for AngularPipeline {
-    #[hdl_gen]
-    fn update(&mut self) {
-        clock!(self, clock, unit_l, unit_h, shader);
-        self.take.next = self.load.val() & self.unit_l.ready.val();
-        self.unit_l.hold.next = self.hold.val();
-        self.unit_h.hold.next = self.hold.val();
-        self.shader.hold.next = self.hold.val();
-        self.unit_l.load.next = self.load.val();
-        self.unit_l.p.next = self.lp.val();
-        self.unit_l.q.next = self.lq.val();
-        self.unit_l.d.next = self.ld.val();
-        self.unit_l.cos_beta.next = self.lcb.val();
-        self.unit_l.m.next = self.m.val();
-        self.unit_h.load.next = self.load.val();
-        self.unit_h.p.next = self.hp.val();
-        self.unit_h.q.next = self.hq.val();
-        self.unit_h.d.next = self.hd.val();
-        self.unit_h.cos_beta.next = self.hcb.val();
-        self.unit_h.m.next = self.m.val();
-
-        self.shader.take.next = self.take.val();
-        self.shader.x0.next = self.x0.val();
-        self.shader.y_in.next = self.y.val();
-        self.shader.dir.next = self.dir.val();
-        self.shader.z0.next = self.z0.val();
-        self.shader.zm.next = self.zm.val();
-        self.shader.dz.next = self.dz.val();
-        self.shader.va.next = self.unit_l.valid_a.val();
-        self.shader.ta.next = self.unit_l.t.val();
-        self.shader.cd_a.next = self.unit_l.cos_a.val();
-        self.shader.cs_a.next = self.unit_h.cos_a.val();
-        self.shader.vb.next = self.unit_l.valid_b.val();
-        self.shader.tb.next = self.unit_l.u.val();
-        self.shader.cd_b.next = self.unit_l.cos_b.val();
-        self.shader.cs_b.next = self.unit_h.cos_b.val();
-        self.shader.done_in.next = self.unit_l.done.val();
-        self.shader.n.next = self.n.val();
-        self.shader.w[0].next = self.amb_r.val();
-        self.shader.w[1].next = self.amb_g.val();
-        self.shader.w[2].next = self.amb_b.val();
-        self.shader.w[3].next = self.dif_r.val();
-        self.shader.w[4].next = self.dif_g.val();
-        self.shader.w[5].next = self.dif_b.val();
-        self.shader.w[6].next = self.spc_r.val();
-        self.shader.w[7].next = self.spc_g.val();
-        self.shader.w[8].next = self.spc_b.val();
-
-        self.ready.next = self.unit_l.ready.val();
-        self.valid_a.next = self.shader.valid_a.val();
-        self.x_a.next = self.shader.x_a.val();
-        self.z_a.next = self.shader.z_a.val();
-        self.red_a.next = self.shader.rgb_a[0].val();
-        self.green_a.next = self.shader.rgb_a[1].val();
-        self.blue_a.next = self.shader.rgb_a[2].val();
-        self.valid_b.next = self.shader.valid_b.val();
-        self.x_b.next = self.shader.x_b.val();
-        self.z_b.next = self.shader.z_b.val();
-        self.red_b.next = self.shader.rgb_b[0].val();
-        self.green_b.next = self.shader.rgb_b[1].val();
-        self.blue_b.next = self.shader.rgb_b[2].val();
-        self.y_out.next = self.shader.y.val();
-        self.done.next = self.shader.done.val();
-    }
-}
-
-crate::hw_block! {
+span_pipeline! {
     /// The fast two-point span pipeline (see the module header).
-    pub struct FastPipeline(clock) as "fast-pipeline" {
+    pub struct FastPipeline as "fast-pipeline" {
         summary: "a raster line's fast set-up (b, h, g, c + s, 2c for L and H) in, lit fragments out two per clock: fast two-point units, power unit, colour combine (SPEC §3, §0)",
-        latency: FastUnit::LATENCY + SHADE_LATENCY
-            => "load to the first fragments, two fragments per clock",
+        latency_text: "load to the first fragments, two fragments per clock",
         multipliers: 2 * 4 + 2 * (18 + 6),
-        in {
-            load: Bit, span_base_ports!,
-            lb: Bits<32>, lh: Bits<32>, lg: Bits<32>, ld0: Bits<48>, ldd: Bits<48>,
-            hb: Bits<32>, hh: Bits<32>, hg: Bits<32>, hd0: Bits<48>, hdd: Bits<48>,
-            z0: Bits<32>, zm: Bits<32>, dz: Bits<32>,
-            material_registers!, hold: Bit,
+        unit: FastUnit = FastUnit::new(&p.0),
+        set_up {
+            b: lb / hb: Bits<32>, h: lh / hh: Bits<32>, g: lg / hg: Bits<32>,
+            d0: ld0 / hd0: Bits<48>, dd: ldd / hdd: Bits<48>,
         }
-        out {
-            ready: Bit,
-            valid_a: Bit, x_a: Bits<12>, z_a: Bits<32>, red_a: Bits<8>, green_a: Bits<8>, blue_a: Bits<8>,
-            valid_b: Bit, x_b: Bits<12>, z_b: Bits<32>, red_b: Bits<8>, green_b: Bits<8>, blue_b: Bits<8>,
-            y_out: Bits<12>, done: Bit,
-        }
-        pub unit_l: FastUnit = FastUnit::new(&p.0),
-        pub unit_h: FastUnit = FastUnit::new(&p.0),
-        pub shader: SpanShader<{ FastUnit::LATENCY - 1 }>,
-        take: Signal<Local, Bit>,
+        lanes: x_a / x_b,
     }
     new(p: &FastPipelineParams);
-}
-
-impl Logic for FastPipeline {
-    #[hdl_gen]
-    fn update(&mut self) {
-        clock!(self, clock, unit_l, unit_h, shader);
-        self.take.next = self.load.val() & self.unit_l.ready.val();
-        self.unit_l.hold.next = self.hold.val();
-        self.unit_h.hold.next = self.hold.val();
-        self.shader.hold.next = self.hold.val();
-        self.unit_l.load.next = self.load.val();
-        self.unit_l.b.next = self.lb.val();
-        self.unit_l.h.next = self.lh.val();
-        self.unit_l.g.next = self.lg.val();
-        self.unit_l.d0.next = self.ld0.val();
-        self.unit_l.dd.next = self.ldd.val();
-        self.unit_l.m.next = self.m.val();
-        self.unit_h.load.next = self.load.val();
-        self.unit_h.b.next = self.hb.val();
-        self.unit_h.h.next = self.hh.val();
-        self.unit_h.g.next = self.hg.val();
-        self.unit_h.d0.next = self.hd0.val();
-        self.unit_h.dd.next = self.hdd.val();
-        self.unit_h.m.next = self.m.val();
-
-        self.shader.take.next = self.take.val();
-        self.shader.x0.next = self.x0.val();
-        self.shader.y_in.next = self.y.val();
-        self.shader.dir.next = self.dir.val();
-        self.shader.z0.next = self.z0.val();
-        self.shader.zm.next = self.zm.val();
-        self.shader.dz.next = self.dz.val();
-        self.shader.va.next = self.unit_l.valid_a.val();
-        self.shader.ta.next = self.unit_l.x_a.val();
-        self.shader.cd_a.next = self.unit_l.cos_a.val();
-        self.shader.cs_a.next = self.unit_h.cos_a.val();
-        self.shader.vb.next = self.unit_l.valid_b.val();
-        self.shader.tb.next = self.unit_l.x_b.val();
-        self.shader.cd_b.next = self.unit_l.cos_b.val();
-        self.shader.cs_b.next = self.unit_h.cos_b.val();
-        self.shader.done_in.next = self.unit_l.done.val();
-        self.shader.n.next = self.n.val();
-        self.shader.w[0].next = self.amb_r.val();
-        self.shader.w[1].next = self.amb_g.val();
-        self.shader.w[2].next = self.amb_b.val();
-        self.shader.w[3].next = self.dif_r.val();
-        self.shader.w[4].next = self.dif_g.val();
-        self.shader.w[5].next = self.dif_b.val();
-        self.shader.w[6].next = self.spc_r.val();
-        self.shader.w[7].next = self.spc_g.val();
-        self.shader.w[8].next = self.spc_b.val();
-
-        self.ready.next = self.unit_l.ready.val();
-        self.valid_a.next = self.shader.valid_a.val();
-        self.x_a.next = self.shader.x_a.val();
-        self.z_a.next = self.shader.z_a.val();
-        self.red_a.next = self.shader.rgb_a[0].val();
-        self.green_a.next = self.shader.rgb_a[1].val();
-        self.blue_a.next = self.shader.rgb_a[2].val();
-        self.valid_b.next = self.shader.valid_b.val();
-        self.x_b.next = self.shader.x_b.val();
-        self.z_b.next = self.shader.z_b.val();
-        self.red_b.next = self.shader.rgb_b[0].val();
-        self.green_b.next = self.shader.rgb_b[1].val();
-        self.blue_b.next = self.shader.rgb_b[2].val();
-        self.y_out.next = self.shader.y.val();
-        self.done.next = self.shader.done.val();
-    }
 }
