@@ -257,285 +257,50 @@ impl Logic for PowerUnit {
         }
         self.e_sq[0].a.next = self.cos_gamma.val();
         self.e_sq[0].b.next = self.cos_gamma.val();
-        self.e_valid[1].d.next = self.e_valid[0].q.val();
-        self.e_n[1].d.next = self.e_n[0].q.val();
-        self.e_acc[1].d.next = self.e_acc[0].q.val();
-        self.e_valid[2].d.next = self.e_valid[1].q.val();
-        self.e_n[2].d.next = self.e_n[1].q.val();
-        self.e_acc[2].d.next = self.e_acc[1].q.val();
-        self.e_valid[3].d.next = self.e_valid[2].q.val();
-        self.e_n[3].d.next = self.e_n[2].q.val();
-        self.e_acc[3].d.next = self.e_acc[2].q.val();
+        for k in 1..4 {
+            self.e_valid[k].d.next = self.e_valid[k - 1].q.val();
+            self.e_n[k].d.next = self.e_n[k - 1].q.val();
+            self.e_acc[k].d.next = self.e_acc[k - 1].q.val();
+        }
         // E0b
         self.e_valid[4].d.next = self.e_valid[3].q.val();
         self.e_n[4].d.next = self.e_n[3].q.val();
         self.e_acc[4].d.next = self.e_acc[3].q.val();
         self.e_rnd_sq[0].wide.next = self.e_sq[0].p.val();
         self.e_pw[0].d.next = self.e_rnd_sq[0].narrow.val();
-        // E1a (operands enter with stage 5)
-        self.e_valid[5].d.next = self.e_valid[4].q.val();
-        self.e_n[5].d.next = self.e_n[4].q.val();
-        self.e_acc[5].d.next = self.e_acc[4].q.val();
-        if self.e_n[4].q.val().get_bit(1) {
-            self.e_prod[0].a.next = self.e_acc[4].q.val();
-            self.e_prod[0].b.next = self.e_pw[0].q.val();
-        } else {
-            self.e_prod[0].a.next = 0.into();
-            self.e_prod[0].b.next = 0.into();
+        // E1..E8: stage 5j is Eja (the operands enter with it), 5j + 1..5j + 3 the products'
+        // clocks, 5j + 4 Ejb.
+        for j in 1..9 {
+            // Eja
+            self.e_valid[5 * j].d.next = self.e_valid[5 * j - 1].q.val();
+            self.e_n[5 * j].d.next = self.e_n[5 * j - 1].q.val();
+            self.e_acc[5 * j].d.next = self.e_acc[5 * j - 1].q.val();
+            if self.e_n[5 * j - 1].q.val().get_bit(j) {
+                self.e_prod[j - 1].a.next = self.e_acc[5 * j - 1].q.val();
+                self.e_prod[j - 1].b.next = self.e_pw[j - 1].q.val();
+            } else {
+                self.e_prod[j - 1].a.next = 0.into();
+                self.e_prod[j - 1].b.next = 0.into();
+            }
+            self.e_sq[j].a.next = self.e_pw[j - 1].q.val();
+            self.e_sq[j].b.next = self.e_pw[j - 1].q.val();
+            for k in 1..4 {
+                self.e_valid[5 * j + k].d.next = self.e_valid[5 * j + k - 1].q.val();
+                self.e_n[5 * j + k].d.next = self.e_n[5 * j + k - 1].q.val();
+                self.e_acc[5 * j + k].d.next = self.e_acc[5 * j + k - 1].q.val();
+            }
+            // Ejb
+            self.e_valid[5 * j + 4].d.next = self.e_valid[5 * j + 3].q.val();
+            self.e_n[5 * j + 4].d.next = self.e_n[5 * j + 3].q.val();
+            self.e_rnd_prod[j - 1].wide.next = self.e_prod[j - 1].p.val();
+            if self.e_n[5 * j + 3].q.val().get_bit(j) {
+                self.e_acc[5 * j + 4].d.next = self.e_rnd_prod[j - 1].narrow.val();
+            } else {
+                self.e_acc[5 * j + 4].d.next = self.e_acc[5 * j + 3].q.val();
+            }
+            self.e_rnd_sq[j].wide.next = self.e_sq[j].p.val();
+            self.e_pw[j].d.next = self.e_rnd_sq[j].narrow.val();
         }
-        self.e_sq[1].a.next = self.e_pw[0].q.val();
-        self.e_sq[1].b.next = self.e_pw[0].q.val();
-        self.e_valid[6].d.next = self.e_valid[5].q.val();
-        self.e_n[6].d.next = self.e_n[5].q.val();
-        self.e_acc[6].d.next = self.e_acc[5].q.val();
-        self.e_valid[7].d.next = self.e_valid[6].q.val();
-        self.e_n[7].d.next = self.e_n[6].q.val();
-        self.e_acc[7].d.next = self.e_acc[6].q.val();
-        self.e_valid[8].d.next = self.e_valid[7].q.val();
-        self.e_n[8].d.next = self.e_n[7].q.val();
-        self.e_acc[8].d.next = self.e_acc[7].q.val();
-        // E1b
-        self.e_valid[9].d.next = self.e_valid[8].q.val();
-        self.e_n[9].d.next = self.e_n[8].q.val();
-        self.e_rnd_prod[0].wide.next = self.e_prod[0].p.val();
-        if self.e_n[8].q.val().get_bit(1) {
-            self.e_acc[9].d.next = self.e_rnd_prod[0].narrow.val();
-        } else {
-            self.e_acc[9].d.next = self.e_acc[8].q.val();
-        }
-        self.e_rnd_sq[1].wide.next = self.e_sq[1].p.val();
-        self.e_pw[1].d.next = self.e_rnd_sq[1].narrow.val();
-        // E2a (operands enter with stage 10)
-        self.e_valid[10].d.next = self.e_valid[9].q.val();
-        self.e_n[10].d.next = self.e_n[9].q.val();
-        self.e_acc[10].d.next = self.e_acc[9].q.val();
-        if self.e_n[9].q.val().get_bit(2) {
-            self.e_prod[1].a.next = self.e_acc[9].q.val();
-            self.e_prod[1].b.next = self.e_pw[1].q.val();
-        } else {
-            self.e_prod[1].a.next = 0.into();
-            self.e_prod[1].b.next = 0.into();
-        }
-        self.e_sq[2].a.next = self.e_pw[1].q.val();
-        self.e_sq[2].b.next = self.e_pw[1].q.val();
-        self.e_valid[11].d.next = self.e_valid[10].q.val();
-        self.e_n[11].d.next = self.e_n[10].q.val();
-        self.e_acc[11].d.next = self.e_acc[10].q.val();
-        self.e_valid[12].d.next = self.e_valid[11].q.val();
-        self.e_n[12].d.next = self.e_n[11].q.val();
-        self.e_acc[12].d.next = self.e_acc[11].q.val();
-        self.e_valid[13].d.next = self.e_valid[12].q.val();
-        self.e_n[13].d.next = self.e_n[12].q.val();
-        self.e_acc[13].d.next = self.e_acc[12].q.val();
-        // E2b
-        self.e_valid[14].d.next = self.e_valid[13].q.val();
-        self.e_n[14].d.next = self.e_n[13].q.val();
-        self.e_rnd_prod[1].wide.next = self.e_prod[1].p.val();
-        if self.e_n[13].q.val().get_bit(2) {
-            self.e_acc[14].d.next = self.e_rnd_prod[1].narrow.val();
-        } else {
-            self.e_acc[14].d.next = self.e_acc[13].q.val();
-        }
-        self.e_rnd_sq[2].wide.next = self.e_sq[2].p.val();
-        self.e_pw[2].d.next = self.e_rnd_sq[2].narrow.val();
-        // E3a (operands enter with stage 15)
-        self.e_valid[15].d.next = self.e_valid[14].q.val();
-        self.e_n[15].d.next = self.e_n[14].q.val();
-        self.e_acc[15].d.next = self.e_acc[14].q.val();
-        if self.e_n[14].q.val().get_bit(3) {
-            self.e_prod[2].a.next = self.e_acc[14].q.val();
-            self.e_prod[2].b.next = self.e_pw[2].q.val();
-        } else {
-            self.e_prod[2].a.next = 0.into();
-            self.e_prod[2].b.next = 0.into();
-        }
-        self.e_sq[3].a.next = self.e_pw[2].q.val();
-        self.e_sq[3].b.next = self.e_pw[2].q.val();
-        self.e_valid[16].d.next = self.e_valid[15].q.val();
-        self.e_n[16].d.next = self.e_n[15].q.val();
-        self.e_acc[16].d.next = self.e_acc[15].q.val();
-        self.e_valid[17].d.next = self.e_valid[16].q.val();
-        self.e_n[17].d.next = self.e_n[16].q.val();
-        self.e_acc[17].d.next = self.e_acc[16].q.val();
-        self.e_valid[18].d.next = self.e_valid[17].q.val();
-        self.e_n[18].d.next = self.e_n[17].q.val();
-        self.e_acc[18].d.next = self.e_acc[17].q.val();
-        // E3b
-        self.e_valid[19].d.next = self.e_valid[18].q.val();
-        self.e_n[19].d.next = self.e_n[18].q.val();
-        self.e_rnd_prod[2].wide.next = self.e_prod[2].p.val();
-        if self.e_n[18].q.val().get_bit(3) {
-            self.e_acc[19].d.next = self.e_rnd_prod[2].narrow.val();
-        } else {
-            self.e_acc[19].d.next = self.e_acc[18].q.val();
-        }
-        self.e_rnd_sq[3].wide.next = self.e_sq[3].p.val();
-        self.e_pw[3].d.next = self.e_rnd_sq[3].narrow.val();
-        // E4a (operands enter with stage 20)
-        self.e_valid[20].d.next = self.e_valid[19].q.val();
-        self.e_n[20].d.next = self.e_n[19].q.val();
-        self.e_acc[20].d.next = self.e_acc[19].q.val();
-        if self.e_n[19].q.val().get_bit(4) {
-            self.e_prod[3].a.next = self.e_acc[19].q.val();
-            self.e_prod[3].b.next = self.e_pw[3].q.val();
-        } else {
-            self.e_prod[3].a.next = 0.into();
-            self.e_prod[3].b.next = 0.into();
-        }
-        self.e_sq[4].a.next = self.e_pw[3].q.val();
-        self.e_sq[4].b.next = self.e_pw[3].q.val();
-        self.e_valid[21].d.next = self.e_valid[20].q.val();
-        self.e_n[21].d.next = self.e_n[20].q.val();
-        self.e_acc[21].d.next = self.e_acc[20].q.val();
-        self.e_valid[22].d.next = self.e_valid[21].q.val();
-        self.e_n[22].d.next = self.e_n[21].q.val();
-        self.e_acc[22].d.next = self.e_acc[21].q.val();
-        self.e_valid[23].d.next = self.e_valid[22].q.val();
-        self.e_n[23].d.next = self.e_n[22].q.val();
-        self.e_acc[23].d.next = self.e_acc[22].q.val();
-        // E4b
-        self.e_valid[24].d.next = self.e_valid[23].q.val();
-        self.e_n[24].d.next = self.e_n[23].q.val();
-        self.e_rnd_prod[3].wide.next = self.e_prod[3].p.val();
-        if self.e_n[23].q.val().get_bit(4) {
-            self.e_acc[24].d.next = self.e_rnd_prod[3].narrow.val();
-        } else {
-            self.e_acc[24].d.next = self.e_acc[23].q.val();
-        }
-        self.e_rnd_sq[4].wide.next = self.e_sq[4].p.val();
-        self.e_pw[4].d.next = self.e_rnd_sq[4].narrow.val();
-        // E5a (operands enter with stage 25)
-        self.e_valid[25].d.next = self.e_valid[24].q.val();
-        self.e_n[25].d.next = self.e_n[24].q.val();
-        self.e_acc[25].d.next = self.e_acc[24].q.val();
-        if self.e_n[24].q.val().get_bit(5) {
-            self.e_prod[4].a.next = self.e_acc[24].q.val();
-            self.e_prod[4].b.next = self.e_pw[4].q.val();
-        } else {
-            self.e_prod[4].a.next = 0.into();
-            self.e_prod[4].b.next = 0.into();
-        }
-        self.e_sq[5].a.next = self.e_pw[4].q.val();
-        self.e_sq[5].b.next = self.e_pw[4].q.val();
-        self.e_valid[26].d.next = self.e_valid[25].q.val();
-        self.e_n[26].d.next = self.e_n[25].q.val();
-        self.e_acc[26].d.next = self.e_acc[25].q.val();
-        self.e_valid[27].d.next = self.e_valid[26].q.val();
-        self.e_n[27].d.next = self.e_n[26].q.val();
-        self.e_acc[27].d.next = self.e_acc[26].q.val();
-        self.e_valid[28].d.next = self.e_valid[27].q.val();
-        self.e_n[28].d.next = self.e_n[27].q.val();
-        self.e_acc[28].d.next = self.e_acc[27].q.val();
-        // E5b
-        self.e_valid[29].d.next = self.e_valid[28].q.val();
-        self.e_n[29].d.next = self.e_n[28].q.val();
-        self.e_rnd_prod[4].wide.next = self.e_prod[4].p.val();
-        if self.e_n[28].q.val().get_bit(5) {
-            self.e_acc[29].d.next = self.e_rnd_prod[4].narrow.val();
-        } else {
-            self.e_acc[29].d.next = self.e_acc[28].q.val();
-        }
-        self.e_rnd_sq[5].wide.next = self.e_sq[5].p.val();
-        self.e_pw[5].d.next = self.e_rnd_sq[5].narrow.val();
-        // E6a (operands enter with stage 30)
-        self.e_valid[30].d.next = self.e_valid[29].q.val();
-        self.e_n[30].d.next = self.e_n[29].q.val();
-        self.e_acc[30].d.next = self.e_acc[29].q.val();
-        if self.e_n[29].q.val().get_bit(6) {
-            self.e_prod[5].a.next = self.e_acc[29].q.val();
-            self.e_prod[5].b.next = self.e_pw[5].q.val();
-        } else {
-            self.e_prod[5].a.next = 0.into();
-            self.e_prod[5].b.next = 0.into();
-        }
-        self.e_sq[6].a.next = self.e_pw[5].q.val();
-        self.e_sq[6].b.next = self.e_pw[5].q.val();
-        self.e_valid[31].d.next = self.e_valid[30].q.val();
-        self.e_n[31].d.next = self.e_n[30].q.val();
-        self.e_acc[31].d.next = self.e_acc[30].q.val();
-        self.e_valid[32].d.next = self.e_valid[31].q.val();
-        self.e_n[32].d.next = self.e_n[31].q.val();
-        self.e_acc[32].d.next = self.e_acc[31].q.val();
-        self.e_valid[33].d.next = self.e_valid[32].q.val();
-        self.e_n[33].d.next = self.e_n[32].q.val();
-        self.e_acc[33].d.next = self.e_acc[32].q.val();
-        // E6b
-        self.e_valid[34].d.next = self.e_valid[33].q.val();
-        self.e_n[34].d.next = self.e_n[33].q.val();
-        self.e_rnd_prod[5].wide.next = self.e_prod[5].p.val();
-        if self.e_n[33].q.val().get_bit(6) {
-            self.e_acc[34].d.next = self.e_rnd_prod[5].narrow.val();
-        } else {
-            self.e_acc[34].d.next = self.e_acc[33].q.val();
-        }
-        self.e_rnd_sq[6].wide.next = self.e_sq[6].p.val();
-        self.e_pw[6].d.next = self.e_rnd_sq[6].narrow.val();
-        // E7a (operands enter with stage 35)
-        self.e_valid[35].d.next = self.e_valid[34].q.val();
-        self.e_n[35].d.next = self.e_n[34].q.val();
-        self.e_acc[35].d.next = self.e_acc[34].q.val();
-        if self.e_n[34].q.val().get_bit(7) {
-            self.e_prod[6].a.next = self.e_acc[34].q.val();
-            self.e_prod[6].b.next = self.e_pw[6].q.val();
-        } else {
-            self.e_prod[6].a.next = 0.into();
-            self.e_prod[6].b.next = 0.into();
-        }
-        self.e_sq[7].a.next = self.e_pw[6].q.val();
-        self.e_sq[7].b.next = self.e_pw[6].q.val();
-        self.e_valid[36].d.next = self.e_valid[35].q.val();
-        self.e_n[36].d.next = self.e_n[35].q.val();
-        self.e_acc[36].d.next = self.e_acc[35].q.val();
-        self.e_valid[37].d.next = self.e_valid[36].q.val();
-        self.e_n[37].d.next = self.e_n[36].q.val();
-        self.e_acc[37].d.next = self.e_acc[36].q.val();
-        self.e_valid[38].d.next = self.e_valid[37].q.val();
-        self.e_n[38].d.next = self.e_n[37].q.val();
-        self.e_acc[38].d.next = self.e_acc[37].q.val();
-        // E7b
-        self.e_valid[39].d.next = self.e_valid[38].q.val();
-        self.e_n[39].d.next = self.e_n[38].q.val();
-        self.e_rnd_prod[6].wide.next = self.e_prod[6].p.val();
-        if self.e_n[38].q.val().get_bit(7) {
-            self.e_acc[39].d.next = self.e_rnd_prod[6].narrow.val();
-        } else {
-            self.e_acc[39].d.next = self.e_acc[38].q.val();
-        }
-        self.e_rnd_sq[7].wide.next = self.e_sq[7].p.val();
-        self.e_pw[7].d.next = self.e_rnd_sq[7].narrow.val();
-        // E8a (operands enter with stage 40)
-        self.e_valid[40].d.next = self.e_valid[39].q.val();
-        self.e_n[40].d.next = self.e_n[39].q.val();
-        self.e_acc[40].d.next = self.e_acc[39].q.val();
-        if self.e_n[39].q.val().get_bit(8) {
-            self.e_prod[7].a.next = self.e_acc[39].q.val();
-            self.e_prod[7].b.next = self.e_pw[7].q.val();
-        } else {
-            self.e_prod[7].a.next = 0.into();
-            self.e_prod[7].b.next = 0.into();
-        }
-        self.e_sq[8].a.next = self.e_pw[7].q.val();
-        self.e_sq[8].b.next = self.e_pw[7].q.val();
-        self.e_valid[41].d.next = self.e_valid[40].q.val();
-        self.e_n[41].d.next = self.e_n[40].q.val();
-        self.e_acc[41].d.next = self.e_acc[40].q.val();
-        self.e_valid[42].d.next = self.e_valid[41].q.val();
-        self.e_n[42].d.next = self.e_n[41].q.val();
-        self.e_acc[42].d.next = self.e_acc[41].q.val();
-        self.e_valid[43].d.next = self.e_valid[42].q.val();
-        self.e_n[43].d.next = self.e_n[42].q.val();
-        self.e_acc[43].d.next = self.e_acc[42].q.val();
-        // E8b
-        self.e_valid[44].d.next = self.e_valid[43].q.val();
-        self.e_n[44].d.next = self.e_n[43].q.val();
-        self.e_rnd_prod[7].wide.next = self.e_prod[7].p.val();
-        if self.e_n[43].q.val().get_bit(8) {
-            self.e_acc[44].d.next = self.e_rnd_prod[7].narrow.val();
-        } else {
-            self.e_acc[44].d.next = self.e_acc[43].q.val();
-        }
-        self.e_rnd_sq[8].wide.next = self.e_sq[8].p.val();
-        self.e_pw[8].d.next = self.e_rnd_sq[8].narrow.val();
         // E9a (operands enter with stage 45)
         self.e_valid[45].d.next = self.e_valid[44].q.val();
         self.e_n[45].d.next = self.e_n[44].q.val();
@@ -547,15 +312,11 @@ impl Logic for PowerUnit {
             self.e_prod[8].a.next = 0.into();
             self.e_prod[8].b.next = 0.into();
         }
-        self.e_valid[46].d.next = self.e_valid[45].q.val();
-        self.e_n[46].d.next = self.e_n[45].q.val();
-        self.e_acc[46].d.next = self.e_acc[45].q.val();
-        self.e_valid[47].d.next = self.e_valid[46].q.val();
-        self.e_n[47].d.next = self.e_n[46].q.val();
-        self.e_acc[47].d.next = self.e_acc[46].q.val();
-        self.e_valid[48].d.next = self.e_valid[47].q.val();
-        self.e_n[48].d.next = self.e_n[47].q.val();
-        self.e_acc[48].d.next = self.e_acc[47].q.val();
+        for k in 46..49 {
+            self.e_valid[k].d.next = self.e_valid[k - 1].q.val();
+            self.e_n[k].d.next = self.e_n[k - 1].q.val();
+            self.e_acc[k].d.next = self.e_acc[k - 1].q.val();
+        }
         // E9b
         self.e_valid[49].d.next = self.e_valid[48].q.val();
         self.e_rnd_prod[8].wide.next = self.e_prod[8].p.val();
@@ -619,58 +380,21 @@ impl Logic for PowerUnit {
             self.w_b[0].d.next = self.w_rnd.val().get_bits::<16>(8);
         }
         self.w_valid[0].d.next = self.w_valid3.q.val();
-        // W4a, W4a'
-        self.w_sq[0].a.next = self.w_b[0].q.val();
-        self.w_sq[0].b.next = self.w_b[0].q.val();
-        self.w_bp[0].d.next = self.w_b[0].q.val();
-        self.w_valid_a[0].d.next = self.w_valid[0].q.val();
-        // W4b
-        self.w_rnd_sq[0].wide.next = self.w_sq[0].p.val();
-        if self.sq_on[0].val() {
-            self.w_b[1].d.next = self.w_rnd_sq[0].narrow.val();
-        } else {
-            self.w_b[1].d.next = self.w_bp[0].q.val();
+        // W4..W7: stage i squares b_i (when the mode's k needs it) into b_(i+1): Wia the
+        // square, with b_i carried beside it; Wib the rounding and the choice.
+        for i in 0..4 {
+            self.w_sq[i].a.next = self.w_b[i].q.val();
+            self.w_sq[i].b.next = self.w_b[i].q.val();
+            self.w_bp[i].d.next = self.w_b[i].q.val();
+            self.w_valid_a[i].d.next = self.w_valid[i].q.val();
+            self.w_rnd_sq[i].wide.next = self.w_sq[i].p.val();
+            if self.sq_on[i].val() {
+                self.w_b[i + 1].d.next = self.w_rnd_sq[i].narrow.val();
+            } else {
+                self.w_b[i + 1].d.next = self.w_bp[i].q.val();
+            }
+            self.w_valid[i + 1].d.next = self.w_valid_a[i].q.val();
         }
-        self.w_valid[1].d.next = self.w_valid_a[0].q.val();
-        // W5a, W5a'
-        self.w_sq[1].a.next = self.w_b[1].q.val();
-        self.w_sq[1].b.next = self.w_b[1].q.val();
-        self.w_bp[1].d.next = self.w_b[1].q.val();
-        self.w_valid_a[1].d.next = self.w_valid[1].q.val();
-        // W5b
-        self.w_rnd_sq[1].wide.next = self.w_sq[1].p.val();
-        if self.sq_on[1].val() {
-            self.w_b[2].d.next = self.w_rnd_sq[1].narrow.val();
-        } else {
-            self.w_b[2].d.next = self.w_bp[1].q.val();
-        }
-        self.w_valid[2].d.next = self.w_valid_a[1].q.val();
-        // W6a, W6a'
-        self.w_sq[2].a.next = self.w_b[2].q.val();
-        self.w_sq[2].b.next = self.w_b[2].q.val();
-        self.w_bp[2].d.next = self.w_b[2].q.val();
-        self.w_valid_a[2].d.next = self.w_valid[2].q.val();
-        // W6b
-        self.w_rnd_sq[2].wide.next = self.w_sq[2].p.val();
-        if self.sq_on[2].val() {
-            self.w_b[3].d.next = self.w_rnd_sq[2].narrow.val();
-        } else {
-            self.w_b[3].d.next = self.w_bp[2].q.val();
-        }
-        self.w_valid[3].d.next = self.w_valid_a[2].q.val();
-        // W7a, W7a'
-        self.w_sq[3].a.next = self.w_b[3].q.val();
-        self.w_sq[3].b.next = self.w_b[3].q.val();
-        self.w_bp[3].d.next = self.w_b[3].q.val();
-        self.w_valid_a[3].d.next = self.w_valid[3].q.val();
-        // W7b
-        self.w_rnd_sq[3].wide.next = self.w_sq[3].p.val();
-        if self.sq_on[3].val() {
-            self.w_b[4].d.next = self.w_rnd_sq[3].narrow.val();
-        } else {
-            self.w_b[4].d.next = self.w_bp[3].q.val();
-        }
-        self.w_valid[4].d.next = self.w_valid_a[3].q.val();
         self.w_spec_pad.d.next = self.w_b[4].q.val();
         self.w_valid_pad.d.next = self.w_valid[4].q.val();
         // Output: the mode constant selects the datapath.
