@@ -173,7 +173,7 @@ fn run(args: &SceneArgs, formats: Option<&Formats>) -> Outcome {
             continue;
         };
         for p in golden::units::normalizer::interpolate(&setup, &w) {
-            let (d, c_gold) = golden::units::normalizer::cosines(&p, &s.ctx, coeffs);
+            let (d, c_gold) = golden::units::normalizer::cosines(&p, &s.ctx, &coeffs.into());
             let c_hw = match formats {
                 Some(f) => model(p.n, half, coeffs, f),
                 None => twin(p.n, half, coeffs),

@@ -119,6 +119,164 @@ pub fn derive_tangent_fit(lo: f64) -> f64 {
     (a + b) / 2.0
 }
 
+/// A side condition on a segment's fit ([`derive_segment_fit`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum SegmentConstraint {
+    /// Plain minimax: three free coefficients.
+    None,
+    /// f(1) = 1: f = 1 + a·(K − 1) + b·(K − 1)², two free coefficients.
+    ExactAtOne,
+}
+
+/// Derivation of one segment of the piecewise normalizer: f(K) = c2·K² + c1·K + c0 minimizing
+/// max |√K·f(K) − 1| over K ∈ [lo, hi] under `constraint` (Remez exchange on 20 001 points:
+/// the best error equioscillates at one point more than there are free coefficients). Returns
+/// (c2, c1, c0) unrounded and the max |error| on [lo, hi].
+pub fn derive_segment_fit(lo: f64, hi: f64, constraint: SegmentConstraint) -> (Coeffs, f64) {
+    const N: usize = 20_001;
+    let ks: Vec<f64> = (0..N)
+        .map(|i| lo + (hi - lo) * i as f64 / (N - 1) as f64)
+        .collect();
+    let points = match constraint {
+        SegmentConstraint::None => 4,
+        _ => 3,
+    };
+    // Each free coefficient's term in √K·f(K), and the fixed part of √K·f(K).
+    let terms = |k: f64| -> (Vec<f64>, f64) {
+        let s = k.sqrt();
+        match constraint {
+            SegmentConstraint::None => (vec![s * k * k, s * k, s], 0.0),
+            SegmentConstraint::ExactAtOne => {
+                let u = k - 1.0;
+                (vec![s * u, s * u * u], s)
+            }
+        }
+    };
+    let coeffs_of = |x: &[f64]| -> Coeffs {
+        match constraint {
+            SegmentConstraint::None => [x[0], x[1], x[2]],
+            SegmentConstraint::ExactAtOne => [x[1], x[0] - 2.0 * x[1], 1.0 - x[0] + x[1]],
+        }
+    };
+    let err = |c: Coeffs, k: f64| k.sqrt() * normalizer::scale(k, c) - 1.0;
+    let mut refs: Vec<f64> = (0..points)
+        .map(|i| lo + (hi - lo) * i as f64 / (points - 1) as f64)
+        .collect();
+    let mut best = ([0.0; 3], f64::INFINITY);
+    for _ in 0..50 {
+        // The error at each reference point is ±E, alternating: Σ x_j·term_j − (±E) = 1 − fixed.
+        let m: Vec<Vec<f64>> = refs
+            .iter()
+            .enumerate()
+            .map(|(i, &k)| {
+                let (mut row, fixed) = terms(k);
+                row.push(if i % 2 == 0 { -1.0 } else { 1.0 });
+                row.push(1.0 - fixed);
+                row
+            })
+            .collect();
+        let x = solve(m);
+        let c = coeffs_of(&x);
+        let e: Vec<f64> = ks.iter().map(|&k| err(c, k)).collect();
+        let max = e.iter().fold(0f64, |a, v| a.max(v.abs()));
+        if max < best.1 {
+            best = (c, max);
+        }
+        // The new reference: the local extrema of |e|, the largest of each run of one sign,
+        // the weaker end dropped while there are too many.
+        let mut ext: Vec<(f64, f64)> = Vec::new();
+        for i in 0..N {
+            let v = e[i];
+            let is_ext =
+                i == 0 || i == N - 1 || (v.abs() >= e[i - 1].abs() && v.abs() >= e[i + 1].abs());
+            if !is_ext {
+                continue;
+            }
+            match ext.last_mut() {
+                Some(last) if last.1.signum() == v.signum() => {
+                    if v.abs() > last.1.abs() {
+                        *last = (ks[i], v);
+                    }
+                }
+                _ => ext.push((ks[i], v)),
+            }
+        }
+        while ext.len() > points {
+            if ext[0].1.abs() < ext[ext.len() - 1].1.abs() {
+                ext.remove(0);
+            } else {
+                ext.pop();
+            }
+        }
+        if ext.len() < points {
+            break;
+        }
+        let next: Vec<f64> = ext.iter().map(|p| p.0).collect();
+        if next == refs {
+            break;
+        }
+        refs = next;
+    }
+    best
+}
+
+/// Derivation of [`normalizer::PIECEWISE`]: per segment ([`normalizer::Scale::segment_range`])
+/// the minimax quadratic ([`derive_segment_fit`]), segment 3 exact at K = 1; moved to the
+/// segment's base (`normalizer::PIECEWISE_BASES`; see [`normalizer::Segment`]) and rounded as
+/// the hardware holds them: c2 to 2⁻¹⁵, c1 and c0 to 2⁻²⁸ (segment 3's c1 to 2⁻²⁵ and its c0
+/// then 1 − (c2 + c1)·(1 − base), exact, so that f(1) = 1 holds exactly). Returns the words:
+/// c2 in units of 2⁻¹⁵, c1 and c0 in units of 2⁻²⁸.
+pub fn derive_piecewise() -> [[f64; 3]; normalizer::SEGMENTS] {
+    std::array::from_fn(|s| {
+        let (lo, hi) = normalizer::Scale::segment_range(s);
+        let constraint = if s == 3 {
+            SegmentConstraint::ExactAtOne
+        } else {
+            SegmentConstraint::None
+        };
+        let [c2, c1, c0] = derive_segment_fit(lo, hi, constraint).0;
+        let base = normalizer::PIECEWISE_BASES[s];
+        // (c2·K + c1')·(K − base) + c0' = c2·K² + c1·K + c0.
+        let c1b = c1 + c2 * base;
+        let c0b = c0 + c1b * base;
+        let c2w = (c2 * 32768.0).round();
+        if s == 3 {
+            let c1w = (c1b * 2f64.powi(25)).round() * 8.0;
+            let c0 = 1.0 - (c2w / 32768.0 + c1w / 268435456.0) * (1.0 - base);
+            [c2w, c1w, c0 * 268435456.0]
+        } else {
+            [
+                c2w,
+                (c1b * 268435456.0).round(),
+                (c0b * 268435456.0).round(),
+            ]
+        }
+    })
+}
+
+/// Gaussian elimination with partial pivoting of an augmented n×(n+1) system.
+fn solve(mut m: Vec<Vec<f64>>) -> Vec<f64> {
+    let n = m.len();
+    for col in 0..n {
+        let piv = (col..n)
+            .max_by(|&a, &b| m[a][col].abs().total_cmp(&m[b][col].abs()))
+            .unwrap_or(col);
+        m.swap(col, piv);
+        for r in col + 1..n {
+            let f = m[r][col] / m[col][col];
+            for c in col..=n {
+                m[r][c] -= f * m[col][c];
+            }
+        }
+    }
+    let mut x = vec![0.0; n];
+    for r in (0..n).rev() {
+        let s: f64 = (r + 1..n).map(|c| m[r][c] * x[c]).sum();
+        x[r] = (m[r][n] - s) / m[r][r];
+    }
+    x
+}
+
 /// Round to 14 fractional bits (how the fitted constants are stored).
 pub fn round_q14(c: f64) -> f64 {
     (c * 16384.0).round() / 16384.0
@@ -304,25 +462,33 @@ pub fn report() -> Report {
     for (id, what, c, claim) in normalizer_forms() {
         e.push(Entry::ext(id, &what, kd, MaxRelative, normalizer_max(c)).claimed(claim));
     }
+    let pw = normalizer::PIECEWISE;
+    let (lo, hi) = normalizer::K_DOMAIN;
+    e.push(Entry::ext(
+        "normalizer-pw",
+        "normalizer-pw f(K) by four segments of K (bases 3/8, 5/8, 3/4, 7/8)",
+        kd,
+        MaxRelative,
+        max_abs(|k| k.sqrt() * pw.at(k) - 1.0, lo, hi),
+    ));
     for (id, what, c) in [
         (
             "normalizer-published-bias",
             "normalizer published f(1) − 1 (bias where fine meshes live)",
-            normalizer::PUBLISHED,
+            normalizer::PUBLISHED.into(),
         ),
         (
             "normalizer-fit-bias",
             "normalizer-fit f(1) − 1",
-            normalizer::FIT,
+            normalizer::FIT.into(),
+        ),
+        (
+            "normalizer-pw-bias",
+            "normalizer-pw f(1) − 1",
+            normalizer::PIECEWISE,
         ),
     ] {
-        e.push(entry(
-            id,
-            what,
-            "K = 1",
-            Value,
-            normalizer::scale(1.0, c) - 1.0,
-        ));
+        e.push(entry(id, what, "K = 1", Value, c.at(1.0) - 1.0));
     }
     for (id, what, c, claim) in inv_sqrt_forms() {
         e.push(Entry::ext(id, &what, md, MaxRelative, inv_sqrt_max(c)).claimed(claim));

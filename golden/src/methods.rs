@@ -11,7 +11,7 @@
 //! | reference, flat | [`crate::shading::phong`] | exact normalization / one normal per face |
 //! | gouraud | [`crate::shading::gouraud`] | plane per colour channel |
 //! | subdivision | [`crate::shading::subdivision`] (§7) | four sub-triangles, a plane each |
-//! | normalizer, normalizer-fit | [`crate::units::normalizer`] (§1) | N·f(K), K by recurrence |
+//! | normalizer, normalizer-fit, normalizer-pw | [`crate::units::normalizer`] (§1) | N·f(K), K by recurrence |
 //! | fast, fast-fit | [`crate::shading::fast`] (§3) | p/√q, two points per step |
 //! | angular | [`crate::shading::angular`] (§4) | cos β·cos(ψ − tΔφ) |
 //! | quadric | [`crate::shading::quadric`] (§8) | forward differences |
@@ -38,6 +38,9 @@ pub enum Method {
     Normalizer,
     /// SPEC §1 with [`crate::units::normalizer::FIT`] (same hardware, exact at K = 1).
     NormalizerFit,
+    /// SPEC §1 with [`crate::units::normalizer::PIECEWISE`]: four segments of K (a coefficient
+    /// mux, the same multipliers).
+    NormalizerPw,
     /// SPEC §3 with the published Chebyshev 1/√(M+1) ≈ 1.003 − 0.403M + 0.82M².
     Fast,
     /// SPEC §3 with [`crate::shading::fast::FIT`] (same hardware, exact at M = 0).
@@ -53,12 +56,13 @@ pub enum Method {
 
 impl Method {
     /// Every method except the reference, in the order reports list them.
-    pub const ALL_NON_REFERENCE: [Method; 14] = [
+    pub const ALL_NON_REFERENCE: [Method; 15] = [
         Method::Flat,
         Method::Gouraud,
         Method::Subdivision,
         Method::Normalizer,
         Method::NormalizerFit,
+        Method::NormalizerPw,
         Method::Fast,
         Method::FastFit,
         Method::Angular,
@@ -84,6 +88,7 @@ impl Method {
             Method::Subdivision => "subdivision",
             Method::Normalizer => "normalizer",
             Method::NormalizerFit => "normalizer-fit",
+            Method::NormalizerPw => "normalizer-pw",
             Method::Fast => "fast",
             Method::FastFit => "fast-fit",
             Method::Angular => "angular",
@@ -150,6 +155,7 @@ pub fn shade_triangle(
         Method::Subdivision => subdivision::shade(tri, ctx, emit),
         Method::Normalizer => normalizer::shade(tri, walk, ctx, normalizer::PUBLISHED, emit),
         Method::NormalizerFit => normalizer::shade(tri, walk, ctx, normalizer::FIT, emit),
+        Method::NormalizerPw => normalizer::shade(tri, walk, ctx, normalizer::PIECEWISE, emit),
         Method::Fast => fast::shade(tri, walk, ctx, fast::CHEBYSHEV, emit),
         Method::FastFit => fast::shade(tri, walk, ctx, fast::FIT, emit),
         Method::Angular => angular::shade(tri, walk, ctx, emit),

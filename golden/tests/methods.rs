@@ -243,6 +243,7 @@ fn method_names_round_trip() {
         "subdivision",
         "normalizer",
         "normalizer-fit",
+        "normalizer-pw",
         "fast",
         "fast-fit",
         "angular",
@@ -259,7 +260,7 @@ fn method_names_round_trip() {
         assert_eq!(m.name().parse::<Method>(), Ok(m));
         assert_eq!(m.to_string(), m.name());
     }
-    assert_eq!(Method::ALL_NON_REFERENCE.len(), 14);
+    assert_eq!(Method::ALL_NON_REFERENCE.len(), 15);
     assert!(!Method::ALL_NON_REFERENCE.contains(&Method::Reference));
 }
 
@@ -443,7 +444,11 @@ fn methods_are_sane_on_a_simple_triangle() {
             // The accurate methods stay within a couple of LSB of the reference on a small
             // smooth triangle; the rest are only required to be in the same ballpark.
             let tol = match m {
-                Method::Reference | Method::NormalizerFit | Method::FastFit | Method::Angular => 1,
+                Method::Reference
+                | Method::NormalizerFit
+                | Method::NormalizerPw
+                | Method::FastFit
+                | Method::Angular => 1,
                 Method::Quadric | Method::Cubic | Method::BrdfK16 => 2,
                 _ => 80,
             };
@@ -473,6 +478,7 @@ fn flat_normal_triangle_agrees_with_the_reference() {
             Method::Flat,
             Method::Gouraud,
             Method::NormalizerFit,
+            Method::NormalizerPw,
             Method::FastFit,
             Method::Angular,
             Method::Quadric,
@@ -795,6 +801,12 @@ fn sphere_nmse_default_scene() {
     // The published forms are visibly worse than their fits (SPEC §10), and flat is worst of all.
     assert!(get(Method::Normalizer) > 10.0 * get(Method::NormalizerFit));
     assert!(get(Method::Fast) > 10.0 * get(Method::FastFit));
+    // The piecewise normalizer is within 1.13e-4 of 1/√K on the whole domain (FIT: 0.82 %).
+    assert!(
+        get(Method::NormalizerPw) <= 0.0001,
+        "normalizer-pw {}",
+        get(Method::NormalizerPw)
+    );
     assert!(get(Method::Flat) > get(Method::Gouraud));
 }
 

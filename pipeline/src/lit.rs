@@ -42,9 +42,10 @@ pub const REGS_AT: usize = 36;
 pub const DEPTH_LIMIT: f64 = 16384.0;
 
 /// The methods the lit pipeline renders, with their build options.
-pub const LIT_METHODS: [Method; 6] = [
+pub const LIT_METHODS: [Method; 7] = [
     Method::Normalizer,
     Method::NormalizerFit,
+    Method::NormalizerPw,
     Method::BrdfK4,
     Method::BrdfK8,
     Method::BrdfK16,
@@ -56,6 +57,7 @@ pub fn method_options(method: Method) -> Option<Options> {
     let (c, p, b) = match method {
         Method::Normalizer => ("published", "exact", "off"),
         Method::NormalizerFit => ("fit", "exact", "off"),
+        Method::NormalizerPw => ("piecewise", "exact", "off"),
         Method::BrdfK4 => ("fit", "w4", "off"),
         Method::BrdfK8 => ("fit", "w8", "off"),
         Method::BrdfK16 => ("fit", "w16", "off"),

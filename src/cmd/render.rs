@@ -27,8 +27,8 @@ pub enum Engine {
     /// The rust-hdl RTL simulated clock by clock (methods: gouraud through the raster pipe
     /// (or the four-triangle block with --address four-triangle); subdivision through the
     /// four-triangle block and four BVIs;
-    /// normalizer, normalizer-fit, brdf-k4, brdf-k8, brdf-k16, bump through the lit pixel
-    /// pipeline; angular, fast, fast-fit through the span pipelines, two pixels per clock;
+    /// normalizer, normalizer-fit, normalizer-pw, brdf-k4, brdf-k8, brdf-k16, bump through the
+    /// lit pixel pipeline; angular, fast, fast-fit through the span pipelines, two pixels per clock;
     /// cubic through the Horner units (--horner); without --method, all of them).
     Rtl,
 }
@@ -38,8 +38,8 @@ pub struct Args {
     #[command(flatten)]
     pub scene: SceneArgs,
     /// Methods to render, comma-separated (default: all; with `--engine rtl`, all the hardware
-    /// has). Names: flat, gouraud, subdivision, normalizer, normalizer-fit, fast, fast-fit, angular, quadric,
-    /// cubic, brdf-k4, brdf-k8, brdf-k16, bump.
+    /// has). Names: flat, gouraud, subdivision, normalizer, normalizer-fit, normalizer-pw, fast,
+    /// fast-fit, angular, quadric, cubic, brdf-k4, brdf-k8, brdf-k16, bump.
     #[arg(long, value_delimiter = ',')]
     pub method: Vec<String>,
     /// Output directory.
@@ -66,8 +66,8 @@ pub struct Args {
     /// Default: single, four-triangle for subdivision.
     #[arg(long, value_enum)]
     pub address: Option<crate::rtl_engine::Address>,
-    /// With the RTL engine: the top the lit methods (normalizer, normalizer-fit, brdf-k*,
-    /// bump), gouraud, the span methods (cubic, angular, fast, fast-fit, quadric) and
+    /// With the RTL engine: the top the lit methods (normalizer, normalizer-fit, normalizer-pw,
+    /// brdf-k*, bump), gouraud, the span methods (cubic, angular, fast, fast-fit, quadric) and
     /// subdivision go through — stream (`pixel-stream`, `gouraud-stream`, `cubic-stream`,
     /// `angular-stream`, `fast-stream`, `quadric-stream`, `subdivision-stream`: AXI4-Stream
     /// set-up records and fragment beats) or pipeline (`pixel-pipeline`, `gouraud-raster`, the

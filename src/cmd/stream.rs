@@ -19,7 +19,7 @@ pub struct Args {
     #[command(flatten)]
     pub scene: SceneArgs,
     /// The method: a lit one runs its `pixel-stream` build (normalizer, normalizer-fit,
-    /// brdf-k4, brdf-k8, brdf-k16, bump); gouraud runs `gouraud-stream`; cubic runs
+    /// normalizer-pw, brdf-k4, brdf-k8, brdf-k16, bump); gouraud runs `gouraud-stream`; cubic runs
     /// `cubic-stream` (one record per raster line, in walk order).
     #[arg(long, default_value = "normalizer-fit")]
     pub method: String,
@@ -51,7 +51,7 @@ pub fn run(a: Args) -> Result<()> {
     }
     let Some(o) = method_options(method) else {
         bail!(
-            "`stream` writes no streams for method {} (it writes pixel-stream's for normalizer, normalizer-fit, brdf-k4, brdf-k8, brdf-k16, bump; gouraud-stream's for gouraud; cubic-stream's for cubic; angular, fast, fast-fit, quadric and subdivision have stream tops with a fragment stream per lane, angular-stream, fast-stream, quadric-stream and subdivision-stream, that it does not write yet)",
+            "`stream` writes no streams for method {} (it writes pixel-stream's for normalizer, normalizer-fit, normalizer-pw, brdf-k4, brdf-k8, brdf-k16, bump; gouraud-stream's for gouraud; cubic-stream's for cubic; angular, fast, fast-fit, quadric and subdivision have stream tops with a fragment stream per lane, angular-stream, fast-stream, quadric-stream and subdivision-stream, that it does not write yet)",
             a.method
         );
     };

@@ -1,7 +1,7 @@
 //! Cycle-by-cycle tests of the normalizer (`rtl::units::normalizer`) against `golden::units::normalizer`.
 
 use golden::testing::{runner, seed_for};
-use golden::units::normalizer::{FIT, K_DOMAIN, PUBLISHED};
+use golden::units::normalizer::{FIT, K_DOMAIN, PIECEWISE, PUBLISHED};
 use proptest::strategy::{Strategy, ValueTree};
 use rtl::core::fixed::{INTERPOLATED, K_FULL};
 use rtl::units::normalizer::{CoeffError, ErrorBudget, Normalizer, NormalizerCoeffs, NormalizerK};
@@ -91,10 +91,23 @@ fn normalizer_domain_100k_published() {
 fn normalizer_domain_100k_fit() {
     let c = NormalizerCoeffs::new(FIT).expect("FIT fits the formats");
     // FIT's coefficients are multiples of 2^-14: the hardware holds them exactly.
-    assert_eq!(c.quantized(), FIT);
+    assert_eq!(c.quantized(), FIT.into());
     // FIT trades the worst case at K = 0.499 for exactness near K = 1 (see golden), so its
     // bar is its own formula error (printed) plus the same datapath bound.
     domain_run(&c, "normalizer_domain_fit");
+}
+
+#[test]
+fn normalizer_domain_100k_piecewise() {
+    let c = NormalizerCoeffs::new(PIECEWISE).expect("PIECEWISE fits the formats");
+    // Its words are multiples of 2^-28 (c2 of 2^-15) and its bases of 1/8: held exactly.
+    assert_eq!(c.quantized(), PIECEWISE);
+    let (max_q, _, datapath) = domain_run(&c, "normalizer_domain_piecewise");
+    // Its formula is within 1.13e-4 of 1/√K (golden::accuracy); 0.82 % for FIT.
+    assert!(
+        max_q <= 1.13e-4 + datapath,
+        "{max_q} > 1.13e-4 + {datapath}"
+    );
 }
 
 /// One named raw vector through the normalizer within budget `b`; prints input and output.
@@ -203,7 +216,7 @@ fn harness_catches_a_wrong_model_and_writes_a_vcd() {
         .collect();
     let rows = stimulus_rows(&slots, Normalizer::LATENCY);
     let wrong = [PUBLISHED[0], PUBLISHED[1], PUBLISHED[2] + 0.001];
-    let exp = expectations(&rows, Normalizer::LATENCY, wrong);
+    let exp = expectations(&rows, Normalizer::LATENCY, wrong.into());
     let vcd = harness::vcd_path(name);
     let _ = std::fs::remove_file(&vcd);
     let f = harness::run_rows(
@@ -296,36 +309,29 @@ fn twin_catches_a_one_lsb_coefficient_error() {
     use golden::units::normalizer::twin::NormalizerKTwin;
     use rtl::core::registry::RtlBlock;
     use testbenches::registry::Bench;
-    let words = |c: &NormalizerCoeffs| (c.c2_mag as i64, c.c2_neg, c.c1, c.c0);
+    let words = |c: &NormalizerCoeffs| {
+        c.words
+            .map(|w| (w.c2_mag as i64, w.c2_neg, w.c1, w.c0, w.base as i64))
+    };
     let seed = seed_for("twin_one_lsb_coefficient");
     println!("[twin_one_lsb_coefficient] seed {seed}");
     let rows = Normalizer::stimulus(&NormalizerCoeffs::published(), 3000, seed).rows;
-    for requested in [PUBLISHED, FIT] {
+    for requested in [PUBLISHED.into(), FIT.into(), PIECEWISE] {
         let good = NormalizerCoeffs::new(requested).unwrap();
-        let twin_words = NormalizerKTwin::new(requested).coefficient_words();
+        let twin_words = NormalizerKTwin::new(requested)
+            .segment_words()
+            .map(|w| (w.c2_mag, w.c2_neg, w.c1, w.c0, w.base));
         assert_eq!(words(&good), twin_words, "{requested:?}: coefficient words");
+        // Every segment's word one LSB off.
+        let off = |f: fn(&mut rtl::units::normalizer::SegmentWords)| {
+            let mut c = good.clone();
+            c.words.iter_mut().for_each(f);
+            c
+        };
         let bad = [
-            (
-                "c2 + 1 LSB",
-                NormalizerCoeffs {
-                    c2_mag: good.c2_mag + 1,
-                    ..good.clone()
-                },
-            ),
-            (
-                "c1 + 1 LSB",
-                NormalizerCoeffs {
-                    c1: good.c1 + 1,
-                    ..good.clone()
-                },
-            ),
-            (
-                "c0 + 1 LSB",
-                NormalizerCoeffs {
-                    c0: good.c0 + 1,
-                    ..good.clone()
-                },
-            ),
+            ("c2 + 1 LSB", off(|w| w.c2_mag += 1)),
+            ("c1 + 1 LSB", off(|w| w.c1 += 1)),
+            ("c0 + 1 LSB", off(|w| w.c0 += 1)),
         ];
         for (what, c) in &bad {
             assert_ne!(words(c), twin_words, "{what}");

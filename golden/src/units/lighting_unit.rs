@@ -6,7 +6,7 @@
 //! Not a shading method: the per-pixel kernel of the normalizer, `brdf-k*` and `bump` RTL
 //! paths. L and H are unit vectors held as signed Q2.14 words; cosines come out unsigned Q1.15.
 
-use crate::units::normalizer::{normalize, Coeffs};
+use crate::units::normalizer::{normalize, Scale};
 use glam::DVec3;
 
 /// Fraction bits of the cosine outputs (unsigned Q1.15).
@@ -16,7 +16,7 @@ pub const COS_MAX: f64 = 2.0 - 1.0 / 32768.0;
 
 /// The f64 lighting of an interpolated normal `n`: (cos φ, cos γ) = (N'·L, N'·H) with
 /// N' = n·f(|n|²), each clamped to [0, [`COS_MAX`]].
-pub fn cosines(n: DVec3, light: DVec3, half: DVec3, c: Coeffs) -> (f64, f64) {
+pub fn cosines(n: DVec3, light: DVec3, half: DVec3, c: impl Into<Scale>) -> (f64, f64) {
     let np = normalize(n, c);
     let clamp = |v: f64| v.clamp(0.0, COS_MAX);
     (clamp(np.dot(light)), clamp(np.dot(half)))
@@ -45,7 +45,7 @@ pub fn error_bound(component: f64, u: DVec3) -> f64 {
 /// L and H are the words present when the pixel enters D1.
 pub mod twin {
     use crate::units::normalizer::twin::NormalizerTwin;
-    use crate::units::normalizer::Coeffs;
+    use crate::units::normalizer::Scale;
 
     /// Round a Q4.28 sum to unsigned Q1.15: add half an LSB, drop 13 bits, clamp.
     pub fn narrow(sum: i64) -> i64 {
@@ -64,7 +64,7 @@ pub mod twin {
     }
 
     impl LightingTwin {
-        pub fn new(c: Coeffs) -> Self {
+        pub fn new(c: impl Into<Scale>) -> Self {
             Self {
                 norm: NormalizerTwin::new(c),
                 prod_a: [[0; 6]; 3],

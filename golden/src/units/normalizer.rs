@@ -23,10 +23,109 @@ pub fn scale(k: f64, c: Coeffs) -> f64 {
     (c[0] * k + c[1]) * k + c[2]
 }
 
-/// N' = N · f(|N|²).
-pub fn normalize(n: DVec3, c: Coeffs) -> DVec3 {
-    n * scale(n.length_squared(), c)
+/// N' = N · f(|N|²), with one quadratic or by segments.
+pub fn normalize(n: DVec3, c: impl Into<Scale>) -> DVec3 {
+    n * c.into().at(n.length_squared())
 }
+
+/// Segments of a [`Scale`].
+pub const SEGMENTS: usize = 4;
+
+/// One segment of a [`Scale`]: f(K) = (c2·K + c1)·(K − base) + c0 with `c` = (c2, c1, c0).
+/// With base 0 this is the plain Horner form (c2·K + c1)·K + c0. A base moves the second
+/// multiplication's operand to the segment (K − base ≥ 0, clamped at 0 below the base), which
+/// keeps t1 = c2·K + c1 inside the hardware's [−2, 2) where a plain quadratic fitted to the
+/// low end of the domain needs t1 ≈ −2.2.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Segment {
+    pub base: f64,
+    pub c: Coeffs,
+}
+
+impl Segment {
+    /// f(K) on this segment, in the hardware's order.
+    pub fn at(&self, k: f64) -> f64 {
+        (self.c[0] * k + self.c[1]) * (k - self.base).max(0.0) + self.c[2]
+    }
+    /// The same polynomial in the plain form (c2, c1, c0) of K (for the error analysis).
+    pub fn plain(&self) -> Coeffs {
+        let [c2, c1, c0] = self.c;
+        [c2, c1 - c2 * self.base, c0 - c1 * self.base]
+    }
+}
+
+/// The normalizer's f(K): a quadratic per segment of K (SPEC §1 and §10, extended). The
+/// segment is chosen by K's leading bits, as the hardware does on K in unsigned Q1.15: K ≥ 1
+/// (bit 15) is segment 3, K < 0.5 (bit 14 clear) segment 0, otherwise bits 13..12, i.e.
+/// [0.5, 0.625) → 0, [0.625, 0.75) → 1, [0.75, 0.875) → 2, [0.875, 1) → 3. A single quadratic
+/// is the same in every segment with base 0 (`From<Coeffs>`); [`PIECEWISE`] differs per
+/// segment.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Scale(pub [Segment; SEGMENTS]);
+
+impl From<Coeffs> for Scale {
+    fn from(c: Coeffs) -> Scale {
+        Scale([Segment { base: 0.0, c }; SEGMENTS])
+    }
+}
+
+impl Scale {
+    /// The segment of K (see the type's documentation).
+    pub fn segment(k: f64) -> usize {
+        if k >= 1.0 {
+            3
+        } else if k < 0.5 {
+            0
+        } else {
+            (((k - 0.5) * 8.0).floor() as usize).min(3)
+        }
+    }
+    /// Where segment `s` holds on the domain's K: [lo, hi).
+    pub fn segment_range(s: usize) -> (f64, f64) {
+        match s {
+            0 => (K_DOMAIN.0, 0.625),
+            3 => (0.875, K_DOMAIN.1),
+            _ => (0.5 + 0.125 * s as f64, 0.625 + 0.125 * s as f64),
+        }
+    }
+    /// f(K) as the hardware evaluates it, with K's segment.
+    pub fn at(&self, k: f64) -> f64 {
+        self.0[Self::segment(k)].at(k)
+    }
+    /// Whether the segments differ (a piecewise set, not one quadratic).
+    pub fn is_piecewise(&self) -> bool {
+        self.0.iter().any(|g| *g != self.0[0])
+    }
+}
+
+/// The piecewise normalizer (`normalizer-pw`): four segments of K ([`Scale`]), each the
+/// quadratic minimax in the relative error √K·f(K) − 1 on its segment, the last one exact at
+/// K = 1 (f(1) = 1, where almost every pixel of a fine mesh lies). Derived by
+/// [`crate::accuracy::derive_piecewise`] (`tests/approx.rs` checks these constants against
+/// the derivation); every coefficient is a multiple of 2⁻²⁸ (c2 of 2⁻¹⁵), so the hardware
+/// holds them exactly (|c2| in Q1.15, c1 in Q3.29, c0 in Q4.28). Max relative error
+/// 1.12·10⁻⁴ on [0.499, 1] (segment 0), against 0.82 % for [`FIT`] (`accuracy`).
+pub const PIECEWISE: Scale = Scale([pw_segment(0), pw_segment(1), pw_segment(2), pw_segment(3)]);
+
+const fn pw_segment(s: usize) -> Segment {
+    Segment {
+        base: PIECEWISE_BASES[s],
+        c: [PW[s][0] / Q15, PW[s][1] / Q28, PW[s][2] / Q28],
+    }
+}
+
+/// [`PIECEWISE`]'s words: c2 in units of 2⁻¹⁵, c1 and c0 in units of 2⁻²⁸.
+const PW: [[f64; 3]; SEGMENTS] = [
+    [52360.0, -641731384.0, 432997175.0],
+    [31538.0, -430136484.0, 339526910.0],
+    [20736.0, -332412000.0, 309951489.0],
+    [14316.0, -265486416.0, 286961674.0],
+];
+const Q15: f64 = 32768.0;
+const Q28: f64 = 268435456.0;
+
+/// The bases of [`PIECEWISE`]'s segments.
+pub const PIECEWISE_BASES: [f64; SEGMENTS] = [0.375, 0.625, 0.75, 0.875];
 
 /// K along a raster line by additions only: K_{i+1} = K_i + 2α + β_i, β_{i+1} = β_i + 2β,
 /// β_0 = β, with α = N0·Δ and β = Δ·Δ (SPEC §1). Returns K_0..K_{len-1}.
@@ -141,20 +240,27 @@ pub fn interpolate(setup: &NormalizerSetup, walk: &Walk) -> Vec<WalkedNormal> {
 }
 
 /// The lighting model's cosines (cos φ, cos λ) of N' = N·f(K), unclamped.
-pub fn cosines(p: &WalkedNormal, ctx: &ShadeContext, c: Coeffs) -> (f64, f64) {
-    let n = p.n * scale(p.k, c);
+pub fn cosines(p: &WalkedNormal, ctx: &ShadeContext, c: &Scale) -> (f64, f64) {
+    let n = p.n * c.at(p.k);
     let cos_s = ctx.specular_vector().map_or(0.0, |x| n.dot(x));
     ctx.cosines(n.dot(ctx.light), cos_s)
 }
 
 /// Per-pixel kernel: N' = N·f(K), then the lighting model's cosines with N'.
-pub fn pixel(p: &WalkedNormal, ctx: &ShadeContext, c: Coeffs) -> [u8; 3] {
+pub fn pixel(p: &WalkedNormal, ctx: &ShadeContext, c: &Scale) -> [u8; 3] {
     let (d, s) = cosines(p, ctx, c);
     ctx.combine(d, ctx.specular_power(s))
 }
 
-/// The normalizer method (SPEC §1) with coefficients `c` ([`PUBLISHED`] or [`FIT`]).
-pub fn shade(tri: &ScreenTriangle, walk: &Walk, ctx: &ShadeContext, c: Coeffs, emit: Emit) {
+/// The normalizer method (SPEC §1) with coefficients `c` ([`PUBLISHED`], [`FIT`] or
+/// [`PIECEWISE`]).
+pub fn shade(
+    tri: &ScreenTriangle,
+    walk: &Walk,
+    ctx: &ShadeContext,
+    c: impl Into<Scale>,
+    emit: Emit,
+) {
     shade_front_end(tri, walk, ctx, c, emit, |_, _, d, s| {
         ctx.combine(d, ctx.specular_power(s))
     });
@@ -168,13 +274,14 @@ pub fn shade_front_end(
     tri: &ScreenTriangle,
     walk: &Walk,
     ctx: &ShadeContext,
-    c: Coeffs,
+    c: impl Into<Scale>,
     emit: Emit,
     mut back_end: impl FnMut(i32, i32, f64, f64) -> [u8; 3],
 ) {
+    let c = c.into();
     let Some(s) = setup(tri, walk) else { return };
     for p in interpolate(&s, walk) {
-        let (d, sp) = cosines(&p, ctx, c);
+        let (d, sp) = cosines(&p, ctx, &c);
         emit(p.x, p.y, back_end(p.x, p.y, d, sp));
     }
 }
@@ -187,7 +294,7 @@ pub fn shade_front_end(
 /// output components signed Q2.17, `i64` in −2¹⁸..2¹⁸; K in Q4.28 units; the span
 /// normalizer's N₀ and Δ signed Q2.14).
 pub mod twin {
-    use super::Coeffs;
+    use super::{Scale, SEGMENTS};
 
     /// `v·2^frac` rounded to nearest, ties toward +∞ (the quantization of a constant).
     fn quantize(v: f64, frac: u32) -> i64 {
@@ -204,31 +311,56 @@ pub mod twin {
     const U16_MAX: i64 = 0xFFFF;
     const U19_MAX: i64 = 0x7FFFF;
 
+    /// One segment's words: |c2| in Q1.15, c2 < 0, c1 in Q3.29, c0 in Q4.28, the base in
+    /// unsigned Q1.15 (each rounded to nearest).
+    #[derive(Clone, Copy, Debug, PartialEq)]
+    pub struct SegmentWords {
+        pub c2_mag: i64,
+        pub c2_neg: bool,
+        pub c1: i64,
+        pub c0: i64,
+        pub base: i64,
+    }
+
+    /// The segment of K in unsigned Q1.15 (`k_narrow`): bit 15 → 3, bit 14 clear → 0, else
+    /// bits 13..12 (see [`Scale`]).
+    pub fn segment_of(k_narrow: i64) -> usize {
+        if k_narrow & 0x8000 != 0 {
+            3
+        } else if k_narrow & 0x4000 == 0 {
+            0
+        } else {
+            ((k_narrow >> 12) & 3) as usize
+        }
+    }
+
     /// The normalizer back end (`NormalizerK`): N and K in, N·f(K) out, latency 11 (B4 and B6
     /// take three clocks: the product is ready three registers on).
     ///
     /// ```text
-    /// B1 k_narrow = sat(round(K: Q4.28 → Q1.15))         B2 c2k = |c2|·k_narrow (Q2.30)
+    /// B1 k_narrow = sat(round(K: Q4.28 → Q1.15)), s = its segment (coefficients c2, c1, c0, base)
+    /// B2 c2k = |c2|·k_narrow (Q2.30); k_local = max(k_narrow − base, 0) (Q1.15)
     /// B3 t1 = sat(round(c1 ± c2k/2: Q3.29 → Q2.17))
-    /// B4 t1h = ⌊t1/8⌋, t1l = t1 − 8·t1h: t1h·k_narrow (Q3.29), t1l·k_narrow (units 2⁻³²)
-    /// B5 f = sat(round(c0 + ⌊t1h·k/2⌋ + ⌊t1l·k/16⌋: Q4.28 → Q1.18))
+    /// B4 t1h = ⌊t1/8⌋, t1l = t1 − 8·t1h: t1h·k_local (Q3.29), t1l·k_local (units 2⁻³²)
+    /// B5 f = sat(round(c0 + ⌊t1h·k_local/2⌋ + ⌊t1l·k_local/16⌋: Q4.28 → Q1.18))
     /// B6 xf = ⌊x·f / 64⌋ (x Q2.17 · f Q1.18 → Q3.29, floored)
     /// B7 nx = sat(round(xf: Q3.29 → Q2.17))
     /// ```
-    /// The halvings and the floors of the low parts floor, as an arithmetic shift does.
+    /// The halvings and the floors of the low parts floor, as an arithmetic shift does. Each
+    /// vector's coefficients are those of its own segment at every stage.
     #[derive(Clone, Debug)]
     pub struct NormalizerKTwin {
-        c2_mag: i64,
-        c2_neg: bool,
-        c1: i64,
-        c0: i64,
+        words: [SegmentWords; SEGMENTS],
         k_narrow: i64,
+        seg: usize,
         c2k: i64,
-        k_narrow_p1: i64,
+        seg_p1: usize,
+        k_local_p1: i64,
         t1: i64,
-        k_narrow_p2: i64,
-        t1k_a: [i64; 2],
-        t1k: i64,
+        seg_p2: usize,
+        k_local_p2: i64,
+        t1k_a: [(i64, usize); 2],
+        t1k: (i64, usize),
         f: i64,
         xf_a: [[i64; 3]; 2],
         xf: [i64; 3],
@@ -238,21 +370,27 @@ pub mod twin {
     }
 
     impl NormalizerKTwin {
-        /// The back end built with coefficients `c` = (c2, c1, c0): |c2| in Q1.15, c1 in
-        /// Q3.29, c0 in Q4.28, each rounded to nearest.
-        pub fn new(c: Coeffs) -> Self {
+        /// The back end built with `c`: one quadratic (`Coeffs`) or a piecewise [`Scale`].
+        pub fn new(c: impl Into<Scale>) -> Self {
+            let c: Scale = c.into();
             Self {
-                c2_mag: quantize(c[0].abs(), 15),
-                c2_neg: c[0] < 0.0,
-                c1: quantize(c[1], 29),
-                c0: quantize(c[2], 28),
+                words: c.0.map(|g| SegmentWords {
+                    c2_mag: quantize(g.c[0].abs(), 15),
+                    c2_neg: g.c[0] < 0.0,
+                    c1: quantize(g.c[1], 29),
+                    c0: quantize(g.c[2], 28),
+                    base: quantize(g.base, 15),
+                }),
                 k_narrow: 0,
+                seg: 0,
                 c2k: 0,
-                k_narrow_p1: 0,
+                seg_p1: 0,
+                k_local_p1: 0,
                 t1: 0,
-                k_narrow_p2: 0,
-                t1k_a: [0; 2],
-                t1k: 0,
+                seg_p2: 0,
+                k_local_p2: 0,
+                t1k_a: [(0, 0); 2],
+                t1k: (0, 0),
                 f: 0,
                 xf_a: [[0; 3]; 2],
                 xf: [0; 3],
@@ -267,29 +405,33 @@ pub mod twin {
             (self.valid[10], self.n)
         }
 
-        /// The coefficient words this twin computes with: (|c2| in Q1.15, c2 < 0, c1 in
-        /// Q3.29, c0 in Q4.28).
-        pub fn coefficient_words(&self) -> (i64, bool, i64, i64) {
-            (self.c2_mag, self.c2_neg, self.c1, self.c0)
+        /// The words this twin computes with, per segment.
+        pub fn segment_words(&self) -> [SegmentWords; SEGMENTS] {
+            self.words
         }
 
         /// One rising edge with inputs `valid_in`, N = `v` (signed Q2.17 integers) and
         /// `k` (Q4.28 units).
         pub fn clock(&mut self, valid_in: bool, v: [i64; 3], k: i64) {
             let s = self.clone();
+            let w = &s.words;
             self.k_narrow = ((k + (1 << 12)) >> 13).min(U16_MAX);
-            self.c2k = s.c2_mag * s.k_narrow;
-            self.k_narrow_p1 = s.k_narrow;
+            self.seg = segment_of(self.k_narrow);
+            self.c2k = w[s.seg].c2_mag * s.k_narrow;
+            self.seg_p1 = s.seg;
+            self.k_local_p1 = (s.k_narrow - w[s.seg].base).max(0);
             let half = s.c2k >> 1;
-            let t1_wide = s.c1 + if s.c2_neg { -half } else { half };
+            let g = w[s.seg_p1];
+            let t1_wide = g.c1 + if g.c2_neg { -half } else { half };
             self.t1 = round_sat(t1_wide, 12, Q217_MIN, Q217_MAX);
-            self.k_narrow_p2 = s.k_narrow_p1;
-            // t1·K in Q4.28: the high part halved, the low part (units 2⁻³²) shifted by 4.
+            self.seg_p2 = s.seg_p1;
+            self.k_local_p2 = s.k_local_p1;
+            // t1·k_local in Q4.28: the high part halved, the low part (units 2⁻³²) shifted by 4.
             let (t1h, t1l) = (s.t1 >> 3, s.t1 & 7);
-            let t1k = ((t1h * s.k_narrow_p2) >> 1) + ((t1l * s.k_narrow_p2) >> 4);
-            self.t1k_a = [t1k, s.t1k_a[0]];
+            let t1k = ((t1h * s.k_local_p2) >> 1) + ((t1l * s.k_local_p2) >> 4);
+            self.t1k_a = [(t1k, s.seg_p2), s.t1k_a[0]];
             self.t1k = s.t1k_a[1];
-            self.f = round_sat(s.c0 + s.t1k, 10, 0, U19_MAX);
+            self.f = round_sat(w[s.t1k.1].c0 + s.t1k.0, 10, 0, U19_MAX);
             self.xf_a = [s.vec[6].map(|x| (x * s.f) >> 6), s.xf_a[0]];
             self.xf = s.xf_a[1];
             self.n = s.xf.map(|p| round_sat(p, 12, Q217_MIN, Q217_MAX));
@@ -316,7 +458,7 @@ pub mod twin {
     }
 
     impl NormalizerTwin {
-        pub fn new(c: Coeffs) -> Self {
+        pub fn new(c: impl Into<Scale>) -> Self {
             Self {
                 sq_a: [[0; 3]; 2],
                 sq: [0; 3],
@@ -413,7 +555,7 @@ pub mod twin {
     }
 
     impl SpanNormalizerTwin {
-        pub fn new(c: Coeffs) -> Self {
+        pub fn new(c: impl Into<Scale>) -> Self {
             Self {
                 krec: KRecurrenceTwin::new(),
                 valid_p1: false,

@@ -105,8 +105,8 @@ pub struct PipelineParams {
 
 impl BlockParams for PipelineParams {
     const KEYS: &'static [&'static str] = &["coeffs", "power", "bump"];
-    /// `coeffs` (published | fit), `power` (exact | w4 | w8 | w16), `bump` (off | on; off by
-    /// default here).
+    /// `coeffs` (published | fit | piecewise), `power` (exact | w4 | w8 | w16), `bump` (off |
+    /// on; off by default here).
     fn from_options(o: &Options) -> Result<Self, String> {
         Ok(PipelineParams {
             coeffs: NormalizerCoeffs::from_options(o)?,
@@ -131,8 +131,9 @@ impl BlockParams for PipelineParams {
                 .with("coeffs", "published")
                 .with("power", "exact")
                 .with("bump", "off"),
+            // fit is published's hardware with other constants; piecewise adds the segments.
             Options::new()
-                .with("coeffs", "fit")
+                .with("coeffs", "piecewise")
                 .with("power", "w16")
                 .with("bump", "on"),
         ]

@@ -3,7 +3,12 @@
 //! ```text
 //! N' = N · f(K),   f(K) = (c2·K + c1)·K + c0,   K = x² + y² + z²
 //! published: c2 = 0.822, c1 = −2.046, c0 = 2.227;  valid for K ∈ [0.499, 1]
+//! piecewise (coeffs=piecewise): per segment s of K, f(K) = (c2ₛ·K + c1ₛ)·(K − baseₛ) + c0ₛ
 //! ```
+//! The coefficients are four sets, one per segment of K (K's leading bits in unsigned Q1.15:
+//! bit 15 → 3, bit 14 clear → 0, else bits 13..12; `golden::units::normalizer::Scale`),
+//! each with a base; one quadratic is the same set four times with base 0, and the selection
+//! then costs nothing after synthesis.
 //! Two tops share one back end:
 //! - [`Normalizer`]: N in, N' out. Three squarers (Mul1–Mul3) and the three-operand adder Sm1
 //!   form K, then [`NormalizerK`] does the rest. **Latency 15 clocks.**
@@ -46,13 +51,16 @@
 //!                                valid_p4, x_p4 … carry the vector alongside [Delay]
 //! NormalizerK (its stage 1 follows Normalizer's S2):
 //!  B1  k_narrow = K              Q4.28 → Q1.15 unsigned: round (drop 13 LSBs), saturate at
-//!                                2 − 2⁻¹⁵ when K ≥ 2 − 2⁻¹⁶ [RoundToUQ1_15]
-//!  B2  c2k = |c2|·k_narrow       Mul4, Q1.15 × Q1.15 → Q2.30 unsigned, exact
+//!                                2 − 2⁻¹⁵ when K ≥ 2 − 2⁻¹⁶ [RoundToUQ1_15]; beside it its
+//!                                segment `seg`, which travels with the vector (`seg_p1`,
+//!                                `seg_c0`) to select each stage's constants
+//!  B2  c2k = |c2|·k_narrow       Mul4, Q1.15 × Q1.15 → Q2.30 unsigned, exact; beside it
+//!                                K' = k_narrow − base (0 below the base; K' = K for base 0)
 //!  B3  t1 = c1 ± c2k             Sm2 in Q3.29 (c2k halved: drops 1 LSB = 2⁻³⁰; cannot
 //!                                overflow, checked by NormalizerCoeffs::new), then
 //!                                Q3.29 → Q2.17 (19 bits): round (drop 12 LSBs; the half LSB
 //!                                is in the constant c1_rnd), saturate to [−2, 2) [SatToQ2_17]
-//!  B4  t1k = t1·k_narrow_p2      t1 = 8·t1h + t1l: Mul5, t1h (bits 18..3, signed Q2.14) ×
+//!  B4  t1k = t1·K'               t1 = 8·t1h + t1l: Mul5, t1h (bits 18..3, signed Q2.14) ×
 //!                                unsigned Q1.15 → signed Q3.29, exact, three clocks
 //!                                [MulSignedUnsignedPipe]; beside it t1l·k (units 2⁻³², < 2¹⁹)
 //!                                by shift-add in two clocks [MulLow3Pipe], then in the third
@@ -112,8 +120,13 @@
 //! max|f(K)·√K − 1| (0.351 % for the published set) + √K·Δf + √3·(2⁻¹⁸ + 2⁻²⁹) = 0.351 % +
 //! 0.0040 % (measured: 0.3523 %). Rounding N to Q2.17 in the vector interpolator moves N/|N| by
 //! at most 0.0009 % more (0.0075 % at Q2.14).
+//! Piecewise: the same terms per segment (with K' for the second product), the largest
+//! segment's, plus the largest difference of two neighbouring segments' polynomials within
+//! K's rounding of their boundary (the hardware picks the segment from the rounded K): 2.3·10⁻⁴
+//! for `golden::units::normalizer::PIECEWISE`, whose formula error is 0.0112 % (measured end to
+//! end over 100 000 vectors: 0.0128 %).
 
-use golden::units::normalizer::{Coeffs, K_DOMAIN};
+use golden::units::normalizer::{Scale, K_DOMAIN, SEGMENTS};
 use rust_hdl::prelude::*;
 
 use crate::core::fixed::{
@@ -147,11 +160,9 @@ pub enum CoeffError {
     },
 }
 
-/// The three coefficients as the hardware holds them (see the module header for formats).
-#[derive(Clone, Debug, PartialEq)]
-pub struct NormalizerCoeffs {
-    /// The coefficients asked for (c2, c1, c0).
-    pub requested: Coeffs,
+/// One segment's words as the hardware holds them (see the module header for formats).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SegmentWords {
     /// |c2| in unsigned Q1.15.
     pub c2_mag: u64,
     /// Sign of c2.
@@ -160,15 +171,49 @@ pub struct NormalizerCoeffs {
     pub c1: i64,
     /// c0 as a signed Q4.28 integer.
     pub c0: i64,
+    /// The segment's base in unsigned Q1.15 (0 for one quadratic).
+    pub base: u64,
+}
+
+/// The coefficients as the hardware holds them: four segments of K, each (c2, c1, c0, base)
+/// (`golden::units::normalizer::Scale`; one quadratic is the same in all four, base 0).
+#[derive(Clone, Debug, PartialEq)]
+pub struct NormalizerCoeffs {
+    /// The coefficients asked for.
+    pub requested: Scale,
+    /// Their words, per segment.
+    pub words: [SegmentWords; SEGMENTS],
 }
 
 /// Extra margin on the K domain for the saturation check: quantizing a vector of the domain
 /// to Q2.17 (or Q2.14, the span normalizer's) moves K by less than 2·√3·2⁻¹⁵ ≈ 1.1·10⁻⁴.
 const DOMAIN_MARGIN: f64 = 0.01;
+/// Margin around a boundary between segments: K's rounding to Q1.15 (2⁻¹⁶) and its
+/// quantization (above) can put a K of one segment into its neighbour.
+const SEGMENT_MARGIN: f64 = 0.001;
+
+/// Where segment `s`'s words are used, for the checks and the error budget: its part of
+/// [k_lo, k_hi] widened by [`SEGMENT_MARGIN`] at inner boundaries; `None` when it has none.
+fn segment_span(s: usize, k_lo: f64, k_hi: f64) -> Option<(f64, f64)> {
+    let lo = if s == 0 {
+        f64::NEG_INFINITY
+    } else {
+        0.5 + 0.125 * s as f64 - SEGMENT_MARGIN
+    };
+    let hi = if s == SEGMENTS - 1 {
+        f64::INFINITY
+    } else {
+        0.625 + 0.125 * s as f64 + SEGMENT_MARGIN
+    };
+    let (a, b) = (lo.max(k_lo), hi.min(k_hi));
+    (a <= b).then_some((a, b))
+}
 
 impl NormalizerCoeffs {
-    /// Quantize `c` = (c2, c1, c0) and check that the datapath cannot overflow with it.
-    pub fn new(c: Coeffs) -> Result<Self, CoeffError> {
+    /// Quantize `c` (one quadratic or a [`Scale`]) and check that the datapath cannot
+    /// overflow with it.
+    pub fn new(c: impl Into<Scale>) -> Result<Self, CoeffError> {
+        let c: Scale = c.into();
         let check = |name, value: f64, fmt: QFormat| {
             if fmt.contains(value) {
                 Ok(())
@@ -182,61 +227,74 @@ impl NormalizerCoeffs {
                 })
             }
         };
-        check("c2", c[0].abs(), COEF_C2)?;
-        check("c1", c[1], COEF_C1)?;
-        check("c0", c[2], COEF_C0)?;
+        for g in c.0 {
+            check("c2", g.c[0].abs(), COEF_C2)?;
+            check("c1", g.c[1], COEF_C1)?;
+            check("c0", g.c[2], COEF_C0)?;
+            check("base", g.base, K_NARROW)?;
+        }
         let coeffs = Self {
             requested: c,
-            c2_mag: COEF_C2.quantize(c[0].abs()),
-            c2_neg: c[0] < 0.0,
-            c1: COEF_C1.quantize_int(c[1]),
-            c0: COEF_C0.quantize_int(c[2]),
+            words: c.0.map(|g| SegmentWords {
+                c2_mag: COEF_C2.quantize(g.c[0].abs()),
+                c2_neg: g.c[0] < 0.0,
+                c1: COEF_C1.quantize_int(g.c[1]),
+                c0: COEF_C0.quantize_int(g.c[2]),
+                base: K_NARROW.quantize(g.base),
+            }),
         };
-        // Sm2: c1 + 2^11 ± (c2k >> 1) over every k_narrow in [0, 0xFFFF].
-        let c2k_half_max = ((coeffs.c2_mag * 0xFFFF) >> 1) as i64;
-        let base = coeffs.c1 + (1 << 11);
-        let (lo, hi) = if coeffs.c2_neg {
-            (base - c2k_half_max, base)
-        } else {
-            (base, base + c2k_half_max)
-        };
-        if lo < i32::MIN as i64 || hi > i32::MAX as i64 {
-            return Err(CoeffError::AdderOverflow {
-                what: "Sm2 (c1 + c2·K)",
-            });
-        }
-        // Sm3: c0 + 2^9 + (t1l·K >> 4) + (t1k >> 1), t1k = t1h·K in
-        // [-2^15·0xFFFF, 0x7FFF·0xFFFF], t1l·K in [0, 7·0xFFFF].
-        let base = coeffs.c0 + (1 << 9);
-        let (lo, hi) = (
-            base + ((-(1i64 << 15) * 0xFFFF) >> 1),
-            base + ((7 * 0xFFFF) >> 4) + ((0x7FFFi64 * 0xFFFF) >> 1),
-        );
-        if lo < i32::MIN as i64 || hi > i32::MAX as i64 {
-            return Err(CoeffError::AdderOverflow {
-                what: "Sm3 (t1·K + c0)",
-            });
-        }
-        // No saturation of t1 or f on the domain (with margin).
-        let q = coeffs.quantized();
-        let (k_lo, k_hi) = (K_DOMAIN.0 - DOMAIN_MARGIN, K_DOMAIN.1 + DOMAIN_MARGIN);
-        for i in 0..=1000 {
-            let k = k_lo + (k_hi - k_lo) * i as f64 / 1000.0;
-            let t1 = q[0] * k + q[1];
-            if !HORNER_T1.contains(t1) {
-                return Err(CoeffError::SaturatesInDomain {
-                    what: "t1 = c2·K + c1",
-                    k,
-                    value: t1,
+        for w in coeffs.words {
+            // Sm2: c1 + 2^11 ± (c2k >> 1) over every k_narrow in [0, 0xFFFF].
+            let c2k_half_max = ((w.c2_mag * 0xFFFF) >> 1) as i64;
+            let base = w.c1 + (1 << 11);
+            let (lo, hi) = if w.c2_neg {
+                (base - c2k_half_max, base)
+            } else {
+                (base, base + c2k_half_max)
+            };
+            if lo < i32::MIN as i64 || hi > i32::MAX as i64 {
+                return Err(CoeffError::AdderOverflow {
+                    what: "Sm2 (c1 + c2·K)",
                 });
             }
-            let f = t1 * k + q[2];
-            if !NORM_SCALE.contains(f) {
-                return Err(CoeffError::SaturatesInDomain {
-                    what: "f(K)",
-                    k,
-                    value: f,
+            // Sm3: c0 + 2^9 + (t1l·K' >> 4) + (t1k >> 1), t1k = t1h·K' in
+            // [-2^15·0xFFFF, 0x7FFF·0xFFFF], t1l·K' in [0, 7·0xFFFF] (K' = K − base ≤ K).
+            let base = w.c0 + (1 << 9);
+            let (lo, hi) = (
+                base + ((-(1i64 << 15) * 0xFFFF) >> 1),
+                base + ((7 * 0xFFFF) >> 4) + ((0x7FFFi64 * 0xFFFF) >> 1),
+            );
+            if lo < i32::MIN as i64 || hi > i32::MAX as i64 {
+                return Err(CoeffError::AdderOverflow {
+                    what: "Sm3 (t1·K + c0)",
                 });
+            }
+        }
+        // No saturation of t1 or f on the domain (with margin), each segment on its part.
+        let q = coeffs.quantized();
+        let (k_lo, k_hi) = (K_DOMAIN.0 - DOMAIN_MARGIN, K_DOMAIN.1 + DOMAIN_MARGIN);
+        for (s, g) in q.0.iter().enumerate() {
+            let Some((a, b)) = segment_span(s, k_lo, k_hi) else {
+                continue;
+            };
+            for i in 0..=1000 {
+                let k = a + (b - a) * i as f64 / 1000.0;
+                let t1 = g.c[0] * k + g.c[1];
+                if !HORNER_T1.contains(t1) {
+                    return Err(CoeffError::SaturatesInDomain {
+                        what: "t1 = c2·K + c1",
+                        k,
+                        value: t1,
+                    });
+                }
+                let f = g.at(k);
+                if !NORM_SCALE.contains(f) {
+                    return Err(CoeffError::SaturatesInDomain {
+                        what: "f(K)",
+                        k,
+                        value: f,
+                    });
+                }
             }
         }
         Ok(coeffs)
@@ -248,47 +306,66 @@ impl NormalizerCoeffs {
             .expect("published coefficients fit the formats")
     }
 
-    /// The coefficients the hardware actually multiplies and adds, as f64 (c2, c1, c0).
-    pub fn quantized(&self) -> Coeffs {
-        let c2 = COEF_C2.to_f64(self.c2_mag);
-        [
-            if self.c2_neg { -c2 } else { c2 },
-            self.c1 as f64 * COEF_C1.lsb(),
-            self.c0 as f64 * COEF_C0.lsb(),
-        ]
+    /// The coefficients the hardware actually multiplies and adds, as f64.
+    pub fn quantized(&self) -> Scale {
+        let mut out = self.requested;
+        for (g, w) in out.0.iter_mut().zip(self.words) {
+            let c2 = COEF_C2.to_f64(w.c2_mag);
+            g.c = [
+                if w.c2_neg { -c2 } else { c2 },
+                w.c1 as f64 * COEF_C1.lsb(),
+                w.c0 as f64 * COEF_C0.lsb(),
+            ];
+            g.base = K_NARROW.to_f64(w.base);
+        }
+        out
     }
 }
 
 impl BlockParams for NormalizerCoeffs {
     const KEYS: &'static [&'static str] = &["coeffs"];
-    /// `coeffs=published` (default, SPEC §1: 0.822, −2.046, 2.227) or `coeffs=fit` (exact in
-    /// value and slope at K = 1, `golden::units::normalizer::FIT`).
+    /// `coeffs=published` (default, SPEC §1: 0.822, −2.046, 2.227), `coeffs=fit` (exact in
+    /// value and slope at K = 1, `golden::units::normalizer::FIT`) or `coeffs=piecewise` (four
+    /// segments of K, `golden::units::normalizer::PIECEWISE`).
     fn from_options(o: &Options) -> Result<Self, String> {
-        let c = match o.get("coeffs").unwrap_or("published") {
-            "published" => golden::units::normalizer::PUBLISHED,
-            "fit" => golden::units::normalizer::FIT,
+        let c: Scale = match o.get("coeffs").unwrap_or("published") {
+            "published" => golden::units::normalizer::PUBLISHED.into(),
+            "fit" => golden::units::normalizer::FIT.into(),
+            "piecewise" => golden::units::normalizer::PIECEWISE,
             other => {
                 return Err(format!(
-                    "unknown coefficient set {other:?} (expected published or fit)"
+                    "unknown coefficient set {other:?} (expected published, fit or piecewise)"
                 ))
             }
         };
         NormalizerCoeffs::new(c).map_err(|e| e.to_string())
     }
     fn test_sets() -> Vec<Options> {
-        ["published", "fit"]
+        ["published", "fit", "piecewise"]
             .map(|c| Options::new().with("coeffs", c))
             .to_vec()
     }
     fn describe(&self) -> Option<String> {
         let c = self.requested;
-        Some(format!(
-            "Coefficients (c2, c1, c0) = ({}, {}, {}); as quantized: {:?}",
-            c[0],
-            c[1],
-            c[2],
-            self.quantized()
-        ))
+        Some(if c.is_piecewise() {
+            let segs: Vec<String> =
+                c.0.iter()
+                    .map(|g| format!("base {}: ({}, {}, {})", g.base, g.c[0], g.c[1], g.c[2]))
+                    .collect();
+            format!(
+                "Piecewise, f = (c2·K + c1)·(K − base) + c0 per segment: {}",
+                segs.join("; ")
+            )
+        } else {
+            let g = c.0[0].c;
+            format!(
+                "Coefficients (c2, c1, c0) = ({}, {}, {}); as quantized: {:?}",
+                g[0],
+                g[1],
+                g[2],
+                self.quantized().0[0].c
+            )
+        })
     }
 }
 
@@ -308,47 +385,80 @@ pub struct ErrorBudget {
 }
 
 /// The error budget of [`Normalizer`]/[`NormalizerK`] for inputs with K ∈ [k_lo, k_hi] and
-/// |component| ≤ x_max (K and x as quantized, i.e. as the hardware sees them).
+/// |component| ≤ x_max (K and x as quantized, i.e. as the hardware sees them). Per segment
+/// (on its part of [k_lo, k_hi], [`segment_span`]) the terms of the module header, with
+/// K' = K − base for the second product; the largest segment's; plus, for a piecewise set, the
+/// largest jump |f_s(K) − f_s+1(K)| near a boundary (where K's rounding to Q1.15 picks the
+/// neighbouring segment).
 pub fn error_budget(c: &NormalizerCoeffs, k_lo: f64, k_hi: f64, x_max: f64) -> ErrorBudget {
-    let r = c.requested;
     let q = c.quantized();
-    // K after rounding to Q1.15 may exceed k_hi by half an LSB; before it, the squarers floor
-    // K to Q4.28 (for Q2.17 components).
-    let k_n = (k_hi + K_NARROW.lsb() / 2.0).min(K_NARROW.max());
     let dk = K_NARROW.lsb() / 2.0 + K_FULL.lsb();
-    // f'(K) = 2·c2·K + c1 is linear: its extremes are at the interval's ends.
-    let fprime = |k: f64| (2.0 * r[0] * k + r[1]).abs();
-    let fprime_max = fprime(k_lo - dk).max(fprime(k_n));
-    let dc2 = (q[0] - r[0]).abs();
-    let dc1 = (q[1] - r[1]).abs() + COEF_C1.lsb(); // + halving of c2k (Q2.30 → Q3.29)
-
-    // c0's quantization, the halving of t1h·K (Q3.29 → Q4.28) and the floor of t1l·K (units
-    // 2⁻³² → Q4.28).
-    let dc0 = (q[2] - r[2]).abs() + 2.0 * COEF_C0.lsb();
     let t1_round = HORNER_T1.lsb() / 2.0;
     let f_round = NORM_SCALE.lsb() / 2.0;
     // The output rounding, and the floor of x·f (units 2⁻³⁵ → Q3.29) before it.
     let out_round = NORMALIZED.lsb() / 2.0 + PRODUCT.lsb();
-    let scale_max = fprime_max * dk
-        + r[0].abs() * dk * dk
-        + dc2 * k_n * k_n
-        + dc1 * k_n
-        + t1_round * k_n
-        + dc0
-        + f_round;
-    let component_max = x_max * scale_max + out_round;
     let var = |step: f64| step * step / 12.0;
-    let noise = var(NORMALIZED.lsb())
-        + x_max
-            * x_max
-            * (var(NORM_SCALE.lsb())
-                + k_n * k_n * var(HORNER_T1.lsb())
-                + fprime_max.powi(2) * var(K_NARROW.lsb()));
-    let bias = x_max * (dc2 * k_n * k_n + dc1 * k_n + dc0);
+    let (mut scale_max, mut noise_f, mut bias_f) = (0f64, 0f64, 0f64);
+    // One quadratic: one span, the whole of [k_lo, k_hi].
+    let spans: Vec<(usize, (f64, f64))> = if c.requested.is_piecewise() {
+        (0..SEGMENTS)
+            .filter_map(|s| segment_span(s, k_lo, k_hi).map(|span| (s, span)))
+            .collect()
+    } else {
+        vec![(0, (k_lo, k_hi))]
+    };
+    for (s, (a, b)) in spans {
+        let (rg, qg) = (c.requested.0[s], q.0[s]);
+        let r = rg.plain();
+        // K after rounding to Q1.15 may exceed b by half an LSB; before it, the squarers floor
+        // K to Q4.28 (for Q2.17 components). K' = K − base ≤ k_n − base.
+        let k_n = (b + K_NARROW.lsb() / 2.0).min(K_NARROW.max());
+        let k_l = (k_n - rg.base).max(0.0);
+        // f'(K) = 2·c2·K + c1 (plain form) is linear: its extremes are at the span's ends.
+        let fprime = |k: f64| (2.0 * r[0] * k + r[1]).abs();
+        let fprime_max = fprime(a - dk).max(fprime(k_n));
+        let dc2 = (qg.c[0] - rg.c[0]).abs();
+        let dc1 = (qg.c[1] - rg.c[1]).abs() + COEF_C1.lsb(); // + halving of c2k (Q2.30 → Q3.29)
+                                                             // c0's quantization, the halving of t1h·K' (Q3.29 → Q4.28) and the floor of t1l·K'
+                                                             // (units 2⁻³² → Q4.28).
+        let dc0 = (qg.c[2] - rg.c[2]).abs() + 2.0 * COEF_C0.lsb();
+        let seg_max = fprime_max * dk
+            + r[0].abs() * dk * dk
+            + dc2 * k_n * k_l
+            + dc1 * k_l
+            + t1_round * k_l
+            + dc0
+            + f_round;
+        scale_max = scale_max.max(seg_max);
+        noise_f = noise_f.max(
+            var(NORM_SCALE.lsb())
+                + k_l * k_l * var(HORNER_T1.lsb())
+                + fprime_max.powi(2) * var(K_NARROW.lsb()),
+        );
+        bias_f = bias_f.max(dc2 * k_n * k_l + dc1 * k_l + dc0);
+    }
+    // A K within its rounding (dk) of a boundary may take the neighbouring segment's
+    // polynomial: the largest difference of the two there. Only that window's share of K
+    // (3 boundaries, 2·dk each, over [k_lo, k_hi]) carries it into the RMS bound.
+    let mut jump = 0f64;
+    for s in 0..SEGMENTS - 1 {
+        let (g0, g1) = (c.requested.0[s], c.requested.0[s + 1]);
+        let edge = 0.625 + 0.125 * s as f64;
+        for i in 0..=20 {
+            let k = edge - dk + 2.0 * dk * i as f64 / 20.0;
+            if (k_lo..=k_hi).contains(&k) {
+                jump = jump.max((g0.at(k) - g1.at(k)).abs());
+            }
+        }
+    }
+    let window = (6.0 * dk / (k_hi - k_lo).max(6.0 * dk)).sqrt();
+    let scale_max = scale_max + jump;
+    let component_max = x_max * scale_max + out_round;
+    let noise = var(NORMALIZED.lsb()) + x_max * x_max * noise_f;
     ErrorBudget {
         scale_max,
         component_max,
-        component_rms: noise.sqrt() + bias,
+        component_rms: noise.sqrt() + x_max * (bias_f + jump * window),
         vector_max: k_hi.sqrt() * scale_max + 3f64.sqrt() * out_round,
     }
 }
@@ -367,17 +477,25 @@ crate::hw_block! {
         multipliers: 5,
         in { valid_in: Bit, x: Bits<19>, y: Bits<19>, z: Bits<19>, k: Bits<32> }
         out { valid_out: Bit, nx: Bits<19>, ny: Bits<19>, nz: Bits<19> }
-        // Coefficients, with half an output LSB folded into the constants that are added
-        // anyway: t1 drops 12 LSBs, f drops 10.
-        c2_mag: Constant<Bits<16>> = Constant::new(c.c2_mag.into()),
-        c2_neg: Constant<Bit> = Constant::new(c.c2_neg),
-        c1_rnd: Constant<Bits<32>> = b32(c.c1 + (1 << 11)),
-        c0_rnd: Constant<Bits<32>> = b32(c.c0 + (1 << 9)),
+        // Coefficients per segment, with half an output LSB folded into the constants that
+        // are added anyway: t1 drops 12 LSBs, f drops 10. One quadratic: four equal sets.
+        c2_mag: [Constant<Bits<16>>; SEGMENTS] = c.words.map(|w| Constant::new(w.c2_mag.into())),
+        c2_neg: [Constant<Bit>; SEGMENTS] = c.words.map(|w| Constant::new(w.c2_neg)),
+        c1_rnd: [Constant<Bits<32>>; SEGMENTS] = c.words.map(|w| b32(w.c1 + (1 << 11))),
+        c0_rnd: [Constant<Bits<32>>; SEGMENTS] = c.words.map(|w| b32(w.c0 + (1 << 9))),
+        base: [Constant<Bits<16>>; SEGMENTS] = c.words.map(|w| Constant::new(w.base.into())),
         sign32: Constant<Bits<32>> = b32(1 << 31),
-        // B1
+        // B1, and the segment of K (bit 15 → 3, bit 14 clear → 0, else bits 13..12), which
+        // travels with it to select each stage's constant.
         k_round: RoundToUQ1_15, k_narrow: DFF<Bits<16>>,
-        // B2 (Mul4 is the plain unsigned multiply: both operands are unsigned)
-        c2k: DFF<Bits<32>>, k_narrow_p2: Delay<Bits<16>, 2>,
+        seg_b1: Signal<Local, Bits<2>>, seg: DFF<Bits<2>>, seg_p1: DFF<Bits<2>>,
+        seg_c0: Delay<Bits<2>, 4>,
+        c2_sel: Signal<Local, Bits<16>>, base_sel: Signal<Local, Bits<16>>,
+        c2_neg_sel: Signal<Local, Bit>, c1_sel: Signal<Local, Bits<32>>,
+        c0_sel: Signal<Local, Bits<32>>, k_local: Signal<Local, Bits<16>>,
+        // B2 (Mul4 is the plain unsigned multiply: both operands are unsigned); beside it
+        // K' = K − base (clamped at 0) for Mul5.
+        c2k: DFF<Bits<32>>, k_local_p2: Delay<Bits<16>, 2>,
         // B3
         t1_sat: SatToQ2_17, t1: DFF<Bits<19>>,
         // B4: t1's top 16 bits on Mul5, its 3 low bits by shift-add, then c0 + the low part.
@@ -401,32 +519,76 @@ impl Logic for NormalizerK {
     fn update(&mut self) {
         // B1..B5 registers, then the lanes (B6, B7) and the valid line.
         clock!(
-            self,
-            clock,
-            k_narrow,
-            c2k,
-            k_narrow_p2,
-            t1,
-            mul5,
-            low5,
-            c0_low,
-            f
+            self, clock, k_narrow, seg, seg_p1, seg_c0, c2k, k_local_p2, t1, mul5, low5, c0_low, f
         );
         clock!(self, clock, lane_x, lane_y, lane_z, valid_p7);
         // B1: K (Q4.28) → Q1.15, round to nearest, saturate.
         self.k_round.wide.next = self.k.val();
         self.k_narrow.d.next = self.k_round.narrow.val();
+        self.seg_b1.next = self.k_round.narrow.val().get_bits::<2>(12);
+        if !self.k_round.narrow.val().get_bit(14) {
+            self.seg_b1.next = 0.into();
+        }
+        if self.k_round.narrow.val().get_bit(15) {
+            self.seg_b1.next = 3.into();
+        }
+        self.seg.d.next = self.seg_b1.val();
+        self.seg_p1.d.next = self.seg.q.val();
+        self.seg_c0.d.next = self.seg.q.val();
+        // Each stage's constants, selected by its vector's segment.
+        self.c2_sel.next = self.c2_mag[0].val();
+        self.base_sel.next = self.base[0].val();
+        if self.seg.q.val() == 1 {
+            self.c2_sel.next = self.c2_mag[1].val();
+            self.base_sel.next = self.base[1].val();
+        }
+        if self.seg.q.val() == 2 {
+            self.c2_sel.next = self.c2_mag[2].val();
+            self.base_sel.next = self.base[2].val();
+        }
+        if self.seg.q.val() == 3 {
+            self.c2_sel.next = self.c2_mag[3].val();
+            self.base_sel.next = self.base[3].val();
+        }
+        self.c2_neg_sel.next = self.c2_neg[0].val();
+        self.c1_sel.next = self.c1_rnd[0].val();
+        if self.seg_p1.q.val() == 1 {
+            self.c2_neg_sel.next = self.c2_neg[1].val();
+            self.c1_sel.next = self.c1_rnd[1].val();
+        }
+        if self.seg_p1.q.val() == 2 {
+            self.c2_neg_sel.next = self.c2_neg[2].val();
+            self.c1_sel.next = self.c1_rnd[2].val();
+        }
+        if self.seg_p1.q.val() == 3 {
+            self.c2_neg_sel.next = self.c2_neg[3].val();
+            self.c1_sel.next = self.c1_rnd[3].val();
+        }
+        self.c0_sel.next = self.c0_rnd[0].val();
+        if self.seg_c0.q.val() == 1 {
+            self.c0_sel.next = self.c0_rnd[1].val();
+        }
+        if self.seg_c0.q.val() == 2 {
+            self.c0_sel.next = self.c0_rnd[2].val();
+        }
+        if self.seg_c0.q.val() == 3 {
+            self.c0_sel.next = self.c0_rnd[3].val();
+        }
 
-        // B2 (Mul4): |c2|·K, Q1.15 × Q1.15 → Q2.30.
-        self.c2k.d.next = self.c2_mag.val() * self.k_narrow.q.val();
-        self.k_narrow_p2.d.next = self.k_narrow.q.val();
+        // B2 (Mul4): |c2|·K, Q1.15 × Q1.15 → Q2.30; K' = K − base, 0 below the base.
+        self.c2k.d.next = self.c2_sel.val() * self.k_narrow.q.val();
+        self.k_local.next = self.k_narrow.q.val() - self.base_sel.val();
+        if self.k_narrow.q.val() < self.base_sel.val() {
+            self.k_local.next = 0.into();
+        }
+        self.k_local_p2.d.next = self.k_local.val();
 
         // B3 (Sm2): t1 = c1 ± c2·K in Q3.29 (+ half LSB of Q2.17), then round/saturate to Q2.17.
         self.c2k_half.next = self.c2k.q.val() >> 1;
-        if self.c2_neg.val() {
-            self.t1_wide.next = self.c1_rnd.val() - self.c2k_half.val();
+        if self.c2_neg_sel.val() {
+            self.t1_wide.next = self.c1_sel.val() - self.c2k_half.val();
         } else {
-            self.t1_wide.next = self.c1_rnd.val() + self.c2k_half.val();
+            self.t1_wide.next = self.c1_sel.val() + self.c2k_half.val();
         }
         self.t1_sat.wide.next = self.t1_wide.val();
         self.t1.d.next = self.t1_sat.narrow.val();
@@ -435,12 +597,12 @@ impl Logic for NormalizerK {
         // Q3.29; beside it t1l·K (t1l = bits 2..0, units 2⁻³², < 2¹⁹) by shift-add, floored
         // to Q4.28 and added to c0 (+ half LSB of Q1.18) in the clock Mul5's product arrives.
         self.mul5.a.next = self.t1.q.val().get_bits::<16>(3);
-        self.mul5.b.next = self.k_narrow_p2.q.val();
-        self.k_ext.next = bit_cast::<24, 16>(self.k_narrow_p2.q.val());
+        self.mul5.b.next = self.k_local_p2.q.val();
+        self.k_ext.next = bit_cast::<24, 16>(self.k_local_p2.q.val());
         self.low5.v.next = self.k_ext.val();
         self.low5.m.next = self.t1.q.val().get_bits::<3>(0);
         self.low5_shift.next = self.low5.p.val() >> 4;
-        self.c0_low.d.next = self.c0_rnd.val() + self.low5_shift.val();
+        self.c0_low.d.next = self.c0_sel.val() + self.low5_shift.val();
 
         // B5 (Sm3): f = c0 + t1·K in Q4.28 (+ half LSB of Q1.18), then round/saturate to Q1.18.
         self.t1k_half.next = self.mul5.p.val() >> 1;

@@ -20,7 +20,7 @@ use golden::units::brzssk::twin::BrzsskTwin;
 use golden::units::colour_combine::twin::ColourTwin;
 use golden::units::intensity_interpolator::ChannelTwin;
 use golden::units::lighting_unit::twin::LightingTwin;
-use golden::units::normalizer::Coeffs;
+use golden::units::normalizer::Scale;
 use golden::units::power_unit::twin::PowerTwin;
 use golden::units::vector_interpolator::VectorTwin;
 use pipeline::lit::{lit_row, row_job, LitJob, ShadingRegs};
@@ -197,7 +197,7 @@ pub fn lit_triangles(seed: u64, n: usize) -> Vec<ScreenTriangle> {
 fn golden_colours(
     t: &ScreenTriangle,
     ctx: &ShadeContext,
-    c: Coeffs,
+    c: Scale,
     bump: bool,
     k: Option<u32>,
 ) -> Vec<[u8; 3]> {

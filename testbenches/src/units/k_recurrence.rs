@@ -219,7 +219,7 @@ pub fn krec_rows(spans: &[Span], sched: &[Clock]) -> (Vec<Vec<u64>>, Vec<Vec<Exp
 pub fn span_rows(
     spans: &[Span],
     sched: &[Clock],
-    coeffs: golden::units::normalizer::Coeffs,
+    coeffs: golden::units::normalizer::Scale,
 ) -> (Vec<Vec<u64>>, Vec<Vec<Expected>>) {
     let raw16 = |v: i64| NORMAL.from_int(v);
     let mut rows = Vec::new();

@@ -4,7 +4,7 @@
 //! exact normalization.
 
 pub use golden::testing::seeded_runner;
-use golden::units::normalizer::{twin, Coeffs};
+use golden::units::normalizer::{twin, Scale};
 use proptest::prelude::*;
 use proptest::strategy::ValueTree;
 use proptest::test_runner::TestRunner;
@@ -166,11 +166,12 @@ pub fn dequantize_out(raw: [u64; 3]) -> [f64; 3] {
 /// The golden formula with the block's documented saturation rules applied in f64 (K clamped
 /// to the Q1.15 range, t1 to Q2.17, f to Q1.18, outputs to Q2.17). Inside the domain none of
 /// the clamps acts and this is exactly `golden::units::normalizer::normalize`.
-pub fn saturating_model(raw: [u64; 3], c: Coeffs) -> [f64; 3] {
+pub fn saturating_model(raw: [u64; 3], c: impl Into<Scale>) -> [f64; 3] {
     let n = dequantize(raw);
     let k = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).min(K_NARROW.max());
-    let t1 = (c[0] * k + c[1]).clamp(HORNER_T1.min(), HORNER_T1.max());
-    let f = (t1 * k + c[2]).clamp(NORM_SCALE.min(), NORM_SCALE.max());
+    let g = c.into().0[Scale::segment(k)];
+    let t1 = (g.c[0] * k + g.c[1]).clamp(HORNER_T1.min(), HORNER_T1.max());
+    let f = (t1 * (k - g.base).max(0.0) + g.c[2]).clamp(NORM_SCALE.min(), NORM_SCALE.max());
     n.map(|x| (x * f).clamp(NORMALIZED.min(), NORMALIZED.max()))
 }
 
@@ -225,7 +226,7 @@ pub fn stimulus_rows(slots: &[Slot], latency: usize) -> Vec<Vec<u64>> {
 }
 
 /// Per-clock expectations for `rows` (from [`stimulus_rows`]) through a pipeline of `latency`.
-pub fn expectations(rows: &[Vec<u64>], latency: usize, c: Coeffs) -> Vec<Vec<Expected>> {
+pub fn expectations(rows: &[Vec<u64>], latency: usize, c: Scale) -> Vec<Vec<Expected>> {
     let per_input: Vec<Vec<Expected>> = rows
         .iter()
         .map(|r| {
@@ -323,10 +324,11 @@ pub fn end_to_end(report: &Report, vectors: &[[f64; 3]], latency: usize) -> EndT
 }
 
 /// Max |f(K)·√K − 1| of the formula itself over K ∈ [lo, hi] (the sources' "relative error").
-pub fn formula_max_error(c: Coeffs, lo: f64, hi: f64) -> f64 {
+pub fn formula_max_error(c: impl Into<Scale>, lo: f64, hi: f64) -> f64 {
+    let c = c.into();
     (0..=100_000)
         .map(|i| lo + (hi - lo) * i as f64 / 100_000.0)
-        .map(|k| (golden::units::normalizer::scale(k, c) * k.sqrt() - 1.0).abs())
+        .map(|k| (c.at(k) * k.sqrt() - 1.0).abs())
         .fold(0.0, f64::max)
 }
 
