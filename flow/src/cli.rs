@@ -11,8 +11,8 @@ use crate::engine::Sim;
 /// value that block accepts ([`BuildArgs::checked_options`]).
 #[derive(clap::Args, Debug)]
 pub struct BuildArgs {
-    /// Normalizer coefficients: published (0.822, −2.046, 2.227; the default) or fit (golden
-    /// FIT).
+    /// Normalizer coefficients: published (0.822, −2.046, 2.227; the default), fit (golden
+    /// FIT) or piecewise (four segments of K, golden PIECEWISE).
     #[arg(long)]
     pub coeffs: Option<String>,
     /// Power unit mode: exact (cos^n; the default) or w4, w8, w16 (W(n, γ) with that k).

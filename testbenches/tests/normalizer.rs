@@ -112,10 +112,14 @@ fn normalizer_domain_100k_piecewise() {
 
 /// One named raw vector through the normalizer within budget `b`; prints input and output.
 fn check_named(kind: &str, label: &str, raw: [u64; 3], b: &ErrorBudget) {
-    let c = NormalizerCoeffs::published();
+    check_named_with(&NormalizerCoeffs::published(), kind, label, raw, b);
+}
+
+/// [`check_named`] with coefficient set `c`.
+fn check_named_with(c: &NormalizerCoeffs, kind: &str, label: &str, raw: [u64; 3], b: &ErrorBudget) {
     let name = format!("normalizer_{kind} {label}");
     let report =
-        check_normalizer(&name, 0, &[Slot::Vector(raw)], &c, b).unwrap_or_else(|f| panic!("{f}"));
+        check_normalizer(&name, 0, &[Slot::Vector(raw)], c, b).unwrap_or_else(|f| panic!("{f}"));
     let out = &report.outputs[Normalizer::LATENCY];
     let (i, o) = (dequantize(raw), dequantize_out([out[1], out[2], out[3]]));
     println!("{label:<44} in {i:?} -> out {o:?}");
@@ -126,6 +130,12 @@ fn normalizer_named_domain_cases() {
     let b = domain_budget(&NormalizerCoeffs::published());
     for (label, v) in edge_cases() {
         check_named("edge", label, quantize(v), &b);
+    }
+    // The piecewise set at the same cases, its boundaries among them.
+    let pw = NormalizerCoeffs::new(PIECEWISE).unwrap();
+    let b = domain_budget(&pw);
+    for (label, v) in edge_cases() {
+        check_named_with(&pw, "edge-pw", label, quantize(v), &b);
     }
     // The K = 0.5 and K = 1 cases really have those K after quantization.
     let k = |v: [f64; 3]| {

@@ -111,6 +111,36 @@ pub fn edge_cases() -> Vec<(&'static str, [f64; 3])> {
             "one Q2.14 LSB off +x axis",
             [1.0, 1.0 / 16384.0, -1.0 / 16384.0],
         ),
+        // Either side of the piecewise set's segment boundaries (K = 0.625, 0.75, 0.875, 1):
+        // K = x² one Q1.15 LSB of K (2⁻¹⁵) below and above.
+        (
+            "K just below 0.625",
+            [(0.625f64 - 1.0 / 32768.0).sqrt(), 0.0, 0.0],
+        ),
+        (
+            "K just above 0.625",
+            [(0.625f64 + 1.0 / 32768.0).sqrt(), 0.0, 0.0],
+        ),
+        (
+            "K just below 0.75",
+            [0.0, (0.75f64 - 1.0 / 32768.0).sqrt(), 0.0],
+        ),
+        (
+            "K just above 0.75",
+            [0.0, (0.75f64 + 1.0 / 32768.0).sqrt(), 0.0],
+        ),
+        (
+            "K just below 0.875",
+            [0.0, 0.0, -(0.875f64 - 1.0 / 32768.0).sqrt()],
+        ),
+        (
+            "K just above 0.875",
+            [0.0, 0.0, -(0.875f64 + 1.0 / 32768.0).sqrt()],
+        ),
+        (
+            "K just below 1",
+            [(1.0f64 - 1.0 / 32768.0).sqrt(), 0.0, 0.0],
+        ),
     ]
 }
 
