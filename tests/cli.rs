@@ -129,9 +129,10 @@ fn main_job_renders_golden_and_rtl_of_every_hardware_method() {
         assert!(vs["clocks"].as_u64().unwrap() > 10_000, "{m}: no clocks");
         assert_eq!(vs["visibility_mismatches"].as_u64(), Some(0), "{m}");
     }
-    // The sheet: 15 tiles of 400×400 in bands of 5, each band a golden and an RTL row.
+    // The sheet: 16 tiles of 400×400 (the reference and 15 methods) in bands of 5, each band a
+    // golden and an RTL row.
     let sheet = image::open(dir.path().join("sheet.png")).unwrap();
-    assert_eq!(sheet.height(), 6 * (400 + 14 + 4) + 4, "sheet rows");
+    assert_eq!(sheet.height(), 8 * (400 + 14 + 4) + 4, "sheet rows");
     // The parallel run's frame equals the method rendered alone.
     let alone = tempfile::tempdir().unwrap();
     let out = shadecore(&[
