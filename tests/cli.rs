@@ -474,3 +474,122 @@ fn cancelling_face_normals_render_with_a_warning() {
     // Vertex 1 is in the two opposite faces only; the others also touch the second face.
     assert!(warnings[0].contains("1 vertex whose"), "{stderr}");
 }
+
+/// `sweep` has a scene axis (`--scene` repeated): the built-in scene once per rez, an OBJ once
+/// per shininess and light (its rez column empty), and each figure is the NMSE `render` reports
+/// for the same scene, method and settings.
+#[test]
+fn sweep_has_a_scene_axis_that_agrees_with_render() {
+    let tmp = tempfile::tempdir().unwrap();
+    let obj = tmp.path().join("tet, 1.obj");
+    std::fs::write(
+        &obj,
+        "v 0 0 1\nv 0.94 0 -0.33\nv -0.47 0.82 -0.33\nv -0.47 -0.82 -0.33\nf 1 2 3\nf 1 3 4\nf 1 4 2\nf 2 4 3\n",
+    )
+    .unwrap();
+    let out = tmp.path().join("sweep");
+    let o = shadecore(&[
+        "sweep",
+        "--scene",
+        "sphere",
+        "--scene",
+        obj.to_str().unwrap(),
+        "--rez",
+        "8,12",
+        "--shininess",
+        "50",
+        "--light-deg",
+        "60,90",
+        "--size",
+        "80x80",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let csv = std::fs::read_to_string(out.join("sweep.csv")).unwrap();
+    let mut reader = csv.lines();
+    assert_eq!(
+        reader.next(),
+        Some("scene,rez,shininess,light_deg,method,nmse,band")
+    );
+    // (scene, rez) → method → nmse, for light 90°.
+    let rows: Vec<Vec<String>> = reader
+        .map(|l| {
+            // The OBJ's name holds a comma: its field is quoted.
+            let (scene, rest) = match l.strip_prefix('"') {
+                Some(q) => {
+                    let end = q.find("\",").unwrap();
+                    (q[..end].to_string(), &q[end + 2..])
+                }
+                None => {
+                    let end = l.find(',').unwrap();
+                    (l[..end].to_string(), &l[end + 1..])
+                }
+            };
+            std::iter::once(scene)
+                .chain(rest.split(',').map(String::from))
+                .collect()
+        })
+        .collect();
+    let methods = Method::ALL_NON_REFERENCE.len();
+    // sphere: 2 rez × 2 lights; the OBJ: 2 lights.
+    assert_eq!(rows.len(), (2 * 2 + 2) * methods, "{csv}");
+    let obj_name = obj.display().to_string();
+    assert_eq!(
+        rows.iter().filter(|r| r[0] == obj_name).count(),
+        2 * methods
+    );
+    assert!(rows
+        .iter()
+        .filter(|r| r[0] == obj_name)
+        .all(|r| r[1].is_empty()));
+    let md = std::fs::read_to_string(out.join("sweep.md")).unwrap();
+    assert!(md.starts_with("| scene | rez | n | light |"), "{md}");
+    assert!(
+        md.contains(&format!("| {obj_name} | — | 50 | 90° |")),
+        "{md}"
+    );
+    // The same figures as `render` (golden engine) of each scene alone.
+    for (scene, rez, sweep_rez) in [(obj.to_str().unwrap(), "8", ""), ("sphere", "12", "12")] {
+        let r = tmp.path().join(format!("render-{rez}"));
+        let o = shadecore(&[
+            "render",
+            "--engine",
+            "golden",
+            "--scene",
+            scene,
+            "--rez",
+            rez,
+            "--shininess",
+            "50",
+            "--light-deg",
+            "90",
+            "--size",
+            "80x80",
+            "--method",
+            "normalizer-pw,gouraud",
+            "--out",
+            r.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let report: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(r.join("report.json")).unwrap()).unwrap();
+        let scene_name = if scene == "sphere" {
+            "sphere".to_string()
+        } else {
+            obj_name.clone()
+        };
+        for m in ["normalizer-pw", "gouraud"] {
+            let want = report["methods"][m]["nmse"].as_f64().unwrap();
+            let row = rows
+                .iter()
+                .find(|r| r[0] == scene_name && r[1] == sweep_rez && r[3] == "90" && r[4] == m)
+                .unwrap_or_else(|| panic!("no sweep row for {scene_name} {m}"));
+            let got: f64 = row[5].parse().unwrap();
+            assert!(
+                (got - want).abs() <= 1e-8 + 1e-6 * want,
+                "{scene_name} {m}: sweep {got}, render {want}"
+            );
+        }
+    }
+}

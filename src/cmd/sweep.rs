@@ -1,5 +1,6 @@
-//! `shadecore sweep`: NMSE of every method over rez × shininess × light angle, as CSV and
-//! Markdown.
+//! `shadecore sweep`: NMSE of every method over scene × rez × shininess × light angle, as CSV
+//! and Markdown. The rez axis applies to the built-in scenes; an OBJ mesh is swept once per
+//! shininess and light angle.
 
 use std::fmt::Write as _;
 use std::path::PathBuf;
@@ -23,9 +24,10 @@ pub struct Args {
     /// Light angles (degrees) to sweep.
     #[arg(long = "light-deg", value_delimiter = ',', default_value = "30,90,150")]
     pub light_deg: Vec<f64>,
-    /// `sphere`, `torus` or an .obj path.
+    /// `sphere`, `torus` or an .obj path; repeat the flag for a scene axis (`--scene sphere
+    /// --scene mesh.obj`). The rez axis applies to the built-in scenes only.
     #[arg(long, default_value = "sphere")]
-    pub scene: String,
+    pub scene: Vec<PathBuf>,
     /// Canvas size WxH.
     #[arg(long, default_value = "400x400", value_parser = crate::setup::parse_size)]
     pub size: (u32, u32),
@@ -40,22 +42,35 @@ pub struct Args {
 }
 
 pub fn run(args: Args) -> Result<()> {
+    // (configuration, whether its rez means anything).
     let mut configs = Vec::new();
-    for &rez in &args.rez {
-        for &shininess in &args.shininess {
-            for &light_deg in &args.light_deg {
-                configs.push(SceneArgs {
-                    scene: args.scene.clone().into(),
-                    rez,
-                    shininess,
-                    light_deg,
-                    size: args.size,
-                    lighting: args.lighting,
-                    subdivide: args.subdivide,
-                });
+    for scene in &args.scene {
+        let built_in = matches!(scene.to_str(), Some("sphere" | "torus"));
+        let rezzes = if built_in {
+            &args.rez[..]
+        } else {
+            &args.rez[..1]
+        };
+        for &rez in rezzes {
+            for &shininess in &args.shininess {
+                for &light_deg in &args.light_deg {
+                    configs.push((
+                        SceneArgs {
+                            scene: scene.clone(),
+                            rez,
+                            shininess,
+                            light_deg,
+                            size: args.size,
+                            lighting: args.lighting,
+                            subdivide: args.subdivide,
+                        },
+                        built_in,
+                    ));
+                }
             }
         }
     }
+    let (configs, built_in): (Vec<SceneArgs>, Vec<bool>) = configs.into_iter().unzip();
     // Validate every configuration up front: a bad value fails before any work is done.
     let setups = configs.iter().map(build).collect::<Result<Vec<_>>>()?;
     for (c, s) in configs.iter().zip(&setups) {
@@ -84,24 +99,39 @@ pub fn run(args: Args) -> Result<()> {
     bar.finish_and_clear();
 
     let mut csv = String::from("scene,rez,shininess,light_deg,method,nmse,band\n");
-    let mut md = String::from("| rez | n | light | ");
+    let mut md = String::from("| scene | rez | n | light | ");
     md += &methods
         .iter()
         .map(|m| m.name())
         .collect::<Vec<_>>()
         .join(" | ");
-    md += " |\n|---|---|---|";
+    md += " |\n|---|---|---|---|";
     md += &"---:|".repeat(methods.len());
     md += "\n";
-    for (c, row) in configs.iter().zip(&rows) {
-        write!(md, "| {} | {} | {}° |", c.rez, c.shininess, c.light_deg).unwrap();
+    for ((c, row), &built_in) in configs.iter().zip(&rows).zip(&built_in) {
+        // An OBJ has no rez: empty in the CSV, — in the table.
+        let rez = if built_in {
+            c.rez.to_string()
+        } else {
+            String::new()
+        };
+        let scene = c.scene.display().to_string();
+        write!(
+            md,
+            "| {} | {} | {} | {}° |",
+            scene.replace('|', "\\|"),
+            if built_in { rez.as_str() } else { "—" },
+            c.shininess,
+            c.light_deg
+        )
+        .unwrap();
         for (m, v) in methods.iter().zip(row) {
             let band = golden::nmse::Band::of(*v);
             writeln!(
                 csv,
                 "{},{},{},{},{},{:.8},{}",
-                c.scene.display(),
-                c.rez,
+                csv_field(&scene),
+                rez,
                 c.shininess,
                 c.light_deg,
                 m.name(),
@@ -124,4 +154,13 @@ pub fn run(args: Args) -> Result<()> {
         args.out.join("sweep.md").display()
     )?;
     Ok(())
+}
+
+/// A CSV field: quoted (quotes doubled) when it holds a comma, a quote or a line break.
+fn csv_field(s: &str) -> String {
+    if s.contains([',', '"', '\n', '\r']) {
+        format!("\"{}\"", s.replace('"', "\"\""))
+    } else {
+        s.to_string()
+    }
 }
