@@ -134,6 +134,8 @@ pub struct RtlComparison {
     /// Pixels whose visible surface under the hardware's depth words differs from the f64
     /// depth planes' choice (0 where the engine tests depth in f64).
     pub visibility_mismatches: usize,
+    /// Over those pixels, the largest f64 depth difference of the two surfaces (pixels).
+    pub visibility_depth_gap: f64,
     /// Wall time of the simulation, seconds.
     pub seconds: f64,
 }
@@ -239,6 +241,7 @@ struct Frames {
 struct RtlStats {
     pipe: pipeline::axis::PipeStats,
     visibility_mismatches: usize,
+    visibility_depth_gap: f64,
     seconds: f64,
 }
 
@@ -321,6 +324,7 @@ fn render_rtl_parallel(
                         RtlStats {
                             pipe: rtl.stats,
                             visibility_mismatches: rtl.visibility_mismatches,
+                            visibility_depth_gap: rtl.visibility_depth_gap,
                             seconds: t0.elapsed().as_secs_f64(),
                         },
                     )
@@ -441,6 +445,7 @@ fn compare_with_golden(
         pixels: stats.pixels,
         pixels_per_clock: stats.pixels_per_clock(),
         visibility_mismatches: rtl.visibility_mismatches,
+        visibility_depth_gap: rtl.visibility_depth_gap,
         seconds: rtl.seconds,
     })
 }
@@ -602,9 +607,14 @@ fn print_table(args: &Args, setup: &Setup, methods: &[Method], report: &Report) 
         )?;
         if let Some(c) = &r.rtl_vs_golden {
             crate::outln!(
-                "  rtl vs golden {}: NMSE {:.3e}, max {} LSB, {} pixels differ; {} pixels in {} clocks ({:.3} pixels/clock, {:.1} s, {:.0} clocks/s); {} pixels with other visibility",
+                "  rtl vs golden {}: NMSE {:.3e}, max {} LSB, {} pixels differ; {} pixels in {} clocks ({:.3} pixels/clock, {:.1} s, {:.0} clocks/s); {} pixels with other visibility{}",
                 m.name(), c.nmse, c.max_abs_diff, c.pixels_differing, c.pixels, c.clocks, c.pixels_per_clock,
-                c.seconds, c.clocks as f64 / c.seconds.max(1e-9), c.visibility_mismatches
+                c.seconds, c.clocks as f64 / c.seconds.max(1e-9), c.visibility_mismatches,
+                if c.visibility_mismatches > 0 {
+                    format!(" (their two surfaces at most {:.2e} pixels apart in depth)", c.visibility_depth_gap)
+                } else {
+                    String::new()
+                }
             )?;
         }
     }

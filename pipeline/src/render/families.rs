@@ -100,6 +100,7 @@ impl Family for Subdivision {
             frame,
             stats,
             visibility_mismatches: 0,
+            visibility_depth_gap: 0.0,
         })
     }
 }

@@ -15,6 +15,8 @@ pub struct FrameWriter {
     golden_z: Vec<f64>,
     golden_winner: Vec<usize>,
     hw_winner: Vec<usize>,
+    /// The f64 plane's depth of the fragment the hardware shows.
+    hw_golden_z: Vec<f64>,
 }
 
 impl FrameWriter {
@@ -25,6 +27,7 @@ impl FrameWriter {
             golden_z: vec![f64::INFINITY; n],
             golden_winner: vec![usize::MAX; n],
             hw_winner: vec![usize::MAX; n],
+            hw_golden_z: vec![f64::INFINITY; n],
         }
     }
 
@@ -36,14 +39,17 @@ impl FrameWriter {
         let (xi, yi) = (x as i32, y as i32);
         let at = (x < w && y < h).then(|| y as usize * w as usize + x as usize);
         let tie_won = at.is_some_and(|i| z as f64 == self.frame.depth[i] && k < self.hw_winner[i]);
+        let zf = plane.at_pixel(xi, yi);
         if self.frame.put(xi, yi, z as f64, rgb) {
-            self.hw_winner[y as usize * w as usize + x as usize] = k;
+            let i = y as usize * w as usize + x as usize;
+            self.hw_winner[i] = k;
+            self.hw_golden_z[i] = zf;
         } else if let (true, Some(i)) = (tie_won, at) {
             self.frame.rgb[i] = rgb;
             self.hw_winner[i] = k;
+            self.hw_golden_z[i] = zf;
         }
         if let Some(i) = at {
-            let zf = plane.at_pixel(xi, yi);
             if zf < self.golden_z[i] || (zf == self.golden_z[i] && k < self.golden_winner[i]) {
                 self.golden_z[i] = zf;
                 self.golden_winner[i] = k;
@@ -52,16 +58,19 @@ impl FrameWriter {
     }
 
     pub fn finish(self, stats: PipeStats) -> Rendered {
-        let visibility_mismatches = self
-            .hw_winner
-            .iter()
-            .zip(&self.golden_winner)
-            .filter(|(a, b)| a != b)
-            .count();
+        let (mut visibility_mismatches, mut visibility_depth_gap) = (0, 0f64);
+        for i in 0..self.hw_winner.len() {
+            if self.hw_winner[i] != self.golden_winner[i] {
+                visibility_mismatches += 1;
+                visibility_depth_gap =
+                    visibility_depth_gap.max(self.hw_golden_z[i] - self.golden_z[i]);
+            }
+        }
         Rendered {
             frame: self.frame,
             stats,
             visibility_mismatches,
+            visibility_depth_gap,
         }
     }
 }
@@ -104,6 +113,7 @@ impl PlaneWriter {
             frame: self.frame,
             stats,
             visibility_mismatches: 0,
+            visibility_depth_gap: 0.0,
         }
     }
 }
@@ -160,6 +170,39 @@ mod tests {
             );
             assert_eq!(r.visibility_mismatches, 0, "arrival order {order:?}");
         }
+    }
+
+    /// A pixel where the depth words tie but the f64 planes differ by rounding noise counts as
+    /// a visibility mismatch whose depth gap is that noise; a pixel where the depth words put
+    /// the farther surface in front reports the planes' whole gap.
+    #[test]
+    fn visibility_mismatches_report_the_surfaces_depth_gap() {
+        let plane = |c: f64| Plane { a: 0.0, b: 0.0, c };
+        // Pixel (0, 0): equal words, triangle 1's plane 1e-12 nearer: the golden pick is 1,
+        // the hardware's (tie → lower index) 0.
+        let mut w = FrameWriter::new(2, 1);
+        w.put(0, 0, 0, 500, [1; 3], &plane(10.0));
+        w.put(1, 0, 0, 500, [2; 3], &plane(10.0 - 1e-12));
+        let r = w.finish(PipeStats::default());
+        assert_eq!(r.visibility_mismatches, 1);
+        assert!(
+            (r.visibility_depth_gap - 1e-12).abs() < 1e-14,
+            "{}",
+            r.visibility_depth_gap
+        );
+        // Pixel (1, 0): the words put triangle 0 in front although its plane is 0.25 farther.
+        let mut w = FrameWriter::new(2, 1);
+        w.put(0, 1, 0, 400, [1; 3], &plane(5.25));
+        w.put(1, 1, 0, 600, [2; 3], &plane(5.0));
+        let r = w.finish(PipeStats::default());
+        assert_eq!(r.visibility_mismatches, 1);
+        assert_eq!(r.visibility_depth_gap, 0.25);
+        // Agreement: no mismatch, no gap.
+        let mut w = FrameWriter::new(2, 1);
+        w.put(0, 1, 0, 600, [1; 3], &plane(5.25));
+        w.put(1, 1, 0, 400, [2; 3], &plane(5.0));
+        let r = w.finish(PipeStats::default());
+        assert_eq!((r.visibility_mismatches, r.visibility_depth_gap), (0, 0.0));
     }
 
     /// The plane writer's tie rule, the same: equal depth keeps the lower triangle index.

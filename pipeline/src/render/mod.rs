@@ -47,6 +47,10 @@ pub struct Rendered {
     /// words differs from the one the f64 depth planes pick (surfaces closer than the z format
     /// resolves); 0 where the depth test uses the f64 planes.
     pub visibility_mismatches: usize,
+    /// Over those pixels, the largest difference of the two surfaces' f64 depths (pixels; 0
+    /// when there are none): how close two surfaces are where the depth words decide
+    /// otherwise than the f64 planes.
+    pub visibility_depth_gap: f64,
 }
 
 /// Progress of a render: how many set-up records (triangles, parents, lines) there are, then

@@ -45,9 +45,9 @@
 //! start without pixels, as in the Gouraud pipe).
 //!
 //! # Build parameters
-//! `coeffs` (the normalizer's set: published | fit), `power` (exact | w4 | w8 | w16) and `bump`
-//! (off | on): the `normalizer`/`normalizer-fit` methods are `power=exact`, `brdf-kK` is
-//! `coeffs=fit power=wK`, `bump` is `coeffs=fit power=exact bump=on`.
+//! `coeffs` (the normalizer's set: published | fit | piecewise), `power` (exact | w4 | w8 |
+//! w16) and `bump` (off | on): the `normalizer`/`normalizer-fit`/`normalizer-pw` methods are
+//! `power=exact`, `brdf-kK` is `coeffs=fit power=wK`, `bump` is `coeffs=fit power=exact bump=on`.
 //!
 //! # Overflow, error budget
 //! Those of the blocks: the normal words wrap by design (only pixel values must be in range);
