@@ -21,9 +21,9 @@
 //! | port | dir | format |
 //! |---|---|---|
 //! | `load` | in | a span's words this clock (taken when `ready`) |
-//! | `p` | in | ψ, signed Q4.28 radians |
-//! | `q` | in | m·Δφ − ψ, signed Q4.28 |
-//! | `d` | in | Δφ ≥ 0, Q4.28 |
+//! | `p` | in | ψ, binary angle (2³² a turn: π is 2³¹) |
+//! | `q` | in | m·Δφ − ψ, binary angle |
+//! | `d` | in | Δφ ∈ [0, π], binary angle |
 //! | `cos_beta` | in | unsigned Q1.15 |
 //! | `m` | in | span length − 1, 12 bits |
 //! | `hold` | in | 1: the runs stand still this clock — no pixel enters the pipeline, no span is taken (`ready` low); nothing is lost (a stream top's back-pressure) |
@@ -39,7 +39,8 @@
 //!     rb = u − h (14-bit two's complement, loaded with the span and stepped with the runs),
 //!     so the tests are sign and bit tests of registers, not compares (ECP5 timing: the
 //!     compares, the next-span decision and the argument load in one clock ran at 97 MHz);
-//!     address = (|arg| + 2¹⁷) bits 28..18, "top" (read 0) when bits 31..29 ≠ 0
+//!     address = (|arg| + 2¹⁸) bits 29..19 (|arg|: the two's complement negation when bit
+//!     31 is set, the angle folded to [0, π]), "top" (read 0) when bits 31..30 ≠ 0
 //! S1  PROM[address] (synchronous, one copy per run), flags, indices, cos β carried
 //! S2  the PROM word registered (a block RAM's output is 5.6 ns from the clock on ECP5)
 //! S3  cos β · PROM                        UQ1.15 × UQ1.15 → UQ2.30, exact, two clocks [MulPipe]
@@ -54,12 +55,14 @@
 //! 2 multipliers, 2 × 2048 × 16 PROM (2 × 8 iCE40 block RAMs).
 //!
 //! # Overflow
-//! Arguments are exact integers modulo 2³² (|ψ|, |φ − ψ| ≤ π: far from the wrap);
-//! |arguments| ≥ 2 − 2⁻¹¹ rad read 0 (cos < 0 there, clamped); outputs saturate.
+//! None: arguments are binary angles, exact integers modulo 2³², and wrap as angles do (a span
+//! whose end normals are nearly opposite takes its argument past a half turn, where the fold
+//! gives the true cosine); folded arguments ≥ π/2 − π/8192 read 0 (cos ≤ 3.9·10⁻⁴ there,
+//! negative from π/2 on, clamped); outputs saturate.
 //!
 //! # Error budget (vs `golden::units::cos_v_accumulator::cos_v` of the same words)
-//! The address rounding moves the argument by ≤ 2⁻¹¹ (cos by ≤ 2⁻¹¹·|sin|), the PROM word and
-//! the product roundings add 2⁻¹⁶ each: ≤ 2⁻¹¹ + 2⁻¹⁵ = 5.2·10⁻⁴.
+//! The address rounding moves the argument by ≤ π/8192 (cos by ≤ π/8192·|sin|), the PROM word
+//! and the product roundings add 2⁻¹⁶ each: ≤ π/8192 + 2⁻¹⁵ = 4.1·10⁻⁴.
 
 use rust_hdl::prelude::*;
 
@@ -104,7 +107,7 @@ crate::hw_block! {
         more: Signal<Local, Bit>,
         mag_a: Signal<Local, Bits<32>>, mag_b: Signal<Local, Bits<32>>,
         rnd_a: Signal<Local, Bits<32>>, rnd_b: Signal<Local, Bits<32>>,
-        half_step: Constant<Bits<32>> = Constant::new((1u64 << 17).into()),
+        half_step: Constant<Bits<32>> = Constant::new((1u64 << 18).into()),
         zero: Constant<Bits<32>> = Constant::new(0.into()),
         // S1
         prom_a: Prom<Bits<16>, 11> = cos_prom(),
@@ -183,7 +186,8 @@ impl Logic for CosVAccumulator {
             self.d_q.d.next = self.d.val();
             self.cb.d.next = self.cos_beta.val();
         }
-        // PROM addresses: |argument| (cos is even) rounded to 2⁻¹⁰ rad.
+        // PROM addresses: the argument folded to [0, π] (cos is even and 2π-periodic, and a
+        // turn is 2³²: the two's complement negation folds), rounded to the step π/4096.
         if self.arg_a.q.val().get_bit(31) {
             self.mag_a.next = self.zero.val() - self.arg_a.q.val();
         } else {
@@ -196,15 +200,15 @@ impl Logic for CosVAccumulator {
         }
         self.rnd_a.next = self.mag_a.val() + self.half_step.val();
         self.rnd_b.next = self.mag_b.val() + self.half_step.val();
-        self.prom_a.address.next = self.rnd_a.val().get_bits::<11>(18);
-        self.prom_b.address.next = self.rnd_b.val().get_bits::<11>(18);
+        self.prom_a.address.next = self.rnd_a.val().get_bits::<11>(19);
+        self.prom_b.address.next = self.rnd_b.val().get_bits::<11>(19);
         // S1
         self.valid1[0].d.next = self.go_a.val();
         self.valid1[1].d.next = self.go_b.val();
         self.idx1[0].d.next = self.t_q.q.val().get_bits::<12>(0);
         self.idx1[1].d.next = self.u_q.q.val();
-        self.top1[0].d.next = self.rnd_a.val().get_bits::<3>(29).any();
-        self.top1[1].d.next = self.rnd_b.val().get_bits::<3>(29).any();
+        self.top1[0].d.next = self.rnd_a.val().get_bits::<2>(30).any();
+        self.top1[1].d.next = self.rnd_b.val().get_bits::<2>(30).any();
         self.cb1.d.next = self.cb.q.val();
         self.last1.d.next = (self.go_a.val() | self.go_b.val()) & !self.more.val();
         // S2, S3

@@ -51,6 +51,17 @@ pub fn named_spans() -> Vec<(&'static str, SpanWords)> {
             "cos β near 0",
             w(a, b, DVec3::new(0.02, 0.9998, 0.0).normalize(), 12),
         ),
+        // End normals 158° apart (a scan's vertex whose normal points away): the argument
+        // passes −3π/2, where cos is positive again (the dragon at 1920×1080, row 371).
+        (
+            "end normals 158° apart, argument past a half turn",
+            w(
+                DVec3::new(0.0, -0.447_213_6, -0.894_427_2),
+                DVec3::new(0.286_253, 0.190_367, 0.939_052).normalize(),
+                DVec3::new(-0.6, 0.1, 0.79).normalize(),
+                5,
+            ),
+        ),
     ]
 }
 
