@@ -281,8 +281,9 @@ mod tests {
     use glam::DVec3;
 
     /// The words' value of every pixel (`cos_v`) is the angular method's kernel on the same span
-    /// (clamped at 0) within the angle words' rounding, for end normals at any angle — past a
-    /// half turn too, where a radian word without wrap read 0.
+    /// (clamped at 0) within the words' rounding, for random end normals at any angle (the
+    /// argument past a half turn among them). The hardware's side of those spans is the
+    /// testbench's named span "end normals 158° apart".
     #[test]
     fn words_follow_the_kernel_at_any_angle() {
         let mut worst = 0f64;
