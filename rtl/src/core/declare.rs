@@ -55,8 +55,9 @@
 //! into a `macro_rules!` does not compile: the `connect()`/`hdl()` that `#[hdl_gen]` adds take
 //! `self` with the expansion's hygiene, which cannot see the `self` of the caller's
 //! statements. A whole `impl Logic` written in a macro's own text compiles (one hygiene):
-//! [`two_lane_stream!`](crate::two_lane_stream) declares three stream tops that way, and
-//! `span_pipeline!` (in `pipelines::span_pipeline`) the angular and fast pipelines. So a
+//! [`two_lane_stream!`](crate::two_lane_stream) declares three stream tops that way,
+//! [`one_lane_stream!`](crate::one_lane_stream) two more, and `span_pipeline!` (in
+//! `pipelines::span_pipeline`) the angular and fast pipelines. So a
 //! composite's forwarding into a child (`self.addr.w_b0.next = self.w_b0.val();`) is written
 //! out; it is type-checked against the child's ports, so widths cannot drift.
 

@@ -67,7 +67,6 @@
 
 use rust_hdl::prelude::*;
 
-use crate::core::primitives::Lutram;
 use crate::core::registry::RtlBlock;
 use crate::pipelines::cubic_pipeline::{CubicParams, CubicPipeline};
 use crate::stream::record_reader::{RecordReader, INDEX_BITS};
@@ -81,94 +80,18 @@ const FIFO_BITS: usize = 5;
 /// The FIFO level above which the pipeline is held (the clock after: `hold` is registered).
 pub const HOLD_ABOVE: usize = FIFO_DEPTH - EVENT_TO_FRAGMENT - 2;
 
-crate::hw_block! {
+crate::one_lane_stream! {
     /// The cubic span pipeline with AXI4-Stream set-up and fragment streams (see the header).
-    pub struct CubicStream(clock) as "cubic-stream" {
+    pub struct CubicStream as "cubic-stream" {
         summary: "AXI4-Stream top of the cubic span pipeline: 32-bit line records in, 64-bit fragment beats (depth on tuser) out with back-pressure (a FIFO and the units' hold)",
         latency: 2 + <CubicPipeline as RtlBlock>::LATENCY + 2
             => "a line record's last word to its first fragment beat (pipelined units; serial: up to 2 more)",
         multipliers: 6,
-        in { s_axis_tdata: Bits<32>, s_axis_tvalid: Bit, s_axis_tlast: Bit, m_axis_tready: Bit }
-        out {
-            s_axis_tready: Bit, m_axis_tvalid: Bit, m_axis_tdata: Bits<64>, m_axis_tuser: Bits<32>,
-            m_axis_tlast: Bit, error: Bit,
-        }
-        /// The record banks, the field selects and the wrapped top (`core.pipe`): generated.
-        pub core: CubicStreamCore = CubicStreamCore::new(p),
-        // Fragment side: the FIFO (beat, and z with tlast), pointers, level.
-        fifo_beat: Lutram<Bits<64>, FIFO_BITS>,
-        fifo_tail: Lutram<Bits<33>, FIFO_BITS>,
-        wr_ptr: DFF<Bits<FIFO_BITS>>, rd_ptr: DFF<Bits<FIFO_BITS>>, level: DFF<Bits<6>>,
-        hold_above: Constant<Bits<6>> = Constant::new((HOLD_ABOVE as u64).into()),
-        hold_q: DFF<Bit>,
-        pop: Signal<Local, Bit>, beat: Signal<Local, Bits<64>>,
-        /// The output register: a beat (tdata, and z with tlast) offered on `m_axis_*`.
-        out_v: DFF<Bit>, out_data: DFF<Bits<64>>, out_tail: DFF<Bits<33>>,
-        tlast_bit: Constant<Bits<33>> = Constant::new((1u64 << 32).into()),
+        core: CubicStreamCore = CubicStreamCore::new(p),
+        level: 6,
+        push: core.valid,
     }
     new(p: &CubicParams);
-}
-
-impl Logic for CubicStream {
-    #[hdl_gen]
-    fn update(&mut self) {
-        clock!(self, clock, core, fifo_beat, fifo_tail);
-        // The fragment beats the generated core packs.
-        self.beat.next = self.core.beat.val();
-        dff_setup!(self, clock, wr_ptr, rd_ptr, level, hold_q, out_v, out_data, out_tail);
-        // Set-up side: the generated core (record reader, load bank, word banks, field
-        // selects).
-        self.core.s_axis_tdata.next = self.s_axis_tdata.val();
-        self.core.s_axis_tvalid.next = self.s_axis_tvalid.val();
-        self.core.s_axis_tlast.next = self.s_axis_tlast.val();
-        self.s_axis_tready.next = self.core.s_axis_tready.val();
-        self.error.next = self.core.error.val();
-
-        // Fragment side: every fragment is one beat; tlast with the line's last pixel.
-        self.hold_q.d.next = self.level.q.val() > self.hold_above.val();
-        self.core.hold.next = self.hold_q.q.val();
-        self.pop.next =
-            (self.level.q.val() != 0) & (!self.out_v.q.val() | self.m_axis_tready.val());
-        self.fifo_beat.write_enable.next = self.core.valid.val();
-        self.fifo_beat.write_address.next = self.wr_ptr.q.val();
-        self.fifo_beat.write_data.next = self.beat.val();
-        self.fifo_beat.read_address.next = self.rd_ptr.q.val();
-        self.fifo_tail.write_enable.next = self.core.valid.val();
-        self.fifo_tail.write_address.next = self.wr_ptr.q.val();
-        self.fifo_tail.write_data.next = bit_cast::<33, 32>(self.core.z.val());
-        if self.core.done.val() {
-            self.fifo_tail.write_data.next =
-                bit_cast::<33, 32>(self.core.z.val()) | self.tlast_bit.val();
-        }
-        self.fifo_tail.read_address.next = self.rd_ptr.q.val();
-        if self.core.valid.val() {
-            self.wr_ptr.d.next = self.wr_ptr.q.val() + 1;
-        }
-        if self.pop.val() {
-            self.rd_ptr.d.next = self.rd_ptr.q.val() + 1;
-        }
-        if self.core.valid.val() & !self.pop.val() {
-            self.level.d.next = self.level.q.val() + 1;
-        } else if !self.core.valid.val() & self.pop.val() {
-            self.level.d.next = self.level.q.val() - 1;
-        }
-        if self.pop.val() {
-            self.out_v.d.next = true;
-            self.out_data.d.next = self.fifo_beat.read_data.val();
-            self.out_tail.d.next = self.fifo_tail.read_data.val();
-        } else if self.m_axis_tready.val() {
-            self.out_v.d.next = false;
-        }
-        self.m_axis_tvalid.next = self.out_v.q.val();
-        self.m_axis_tdata.next = 0.into();
-        self.m_axis_tuser.next = 0.into();
-        self.m_axis_tlast.next = false;
-        if self.out_v.q.val() {
-            self.m_axis_tdata.next = self.out_data.q.val();
-            self.m_axis_tuser.next = self.out_tail.q.val().get_bits::<32>(0);
-            self.m_axis_tlast.next = self.out_tail.q.val().get_bit(32);
-        }
-    }
 }
 
 /// The generated core: `rtl/build.rs` writes it from `rtl::stream::layout::CUBIC_STREAM` (the

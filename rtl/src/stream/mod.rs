@@ -7,6 +7,7 @@ pub mod fast_stream;
 pub mod fragment_fifo;
 pub mod gouraud_stream;
 pub mod layout;
+pub mod one_lane;
 pub mod pixel_stream;
 pub mod quadric_stream;
 pub mod record_reader;
