@@ -165,17 +165,16 @@ pub fn derive_segment_fit(lo: f64, hi: f64, constraint: SegmentConstraint) -> (C
     let mut best = ([0.0; 3], f64::INFINITY);
     for _ in 0..50 {
         // The error at each reference point is ±E, alternating: Σ x_j·term_j − (±E) = 1 − fixed.
-        let m: Vec<Vec<f64>> = refs
+        let rows: Vec<(Vec<f64>, f64)> = refs
             .iter()
             .enumerate()
             .map(|(i, &k)| {
                 let (mut row, fixed) = terms(k);
                 row.push(if i % 2 == 0 { -1.0 } else { 1.0 });
-                row.push(1.0 - fixed);
-                row
+                (row, 1.0 - fixed)
             })
             .collect();
-        let x = solve(m);
+        let Some(x) = solve_rows(&rows) else { break };
         let c = coeffs_of(&x);
         let e: Vec<f64> = ks.iter().map(|&k| err(c, k)).collect();
         let max = e.iter().fold(0f64, |a, v| a.max(v.abs()));
@@ -220,6 +219,20 @@ pub fn derive_segment_fit(lo: f64, hi: f64, constraint: SegmentConstraint) -> (C
     best
 }
 
+/// [`crate::linalg::solve`] for the 3 or 4 unknowns of a segment's Remez system.
+fn solve_rows(rows: &[(Vec<f64>, f64)]) -> Option<Vec<f64>> {
+    fn fixed<const N: usize>(rows: &[(Vec<f64>, f64)]) -> Option<Vec<f64>> {
+        let m: [[f64; N]; N] = std::array::from_fn(|i| std::array::from_fn(|j| rows[i].0[j]));
+        let r: [f64; N] = std::array::from_fn(|i| rows[i].1);
+        crate::linalg::solve(m, r).map(|x| x.to_vec())
+    }
+    match rows.len() {
+        3 => fixed::<3>(rows),
+        4 => fixed::<4>(rows),
+        n => unreachable!("a segment's system has 3 or 4 unknowns, not {n}"),
+    }
+}
+
 /// Derivation of [`normalizer::PIECEWISE`]: per segment ([`normalizer::Scale::segment_range`])
 /// the minimax quadratic ([`derive_segment_fit`]), segment 3 exact at K = 1; moved to the
 /// segment's base (`normalizer::PIECEWISE_BASES`; see [`normalizer::Segment`]) and rounded as
@@ -252,29 +265,6 @@ pub fn derive_piecewise() -> [[f64; 3]; normalizer::SEGMENTS] {
             ]
         }
     })
-}
-
-/// Gaussian elimination with partial pivoting of an augmented n×(n+1) system.
-fn solve(mut m: Vec<Vec<f64>>) -> Vec<f64> {
-    let n = m.len();
-    for col in 0..n {
-        let piv = (col..n)
-            .max_by(|&a, &b| m[a][col].abs().total_cmp(&m[b][col].abs()))
-            .unwrap_or(col);
-        m.swap(col, piv);
-        for r in col + 1..n {
-            let f = m[r][col] / m[col][col];
-            for c in col..=n {
-                m[r][c] -= f * m[col][c];
-            }
-        }
-    }
-    let mut x = vec![0.0; n];
-    for r in (0..n).rev() {
-        let s: f64 = (r + 1..n).map(|c| m[r][c] * x[c]).sum();
-        x[r] = (m[r][n] - s) / m[r][r];
-    }
-    x
 }
 
 /// Round to 14 fractional bits (how the fitted constants are stored).

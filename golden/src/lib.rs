@@ -5,6 +5,7 @@
 
 pub mod accuracy;
 pub mod files;
+mod linalg;
 pub mod methods;
 pub mod nmse;
 pub mod raster;

@@ -47,32 +47,6 @@ pub fn nodes(tri: &ScreenTriangle) -> [((f64, f64), glam::DVec3); 6] {
     ]
 }
 
-/// Solve the 6×6 system `m·x = r` by Gaussian elimination with partial pivoting.
-fn solve6(mut m: [[f64; 6]; 6], mut r: [f64; 6]) -> Option<[f64; 6]> {
-    for col in 0..6 {
-        let piv = (col..6).max_by(|&a, &b| m[a][col].abs().total_cmp(&m[b][col].abs()))?;
-        if m[piv][col].abs() < 1e-12 {
-            return None;
-        }
-        m.swap(col, piv);
-        r.swap(col, piv);
-        for row in col + 1..6 {
-            let f = m[row][col] / m[col][col];
-            let pivot_row = m[col];
-            for (dst, src) in m[row][col..].iter_mut().zip(&pivot_row[col..]) {
-                *dst -= f * src;
-            }
-            r[row] -= f * r[col];
-        }
-    }
-    let mut x = [0.0; 6];
-    for row in (0..6).rev() {
-        let s: f64 = (row + 1..6).map(|k| m[row][k] * x[k]).sum();
-        x[row] = (r[row] - s) / m[row][row];
-    }
-    Some(x)
-}
-
 /// Set-up: sample intensities at the six nodes and solve for A..F per channel; `None` for a
 /// zero-area triangle.
 pub fn setup(tri: &ScreenTriangle, ctx: &ShadeContext) -> Option<QuadricSetup> {
@@ -84,7 +58,7 @@ pub fn setup(tri: &ScreenTriangle, ctx: &ShadeContext) -> Option<QuadricSetup> {
     let samples = nodes.map(|(_, n)| ctx.exact_intensity(n));
     let mut coeffs = [[0.0; 6]; 3];
     for (c, out) in coeffs.iter_mut().enumerate() {
-        *out = solve6(rows, samples.map(|s| s[c]))?;
+        *out = crate::linalg::solve(rows, samples.map(|s| s[c]))?;
     }
     Some(QuadricSetup {
         origin: (tri.v[0].x as f64, tri.v[0].y as f64),

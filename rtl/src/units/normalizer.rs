@@ -193,17 +193,19 @@ const DOMAIN_MARGIN: f64 = 0.01;
 const SEGMENT_MARGIN: f64 = 0.001;
 
 /// Where segment `s`'s words are used, for the checks and the error budget: its part of
-/// [k_lo, k_hi] widened by [`SEGMENT_MARGIN`] at inner boundaries; `None` when it has none.
+/// [k_lo, k_hi] (the golden `Scale::segment_range`, open at the outer ends) widened by
+/// [`SEGMENT_MARGIN`] at inner boundaries; `None` when it has none.
 fn segment_span(s: usize, k_lo: f64, k_hi: f64) -> Option<(f64, f64)> {
+    let (lo, hi) = Scale::segment_range(s);
     let lo = if s == 0 {
         f64::NEG_INFINITY
     } else {
-        0.5 + 0.125 * s as f64 - SEGMENT_MARGIN
+        lo - SEGMENT_MARGIN
     };
     let hi = if s == SEGMENTS - 1 {
         f64::INFINITY
     } else {
-        0.625 + 0.125 * s as f64 + SEGMENT_MARGIN
+        hi + SEGMENT_MARGIN
     };
     let (a, b) = (lo.max(k_lo), hi.min(k_hi));
     (a <= b).then_some((a, b))
@@ -443,7 +445,7 @@ pub fn error_budget(c: &NormalizerCoeffs, k_lo: f64, k_hi: f64, x_max: f64) -> E
     let mut jump = 0f64;
     for s in 0..SEGMENTS - 1 {
         let (g0, g1) = (c.requested.0[s], c.requested.0[s + 1]);
-        let edge = 0.625 + 0.125 * s as f64;
+        let edge = Scale::segment_range(s).1;
         for i in 0..=20 {
             let k = edge - dk + 2.0 * dk * i as f64 / 20.0;
             if (k_lo..=k_hi).contains(&k) {
