@@ -68,7 +68,7 @@ fn span_units() {
     // The span units (issue 10).
     #[rustfmt::skip]
     check("cos-v-accumulator", &Options::new(), 60, &[
-        Mutant { what: "PROM address rounding + ¼ step", module: "cos_v_accumulator", from: "localparam  half_step = 32'h20000;", to: "localparam  half_step = 32'h30000;" },
+        Mutant { what: "PROM address rounding + ¼ step", module: "cos_v_accumulator", from: "localparam  half_step = 32'h40000;", to: "localparam  half_step = 32'h60000;" },
     ]);
     #[rustfmt::skip]
     check("fast-unit", &Options::new(), 60, &[
