@@ -30,6 +30,36 @@ pub struct ScreenTriangle {
     pub v: [ScreenVertex; 3],
 }
 
+/// Fraction bits of the sub-pixel vertex coordinates the address block is built for: its error
+/// words are sized for vertices with up to this many fractional bits (`rtl`'s
+/// `SubpixelAddressBlock`; integer vertices are 0).
+pub const SUBPIXEL_BITS: u32 = 4;
+
+/// A triangle's screen positions with `frac` fractional bits: (x, y) in units of 2^−frac
+/// pixel, in 0..=4095·2^frac, pixel (x, y) sampled at its centre (x + ½, y + ½). The fill
+/// convention is `raster`'s (the top-left rule; at sub-pixel positions a centre can lie on a
+/// horizontal edge or a vertex, where the rule's "top" half decides).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SubpixelTriangle {
+    pub v: [(i32, i32); 3],
+    pub frac: u32,
+}
+
+impl SubpixelTriangle {
+    /// The integer-address triangle `tri` (frac = 0).
+    pub fn integer(tri: &ScreenTriangle) -> SubpixelTriangle {
+        SubpixelTriangle {
+            v: tri.v.map(|p| (p.x, p.y)),
+            frac: 0,
+        }
+    }
+    /// Twice the signed area, in (2^−frac pixel)².
+    pub fn area2(&self) -> i64 {
+        let [a, b, c] = self.v.map(|(x, y)| (x as i64, y as i64));
+        (b.0 - a.0) * (c.1 - a.1) - (c.0 - a.0) * (b.1 - a.1)
+    }
+}
+
 /// Screen-space plane of a scalar attribute: value(px, py) = a·px + b·py + c, with (px, py)
 /// the continuous screen position (pixel centre = x + 0.5, y + 0.5).
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -60,8 +60,8 @@
 //! Latency: load in clock t → first event in clock t + 3 (E fires in t + 1, P takes the record
 //! in t + 2).
 
-use crate::raster::EdgeDda;
-use crate::types::{ScreenTriangle, StepType};
+use crate::raster::{EdgeDda, Grid};
+use crate::types::{ScreenTriangle, StepType, SubpixelTriangle};
 
 /// Set-up of one edge's DDA, placed on the edge's first raster line (its upper vertex's y).
 /// All zero for an edge that is never used (horizontal).
@@ -96,6 +96,30 @@ impl EdgeSetup {
         debug_assert!((0..d).contains(&e0) && (0..d).contains(&r));
         EdgeSetup {
             b0: b0 as u32,
+            e0: e0 as u32,
+            f: f as i32,
+            r: r as u32,
+            d: d as u32,
+        }
+    }
+
+    /// The DDA of the edge `upper`→`lower` with sub-pixel vertices (coordinates in 2^−frac
+    /// pixel, upper.y < lower.y), placed on raster line `y`: with m = max(frac, 1),
+    /// D = 2^m·Δy, 2^m·Δx = f·D + r and e the edge function at the boundary pixel's centre,
+    /// all in 2^−frac pixel (so the integer set-up is the case frac = 0, D = 2Δy).
+    pub fn subpixel(frac: u32, upper: (i32, i32), lower: (i32, i32), y: i64) -> EdgeSetup {
+        let (dx, dy) = ((lower.0 - upper.0) as i64, (lower.1 - upper.1) as i64);
+        if dy <= 0 {
+            return EdgeSetup::default();
+        }
+        let g = Grid::of(frac);
+        let dda = EdgeDda::new_in(g, upper, lower, y as i32);
+        let (e0, step, d) = dda.words(g);
+        let f = dx.div_euclid(dy);
+        let r = step - f * d;
+        debug_assert!((0..d).contains(&e0) && (0..d).contains(&r));
+        EdgeSetup {
+            b0: dda.boundary() as u32,
             e0: e0 as u32,
             f: f as i32,
             r: r as u32,
@@ -158,6 +182,46 @@ impl AddressSetup {
         }
     }
 
+    /// The set-up of a triangle with sub-pixel vertices (`raster::walk_subpixel`'s rows and
+    /// edges; coordinates in 0..=4095·2^frac). A triangle whose rows hold no pixel centre
+    /// (zero area, or too thin between two centres) has no rows.
+    pub fn subpixel(tri: &SubpixelTriangle) -> AddressSetup {
+        let o = crate::raster::orientation_of(tri);
+        let rows = o.map(|o| crate::raster::walk_rows(tri, &o));
+        let (Some(o), Some((y_first, y_end, y_switch))) = (o, rows) else {
+            let y_top = tri.v.iter().map(|p| p.1).min().unwrap_or(0);
+            let y_top = Grid::of(tri.frac).row_at_or_below(y_top).clamp(0, 4095);
+            return AddressSetup {
+                y_top: y_top as u32,
+                ..AddressSetup::default()
+            };
+        };
+        if y_end <= y_first {
+            return AddressSetup {
+                y_top: y_first.clamp(0, 4095) as u32,
+                ..AddressSetup::default()
+            };
+        }
+        let f = tri.frac;
+        let (top, mid, bot) = (o.top, o.mid, o.bot);
+        let w = EdgeSetup::subpixel(f, top, bot, y_first);
+        let t = EdgeSetup::subpixel(f, mid, bot, y_switch);
+        let a = if y_switch > y_first {
+            EdgeSetup::subpixel(f, top, mid, y_first)
+        } else {
+            EdgeSetup::subpixel(f, mid, bot, y_first)
+        };
+        AddressSetup {
+            w,
+            a,
+            t,
+            y_top: y_first as u32,
+            rows: (y_end - y_first) as u32,
+            y_switch: y_switch as u32,
+            dir_neg: !o.left,
+        }
+    }
+
     /// The x of the first row's start (the first pixel when that row is not empty).
     pub fn x_start_top(&self) -> i32 {
         self.w.b0 as i32 - self.dir_neg as i32
@@ -190,11 +254,20 @@ struct Dda {
     /// Step type code and carry of the last move (Start after a load).
     step: u8,
     carry: bool,
+    /// e is kept modulo 2^ERR_BITS (the width of the error words).
+    mask: u32,
 }
 
+/// Width of the error words e, r, D of the integer address block (D ≤ 2·4095).
+pub const ERR_BITS: u32 = 13;
+/// Width of the error words of the sub-pixel address block: D = 2^m·Δy with Δy ≤ 4095·2^frac
+/// and m = frac = [`crate::types::SUBPIXEL_BITS`] = 4 gives D < 4095·2^8 < 2^20.
+pub const SUBPIXEL_ERR_BITS: u32 = 20;
+
 impl Dda {
-    fn load(s: &EdgeSetup) -> Dda {
+    fn load(s: &EdgeSetup, err_bits: u32) -> Dda {
         Dda {
+            mask: (1 << err_bits) - 1,
             b: s.b0,
             e: s.e0,
             f: s.f_word(),
@@ -212,7 +285,7 @@ impl Dda {
             .e
             .wrapping_sub(self.r)
             .wrapping_add(if carry { self.d } else { 0 }))
-            & 0x1FFF;
+            & self.mask;
         self.step = if mv == 0 {
             StepType::Vertical.code()
         } else {
@@ -247,6 +320,8 @@ pub struct AddressOutputs {
 /// Cycle-accurate model of the address block's registers (see the module doc).
 #[derive(Clone, Debug, Default)]
 pub struct AddressBlockModel {
+    /// Built with [`SUBPIXEL_ERR_BITS`]-bit error words (else [`ERR_BITS`]).
+    subpixel: bool,
     // Edge stage.
     e_busy: bool,
     e_rows_left: u32,
@@ -276,8 +351,25 @@ pub struct AddressBlockModel {
 }
 
 impl AddressBlockModel {
+    /// The integer address block (13-bit error words).
     pub fn new() -> Self {
         Self::default()
+    }
+
+    /// The sub-pixel address block (20-bit error words).
+    pub fn subpixel() -> Self {
+        AddressBlockModel {
+            subpixel: true,
+            ..Self::default()
+        }
+    }
+
+    fn err_bits(&self) -> u32 {
+        if self.subpixel {
+            SUBPIXEL_ERR_BITS
+        } else {
+            ERR_BITS
+        }
     }
 
     /// `ready` in the current clock.
@@ -388,7 +480,7 @@ impl AddressBlockModel {
                 };
                 self.w.advance();
                 if (self.e_y + 1) & 0xFFF == self.y_switch {
-                    self.o = Dda::load(&self.t);
+                    self.o = Dda::load(&self.t, self.err_bits());
                 } else {
                     self.o.advance();
                 }
@@ -414,8 +506,8 @@ impl AddressBlockModel {
             self.e_dir_neg = s.dir_neg;
             self.y_switch = s.y_switch;
             self.wait_first = true;
-            self.w = Dda::load(&s.w);
-            self.o = Dda::load(&s.a);
+            self.w = Dda::load(&s.w, self.err_bits());
+            self.o = Dda::load(&s.a, self.err_bits());
             self.t = s.t;
         }
     }
@@ -426,7 +518,14 @@ impl AddressBlockModel {
 /// (cycle 0) to the clock showing the last triangle's `done`, inclusive, and the cycle at which
 /// each triangle was loaded.
 pub fn run(setups: &[AddressSetup]) -> (Vec<AddressOutputs>, Vec<usize>) {
-    let mut m = AddressBlockModel::new();
+    run_model(AddressBlockModel::new(), setups)
+}
+
+/// [`run`] on a given build of the block (integer or [`AddressBlockModel::subpixel`]).
+pub fn run_model(
+    mut m: AddressBlockModel,
+    setups: &[AddressSetup],
+) -> (Vec<AddressOutputs>, Vec<usize>) {
     let mut out = Vec::new();
     let mut loads = Vec::with_capacity(setups.len());
     let mut next = 0;

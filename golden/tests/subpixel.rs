@@ -1,0 +1,243 @@
+//! Sub-pixel vertices (SPEC §5, issue 38 item 1): the walk, the address block's set-up and its
+//! cycle model on triangles whose vertices carry `SUBPIXEL_BITS` fractional bits, against a
+//! reference written here in f64 from the fill convention alone (no code shared with
+//! `golden::raster`), on 10 000 seeded triangles with slivers and one-pixel triangles, and
+//! watertightness on shared edges.
+
+use std::collections::{HashMap, HashSet};
+
+use golden::raster::{edge_function_pixels_of, walk_subpixel};
+use golden::seed::seed_for;
+use golden::units::address_block::{run_model, stream_pixels, AddressBlockModel, AddressSetup};
+use golden::{ScreenTriangle, ScreenVertex, SubpixelTriangle, SUBPIXEL_BITS};
+
+const F: u32 = SUBPIXEL_BITS;
+const ONE: i32 = 1 << F;
+const MAX: i32 = 4095 * ONE;
+
+/// xorshift64*: seeded stimulus without a dependency.
+struct Rng(u64);
+impl Rng {
+    fn next(&mut self) -> u64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        self.0.wrapping_mul(0x2545_F491_4F6C_DD1D)
+    }
+    fn below(&mut self, n: i32) -> i32 {
+        (self.next() % n as u64) as i32
+    }
+    fn around(&mut self, c: i32, r: i32) -> i32 {
+        (c + self.below(2 * r + 1) - r).clamp(0, MAX)
+    }
+}
+
+/// The f64 reference: pixel (x, y) is covered when its centre (x + ½, y + ½) passes the three
+/// edge functions, a centre on an edge counting only for a left edge (interior on +x) or a top
+/// edge (horizontal, interior below). Coordinates are dyadic with ≤ 16 significant bits, so
+/// every product here is exact in f64.
+fn reference(t: &SubpixelTriangle) -> HashSet<(i32, i32)> {
+    let s = 1.0 / (1u32 << t.frac) as f64;
+    let mut p: Vec<(f64, f64)> = t.v.iter().map(|&(x, y)| (x as f64 * s, y as f64 * s)).collect();
+    let area = (p[1].0 - p[0].0) * (p[2].1 - p[0].1) - (p[2].0 - p[0].0) * (p[1].1 - p[0].1);
+    if area == 0.0 {
+        return HashSet::new();
+    }
+    if area > 0.0 {
+        p.swap(1, 2); // counter-clockwise on a y-down screen: interior on +x of downward edges
+    }
+    let xs: Vec<f64> = p.iter().map(|q| q.0).collect();
+    let ys: Vec<f64> = p.iter().map(|q| q.1).collect();
+    let lo = |v: &[f64]| v.iter().cloned().fold(f64::MAX, f64::min).floor() as i32 - 1;
+    let hi = |v: &[f64]| v.iter().cloned().fold(f64::MIN, f64::max).ceil() as i32 + 1;
+    let mut out = HashSet::new();
+    for y in lo(&ys)..=hi(&ys) {
+        for x in lo(&xs)..=hi(&xs) {
+            let (cx, cy) = (x as f64 + 0.5, y as f64 + 0.5);
+            let inside = (0..3).all(|i| {
+                let (a, b) = (p[i], p[(i + 1) % 3]);
+                let e = (cx - a.0) * (b.1 - a.1) - (cy - a.1) * (b.0 - a.0);
+                let left_or_top = b.1 > a.1 || (b.1 == a.1 && b.0 < a.0);
+                e > 0.0 || (e == 0.0 && left_or_top)
+            });
+            if inside {
+                out.insert((x, y));
+            }
+        }
+    }
+    out
+}
+
+/// Seeded triangles of every shape: general, slivers, one-pixel and sub-pixel ones, and
+/// vertices on pixel centres and on horizontal lines through them (where the rule's "top"
+/// half decides).
+fn triangles(n: usize, name: &str) -> Vec<SubpixelTriangle> {
+    let mut rng = Rng(seed_for(name) | 1);
+    let mut out = Vec::with_capacity(n);
+    for i in 0..n {
+        let c = (rng.below(MAX + 1), rng.below(MAX + 1));
+        let r = match i % 5 {
+            0 => 40 * ONE,
+            1 => 3 * ONE,
+            2 => ONE,
+            3 => ONE / 2,
+            _ => 300 * ONE,
+        };
+        let mut v = [(0, 0); 3];
+        for p in v.iter_mut() {
+            *p = (rng.around(c.0, r), rng.around(c.1, r));
+        }
+        match i % 7 {
+            // A sliver: the third vertex close to the line through the first two.
+            0 => {
+                let k = rng.below(ONE + 1);
+                v[2] = (
+                    (v[0].0 + (v[1].0 - v[0].0) * k / ONE + rng.below(3) - 1).clamp(0, MAX),
+                    (v[0].1 + (v[1].1 - v[0].1) * k / ONE + rng.below(3) - 1).clamp(0, MAX),
+                );
+            }
+            // Vertices on pixel centres.
+            1 => {
+                for p in v.iter_mut() {
+                    *p = ((p.0 & !(ONE - 1)) + ONE / 2, (p.1 & !(ONE - 1)) + ONE / 2);
+                    *p = (p.0.min(MAX), p.1.min(MAX));
+                }
+            }
+            // A horizontal edge through a row of centres.
+            2 => {
+                let y = (v[0].1 & !(ONE - 1)) + ONE / 2;
+                v[0].1 = y.min(MAX);
+                v[1].1 = y.min(MAX);
+            }
+            _ => {}
+        }
+        out.push(SubpixelTriangle { v, frac: F });
+    }
+    out
+}
+
+#[test]
+fn subpixel_walks_equal_the_f64_reference_on_10000_triangles() {
+    let tris = triangles(10_000, "subpixel-walk");
+    let (mut covered, mut empty) = (0usize, 0usize);
+    for t in &tris {
+        let want = reference(t);
+        let walk = walk_subpixel(t);
+        let got: Vec<(i32, i32)> = walk.pixels().iter().map(|p| (p.x, p.y)).collect();
+        let set: HashSet<(i32, i32)> = got.iter().cloned().collect();
+        assert_eq!(set.len(), got.len(), "{t:?}: a pixel twice");
+        assert_eq!(set, want, "{t:?}: walk against the f64 reference");
+        let ef: HashSet<(i32, i32)> = edge_function_pixels_of(t).into_iter().collect();
+        assert_eq!(ef, want, "{t:?}: integer edge functions against the f64 reference");
+        covered += got.len();
+        empty += got.is_empty() as usize;
+    }
+    // The stimulus reaches both kinds.
+    assert!(covered > 100_000 && empty > 500, "{covered} pixels, {empty} empty");
+}
+
+#[test]
+fn subpixel_setups_drive_the_block_model_through_the_walk() {
+    let tris = triangles(2_000, "subpixel-model");
+    let setups: Vec<AddressSetup> = tris.iter().map(AddressSetup::subpixel).collect();
+    let (out, _) = run_model(AddressBlockModel::subpixel(), &setups);
+    let want: Vec<(i32, i32)> = tris
+        .iter()
+        .flat_map(|t| walk_subpixel(t).pixels().into_iter().map(|p| (p.x, p.y)))
+        .collect();
+    let got: Vec<(i32, i32)> = stream_pixels(&out).iter().map(|p| (p.x, p.y)).collect();
+    assert_eq!(got, want);
+    // The words fit the sub-pixel block's 20-bit error ports, and some need more than 13.
+    let words = setups.iter().flat_map(|s| [s.w, s.a, s.t]).flat_map(|e| [e.e0, e.r, e.d]);
+    let widest = words.max().unwrap();
+    assert!(widest < 1 << 20 && widest >= 1 << 13, "widest error word {widest}");
+}
+
+#[test]
+fn integer_vertices_give_the_integer_setup() {
+    let mut rng = Rng(seed_for("subpixel-integer") | 1);
+    for _ in 0..5_000 {
+        let c = (rng.below(4096), rng.below(4096));
+        let r = [2, 20, 400][rng.below(3) as usize];
+        let v: [(i32, i32); 3] = std::array::from_fn(|_| {
+            let x = (c.0 + rng.below(2 * r + 1) - r).clamp(0, 4095);
+            let y = (c.1 + rng.below(2 * r + 1) - r).clamp(0, 4095);
+            (x, y)
+        });
+        let t = ScreenTriangle {
+            v: v.map(|(x, y)| ScreenVertex {
+                x,
+                y,
+                z: 0.0,
+                normal: glam::DVec3::Z,
+            }),
+        };
+        let s = SubpixelTriangle::integer(&t);
+        assert_eq!(AddressSetup::subpixel(&s), AddressSetup::new(&t), "{v:?}");
+        // The same triangle at F fractional bits covers the same pixels.
+        let fine = SubpixelTriangle {
+            v: v.map(|(x, y)| (x * ONE, y * ONE)),
+            frac: F,
+        };
+        let a: Vec<_> = walk_subpixel(&fine).pixels().iter().map(|p| (p.x, p.y)).collect();
+        let b: Vec<_> = walk_subpixel(&s).pixels().iter().map(|p| (p.x, p.y)).collect();
+        assert_eq!(a, b, "{v:?}");
+    }
+}
+
+/// Fans of triangles around shared sub-pixel points: every pixel of the fan's hull is covered
+/// exactly once (shared edges neither twice nor never).
+#[test]
+fn shared_subpixel_edges_are_covered_exactly_once() {
+    let mut rng = Rng(seed_for("subpixel-fans") | 1);
+    for _ in 0..300 {
+        let centre = (rng.around(2048 * ONE, 2000 * ONE), rng.around(2048 * ONE, 2000 * ONE));
+        let r = [ONE, 4 * ONE, 30 * ONE][rng.below(3) as usize];
+        // A convex polygon around the centre, by angle, each vertex off the grid.
+        let n = 3 + rng.below(6) as usize;
+        let mut ring: Vec<(i32, i32)> = (0..n)
+            .map(|k| {
+                let a = (k as f64 + 0.3 * (rng.below(100) as f64 / 100.0)) * std::f64::consts::TAU
+                    / n as f64;
+                let d = r as f64 * (0.6 + 0.4 * rng.below(100) as f64 / 100.0);
+                (
+                    (centre.0 as f64 + d * a.cos()).round() as i32,
+                    (centre.1 as f64 + d * a.sin()).round() as i32,
+                )
+            })
+            .collect();
+        ring.dedup();
+        let mut count: HashMap<(i32, i32), u32> = HashMap::new();
+        for k in 0..ring.len() {
+            let t = SubpixelTriangle {
+                v: [centre, ring[k], ring[(k + 1) % ring.len()]],
+                frac: F,
+            };
+            for p in walk_subpixel(&t).pixels() {
+                *count.entry((p.x, p.y)).or_default() += 1;
+            }
+        }
+        assert!(count.values().all(|&c| c == 1), "a pixel twice in the fan {centre:?} {ring:?}");
+        // Nothing missing: every centre strictly inside the ring (away from its outer edges)
+        // is covered.
+        for y in (centre.1 - r) / ONE..=(centre.1 + r) / ONE {
+            for x in (centre.0 - r) / ONE..=(centre.0 + r) / ONE {
+                let c = (x * ONE + ONE / 2, y * ONE + ONE / 2);
+                let inside = (0..ring.len()).all(|k| {
+                    let (a, b) = (ring[k], ring[(k + 1) % ring.len()]);
+                    let e = (c.0 - a.0) as i64 * (b.1 - a.1) as i64
+                        - (c.1 - a.1) as i64 * (b.0 - a.0) as i64;
+                    e < 0 // the ring runs clockwise on a y-down screen... either way, see below
+                }) || (0..ring.len()).all(|k| {
+                    let (a, b) = (ring[k], ring[(k + 1) % ring.len()]);
+                    let e = (c.0 - a.0) as i64 * (b.1 - a.1) as i64
+                        - (c.1 - a.1) as i64 * (b.0 - a.0) as i64;
+                    e > 0
+                });
+                if inside {
+                    assert!(count.contains_key(&(x, y)), "hole at {:?} in fan {centre:?} {ring:?}", (x, y));
+                }
+            }
+        }
+    }
+}
