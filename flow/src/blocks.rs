@@ -26,6 +26,7 @@ macro_rules! with_blocks {
             rtl::units::k_recurrence::KRecurrence,
             rtl::units::k_recurrence::SpanNormalizer,
             rtl::units::address_block::AddressBlock,
+            rtl::units::address_block::SubpixelAddressBlock,
             rtl::units::intensity_interpolator::IntensityInterpolator,
             rtl::pipelines::gouraud_raster::GouraudRaster,
             rtl::stream::gouraud_stream::GouraudStream,

@@ -132,7 +132,11 @@ impl EdgeDda {
     /// `units::address_block`): (e, pix·dx, pix·dy) divided by the vertex scale `g.k`.
     pub fn words(&self, g: Grid) -> (i64, i64, i64) {
         debug_assert_eq!(self.e % g.k, 0);
-        (self.e / g.k, self.pix * self.dx / g.k, self.pix * self.dy / g.k)
+        (
+            self.e / g.k,
+            self.pix * self.dx / g.k,
+            self.pix * self.dy / g.k,
+        )
     }
 
     /// Smallest x whose centre is on or right of the edge on the current line.

@@ -38,7 +38,10 @@ impl Rng {
 /// every product here is exact in f64.
 fn reference(t: &SubpixelTriangle) -> HashSet<(i32, i32)> {
     let s = 1.0 / (1u32 << t.frac) as f64;
-    let mut p: Vec<(f64, f64)> = t.v.iter().map(|&(x, y)| (x as f64 * s, y as f64 * s)).collect();
+    let mut p: Vec<(f64, f64)> =
+        t.v.iter()
+            .map(|&(x, y)| (x as f64 * s, y as f64 * s))
+            .collect();
     let area = (p[1].0 - p[0].0) * (p[2].1 - p[0].1) - (p[2].0 - p[0].0) * (p[1].1 - p[0].1);
     if area == 0.0 {
         return HashSet::new();
@@ -128,12 +131,18 @@ fn subpixel_walks_equal_the_f64_reference_on_10000_triangles() {
         assert_eq!(set.len(), got.len(), "{t:?}: a pixel twice");
         assert_eq!(set, want, "{t:?}: walk against the f64 reference");
         let ef: HashSet<(i32, i32)> = edge_function_pixels_of(t).into_iter().collect();
-        assert_eq!(ef, want, "{t:?}: integer edge functions against the f64 reference");
+        assert_eq!(
+            ef, want,
+            "{t:?}: integer edge functions against the f64 reference"
+        );
         covered += got.len();
         empty += got.is_empty() as usize;
     }
     // The stimulus reaches both kinds.
-    assert!(covered > 100_000 && empty > 500, "{covered} pixels, {empty} empty");
+    assert!(
+        covered > 100_000 && empty > 500,
+        "{covered} pixels, {empty} empty"
+    );
 }
 
 #[test]
@@ -148,9 +157,15 @@ fn subpixel_setups_drive_the_block_model_through_the_walk() {
     let got: Vec<(i32, i32)> = stream_pixels(&out).iter().map(|p| (p.x, p.y)).collect();
     assert_eq!(got, want);
     // The words fit the sub-pixel block's 20-bit error ports, and some need more than 13.
-    let words = setups.iter().flat_map(|s| [s.w, s.a, s.t]).flat_map(|e| [e.e0, e.r, e.d]);
+    let words = setups
+        .iter()
+        .flat_map(|s| [s.w, s.a, s.t])
+        .flat_map(|e| [e.e0, e.r, e.d]);
     let widest = words.max().unwrap();
-    assert!(widest < 1 << 20 && widest >= 1 << 13, "widest error word {widest}");
+    assert!(
+        widest < 1 << 20 && widest >= 1 << 13,
+        "widest error word {widest}"
+    );
 }
 
 #[test]
@@ -179,8 +194,16 @@ fn integer_vertices_give_the_integer_setup() {
             v: v.map(|(x, y)| (x * ONE, y * ONE)),
             frac: F,
         };
-        let a: Vec<_> = walk_subpixel(&fine).pixels().iter().map(|p| (p.x, p.y)).collect();
-        let b: Vec<_> = walk_subpixel(&s).pixels().iter().map(|p| (p.x, p.y)).collect();
+        let a: Vec<_> = walk_subpixel(&fine)
+            .pixels()
+            .iter()
+            .map(|p| (p.x, p.y))
+            .collect();
+        let b: Vec<_> = walk_subpixel(&s)
+            .pixels()
+            .iter()
+            .map(|p| (p.x, p.y))
+            .collect();
         assert_eq!(a, b, "{v:?}");
     }
 }
@@ -191,7 +214,10 @@ fn integer_vertices_give_the_integer_setup() {
 fn shared_subpixel_edges_are_covered_exactly_once() {
     let mut rng = Rng(seed_for("subpixel-fans") | 1);
     for _ in 0..300 {
-        let centre = (rng.around(2048 * ONE, 2000 * ONE), rng.around(2048 * ONE, 2000 * ONE));
+        let centre = (
+            rng.around(2048 * ONE, 2000 * ONE),
+            rng.around(2048 * ONE, 2000 * ONE),
+        );
         let r = [ONE, 4 * ONE, 30 * ONE][rng.below(3) as usize];
         // A convex polygon around the centre, by angle, each vertex off the grid.
         let n = 3 + rng.below(6) as usize;
@@ -217,7 +243,10 @@ fn shared_subpixel_edges_are_covered_exactly_once() {
                 *count.entry((p.x, p.y)).or_default() += 1;
             }
         }
-        assert!(count.values().all(|&c| c == 1), "a pixel twice in the fan {centre:?} {ring:?}");
+        assert!(
+            count.values().all(|&c| c == 1),
+            "a pixel twice in the fan {centre:?} {ring:?}"
+        );
         // Nothing missing: every centre strictly inside the ring (away from its outer edges)
         // is covered.
         for y in (centre.1 - r) / ONE..=(centre.1 + r) / ONE {
@@ -235,7 +264,11 @@ fn shared_subpixel_edges_are_covered_exactly_once() {
                     e > 0
                 });
                 if inside {
-                    assert!(count.contains_key(&(x, y)), "hole at {:?} in fan {centre:?} {ring:?}", (x, y));
+                    assert!(
+                        count.contains_key(&(x, y)),
+                        "hole at {:?} in fan {centre:?} {ring:?}",
+                        (x, y)
+                    );
                 }
             }
         }

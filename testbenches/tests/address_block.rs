@@ -233,3 +233,64 @@ fn held_address_block_emits_the_same_events_with_gaps() {
         stalls.stalled
     );
 }
+
+// ---------------------------------------------------------------------------------------------
+// Sub-pixel vertices (`address-block-subpixel`).
+
+/// The sub-pixel block on seeded triangles with 4 fraction bits (and the named cases of
+/// `subpixel_triangles`): every port every clock against the model, the pixel stream against
+/// the sub-pixel walk, and each pixel set against the edge-function reference; and the events
+/// per clock of the same triangles' integer walk (vertices rounded to whole pixels) through
+/// `address-block`, for the fragments-per-clock comparison.
+#[test]
+fn subpixel_triangles_match_model_walk_and_reference() {
+    use golden::raster::{edge_function_pixels_of, walk_subpixel};
+    use golden::SUBPIXEL_BITS;
+    use testbenches::units::address_block::{check_subpixel, subpixel_triangles};
+    let name = "address_block_subpixel";
+    let seed = seed_for(name);
+    let tris = subpixel_triangles(seed, 300);
+    let setups: Vec<AddressSetup> = tris.iter().map(AddressSetup::subpixel).collect();
+    let (_, out) = check_subpixel(name, seed, &setups).unwrap_or_else(|f| panic!("{f}"));
+    let mut segs = out.split_inclusive(|o| o.done);
+    let mut pixels = 0;
+    for t in &tris {
+        let seg = segs.next().unwrap_or_else(|| panic!("no `done` for {t:?}"));
+        let got = stream_pixels(seg);
+        assert_eq!(
+            got,
+            walk_subpixel(t).pixels(),
+            "{t:?}: stream against the walk"
+        );
+        let set: HashSet<(i32, i32)> = got.iter().map(|p| (p.x, p.y)).collect();
+        let reference: HashSet<(i32, i32)> = edge_function_pixels_of(t).into_iter().collect();
+        assert_eq!(set.len(), got.len(), "{t:?}: an address twice");
+        assert_eq!(set, reference, "{t:?}: against the edge-function reference");
+        pixels += got.len();
+    }
+    assert!(segs.next().is_none(), "more `done` events than triangles");
+    // The integer block on the same triangles with vertices rounded to whole pixels.
+    let half = 1 << (SUBPIXEL_BITS - 1);
+    let rounded: Vec<AddressSetup> = tris
+        .iter()
+        .map(|t| {
+            AddressSetup::new(&tri(t
+                .v
+                .map(|(x, y)| ((x + half) >> SUBPIXEL_BITS, (y + half) >> SUBPIXEL_BITS))))
+        })
+        .collect();
+    let (_, int_out) = check_rtl(name, seed, &rounded).unwrap_or_else(|f| panic!("{f}"));
+    let int_pixels = int_out.iter().filter(|o| o.valid).count();
+    // An event is a pixel or an empty row's one clock: the walk's work, one per clock at most.
+    let events = |o: &[AddressOutputs]| o.iter().filter(|o| o.valid || o.row_start).count();
+    let (ev, int_ev) = (events(&out), events(&int_out));
+    assert!(ev <= out.len() && int_ev <= int_out.len());
+    println!(
+        "[{name}] sub-pixel: {pixels} pixels, {ev} events in {} clocks ({:.3} events per clock); \
+         integer (vertices rounded): {int_pixels} pixels, {int_ev} events in {} clocks ({:.3})",
+        out.len(),
+        ev as f64 / out.len() as f64,
+        int_out.len(),
+        int_ev as f64 / int_out.len() as f64
+    );
+}

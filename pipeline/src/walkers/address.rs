@@ -64,8 +64,17 @@ pub fn stimulus(setups: &[AddressSetup]) -> ModelRun {
 }
 
 /// [`stimulus`] with `hold(clock)` driving the stall input in every clock.
-pub fn stimulus_held(setups: &[AddressSetup], mut hold: impl FnMut(usize) -> bool) -> ModelRun {
-    let mut m = AddressBlockModel::new();
+pub fn stimulus_held(setups: &[AddressSetup], hold: impl FnMut(usize) -> bool) -> ModelRun {
+    stimulus_held_on(AddressBlockModel::new(), setups, hold)
+}
+
+/// [`stimulus_held`] on a given build of the model (integer or
+/// [`AddressBlockModel::subpixel`]).
+pub fn stimulus_held_on(
+    mut m: AddressBlockModel,
+    setups: &[AddressSetup],
+    mut hold: impl FnMut(usize) -> bool,
+) -> ModelRun {
     let mut st = ModelRun {
         rows: Vec::new(),
         expected: Vec::new(),

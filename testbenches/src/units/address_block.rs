@@ -11,7 +11,7 @@ use crate::harness::{CheckSpec, Compare, Expected, Failure, Report};
 use crate::registry::{self, Bench, Twin};
 use golden::raster::walk;
 use golden::testing::seeded_runner;
-use golden::types::{Plane, ScreenTriangle};
+use golden::types::{Plane, ScreenTriangle, SubpixelTriangle, SUBPIXEL_BITS};
 use golden::units::address_block::{AddressBlockModel, AddressOutputs, AddressSetup};
 use golden::units::intensity_interpolator::{additions, interpolate};
 use pipeline::gouraud::{row_setup, TriangleJob};
@@ -19,7 +19,7 @@ pub use pipeline::walkers::address::*;
 use proptest::prelude::*;
 use proptest::strategy::ValueTree;
 use rtl::core::registry::NoParams;
-use rtl::units::address_block::AddressBlock;
+use rtl::units::address_block::{AddressBlock, SubpixelAddressBlock};
 
 /// Run the RTL on the model's stimulus and compare every output port every clock, exactly.
 /// Returns the harness report and the RTL's outputs per clock.
@@ -28,7 +28,39 @@ pub fn check(
     seed: u64,
     setups: &[AddressSetup],
 ) -> Result<(Report, Vec<AddressOutputs>), Box<Failure>> {
-    let st = stimulus(setups);
+    check_on(
+        AddressBlock::default,
+        AddressBlockModel::new(),
+        name,
+        seed,
+        setups,
+    )
+}
+
+/// [`check`] for the sub-pixel build (`address-block-subpixel`, set-ups from
+/// [`AddressSetup::subpixel`]).
+pub fn check_subpixel(
+    name: &str,
+    seed: u64,
+    setups: &[AddressSetup],
+) -> Result<(Report, Vec<AddressOutputs>), Box<Failure>> {
+    check_on(
+        SubpixelAddressBlock::default,
+        AddressBlockModel::subpixel(),
+        name,
+        seed,
+        setups,
+    )
+}
+
+fn check_on<B: rtl::core::sim::Dut>(
+    build: fn() -> B,
+    model: AddressBlockModel,
+    name: &str,
+    seed: u64,
+    setups: &[AddressSetup],
+) -> Result<(Report, Vec<AddressOutputs>), Box<Failure>> {
+    let st = stimulus_held_on(model, setups, |_| false);
     let spec = CheckSpec {
         name: name.into(),
         seed,
@@ -39,8 +71,7 @@ pub fn check(
         .iter()
         .map(|o| outputs_row(o).into_iter().map(Expected::Word).collect())
         .collect();
-    let report = crate::harness::run_rows(AddressBlock::default, &spec, &st.rows, &expected)
-        .map_err(Box::new)?;
+    let report = crate::harness::run_rows(build, &spec, &st.rows, &expected).map_err(Box::new)?;
     let outs = report.outputs.iter().map(|r| row_outputs(r)).collect();
     Ok((report, outs))
 }
@@ -172,5 +203,90 @@ impl Bench for AddressBlock {
     }
     fn twin(_: &NoParams) -> Box<dyn Twin> {
         Box::new(AddressRows(AddressBlockModel::new()))
+    }
+}
+
+/// Seeded triangles with `SUBPIXEL_BITS` fractional bits, after the named edge cases: the
+/// largest D (an edge spanning all 4095 rows), vertices on pixel centres, a horizontal edge
+/// through a row of centres, one-pixel and sub-pixel triangles, a sliver.
+pub fn subpixel_triangles(seed: u64, n: usize) -> Vec<SubpixelTriangle> {
+    const ONE: i32 = 1 << SUBPIXEL_BITS;
+    const MAX: i32 = 4095 * ONE;
+    let named: [[(i32, i32); 3]; 6] = [
+        [(0, 0), (2 * ONE, MAX), (0, MAX)],
+        [(3, 5), (ONE + 7, MAX), (9, MAX - 3)],
+        [
+            (ONE / 2, ONE / 2),
+            (8 * ONE + ONE / 2, ONE / 2),
+            (4 * ONE + ONE / 2, 6 * ONE + ONE / 2),
+        ],
+        [
+            (100 * ONE + 3, 50 * ONE + ONE / 2),
+            (90 * ONE + 11, 50 * ONE + ONE / 2),
+            (95 * ONE, 40 * ONE + 1),
+        ],
+        [
+            (7 * ONE + 1, 7 * ONE + 1),
+            (8 * ONE + 2, 7 * ONE + 9),
+            (7 * ONE + 3, 8 * ONE + 15),
+        ],
+        [
+            (5, 7),
+            (3000 * ONE + 9, 2000 * ONE + 3),
+            (3000 * ONE + 11, 2000 * ONE + 5),
+        ],
+    ];
+    let mut r = seeded_runner(seed);
+    let pt = |max: i32| (0..=max, 0..=max);
+    let st = prop_oneof![
+        // General, up to 40 pixels across, anywhere.
+        4 => (pt(MAX - 40 * ONE), [pt(40 * ONE), pt(40 * ONE), pt(40 * ONE)])
+            .prop_map(|(o, v)| v.map(|p| (o.0 + p.0, o.1 + p.1))),
+        // Up to two pixels across: one pixel or none.
+        2 => (pt(MAX - 2 * ONE), [pt(2 * ONE), pt(2 * ONE), pt(2 * ONE)])
+            .prop_map(|(o, v)| v.map(|p| (o.0 + p.0, o.1 + p.1))),
+        // Long slivers over the whole range.
+        1 => (pt(MAX), pt(MAX), -ONE..=ONE, -ONE..=ONE).prop_map(|(a, b, ox, oy)| {
+            [a, b, ((b.0 + ox).clamp(0, MAX), (b.1 + oy).clamp(0, MAX))]
+        }),
+    ];
+    let mut out: Vec<SubpixelTriangle> = named
+        .iter()
+        .map(|&v| SubpixelTriangle {
+            v,
+            frac: SUBPIXEL_BITS,
+        })
+        .collect();
+    for _ in 0..n {
+        let v = st.new_tree(&mut r).expect("no rejection").current();
+        out.push(SubpixelTriangle {
+            v,
+            frac: SUBPIXEL_BITS,
+        });
+    }
+    out
+}
+
+impl Bench for SubpixelAddressBlock {
+    const ITEMS: &'static str = "triangles";
+    const DEFAULT_ITEMS: usize = 20;
+    fn stimulus(_: &NoParams, n: usize, seed: u64) -> registry::Stimulus {
+        let setups: Vec<AddressSetup> = subpixel_triangles(seed, n)
+            .iter()
+            .map(AddressSetup::subpixel)
+            .collect();
+        let mut stalls = crate::stall::StallPattern::new(seed, 0.25);
+        let st = stimulus_held_on(AddressBlockModel::subpixel(), &setups, |_| {
+            stalls.next_stalled()
+        });
+        let expected = st
+            .expected
+            .iter()
+            .map(|o| outputs_row(o).into_iter().map(Expected::Word).collect())
+            .collect();
+        triangle_run((st.rows, expected, vec![Compare::Exact; 9]))
+    }
+    fn twin(_: &NoParams) -> Box<dyn Twin> {
+        Box::new(AddressRows(AddressBlockModel::subpixel()))
     }
 }
