@@ -22,6 +22,15 @@
 //! or right of the edge. Its magnitude stays below 2·8190² < 2³¹ for 12-bit vertices; it is kept
 //! in `i64` anyway so intermediate sums never need a width argument.
 //!
+//! # Sub-pixel vertices
+//!
+//! [`walk_subpixel`] and [`edge_function_pixels_of`] take a [`SubpixelTriangle`], whose
+//! coordinates have `frac` fractional bits, in the units of a [`Grid`] (one pixel 2^max(frac, 1)
+//! units, every centre an integer). The convention is the same; a centre can now lie on a
+//! horizontal edge or on a vertex, and the top-left rule's "top" half applies: a centre on a
+//! horizontal edge belongs to the triangle below it, and the rows of a walk are those whose
+//! centres lie in [top.y, bottom.y). The integer functions are the case frac = 0.
+//!
 //! Each edge is tracked by a Bresenham-style DDA ([`EdgeDda`]): `c` is the smallest x whose
 //! centre is on or right of the edge on the current row, `e = F(c)` its error term, kept in
 //! `0..2·ΔY` (ΔY doubled). One row down subtracts `2·ΔX` from `e`; each correction of `e` by
