@@ -47,7 +47,7 @@ fn large_triangles(n: usize) -> Vec<ScreenTriangle> {
             normal: glam::DVec3::new(rnd(100) as f64 - 50.0, rnd(100) as f64 - 50.0, 100.0)
                 .normalize(),
         });
-        let t = ScreenTriangle { v };
+        let t = ScreenTriangle { v, frac: 0 };
         if walk(&t).pixel_count() >= 1000 {
             out.push(t);
         }

@@ -62,6 +62,24 @@ pub struct SceneArgs {
     /// reference is always the undivided mesh.
     #[arg(long, default_value = "0")]
     pub subdivide: golden::shading::refine::Subdivide,
+    /// Fraction bits of the projected vertex coordinates: 0 (integer 12-bit addresses, the
+    /// default) or 4 (1/16 pixel: the walks, set-ups and `--subdivide` midpoints on the finer
+    /// grid, for the reference and every method; the RTL engine renders the span methods and
+    /// subdivision with them, the other tops have the integer address block).
+    #[arg(long, default_value_t = 0, value_parser = parse_subpixel)]
+    pub subpixel: u32,
+}
+
+/// Parse `--subpixel`: 0 or [`golden::SUBPIXEL_BITS`].
+pub(crate) fn parse_subpixel(s: &str) -> Result<u32, String> {
+    match s.trim().parse::<u32>() {
+        Ok(0) => Ok(0),
+        Ok(n) if n == golden::SUBPIXEL_BITS => Ok(n),
+        _ => Err(format!(
+            "subpixel {s:?}: expected 0 (integer vertices) or {} (the address block's fraction bits)",
+            golden::SUBPIXEL_BITS
+        )),
+    }
 }
 
 impl Default for SceneArgs {
@@ -74,6 +92,7 @@ impl Default for SceneArgs {
             size: (400, 400),
             lighting: Lighting::Blinn,
             subdivide: golden::shading::refine::Subdivide::OFF,
+            subpixel: 0,
         }
     }
 }
@@ -150,6 +169,9 @@ impl SceneArgs {
         let sub = match self.subdivide {
             golden::shading::refine::Subdivide::Levels(0) => String::new(),
             s => format!(" subdivide {s}"),
+        } + &match self.subpixel {
+            0 => String::new(),
+            f => format!(" subpixel {f}"),
         };
         if self.is_obj() {
             format!("scene {}{sub}", self.scene.display())
@@ -189,7 +211,7 @@ pub fn build(args: &SceneArgs) -> Result<Setup> {
         ),
     };
     let camera = Camera::fit(&mesh, width, height, rotation);
-    let base = scene::project(&mesh, &camera, width, height)
+    let base = scene::project_subpixel(&mesh, &camera, width, height, args.subpixel)
         .with_context(|| format!("projecting scene {:?}", args.scene))?;
     let tris = golden::shading::refine::refine(&base, args.subdivide);
     let light = scene::light_direction(args.light_deg)?;

@@ -226,7 +226,7 @@ pub struct Orientation {
 
 /// Sort by (y, x) and find the working edge's side; `None` for a zero-area triangle.
 pub fn orientation(tri: &ScreenTriangle) -> Option<Orientation> {
-    orientation_of(&SubpixelTriangle::integer(tri))
+    orientation_of(&SubpixelTriangle::of(tri))
 }
 
 /// [`orientation`] of a triangle with sub-pixel vertices (the points stay in its units).
@@ -267,7 +267,7 @@ pub fn walk_rows(tri: &SubpixelTriangle, o: &Orientation) -> (i64, i64, i64) {
 /// middle→bottom) are each tracked by an [`EdgeDda`]; a row's length is the distance between
 /// the two boundaries. Zero-area triangles give an empty walk.
 pub fn walk(tri: &ScreenTriangle) -> Walk {
-    walk_subpixel(&SubpixelTriangle::integer(tri))
+    walk_subpixel(&SubpixelTriangle::of(tri))
 }
 
 /// [`walk`] of a triangle with sub-pixel vertices: the rows whose centres lie in
@@ -332,7 +332,7 @@ pub fn walk_subpixel(tri: &SubpixelTriangle) -> Walk {
 /// Reference rasterizer: every pixel of the bounding box whose centre passes the three edge
 /// functions under the fill convention of this module, in row-major order (y, then x).
 pub fn edge_function_pixels(tri: &ScreenTriangle) -> Vec<(i32, i32)> {
-    edge_function_pixels_of(&SubpixelTriangle::integer(tri))
+    edge_function_pixels_of(&SubpixelTriangle::of(tri))
 }
 
 /// [`edge_function_pixels`] of a triangle with sub-pixel vertices, under the full top-left

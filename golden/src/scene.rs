@@ -22,7 +22,7 @@ pub use obj::{
     load_obj, load_obj_counting, read_regular_file, BYTES_PER_TRIANGLE, BYTES_PER_VERTEX,
     MAX_COORDINATE, MAX_OBJ_BYTES, MAX_TRIANGLES, MAX_VERTICES, MEMORY_BUDGET_BYTES, MIN_EXTENT,
 };
-pub use projection::{light_direction, project, LIGHT_ELEVATION_DEG, MAX_CANVAS};
+pub use projection::{light_direction, project, project_subpixel, LIGHT_ELEVATION_DEG, MAX_CANVAS};
 pub use snap::screen_addresses;
 
 /// Everything that can go wrong building or projecting a scene. Messages are one line.

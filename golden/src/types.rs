@@ -25,9 +25,15 @@ pub struct ScreenVertex {
 }
 
 /// A projected, front-facing triangle ready for rasterization.
+///
+/// Vertex coordinates are in units of 2^−`frac` pixel: `frac` = 0 (integer addresses, the
+/// default projection) or [`SUBPIXEL_BITS`] (`render --subpixel 4`). Every function that takes
+/// the triangle (planes, walks, set-ups) reads positions through [`ScreenTriangle::position`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ScreenTriangle {
     pub v: [ScreenVertex; 3],
+    /// Fraction bits of the vertex coordinates.
+    pub frac: u32,
 }
 
 /// Fraction bits of the sub-pixel vertex coordinates the address block is built for: its error
@@ -46,11 +52,11 @@ pub struct SubpixelTriangle {
 }
 
 impl SubpixelTriangle {
-    /// The integer-address triangle `tri` (frac = 0).
-    pub fn integer(tri: &ScreenTriangle) -> SubpixelTriangle {
+    /// The vertex addresses of `tri`, with its fraction bits.
+    pub fn of(tri: &ScreenTriangle) -> SubpixelTriangle {
         SubpixelTriangle {
             v: tri.v.map(|p| (p.x, p.y)),
-            frac: 0,
+            frac: tri.frac,
         }
     }
     /// Twice the signed area, in (2^−frac pixel)².
@@ -130,13 +136,43 @@ impl ScreenTriangle {
                 z: 0.0,
                 normal: glam::DVec3::Z,
             }),
+            frac: 0,
         }
     }
 
-    fn samples(&self, f: impl Fn(&ScreenVertex) -> f64) -> [(f64, f64, f64); 3] {
-        self.v.map(|v| (v.x as f64, v.y as f64, f(&v)))
+    /// One unit of the vertex coordinates, in pixels (2^−frac).
+    pub fn unit(&self) -> f64 {
+        1.0 / (1u64 << self.frac) as f64
     }
-    /// Twice the signed area (positive when the vertices run clockwise on screen, y down).
+    /// Vertex `i`'s screen position in pixels.
+    pub fn position(&self, i: usize) -> (f64, f64) {
+        let u = self.unit();
+        (self.v[i].x as f64 * u, self.v[i].y as f64 * u)
+    }
+    /// The triangle with its vertices rounded to whole pixels (ties up), for the blocks that
+    /// take integer vertices only.
+    pub fn rounded(&self) -> ScreenTriangle {
+        if self.frac == 0 {
+            return *self;
+        }
+        let half = 1 << (self.frac - 1);
+        let mut t = *self;
+        for v in t.v.iter_mut() {
+            v.x = (v.x + half) >> self.frac;
+            v.y = (v.y + half) >> self.frac;
+        }
+        t.frac = 0;
+        t
+    }
+
+    fn samples(&self, f: impl Fn(&ScreenVertex) -> f64) -> [(f64, f64, f64); 3] {
+        std::array::from_fn(|i| {
+            let (x, y) = self.position(i);
+            (x, y, f(&self.v[i]))
+        })
+    }
+    /// Twice the signed area in (2^−frac pixel)² (positive when the vertices run clockwise on
+    /// screen, y down).
     pub fn area2(&self) -> i64 {
         let [a, b, c] = self.v;
         (b.x - a.x) as i64 * (c.y - a.y) as i64 - (c.x - a.x) as i64 * (b.y - a.y) as i64

@@ -136,6 +136,7 @@ fn simple_triangle() -> ScreenTriangle {
             vertex(40, 20, DVec3::new(0.05, 0.30, 0.95)),
             vertex(15, 35, DVec3::new(-0.12, 0.22, 0.97)),
         ],
+        frac: 0,
     }
 }
 
@@ -181,6 +182,7 @@ fn triangles() -> impl Strategy<Value = ScreenTriangle> {
                 vertex(b.0, b.1, nb),
                 vertex(c.0, c.1, nc),
             ],
+            frac: 0,
         })
 }
 
@@ -466,6 +468,7 @@ fn flat_normal_triangle_agrees_with_the_reference() {
     let n = DVec3::new(0.3, 0.2, 0.93).normalize();
     let tri = ScreenTriangle {
         v: [vertex(3, 2, n), vertex(11, 6, n), vertex(5, 12, n)],
+        frac: 0,
     };
     for lighting in lightings() {
         let ctx = ShadeContext {
@@ -547,6 +550,7 @@ fn diagonal_increment_is_the_sum_of_horizontal_and_vertical() {
             vertex(90, 25, DVec3::new(0.05, 0.30, 0.95)),
             vertex(20, 20, DVec3::new(-0.12, 0.22, 0.97)),
         ],
+        frac: 0,
     };
     let mut steps = Vec::new();
     for tri in [steep, shallow] {

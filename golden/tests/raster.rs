@@ -21,6 +21,7 @@ fn tri(v: [V; 3]) -> ScreenTriangle {
             z: 0.0,
             normal: DVec3::Z,
         }),
+        frac: 0,
     }
 }
 

@@ -188,6 +188,7 @@ fn refined_vertices_keep_the_parents_normal_direction_and_depth() {
             let (p, q) = (ring[k], ring[(k + 1) % 8]);
             ScreenTriangle {
                 v: [c, v(p.0, p.1, depth(p), n(p)), v(q.0, q.1, depth(q), n(q))],
+                frac: 0,
             }
         })
         .collect();

@@ -186,8 +186,9 @@ fn integer_vertices_give_the_integer_setup() {
                 z: 0.0,
                 normal: glam::DVec3::Z,
             }),
+            frac: 0,
         };
-        let s = SubpixelTriangle::integer(&t);
+        let s = SubpixelTriangle::of(&t);
         assert_eq!(AddressSetup::subpixel(&s), AddressSetup::new(&t), "{v:?}");
         // The same triangle at F fractional bits covers the same pixels.
         let fine = SubpixelTriangle {

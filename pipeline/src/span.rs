@@ -183,7 +183,7 @@ pub fn check_span_budget(tris: &[ScreenTriangle]) -> Result<(), String> {
     let lines: u64 = tris
         .iter()
         .map(|t| {
-            let ys = t.v.map(|v| v.y as i64);
+            let ys = t.v.map(|v| (v.y >> t.frac) as i64);
             (ys.iter().max().unwrap() - ys.iter().min().unwrap() + 1) as u64
         })
         .sum();

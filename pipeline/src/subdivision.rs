@@ -36,9 +36,11 @@ pub struct SubJob {
 }
 
 impl SubJob {
-    /// Lane K interpolates `planes[K]` over sub-triangle K's walk.
+    /// Lane K interpolates `planes[K]` over sub-triangle K's walk. The four-triangle block
+    /// takes integer parents: a sub-pixel triangle is rounded to whole pixels first (as
+    /// `golden::shading::subdivision` does).
     pub fn new(tri: &ScreenTriangle, planes: &[[Plane; 3]; 4]) -> SubJob {
-        let addr = FourTriangleSetup::new(tri);
+        let addr = FourTriangleSetup::new(&tri.rounded());
         let words =
             std::array::from_fn(|k| gbvi::setup(&planes[k], &addr.lane(k)).map(|c| c.words()));
         SubJob { addr, words }
@@ -47,6 +49,7 @@ impl SubJob {
     /// Gouraud through the four-triangle block: every lane takes the parent's planes
     /// (`golden::shading::gouraud`); `None` for zero area.
     pub fn gouraud(tri: &ScreenTriangle, ctx: &ShadeContext) -> Option<SubJob> {
+        let tri = &tri.rounded();
         golden::shading::gouraud::setup(tri, ctx).map(|g| SubJob::new(tri, &[g.planes; LANES]))
     }
 

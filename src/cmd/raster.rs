@@ -150,6 +150,7 @@ pub fn parse_tri(s: &str) -> Result<ScreenTriangle> {
     };
     Ok(ScreenTriangle {
         v: [v(0), v(1), v(2)],
+        frac: 0,
     })
 }
 

@@ -380,9 +380,16 @@ fn render_frames(
                 crate::rtl_engine::check_rtl_method(m)?;
             }
         }
-        // `both`: the methods the hardware has (the others are golden only).
+        // `both`: the methods the hardware has (the others are golden only); with sub-pixel
+        // vertices, those whose top takes them.
         let hw = crate::rtl_engine::rtl_methods();
-        let idx: Vec<usize> = (0..n).filter(|&i| hw.contains(&methods[i])).collect();
+        let takes = |m: Method| {
+            pipeline::render::check_subpixel(&setup.tris, m, &build).is_ok()
+                || engine == Engine::Rtl
+        };
+        let idx: Vec<usize> = (0..n)
+            .filter(|&i| hw.contains(&methods[i]) && takes(methods[i]))
+            .collect();
         let ms: Vec<Method> = idx.iter().map(|&i| methods[i]).collect();
         crate::sim::prepare(build.sim, crate::rtl_engine::designs(&ms, build)?, &multi)?;
         for (i, f) in idx

@@ -39,6 +39,9 @@ pub struct Args {
     /// Adaptive subdivision before every method: 0, 1, 2 or auto (as `render --subdivide`).
     #[arg(long, default_value = "0")]
     pub subdivide: golden::shading::refine::Subdivide,
+    /// Fraction bits of the vertex coordinates: 0 or 4 (as `render --subpixel`).
+    #[arg(long, default_value_t = 0, value_parser = crate::setup::parse_subpixel)]
+    pub subpixel: u32,
 }
 
 pub fn run(args: Args) -> Result<()> {
@@ -63,6 +66,7 @@ pub fn run(args: Args) -> Result<()> {
                             size: args.size,
                             lighting: args.lighting,
                             subdivide: args.subdivide,
+                            subpixel: args.subpixel,
                         },
                         built_in,
                     ));

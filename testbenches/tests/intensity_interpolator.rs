@@ -212,7 +212,7 @@ fn tiled_region_written_exactly_once() {
                             z: 0.0,
                             normal: DVec3::new(x as f64, y as f64, 100.0).normalize(),
                         });
-                        tris.push(ScreenTriangle { v });
+                        tris.push(ScreenTriangle { v, frac: 0 });
                     }
                 }
             }

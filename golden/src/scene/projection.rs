@@ -45,6 +45,21 @@ pub fn project(
     width: u32,
     height: u32,
 ) -> Result<Vec<ScreenTriangle>, SceneError> {
+    project_subpixel(mesh, camera, width, height, 0)
+}
+
+/// [`project`] with vertex coordinates of `frac` fraction bits (0: integer addresses through
+/// the fold repair, as [`project`]; otherwise the continuous positions rounded to the nearest
+/// 2^−frac pixel, ties up, without a repair: a fold needs a triangle thinner than 2^−frac
+/// pixel, and the depth test resolves it). Culling and the range check are as in [`project`],
+/// on the rounded positions; the range is 0..=4095 pixels.
+pub fn project_subpixel(
+    mesh: &Mesh,
+    camera: &Camera,
+    width: u32,
+    height: u32,
+    frac: u32,
+) -> Result<Vec<ScreenTriangle>, SceneError> {
     if width == 0 || height == 0 {
         return Err(SceneError::CanvasEmpty { width, height });
     }
@@ -53,10 +68,18 @@ pub fn project(
     }
     mesh.validate()?;
     let screen: Vec<DVec3> = mesh.positions.iter().map(|&p| camera.screen(p)).collect();
-    let rounded: Vec<(f64, f64)> = screen_addresses(mesh, camera)
-        .iter()
-        .map(|a| (a.x, a.y))
-        .collect();
+    let one = (1u64 << frac) as f64;
+    let rounded: Vec<(f64, f64)> = if frac == 0 {
+        screen_addresses(mesh, camera)
+            .iter()
+            .map(|a| (a.x, a.y))
+            .collect()
+    } else {
+        screen
+            .iter()
+            .map(|p| ((p.x * one + 0.5).floor(), (p.y * one + 0.5).floor()))
+            .collect()
+    };
     let mut out = Vec::new();
     for (t, tri) in mesh.triangles.iter().enumerate() {
         let [a, b, c] = tri.map(|i| rounded[i as usize]);
@@ -77,7 +100,7 @@ pub fn project(
                 ('x', s.x, rounded[i as usize].0),
                 ('y', s.y, rounded[i as usize].1),
             ] {
-                if !(0.0..=MAX_ADDRESS as f64).contains(&r) {
+                if !(0.0..=MAX_ADDRESS as f64 * one).contains(&r) {
                     return Err(SceneError::AddressRange {
                         triangle: t,
                         vertex: i,
@@ -93,7 +116,7 @@ pub fn project(
                 normal: (camera.rotation * mesh.normals[i as usize]).normalize(),
             };
         }
-        let st = ScreenTriangle { v };
+        let st = ScreenTriangle { v, frac };
         debug_assert!(st.area2() > 0);
         out.push(st);
     }

@@ -29,8 +29,8 @@ pub struct QuadricSetup {
 /// The six sample points (relative to the origin) and their unit normals: vertices 1, 2, 3,
 /// then the midpoints of edges 12, 13, 23.
 pub fn nodes(tri: &ScreenTriangle) -> [((f64, f64), glam::DVec3); 6] {
-    let (x0, y0) = (tri.v[0].x as f64, tri.v[0].y as f64);
-    let p = |i: usize| ((tri.v[i].x as f64 - x0), (tri.v[i].y as f64 - y0));
+    let (x0, y0) = tri.position(0);
+    let p = |i: usize| (tri.position(i).0 - x0, tri.position(i).1 - y0);
     let mid = |i: usize, j: usize| {
         let (a, b) = (p(i), p(j));
         ((a.0 + b.0) / 2.0, (a.1 + b.1) / 2.0)
@@ -61,7 +61,7 @@ pub fn setup(tri: &ScreenTriangle, ctx: &ShadeContext) -> Option<QuadricSetup> {
         *out = crate::linalg::solve(rows, samples.map(|s| s[c]))?;
     }
     Some(QuadricSetup {
-        origin: (tri.v[0].x as f64, tri.v[0].y as f64),
+        origin: tri.position(0),
         coeffs,
     })
 }

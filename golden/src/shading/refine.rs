@@ -38,6 +38,15 @@ use glam::DVec3;
 
 /// Shortest edge (pixels along its longer axis) that is split.
 pub const MIN_SPLIT: i32 = 4;
+/// The same with sub-pixel vertices (`ScreenTriangle::frac` > 0), in 2^−frac pixel: one
+/// pixel, since a midpoint is then placed to 2^−frac pixel, not moved by up to half a pixel.
+pub fn min_split(frac: u32) -> i32 {
+    if frac == 0 {
+        MIN_SPLIT
+    } else {
+        1 << frac
+    }
+}
 /// `auto`: split an edge whose end normals are more than this many degrees apart.
 pub const AUTO_ANGLE_DEG: f64 = 15.0;
 /// `auto`: at most this many levels.
@@ -112,8 +121,9 @@ fn angle_deg(a: &ScreenVertex, b: &ScreenVertex) -> f64 {
 /// the parent's, exactly, wherever a pixel is.
 fn midpoint(t: &ScreenTriangle, a: &ScreenVertex, b: &ScreenVertex) -> ScreenVertex {
     let (x, y) = ((a.x + b.x + 1).div_euclid(2), (a.y + b.y + 1).div_euclid(2));
+    let u = t.unit();
     let at = |p: Option<Plane>, fallback: f64| {
-        p.map_or(fallback, |p| p.a * x as f64 + p.b * y as f64 + p.c)
+        p.map_or(fallback, |p| p.a * x as f64 * u + p.b * y as f64 * u + p.c)
     };
     let mean = 0.5 * (a.normal + b.normal);
     let np = t.normal_plane();
@@ -145,7 +155,10 @@ fn rescale(t: &mut ScreenTriangle) {
 fn children(t: &ScreenTriangle, s: [bool; 3]) -> Vec<ScreenTriangle> {
     let m: [ScreenVertex; 3] = std::array::from_fn(|i| midpoint(t, &t.v[i], &t.v[(i + 1) % 3]));
     let v = t.v;
-    let tri = |a: ScreenVertex, b: ScreenVertex, c: ScreenVertex| ScreenTriangle { v: [a, b, c] };
+    let tri = |a: ScreenVertex, b: ScreenVertex, c: ScreenVertex| ScreenTriangle {
+        v: [a, b, c],
+        frac: t.frac,
+    };
     match s.iter().filter(|&&x| x).count() {
         0 => vec![*t],
         3 => vec![
@@ -191,10 +204,11 @@ fn level(tris: &[ScreenTriangle], split_all: bool) -> Option<Vec<ScreenTriangle>
             e.1 = e.1.max(angle_deg(a, b));
         }
     }
+    let min = min_split(tris.first().map_or(0, |t| t.frac));
     let mut split: std::collections::HashSet<Key> = edges
         .iter()
         .filter(|(k, &(uses, angle))| {
-            let long = (k.0 .0 - k.1 .0).abs().max((k.0 .1 - k.1 .1).abs()) >= MIN_SPLIT;
+            let long = (k.0 .0 - k.1 .0).abs().max((k.0 .1 - k.1 .1).abs()) >= min;
             uses == 2 && long && (split_all || angle > AUTO_ANGLE_DEG)
         })
         .map(|(k, _)| *k)
@@ -290,6 +304,7 @@ mod tests {
                 let n = |p: (i32, i32)| DVec3::new((p.0 - 50) as f64, (p.1 - 50) as f64, 60.0);
                 ScreenTriangle {
                     v: [c, v(p.0, p.1, n(p)), v(q.0, q.1, n(q))],
+                    frac: 0,
                 }
             })
             .collect();

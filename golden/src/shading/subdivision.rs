@@ -41,8 +41,10 @@ pub fn midpoint_normal(a: DVec3, b: DVec3) -> DVec3 {
     }
 }
 
-/// Set-up of `tri`; `None` for a zero-area triangle.
+/// Set-up of `tri`; `None` for a zero-area triangle. The four-triangle block takes integer
+/// parents: a triangle with sub-pixel vertices is rounded to whole pixels first.
 pub fn setup(tri: &ScreenTriangle, ctx: &ShadeContext) -> Option<SubdivisionSetup> {
+    let tri = &tri.rounded();
     let subs = four_triangle::subdivide(tri)?;
     let [t, m, b] = sorted(tri);
     let i = |n: DVec3| ctx.exact_intensity(n.normalize_or_zero());

@@ -153,8 +153,12 @@ pub struct AddressSetup {
 }
 
 impl AddressSetup {
-    /// The set-up of `tri` (vertex coordinates must be in 0..=4095).
+    /// The set-up of `tri` (vertex coordinates must be in 0..=4095 pixels); a triangle with
+    /// sub-pixel vertices gets [`AddressSetup::subpixel`]'s (for `address-block-subpixel`).
     pub fn new(tri: &ScreenTriangle) -> AddressSetup {
+        if tri.frac != 0 {
+            return AddressSetup::subpixel(&SubpixelTriangle::of(tri));
+        }
         let Some(o) = crate::raster::orientation(tri) else {
             // No rows; the rest is irrelevant but kept deterministic.
             let y_top = tri.v.iter().map(|p| p.y).min().unwrap_or(0);

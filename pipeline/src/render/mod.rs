@@ -239,7 +239,30 @@ pub fn render(
     o: &Options,
     progress: &mut dyn FnMut(Tick),
 ) -> Result<Rendered, String> {
-    family(method, o)?.render(scene, o, progress)
+    let f = family(method, o)?;
+    check_subpixel(scene.tris, method, o)?;
+    f.render(scene, o, progress)
+}
+
+/// An error for sub-pixel vertices (`ScreenTriangle::frac` > 0) on a top whose address block
+/// is the integer one: `gouraud` (single address block) and the lit pipeline's methods. The
+/// span methods take their per-line set-up from the sub-pixel walk, and the four-triangle
+/// block rounds its parents to whole pixels.
+pub fn check_subpixel(tris: &[ScreenTriangle], method: Method, o: &Options) -> Result<(), String> {
+    let frac = tris.iter().map(|t| t.frac).max().unwrap_or(0);
+    let integer_top = match (method, o.address) {
+        (Method::Gouraud, Address::FourTriangle) | (Method::Subdivision, _) => false,
+        (Method::Gouraud, _) => true,
+        (m, _) => !SPAN_METHODS.contains(&m),
+    };
+    if frac > 0 && integer_top {
+        return Err(format!(
+            "method {method}: its hardware top has the integer address block; sub-pixel vertices \
+             (--subpixel {frac}) go through the span methods' and the four-triangle tops, or the \
+             golden engine"
+        ));
+    }
+    Ok(())
 }
 
 /// The Verilator designs rendering `methods` with `o` steps, each once (`flat` has none).
@@ -265,14 +288,17 @@ pub fn check_addresses(tris: &[ScreenTriangle], width: u32, height: u32) -> Resu
             "canvas {width}x{height}: each side must be 1..={limit} (12-bit addresses)"
         ));
     }
-    if let Some((i, v)) = tris.iter().enumerate().find_map(|(i, t)| {
+    if let Some((i, t, v)) = tris.iter().enumerate().find_map(|(i, t)| {
+        let max = MAX_ADDRESS << t.frac;
         t.v.iter()
-            .find(|v| !(0..=MAX_ADDRESS).contains(&v.x) || !(0..=MAX_ADDRESS).contains(&v.y))
-            .map(|v| (i, v))
+            .find(|v| !(0..=max).contains(&v.x) || !(0..=max).contains(&v.y))
+            .map(|v| (i, t, v))
     }) {
+        let u = t.unit();
         return Err(format!(
             "triangle {i}: vertex ({}, {}) is outside the 12-bit address range 0..={MAX_ADDRESS}",
-            v.x, v.y
+            v.x as f64 * u,
+            v.y as f64 * u
         ));
     }
     Ok(())
@@ -308,7 +334,10 @@ mod tests {
             z: 0.0,
             normal: glam::DVec3::Z,
         };
-        let t = ScreenTriangle { v: [v, v, v] };
+        let t = ScreenTriangle {
+            v: [v, v, v],
+            frac: 0,
+        };
         let ctx = ShadeContext::default();
         let o = Options {
             sim: Sim::RustHdl,
