@@ -595,7 +595,11 @@ fn print_table(args: &Args, setup: &Setup, methods: &[Method], report: &Report) 
                     r.nmse,
                     "-",
                     r.band.label(),
-                    "no hardware"
+                    if crate::rtl_engine::rtl_methods().contains(m) {
+                        "integer top" // sub-pixel vertices, an integer address block
+                    } else {
+                        "no hardware"
+                    }
                 )?,
             }
         }
