@@ -122,19 +122,26 @@ fn angle_deg(a: &ScreenVertex, b: &ScreenVertex) -> f64 {
 fn midpoint(t: &ScreenTriangle, a: &ScreenVertex, b: &ScreenVertex) -> ScreenVertex {
     let (x, y) = ((a.x + b.x + 1).div_euclid(2), (a.y + b.y + 1).div_euclid(2));
     let u = t.unit();
-    let at = |p: Option<Plane>, fallback: f64| {
+    // The plane's value, kept within the triangle's vertex values: a rounded address can lie
+    // just off the edge, where a sliver's steep plane would extrapolate far.
+    let at = |p: Option<Plane>, fallback: f64, of: fn(&ScreenVertex) -> f64| {
+        let (lo, hi) =
+            t.v.iter()
+                .map(of)
+                .fold((f64::MAX, f64::MIN), |(l, h), v| (l.min(v), h.max(v)));
         p.map_or(fallback, |p| p.a * x as f64 * u + p.b * y as f64 * u + p.c)
+            .clamp(lo, hi)
     };
     let mean = 0.5 * (a.normal + b.normal);
     let np = t.normal_plane();
     ScreenVertex {
         x,
         y,
-        z: at(t.depth_plane(), 0.5 * (a.z + b.z)),
+        z: at(t.depth_plane(), 0.5 * (a.z + b.z), |v| v.z),
         normal: DVec3::new(
-            at(np.map(|p| p.x), mean.x),
-            at(np.map(|p| p.y), mean.y),
-            at(np.map(|p| p.z), mean.z),
+            at(np.map(|p| p.x), mean.x, |v| v.normal.x),
+            at(np.map(|p| p.y), mean.y, |v| v.normal.y),
+            at(np.map(|p| p.z), mean.z, |v| v.normal.z),
         ),
     }
 }
