@@ -64,8 +64,8 @@ pub struct SceneArgs {
     pub subdivide: golden::shading::refine::Subdivide,
     /// Fraction bits of the projected vertex coordinates: 0 (integer 12-bit addresses, the
     /// default) or 4 (1/16 pixel: the walks, set-ups and `--subdivide` midpoints on the finer
-    /// grid, for the reference and every method; the RTL engine renders the span methods and
-    /// subdivision with them, the other tops have the integer address block).
+    /// grid, for the reference and every method, golden and RTL; `subdivision` rounds its
+    /// parents to whole pixels, since the four-triangle block takes integer vertices).
     #[arg(long, default_value_t = 0, value_parser = parse_subpixel)]
     pub subpixel: u32,
 }

@@ -403,11 +403,11 @@ pub fn scene_words(jobs: &[LitJob], regs: &ShadingRegs) -> Vec<Word> {
 /// largest walk first, then smallest, then the second largest, the second smallest, and so
 /// on.
 ///
-/// Why: a triangle record is 26 words at one word per clock, so a triangle whose walk is
+/// Why: a triangle record is 27 words at one word per clock, so a triangle whose walk is
 /// shorter than that waits for its set-up, and a mesh sends its small triangles in runs (a
 /// sphere's silhouette and poles). The default scene in mesh order gives `pixel-stream` 0.885
 /// fragments per clock against `pixel-pipeline`'s 0.986; more buffering cannot fix it (a model
-/// of the banks with 1 000 records gives about 0.95, the stall being a run of 26-word records
+/// of the banks with 1 000 records gives about 0.95, the stall being a run of 27-word records
 /// at the front). Pairing each small triangle with a large one lets the large walk cover the
 /// small one's words. The depth test's tie rule makes the order invisible in the image: the
 /// frame writer keeps the nearer fragment and, at equal depth, the lower triangle index (the

@@ -75,7 +75,7 @@ pub struct Args {
     /// the lit methods and gouraud (the span methods and subdivision: pipeline, as
     /// their per-line and per-parent records make the stream set-up bound on short lines and
     /// small triangles). The images are identical; the clock counts
-    /// differ (the set-up stream carries 26 words per lit triangle, 22 per Gouraud one, 12 per
+    /// differ (the set-up stream carries 27 words per lit triangle, 23 per Gouraud one, 12 per
     /// cubic line, 72 per subdivision parent).
     #[arg(long, value_enum)]
     pub lit_top: Option<crate::rtl_engine::LitTop>,
@@ -380,16 +380,9 @@ fn render_frames(
                 crate::rtl_engine::check_rtl_method(m)?;
             }
         }
-        // `both`: the methods the hardware has (the others are golden only); with sub-pixel
-        // vertices, those whose top takes them.
+        // `both`: the methods the hardware has (the others are golden only).
         let hw = crate::rtl_engine::rtl_methods();
-        let takes = |m: Method| {
-            pipeline::render::check_subpixel(&setup.tris, m, &build).is_ok()
-                || engine == Engine::Rtl
-        };
-        let idx: Vec<usize> = (0..n)
-            .filter(|&i| hw.contains(&methods[i]) && takes(methods[i]))
-            .collect();
+        let idx: Vec<usize> = (0..n).filter(|&i| hw.contains(&methods[i])).collect();
         let ms: Vec<Method> = idx.iter().map(|&i| methods[i]).collect();
         crate::sim::prepare(build.sim, crate::rtl_engine::designs(&ms, build)?, &multi)?;
         for (i, f) in idx
@@ -595,11 +588,7 @@ fn print_table(args: &Args, setup: &Setup, methods: &[Method], report: &Report) 
                     r.nmse,
                     "-",
                     r.band.label(),
-                    if crate::rtl_engine::rtl_methods().contains(m) {
-                        "integer top" // sub-pixel vertices, an integer address block
-                    } else {
-                        "no hardware"
-                    }
+                    "no hardware"
                 )?,
             }
         }

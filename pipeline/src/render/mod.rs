@@ -239,30 +239,7 @@ pub fn render(
     o: &Options,
     progress: &mut dyn FnMut(Tick),
 ) -> Result<Rendered, String> {
-    let f = family(method, o)?;
-    check_subpixel(scene.tris, method, o)?;
-    f.render(scene, o, progress)
-}
-
-/// An error for sub-pixel vertices (`ScreenTriangle::frac` > 0) on a top whose address block
-/// is the integer one: `gouraud` (single address block) and the lit pipeline's methods. The
-/// span methods take their per-line set-up from the sub-pixel walk, and the four-triangle
-/// block rounds its parents to whole pixels.
-pub fn check_subpixel(tris: &[ScreenTriangle], method: Method, o: &Options) -> Result<(), String> {
-    let frac = tris.iter().map(|t| t.frac).max().unwrap_or(0);
-    let integer_top = match (method, o.address) {
-        (Method::Gouraud, Address::FourTriangle) | (Method::Subdivision, _) => false,
-        (Method::Gouraud, _) => true,
-        (m, _) => !SPAN_METHODS.contains(&m),
-    };
-    if frac > 0 && integer_top {
-        return Err(format!(
-            "method {method}: its hardware top has the integer address block; sub-pixel vertices \
-             (--subpixel {frac}) go through the span methods' and the four-triangle tops, or the \
-             golden engine"
-        ));
-    }
-    Ok(())
+    family(method, o)?.render(scene, o, progress)
 }
 
 /// The Verilator designs rendering `methods` with `o` steps, each once (`flat` has none).

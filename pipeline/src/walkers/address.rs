@@ -63,6 +63,12 @@ pub fn stimulus(setups: &[AddressSetup]) -> ModelRun {
     stimulus_held(setups, |_| false)
 }
 
+/// [`stimulus`] on the sub-pixel block's model (`address-block-subpixel`, the address block
+/// of `gouraud-raster` and `pixel-pipeline`; integer set-ups walk on it as on the integer one).
+pub fn stimulus_subpixel(setups: &[AddressSetup]) -> ModelRun {
+    stimulus_held_on(AddressBlockModel::subpixel(), setups, |_| false)
+}
+
 /// [`stimulus`] with `hold(clock)` driving the stall input in every clock.
 pub fn stimulus_held(setups: &[AddressSetup], hold: impl FnMut(usize) -> bool) -> ModelRun {
     stimulus_held_on(AddressBlockModel::new(), setups, hold)

@@ -4,11 +4,12 @@
 //! sampled along `golden::raster::walk`).
 //!
 //! ```text
-//!  load + set-up ─► AddressBlock ─valid,row_start,step,carry─► IntensityInterpolator ─► rgb
+//!  load + set-up ─► SubpixelAddressBlock ─valid,row_start,step,carry─► IntensityInterpolator ─► rgb
 //!                        └────────────── x, y, done ──► 1-clock delay ─────────────────► x, y, done
 //! ```
 //!
-//! Ports: the address block's set-up inputs (same names, see `address_block`) and the BVI's
+//! Ports: the sub-pixel address block's set-up inputs (same names, see `address_block`; 20-bit
+//! error words, so vertices with 4 fraction bits or integer ones) and the BVI's
 //! twelve signed Q16.16 set-up words (`r_start` … `b_line`, see `intensity_interpolator`), all
 //! sampled on the one `load` strobe, which is accepted when `ready` is high, and `hold` (the
 //! address block's: no event in a clock with `hold` high, none lost; `gouraud-stream` holds
@@ -27,7 +28,7 @@
 //! intensities within 1 LSB of the rounded plane value).
 
 use crate::core::primitives::Delay;
-use crate::units::address_block::AddressBlock;
+use crate::units::address_block::SubpixelAddressBlock;
 use crate::units::intensity_interpolator::IntensityInterpolator;
 use rust_hdl::prelude::*;
 
@@ -35,7 +36,7 @@ crate::hw_block! {
     /// The Gouraud raster pipe: address block + BVI (see the module header).
     pub struct GouraudRaster(clock) as "gouraud-raster" {
         summary: "Gouraud raster pipe: address block feeding the BVI (SPEC §5–6)",
-        latency: AddressBlock::LATENCY + IntensityInterpolator::LATENCY
+        latency: SubpixelAddressBlock::LATENCY + IntensityInterpolator::LATENCY
             => "load to the first pixel, one pixel per clock",
         multipliers: 0,
         in { load: Bit, address_setup_ports!, intensity_setup_ports!, hold: Bit }
@@ -43,7 +44,7 @@ crate::hw_block! {
             ready: Bit, valid: Bit, x: Bits<12>, y: Bits<12>,
             red: Bits<8>, green: Bits<8>, blue: Bits<8>, done: Bit,
         }
-        pub addr: AddressBlock,
+        pub addr: SubpixelAddressBlock,
         pub bvi: IntensityInterpolator,
         // The address block's x, y, done, delayed to meet the BVI's colour of the same pixel.
         x_p1: Delay<Bits<12>, { IntensityInterpolator::LATENCY }>,

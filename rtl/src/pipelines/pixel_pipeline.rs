@@ -5,7 +5,7 @@
 //! path), walked by `golden::raster::walk`.
 //!
 //! ```text
-//!  load + set-up ─► AddressBlock ─valid,row_start,step,carry─┬─► VectorInterpolator ─N─► LightingUnit ─cos φ, cos γ─► Brzssk ─cos γ'─► PowerUnit ─S─┐
+//!  load + set-up ─► SubpixelAddressBlock ─valid,row_start,step,carry─┬─► VectorInterpolator ─N─► LightingUnit ─cos φ, cos γ─► Brzssk ─cos γ'─► PowerUnit ─S─┐
 //!                        │                                   │        (1)                   (11)         x, y (12) ──►  (4)   └cos φ'─► Delay(10) ─┴► ColourCombine ─► r, g, b
 //!                        │                                   └─► IntensityChannel (depth z) ─► Delay(27) ──────────────────────────────────────────────────► z
 //!                        └── x, y, done ─► Delay(28) ───────────────────────────────────────────────────────────────────────────────────────────────────► x, y, done
@@ -15,7 +15,7 @@
 //! | port | dir | format |
 //! |---|---|---|
 //! | `load` | in | accepted when `ready` is high: writes the address block and every shadow bank |
-//! | address set-up (`w_b0` … `dir_neg`) | in | the address block's (`address_block`) |
+//! | address set-up (`w_b0` … `dir_neg`) | in | the sub-pixel address block's (`address_block`, 20-bit error words: vertices with 4 fraction bits, or integer ones) |
 //! | `x_start` … `z_line` | in | the normal planes, signed Q3.29 words (`vector_interpolator`) |
 //! | `d_start d_short d_long d_line` | in | the depth plane, signed Q16.16 words in pixels (the BVI's channel format) |
 //! | `lx ly lz`, `hx hy hz` | in | unit L and H, signed Q2.14 (frame registers) |
@@ -61,7 +61,7 @@ use rust_hdl::prelude::*;
 
 use crate::core::primitives::Delay;
 use crate::core::registry::{BlockParams, Options, RtlBlock};
-use crate::units::address_block::AddressBlock;
+use crate::units::address_block::SubpixelAddressBlock;
 use crate::units::brzssk::{Brzssk, BrzsskParams};
 use crate::units::colour_combine::ColourCombine;
 use crate::units::intensity_interpolator::IntensityChannel;
@@ -199,7 +199,7 @@ crate::hw_block! {
     /// The lit pixel pipeline (see the module header).
     pub struct PixelPipeline(clock) as "pixel-pipeline" {
         summary: "one triangle's set-up in, lit fragments (x, y, z, r, g, b) out: address block, vector interpolator, normalizer, Blinn lighting, BRZSSK, power unit, colour combine (SPEC §0–§2, §5–§6)",
-        latency: AddressBlock::LATENCY + EVENT_TO_FRAGMENT
+        latency: SubpixelAddressBlock::LATENCY + EVENT_TO_FRAGMENT
             => "load to the first fragment, one fragment per clock",
         multipliers: 38,
         in {
@@ -210,7 +210,7 @@ crate::hw_block! {
             ready: Bit, valid: Bit, x: Bits<12>, y: Bits<12>, z: Bits<32>,
             red: Bits<8>, green: Bits<8>, blue: Bits<8>, done: Bit,
         }
-        pub addr: AddressBlock,
+        pub addr: SubpixelAddressBlock,
         pub normal: VectorInterpolator,
         pub depth: IntensityChannel,
         n_reg: [Delay<Bits<19>, NORMAL_REGISTER>; 3],

@@ -23,8 +23,8 @@
 //! | `error` | out | sticky: a record with an unknown type or the wrong length was dropped |
 //!
 //! # Records (`rtl::stream::layout::GOURAUD_STREAM`, one table for the hardware and the driver)
-//! A header word (bits 3..0: 1, a triangle; the other bits 0), then 21 payload words: the
-//! address block's set-up (9 words) and the BVI's twelve signed Q16.16 words, a field never
+//! A header word (bits 3..0: 1, a triangle; the other bits 0), then 22 payload words: the
+//! sub-pixel address block's set-up (10 words) and the BVI's twelve signed Q16.16 words, a field never
 //! straddling two words. A record whose `tlast` comes before or after its length, or with an
 //! unknown type, is dropped whole (up to its `tlast`) and sets `error`. There are no
 //! registers: a Gouraud triangle carries its colours.
@@ -41,7 +41,7 @@
 //!   still in flight, so the FIFO never overflows and never drops a fragment, and with
 //!   `m_axis_tready` high it holds at most one beat and the address block is never held.
 //! - Throughput: one fragment per clock along a line, as `gouraud-raster`, as long as the
-//!   set-up words keep ahead of the walk: a triangle's set-up is 22 words at one word per
+//!   set-up words keep ahead of the walk: a triangle's set-up is 23 words at one word per
 //!   clock, so a run of triangles smaller than that is set-up bound.
 //! - Latency: a triangle record's last word accepted in clock t → its first beat offered in
 //!   clock t + 8 (the record is complete in t + 1, moves to the load bank in t + 1, loads in

@@ -45,7 +45,7 @@
 //!   overflows and never drops a fragment, and with `m_axis_tready` high it holds at most one beat and
 //!   the address block is never held.
 //! - Throughput: one fragment per clock along a line, as `pixel-pipeline`, as long as the
-//!   set-up words keep ahead of the walk: a triangle's set-up is 26 words at one word per
+//!   set-up words keep ahead of the walk: a triangle's set-up is 27 words at one word per
 //!   clock, so a run of triangles smaller than that is set-up bound. In mesh order the default
 //!   scene (2 288 triangles, 49 fragments each on average, small ones in runs along the
 //!   silhouette) gives 0.885 fragments per clock against `pixel-pipeline`'s 0.986; more

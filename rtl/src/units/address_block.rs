@@ -96,17 +96,18 @@
 use crate::units::line_interpolator::{LineInterpolator, SubpixelLineInterpolator};
 use rust_hdl::prelude::*;
 
-/// The address block's set-up ports after `load` (the header's input table), one line per
-/// edge (`b0 e0 f r d`: see [`LineInterpolator`]), as a port bundle (`crate::core::declare`) for the
-/// blocks that contain an address block and pass its set-up through.
+/// The sub-pixel address block's set-up ports after `load` (the header's input table with
+/// E = 20), one line per edge (`b0 e0 f r d`: see [`LineInterpolator`]), as a port bundle
+/// (`crate::core::declare`) for the blocks that contain a [`SubpixelAddressBlock`] and pass its
+/// set-up through (`gouraud-raster`, `pixel-pipeline`).
 #[macro_export]
 macro_rules! address_setup_ports {
     ($($then:tt)*) => {
         $crate::hw_bundle! {
             [
-                w_b0: Bits<12>, w_e0: Bits<13>, w_f: Bits<12>, w_r: Bits<13>, w_d: Bits<13>,
-                a_b0: Bits<12>, a_e0: Bits<13>, a_f: Bits<12>, a_r: Bits<13>, a_d: Bits<13>,
-                t_b0: Bits<12>, t_e0: Bits<13>, t_f: Bits<12>, t_r: Bits<13>, t_d: Bits<13>,
+                w_b0: Bits<12>, w_e0: Bits<20>, w_f: Bits<12>, w_r: Bits<20>, w_d: Bits<20>,
+                a_b0: Bits<12>, a_e0: Bits<20>, a_f: Bits<12>, a_r: Bits<20>, a_d: Bits<20>,
+                t_b0: Bits<12>, t_e0: Bits<20>, t_f: Bits<12>, t_r: Bits<20>, t_d: Bits<20>,
                 y_top: Bits<12>, rows: Bits<12>, y_switch: Bits<12>, dir_neg: Bit,
             ]
             $($then)*

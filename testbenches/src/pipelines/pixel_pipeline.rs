@@ -79,7 +79,7 @@ pub struct PipelineTwin {
 impl PipelineTwin {
     pub fn new(p: &PipelineParams) -> Self {
         PipelineTwin {
-            addr: AddressBlockModel::new(),
+            addr: AddressBlockModel::subpixel(),
             ev: AddressOutputs::default(),
             ld: None,
             normal: VectorTwin::default(),
@@ -176,11 +176,16 @@ pub fn lit_triangles(seed: u64, n: usize) -> Vec<ScreenTriangle> {
         triangle_strategy(),
         prop::array::uniform3(unit_normal()),
         prop::array::uniform3(-2.0..=2.0f64),
+        crate::units::address_block::offsets_strategy(),
     );
     let mut out = Vec::with_capacity(n);
     while out.len() < n {
-        let (p, normals, z) = st.new_tree(&mut r).expect("no rejection").current();
+        let (p, normals, z, off) = st.new_tree(&mut r).expect("no rejection").current();
         let mut t = ScreenTriangle::from_points(p);
+        if out.len() % 2 == 1 {
+            // Every other triangle with sub-pixel vertices (the pipeline's address block).
+            t = crate::units::address_block::subpixel_offsets(&t, off);
+        }
         for k in 0..3 {
             t.v[k].normal = glam::DVec3::from_array(normals[k]);
             t.v[k].z = z[k];
@@ -230,7 +235,7 @@ fn golden_colours(
 /// block accepts it, then idle clocks to flush. Returns the rows and the address stream.
 fn pipeline_rows(jobs: &[LitJob], regs: &ShadingRegs) -> (Vec<Vec<u64>>, Vec<AddressOutputs>) {
     let setups: Vec<AddressSetup> = jobs.iter().map(|j| j.addr).collect();
-    let st = crate::units::address_block::stimulus(&setups);
+    let st = crate::units::address_block::stimulus_subpixel(&setups);
     let mut rows = Vec::new();
     let mut next = 0;
     for c in 0..st.rows.len() + EVENT_TO_FRAGMENT + 1 {
@@ -239,7 +244,7 @@ fn pipeline_rows(jobs: &[LitJob], regs: &ShadingRegs) -> (Vec<Vec<u64>>, Vec<Add
         rows.push(lit_row(load, regs));
     }
     // The address block's cycle model over all the rows (its idle clocks show `ready`).
-    let mut m = AddressBlockModel::new();
+    let mut m = AddressBlockModel::subpixel();
     let mut stream = Vec::with_capacity(rows.len());
     let mut next = 0;
     for row in &rows {

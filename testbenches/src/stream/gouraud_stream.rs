@@ -20,7 +20,7 @@ use crate::harness::{Compare, Expected};
 use crate::registry::{Bench, Stimulus, Twin};
 use crate::stall::{SplitMix, StallPattern};
 use crate::stream::stream_twin::{BeatFifo, RecordReader};
-use crate::units::address_block::{triangle_jobs, GoldenPixel};
+use crate::units::address_block::{subpixel_triangle_jobs, GoldenPixel};
 use crate::units::intensity_interpolator::PipeRows;
 
 /// Output ports in row order.
@@ -177,7 +177,7 @@ pub fn reference_beats(jobs: &[TriangleJob]) -> Vec<Beat> {
 /// The stimulus's scene: `n` seeded triangles with random vertex intensities (the
 /// `gouraud-raster` bench's) and their golden pixels in walk order.
 pub fn scene(seed: u64, n: usize) -> (Vec<TriangleJob>, Vec<GoldenPixel>) {
-    triangle_jobs(seed, n)
+    subpixel_triangle_jobs(seed, n)
 }
 
 impl Bench for GouraudStream {

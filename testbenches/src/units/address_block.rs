@@ -114,16 +114,50 @@ pub type GoldenPixel = ([f64; 3], u32);
 /// f64 value and addition count of every pixel in stream order. The same seed gives the same
 /// triangles for the address block, the BVI and the pipe.
 pub fn triangle_jobs(seed: u64, n: usize) -> (Vec<TriangleJob>, Vec<GoldenPixel>) {
+    triangle_jobs_with(seed, n, false)
+}
+
+/// [`triangle_jobs`] with every other triangle's vertices moved by a seeded fraction of a pixel
+/// (`SUBPIXEL_BITS` fraction bits; [`subpixel_offsets`]): the stimulus of the blocks with the
+/// sub-pixel address block (`gouraud-raster`, `pixel-pipeline` and their stream tops).
+pub fn subpixel_triangle_jobs(seed: u64, n: usize) -> (Vec<TriangleJob>, Vec<GoldenPixel>) {
+    triangle_jobs_with(seed, n, true)
+}
+
+/// Offsets of 0..2^SUBPIXEL_BITS per coordinate, for [`subpixel_offsets`].
+pub fn offsets_strategy() -> impl Strategy<Value = [(i32, i32); 3]> {
+    let one = 1i32 << SUBPIXEL_BITS;
+    prop::array::uniform3((0..one, 0..one))
+}
+
+/// `t` with its integer vertices moved by `off` (in 2^−SUBPIXEL_BITS pixel, kept within the
+/// 12-bit range) and `frac` = `SUBPIXEL_BITS`.
+pub fn subpixel_offsets(t: &ScreenTriangle, off: [(i32, i32); 3]) -> ScreenTriangle {
+    let max = 4095 << SUBPIXEL_BITS;
+    let mut s = *t;
+    for (v, (dx, dy)) in s.v.iter_mut().zip(off) {
+        v.x = ((v.x << SUBPIXEL_BITS) + dx).min(max);
+        v.y = ((v.y << SUBPIXEL_BITS) + dy).min(max);
+    }
+    s.frac = SUBPIXEL_BITS;
+    s
+}
+
+fn triangle_jobs_with(seed: u64, n: usize, subpixel: bool) -> (Vec<TriangleJob>, Vec<GoldenPixel>) {
     let mut r = seeded_runner(seed);
     let st = (
         triangle_strategy(),
         prop::array::uniform3(prop::array::uniform3(-40.0..320.0f64)),
+        offsets_strategy(),
     );
     let mut jobs = Vec::with_capacity(n);
     let mut golden = Vec::new();
-    for _ in 0..n {
-        let (p, v) = st.new_tree(&mut r).expect("no rejection").current();
-        let t = ScreenTriangle::from_points(p);
+    for i in 0..n {
+        let (p, v, off) = st.new_tree(&mut r).expect("no rejection").current();
+        let mut t = ScreenTriangle::from_points(p);
+        if subpixel && i % 2 == 1 {
+            t = subpixel_offsets(&t, off);
+        }
         let planes = channel_planes(&t, &v);
         let w = walk(&t);
         let per: [Vec<f64>; 3] = std::array::from_fn(|c| interpolate(&w, &planes[c]));

@@ -17,7 +17,8 @@
 use crate::harness::{CheckSpec, Compare, Expected, Failure, Report, Tolerance};
 use crate::registry::{Bench, Stimulus, Twin};
 use crate::units::address_block::{
-    stimulus, triangle_jobs, triangle_run, GoldenPixel, TriangleRun,
+    stimulus_subpixel, subpixel_triangle_jobs, triangle_jobs, triangle_run, GoldenPixel,
+    TriangleRun,
 };
 use golden::shade::to_u8;
 use golden::units::address_block::{AddressBlockModel, AddressOutputs, AddressSetup};
@@ -59,7 +60,7 @@ pub fn row_event(row: &[u64]) -> AddressOutputs {
 /// its set-up. Returns the rows and the address stream they carry.
 pub fn bvi_rows(jobs: &[TriangleJob]) -> (Vec<Vec<u64>>, Vec<AddressOutputs>) {
     let setups: Vec<AddressSetup> = jobs.iter().map(|j| j.addr).collect();
-    let st = stimulus(&setups);
+    let st = stimulus_subpixel(&setups);
     let mut stream = st.expected;
     stream.push(AddressOutputs::default());
     let mut rows = Vec::with_capacity(stream.len());
@@ -76,7 +77,7 @@ pub fn bvi_rows(jobs: &[TriangleJob]) -> (Vec<Vec<u64>>, Vec<AddressOutputs>) {
 /// them (the pipe's `ready` is the address block's), plus two idle clocks to flush.
 pub fn pipe_rows(jobs: &[TriangleJob]) -> Vec<Vec<u64>> {
     let setups: Vec<AddressSetup> = jobs.iter().map(|j| j.addr).collect();
-    let st = stimulus(&setups);
+    let st = stimulus_subpixel(&setups);
     let mut rows = Vec::with_capacity(st.rows.len() + 2);
     let mut next = 0;
     for c in 0..st.rows.len() + 2 {
@@ -224,7 +225,7 @@ pub fn pipe_run(jobs: &[TriangleJob], golden: &[GoldenPixel]) -> TriangleRun {
     let setups: Vec<AddressSetup> = jobs.iter().map(|j| j.addr).collect();
     let rows = pipe_rows(jobs);
     let delay = IntensityInterpolator::LATENCY;
-    let mut m = AddressBlockModel::new();
+    let mut m = AddressBlockModel::subpixel();
     let mut addr: Vec<AddressOutputs> = Vec::with_capacity(rows.len());
     let mut next = 0;
     for row in &rows {
@@ -278,11 +279,21 @@ impl Twin for BviRows {
 /// Twin of the raster pipe: the address block's cycle model (with its `hold`) feeding
 /// [`BviTwin`] (loaded on the accepted load), with x, y and done delayed one clock beside the
 /// BVI.
-#[derive(Default)]
 pub struct PipeRows {
     addr: AddressBlockModel,
     bvi: BviTwin,
     xy_done: (u32, u32, bool),
+}
+
+impl Default for PipeRows {
+    /// The raster pipe's address block is the sub-pixel one (20-bit error words).
+    fn default() -> Self {
+        PipeRows {
+            addr: AddressBlockModel::subpixel(),
+            bvi: BviTwin::default(),
+            xy_done: (0, 0, false),
+        }
+    }
 }
 
 impl Twin for PipeRows {
@@ -307,12 +318,12 @@ impl Twin for PipeRows {
 /// The BVI and the raster pipe share their bench: seeded triangles with random vertex
 /// intensities, run as `$run` builds them, checked against `$twin`.
 macro_rules! triangle_bench {
-    ($block:ty, $run:ident, $twin:expr) => {
+    ($block:ty, $jobs:ident, $run:ident, $twin:expr) => {
         impl Bench for $block {
             const ITEMS: &'static str = "triangles";
             const DEFAULT_ITEMS: usize = 20;
             fn stimulus(_: &NoParams, n: usize, seed: u64) -> Stimulus {
-                let (jobs, golden) = triangle_jobs(seed, n);
+                let (jobs, golden) = $jobs(seed, n);
                 triangle_run($run(&jobs, &golden))
             }
             fn twin(_: &NoParams) -> Box<dyn Twin> {
@@ -322,5 +333,15 @@ macro_rules! triangle_bench {
     };
 }
 
-triangle_bench!(IntensityInterpolator, bvi_run, BviRows(BviTwin::default()));
-triangle_bench!(GouraudRaster, pipe_run, PipeRows::default());
+triangle_bench!(
+    IntensityInterpolator,
+    triangle_jobs,
+    bvi_run,
+    BviRows(BviTwin::default())
+);
+triangle_bench!(
+    GouraudRaster,
+    subpixel_triangle_jobs,
+    pipe_run,
+    PipeRows::default()
+);

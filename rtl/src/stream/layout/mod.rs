@@ -57,9 +57,9 @@ mod tests {
             assert_eq!(words[0], r.code);
             assert_eq!(unpack(&r, &words[1..]), values);
         }
-        assert_eq!(payload_words(&TRIANGLE), 25);
+        assert_eq!(payload_words(&TRIANGLE), 26);
         assert_eq!(payload_words(&REGISTERS), 8);
-        assert_eq!(payload_words(&GOURAUD_TRIANGLE), 21);
+        assert_eq!(payload_words(&GOURAUD_TRIANGLE), 22);
         assert_eq!(payload_words(&CUBIC_LINE), 11);
         assert_eq!(payload_words(&ANGULAR_LINE), 13);
         assert_eq!(payload_words(&SPAN_REGISTERS), 5);
