@@ -405,7 +405,7 @@ pub fn scene_words(jobs: &[LitJob], regs: &ShadingRegs) -> Vec<Word> {
 ///
 /// Why: a triangle record is 27 words at one word per clock, so a triangle whose walk is
 /// shorter than that waits for its set-up, and a mesh sends its small triangles in runs (a
-/// sphere's silhouette and poles). The default scene in mesh order gives `pixel-stream` 0.885
+/// sphere's silhouette and poles). The default scene in mesh order gives `pixel-stream` 0.879
 /// fragments per clock against `pixel-pipeline`'s 0.986; more buffering cannot fix it (a model
 /// of the banks with 1 000 records gives about 0.95, the stall being a run of 27-word records
 /// at the front). Pairing each small triangle with a large one lets the large walk cover the

@@ -48,7 +48,7 @@
 //!   set-up words keep ahead of the walk: a triangle's set-up is 27 words at one word per
 //!   clock, so a run of triangles smaller than that is set-up bound. In mesh order the default
 //!   scene (2 288 triangles, 49 fragments each on average, small ones in runs along the
-//!   silhouette) gives 0.885 fragments per clock against `pixel-pipeline`'s 0.986; more
+//!   silhouette) gives 0.879 fragments per clock against `pixel-pipeline`'s 0.986; more
 //!   buffering does not help (input FIFOs of 64 to 100 000 words measured: unchanged). The
 //!   driver therefore sends large and small triangles alternately
 //!   (`pipeline::lit::balanced_order`): 0.985, 114 847 clocks against `pixel-pipeline`'s
