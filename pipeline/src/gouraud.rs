@@ -322,16 +322,16 @@ mod record_tests {
         let ctx = golden::shade::ShadeContext::default();
         let job = TriangleJob::gouraud(&t, &ctx).unwrap();
         let rec = gouraud_record(&job);
-        assert_eq!(rec.len(), 22);
+        assert_eq!(rec.len(), 23);
         assert_eq!(rec[0], (1, false));
         assert!(rec.last().unwrap().1);
-        assert!(rec[..21].iter().all(|w| !w.1));
+        assert!(rec[..22].iter().all(|w| !w.1));
         let payload: Vec<u32> = rec[1..].iter().map(|w| w.0).collect();
         let row = pipe_row(Some(&job));
         assert_eq!(
             unpack(&GOURAUD_TRIANGLE, &payload),
             row[1..PIPE_HOLD_AT].to_vec()
         );
-        assert_eq!(gouraud_words(&[job, job]).len(), 44);
+        assert_eq!(gouraud_words(&[job, job]).len(), 46);
     }
 }

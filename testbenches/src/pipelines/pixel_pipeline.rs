@@ -171,19 +171,36 @@ fn unit_normal() -> impl Strategy<Value = [f64; 3]> {
 
 /// `n` seeded triangles with unit vertex normals and depths in [−2, 2].
 pub fn lit_triangles(seed: u64, n: usize) -> Vec<ScreenTriangle> {
+    lit_triangles_with(seed, n, false)
+}
+
+/// [`lit_triangles`] with every other triangle's vertices moved by a seeded fraction of a
+/// pixel (`SUBPIXEL_BITS` fraction bits): the stimulus of `pixel-pipeline` and `pixel-stream`,
+/// whose address block is the sub-pixel one.
+pub fn lit_triangles_subpixel(seed: u64, n: usize) -> Vec<ScreenTriangle> {
+    lit_triangles_with(seed, n, true)
+}
+
+fn lit_triangles_with(seed: u64, n: usize, subpixel: bool) -> Vec<ScreenTriangle> {
     let mut r = seeded_runner(seed);
     let st = (
         triangle_strategy(),
         prop::array::uniform3(unit_normal()),
         prop::array::uniform3(-2.0..=2.0f64),
-        crate::units::address_block::offsets_strategy(),
     );
+    // The offsets come from a runner of their own, so the integer triangles are the same
+    // with and without them.
+    let mut r_off = seeded_runner(seed ^ 0x5B5B);
+    let offsets = crate::units::address_block::offsets_strategy();
     let mut out = Vec::with_capacity(n);
     while out.len() < n {
-        let (p, normals, z, off) = st.new_tree(&mut r).expect("no rejection").current();
+        let (p, normals, z) = st.new_tree(&mut r).expect("no rejection").current();
         let mut t = ScreenTriangle::from_points(p);
-        if out.len() % 2 == 1 {
-            // Every other triangle with sub-pixel vertices (the pipeline's address block).
+        if subpixel && out.len() % 2 == 1 {
+            let off = offsets
+                .new_tree(&mut r_off)
+                .expect("no rejection")
+                .current();
             t = crate::units::address_block::subpixel_offsets(&t, off);
         }
         for k in 0..3 {
@@ -263,7 +280,7 @@ impl Bench for PixelPipeline {
     fn stimulus(p: &PipelineParams, n: usize, seed: u64) -> Stimulus {
         let ctx = ShadeContext::default();
         let regs = ShadingRegs::of(&ctx).expect("default context fits the registers");
-        let tris = lit_triangles(seed, n);
+        let tris = lit_triangles_subpixel(seed, n);
         let jobs: Vec<LitJob> = tris
             .iter()
             .map(|t| LitJob::new(t).unwrap().expect("non-degenerate"))

@@ -20,7 +20,7 @@ use rtl::stream::layout::{
 use rtl::stream::pixel_stream::{PixelStream, FIFO_DEPTH, HOLD_ABOVE};
 
 use crate::harness::{Compare, Expected};
-use crate::pipelines::pixel_pipeline::{lit_triangles, PipelineTwin};
+use crate::pipelines::pixel_pipeline::{lit_triangles_subpixel, PipelineTwin};
 use crate::registry::{Bench, Stimulus, Twin};
 use crate::stall::{SplitMix, StallPattern};
 use crate::stream::stream_twin::{BeatFifo, RecordReader};
@@ -188,7 +188,7 @@ pub fn reference_beats(p: &PipelineParams, jobs: &[LitJob], regs: &ShadingRegs) 
 /// The stimulus's scene: `n` seeded lit triangles, the default shading context.
 pub fn scene(seed: u64, n: usize) -> (Vec<LitJob>, ShadingRegs) {
     let regs = ShadingRegs::of(&ShadeContext::default()).expect("default context");
-    let jobs = lit_triangles(seed, n)
+    let jobs = lit_triangles_subpixel(seed, n)
         .iter()
         .map(|t| LitJob::new(t).unwrap().expect("non-degenerate"))
         .collect();
