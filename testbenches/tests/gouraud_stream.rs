@@ -355,7 +355,7 @@ fn the_stream_top_places_on_its_own_pins_and_the_flat_top_does_not() {
     assert!(
         flat.unplaced
             .as_deref()
-            .is_some_and(|w| w.contains("664 pins, but the CABGA256 package has 197 user I/O")),
+            .is_some_and(|w| w.contains("727 pins, but the CABGA256 package has 197 user I/O")),
         "gouraud-raster should not fit the package's I/O: {:?}",
         flat.unplaced
     );

@@ -1,6 +1,6 @@
 //! `gouraud-stream`: the Gouraud raster pipe (`gouraud_raster`: address block + BVI, SPEC §5–§6)
 //! behind AXI4-Stream interfaces, the top an FPGA engineer places instead of `gouraud-raster`'s
-//! 610 flat set-up pins (664 ports in all): triangle records in on a 32-bit stream, fragments
+//! 673 flat set-up pins (727 ports in all): triangle records in on a 32-bit stream, fragments
 //! out on a 64-bit stream with back-pressure. Golden: `gouraud-raster`'s (the same fragments,
 //! in the same order, whatever the stalls).
 //!
