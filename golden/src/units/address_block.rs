@@ -26,6 +26,12 @@
 //! every raster line the edge is used for, D ≤ 8190 and e, r < D (13 bits), f ∈ −4095..=4095
 //! (only needed modulo 4096, because B + f + carry lands in 0..=4095 again).
 //!
+//! **Sub-pixel vertices** ([`AddressSetup::subpixel`]: coordinates in 2^−frac pixel, m =
+//! max(frac, 1)): the same recurrence with D = 2^m·Δy, 2^m·Δx = f·D + r and e the edge function
+//! at the boundary pixel's centre, all in 2^−frac pixel; rows are those whose centres lie in
+//! [top.y, bottom.y). For frac = `SUBPIXEL_BITS` = 4, D < 2^20 ([`SUBPIXEL_ERR_BITS`]); B, f and
+//! the rows keep their ranges.
+//!
 //! # Rows
 //!
 //! Vertices sorted by (y, x): top T, middle M, bottom Bt. Working edge T→Bt, adjacent edge T→M,
@@ -69,13 +75,13 @@ use crate::types::{ScreenTriangle, StepType, SubpixelTriangle};
 pub struct EdgeSetup {
     /// Boundary B on the first raster line, 0..=4095 (12 bits).
     pub b0: u32,
-    /// Error term e = B·D − N on the first line, 0..D (13 bits).
+    /// Error term e = B·D − N on the first line, 0..D (13 bits; 20 with sub-pixel vertices).
     pub e0: u32,
     /// Whole part of the move per line, ⌊Δx/Δy⌋, −4095..=4095 (loaded modulo 4096).
     pub f: i32,
-    /// Remainder of 2Δx by D, 0..D (13 bits).
+    /// Remainder of 2Δx by D, 0..D (13 bits; sub-pixel: of 2^m·Δx, 20 bits).
     pub r: u32,
-    /// D = 2Δy, 2..=8190 (13 bits).
+    /// D = 2Δy, 2..=8190 (13 bits; sub-pixel: 2^m·Δy with Δy in 2^−frac pixel, < 2^20).
     pub d: u32,
 }
 
