@@ -17,19 +17,22 @@
 //!
 //! A triangle with three split edges becomes four (the midpoint subdivision of SPEC §7), with
 //! two becomes three, with one becomes two (red–green refinement: no T-junction, so no crack).
-//! The midpoint's address is the rounded mean of the end points' (`⌊(a + b + 1)/2⌋`, the same
-//! from either side), its depth the mean depth, its normal the mean of the two end normals —
-//! the parent's interpolated normal there, so the sub-triangles' normal field has the
-//! parent's direction everywhere and the reference image is unchanged. After the last level
+//! The midpoint's address is the rounded mean of the end points' (`⌊(a + b + 1)/2⌋` in the
+//! triangle's units, the same from either side), its depth and normal the parent's planes at
+//! that address — the parent's interpolated normal there, so the sub-triangles' normal field
+//! has the parent's direction everywhere and the reference image is unchanged — kept within
+//! the parent's vertex values (a rounded address can lie just off a sliver's edge, where its
+//! steep planes would extrapolate far). After the last level
 //! each triangle's three normals are scaled by one factor so the longest is a unit vector:
 //! directions stay, and K = |N|² comes back near 1 (where the normalizer's f(K) is exact),
 //! which is what the normalizer methods gain. The sub-triangles
 //! cover the parent's pixel set except where a rounded midpoint moves an *interior* edge by
-//! up to half a pixel: there a pixel changes owner between the two neighbours, never becomes
+//! up to half a unit: there a pixel changes owner between the two neighbours, never becomes
 //! uncovered (the split edge's two sides move together).
 //!
-//! Integer midpoints (not the exact half-integer ones of `four_triangle`) because every
-//! method's set-up and every pipeline take integer vertex addresses.
+//! With integer vertices (frac = 0) a midpoint moves by up to half a pixel and edges under
+//! [`MIN_SPLIT`] pixels stay whole; with sub-pixel vertices (`--subpixel 4`) it moves by up to
+//! 1/32 pixel and edges down to one pixel are split ([`min_split`]).
 
 use std::collections::HashMap;
 
