@@ -8,7 +8,9 @@ use std::collections::{HashMap, HashSet};
 
 use golden::raster::{edge_function_pixels_of, walk_subpixel};
 use golden::seed::seed_for;
-use golden::units::address_block::{run_model, stream_pixels, AddressBlockModel, AddressSetup};
+use golden::units::address_block::{
+    run_model, stream_pixels, AddressBlockModel, AddressSetup, EdgeSetup,
+};
 use golden::{ScreenTriangle, ScreenVertex, SubpixelTriangle, SUBPIXEL_BITS};
 
 const F: u32 = SUBPIXEL_BITS;
@@ -168,6 +170,52 @@ fn subpixel_setups_drive_the_block_model_through_the_walk() {
     );
 }
 
+/// The integer set-up written from the module doc's formulas alone (rows y_top..y_bottom, the
+/// switch at y_mid, e = B·D − N with D = 2Δy, N(y0) = Δy·(2x0 − 1) + Δx, B found by search),
+/// independent of `raster`'s grid and DDA.
+fn integer_setup(v: [(i32, i32); 3]) -> AddressSetup {
+    let mut s = v;
+    s.sort_by_key(|&(x, y)| (y, x));
+    let [top, mid, bot] = s;
+    let area = (mid.0 - top.0) as i64 * (bot.1 - top.1) as i64
+        - (bot.0 - top.0) as i64 * (mid.1 - top.1) as i64;
+    if area == 0 {
+        return AddressSetup {
+            y_top: top.1 as u32,
+            ..AddressSetup::default()
+        };
+    }
+    let edge = |u: (i32, i32), l: (i32, i32)| -> EdgeSetup {
+        let (dx, dy) = ((l.0 - u.0) as i64, (l.1 - u.1) as i64);
+        if dy <= 0 {
+            return EdgeSetup::default();
+        }
+        let (d, n0) = (2 * dy, dy * (2 * u.0 as i64 - 1) + dx);
+        // B: the smallest x with B·D ≥ N (the centre on or right of the edge).
+        let b0 = (0..=4096i64).find(|b| b * d >= n0).unwrap();
+        let f = dx.div_euclid(dy);
+        EdgeSetup {
+            b0: b0 as u32,
+            e0: (b0 * d - n0) as u32,
+            f: f as i32,
+            r: (2 * dx - f * d) as u32,
+            d: d as u32,
+        }
+    };
+    let t = edge(mid, bot);
+    AddressSetup {
+        w: edge(top, bot),
+        a: if mid.1 > top.1 { edge(top, mid) } else { t },
+        t,
+        y_top: top.1 as u32,
+        rows: (bot.1 - top.1) as u32,
+        y_switch: mid.1 as u32,
+        // The working edge top→bottom is the right edge when the middle vertex is on its −x
+        // side: (mid − top) × (bot − top) < 0.
+        dir_neg: area < 0,
+    }
+}
+
 #[test]
 fn integer_vertices_give_the_integer_setup() {
     let mut rng = Rng(seed_for("subpixel-integer") | 1);
@@ -189,7 +237,8 @@ fn integer_vertices_give_the_integer_setup() {
             frac: 0,
         };
         let s = SubpixelTriangle::of(&t);
-        assert_eq!(AddressSetup::subpixel(&s), AddressSetup::new(&t), "{v:?}");
+        assert_eq!(AddressSetup::subpixel(&s), integer_setup(v), "{v:?}");
+        assert_eq!(AddressSetup::new(&t), integer_setup(v), "{v:?}");
         // The same triangle at F fractional bits covers the same pixels.
         let fine = SubpixelTriangle {
             v: v.map(|(x, y)| (x * ONE, y * ONE)),

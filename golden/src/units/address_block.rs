@@ -86,29 +86,6 @@ pub struct EdgeSetup {
 }
 
 impl EdgeSetup {
-    /// The DDA of the edge `upper`→`lower` (upper.y < lower.y) on its first line `upper.y`;
-    /// the zero set-up for a horizontal edge.
-    pub fn new(upper: (i32, i32), lower: (i32, i32)) -> EdgeSetup {
-        let (dx, dy) = ((lower.0 - upper.0) as i64, (lower.1 - upper.1) as i64);
-        if dy <= 0 {
-            return EdgeSetup::default();
-        }
-        let b0 = EdgeDda::new(upper, lower, upper.1).boundary() as i64;
-        let d = 2 * dy;
-        let n0 = dy * (2 * upper.0 as i64 - 1) + dx;
-        let e0 = b0 * d - n0;
-        let f = dx.div_euclid(dy);
-        let r = 2 * dx - f * d;
-        debug_assert!((0..d).contains(&e0) && (0..d).contains(&r));
-        EdgeSetup {
-            b0: b0 as u32,
-            e0: e0 as u32,
-            f: f as i32,
-            r: r as u32,
-            d: d as u32,
-        }
-    }
-
     /// The DDA of the edge `upper`→`lower` with sub-pixel vertices (coordinates in 2^−frac
     /// pixel, upper.y < lower.y), placed on raster line `y`: with m = max(frac, 1),
     /// D = 2^m·Δy, 2^m·Δx = f·D + r and e the edge function at the boundary pixel's centre,
@@ -159,37 +136,11 @@ pub struct AddressSetup {
 }
 
 impl AddressSetup {
-    /// The set-up of `tri` (vertex coordinates must be in 0..=4095 pixels); a triangle with
-    /// sub-pixel vertices gets [`AddressSetup::subpixel`]'s (for `address-block-subpixel`).
+    /// The set-up of `tri` (vertex coordinates must be in 0..=4095 pixels): [`AddressSetup::subpixel`]
+    /// at the triangle's fraction bits (integer vertices are frac = 0, the words of the
+    /// module doc: D = 2Δy, N(y) = Δy·(2x0 − 1) + (2(y − y0) + 1)·Δx).
     pub fn new(tri: &ScreenTriangle) -> AddressSetup {
-        if tri.frac != 0 {
-            return AddressSetup::subpixel(&SubpixelTriangle::of(tri));
-        }
-        let Some(o) = crate::raster::orientation(tri) else {
-            // No rows; the rest is irrelevant but kept deterministic.
-            let y_top = tri.v.iter().map(|p| p.y).min().unwrap_or(0);
-            return AddressSetup {
-                y_top: y_top as u32,
-                ..AddressSetup::default()
-            };
-        };
-        let (top, mid, bot) = (o.top, o.mid, o.bot);
-        let w = EdgeSetup::new(top, bot);
-        let t = EdgeSetup::new(mid, bot);
-        let a = if mid.1 > top.1 {
-            EdgeSetup::new(top, mid)
-        } else {
-            t
-        };
-        AddressSetup {
-            w,
-            a,
-            t,
-            y_top: top.1 as u32,
-            rows: (bot.1 - top.1) as u32,
-            y_switch: mid.1 as u32,
-            dir_neg: !o.left,
-        }
+        AddressSetup::subpixel(&SubpixelTriangle::of(tri))
     }
 
     /// The set-up of a triangle with sub-pixel vertices (`raster::walk_subpixel`'s rows and
