@@ -71,6 +71,9 @@
 use crate::units::address_block::AddressBlock;
 use rust_hdl::prelude::*;
 
+// The four lanes are one text repeated by `seq!` (lane `L` is `laneL`, its ports end in `_lL`),
+// so they cannot drift apart; the exported Verilog is the same as the text written out four times.
+seq_macro::seq!(L in 0..4 {
 crate::hw_block! {
     /// The four-triangle address block (see the module header).
     pub struct FourTriangle(clock) as "four-triangle" {
@@ -82,39 +85,24 @@ crate::hw_block! {
             w_f: Bits<12>, w_r: Bits<13>, w_d: Bits<13>,
             a_f: Bits<12>, a_r: Bits<13>, a_d: Bits<13>,
             t_f: Bits<12>, t_r: Bits<13>, t_d: Bits<13>,
-            w_b0_l0: Bits<12>, w_e0_l0: Bits<13>, a_b0_l0: Bits<12>, a_e0_l0: Bits<13>, a_third_l0: Bit,
-            t_b0_l0: Bits<12>, t_e0_l0: Bits<13>, t_adjacent_l0: Bit,
-            y_top_l0: Bits<12>, rows_l0: Bits<12>, y_switch_l0: Bits<12>, dir_neg_l0: Bit,
-            w_b0_l1: Bits<12>, w_e0_l1: Bits<13>, a_b0_l1: Bits<12>, a_e0_l1: Bits<13>, a_third_l1: Bit,
-            t_b0_l1: Bits<12>, t_e0_l1: Bits<13>, t_adjacent_l1: Bit,
-            y_top_l1: Bits<12>, rows_l1: Bits<12>, y_switch_l1: Bits<12>, dir_neg_l1: Bit,
-            w_b0_l2: Bits<12>, w_e0_l2: Bits<13>, a_b0_l2: Bits<12>, a_e0_l2: Bits<13>, a_third_l2: Bit,
-            t_b0_l2: Bits<12>, t_e0_l2: Bits<13>, t_adjacent_l2: Bit,
-            y_top_l2: Bits<12>, rows_l2: Bits<12>, y_switch_l2: Bits<12>, dir_neg_l2: Bit,
-            w_b0_l3: Bits<12>, w_e0_l3: Bits<13>, a_b0_l3: Bits<12>, a_e0_l3: Bits<13>, a_third_l3: Bit,
-            t_b0_l3: Bits<12>, t_e0_l3: Bits<13>, t_adjacent_l3: Bit,
-            y_top_l3: Bits<12>, rows_l3: Bits<12>, y_switch_l3: Bits<12>, dir_neg_l3: Bit,
+            #(
+            w_b0_l~L: Bits<12>, w_e0_l~L: Bits<13>, a_b0_l~L: Bits<12>, a_e0_l~L: Bits<13>, a_third_l~L: Bit,
+            t_b0_l~L: Bits<12>, t_e0_l~L: Bits<13>, t_adjacent_l~L: Bit,
+            y_top_l~L: Bits<12>, rows_l~L: Bits<12>, y_switch_l~L: Bits<12>, dir_neg_l~L: Bit,
+            )*
             hold: Bit,
         }
         out {
             ready: Bit,
-            valid_l0: Bit, x_l0: Bits<12>, y_l0: Bits<12>, step_l0: Bits<2>,
-            line_start_l0: Bit, row_start_l0: Bit, carry_l0: Bit, done_l0: Bit,
-            valid_l1: Bit, x_l1: Bits<12>, y_l1: Bits<12>, step_l1: Bits<2>,
-            line_start_l1: Bit, row_start_l1: Bit, carry_l1: Bit, done_l1: Bit,
-            valid_l2: Bit, x_l2: Bits<12>, y_l2: Bits<12>, step_l2: Bits<2>,
-            line_start_l2: Bit, row_start_l2: Bit, carry_l2: Bit, done_l2: Bit,
-            valid_l3: Bit, x_l3: Bits<12>, y_l3: Bits<12>, step_l3: Bits<2>,
-            line_start_l3: Bit, row_start_l3: Bit, carry_l3: Bit, done_l3: Bit,
+            #(
+            valid_l~L: Bit, x_l~L: Bits<12>, y_l~L: Bits<12>, step_l~L: Bits<2>,
+            line_start_l~L: Bit, row_start_l~L: Bit, carry_l~L: Bit, done_l~L: Bit,
+            )*
         }
-        /// Lane 0: sub-triangle 0.
-        pub lane0: AddressBlock,
-        /// Lane 1: sub-triangle 1.
-        pub lane1: AddressBlock,
-        /// Lane 2: sub-triangle 2.
-        pub lane2: AddressBlock,
-        /// Lane 3: sub-triangle 3.
-        pub lane3: AddressBlock,
+        #(
+        /// One lane: sub-triangle `L`.
+        pub lane~L: AddressBlock,
+        )*
         /// All four lanes are ready: the load is taken.
         all_ready: Signal<Local, Bit>,
     }
@@ -129,177 +117,49 @@ impl Logic for FourTriangle {
             & self.lane2.ready.val()
             & self.lane3.ready.val();
         self.ready.next = self.all_ready.val();
-
-        // Lane 0.
-        self.lane0.load.next = self.load.val() & self.all_ready.val();
-        self.lane0.hold.next = self.hold.val();
-        self.lane0.w_b0.next = self.w_b0_l0.val();
-        self.lane0.w_e0.next = self.w_e0_l0.val();
-        self.lane0.w_f.next = self.w_f.val();
-        self.lane0.w_r.next = self.w_r.val();
-        self.lane0.w_d.next = self.w_d.val();
-        self.lane0.a_b0.next = self.a_b0_l0.val();
-        self.lane0.a_e0.next = self.a_e0_l0.val();
-        if self.a_third_l0.val() {
-            self.lane0.a_f.next = self.t_f.val();
-            self.lane0.a_r.next = self.t_r.val();
-            self.lane0.a_d.next = self.t_d.val();
+        #(
+        self.lane~L.load.next = self.load.val() & self.all_ready.val();
+        self.lane~L.hold.next = self.hold.val();
+        self.lane~L.w_b0.next = self.w_b0_l~L.val();
+        self.lane~L.w_e0.next = self.w_e0_l~L.val();
+        self.lane~L.w_f.next = self.w_f.val();
+        self.lane~L.w_r.next = self.w_r.val();
+        self.lane~L.w_d.next = self.w_d.val();
+        self.lane~L.a_b0.next = self.a_b0_l~L.val();
+        self.lane~L.a_e0.next = self.a_e0_l~L.val();
+        if self.a_third_l~L.val() {
+            self.lane~L.a_f.next = self.t_f.val();
+            self.lane~L.a_r.next = self.t_r.val();
+            self.lane~L.a_d.next = self.t_d.val();
         } else {
-            self.lane0.a_f.next = self.a_f.val();
-            self.lane0.a_r.next = self.a_r.val();
-            self.lane0.a_d.next = self.a_d.val();
+            self.lane~L.a_f.next = self.a_f.val();
+            self.lane~L.a_r.next = self.a_r.val();
+            self.lane~L.a_d.next = self.a_d.val();
         }
-        self.lane0.t_b0.next = self.t_b0_l0.val();
-        self.lane0.t_e0.next = self.t_e0_l0.val();
-        if self.t_adjacent_l0.val() {
-            self.lane0.t_f.next = self.a_f.val();
-            self.lane0.t_r.next = self.a_r.val();
-            self.lane0.t_d.next = self.a_d.val();
+        self.lane~L.t_b0.next = self.t_b0_l~L.val();
+        self.lane~L.t_e0.next = self.t_e0_l~L.val();
+        if self.t_adjacent_l~L.val() {
+            self.lane~L.t_f.next = self.a_f.val();
+            self.lane~L.t_r.next = self.a_r.val();
+            self.lane~L.t_d.next = self.a_d.val();
         } else {
-            self.lane0.t_f.next = self.t_f.val();
-            self.lane0.t_r.next = self.t_r.val();
-            self.lane0.t_d.next = self.t_d.val();
+            self.lane~L.t_f.next = self.t_f.val();
+            self.lane~L.t_r.next = self.t_r.val();
+            self.lane~L.t_d.next = self.t_d.val();
         }
-        self.lane0.y_top.next = self.y_top_l0.val();
-        self.lane0.rows.next = self.rows_l0.val();
-        self.lane0.y_switch.next = self.y_switch_l0.val();
-        self.lane0.dir_neg.next = self.dir_neg_l0.val();
-        self.valid_l0.next = self.lane0.valid.val();
-        self.x_l0.next = self.lane0.x.val();
-        self.y_l0.next = self.lane0.y.val();
-        self.step_l0.next = self.lane0.step.val();
-        self.line_start_l0.next = self.lane0.line_start.val();
-        self.row_start_l0.next = self.lane0.row_start.val();
-        self.carry_l0.next = self.lane0.carry.val();
-        self.done_l0.next = self.lane0.done.val();
-
-        // Lane 1.
-        self.lane1.load.next = self.load.val() & self.all_ready.val();
-        self.lane1.hold.next = self.hold.val();
-        self.lane1.w_b0.next = self.w_b0_l1.val();
-        self.lane1.w_e0.next = self.w_e0_l1.val();
-        self.lane1.w_f.next = self.w_f.val();
-        self.lane1.w_r.next = self.w_r.val();
-        self.lane1.w_d.next = self.w_d.val();
-        self.lane1.a_b0.next = self.a_b0_l1.val();
-        self.lane1.a_e0.next = self.a_e0_l1.val();
-        if self.a_third_l1.val() {
-            self.lane1.a_f.next = self.t_f.val();
-            self.lane1.a_r.next = self.t_r.val();
-            self.lane1.a_d.next = self.t_d.val();
-        } else {
-            self.lane1.a_f.next = self.a_f.val();
-            self.lane1.a_r.next = self.a_r.val();
-            self.lane1.a_d.next = self.a_d.val();
-        }
-        self.lane1.t_b0.next = self.t_b0_l1.val();
-        self.lane1.t_e0.next = self.t_e0_l1.val();
-        if self.t_adjacent_l1.val() {
-            self.lane1.t_f.next = self.a_f.val();
-            self.lane1.t_r.next = self.a_r.val();
-            self.lane1.t_d.next = self.a_d.val();
-        } else {
-            self.lane1.t_f.next = self.t_f.val();
-            self.lane1.t_r.next = self.t_r.val();
-            self.lane1.t_d.next = self.t_d.val();
-        }
-        self.lane1.y_top.next = self.y_top_l1.val();
-        self.lane1.rows.next = self.rows_l1.val();
-        self.lane1.y_switch.next = self.y_switch_l1.val();
-        self.lane1.dir_neg.next = self.dir_neg_l1.val();
-        self.valid_l1.next = self.lane1.valid.val();
-        self.x_l1.next = self.lane1.x.val();
-        self.y_l1.next = self.lane1.y.val();
-        self.step_l1.next = self.lane1.step.val();
-        self.line_start_l1.next = self.lane1.line_start.val();
-        self.row_start_l1.next = self.lane1.row_start.val();
-        self.carry_l1.next = self.lane1.carry.val();
-        self.done_l1.next = self.lane1.done.val();
-
-        // Lane 2.
-        self.lane2.load.next = self.load.val() & self.all_ready.val();
-        self.lane2.hold.next = self.hold.val();
-        self.lane2.w_b0.next = self.w_b0_l2.val();
-        self.lane2.w_e0.next = self.w_e0_l2.val();
-        self.lane2.w_f.next = self.w_f.val();
-        self.lane2.w_r.next = self.w_r.val();
-        self.lane2.w_d.next = self.w_d.val();
-        self.lane2.a_b0.next = self.a_b0_l2.val();
-        self.lane2.a_e0.next = self.a_e0_l2.val();
-        if self.a_third_l2.val() {
-            self.lane2.a_f.next = self.t_f.val();
-            self.lane2.a_r.next = self.t_r.val();
-            self.lane2.a_d.next = self.t_d.val();
-        } else {
-            self.lane2.a_f.next = self.a_f.val();
-            self.lane2.a_r.next = self.a_r.val();
-            self.lane2.a_d.next = self.a_d.val();
-        }
-        self.lane2.t_b0.next = self.t_b0_l2.val();
-        self.lane2.t_e0.next = self.t_e0_l2.val();
-        if self.t_adjacent_l2.val() {
-            self.lane2.t_f.next = self.a_f.val();
-            self.lane2.t_r.next = self.a_r.val();
-            self.lane2.t_d.next = self.a_d.val();
-        } else {
-            self.lane2.t_f.next = self.t_f.val();
-            self.lane2.t_r.next = self.t_r.val();
-            self.lane2.t_d.next = self.t_d.val();
-        }
-        self.lane2.y_top.next = self.y_top_l2.val();
-        self.lane2.rows.next = self.rows_l2.val();
-        self.lane2.y_switch.next = self.y_switch_l2.val();
-        self.lane2.dir_neg.next = self.dir_neg_l2.val();
-        self.valid_l2.next = self.lane2.valid.val();
-        self.x_l2.next = self.lane2.x.val();
-        self.y_l2.next = self.lane2.y.val();
-        self.step_l2.next = self.lane2.step.val();
-        self.line_start_l2.next = self.lane2.line_start.val();
-        self.row_start_l2.next = self.lane2.row_start.val();
-        self.carry_l2.next = self.lane2.carry.val();
-        self.done_l2.next = self.lane2.done.val();
-
-        // Lane 3.
-        self.lane3.load.next = self.load.val() & self.all_ready.val();
-        self.lane3.hold.next = self.hold.val();
-        self.lane3.w_b0.next = self.w_b0_l3.val();
-        self.lane3.w_e0.next = self.w_e0_l3.val();
-        self.lane3.w_f.next = self.w_f.val();
-        self.lane3.w_r.next = self.w_r.val();
-        self.lane3.w_d.next = self.w_d.val();
-        self.lane3.a_b0.next = self.a_b0_l3.val();
-        self.lane3.a_e0.next = self.a_e0_l3.val();
-        if self.a_third_l3.val() {
-            self.lane3.a_f.next = self.t_f.val();
-            self.lane3.a_r.next = self.t_r.val();
-            self.lane3.a_d.next = self.t_d.val();
-        } else {
-            self.lane3.a_f.next = self.a_f.val();
-            self.lane3.a_r.next = self.a_r.val();
-            self.lane3.a_d.next = self.a_d.val();
-        }
-        self.lane3.t_b0.next = self.t_b0_l3.val();
-        self.lane3.t_e0.next = self.t_e0_l3.val();
-        if self.t_adjacent_l3.val() {
-            self.lane3.t_f.next = self.a_f.val();
-            self.lane3.t_r.next = self.a_r.val();
-            self.lane3.t_d.next = self.a_d.val();
-        } else {
-            self.lane3.t_f.next = self.t_f.val();
-            self.lane3.t_r.next = self.t_r.val();
-            self.lane3.t_d.next = self.t_d.val();
-        }
-        self.lane3.y_top.next = self.y_top_l3.val();
-        self.lane3.rows.next = self.rows_l3.val();
-        self.lane3.y_switch.next = self.y_switch_l3.val();
-        self.lane3.dir_neg.next = self.dir_neg_l3.val();
-        self.valid_l3.next = self.lane3.valid.val();
-        self.x_l3.next = self.lane3.x.val();
-        self.y_l3.next = self.lane3.y.val();
-        self.step_l3.next = self.lane3.step.val();
-        self.line_start_l3.next = self.lane3.line_start.val();
-        self.row_start_l3.next = self.lane3.row_start.val();
-        self.carry_l3.next = self.lane3.carry.val();
-        self.done_l3.next = self.lane3.done.val();
+        self.lane~L.y_top.next = self.y_top_l~L.val();
+        self.lane~L.rows.next = self.rows_l~L.val();
+        self.lane~L.y_switch.next = self.y_switch_l~L.val();
+        self.lane~L.dir_neg.next = self.dir_neg_l~L.val();
+        self.valid_l~L.next = self.lane~L.valid.val();
+        self.x_l~L.next = self.lane~L.x.val();
+        self.y_l~L.next = self.lane~L.y.val();
+        self.step_l~L.next = self.lane~L.step.val();
+        self.line_start_l~L.next = self.lane~L.line_start.val();
+        self.row_start_l~L.next = self.lane~L.row_start.val();
+        self.carry_l~L.next = self.lane~L.carry.val();
+        self.done_l~L.next = self.lane~L.done.val();
+        )*
     }
 }
+});

@@ -23,48 +23,33 @@ pub struct Record {
     pub fields: &'static [Field],
 }
 
+/// A triangle record's fields: the sub-pixel address block's set-up (`address_setup_ports!` in
+/// `rtl::units::address_block`: three edges' b0, e0, f, r, d, then the walk's rows), then for
+/// each named quantity its plane's four signed Q16.16 words (start, short, long, line). One list
+/// for every record that loads an address block and a bilinear interpolator.
+macro_rules! triangle_fields {
+    ($($plane:literal),*) => {
+        [
+            f("w_b0", 12), f("w_e0", 20), f("w_f", 12), f("w_r", 20), f("w_d", 20),
+            f("a_b0", 12), f("a_e0", 20), f("a_f", 12), f("a_r", 20), f("a_d", 20),
+            f("t_b0", 12), f("t_e0", 20), f("t_f", 12), f("t_r", 20), f("t_d", 20),
+            f("y_top", 12), f("rows", 12), f("y_switch", 12), f("dir_neg", 1),
+            $(
+                f(concat!($plane, "_start"), 32),
+                f(concat!($plane, "_short"), 32),
+                f(concat!($plane, "_long"), 32),
+                f(concat!($plane, "_line"), 32),
+            )*
+        ]
+    };
+}
+
 /// A triangle: the address block's set-up, the normal planes and the depth plane (loaded into
 /// the pipeline when its address block is ready; the next record streams in meanwhile).
 pub const TRIANGLE: Record = Record {
     name: "triangle",
     code: 1,
-    fields: &[
-        f("w_b0", 12),
-        f("w_e0", 20),
-        f("w_f", 12),
-        f("w_r", 20),
-        f("w_d", 20),
-        f("a_b0", 12),
-        f("a_e0", 20),
-        f("a_f", 12),
-        f("a_r", 20),
-        f("a_d", 20),
-        f("t_b0", 12),
-        f("t_e0", 20),
-        f("t_f", 12),
-        f("t_r", 20),
-        f("t_d", 20),
-        f("y_top", 12),
-        f("rows", 12),
-        f("y_switch", 12),
-        f("dir_neg", 1),
-        f("x_start", 32),
-        f("x_short", 32),
-        f("x_long", 32),
-        f("x_line", 32),
-        f("y_start", 32),
-        f("y_short", 32),
-        f("y_long", 32),
-        f("y_line", 32),
-        f("z_start", 32),
-        f("z_short", 32),
-        f("z_long", 32),
-        f("z_line", 32),
-        f("d_start", 32),
-        f("d_short", 32),
-        f("d_long", 32),
-        f("d_line", 32),
-    ],
+    fields: &triangle_fields!("x", "y", "z", "d"),
 };
 
 /// The frame and material registers (L, H, n, the colour weights). Applied when every
@@ -100,39 +85,7 @@ pub const RECORDS: [Record; 2] = [TRIANGLE, REGISTERS];
 pub const GOURAUD_TRIANGLE: Record = Record {
     name: "gouraud triangle",
     code: 1,
-    fields: &[
-        f("w_b0", 12),
-        f("w_e0", 20),
-        f("w_f", 12),
-        f("w_r", 20),
-        f("w_d", 20),
-        f("a_b0", 12),
-        f("a_e0", 20),
-        f("a_f", 12),
-        f("a_r", 20),
-        f("a_d", 20),
-        f("t_b0", 12),
-        f("t_e0", 20),
-        f("t_f", 12),
-        f("t_r", 20),
-        f("t_d", 20),
-        f("y_top", 12),
-        f("rows", 12),
-        f("y_switch", 12),
-        f("dir_neg", 1),
-        f("r_start", 32),
-        f("r_short", 32),
-        f("r_long", 32),
-        f("r_line", 32),
-        f("g_start", 32),
-        f("g_short", 32),
-        f("g_long", 32),
-        f("g_line", 32),
-        f("b_start", 32),
-        f("b_short", 32),
-        f("b_long", 32),
-        f("b_line", 32),
-    ],
+    fields: &triangle_fields!("r", "g", "b"),
 };
 
 /// A raster line of the cubic method (`cubic-stream`): `cubic-pipeline`'s load ports — the

@@ -146,6 +146,9 @@ crate::hw_block! {
     }
 }
 
+// The three channels are one text repeated by `seq!` (channel `C` indexes every array with
+// `[C]`); the exported Verilog is that text written out three times.
+seq_macro::seq!(C in 0..3 {
 impl Logic for QuadricHalf {
     #[hdl_gen]
     fn update(&mut self) {
@@ -196,723 +199,247 @@ impl Logic for QuadricHalf {
         self.w_b2[2].next = self.bb.val();
         self.w_c[2].next = self.bc.val();
         self.cin[2].next = self.cin_b.val();
-        // Channel 0.
+        #(
+        // Channel C.
         // The hand-over's pair: I + Dx; I − Dx + 2A (carry-save, the +1 in bit 0's carry).
-        self.cs_ip1[0].next = self.ti[0].q.val()
-            + self.tdx[0].q.val()
-            + bit_cast::<32, 1>(self.cin[0].val().get_bits::<1>(0));
-        self.cy_ip1[0].next = (self.ti[0].q.val() & self.tdx[0].q.val())
-            | ((self.ti[0].q.val() ^ self.tdx[0].q.val()) & !self.cs_ip1[0].val());
-        self.n_dx[0].next = !self.tdx[0].q.val();
-        self.x_im1[0].next = self.ti[0].q.val() ^ self.n_dx[0].val() ^ self.ta2[0].q.val();
-        self.m_im1[0].next = (self.ti[0].q.val() & self.n_dx[0].val())
-            | (self.ti[0].q.val() & self.ta2[0].q.val())
-            | (self.n_dx[0].val() & self.ta2[0].q.val());
-        self.k_im1[0].next =
-            (self.m_im1[0].val() << 1) | bit_cast::<32, 1>(self.cin[0].val().get_bits::<1>(1));
-        self.cs_im1[0].next = self.x_im1[0].val()
-            + self.k_im1[0].val()
-            + bit_cast::<32, 1>(self.cin[0].val().get_bits::<1>(2));
-        self.cy_im1[0].next = (self.x_im1[0].val() & self.k_im1[0].val())
-            | ((self.x_im1[0].val() ^ self.k_im1[0].val()) & !self.cs_im1[0].val());
+        self.cs_ip1[C].next = self.ti[C].q.val()
+            + self.tdx[C].q.val()
+            + bit_cast::<32, 1>(self.cin[C].val().get_bits::<1>(0));
+        self.cy_ip1[C].next = (self.ti[C].q.val() & self.tdx[C].q.val())
+            | ((self.ti[C].q.val() ^ self.tdx[C].q.val()) & !self.cs_ip1[C].val());
+        self.n_dx[C].next = !self.tdx[C].q.val();
+        self.x_im1[C].next = self.ti[C].q.val() ^ self.n_dx[C].val() ^ self.ta2[C].q.val();
+        self.m_im1[C].next = (self.ti[C].q.val() & self.n_dx[C].val())
+            | (self.ti[C].q.val() & self.ta2[C].q.val())
+            | (self.n_dx[C].val() & self.ta2[C].q.val());
+        self.k_im1[C].next =
+            (self.m_im1[C].val() << 1) | bit_cast::<32, 1>(self.cin[C].val().get_bits::<1>(1));
+        self.cs_im1[C].next = self.x_im1[C].val()
+            + self.k_im1[C].val()
+            + bit_cast::<32, 1>(self.cin[C].val().get_bits::<1>(2));
+        self.cy_im1[C].next = (self.x_im1[C].val() & self.k_im1[C].val())
+            | ((self.x_im1[C].val() ^ self.k_im1[C].val()) & !self.cs_im1[C].val());
         // The x-step's terms: I + (Dx | 2·Dx + 2A | −Dx + 2A | −2·Dx + 3·2A).
-        self.s_tdx[0].next =
-            (self.tdx[0].q.val() << 1) | bit_cast::<32, 1>(self.cin[0].val().get_bits::<1>(3));
-        self.n_sdx[0].next = !self.s_tdx[0].val();
+        self.s_tdx[C].next =
+            (self.tdx[C].q.val() << 1) | bit_cast::<32, 1>(self.cin[C].val().get_bits::<1>(3));
+        self.n_sdx[C].next = !self.s_tdx[C].val();
         if self.neg.val() {
             if self.big.val() {
-                self.xt1[0].next = self.n_sdx[0].val();
-                self.xt2[0].next = self.ta3[0].q.val();
+                self.xt1[C].next = self.n_sdx[C].val();
+                self.xt2[C].next = self.ta3[C].q.val();
             } else {
-                self.xt1[0].next = self.n_dx[0].val();
-                self.xt2[0].next = self.ta2[0].q.val();
+                self.xt1[C].next = self.n_dx[C].val();
+                self.xt2[C].next = self.ta2[C].q.val();
             }
         } else if self.big.val() {
-            self.xt1[0].next = self.s_tdx[0].val();
-            self.xt2[0].next = self.ta2[0].q.val();
+            self.xt1[C].next = self.s_tdx[C].val();
+            self.xt2[C].next = self.ta2[C].q.val();
         } else {
-            self.xt1[0].next = self.tdx[0].q.val();
-            self.xt2[0].next = 0.into();
+            self.xt1[C].next = self.tdx[C].q.val();
+            self.xt2[C].next = 0.into();
         }
-        self.x_xi[0].next = self.ti[0].q.val() ^ self.xt1[0].val() ^ self.xt2[0].val();
-        self.m_xi[0].next = (self.ti[0].q.val() & self.xt1[0].val())
-            | (self.ti[0].q.val() & self.xt2[0].val())
-            | (self.xt1[0].val() & self.xt2[0].val());
-        self.k_xi[0].next =
-            (self.m_xi[0].val() << 1) | bit_cast::<32, 1>(self.cin[0].val().get_bits::<1>(4));
-        self.cs_xi[0].next = self.x_xi[0].val()
-            + self.k_xi[0].val()
-            + bit_cast::<32, 1>(self.cin[0].val().get_bits::<1>(5));
-        self.cy_xi[0].next = (self.x_xi[0].val() & self.k_xi[0].val())
-            | ((self.x_xi[0].val() ^ self.k_xi[0].val()) & !self.cs_xi[0].val());
+        self.x_xi[C].next = self.ti[C].q.val() ^ self.xt1[C].val() ^ self.xt2[C].val();
+        self.m_xi[C].next = (self.ti[C].q.val() & self.xt1[C].val())
+            | (self.ti[C].q.val() & self.xt2[C].val())
+            | (self.xt1[C].val() & self.xt2[C].val());
+        self.k_xi[C].next =
+            (self.m_xi[C].val() << 1) | bit_cast::<32, 1>(self.cin[C].val().get_bits::<1>(4));
+        self.cs_xi[C].next = self.x_xi[C].val()
+            + self.k_xi[C].val()
+            + bit_cast::<32, 1>(self.cin[C].val().get_bits::<1>(5));
+        self.cy_xi[C].next = (self.x_xi[C].val() & self.k_xi[C].val())
+            | ((self.x_xi[C].val() ^ self.k_xi[C].val()) & !self.cs_xi[C].val());
         // Dx ± 2A·step, Dy ± C·step: two-operand adds, selected after the carry chains.
-        self.s_ta2[0].next =
-            (self.ta2[0].q.val() << 1) | bit_cast::<32, 1>(self.cin[0].val().get_bits::<1>(6));
-        self.n_ta2[0].next = !self.ta2[0].q.val();
-        self.n_sta2[0].next = !self.s_ta2[0].val();
-        self.cs_dxp1[0].next = self.tdx[0].q.val()
-            + self.ta2[0].q.val()
-            + bit_cast::<32, 1>(self.cin[0].val().get_bits::<1>(7));
-        self.cy_dxp1[0].next = (self.tdx[0].q.val() & self.ta2[0].q.val())
-            | ((self.tdx[0].q.val() ^ self.ta2[0].q.val()) & !self.cs_dxp1[0].val());
-        self.cs_dxp2[0].next = self.tdx[0].q.val()
-            + self.s_ta2[0].val()
-            + bit_cast::<32, 1>(self.cin[0].val().get_bits::<1>(8));
-        self.cy_dxp2[0].next = (self.tdx[0].q.val() & self.s_ta2[0].val())
-            | ((self.tdx[0].q.val() ^ self.s_ta2[0].val()) & !self.cs_dxp2[0].val());
-        self.cs_dxm1[0].next = self.tdx[0].q.val()
-            + self.n_ta2[0].val()
-            + bit_cast::<32, 1>(self.cin[0].val().get_bits::<1>(9));
-        self.cy_dxm1[0].next = (self.tdx[0].q.val() & self.n_ta2[0].val())
-            | ((self.tdx[0].q.val() ^ self.n_ta2[0].val()) & !self.cs_dxm1[0].val());
-        self.cs_dxm2[0].next = self.tdx[0].q.val()
-            + self.n_sta2[0].val()
-            + bit_cast::<32, 1>(self.cin[0].val().get_bits::<1>(10));
-        self.cy_dxm2[0].next = (self.tdx[0].q.val() & self.n_sta2[0].val())
-            | ((self.tdx[0].q.val() ^ self.n_sta2[0].val()) & !self.cs_dxm2[0].val());
-        self.s_tc[0].next =
-            (self.tc[0].q.val() << 1) | bit_cast::<32, 1>(self.cin[0].val().get_bits::<1>(11));
-        self.n_tc[0].next = !self.tc[0].q.val();
-        self.n_stc[0].next = !self.s_tc[0].val();
-        self.cs_dyp1[0].next = self.tdy[0].q.val()
-            + self.tc[0].q.val()
-            + bit_cast::<32, 1>(self.cin[0].val().get_bits::<1>(12));
-        self.cy_dyp1[0].next = (self.tdy[0].q.val() & self.tc[0].q.val())
-            | ((self.tdy[0].q.val() ^ self.tc[0].q.val()) & !self.cs_dyp1[0].val());
-        self.cs_dyp2[0].next = self.tdy[0].q.val()
-            + self.s_tc[0].val()
-            + bit_cast::<32, 1>(self.cin[0].val().get_bits::<1>(13));
-        self.cy_dyp2[0].next = (self.tdy[0].q.val() & self.s_tc[0].val())
-            | ((self.tdy[0].q.val() ^ self.s_tc[0].val()) & !self.cs_dyp2[0].val());
-        self.cs_dym1[0].next = self.tdy[0].q.val()
-            + self.n_tc[0].val()
-            + bit_cast::<32, 1>(self.cin[0].val().get_bits::<1>(14));
-        self.cy_dym1[0].next = (self.tdy[0].q.val() & self.n_tc[0].val())
-            | ((self.tdy[0].q.val() ^ self.n_tc[0].val()) & !self.cs_dym1[0].val());
-        self.cs_dym2[0].next = self.tdy[0].q.val()
-            + self.n_stc[0].val()
-            + bit_cast::<32, 1>(self.cin[0].val().get_bits::<1>(15));
-        self.cy_dym2[0].next = (self.tdy[0].q.val() & self.n_stc[0].val())
-            | ((self.tdy[0].q.val() ^ self.n_stc[0].val()) & !self.cs_dym2[0].val());
+        self.s_ta2[C].next =
+            (self.ta2[C].q.val() << 1) | bit_cast::<32, 1>(self.cin[C].val().get_bits::<1>(6));
+        self.n_ta2[C].next = !self.ta2[C].q.val();
+        self.n_sta2[C].next = !self.s_ta2[C].val();
+        self.cs_dxp1[C].next = self.tdx[C].q.val()
+            + self.ta2[C].q.val()
+            + bit_cast::<32, 1>(self.cin[C].val().get_bits::<1>(7));
+        self.cy_dxp1[C].next = (self.tdx[C].q.val() & self.ta2[C].q.val())
+            | ((self.tdx[C].q.val() ^ self.ta2[C].q.val()) & !self.cs_dxp1[C].val());
+        self.cs_dxp2[C].next = self.tdx[C].q.val()
+            + self.s_ta2[C].val()
+            + bit_cast::<32, 1>(self.cin[C].val().get_bits::<1>(8));
+        self.cy_dxp2[C].next = (self.tdx[C].q.val() & self.s_ta2[C].val())
+            | ((self.tdx[C].q.val() ^ self.s_ta2[C].val()) & !self.cs_dxp2[C].val());
+        self.cs_dxm1[C].next = self.tdx[C].q.val()
+            + self.n_ta2[C].val()
+            + bit_cast::<32, 1>(self.cin[C].val().get_bits::<1>(9));
+        self.cy_dxm1[C].next = (self.tdx[C].q.val() & self.n_ta2[C].val())
+            | ((self.tdx[C].q.val() ^ self.n_ta2[C].val()) & !self.cs_dxm1[C].val());
+        self.cs_dxm2[C].next = self.tdx[C].q.val()
+            + self.n_sta2[C].val()
+            + bit_cast::<32, 1>(self.cin[C].val().get_bits::<1>(10));
+        self.cy_dxm2[C].next = (self.tdx[C].q.val() & self.n_sta2[C].val())
+            | ((self.tdx[C].q.val() ^ self.n_sta2[C].val()) & !self.cs_dxm2[C].val());
+        self.s_tc[C].next =
+            (self.tc[C].q.val() << 1) | bit_cast::<32, 1>(self.cin[C].val().get_bits::<1>(11));
+        self.n_tc[C].next = !self.tc[C].q.val();
+        self.n_stc[C].next = !self.s_tc[C].val();
+        self.cs_dyp1[C].next = self.tdy[C].q.val()
+            + self.tc[C].q.val()
+            + bit_cast::<32, 1>(self.cin[C].val().get_bits::<1>(12));
+        self.cy_dyp1[C].next = (self.tdy[C].q.val() & self.tc[C].q.val())
+            | ((self.tdy[C].q.val() ^ self.tc[C].q.val()) & !self.cs_dyp1[C].val());
+        self.cs_dyp2[C].next = self.tdy[C].q.val()
+            + self.s_tc[C].val()
+            + bit_cast::<32, 1>(self.cin[C].val().get_bits::<1>(13));
+        self.cy_dyp2[C].next = (self.tdy[C].q.val() & self.s_tc[C].val())
+            | ((self.tdy[C].q.val() ^ self.s_tc[C].val()) & !self.cs_dyp2[C].val());
+        self.cs_dym1[C].next = self.tdy[C].q.val()
+            + self.n_tc[C].val()
+            + bit_cast::<32, 1>(self.cin[C].val().get_bits::<1>(14));
+        self.cy_dym1[C].next = (self.tdy[C].q.val() & self.n_tc[C].val())
+            | ((self.tdy[C].q.val() ^ self.n_tc[C].val()) & !self.cs_dym1[C].val());
+        self.cs_dym2[C].next = self.tdy[C].q.val()
+            + self.n_stc[C].val()
+            + bit_cast::<32, 1>(self.cin[C].val().get_bits::<1>(15));
+        self.cy_dym2[C].next = (self.tdy[C].q.val() & self.n_stc[C].val())
+            | ((self.tdy[C].q.val() ^ self.n_stc[C].val()) & !self.cs_dym2[C].val());
         // The y-step: I + Dy, Dy + 2B, Dx + C.
-        self.cs_yi[0].next = self.ti[0].q.val()
-            + self.tdy[0].q.val()
-            + bit_cast::<32, 1>(self.cin[0].val().get_bits::<1>(16));
-        self.cy_yi[0].next = (self.ti[0].q.val() & self.tdy[0].q.val())
-            | ((self.ti[0].q.val() ^ self.tdy[0].q.val()) & !self.cs_yi[0].val());
-        self.cs_ydy[0].next = self.tdy[0].q.val()
-            + self.tb2[0].q.val()
-            + bit_cast::<32, 1>(self.cin[0].val().get_bits::<1>(17));
-        self.cy_ydy[0].next = (self.tdy[0].q.val() & self.tb2[0].q.val())
-            | ((self.tdy[0].q.val() ^ self.tb2[0].q.val()) & !self.cs_ydy[0].val());
-        self.cs_ydx[0].next = self.tdx[0].q.val()
-            + self.tc[0].q.val()
-            + bit_cast::<32, 1>(self.cin[0].val().get_bits::<1>(18));
-        self.cy_ydx[0].next = (self.tdx[0].q.val() & self.tc[0].q.val())
-            | ((self.tdx[0].q.val() ^ self.tc[0].q.val()) & !self.cs_ydx[0].val());
+        self.cs_yi[C].next = self.ti[C].q.val()
+            + self.tdy[C].q.val()
+            + bit_cast::<32, 1>(self.cin[C].val().get_bits::<1>(16));
+        self.cy_yi[C].next = (self.ti[C].q.val() & self.tdy[C].q.val())
+            | ((self.ti[C].q.val() ^ self.tdy[C].q.val()) & !self.cs_yi[C].val());
+        self.cs_ydy[C].next = self.tdy[C].q.val()
+            + self.tb2[C].q.val()
+            + bit_cast::<32, 1>(self.cin[C].val().get_bits::<1>(17));
+        self.cy_ydy[C].next = (self.tdy[C].q.val() & self.tb2[C].q.val())
+            | ((self.tdy[C].q.val() ^ self.tb2[C].q.val()) & !self.cs_ydy[C].val());
+        self.cs_ydx[C].next = self.tdx[C].q.val()
+            + self.tc[C].q.val()
+            + bit_cast::<32, 1>(self.cin[C].val().get_bits::<1>(18));
+        self.cy_ydx[C].next = (self.tdx[C].q.val() & self.tc[C].q.val())
+            | ((self.tdx[C].q.val() ^ self.tc[C].q.val()) & !self.cs_ydx[C].val());
         // The load's 3·2A.
-        self.s_wa2[0].next =
-            (self.w_a2[0].val() << 1) | bit_cast::<32, 1>(self.cin[0].val().get_bits::<1>(19));
-        self.cs_ta3[0].next = self.s_wa2[0].val()
-            + self.w_a2[0].val()
-            + bit_cast::<32, 1>(self.cin[0].val().get_bits::<1>(20));
-        self.cy_ta3[0].next = (self.s_wa2[0].val() & self.w_a2[0].val())
-            | ((self.s_wa2[0].val() ^ self.w_a2[0].val()) & !self.cs_ta3[0].val());
+        self.s_wa2[C].next =
+            (self.w_a2[C].val() << 1) | bit_cast::<32, 1>(self.cin[C].val().get_bits::<1>(19));
+        self.cs_ta3[C].next = self.s_wa2[C].val()
+            + self.w_a2[C].val()
+            + bit_cast::<32, 1>(self.cin[C].val().get_bits::<1>(20));
+        self.cy_ta3[C].next = (self.s_wa2[C].val() & self.w_a2[C].val())
+            | ((self.s_wa2[C].val() ^ self.w_a2[C].val()) & !self.cs_ta3[C].val());
         // The generator: p' = q + e + 2A, q' = q + 2e + 3·2A, e' = e + 2·2A; a hand-over's e = 2A − Dx.
-        self.s_ge[0].next =
-            (self.ge[0].q.val() << 1) | bit_cast::<32, 1>(self.cin[0].val().get_bits::<1>(21));
-        self.x_gp[0].next = self.q[0].q.val() ^ self.ge[0].q.val() ^ self.ga2[0].q.val();
-        self.m_gp[0].next = (self.q[0].q.val() & self.ge[0].q.val())
-            | (self.q[0].q.val() & self.ga2[0].q.val())
-            | (self.ge[0].q.val() & self.ga2[0].q.val());
-        self.k_gp[0].next =
-            (self.m_gp[0].val() << 1) | bit_cast::<32, 1>(self.cin[0].val().get_bits::<1>(22));
-        self.cs_gp[0].next = self.x_gp[0].val()
-            + self.k_gp[0].val()
-            + bit_cast::<32, 1>(self.cin[0].val().get_bits::<1>(23));
-        self.cy_gp[0].next = (self.x_gp[0].val() & self.k_gp[0].val())
-            | ((self.x_gp[0].val() ^ self.k_gp[0].val()) & !self.cs_gp[0].val());
-        self.x_gq[0].next = self.q[0].q.val() ^ self.s_ge[0].val() ^ self.ga3[0].q.val();
-        self.m_gq[0].next = (self.q[0].q.val() & self.s_ge[0].val())
-            | (self.q[0].q.val() & self.ga3[0].q.val())
-            | (self.s_ge[0].val() & self.ga3[0].q.val());
-        self.k_gq[0].next =
-            (self.m_gq[0].val() << 1) | bit_cast::<32, 1>(self.cin[0].val().get_bits::<1>(24));
-        self.cs_gq[0].next = self.x_gq[0].val()
-            + self.k_gq[0].val()
-            + bit_cast::<32, 1>(self.cin[0].val().get_bits::<1>(25));
-        self.cy_gq[0].next = (self.x_gq[0].val() & self.k_gq[0].val())
-            | ((self.x_gq[0].val() ^ self.k_gq[0].val()) & !self.cs_gq[0].val());
-        self.s_ga2[0].next =
-            (self.ga2[0].q.val() << 1) | bit_cast::<32, 1>(self.cin[0].val().get_bits::<1>(26));
-        self.cs_ge[0].next = self.ge[0].q.val()
-            + self.s_ga2[0].val()
-            + bit_cast::<32, 1>(self.cin[0].val().get_bits::<1>(27));
-        self.cy_ge[0].next = (self.ge[0].q.val() & self.s_ga2[0].val())
-            | ((self.ge[0].q.val() ^ self.s_ga2[0].val()) & !self.cs_ge[0].val());
-        self.cs_hge[0].next = self.ta2[0].q.val()
-            + self.n_dx[0].val()
-            + bit_cast::<32, 1>(self.cin[0].val().get_bits::<1>(28));
-        self.cy_hge[0].next = (self.ta2[0].q.val() & self.n_dx[0].val())
-            | ((self.ta2[0].q.val() ^ self.n_dx[0].val()) & !self.cs_hge[0].val());
+        self.s_ge[C].next =
+            (self.ge[C].q.val() << 1) | bit_cast::<32, 1>(self.cin[C].val().get_bits::<1>(21));
+        self.x_gp[C].next = self.q[C].q.val() ^ self.ge[C].q.val() ^ self.ga2[C].q.val();
+        self.m_gp[C].next = (self.q[C].q.val() & self.ge[C].q.val())
+            | (self.q[C].q.val() & self.ga2[C].q.val())
+            | (self.ge[C].q.val() & self.ga2[C].q.val());
+        self.k_gp[C].next =
+            (self.m_gp[C].val() << 1) | bit_cast::<32, 1>(self.cin[C].val().get_bits::<1>(22));
+        self.cs_gp[C].next = self.x_gp[C].val()
+            + self.k_gp[C].val()
+            + bit_cast::<32, 1>(self.cin[C].val().get_bits::<1>(23));
+        self.cy_gp[C].next = (self.x_gp[C].val() & self.k_gp[C].val())
+            | ((self.x_gp[C].val() ^ self.k_gp[C].val()) & !self.cs_gp[C].val());
+        self.x_gq[C].next = self.q[C].q.val() ^ self.s_ge[C].val() ^ self.ga3[C].q.val();
+        self.m_gq[C].next = (self.q[C].q.val() & self.s_ge[C].val())
+            | (self.q[C].q.val() & self.ga3[C].q.val())
+            | (self.s_ge[C].val() & self.ga3[C].q.val());
+        self.k_gq[C].next =
+            (self.m_gq[C].val() << 1) | bit_cast::<32, 1>(self.cin[C].val().get_bits::<1>(24));
+        self.cs_gq[C].next = self.x_gq[C].val()
+            + self.k_gq[C].val()
+            + bit_cast::<32, 1>(self.cin[C].val().get_bits::<1>(25));
+        self.cy_gq[C].next = (self.x_gq[C].val() & self.k_gq[C].val())
+            | ((self.x_gq[C].val() ^ self.k_gq[C].val()) & !self.cs_gq[C].val());
+        self.s_ga2[C].next =
+            (self.ga2[C].q.val() << 1) | bit_cast::<32, 1>(self.cin[C].val().get_bits::<1>(26));
+        self.cs_ge[C].next = self.ge[C].q.val()
+            + self.s_ga2[C].val()
+            + bit_cast::<32, 1>(self.cin[C].val().get_bits::<1>(27));
+        self.cy_ge[C].next = (self.ge[C].q.val() & self.s_ga2[C].val())
+            | ((self.ge[C].q.val() ^ self.s_ga2[C].val()) & !self.cs_ge[C].val());
+        self.cs_hge[C].next = self.ta2[C].q.val()
+            + self.n_dx[C].val()
+            + bit_cast::<32, 1>(self.cin[C].val().get_bits::<1>(28));
+        self.cy_hge[C].next = (self.ta2[C].q.val() & self.n_dx[C].val())
+            | ((self.ta2[C].q.val() ^ self.n_dx[C].val()) & !self.cs_hge[C].val());
         // What leaves bit 31: each add's carry, each carry word's and each shift's top bit.
-        self.cout[0].next = bit_cast::<29, 1>(self.cy_ip1[0].val().get_bits::<1>(31))
-            | (bit_cast::<29, 1>(self.m_im1[0].val().get_bits::<1>(31)) << 1)
-            | (bit_cast::<29, 1>(self.cy_im1[0].val().get_bits::<1>(31)) << 2)
-            | (bit_cast::<29, 1>(self.tdx[0].q.val().get_bits::<1>(31)) << 3)
-            | (bit_cast::<29, 1>(self.m_xi[0].val().get_bits::<1>(31)) << 4)
-            | (bit_cast::<29, 1>(self.cy_xi[0].val().get_bits::<1>(31)) << 5)
-            | (bit_cast::<29, 1>(self.ta2[0].q.val().get_bits::<1>(31)) << 6)
-            | (bit_cast::<29, 1>(self.cy_dxp1[0].val().get_bits::<1>(31)) << 7)
-            | (bit_cast::<29, 1>(self.cy_dxp2[0].val().get_bits::<1>(31)) << 8)
-            | (bit_cast::<29, 1>(self.cy_dxm1[0].val().get_bits::<1>(31)) << 9)
-            | (bit_cast::<29, 1>(self.cy_dxm2[0].val().get_bits::<1>(31)) << 10)
-            | (bit_cast::<29, 1>(self.tc[0].q.val().get_bits::<1>(31)) << 11)
-            | (bit_cast::<29, 1>(self.cy_dyp1[0].val().get_bits::<1>(31)) << 12)
-            | (bit_cast::<29, 1>(self.cy_dyp2[0].val().get_bits::<1>(31)) << 13)
-            | (bit_cast::<29, 1>(self.cy_dym1[0].val().get_bits::<1>(31)) << 14)
-            | (bit_cast::<29, 1>(self.cy_dym2[0].val().get_bits::<1>(31)) << 15)
-            | (bit_cast::<29, 1>(self.cy_yi[0].val().get_bits::<1>(31)) << 16)
-            | (bit_cast::<29, 1>(self.cy_ydy[0].val().get_bits::<1>(31)) << 17)
-            | (bit_cast::<29, 1>(self.cy_ydx[0].val().get_bits::<1>(31)) << 18)
-            | (bit_cast::<29, 1>(self.w_a2[0].val().get_bits::<1>(31)) << 19)
-            | (bit_cast::<29, 1>(self.cy_ta3[0].val().get_bits::<1>(31)) << 20)
-            | (bit_cast::<29, 1>(self.ge[0].q.val().get_bits::<1>(31)) << 21)
-            | (bit_cast::<29, 1>(self.m_gp[0].val().get_bits::<1>(31)) << 22)
-            | (bit_cast::<29, 1>(self.cy_gp[0].val().get_bits::<1>(31)) << 23)
-            | (bit_cast::<29, 1>(self.m_gq[0].val().get_bits::<1>(31)) << 24)
-            | (bit_cast::<29, 1>(self.cy_gq[0].val().get_bits::<1>(31)) << 25)
-            | (bit_cast::<29, 1>(self.ga2[0].q.val().get_bits::<1>(31)) << 26)
-            | (bit_cast::<29, 1>(self.cy_ge[0].val().get_bits::<1>(31)) << 27)
-            | (bit_cast::<29, 1>(self.cy_hge[0].val().get_bits::<1>(31)) << 28);
+        self.cout[C].next = bit_cast::<29, 1>(self.cy_ip1[C].val().get_bits::<1>(31))
+            | (bit_cast::<29, 1>(self.m_im1[C].val().get_bits::<1>(31)) << 1)
+            | (bit_cast::<29, 1>(self.cy_im1[C].val().get_bits::<1>(31)) << 2)
+            | (bit_cast::<29, 1>(self.tdx[C].q.val().get_bits::<1>(31)) << 3)
+            | (bit_cast::<29, 1>(self.m_xi[C].val().get_bits::<1>(31)) << 4)
+            | (bit_cast::<29, 1>(self.cy_xi[C].val().get_bits::<1>(31)) << 5)
+            | (bit_cast::<29, 1>(self.ta2[C].q.val().get_bits::<1>(31)) << 6)
+            | (bit_cast::<29, 1>(self.cy_dxp1[C].val().get_bits::<1>(31)) << 7)
+            | (bit_cast::<29, 1>(self.cy_dxp2[C].val().get_bits::<1>(31)) << 8)
+            | (bit_cast::<29, 1>(self.cy_dxm1[C].val().get_bits::<1>(31)) << 9)
+            | (bit_cast::<29, 1>(self.cy_dxm2[C].val().get_bits::<1>(31)) << 10)
+            | (bit_cast::<29, 1>(self.tc[C].q.val().get_bits::<1>(31)) << 11)
+            | (bit_cast::<29, 1>(self.cy_dyp1[C].val().get_bits::<1>(31)) << 12)
+            | (bit_cast::<29, 1>(self.cy_dyp2[C].val().get_bits::<1>(31)) << 13)
+            | (bit_cast::<29, 1>(self.cy_dym1[C].val().get_bits::<1>(31)) << 14)
+            | (bit_cast::<29, 1>(self.cy_dym2[C].val().get_bits::<1>(31)) << 15)
+            | (bit_cast::<29, 1>(self.cy_yi[C].val().get_bits::<1>(31)) << 16)
+            | (bit_cast::<29, 1>(self.cy_ydy[C].val().get_bits::<1>(31)) << 17)
+            | (bit_cast::<29, 1>(self.cy_ydx[C].val().get_bits::<1>(31)) << 18)
+            | (bit_cast::<29, 1>(self.w_a2[C].val().get_bits::<1>(31)) << 19)
+            | (bit_cast::<29, 1>(self.cy_ta3[C].val().get_bits::<1>(31)) << 20)
+            | (bit_cast::<29, 1>(self.ge[C].q.val().get_bits::<1>(31)) << 21)
+            | (bit_cast::<29, 1>(self.m_gp[C].val().get_bits::<1>(31)) << 22)
+            | (bit_cast::<29, 1>(self.cy_gp[C].val().get_bits::<1>(31)) << 23)
+            | (bit_cast::<29, 1>(self.m_gq[C].val().get_bits::<1>(31)) << 24)
+            | (bit_cast::<29, 1>(self.cy_gq[C].val().get_bits::<1>(31)) << 25)
+            | (bit_cast::<29, 1>(self.ga2[C].q.val().get_bits::<1>(31)) << 26)
+            | (bit_cast::<29, 1>(self.cy_ge[C].val().get_bits::<1>(31)) << 27)
+            | (bit_cast::<29, 1>(self.cy_hge[C].val().get_bits::<1>(31)) << 28);
         // The registers: the y-step, the x-step, the load; the generator's step, the hand-over.
         if self.ystep.val() {
-            self.ti[0].d.next = self.cs_yi[0].val();
-            self.tdy[0].d.next = self.cs_ydy[0].val();
-            self.tdx[0].d.next = self.cs_ydx[0].val();
+            self.ti[C].d.next = self.cs_yi[C].val();
+            self.tdy[C].d.next = self.cs_ydy[C].val();
+            self.tdx[C].d.next = self.cs_ydx[C].val();
         }
         if self.xstep.val() {
-            self.ti[0].d.next = self.cs_xi[0].val();
+            self.ti[C].d.next = self.cs_xi[C].val();
             if self.neg.val() {
                 if self.big.val() {
-                    self.tdx[0].d.next = self.cs_dxm2[0].val();
-                    self.tdy[0].d.next = self.cs_dym2[0].val();
+                    self.tdx[C].d.next = self.cs_dxm2[C].val();
+                    self.tdy[C].d.next = self.cs_dym2[C].val();
                 } else {
-                    self.tdx[0].d.next = self.cs_dxm1[0].val();
-                    self.tdy[0].d.next = self.cs_dym1[0].val();
+                    self.tdx[C].d.next = self.cs_dxm1[C].val();
+                    self.tdy[C].d.next = self.cs_dym1[C].val();
                 }
             } else if self.big.val() {
-                self.tdx[0].d.next = self.cs_dxp2[0].val();
-                self.tdy[0].d.next = self.cs_dyp2[0].val();
+                self.tdx[C].d.next = self.cs_dxp2[C].val();
+                self.tdy[C].d.next = self.cs_dyp2[C].val();
             } else {
-                self.tdx[0].d.next = self.cs_dxp1[0].val();
-                self.tdy[0].d.next = self.cs_dyp1[0].val();
+                self.tdx[C].d.next = self.cs_dxp1[C].val();
+                self.tdy[C].d.next = self.cs_dyp1[C].val();
             }
         }
         if self.ld.val() {
-            self.ti[0].d.next = self.w_i[0].val();
-            self.tdx[0].d.next = self.w_dx[0].val();
-            self.tdy[0].d.next = self.w_dy[0].val();
-            self.ta2[0].d.next = self.w_a2[0].val();
-            self.ta3[0].d.next = self.cs_ta3[0].val();
-            self.tb2[0].d.next = self.w_b2[0].val();
-            self.tc[0].d.next = self.w_c[0].val();
+            self.ti[C].d.next = self.w_i[C].val();
+            self.tdx[C].d.next = self.w_dx[C].val();
+            self.tdy[C].d.next = self.w_dy[C].val();
+            self.ta2[C].d.next = self.w_a2[C].val();
+            self.ta3[C].d.next = self.cs_ta3[C].val();
+            self.tb2[C].d.next = self.w_b2[C].val();
+            self.tc[C].d.next = self.w_c[C].val();
         }
         if self.gadv.val() {
-            self.p[0].d.next = self.cs_gp[0].val();
-            self.q[0].d.next = self.cs_gq[0].val();
-            self.ge[0].d.next = self.cs_ge[0].val();
+            self.p[C].d.next = self.cs_gp[C].val();
+            self.q[C].d.next = self.cs_gq[C].val();
+            self.ge[C].d.next = self.cs_ge[C].val();
         }
         if self.hand.val() {
-            self.p[0].d.next = self.ti[0].q.val();
-            self.ga2[0].d.next = self.ta2[0].q.val();
-            self.ga3[0].d.next = self.ta3[0].q.val();
+            self.p[C].d.next = self.ti[C].q.val();
+            self.ga2[C].d.next = self.ta2[C].q.val();
+            self.ga3[C].d.next = self.ta3[C].q.val();
             if self.hdir.val() {
-                self.q[0].d.next = self.cs_im1[0].val();
-                self.ge[0].d.next = self.cs_hge[0].val();
+                self.q[C].d.next = self.cs_im1[C].val();
+                self.ge[C].d.next = self.cs_hge[C].val();
             } else {
-                self.q[0].d.next = self.cs_ip1[0].val();
-                self.ge[0].d.next = self.tdx[0].q.val();
+                self.q[C].d.next = self.cs_ip1[C].val();
+                self.ge[C].d.next = self.tdx[C].q.val();
             }
         }
-        // Channel 1.
-        // The hand-over's pair: I + Dx; I − Dx + 2A (carry-save, the +1 in bit 0's carry).
-        self.cs_ip1[1].next = self.ti[1].q.val()
-            + self.tdx[1].q.val()
-            + bit_cast::<32, 1>(self.cin[1].val().get_bits::<1>(0));
-        self.cy_ip1[1].next = (self.ti[1].q.val() & self.tdx[1].q.val())
-            | ((self.ti[1].q.val() ^ self.tdx[1].q.val()) & !self.cs_ip1[1].val());
-        self.n_dx[1].next = !self.tdx[1].q.val();
-        self.x_im1[1].next = self.ti[1].q.val() ^ self.n_dx[1].val() ^ self.ta2[1].q.val();
-        self.m_im1[1].next = (self.ti[1].q.val() & self.n_dx[1].val())
-            | (self.ti[1].q.val() & self.ta2[1].q.val())
-            | (self.n_dx[1].val() & self.ta2[1].q.val());
-        self.k_im1[1].next =
-            (self.m_im1[1].val() << 1) | bit_cast::<32, 1>(self.cin[1].val().get_bits::<1>(1));
-        self.cs_im1[1].next = self.x_im1[1].val()
-            + self.k_im1[1].val()
-            + bit_cast::<32, 1>(self.cin[1].val().get_bits::<1>(2));
-        self.cy_im1[1].next = (self.x_im1[1].val() & self.k_im1[1].val())
-            | ((self.x_im1[1].val() ^ self.k_im1[1].val()) & !self.cs_im1[1].val());
-        // The x-step's terms: I + (Dx | 2·Dx + 2A | −Dx + 2A | −2·Dx + 3·2A).
-        self.s_tdx[1].next =
-            (self.tdx[1].q.val() << 1) | bit_cast::<32, 1>(self.cin[1].val().get_bits::<1>(3));
-        self.n_sdx[1].next = !self.s_tdx[1].val();
-        if self.neg.val() {
-            if self.big.val() {
-                self.xt1[1].next = self.n_sdx[1].val();
-                self.xt2[1].next = self.ta3[1].q.val();
-            } else {
-                self.xt1[1].next = self.n_dx[1].val();
-                self.xt2[1].next = self.ta2[1].q.val();
-            }
-        } else if self.big.val() {
-            self.xt1[1].next = self.s_tdx[1].val();
-            self.xt2[1].next = self.ta2[1].q.val();
-        } else {
-            self.xt1[1].next = self.tdx[1].q.val();
-            self.xt2[1].next = 0.into();
-        }
-        self.x_xi[1].next = self.ti[1].q.val() ^ self.xt1[1].val() ^ self.xt2[1].val();
-        self.m_xi[1].next = (self.ti[1].q.val() & self.xt1[1].val())
-            | (self.ti[1].q.val() & self.xt2[1].val())
-            | (self.xt1[1].val() & self.xt2[1].val());
-        self.k_xi[1].next =
-            (self.m_xi[1].val() << 1) | bit_cast::<32, 1>(self.cin[1].val().get_bits::<1>(4));
-        self.cs_xi[1].next = self.x_xi[1].val()
-            + self.k_xi[1].val()
-            + bit_cast::<32, 1>(self.cin[1].val().get_bits::<1>(5));
-        self.cy_xi[1].next = (self.x_xi[1].val() & self.k_xi[1].val())
-            | ((self.x_xi[1].val() ^ self.k_xi[1].val()) & !self.cs_xi[1].val());
-        // Dx ± 2A·step, Dy ± C·step: two-operand adds, selected after the carry chains.
-        self.s_ta2[1].next =
-            (self.ta2[1].q.val() << 1) | bit_cast::<32, 1>(self.cin[1].val().get_bits::<1>(6));
-        self.n_ta2[1].next = !self.ta2[1].q.val();
-        self.n_sta2[1].next = !self.s_ta2[1].val();
-        self.cs_dxp1[1].next = self.tdx[1].q.val()
-            + self.ta2[1].q.val()
-            + bit_cast::<32, 1>(self.cin[1].val().get_bits::<1>(7));
-        self.cy_dxp1[1].next = (self.tdx[1].q.val() & self.ta2[1].q.val())
-            | ((self.tdx[1].q.val() ^ self.ta2[1].q.val()) & !self.cs_dxp1[1].val());
-        self.cs_dxp2[1].next = self.tdx[1].q.val()
-            + self.s_ta2[1].val()
-            + bit_cast::<32, 1>(self.cin[1].val().get_bits::<1>(8));
-        self.cy_dxp2[1].next = (self.tdx[1].q.val() & self.s_ta2[1].val())
-            | ((self.tdx[1].q.val() ^ self.s_ta2[1].val()) & !self.cs_dxp2[1].val());
-        self.cs_dxm1[1].next = self.tdx[1].q.val()
-            + self.n_ta2[1].val()
-            + bit_cast::<32, 1>(self.cin[1].val().get_bits::<1>(9));
-        self.cy_dxm1[1].next = (self.tdx[1].q.val() & self.n_ta2[1].val())
-            | ((self.tdx[1].q.val() ^ self.n_ta2[1].val()) & !self.cs_dxm1[1].val());
-        self.cs_dxm2[1].next = self.tdx[1].q.val()
-            + self.n_sta2[1].val()
-            + bit_cast::<32, 1>(self.cin[1].val().get_bits::<1>(10));
-        self.cy_dxm2[1].next = (self.tdx[1].q.val() & self.n_sta2[1].val())
-            | ((self.tdx[1].q.val() ^ self.n_sta2[1].val()) & !self.cs_dxm2[1].val());
-        self.s_tc[1].next =
-            (self.tc[1].q.val() << 1) | bit_cast::<32, 1>(self.cin[1].val().get_bits::<1>(11));
-        self.n_tc[1].next = !self.tc[1].q.val();
-        self.n_stc[1].next = !self.s_tc[1].val();
-        self.cs_dyp1[1].next = self.tdy[1].q.val()
-            + self.tc[1].q.val()
-            + bit_cast::<32, 1>(self.cin[1].val().get_bits::<1>(12));
-        self.cy_dyp1[1].next = (self.tdy[1].q.val() & self.tc[1].q.val())
-            | ((self.tdy[1].q.val() ^ self.tc[1].q.val()) & !self.cs_dyp1[1].val());
-        self.cs_dyp2[1].next = self.tdy[1].q.val()
-            + self.s_tc[1].val()
-            + bit_cast::<32, 1>(self.cin[1].val().get_bits::<1>(13));
-        self.cy_dyp2[1].next = (self.tdy[1].q.val() & self.s_tc[1].val())
-            | ((self.tdy[1].q.val() ^ self.s_tc[1].val()) & !self.cs_dyp2[1].val());
-        self.cs_dym1[1].next = self.tdy[1].q.val()
-            + self.n_tc[1].val()
-            + bit_cast::<32, 1>(self.cin[1].val().get_bits::<1>(14));
-        self.cy_dym1[1].next = (self.tdy[1].q.val() & self.n_tc[1].val())
-            | ((self.tdy[1].q.val() ^ self.n_tc[1].val()) & !self.cs_dym1[1].val());
-        self.cs_dym2[1].next = self.tdy[1].q.val()
-            + self.n_stc[1].val()
-            + bit_cast::<32, 1>(self.cin[1].val().get_bits::<1>(15));
-        self.cy_dym2[1].next = (self.tdy[1].q.val() & self.n_stc[1].val())
-            | ((self.tdy[1].q.val() ^ self.n_stc[1].val()) & !self.cs_dym2[1].val());
-        // The y-step: I + Dy, Dy + 2B, Dx + C.
-        self.cs_yi[1].next = self.ti[1].q.val()
-            + self.tdy[1].q.val()
-            + bit_cast::<32, 1>(self.cin[1].val().get_bits::<1>(16));
-        self.cy_yi[1].next = (self.ti[1].q.val() & self.tdy[1].q.val())
-            | ((self.ti[1].q.val() ^ self.tdy[1].q.val()) & !self.cs_yi[1].val());
-        self.cs_ydy[1].next = self.tdy[1].q.val()
-            + self.tb2[1].q.val()
-            + bit_cast::<32, 1>(self.cin[1].val().get_bits::<1>(17));
-        self.cy_ydy[1].next = (self.tdy[1].q.val() & self.tb2[1].q.val())
-            | ((self.tdy[1].q.val() ^ self.tb2[1].q.val()) & !self.cs_ydy[1].val());
-        self.cs_ydx[1].next = self.tdx[1].q.val()
-            + self.tc[1].q.val()
-            + bit_cast::<32, 1>(self.cin[1].val().get_bits::<1>(18));
-        self.cy_ydx[1].next = (self.tdx[1].q.val() & self.tc[1].q.val())
-            | ((self.tdx[1].q.val() ^ self.tc[1].q.val()) & !self.cs_ydx[1].val());
-        // The load's 3·2A.
-        self.s_wa2[1].next =
-            (self.w_a2[1].val() << 1) | bit_cast::<32, 1>(self.cin[1].val().get_bits::<1>(19));
-        self.cs_ta3[1].next = self.s_wa2[1].val()
-            + self.w_a2[1].val()
-            + bit_cast::<32, 1>(self.cin[1].val().get_bits::<1>(20));
-        self.cy_ta3[1].next = (self.s_wa2[1].val() & self.w_a2[1].val())
-            | ((self.s_wa2[1].val() ^ self.w_a2[1].val()) & !self.cs_ta3[1].val());
-        // The generator: p' = q + e + 2A, q' = q + 2e + 3·2A, e' = e + 2·2A; a hand-over's e = 2A − Dx.
-        self.s_ge[1].next =
-            (self.ge[1].q.val() << 1) | bit_cast::<32, 1>(self.cin[1].val().get_bits::<1>(21));
-        self.x_gp[1].next = self.q[1].q.val() ^ self.ge[1].q.val() ^ self.ga2[1].q.val();
-        self.m_gp[1].next = (self.q[1].q.val() & self.ge[1].q.val())
-            | (self.q[1].q.val() & self.ga2[1].q.val())
-            | (self.ge[1].q.val() & self.ga2[1].q.val());
-        self.k_gp[1].next =
-            (self.m_gp[1].val() << 1) | bit_cast::<32, 1>(self.cin[1].val().get_bits::<1>(22));
-        self.cs_gp[1].next = self.x_gp[1].val()
-            + self.k_gp[1].val()
-            + bit_cast::<32, 1>(self.cin[1].val().get_bits::<1>(23));
-        self.cy_gp[1].next = (self.x_gp[1].val() & self.k_gp[1].val())
-            | ((self.x_gp[1].val() ^ self.k_gp[1].val()) & !self.cs_gp[1].val());
-        self.x_gq[1].next = self.q[1].q.val() ^ self.s_ge[1].val() ^ self.ga3[1].q.val();
-        self.m_gq[1].next = (self.q[1].q.val() & self.s_ge[1].val())
-            | (self.q[1].q.val() & self.ga3[1].q.val())
-            | (self.s_ge[1].val() & self.ga3[1].q.val());
-        self.k_gq[1].next =
-            (self.m_gq[1].val() << 1) | bit_cast::<32, 1>(self.cin[1].val().get_bits::<1>(24));
-        self.cs_gq[1].next = self.x_gq[1].val()
-            + self.k_gq[1].val()
-            + bit_cast::<32, 1>(self.cin[1].val().get_bits::<1>(25));
-        self.cy_gq[1].next = (self.x_gq[1].val() & self.k_gq[1].val())
-            | ((self.x_gq[1].val() ^ self.k_gq[1].val()) & !self.cs_gq[1].val());
-        self.s_ga2[1].next =
-            (self.ga2[1].q.val() << 1) | bit_cast::<32, 1>(self.cin[1].val().get_bits::<1>(26));
-        self.cs_ge[1].next = self.ge[1].q.val()
-            + self.s_ga2[1].val()
-            + bit_cast::<32, 1>(self.cin[1].val().get_bits::<1>(27));
-        self.cy_ge[1].next = (self.ge[1].q.val() & self.s_ga2[1].val())
-            | ((self.ge[1].q.val() ^ self.s_ga2[1].val()) & !self.cs_ge[1].val());
-        self.cs_hge[1].next = self.ta2[1].q.val()
-            + self.n_dx[1].val()
-            + bit_cast::<32, 1>(self.cin[1].val().get_bits::<1>(28));
-        self.cy_hge[1].next = (self.ta2[1].q.val() & self.n_dx[1].val())
-            | ((self.ta2[1].q.val() ^ self.n_dx[1].val()) & !self.cs_hge[1].val());
-        // What leaves bit 31: each add's carry, each carry word's and each shift's top bit.
-        self.cout[1].next = bit_cast::<29, 1>(self.cy_ip1[1].val().get_bits::<1>(31))
-            | (bit_cast::<29, 1>(self.m_im1[1].val().get_bits::<1>(31)) << 1)
-            | (bit_cast::<29, 1>(self.cy_im1[1].val().get_bits::<1>(31)) << 2)
-            | (bit_cast::<29, 1>(self.tdx[1].q.val().get_bits::<1>(31)) << 3)
-            | (bit_cast::<29, 1>(self.m_xi[1].val().get_bits::<1>(31)) << 4)
-            | (bit_cast::<29, 1>(self.cy_xi[1].val().get_bits::<1>(31)) << 5)
-            | (bit_cast::<29, 1>(self.ta2[1].q.val().get_bits::<1>(31)) << 6)
-            | (bit_cast::<29, 1>(self.cy_dxp1[1].val().get_bits::<1>(31)) << 7)
-            | (bit_cast::<29, 1>(self.cy_dxp2[1].val().get_bits::<1>(31)) << 8)
-            | (bit_cast::<29, 1>(self.cy_dxm1[1].val().get_bits::<1>(31)) << 9)
-            | (bit_cast::<29, 1>(self.cy_dxm2[1].val().get_bits::<1>(31)) << 10)
-            | (bit_cast::<29, 1>(self.tc[1].q.val().get_bits::<1>(31)) << 11)
-            | (bit_cast::<29, 1>(self.cy_dyp1[1].val().get_bits::<1>(31)) << 12)
-            | (bit_cast::<29, 1>(self.cy_dyp2[1].val().get_bits::<1>(31)) << 13)
-            | (bit_cast::<29, 1>(self.cy_dym1[1].val().get_bits::<1>(31)) << 14)
-            | (bit_cast::<29, 1>(self.cy_dym2[1].val().get_bits::<1>(31)) << 15)
-            | (bit_cast::<29, 1>(self.cy_yi[1].val().get_bits::<1>(31)) << 16)
-            | (bit_cast::<29, 1>(self.cy_ydy[1].val().get_bits::<1>(31)) << 17)
-            | (bit_cast::<29, 1>(self.cy_ydx[1].val().get_bits::<1>(31)) << 18)
-            | (bit_cast::<29, 1>(self.w_a2[1].val().get_bits::<1>(31)) << 19)
-            | (bit_cast::<29, 1>(self.cy_ta3[1].val().get_bits::<1>(31)) << 20)
-            | (bit_cast::<29, 1>(self.ge[1].q.val().get_bits::<1>(31)) << 21)
-            | (bit_cast::<29, 1>(self.m_gp[1].val().get_bits::<1>(31)) << 22)
-            | (bit_cast::<29, 1>(self.cy_gp[1].val().get_bits::<1>(31)) << 23)
-            | (bit_cast::<29, 1>(self.m_gq[1].val().get_bits::<1>(31)) << 24)
-            | (bit_cast::<29, 1>(self.cy_gq[1].val().get_bits::<1>(31)) << 25)
-            | (bit_cast::<29, 1>(self.ga2[1].q.val().get_bits::<1>(31)) << 26)
-            | (bit_cast::<29, 1>(self.cy_ge[1].val().get_bits::<1>(31)) << 27)
-            | (bit_cast::<29, 1>(self.cy_hge[1].val().get_bits::<1>(31)) << 28);
-        // The registers: the y-step, the x-step, the load; the generator's step, the hand-over.
-        if self.ystep.val() {
-            self.ti[1].d.next = self.cs_yi[1].val();
-            self.tdy[1].d.next = self.cs_ydy[1].val();
-            self.tdx[1].d.next = self.cs_ydx[1].val();
-        }
-        if self.xstep.val() {
-            self.ti[1].d.next = self.cs_xi[1].val();
-            if self.neg.val() {
-                if self.big.val() {
-                    self.tdx[1].d.next = self.cs_dxm2[1].val();
-                    self.tdy[1].d.next = self.cs_dym2[1].val();
-                } else {
-                    self.tdx[1].d.next = self.cs_dxm1[1].val();
-                    self.tdy[1].d.next = self.cs_dym1[1].val();
-                }
-            } else if self.big.val() {
-                self.tdx[1].d.next = self.cs_dxp2[1].val();
-                self.tdy[1].d.next = self.cs_dyp2[1].val();
-            } else {
-                self.tdx[1].d.next = self.cs_dxp1[1].val();
-                self.tdy[1].d.next = self.cs_dyp1[1].val();
-            }
-        }
-        if self.ld.val() {
-            self.ti[1].d.next = self.w_i[1].val();
-            self.tdx[1].d.next = self.w_dx[1].val();
-            self.tdy[1].d.next = self.w_dy[1].val();
-            self.ta2[1].d.next = self.w_a2[1].val();
-            self.ta3[1].d.next = self.cs_ta3[1].val();
-            self.tb2[1].d.next = self.w_b2[1].val();
-            self.tc[1].d.next = self.w_c[1].val();
-        }
-        if self.gadv.val() {
-            self.p[1].d.next = self.cs_gp[1].val();
-            self.q[1].d.next = self.cs_gq[1].val();
-            self.ge[1].d.next = self.cs_ge[1].val();
-        }
-        if self.hand.val() {
-            self.p[1].d.next = self.ti[1].q.val();
-            self.ga2[1].d.next = self.ta2[1].q.val();
-            self.ga3[1].d.next = self.ta3[1].q.val();
-            if self.hdir.val() {
-                self.q[1].d.next = self.cs_im1[1].val();
-                self.ge[1].d.next = self.cs_hge[1].val();
-            } else {
-                self.q[1].d.next = self.cs_ip1[1].val();
-                self.ge[1].d.next = self.tdx[1].q.val();
-            }
-        }
-        // Channel 2.
-        // The hand-over's pair: I + Dx; I − Dx + 2A (carry-save, the +1 in bit 0's carry).
-        self.cs_ip1[2].next = self.ti[2].q.val()
-            + self.tdx[2].q.val()
-            + bit_cast::<32, 1>(self.cin[2].val().get_bits::<1>(0));
-        self.cy_ip1[2].next = (self.ti[2].q.val() & self.tdx[2].q.val())
-            | ((self.ti[2].q.val() ^ self.tdx[2].q.val()) & !self.cs_ip1[2].val());
-        self.n_dx[2].next = !self.tdx[2].q.val();
-        self.x_im1[2].next = self.ti[2].q.val() ^ self.n_dx[2].val() ^ self.ta2[2].q.val();
-        self.m_im1[2].next = (self.ti[2].q.val() & self.n_dx[2].val())
-            | (self.ti[2].q.val() & self.ta2[2].q.val())
-            | (self.n_dx[2].val() & self.ta2[2].q.val());
-        self.k_im1[2].next =
-            (self.m_im1[2].val() << 1) | bit_cast::<32, 1>(self.cin[2].val().get_bits::<1>(1));
-        self.cs_im1[2].next = self.x_im1[2].val()
-            + self.k_im1[2].val()
-            + bit_cast::<32, 1>(self.cin[2].val().get_bits::<1>(2));
-        self.cy_im1[2].next = (self.x_im1[2].val() & self.k_im1[2].val())
-            | ((self.x_im1[2].val() ^ self.k_im1[2].val()) & !self.cs_im1[2].val());
-        // The x-step's terms: I + (Dx | 2·Dx + 2A | −Dx + 2A | −2·Dx + 3·2A).
-        self.s_tdx[2].next =
-            (self.tdx[2].q.val() << 1) | bit_cast::<32, 1>(self.cin[2].val().get_bits::<1>(3));
-        self.n_sdx[2].next = !self.s_tdx[2].val();
-        if self.neg.val() {
-            if self.big.val() {
-                self.xt1[2].next = self.n_sdx[2].val();
-                self.xt2[2].next = self.ta3[2].q.val();
-            } else {
-                self.xt1[2].next = self.n_dx[2].val();
-                self.xt2[2].next = self.ta2[2].q.val();
-            }
-        } else if self.big.val() {
-            self.xt1[2].next = self.s_tdx[2].val();
-            self.xt2[2].next = self.ta2[2].q.val();
-        } else {
-            self.xt1[2].next = self.tdx[2].q.val();
-            self.xt2[2].next = 0.into();
-        }
-        self.x_xi[2].next = self.ti[2].q.val() ^ self.xt1[2].val() ^ self.xt2[2].val();
-        self.m_xi[2].next = (self.ti[2].q.val() & self.xt1[2].val())
-            | (self.ti[2].q.val() & self.xt2[2].val())
-            | (self.xt1[2].val() & self.xt2[2].val());
-        self.k_xi[2].next =
-            (self.m_xi[2].val() << 1) | bit_cast::<32, 1>(self.cin[2].val().get_bits::<1>(4));
-        self.cs_xi[2].next = self.x_xi[2].val()
-            + self.k_xi[2].val()
-            + bit_cast::<32, 1>(self.cin[2].val().get_bits::<1>(5));
-        self.cy_xi[2].next = (self.x_xi[2].val() & self.k_xi[2].val())
-            | ((self.x_xi[2].val() ^ self.k_xi[2].val()) & !self.cs_xi[2].val());
-        // Dx ± 2A·step, Dy ± C·step: two-operand adds, selected after the carry chains.
-        self.s_ta2[2].next =
-            (self.ta2[2].q.val() << 1) | bit_cast::<32, 1>(self.cin[2].val().get_bits::<1>(6));
-        self.n_ta2[2].next = !self.ta2[2].q.val();
-        self.n_sta2[2].next = !self.s_ta2[2].val();
-        self.cs_dxp1[2].next = self.tdx[2].q.val()
-            + self.ta2[2].q.val()
-            + bit_cast::<32, 1>(self.cin[2].val().get_bits::<1>(7));
-        self.cy_dxp1[2].next = (self.tdx[2].q.val() & self.ta2[2].q.val())
-            | ((self.tdx[2].q.val() ^ self.ta2[2].q.val()) & !self.cs_dxp1[2].val());
-        self.cs_dxp2[2].next = self.tdx[2].q.val()
-            + self.s_ta2[2].val()
-            + bit_cast::<32, 1>(self.cin[2].val().get_bits::<1>(8));
-        self.cy_dxp2[2].next = (self.tdx[2].q.val() & self.s_ta2[2].val())
-            | ((self.tdx[2].q.val() ^ self.s_ta2[2].val()) & !self.cs_dxp2[2].val());
-        self.cs_dxm1[2].next = self.tdx[2].q.val()
-            + self.n_ta2[2].val()
-            + bit_cast::<32, 1>(self.cin[2].val().get_bits::<1>(9));
-        self.cy_dxm1[2].next = (self.tdx[2].q.val() & self.n_ta2[2].val())
-            | ((self.tdx[2].q.val() ^ self.n_ta2[2].val()) & !self.cs_dxm1[2].val());
-        self.cs_dxm2[2].next = self.tdx[2].q.val()
-            + self.n_sta2[2].val()
-            + bit_cast::<32, 1>(self.cin[2].val().get_bits::<1>(10));
-        self.cy_dxm2[2].next = (self.tdx[2].q.val() & self.n_sta2[2].val())
-            | ((self.tdx[2].q.val() ^ self.n_sta2[2].val()) & !self.cs_dxm2[2].val());
-        self.s_tc[2].next =
-            (self.tc[2].q.val() << 1) | bit_cast::<32, 1>(self.cin[2].val().get_bits::<1>(11));
-        self.n_tc[2].next = !self.tc[2].q.val();
-        self.n_stc[2].next = !self.s_tc[2].val();
-        self.cs_dyp1[2].next = self.tdy[2].q.val()
-            + self.tc[2].q.val()
-            + bit_cast::<32, 1>(self.cin[2].val().get_bits::<1>(12));
-        self.cy_dyp1[2].next = (self.tdy[2].q.val() & self.tc[2].q.val())
-            | ((self.tdy[2].q.val() ^ self.tc[2].q.val()) & !self.cs_dyp1[2].val());
-        self.cs_dyp2[2].next = self.tdy[2].q.val()
-            + self.s_tc[2].val()
-            + bit_cast::<32, 1>(self.cin[2].val().get_bits::<1>(13));
-        self.cy_dyp2[2].next = (self.tdy[2].q.val() & self.s_tc[2].val())
-            | ((self.tdy[2].q.val() ^ self.s_tc[2].val()) & !self.cs_dyp2[2].val());
-        self.cs_dym1[2].next = self.tdy[2].q.val()
-            + self.n_tc[2].val()
-            + bit_cast::<32, 1>(self.cin[2].val().get_bits::<1>(14));
-        self.cy_dym1[2].next = (self.tdy[2].q.val() & self.n_tc[2].val())
-            | ((self.tdy[2].q.val() ^ self.n_tc[2].val()) & !self.cs_dym1[2].val());
-        self.cs_dym2[2].next = self.tdy[2].q.val()
-            + self.n_stc[2].val()
-            + bit_cast::<32, 1>(self.cin[2].val().get_bits::<1>(15));
-        self.cy_dym2[2].next = (self.tdy[2].q.val() & self.n_stc[2].val())
-            | ((self.tdy[2].q.val() ^ self.n_stc[2].val()) & !self.cs_dym2[2].val());
-        // The y-step: I + Dy, Dy + 2B, Dx + C.
-        self.cs_yi[2].next = self.ti[2].q.val()
-            + self.tdy[2].q.val()
-            + bit_cast::<32, 1>(self.cin[2].val().get_bits::<1>(16));
-        self.cy_yi[2].next = (self.ti[2].q.val() & self.tdy[2].q.val())
-            | ((self.ti[2].q.val() ^ self.tdy[2].q.val()) & !self.cs_yi[2].val());
-        self.cs_ydy[2].next = self.tdy[2].q.val()
-            + self.tb2[2].q.val()
-            + bit_cast::<32, 1>(self.cin[2].val().get_bits::<1>(17));
-        self.cy_ydy[2].next = (self.tdy[2].q.val() & self.tb2[2].q.val())
-            | ((self.tdy[2].q.val() ^ self.tb2[2].q.val()) & !self.cs_ydy[2].val());
-        self.cs_ydx[2].next = self.tdx[2].q.val()
-            + self.tc[2].q.val()
-            + bit_cast::<32, 1>(self.cin[2].val().get_bits::<1>(18));
-        self.cy_ydx[2].next = (self.tdx[2].q.val() & self.tc[2].q.val())
-            | ((self.tdx[2].q.val() ^ self.tc[2].q.val()) & !self.cs_ydx[2].val());
-        // The load's 3·2A.
-        self.s_wa2[2].next =
-            (self.w_a2[2].val() << 1) | bit_cast::<32, 1>(self.cin[2].val().get_bits::<1>(19));
-        self.cs_ta3[2].next = self.s_wa2[2].val()
-            + self.w_a2[2].val()
-            + bit_cast::<32, 1>(self.cin[2].val().get_bits::<1>(20));
-        self.cy_ta3[2].next = (self.s_wa2[2].val() & self.w_a2[2].val())
-            | ((self.s_wa2[2].val() ^ self.w_a2[2].val()) & !self.cs_ta3[2].val());
-        // The generator: p' = q + e + 2A, q' = q + 2e + 3·2A, e' = e + 2·2A; a hand-over's e = 2A − Dx.
-        self.s_ge[2].next =
-            (self.ge[2].q.val() << 1) | bit_cast::<32, 1>(self.cin[2].val().get_bits::<1>(21));
-        self.x_gp[2].next = self.q[2].q.val() ^ self.ge[2].q.val() ^ self.ga2[2].q.val();
-        self.m_gp[2].next = (self.q[2].q.val() & self.ge[2].q.val())
-            | (self.q[2].q.val() & self.ga2[2].q.val())
-            | (self.ge[2].q.val() & self.ga2[2].q.val());
-        self.k_gp[2].next =
-            (self.m_gp[2].val() << 1) | bit_cast::<32, 1>(self.cin[2].val().get_bits::<1>(22));
-        self.cs_gp[2].next = self.x_gp[2].val()
-            + self.k_gp[2].val()
-            + bit_cast::<32, 1>(self.cin[2].val().get_bits::<1>(23));
-        self.cy_gp[2].next = (self.x_gp[2].val() & self.k_gp[2].val())
-            | ((self.x_gp[2].val() ^ self.k_gp[2].val()) & !self.cs_gp[2].val());
-        self.x_gq[2].next = self.q[2].q.val() ^ self.s_ge[2].val() ^ self.ga3[2].q.val();
-        self.m_gq[2].next = (self.q[2].q.val() & self.s_ge[2].val())
-            | (self.q[2].q.val() & self.ga3[2].q.val())
-            | (self.s_ge[2].val() & self.ga3[2].q.val());
-        self.k_gq[2].next =
-            (self.m_gq[2].val() << 1) | bit_cast::<32, 1>(self.cin[2].val().get_bits::<1>(24));
-        self.cs_gq[2].next = self.x_gq[2].val()
-            + self.k_gq[2].val()
-            + bit_cast::<32, 1>(self.cin[2].val().get_bits::<1>(25));
-        self.cy_gq[2].next = (self.x_gq[2].val() & self.k_gq[2].val())
-            | ((self.x_gq[2].val() ^ self.k_gq[2].val()) & !self.cs_gq[2].val());
-        self.s_ga2[2].next =
-            (self.ga2[2].q.val() << 1) | bit_cast::<32, 1>(self.cin[2].val().get_bits::<1>(26));
-        self.cs_ge[2].next = self.ge[2].q.val()
-            + self.s_ga2[2].val()
-            + bit_cast::<32, 1>(self.cin[2].val().get_bits::<1>(27));
-        self.cy_ge[2].next = (self.ge[2].q.val() & self.s_ga2[2].val())
-            | ((self.ge[2].q.val() ^ self.s_ga2[2].val()) & !self.cs_ge[2].val());
-        self.cs_hge[2].next = self.ta2[2].q.val()
-            + self.n_dx[2].val()
-            + bit_cast::<32, 1>(self.cin[2].val().get_bits::<1>(28));
-        self.cy_hge[2].next = (self.ta2[2].q.val() & self.n_dx[2].val())
-            | ((self.ta2[2].q.val() ^ self.n_dx[2].val()) & !self.cs_hge[2].val());
-        // What leaves bit 31: each add's carry, each carry word's and each shift's top bit.
-        self.cout[2].next = bit_cast::<29, 1>(self.cy_ip1[2].val().get_bits::<1>(31))
-            | (bit_cast::<29, 1>(self.m_im1[2].val().get_bits::<1>(31)) << 1)
-            | (bit_cast::<29, 1>(self.cy_im1[2].val().get_bits::<1>(31)) << 2)
-            | (bit_cast::<29, 1>(self.tdx[2].q.val().get_bits::<1>(31)) << 3)
-            | (bit_cast::<29, 1>(self.m_xi[2].val().get_bits::<1>(31)) << 4)
-            | (bit_cast::<29, 1>(self.cy_xi[2].val().get_bits::<1>(31)) << 5)
-            | (bit_cast::<29, 1>(self.ta2[2].q.val().get_bits::<1>(31)) << 6)
-            | (bit_cast::<29, 1>(self.cy_dxp1[2].val().get_bits::<1>(31)) << 7)
-            | (bit_cast::<29, 1>(self.cy_dxp2[2].val().get_bits::<1>(31)) << 8)
-            | (bit_cast::<29, 1>(self.cy_dxm1[2].val().get_bits::<1>(31)) << 9)
-            | (bit_cast::<29, 1>(self.cy_dxm2[2].val().get_bits::<1>(31)) << 10)
-            | (bit_cast::<29, 1>(self.tc[2].q.val().get_bits::<1>(31)) << 11)
-            | (bit_cast::<29, 1>(self.cy_dyp1[2].val().get_bits::<1>(31)) << 12)
-            | (bit_cast::<29, 1>(self.cy_dyp2[2].val().get_bits::<1>(31)) << 13)
-            | (bit_cast::<29, 1>(self.cy_dym1[2].val().get_bits::<1>(31)) << 14)
-            | (bit_cast::<29, 1>(self.cy_dym2[2].val().get_bits::<1>(31)) << 15)
-            | (bit_cast::<29, 1>(self.cy_yi[2].val().get_bits::<1>(31)) << 16)
-            | (bit_cast::<29, 1>(self.cy_ydy[2].val().get_bits::<1>(31)) << 17)
-            | (bit_cast::<29, 1>(self.cy_ydx[2].val().get_bits::<1>(31)) << 18)
-            | (bit_cast::<29, 1>(self.w_a2[2].val().get_bits::<1>(31)) << 19)
-            | (bit_cast::<29, 1>(self.cy_ta3[2].val().get_bits::<1>(31)) << 20)
-            | (bit_cast::<29, 1>(self.ge[2].q.val().get_bits::<1>(31)) << 21)
-            | (bit_cast::<29, 1>(self.m_gp[2].val().get_bits::<1>(31)) << 22)
-            | (bit_cast::<29, 1>(self.cy_gp[2].val().get_bits::<1>(31)) << 23)
-            | (bit_cast::<29, 1>(self.m_gq[2].val().get_bits::<1>(31)) << 24)
-            | (bit_cast::<29, 1>(self.cy_gq[2].val().get_bits::<1>(31)) << 25)
-            | (bit_cast::<29, 1>(self.ga2[2].q.val().get_bits::<1>(31)) << 26)
-            | (bit_cast::<29, 1>(self.cy_ge[2].val().get_bits::<1>(31)) << 27)
-            | (bit_cast::<29, 1>(self.cy_hge[2].val().get_bits::<1>(31)) << 28);
-        // The registers: the y-step, the x-step, the load; the generator's step, the hand-over.
-        if self.ystep.val() {
-            self.ti[2].d.next = self.cs_yi[2].val();
-            self.tdy[2].d.next = self.cs_ydy[2].val();
-            self.tdx[2].d.next = self.cs_ydx[2].val();
-        }
-        if self.xstep.val() {
-            self.ti[2].d.next = self.cs_xi[2].val();
-            if self.neg.val() {
-                if self.big.val() {
-                    self.tdx[2].d.next = self.cs_dxm2[2].val();
-                    self.tdy[2].d.next = self.cs_dym2[2].val();
-                } else {
-                    self.tdx[2].d.next = self.cs_dxm1[2].val();
-                    self.tdy[2].d.next = self.cs_dym1[2].val();
-                }
-            } else if self.big.val() {
-                self.tdx[2].d.next = self.cs_dxp2[2].val();
-                self.tdy[2].d.next = self.cs_dyp2[2].val();
-            } else {
-                self.tdx[2].d.next = self.cs_dxp1[2].val();
-                self.tdy[2].d.next = self.cs_dyp1[2].val();
-            }
-        }
-        if self.ld.val() {
-            self.ti[2].d.next = self.w_i[2].val();
-            self.tdx[2].d.next = self.w_dx[2].val();
-            self.tdy[2].d.next = self.w_dy[2].val();
-            self.ta2[2].d.next = self.w_a2[2].val();
-            self.ta3[2].d.next = self.cs_ta3[2].val();
-            self.tb2[2].d.next = self.w_b2[2].val();
-            self.tc[2].d.next = self.w_c[2].val();
-        }
-        if self.gadv.val() {
-            self.p[2].d.next = self.cs_gp[2].val();
-            self.q[2].d.next = self.cs_gq[2].val();
-            self.ge[2].d.next = self.cs_ge[2].val();
-        }
-        if self.hand.val() {
-            self.p[2].d.next = self.ti[2].q.val();
-            self.ga2[2].d.next = self.ta2[2].q.val();
-            self.ga3[2].d.next = self.ta3[2].q.val();
-            if self.hdir.val() {
-                self.q[2].d.next = self.cs_im1[2].val();
-                self.ge[2].d.next = self.cs_hge[2].val();
-            } else {
-                self.q[2].d.next = self.cs_ip1[2].val();
-                self.ge[2].d.next = self.tdx[2].q.val();
-            }
-        }
+        )*
         self.cout_r.next = self.cout[0].val();
         self.p_r.next = self.p[0].q.val();
         self.q_r.next = self.q[0].q.val();
@@ -924,3 +451,4 @@ impl Logic for QuadricHalf {
         self.q_b.next = self.q[2].q.val();
     }
 }
+});
