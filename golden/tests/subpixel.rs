@@ -11,6 +11,10 @@ use golden::seed::seed_for;
 use golden::units::address_block::{
     run_model, stream_pixels, AddressBlockModel, AddressSetup, EdgeSetup,
 };
+use golden::units::four_triangle::{
+    lane_pixels, run_on, subdivide_subpixel, FourTriangleModel, FourTriangleSetup, LANES,
+    SUBPIXEL_LANE_ERR_BITS,
+};
 use golden::{ScreenTriangle, ScreenVertex, SubpixelTriangle, SUBPIXEL_BITS};
 
 const F: u32 = SUBPIXEL_BITS;
@@ -323,4 +327,83 @@ fn shared_subpixel_edges_are_covered_exactly_once() {
             }
         }
     }
+}
+
+/// The four-triangle block with sub-pixel parents (SPEC §7 on the finer grid): on seeded
+/// parents of every shape, the four sub-triangles (at `SUBPIXEL_BITS` + 1 fraction bits) tile
+/// the parent's pixel set exactly, each judged by the f64 reference alone; and the sub-pixel
+/// block's model, loaded with the parents back to back, emits on lane k exactly the f64
+/// reference's pixels of every parent's sub-triangle k, in walk order.
+#[test]
+fn subpixel_parents_split_into_four_that_tile_them_through_the_block_model() {
+    let mut tris = triangles(3_000, "subpixel-four");
+    // Tall narrow parents (over 2048 pixels high, 64 wide): their words need the 21st bit.
+    let mut rng = Rng(seed_for("subpixel-four-tall") | 1);
+    for _ in 0..20 {
+        let x = rng.below(MAX - 64 * ONE);
+        let mut p = || (x + rng.below(64 * ONE), rng.below(MAX + 1));
+        let (mut a, b, mut c) = (p(), p(), p());
+        a.1 = a.1 % (100 * ONE);
+        c.1 = MAX - c.1 % (100 * ONE);
+        tris.push(SubpixelTriangle { v: [a, b, c], frac: F });
+    }
+    let mut setups = Vec::new();
+    let mut lanes_want: Vec<Vec<(i32, i32)>> = vec![Vec::new(); LANES];
+    let mut covered = 0usize;
+    for t in &tris {
+        let parent = reference(t);
+        let Some(subs) = subdivide_subpixel(t) else {
+            assert!(parent.is_empty(), "{t:?}: no sub-triangles but pixels");
+            setups.push(FourTriangleSetup::subpixel(t));
+            continue;
+        };
+        let mut union = HashSet::new();
+        for (k, sub) in subs.iter().enumerate() {
+            assert_eq!(sub.frac, t.frac + 1);
+            let want = reference(sub);
+            for q in &want {
+                assert!(union.insert(*q), "{t:?}: pixel {q:?} twice (lane {k})");
+            }
+            let walk: Vec<(i32, i32)> = walk_subpixel(sub)
+                .pixels()
+                .iter()
+                .map(|p| (p.x, p.y))
+                .collect();
+            assert_eq!(
+                walk.iter().cloned().collect::<HashSet<_>>(),
+                want,
+                "{t:?} lane {k}: walk against the f64 reference"
+            );
+            lanes_want[k].extend(walk);
+        }
+        assert_eq!(union, parent, "{t:?}: the four against the parent");
+        covered += parent.len();
+        setups.push(FourTriangleSetup::subpixel(t));
+    }
+    assert!(covered > 30_000, "{covered} pixels");
+    let (out, _) = run_on(FourTriangleModel::subpixel(), &setups);
+    for (k, want) in lanes_want.iter().enumerate() {
+        let got: Vec<(i32, i32)> = lane_pixels(&out, k).iter().map(|p| (p.x, p.y)).collect();
+        let first = got.iter().zip(want).position(|(g, w)| g != w);
+        assert!(
+            first.is_none() && got.len() == want.len(),
+            "lane {k}: the block model against the walks: {} pixels against {}, first \
+             difference at {first:?}",
+            got.len(),
+            want.len()
+        );
+    }
+    // The words fit the lanes' 21-bit error ports, and some need more than the 20 of the
+    // single sub-pixel address block.
+    let words = setups.iter().flat_map(|s| {
+        [s.w, s.a, s.t]
+            .into_iter()
+            .flat_map(|i| [i.r, i.d])
+            .chain(s.lanes.iter().flat_map(|l| [l.w_e0, l.a_e0, l.t_e0]))
+    });
+    let widest = words.max().unwrap();
+    assert!(
+        widest < 1 << SUBPIXEL_LANE_ERR_BITS && widest >= 1 << 20,
+        "widest error word {widest}"
+    );
 }

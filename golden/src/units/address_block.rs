@@ -281,8 +281,8 @@ pub struct AddressOutputs {
 /// Cycle-accurate model of the address block's registers (see the module doc).
 #[derive(Clone, Debug, Default)]
 pub struct AddressBlockModel {
-    /// Built with [`SUBPIXEL_ERR_BITS`]-bit error words (else [`ERR_BITS`]).
-    subpixel: bool,
+    /// The width of the error words; 0 for [`ERR_BITS`].
+    err_bits: u32,
     // Edge stage.
     e_busy: bool,
     e_rows_left: u32,
@@ -319,17 +319,23 @@ impl AddressBlockModel {
 
     /// The sub-pixel address block (20-bit error words).
     pub fn subpixel() -> Self {
+        Self::with_err_bits(SUBPIXEL_ERR_BITS)
+    }
+
+    /// The block with `bits`-bit error words (the four-triangle block's sub-pixel lanes:
+    /// [`crate::units::four_triangle::SUBPIXEL_LANE_ERR_BITS`]).
+    pub fn with_err_bits(bits: u32) -> Self {
         AddressBlockModel {
-            subpixel: true,
+            err_bits: bits,
             ..Self::default()
         }
     }
 
     fn err_bits(&self) -> u32 {
-        if self.subpixel {
-            SUBPIXEL_ERR_BITS
-        } else {
+        if self.err_bits == 0 {
             ERR_BITS
+        } else {
+            self.err_bits
         }
     }
 

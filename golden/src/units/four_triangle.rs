@@ -44,8 +44,8 @@
 //! extent is even. The block therefore keeps one shared (f, r, D) per parent edge and one
 //! (b0, e0) register pair per lane and edge, and walks all four lanes in parallel.
 
-use crate::raster::{edge_steps, orientation};
-use crate::types::{Row, ScreenTriangle, Walk};
+use crate::raster::{edge_steps, orientation, orientation_of, Grid};
+use crate::types::{Row, ScreenTriangle, SubpixelTriangle, Walk};
 use crate::units::address_block::{AddressBlockModel, AddressOutputs, AddressSetup, EdgeSetup};
 
 /// A point in doubled coordinates (half-pixel units).
@@ -93,6 +93,25 @@ pub fn subdivide(tri: &ScreenTriangle) -> Option<[HalfTriangle; 4]> {
             v: [m_tm, m_mb, m_tb],
         },
     ])
+}
+
+/// The four sub-triangles of a triangle with sub-pixel vertices (`frac` F), in lane order:
+/// the doubled coordinates of the module doc with F + 1 fraction bits (an integer parent gives
+/// [`subdivide`]'s vertices at frac 1). `None` for zero area.
+pub fn subdivide_subpixel(tri: &SubpixelTriangle) -> Option<[SubpixelTriangle; 4]> {
+    let o = orientation_of(tri)?;
+    let d = |p: (i32, i32)| (2 * p.0, 2 * p.1);
+    let mid = |a: (i32, i32), b: (i32, i32)| (a.0 + b.0, a.1 + b.1);
+    let (t, m, b) = (d(o.top), d(o.mid), d(o.bot));
+    let (m_tm, m_tb, m_mb) = (mid(o.top, o.mid), mid(o.top, o.bot), mid(o.mid, o.bot));
+    let frac = tri.frac + 1;
+    Some([
+        [t, m_tm, m_tb],
+        [m_tm, m, m_mb],
+        [m_tb, m_mb, b],
+        [m_tm, m_mb, m_tb],
+    ]
+    .map(|v| SubpixelTriangle { v, frac }))
 }
 
 /// A half triangle's vertices sorted by (y, x) and whether the working edge is the left one.
@@ -281,6 +300,49 @@ pub fn address_setup(h: &HalfTriangle) -> AddressSetup {
     }
 }
 
+/// [`address_setup`] of a sub-triangle with any fraction bits (`frac` ≥ 1; coordinates in
+/// 2^−frac pixel): the same rows and edge placements, each edge's words from
+/// [`EdgeSetup::subpixel`] (D = 2^frac·Δy, 2^frac·Δx = f·D + r, e the edge function at the
+/// boundary pixel's centre). A third edge that is never reached loads no start, and a lane
+/// without rows still loads its edges' increments (the shared words).
+pub fn lane_setup(h: &SubpixelTriangle) -> AddressSetup {
+    let g = Grid::of(h.frac);
+    let Some(o) = orientation_of(h) else {
+        let y = h.v.iter().map(|p| p.1).min().unwrap_or(0);
+        return AddressSetup {
+            y_top: g.row_at_or_below(y).clamp(0, 4095) as u32,
+            ..AddressSetup::default()
+        };
+    };
+    let row = |p: (i32, i32)| g.row_at_or_below(p.1);
+    let (y_top, y_end, y_switch) = (row(o.top), row(o.bot), row(o.mid));
+    let edge = |a: (i32, i32), b: (i32, i32), y: i64| {
+        let mut e = EdgeSetup::subpixel(h.frac, a, b, y);
+        e.b0 &= 0xFFF;
+        e
+    };
+    let w = edge(o.top, o.bot, y_top);
+    let mut t = edge(o.mid, o.bot, y_switch);
+    if y_switch >= y_end {
+        t.b0 = 0;
+        t.e0 = 0;
+    }
+    let a = if y_switch > y_top {
+        edge(o.top, o.mid, y_top)
+    } else {
+        t
+    };
+    AddressSetup {
+        w,
+        a,
+        t,
+        y_top: y_top as u32,
+        rows: (y_end - y_top) as u32,
+        y_switch: y_switch.rem_euclid(4096) as u32,
+        dir_neg: !o.left,
+    }
+}
+
 /// The increments of one edge DDA, shared by the lanes: f (12-bit word), r, D.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub struct EdgeIncrements {
@@ -333,28 +395,35 @@ pub struct FourTriangleSetup {
 }
 
 impl FourTriangleSetup {
-    /// The set-up of `tri` (vertices in 0..=4095). A zero-area triangle loads four lanes
-    /// without rows.
+    /// The set-up of `tri` (vertices in 0..=4095 pixels): [`FourTriangleSetup::subpixel`] at
+    /// the triangle's fraction bits.
     pub fn new(tri: &ScreenTriangle) -> FourTriangleSetup {
-        let Some(subs) = subdivide(tri) else {
-            let y = tri.v.iter().map(|p| p.y).min().unwrap_or(0) as u32;
+        FourTriangleSetup::subpixel(&SubpixelTriangle::of(tri))
+    }
+
+    /// The set-up of a parent with sub-pixel vertices (`frac` F, coordinates in
+    /// 0..=4095·2^F): its four sub-triangles at F + 1 fraction bits ([`subdivide_subpixel`]),
+    /// each lane's words from [`lane_setup`], the increments shared per parent edge (a
+    /// sub-edge's Δ in 2^−(F+1) pixel is its parent edge's Δ in 2^−F pixel). A zero-area
+    /// triangle loads four lanes without rows.
+    pub fn subpixel(tri: &SubpixelTriangle) -> FourTriangleSetup {
+        let Some(subs) = subdivide_subpixel(tri) else {
+            let y = tri.v.iter().map(|p| p.1).min().unwrap_or(0);
+            let y = Grid::of(tri.frac).row_at_or_below(y).clamp(0, 4095) as u32;
             let mut s = FourTriangleSetup::default();
             for l in &mut s.lanes {
                 l.y_top = y;
             }
             return s;
         };
-        let o = orientation(tri).expect("non-zero area");
-        // A sub-edge's Δ in doubled units is its parent edge's Δ in pixels.
+        let o = orientation_of(tri).expect("non-zero area");
+        let frac = tri.frac + 1;
         let inc = |a: (i32, i32), b: (i32, i32)| {
-            EdgeIncrements::of(&edge_setup(
-                (0, 0),
-                ((b.0 - a.0) as i64, (b.1 - a.1) as i64),
-            ))
+            EdgeIncrements::of(&EdgeSetup::subpixel(frac, (0, 0), (b.0 - a.0, b.1 - a.1), 0))
         };
         let (w, a, t) = (inc(o.top, o.bot), inc(o.top, o.mid), inc(o.mid, o.bot));
         let lanes = std::array::from_fn(|k| {
-            let s = address_setup(&subs[k]);
+            let s = lane_setup(&subs[k]);
             let (si_a, si_t) = (EdgeIncrements::of(&s.a), EdgeIncrements::of(&s.t));
             assert_eq!(
                 EdgeIncrements::of(&s.w),
@@ -430,6 +499,11 @@ impl FourOutputs {
     }
 }
 
+/// Width of the error words of the sub-pixel four-triangle block's lanes: a sub-triangle of
+/// a parent with F = [`crate::types::SUBPIXEL_BITS`] = 4 fraction bits has F + 1 = 5, so D =
+/// 2^5·Δy with Δy ≤ 4095·2^4 (the parent edge's Δ in 2^−4 pixel) gives D < 4095·2^9 < 2^21.
+pub const SUBPIXEL_LANE_ERR_BITS: u32 = 21;
+
 /// Cycle-accurate model: four address-block lanes loaded together when all are ready.
 #[derive(Clone, Debug, Default)]
 pub struct FourTriangleModel {
@@ -437,8 +511,27 @@ pub struct FourTriangleModel {
 }
 
 impl FourTriangleModel {
+    /// The integer block (13-bit error words: integer parents only).
     pub fn new() -> Self {
         Self::default()
+    }
+    /// The sub-pixel block ([`SUBPIXEL_LANE_ERR_BITS`]-bit error words: parents with up to
+    /// `SUBPIXEL_BITS` fraction bits, integer ones included).
+    pub fn subpixel() -> Self {
+        FourTriangleModel {
+            lanes: std::array::from_fn(|_| {
+                AddressBlockModel::with_err_bits(SUBPIXEL_LANE_ERR_BITS)
+            }),
+        }
+    }
+    /// The model for parents with `frac` fraction bits: the integer block for 0, else the
+    /// sub-pixel one.
+    pub fn for_frac(frac: u32) -> Self {
+        if frac == 0 {
+            Self::new()
+        } else {
+            Self::subpixel()
+        }
     }
     pub fn ready(&self) -> bool {
         self.lanes.iter().all(|l| l.ready())
@@ -477,7 +570,15 @@ impl FourTriangleModel {
 /// first load to the clock in which every lane has shown its last `done`, then `tail` more
 /// clocks without a load (for the pipelines behind the block to drain).
 pub fn schedule(setups: &[FourTriangleSetup], tail: usize) -> Vec<(FourOutputs, Option<usize>)> {
-    let mut m = FourTriangleModel::new();
+    schedule_on(FourTriangleModel::new(), setups, tail)
+}
+
+/// [`schedule`] on a given model (the integer or the sub-pixel block).
+pub fn schedule_on(
+    mut m: FourTriangleModel,
+    setups: &[FourTriangleSetup],
+    tail: usize,
+) -> Vec<(FourOutputs, Option<usize>)> {
     let mut out = Vec::new();
     let mut dones = [0usize; 4];
     let mut next = 0;
@@ -504,7 +605,12 @@ pub fn schedule(setups: &[FourTriangleSetup], tail: usize) -> Vec<(FourOutputs, 
 /// Clock-by-clock outputs of the block walking `setups` back to back ([`schedule`] without a
 /// tail), and the cycle of each load.
 pub fn run(setups: &[FourTriangleSetup]) -> (Vec<FourOutputs>, Vec<usize>) {
-    let s = schedule(setups, 0);
+    run_on(FourTriangleModel::new(), setups)
+}
+
+/// [`run`] on a given model.
+pub fn run_on(m: FourTriangleModel, setups: &[FourTriangleSetup]) -> (Vec<FourOutputs>, Vec<usize>) {
+    let s = schedule_on(m, setups, 0);
     let loads = s
         .iter()
         .enumerate()
