@@ -82,7 +82,7 @@ const CASES: &[Case] = &[
         stream_slower: false,
     },
     // Four-triangle block: subdivision-stream against subdivision-raster (parents whose
-    // longest lane walk is shorter than a 72-word record are set-up bound).
+    // longest lane walk is shorter than a 87-word record are set-up bound).
     Case {
         scene: "sphere",
         rez: 50,

@@ -31,6 +31,7 @@ macro_rules! with_blocks {
             rtl::pipelines::gouraud_raster::GouraudRaster,
             rtl::stream::gouraud_stream::GouraudStream,
             rtl::units::four_triangle::FourTriangle,
+            rtl::units::four_triangle::SubpixelFourTriangle,
             rtl::pipelines::subdivision_raster::SubdivisionRaster,
             rtl::stream::subdivision_stream::SubdivisionStream,
             rtl::units::vector_interpolator::VectorInterpolator,

@@ -56,9 +56,7 @@ impl Frame {
     }
 }
 
-/// Render `tris` with `method` into a `width`×`height` frame. `subdivision` renders triangles
-/// with sub-pixel vertices rounded to whole pixels (coverage and depth): the four-triangle block
-/// takes integer vertices.
+/// Render `tris` with `method` into a `width`×`height` frame.
 pub fn render(
     tris: &[ScreenTriangle],
     method: Method,
@@ -66,10 +64,6 @@ pub fn render(
     width: u32,
     height: u32,
 ) -> Frame {
-    if method == Method::Subdivision && tris.iter().any(|t| t.frac != 0) {
-        let rounded: Vec<ScreenTriangle> = tris.iter().map(ScreenTriangle::rounded).collect();
-        return render(&rounded, method, ctx, width, height);
-    }
     let mut frame = Frame::new(width, height);
     for tri in tris {
         let Some(depth) = tri.depth_plane() else {

@@ -108,7 +108,9 @@ fn subdivision_planes_take_the_midpoint_intensities_at_every_lane_vertex() {
         };
         let mut seen = 0;
         for (lane, sub) in s.subs.iter().enumerate() {
+            assert_eq!(sub.frac, 1, "integer parents: half-pixel sub-triangles");
             for &(x2, y2) in &sub.v {
+                let (x2, y2) = (x2 as i64, y2 as i64);
                 let normal = (0..3)
                     .find(|&i| (2 * p[i].0, 2 * p[i].1) == (x2, y2))
                     .map(unit)

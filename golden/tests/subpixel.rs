@@ -345,7 +345,10 @@ fn subpixel_parents_split_into_four_that_tile_them_through_the_block_model() {
         let (mut a, b, mut c) = (p(), p(), p());
         a.1 = a.1 % (100 * ONE);
         c.1 = MAX - c.1 % (100 * ONE);
-        tris.push(SubpixelTriangle { v: [a, b, c], frac: F });
+        tris.push(SubpixelTriangle {
+            v: [a, b, c],
+            frac: F,
+        });
     }
     let mut setups = Vec::new();
     let mut lanes_want: Vec<Vec<(i32, i32)>> = vec![Vec::new(); LANES];

@@ -36,11 +36,10 @@ pub struct SubJob {
 }
 
 impl SubJob {
-    /// Lane K interpolates `planes[K]` over sub-triangle K's walk. The four-triangle block
-    /// takes integer parents: a sub-pixel triangle is rounded to whole pixels first (as
-    /// `golden::shading::subdivision` does).
+    /// Lane K interpolates `planes[K]` over sub-triangle K's walk (integer or sub-pixel
+    /// parents: `four-triangle-subpixel` takes both).
     pub fn new(tri: &ScreenTriangle, planes: &[[Plane; 3]; 4]) -> SubJob {
-        let addr = FourTriangleSetup::new(&tri.rounded());
+        let addr = FourTriangleSetup::new(tri);
         let words =
             std::array::from_fn(|k| gbvi::setup(&planes[k], &addr.lane(k)).map(|c| c.words()));
         SubJob { addr, words }
@@ -49,7 +48,6 @@ impl SubJob {
     /// Gouraud through the four-triangle block: every lane takes the parent's planes
     /// (`golden::shading::gouraud`); `None` for zero area.
     pub fn gouraud(tri: &ScreenTriangle, ctx: &ShadeContext) -> Option<SubJob> {
-        let tri = &tri.rounded();
         golden::shading::gouraud::setup(tri, ctx).map(|g| SubJob::new(tri, &[g.planes; LANES]))
     }
 
@@ -165,7 +163,7 @@ impl SubPipe {
     }
 
     /// The pipe through its AXI4-Stream top `subdivision-stream` on rust-hdl: each parent a
-    /// 72-word record on the set-up stream, each lane's fragments on its own stream (every
+    /// 87-word record on the set-up stream, each lane's fragments on its own stream (every
     /// `tready` high).
     pub fn stream() -> Result<SubPipe, String> {
         SubPipe::on(Sim::RustHdl, true)
@@ -262,7 +260,7 @@ impl SubPipe {
 }
 
 /// A clock budget for `jobs`: every lane row at the full line length plus latency (and the
-/// stream top's record, 72 words, per parent).
+/// stream top's record, 87 words, per parent).
 pub fn clock_budget(jobs: &[SubJob]) -> u64 {
     jobs.iter()
         .map(|j| {

@@ -13,7 +13,9 @@ use proptest::strategy::ValueTree;
 use proptest::test_runner::TestCaseError;
 use std::collections::{HashMap, HashSet};
 use testbenches::units::address_block::triangle_strategy;
-use testbenches::units::four_triangle::{check as check_rtl, run_reactive, stimulus};
+use testbenches::units::four_triangle::{
+    check as check_rtl, check_subpixel, run_reactive, stimulus, subpixel_parents,
+};
 
 type Tri = [(i32, i32); 3];
 
@@ -115,6 +117,61 @@ fn named_edge_cases() {
         [(0, 0), (4095, 4095), (4095, 4094)],
     ];
     check("four_triangle_named", 0, &extra).unwrap_or_else(|e| panic!("{e}"));
+}
+
+/// `four-triangle-subpixel` (21-bit lanes): sub-pixel parents (the address block's sub-pixel
+/// families, 150 seeded after the named edge cases) every port exact against the sub-pixel
+/// model every clock, each lane's pixels the sub-triangle's walk at 5 fraction bits, the four
+/// tiling the parent's edge-function pixel set at 4; and integer parents walk through it
+/// exactly as through the integer block.
+#[test]
+fn subpixel_parents_through_the_subpixel_block() {
+    use golden::raster::{edge_function_pixels_of, walk_subpixel};
+    let name = "four_triangle_subpixel";
+    let seed = seed_for(name);
+    let parents = subpixel_parents(seed, 150);
+    let setups: Vec<FourTriangleSetup> = parents.iter().map(FourTriangleSetup::subpixel).collect();
+    let (_, out) = check_subpixel(name, seed, &setups).unwrap_or_else(|f| panic!("{f}"));
+    let segs = lane_segments(&out, parents.len()).unwrap_or_else(|e| panic!("{e}"));
+    let mut pixels = 0;
+    for (i, t) in parents.iter().enumerate() {
+        let subs = g4::subdivide_subpixel(t);
+        let mut seen = HashSet::new();
+        for k in 0..LANES {
+            let got = golden::units::address_block::stream_pixels(&segs[k][i]);
+            let want = subs
+                .map(|s| walk_subpixel(&s[k]).pixels())
+                .unwrap_or_default();
+            assert_eq!(got, want, "parent {i} {t:?} lane {k}: against the walk");
+            for p in &got {
+                assert!(seen.insert((p.x, p.y)), "parent {i}: {p:?} twice");
+            }
+        }
+        let parent: HashSet<(i32, i32)> = edge_function_pixels_of(t).into_iter().collect();
+        assert_eq!(
+            seen, parent,
+            "parent {i} {t:?}: the lanes against the parent"
+        );
+        pixels += seen.len();
+    }
+    assert!(pixels > 5_000, "{pixels} pixels");
+    // Integer parents: the same outputs from both blocks, clock for clock.
+    let ints: Vec<FourTriangleSetup> = parents
+        .iter()
+        .take(60)
+        .map(|t| {
+            FourTriangleSetup::new(&ScreenTriangle::from_points(
+                t.v.map(|(x, y)| (x >> 4, y >> 4)),
+            ))
+        })
+        .collect();
+    let (_, a) = check_rtl("four_triangle_integer", seed, &ints).unwrap_or_else(|f| panic!("{f}"));
+    let (_, b) = check_subpixel("four_triangle_integer_on_subpixel", seed, &ints)
+        .unwrap_or_else(|f| panic!("{f}"));
+    assert_eq!(
+        a, b,
+        "integer parents: the sub-pixel block differs from the integer one"
+    );
 }
 
 #[test]

@@ -8,16 +8,18 @@
 //! [`crate::units::four_triangle`]), so the method writes the same pixels as every other method;
 //! lane by lane, not in the parent's walk order.
 
+use crate::raster::walk_subpixel;
 use crate::shade::{to_u8, ShadeContext};
 use crate::shading::Emit;
-use crate::types::{Plane, ScreenTriangle, ScreenVertex};
-use crate::units::four_triangle::{self, HalfTriangle, LANES};
+use crate::types::{Plane, ScreenTriangle, ScreenVertex, SubpixelTriangle};
+use crate::units::four_triangle::{self, LANES};
 use glam::DVec3;
 
-/// Per-parent set-up: each lane's sub-triangle and its three channel planes.
+/// Per-parent set-up: each lane's sub-triangle (at the parent's fraction bits + 1) and its
+/// three channel planes.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SubdivisionSetup {
-    pub subs: [HalfTriangle; 4],
+    pub subs: [SubpixelTriangle; 4],
     /// `planes[lane][channel]`.
     pub planes: [[Plane; 3]; 4],
 }
@@ -41,11 +43,9 @@ pub fn midpoint_normal(a: DVec3, b: DVec3) -> DVec3 {
     }
 }
 
-/// Set-up of `tri`; `None` for a zero-area triangle. The four-triangle block takes integer
-/// parents: a triangle with sub-pixel vertices is rounded to whole pixels first.
+/// Set-up of `tri` (integer or sub-pixel vertices); `None` for a zero-area triangle.
 pub fn setup(tri: &ScreenTriangle, ctx: &ShadeContext) -> Option<SubdivisionSetup> {
-    let tri = &tri.rounded();
-    let subs = four_triangle::subdivide(tri)?;
+    let subs = four_triangle::subdivide_subpixel(&SubpixelTriangle::of(tri))?;
     let [t, m, b] = sorted(tri);
     let i = |n: DVec3| ctx.exact_intensity(n.normalize_or_zero());
     let (it, im, ib) = (i(t.normal), i(m.normal), i(b.normal));
@@ -67,7 +67,8 @@ pub fn setup(tri: &ScreenTriangle, ctx: &ShadeContext) -> Option<SubdivisionSetu
         c: 0.0,
     }; 3]; 4];
     for k in 0..LANES {
-        let p = subs[k].v.map(|(x, y)| (x as f64 / 2.0, y as f64 / 2.0));
+        let unit = 1.0 / (1u32 << subs[k].frac) as f64;
+        let p = subs[k].v.map(|(x, y)| (x as f64 * unit, y as f64 * unit));
         for c in 0..3 {
             planes[k][c] = Plane::through([
                 (p[0].0, p[0].1, values[k][0][c]),
@@ -83,7 +84,7 @@ pub fn setup(tri: &ScreenTriangle, ctx: &ShadeContext) -> Option<SubdivisionSetu
 pub fn shade(tri: &ScreenTriangle, ctx: &ShadeContext, emit: Emit) {
     let Some(s) = setup(tri, ctx) else { return };
     for k in 0..LANES {
-        for p in four_triangle::walk(&s.subs[k]).pixels() {
+        for p in walk_subpixel(&s.subs[k]).pixels() {
             emit(p.x, p.y, s.planes[k].map(|pl| to_u8(pl.at_pixel(p.x, p.y))));
         }
     }

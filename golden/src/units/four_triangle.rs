@@ -105,13 +105,15 @@ pub fn subdivide_subpixel(tri: &SubpixelTriangle) -> Option<[SubpixelTriangle; 4
     let (t, m, b) = (d(o.top), d(o.mid), d(o.bot));
     let (m_tm, m_tb, m_mb) = (mid(o.top, o.mid), mid(o.top, o.bot), mid(o.mid, o.bot));
     let frac = tri.frac + 1;
-    Some([
-        [t, m_tm, m_tb],
-        [m_tm, m, m_mb],
-        [m_tb, m_mb, b],
-        [m_tm, m_mb, m_tb],
-    ]
-    .map(|v| SubpixelTriangle { v, frac }))
+    Some(
+        [
+            [t, m_tm, m_tb],
+            [m_tm, m, m_mb],
+            [m_tb, m_mb, b],
+            [m_tm, m_mb, m_tb],
+        ]
+        .map(|v| SubpixelTriangle { v, frac }),
+    )
 }
 
 /// A half triangle's vertices sorted by (y, x) and whether the working edge is the left one.
@@ -419,7 +421,12 @@ impl FourTriangleSetup {
         let o = orientation_of(tri).expect("non-zero area");
         let frac = tri.frac + 1;
         let inc = |a: (i32, i32), b: (i32, i32)| {
-            EdgeIncrements::of(&EdgeSetup::subpixel(frac, (0, 0), (b.0 - a.0, b.1 - a.1), 0))
+            EdgeIncrements::of(&EdgeSetup::subpixel(
+                frac,
+                (0, 0),
+                (b.0 - a.0, b.1 - a.1),
+                0,
+            ))
         };
         let (w, a, t) = (inc(o.top, o.bot), inc(o.top, o.mid), inc(o.mid, o.bot));
         let lanes = std::array::from_fn(|k| {
@@ -609,7 +616,10 @@ pub fn run(setups: &[FourTriangleSetup]) -> (Vec<FourOutputs>, Vec<usize>) {
 }
 
 /// [`run`] on a given model.
-pub fn run_on(m: FourTriangleModel, setups: &[FourTriangleSetup]) -> (Vec<FourOutputs>, Vec<usize>) {
+pub fn run_on(
+    m: FourTriangleModel,
+    setups: &[FourTriangleSetup],
+) -> (Vec<FourOutputs>, Vec<usize>) {
     let s = schedule_on(m, setups, 0);
     let loads = s
         .iter()

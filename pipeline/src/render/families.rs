@@ -60,7 +60,7 @@ impl Family for Gouraud {
 /// `subdivision` (each lane its sub-triangle's planes) and `gouraud` with the four-triangle
 /// block (every lane the parent's) through the subdivision raster pipe
 /// (`rtl::pipelines::subdivision_raster`: the four-triangle block and a BVI per lane), by
-/// default through its ports (`--lit-top stream`: `subdivision-stream`, whose 72-word
+/// default through its ports (`--lit-top stream`: `subdivision-stream`, whose 87-word
 /// records make small parents set-up bound); depth from the parent's f64 plane, parents sent in
 /// mesh order (the first writer keeps a tie).
 pub(super) struct Subdivision(pub Method);

@@ -3,7 +3,7 @@
 //! the loads; stops once every lane has shown its last `done`).
 
 use golden::units::address_block::AddressOutputs;
-use golden::units::four_triangle::{FourOutputs, FourTriangleSetup};
+use golden::units::four_triangle::{FourOutputs, FourTriangleModel, FourTriangleSetup};
 use rtl::core::sim::Model as _;
 use rtl::units::four_triangle::FourTriangle;
 use std::io::Write;
@@ -66,7 +66,15 @@ pub fn row_outputs(r: &[u64]) -> FourOutputs {
 /// first clock the model is ready), up to the clock in which every lane has shown its last
 /// `done`.
 pub fn stimulus(setups: &[FourTriangleSetup]) -> (Vec<Vec<u64>>, Vec<FourOutputs>) {
-    golden::units::four_triangle::schedule(setups, 0)
+    stimulus_on(FourTriangleModel::new(), setups)
+}
+
+/// [`stimulus`] from a given model (the integer or the sub-pixel block).
+pub fn stimulus_on(
+    model: FourTriangleModel,
+    setups: &[FourTriangleSetup],
+) -> (Vec<Vec<u64>>, Vec<FourOutputs>) {
+    golden::units::four_triangle::schedule_on(model, setups, 0)
         .into_iter()
         .map(|(o, load)| (four_row(load.map(|k| &setups[k]), false), o))
         .unzip()

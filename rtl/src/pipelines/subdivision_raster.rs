@@ -4,8 +4,8 @@
 //! `golden::units::four_triangle` for the addresses, `golden::shading::subdivision` for the colours).
 //!
 //! ```text
-//!  load + set-up ─► FourTriangle ─lane K: valid,row_start,step,carry─► BVI K ─► lK_red/green/blue
-//!                       └──────────── lane K: x, y, done ──► 1-clock delay ──► lK_x, lK_y, lK_done
+//!  load + set-up ─► SubpixelFourTriangle ─lane K: valid,row_start,step,carry─► BVI K ─► red_lK/green/blue
+//!                       └──────────── lane K: x, y, done ──► 1-clock delay ──► x_lK, y_lK, done_lK
 //! ```
 //!
 //! Two uses, the same hardware: **Gouraud through the four-triangle block** loads every lane's
@@ -13,21 +13,23 @@
 //! **`subdivision` method** loads lane K with the planes through sub-triangle K's own vertex
 //! intensities (the parent's vertices and the exactly lit, normalized midpoint normals).
 //!
-//! Ports: the four-triangle block's set-up inputs (same names, see `four_triangle`) and each
-//! lane's twelve signed Q16.16 BVI words `lK_r_start` … `lK_b_line` (see
+//! Ports: the sub-pixel four-triangle block's set-up inputs (`four-triangle-subpixel`: same
+//! names, error words of 21 bits, see `four_triangle`; parents with integer or
+//! `SUBPIXEL_BITS` = 4 fractional bits) and each
+//! lane's twelve signed Q16.16 BVI words `r_start_lK` … `b_line_lK` (see
 //! `intensity_interpolator`), all sampled on the one `load` strobe, accepted when `ready`;
 //! `hold`, the four-triangle block's stall (a held clock shows no event on any lane, so no BVI
 //! steps and the next clock shows no pixel; each lane's pixels under holds are its pixels
 //! without them with empty clocks inserted; 0 in every use without a stream top).
-//! Outputs per lane K: `lK_valid`, `lK_x`, `lK_y` (12 bits), `lK_red`, `lK_green`, `lK_blue`
-//! (8 bits, saturated), `lK_done` (the lane's last event of the parent); and `ready`.
+//! Outputs per lane K: `valid_lK`, `x_lK`, `y_lK` (12 bits), `red_lK`, `green_lK`, `blue_lK`
+//! (8 bits, saturated), `done_lK` (the lane's last event of the parent); and `ready`.
 //!
 //! Latency: load → first pixels 4 clocks (3 + 1). Throughput: up to four pixels per clock (the
 //! four-triangle block's). Overflow and error budget: the BVI's (each channel within 1 LSB of
 //! its rounded plane value; the Q16.16 adders wrap, harmlessly on in-range planes).
 
 use crate::core::primitives::Delay;
-use crate::units::four_triangle::FourTriangle;
+use crate::units::four_triangle::SubpixelFourTriangle;
 use crate::units::intensity_interpolator::IntensityInterpolator;
 use rust_hdl::prelude::*;
 
@@ -35,63 +37,63 @@ crate::hw_block! {
     /// The subdivision raster pipe (see the module header).
     pub struct SubdivisionRaster(clock) as "subdivision-raster" {
         summary: "four-triangle block feeding one BVI per sub-triangle: four Gouraud pixels per clock (SPEC §6–7)",
-        latency: FourTriangle::LATENCY + IntensityInterpolator::LATENCY
+        latency: SubpixelFourTriangle::LATENCY + IntensityInterpolator::LATENCY
             => "load to the first pixels, up to four pixels per clock",
         multipliers: 0,
         in {
             load: Bit,
             w_f: Bits<12>,
-            w_r: Bits<13>,
-            w_d: Bits<13>,
+            w_r: Bits<21>,
+            w_d: Bits<21>,
             a_f: Bits<12>,
-            a_r: Bits<13>,
-            a_d: Bits<13>,
+            a_r: Bits<21>,
+            a_d: Bits<21>,
             t_f: Bits<12>,
-            t_r: Bits<13>,
-            t_d: Bits<13>,
+            t_r: Bits<21>,
+            t_d: Bits<21>,
             w_b0_l0: Bits<12>,
-            w_e0_l0: Bits<13>,
+            w_e0_l0: Bits<21>,
             a_b0_l0: Bits<12>,
-            a_e0_l0: Bits<13>,
+            a_e0_l0: Bits<21>,
             a_third_l0: Bit,
             t_b0_l0: Bits<12>,
-            t_e0_l0: Bits<13>,
+            t_e0_l0: Bits<21>,
             t_adjacent_l0: Bit,
             y_top_l0: Bits<12>,
             rows_l0: Bits<12>,
             y_switch_l0: Bits<12>,
             dir_neg_l0: Bit,
             w_b0_l1: Bits<12>,
-            w_e0_l1: Bits<13>,
+            w_e0_l1: Bits<21>,
             a_b0_l1: Bits<12>,
-            a_e0_l1: Bits<13>,
+            a_e0_l1: Bits<21>,
             a_third_l1: Bit,
             t_b0_l1: Bits<12>,
-            t_e0_l1: Bits<13>,
+            t_e0_l1: Bits<21>,
             t_adjacent_l1: Bit,
             y_top_l1: Bits<12>,
             rows_l1: Bits<12>,
             y_switch_l1: Bits<12>,
             dir_neg_l1: Bit,
             w_b0_l2: Bits<12>,
-            w_e0_l2: Bits<13>,
+            w_e0_l2: Bits<21>,
             a_b0_l2: Bits<12>,
-            a_e0_l2: Bits<13>,
+            a_e0_l2: Bits<21>,
             a_third_l2: Bit,
             t_b0_l2: Bits<12>,
-            t_e0_l2: Bits<13>,
+            t_e0_l2: Bits<21>,
             t_adjacent_l2: Bit,
             y_top_l2: Bits<12>,
             rows_l2: Bits<12>,
             y_switch_l2: Bits<12>,
             dir_neg_l2: Bit,
             w_b0_l3: Bits<12>,
-            w_e0_l3: Bits<13>,
+            w_e0_l3: Bits<21>,
             a_b0_l3: Bits<12>,
-            a_e0_l3: Bits<13>,
+            a_e0_l3: Bits<21>,
             a_third_l3: Bit,
             t_b0_l3: Bits<12>,
-            t_e0_l3: Bits<13>,
+            t_e0_l3: Bits<21>,
             t_adjacent_l3: Bit,
             y_top_l3: Bits<12>,
             rows_l3: Bits<12>,
@@ -122,7 +124,7 @@ crate::hw_block! {
             valid_l3: Bit, x_l3: Bits<12>, y_l3: Bits<12>,
             red_l3: Bits<8>, green_l3: Bits<8>, blue_l3: Bits<8>, done_l3: Bit,
         }
-        pub addr: FourTriangle,
+        pub addr: SubpixelFourTriangle,
         pub bvi0: IntensityInterpolator,
         pub bvi1: IntensityInterpolator,
         pub bvi2: IntensityInterpolator,

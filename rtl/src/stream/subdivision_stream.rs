@@ -1,6 +1,6 @@
 //! `subdivision-stream`: the subdivision raster pipe (`subdivision-raster`: the four-triangle
 //! block feeding one BVI per lane, SPEC §6–§7) behind AXI4-Stream interfaces, in place of
-//! `subdivision-raster`'s 2 106 flat set-up pins: one record per parent triangle in on a
+//! `subdivision-raster`'s 2 250 flat set-up pins: one record per parent triangle in on a
 //! 32-bit stream, and fragments out on four 64-bit streams, one per lane (sub-triangle K's
 //! pixels on `m_axis_lK_*`), each with its own back-pressure. Golden: `subdivision-raster`'s
 //! (the same fragments, in the same order on each lane, whatever the stalls), itself checked
@@ -8,7 +8,7 @@
 //!
 //! ```text
 //!  s_axis ─► header / word count ─► receive bank ─► load bank ─► SubdivisionRaster ─┬─ lane 0 ─► FIFO (128) ─► m_axis_l0
-//!  (32 bit)   (record type, errors)  sw0..sw70       lw0..lw70         ▲ hold        ├─ lane 1 ─► FIFO (128) ─► m_axis_l1
+//!  (32 bit)   (record type, errors)  sw0..sw85       lw0..lw85         ▲ hold        ├─ lane 1 ─► FIFO (128) ─► m_axis_l1
 //!                                                                      │             ├─ lane 2 ─► FIFO (128) ─► m_axis_l2
 //!                                                                      │             └─ lane 3 ─► FIFO (128) ─► m_axis_l3
 //!                                                                      └──── any FIFO's level ◄──┘
@@ -30,7 +30,7 @@
 //! depth plane, in software).
 //!
 //! # Records (`rtl::stream::layout::SUBDIVISION_STREAM`, one table for the hardware and the driver)
-//! A header word (bits 3..0: 1, a parent; the other bits 0), then 71 payload words:
+//! A header word (bits 3..0: 1, a parent; the other bits 0), then 86 payload words:
 //! `subdivision-raster`'s set-up ports in port order (the shared edge increments, each lane's
 //! walk, each lane's twelve signed Q16.16 BVI words), a field never straddling two words. A
 //! record whose `tlast` comes before or after its length, or with an unknown type, is dropped
@@ -57,7 +57,7 @@
 //!   FIFO holds more than 128 and none overflows. With every `tready` high each FIFO holds at
 //!   most one beat and the block is never held.
 //! - Throughput: the pipe's — up to four fragments per clock — as long as the set-up words
-//!   keep ahead: a parent's record is 72 words at one word per clock, so a run of parents
+//!   keep ahead: a parent's record is 87 words at one word per clock, so a run of parents
 //!   whose longest lane walk is shorter than that is set-up bound.
 //! - Latency: a parent record's last word accepted in clock t → its first beats offered in
 //!   clock t + 8 (the record is complete in t + 1, moves to the load bank in t + 1, loads in

@@ -93,7 +93,9 @@
 //! the block is unchanged; f, B and the 12-bit counters are as in the integer build, and any
 //! integer set-up is also a sub-pixel one (the integer words, zero-extended).
 
-use crate::units::line_interpolator::{LineInterpolator, SubpixelLineInterpolator};
+use crate::units::line_interpolator::{
+    LaneLineInterpolator, LineInterpolator, SubpixelLineInterpolator,
+};
 use rust_hdl::prelude::*;
 
 /// The sub-pixel address block's set-up ports after `load` (the header's input table with
@@ -394,5 +396,15 @@ address_block! {
     /// words (see the module header).
     pub struct SubpixelAddressBlock(SubpixelLineInterpolator, 20) as "address-block-subpixel" {
         summary: "one triangle's sub-pixel set-up in (vertices with 4 fraction bits), its pixel addresses and step types out (SPEC §5)",
+    }
+}
+
+address_block! {
+    /// The address block with 21-bit error words: a lane of `four-triangle-subpixel`, walking
+    /// the sub-triangles (5 fraction bits) of parents with `SUBPIXEL_BITS` = 4. Not in the
+    /// block list: it is this text at E = 21, tested every clock as the four lanes of that
+    /// block.
+    pub struct LaneAddressBlock(LaneLineInterpolator, 21) as "address-block-lane" {
+        summary: "one sub-triangle's set-up in (5 fraction bits), its pixel addresses and step types out (SPEC §5, §7)",
     }
 }

@@ -14,7 +14,7 @@
 //!                                                     corner  corner  corner  middle
 //!                                                     at T    at m_tm at m_tb (180°)
 //!                                                         │      │      │      │
-//!                                               l0_* ◄────┘ l1_* ◄┘ l2_* ◄┘ l3_* ◄┘
+//!                                               *_l0 ◄────┘ *_l1 ◄┘ *_l2 ◄┘ *_l3 ◄┘
 //! ```
 //!
 //! Each lane is an [`AddressBlock`] (SPEC §5: two line interpolators, RGr, CTx/CTy/CTr).
@@ -24,7 +24,7 @@
 //! the sub-triangles' top vertices): the three corner shapes are translated by half-pixel
 //! offsets, which changes which pixel centres they cover, so they cannot share one error term
 //! (see `golden::units::four_triangle`). Each lane's other and third edge select the adjacent (T→M)
-//! or third (M→B) parent triple (`lK_a_third`, `lK_t_adjacent`): the middle lane, turned by
+//! or third (M→B) parent triple (`a_third_lK`, `t_adjacent_lK`): the middle lane, turned by
 //! 180°, takes them the other way round, and a lane whose adjacent edge holds no row starts on
 //! its third edge. The patent walks the middle sub-triangle upwards from its bottom point
 //! (RG10, RG11); here it is walked downwards from its top like the others, so that all four
@@ -38,19 +38,19 @@
 //! | port                               | bits          | meaning                                   |
 //! |------------------------------------|---------------|-------------------------------------------|
 //! | `load`                             | 1             | load one parent triangle                  |
-//! | `w_f w_r w_d`                      | 12, 13, 13    | increments of the parent's working edge T→B (f two's complement) |
+//! | `w_f w_r w_d`                      | 12, E, E      | increments of the parent's working edge T→B (f two's complement); E = 13, or 21 in `four-triangle-subpixel` |
 //! | `a_f a_r a_d`, `t_f t_r t_d`       | same          | adjacent edge T→M, third edge M→B          |
-//! | `lK_w_b0 lK_w_e0`                  | 12, 13        | lane K's working edge: boundary, error term on its first row |
-//! | `lK_a_b0 lK_a_e0`, `lK_a_third`    | 12, 13, 1     | its other edge on the first row; uses the third-edge triple |
-//! | `lK_t_b0 lK_t_e0`, `lK_t_adjacent` | 12, 13, 1     | its third edge; uses the adjacent-edge triple |
-//! | `lK_y_top lK_rows lK_y_switch`     | 12 each       | first line, number of lines, switch line  |
-//! | `lK_dir_neg`                       | 1             | lane K's lines run towards −x             |
+//! | `w_b0_lK w_e0_lK`                  | 12, E         | lane K's working edge: boundary, error term on its first row |
+//! | `a_b0_lK a_e0_lK`, `a_third_lK`    | 12, E, 1      | its other edge on the first row; uses the third-edge triple |
+//! | `t_b0_lK t_e0_lK`, `t_adjacent_lK` | 12, E, 1      | its third edge; uses the adjacent-edge triple |
+//! | `y_top_lK rows_lK y_switch_lK`     | 12 each       | first line, number of lines, switch line  |
+//! | `dir_neg_lK`                       | 1             | lane K's lines run towards −x             |
 //! | `hold`                             | 1             | stall, to every lane (any clock; see below) |
 //!
 //! Outputs: `ready` (a load is accepted in this clock: all four lanes are ready), and per lane
 //! K (= sub-triangle index K: 0 corner at T, 1 at m_tm, 2 at m_tb, 3 middle) the address
-//! block's outputs `lK_valid lK_x lK_y` (1, 12, 12), `lK_step` (2), `lK_line_start`,
-//! `lK_row_start`, `lK_carry`, `lK_done` (1 each; `done` is the lane's last event of the
+//! block's outputs `valid_lK x_lK y_lK` (1, 12, 12), `step_lK` (2), `line_start_lK`,
+//! `row_start_lK`, `carry_lK`, `done_lK` (1 each; `done` is the lane's last event of the
 //! triangle). All are registers of the lanes, or the AND of their `ready` registers.
 //!
 //! # Timing
@@ -67,27 +67,45 @@
 //! ports through one AND gate: drive it from a register.
 //! Overflow: none for set-ups in range (every counter exact modulo its width). Error budget:
 //! exact (integer).
+//!
+//! # Sub-pixel parents
+//!
+//! `four-triangle-subpixel` ([`SubpixelFourTriangle`]) is the same text with E = 21 and
+//! [`LaneAddressBlock`] lanes: a parent with F = `SUBPIXEL_BITS` = 4 fraction bits has
+//! sub-triangles with F + 1 = 5 (its doubled coordinates), each sub-edge's (Δx, Δy) in 2^−5
+//! pixel is its parent edge's in 2^−4 pixel, so the increments are still shared, with D =
+//! 2^5·Δy < 4095·2^9 < 2^21 (`golden::units::four_triangle::FourTriangleSetup::subpixel`).
+//! Integer parents load the same words into either block, so it walks them identically.
 
-use crate::units::address_block::AddressBlock;
+use crate::units::address_block::{AddressBlock, LaneAddressBlock};
 use rust_hdl::prelude::*;
 
-// The four lanes are one text repeated by `seq!` (lane `L` is `laneL`, its ports end in `_lL`),
-// so they cannot drift apart; the exported Verilog is the same as the text written out four times.
+/// One four-triangle block per lane type (`$lane`, an address block with `$e`-bit error
+/// words): the integer block and [`SubpixelFourTriangle`] are the same text. The four lanes are
+/// one text repeated by `seq!` (lane `L` is `laneL`, its ports end in `_lL`), so they cannot
+/// drift apart; the exported Verilog is the same as the text written out four times.
+macro_rules! four_triangle {
+    (
+        $(#[$m:meta])*
+        pub struct $name:ident($lane:ident, $e:tt) as $export:literal {
+            summary: $summary:literal $(,)?
+        }
+    ) => {
 seq_macro::seq!(L in 0..4 {
 crate::hw_block! {
-    /// The four-triangle address block (see the module header).
-    pub struct FourTriangle(clock) as "four-triangle" {
-        summary: "one triangle's set-up in, the addresses of its four midpoint sub-triangles out, up to four per clock (SPEC §7)",
-        latency: AddressBlock::LATENCY => "load to the first events, up to four addresses per clock",
+    $(#[$m])*
+    pub struct $name(clock) as $export {
+        summary: $summary,
+        latency: $lane::LATENCY => "load to the first events, up to four addresses per clock",
         multipliers: 0,
         in {
             load: Bit,
-            w_f: Bits<12>, w_r: Bits<13>, w_d: Bits<13>,
-            a_f: Bits<12>, a_r: Bits<13>, a_d: Bits<13>,
-            t_f: Bits<12>, t_r: Bits<13>, t_d: Bits<13>,
+            w_f: Bits<12>, w_r: Bits<$e>, w_d: Bits<$e>,
+            a_f: Bits<12>, a_r: Bits<$e>, a_d: Bits<$e>,
+            t_f: Bits<12>, t_r: Bits<$e>, t_d: Bits<$e>,
             #(
-            w_b0_l~L: Bits<12>, w_e0_l~L: Bits<13>, a_b0_l~L: Bits<12>, a_e0_l~L: Bits<13>, a_third_l~L: Bit,
-            t_b0_l~L: Bits<12>, t_e0_l~L: Bits<13>, t_adjacent_l~L: Bit,
+            w_b0_l~L: Bits<12>, w_e0_l~L: Bits<$e>, a_b0_l~L: Bits<12>, a_e0_l~L: Bits<$e>, a_third_l~L: Bit,
+            t_b0_l~L: Bits<12>, t_e0_l~L: Bits<$e>, t_adjacent_l~L: Bit,
             y_top_l~L: Bits<12>, rows_l~L: Bits<12>, y_switch_l~L: Bits<12>, dir_neg_l~L: Bit,
             )*
             hold: Bit,
@@ -101,14 +119,14 @@ crate::hw_block! {
         }
         #(
         /// One lane: sub-triangle `L`.
-        pub lane~L: AddressBlock,
+        pub lane~L: $lane,
         )*
         /// All four lanes are ready: the load is taken.
         all_ready: Signal<Local, Bit>,
     }
 }
 
-impl Logic for FourTriangle {
+impl Logic for $name {
     #[hdl_gen]
     fn update(&mut self) {
         clock!(self, clock, lane0, lane1, lane2, lane3);
@@ -163,3 +181,20 @@ impl Logic for FourTriangle {
     }
 }
 });
+    };
+}
+
+four_triangle! {
+    /// The four-triangle address block (see the module header).
+    pub struct FourTriangle(AddressBlock, 13) as "four-triangle" {
+        summary: "one triangle's set-up in, the addresses of its four midpoint sub-triangles out, up to four per clock (SPEC §7)",
+    }
+}
+
+four_triangle! {
+    /// The four-triangle address block for parents with `SUBPIXEL_BITS` = 4 fractional bits:
+    /// lanes with 21-bit error words (see the module header).
+    pub struct SubpixelFourTriangle(LaneAddressBlock, 21) as "four-triangle-subpixel" {
+        summary: "one sub-pixel triangle's set-up in (vertices with 4 fraction bits), the addresses of its four midpoint sub-triangles out, up to four per clock (SPEC §7)",
+    }
+}

@@ -156,3 +156,10 @@ line_interpolator!(
     SubpixelLineInterpolator,
     20
 );
+line_interpolator!(
+    /// One edge's DDA with 21-bit error words, for the lanes of `four-triangle-subpixel`
+    /// (sub-triangles of parents with `SUBPIXEL_BITS` = 4 fractional bits have 5: D =
+    /// 2^5·Δy < 2^21; see `crate::units::four_triangle`); not exported alone.
+    LaneLineInterpolator,
+    21
+);

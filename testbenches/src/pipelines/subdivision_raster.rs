@@ -53,10 +53,14 @@ fn zero_job(t: &ScreenTriangle) -> SubJob {
 /// one BVI latency past the last lane's last `done`.
 fn schedule(jobs: &[SubJob]) -> (Vec<Vec<u64>>, Vec<FourOutputs>) {
     let setups: Vec<_> = jobs.iter().map(|j| j.addr).collect();
-    golden::units::four_triangle::schedule(&setups, IntensityInterpolator::LATENCY + 1)
-        .into_iter()
-        .map(|(o, load)| (pipe_row(load.map(|k| &jobs[k])), o))
-        .unzip()
+    golden::units::four_triangle::schedule_on(
+        FourTriangleModel::subpixel(),
+        &setups,
+        IntensityInterpolator::LATENCY + 1,
+    )
+    .into_iter()
+    .map(|(o, load)| (pipe_row(load.map(|k| &jobs[k])), o))
+    .unzip()
 }
 
 /// The pipe's stimulus with golden expectations (see the module doc).
@@ -104,11 +108,21 @@ pub fn run(jobs: &[(SubJob, Option<SubdivisionSetup>)]) -> Stimulus {
 
 /// Twin of the pipe: the four-triangle cycle model feeding one [`BviTwin`] per lane (loaded on
 /// the accepted load), with each lane's x, y and done delayed one clock.
-#[derive(Default)]
 pub struct SubRows {
     addr: FourTriangleModel,
     bvi: [BviTwin; LANES],
     xy_done: [(u32, u32, bool); LANES],
+}
+
+impl Default for SubRows {
+    /// The pipe's four-triangle block is the sub-pixel one (21-bit lanes).
+    fn default() -> Self {
+        SubRows {
+            addr: FourTriangleModel::subpixel(),
+            bvi: Default::default(),
+            xy_done: Default::default(),
+        }
+    }
 }
 
 impl Twin for SubRows {

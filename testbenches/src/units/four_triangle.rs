@@ -8,11 +8,12 @@ use crate::harness::{CheckSpec, Compare, Expected, Failure, Report};
 use crate::registry::{self, Bench, Twin};
 use golden::testing::seeded_runner;
 use golden::types::ScreenTriangle;
+use golden::types::SubpixelTriangle;
 use golden::units::four_triangle::{FourOutputs, FourTriangleModel, FourTriangleSetup};
 pub use pipeline::walkers::four_triangle::*;
 use proptest::strategy::{Strategy, ValueTree};
 use rtl::core::registry::NoParams;
-use rtl::units::four_triangle::FourTriangle;
+use rtl::units::four_triangle::{FourTriangle, SubpixelFourTriangle};
 
 /// Run the RTL on the model's stimulus, every output port compared exactly every clock.
 pub fn check(
@@ -20,7 +21,39 @@ pub fn check(
     seed: u64,
     setups: &[FourTriangleSetup],
 ) -> Result<(Report, Vec<FourOutputs>), Box<Failure>> {
-    let (rows, expected) = stimulus(setups);
+    check_on(
+        FourTriangle::default,
+        FourTriangleModel::new(),
+        name,
+        seed,
+        setups,
+    )
+}
+
+/// [`check`] for the sub-pixel build (`four-triangle-subpixel`, set-ups from
+/// [`FourTriangleSetup::subpixel`] or integer ones).
+pub fn check_subpixel(
+    name: &str,
+    seed: u64,
+    setups: &[FourTriangleSetup],
+) -> Result<(Report, Vec<FourOutputs>), Box<Failure>> {
+    check_on(
+        SubpixelFourTriangle::default,
+        FourTriangleModel::subpixel(),
+        name,
+        seed,
+        setups,
+    )
+}
+
+fn check_on<B: rtl::core::sim::Dut>(
+    build: fn() -> B,
+    model: FourTriangleModel,
+    name: &str,
+    seed: u64,
+    setups: &[FourTriangleSetup],
+) -> Result<(Report, Vec<FourOutputs>), Box<Failure>> {
+    let (rows, expected) = stimulus_on(model, setups);
     let spec = CheckSpec {
         name: name.into(),
         seed,
@@ -30,8 +63,7 @@ pub fn check(
         .iter()
         .map(|o| outputs_row(o).into_iter().map(Expected::Word).collect())
         .collect();
-    let report = crate::harness::run_rows(FourTriangle::default, &spec, &rows, &expected)
-        .map_err(Box::new)?;
+    let report = crate::harness::run_rows(build, &spec, &rows, &expected).map_err(Box::new)?;
     let outs = report.outputs.iter().map(|r| row_outputs(r)).collect();
     Ok((report, outs))
 }
@@ -86,6 +118,46 @@ impl Bench for FourTriangle {
         let setups: Vec<FourTriangleSetup> = random_triangles(seed ^ 0x4e1d, 12)
             .iter()
             .map(FourTriangleSetup::new)
+            .collect();
+        held_edge_rows(seed, 1500, |k, hold| {
+            four_row(k.map(|k| &setups[k % setups.len()]), hold)
+        })
+    }
+}
+
+/// Seeded parents with `SUBPIXEL_BITS` fractional bits: the address block's sub-pixel
+/// families ([`crate::units::address_block::subpixel_triangles`]: the largest D, vertices on
+/// centres, horizontal edges through centres, one-pixel and sub-pixel triangles, slivers).
+pub fn subpixel_parents(seed: u64, n: usize) -> Vec<SubpixelTriangle> {
+    crate::units::address_block::subpixel_triangles(seed, n)
+}
+
+impl Bench for SubpixelFourTriangle {
+    const ITEMS: &'static str = "triangles";
+    const DEFAULT_ITEMS: usize = 20;
+    fn stimulus(_: &NoParams, n: usize, seed: u64) -> registry::Stimulus {
+        let setups: Vec<FourTriangleSetup> = subpixel_parents(seed, n)
+            .iter()
+            .map(FourTriangleSetup::subpixel)
+            .collect();
+        let (rows, expected) = stimulus_on(FourTriangleModel::subpixel(), &setups);
+        registry::Stimulus {
+            rows,
+            expected: expected
+                .iter()
+                .map(|o| outputs_row(o).into_iter().map(Expected::Word).collect())
+                .collect(),
+            compare: vec![Compare::Exact; OUTPUTS],
+        }
+    }
+    fn twin(_: &NoParams) -> Box<dyn Twin> {
+        Box::new(FourRows(FourTriangleModel::subpixel()))
+    }
+    /// Parents presented in half the clocks (taken when `ready`), `hold` in a quarter.
+    fn edge_rows(_: &NoParams, seed: u64) -> Vec<Vec<u64>> {
+        let setups: Vec<FourTriangleSetup> = subpixel_parents(seed ^ 0x4e1d, 12)
+            .iter()
+            .map(FourTriangleSetup::subpixel)
             .collect();
         held_edge_rows(seed, 1500, |k, hold| {
             four_row(k.map(|k| &setups[k % setups.len()]), hold)

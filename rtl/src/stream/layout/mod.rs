@@ -66,7 +66,7 @@ mod tests {
         assert_eq!(payload_words(&FAST_LINE), 19);
         assert_eq!(payload_words(&QUADRIC_LINE), 4);
         assert_eq!(payload_words(&QUADRIC_TRIANGLE), 40);
-        assert_eq!(payload_words(&SUBDIVISION_PARENT), 71);
+        assert_eq!(payload_words(&SUBDIVISION_PARENT), 86);
     }
 
     /// Every record's payload fits the record reader's word count.

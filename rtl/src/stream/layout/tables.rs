@@ -453,14 +453,14 @@ pub const QUADRIC_STREAM: StreamTop = StreamTop {
 macro_rules! subdivision_fields {
     ($($l:literal),*) => {
         &[
-            f("w_f", 12), f("w_r", 13), f("w_d", 13),
-            f("a_f", 12), f("a_r", 13), f("a_d", 13),
-            f("t_f", 12), f("t_r", 13), f("t_d", 13),
+            f("w_f", 12), f("w_r", 21), f("w_d", 21),
+            f("a_f", 12), f("a_r", 21), f("a_d", 21),
+            f("t_f", 12), f("t_r", 21), f("t_d", 21),
             $(
-                f(concat!("w_b0_l", $l), 12), f(concat!("w_e0_l", $l), 13),
-                f(concat!("a_b0_l", $l), 12), f(concat!("a_e0_l", $l), 13),
+                f(concat!("w_b0_l", $l), 12), f(concat!("w_e0_l", $l), 21),
+                f(concat!("a_b0_l", $l), 12), f(concat!("a_e0_l", $l), 21),
                 f(concat!("a_third_l", $l), 1),
-                f(concat!("t_b0_l", $l), 12), f(concat!("t_e0_l", $l), 13),
+                f(concat!("t_b0_l", $l), 12), f(concat!("t_e0_l", $l), 21),
                 f(concat!("t_adjacent_l", $l), 1),
                 f(concat!("y_top_l", $l), 12), f(concat!("rows_l", $l), 12),
                 f(concat!("y_switch_l", $l), 12), f(concat!("dir_neg_l", $l), 1),
