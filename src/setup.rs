@@ -62,11 +62,10 @@ pub struct SceneArgs {
     /// reference is always the undivided mesh.
     #[arg(long, default_value = "0")]
     pub subdivide: golden::shading::refine::Subdivide,
-    /// Fraction bits of the projected vertex coordinates: 0 (integer 12-bit addresses, the
-    /// default) or 4 (1/16 pixel: the walks, set-ups and `--subdivide` midpoints on the finer
-    /// grid, for the reference and every method, golden and RTL; `subdivision` rounds its
-    /// parents to whole pixels, since the four-triangle block takes integer vertices).
-    #[arg(long, default_value_t = 0, value_parser = parse_subpixel)]
+    /// Fraction bits of the projected vertex coordinates: 4 (1/16 pixel, the default: the
+    /// walks, set-ups and `--subdivide` midpoints on the finer grid, for the reference and
+    /// every method, golden and RTL) or 0 (integer 12-bit addresses).
+    #[arg(long, default_value_t = golden::SUBPIXEL_BITS, value_parser = parse_subpixel)]
     pub subpixel: u32,
 }
 
@@ -92,7 +91,7 @@ impl Default for SceneArgs {
             size: (400, 400),
             lighting: Lighting::Blinn,
             subdivide: golden::shading::refine::Subdivide::OFF,
-            subpixel: 0,
+            subpixel: golden::SUBPIXEL_BITS,
         }
     }
 }
@@ -170,7 +169,7 @@ impl SceneArgs {
             golden::shading::refine::Subdivide::Levels(0) => String::new(),
             s => format!(" subdivide {s}"),
         } + &match self.subpixel {
-            0 => String::new(),
+            golden::SUBPIXEL_BITS => String::new(),
             f => format!(" subpixel {f}"),
         };
         if self.is_obj() {

@@ -342,15 +342,17 @@ fn closed_standard_output_is_a_one_line_error() {
     }
 }
 
-/// A render that covers no pixel (a 2×1 canvas; a mesh whose only face is back-facing) says so
-/// and exits non-zero instead of reporting every method "identical" on a black image.
+/// A render that covers no pixel (a 2×1 canvas with integer vertices, where the sphere covers
+/// no pixel centre — with 1/16-pixel vertices it covers one; a mesh whose only face is
+/// back-facing) says so and exits non-zero instead of reporting every method "identical" on a
+/// black image.
 #[test]
 fn a_render_that_draws_nothing_is_an_error() {
     let tmp = tempfile::tempdir().unwrap();
     let out = tmp.path().join("out");
     let out = out.to_str().unwrap();
     assert_clean_error(
-        &["render", "--out", out, "--size", "2x1"],
+        &["render", "--out", out, "--size", "2x1", "--subpixel", "0"],
         "nothing to draw",
     );
     let back = tmp.path().join("back.obj");

@@ -218,13 +218,16 @@ fn an_error_names_its_method_and_cause() {
     assert!(!line.contains("another method"), "{line}");
 }
 
-/// Item 4: empty work is an error in `sweep` and `stream`, as in `render`.
+/// Item 4: empty work is an error in `sweep` and `stream`, as in `render` (a 2×1 canvas with
+/// integer vertices: the sphere covers no pixel centre).
 #[test]
 fn empty_work_is_an_error_everywhere() {
     let tmp = tempfile::tempdir().unwrap();
     for args in [
         vec![
             "sweep",
+            "--subpixel",
+            "0",
             "--size",
             "2x1",
             "--rez",
@@ -234,8 +237,24 @@ fn empty_work_is_an_error_everywhere() {
             "--light-deg",
             "90",
         ],
-        vec!["stream", "--size", "2x1", "--sim", "rust-hdl"],
-        vec!["render", "--size", "2x1", "--engine", "golden"],
+        vec![
+            "stream",
+            "--subpixel",
+            "0",
+            "--size",
+            "2x1",
+            "--sim",
+            "rust-hdl",
+        ],
+        vec![
+            "render",
+            "--subpixel",
+            "0",
+            "--size",
+            "2x1",
+            "--engine",
+            "golden",
+        ],
     ] {
         let out = run_in(tmp.path(), &args, MINUTE);
         assert_one_line_error(&out, &format!("{args:?}"), &["nothing to draw"]);

@@ -149,21 +149,6 @@ impl ScreenTriangle {
         let u = self.unit();
         (self.v[i].x as f64 * u, self.v[i].y as f64 * u)
     }
-    /// The triangle with its vertices rounded to whole pixels (ties up), for the blocks that
-    /// take integer vertices only.
-    pub fn rounded(&self) -> ScreenTriangle {
-        if self.frac == 0 {
-            return *self;
-        }
-        let half = 1 << (self.frac - 1);
-        let mut t = *self;
-        for v in t.v.iter_mut() {
-            v.x = (v.x + half) >> self.frac;
-            v.y = (v.y + half) >> self.frac;
-        }
-        t.frac = 0;
-        t
-    }
 
     fn samples(&self, f: impl Fn(&ScreenVertex) -> f64) -> [(f64, f64, f64); 3] {
         std::array::from_fn(|i| {

@@ -319,16 +319,16 @@ mod record_tests {
         let ctx = golden::shade::ShadeContext::default();
         let job = crate::subdivision::SubJob::subdivision(&t, &ctx).unwrap();
         let rec = subdivision_record(&job);
-        assert_eq!(rec.len(), 72);
+        assert_eq!(rec.len(), 87);
         assert_eq!(rec[0], (1, false));
         assert!(rec.last().unwrap().1);
-        assert!(rec[..71].iter().all(|w| !w.1));
+        assert!(rec[..86].iter().all(|w| !w.1));
         let payload: Vec<u32> = rec[1..].iter().map(|w| w.0).collect();
         let row = crate::subdivision::pipe_row(Some(&job));
         assert_eq!(
             unpack(&SUBDIVISION_PARENT, &payload),
             row[1..crate::subdivision::PIPE_HOLD_AT].to_vec()
         );
-        assert_eq!(subdivision_words(&[job, job]).len(), 144);
+        assert_eq!(subdivision_words(&[job, job]).len(), 174);
     }
 }

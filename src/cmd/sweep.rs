@@ -39,8 +39,8 @@ pub struct Args {
     /// Adaptive subdivision before every method: 0, 1, 2 or auto (as `render --subdivide`).
     #[arg(long, default_value = "0")]
     pub subdivide: golden::shading::refine::Subdivide,
-    /// Fraction bits of the vertex coordinates: 0 or 4 (as `render --subpixel`).
-    #[arg(long, default_value_t = 0, value_parser = crate::setup::parse_subpixel)]
+    /// Fraction bits of the vertex coordinates: 4 (the default) or 0 (as `render --subpixel`).
+    #[arg(long, default_value_t = golden::SUBPIXEL_BITS, value_parser = crate::setup::parse_subpixel)]
     pub subpixel: u32,
 }
 

@@ -2,7 +2,6 @@
 
 use golden::methods::Method;
 use golden::render::Frame;
-use golden::types::ScreenTriangle;
 
 use super::frame::{jobs_with_depth, FrameWriter, PlaneWriter};
 use super::{check_addresses, Family, LitTop, Options, Rendered, Scene, Tick};
@@ -77,10 +76,7 @@ impl Family for Subdivision {
         progress: &mut dyn FnMut(Tick),
     ) -> Result<Rendered, String> {
         check_addresses(s.tris, s.width, s.height)?;
-        // The four-triangle block takes integer vertices: sub-pixel ones are rounded, for
-        // coverage and depth alike (as `golden::render::render` does for `subdivision`).
-        let rounded: Vec<ScreenTriangle> = s.tris.iter().map(ScreenTriangle::rounded).collect();
-        let (jobs, depth) = jobs_with_depth(&rounded, |t| match self.0 {
+        let (jobs, depth) = jobs_with_depth(s.tris, |t| match self.0 {
             Method::Gouraud => Ok(SubJob::gouraud(t, s.ctx)),
             Method::Subdivision => Ok(SubJob::subdivision(t, s.ctx)),
             m => Err(format!("the subdivision pipe has no set-up for method {m}")),
