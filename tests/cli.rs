@@ -401,6 +401,21 @@ fn report_and_table_agree() {
             "{m}: table {row:?}, report {band:?}"
         );
     }
+    // The hardware columns: the largest difference and the pixels with other visibility are
+    // the report's (the "LSB" word, then the count).
+    let row = table.lines().find(|l| l.starts_with("gouraud ")).unwrap();
+    let cols: Vec<&str> = row.split_whitespace().collect();
+    let lsb = cols
+        .iter()
+        .position(|&c| c == "LSB")
+        .expect("an LSB column");
+    let vs = &report["methods"]["gouraud"]["rtl"]["vs_golden"];
+    assert_eq!(cols[lsb - 1], vs["max_abs_diff"].to_string(), "{row}");
+    assert_eq!(
+        cols[lsb + 1],
+        vs["visibility_mismatches"].to_string(),
+        "{row}"
+    );
     let obj = tmp.path().join("tri.obj");
     std::fs::write(&obj, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").unwrap();
     let o = shadecore(&[

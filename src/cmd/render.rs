@@ -560,12 +560,13 @@ fn print_table(args: &Args, setup: &Setup, methods: &[Method], report: &Report) 
     )?;
     if args.engine == Engine::Both {
         crate::outln!(
-            "{:<16} {:>10} {:>10}  {:<22} {:>13} {:>9} {:>7}",
+            "{:<16} {:>10} {:>10}  {:<22} {:>13} {:>9} {:>9} {:>7}",
             "method",
             "golden",
             "rtl",
             "band (golden)",
             "rtl vs golden",
+            "other vis",
             "px/clock",
             "rtl s"
         )?;
@@ -573,12 +574,13 @@ fn print_table(args: &Args, setup: &Setup, methods: &[Method], report: &Report) 
             let r = &report.methods[m.name()];
             match &r.rtl {
                 Some(t) => crate::outln!(
-                    "{:<16} {:>10.3e} {:>10.3e}  {:<22} {:>9} LSB {:>9.3} {:>7.1}",
+                    "{:<16} {:>10.3e} {:>10.3e}  {:<22} {:>9} LSB {:>9} {:>9.3} {:>7.1}",
                     m.name(),
                     r.nmse,
                     t.nmse,
                     r.band.label(),
                     t.vs_golden.max_abs_diff,
+                    t.vs_golden.visibility_mismatches,
                     t.vs_golden.pixels_per_clock,
                     t.vs_golden.seconds
                 )?,
@@ -592,7 +594,7 @@ fn print_table(args: &Args, setup: &Setup, methods: &[Method], report: &Report) 
                 )?,
             }
         }
-        crate::outln!("NMSE against the reference; \"rtl vs golden\": largest channel difference between the RTL and golden images of the same method")?;
+        crate::outln!("NMSE against the reference; \"rtl vs golden\": largest channel difference between the RTL and golden images of the same method; \"other vis\": pixels where the hardware's depth words show another surface than the f64 depth planes")?;
         return Ok(());
     }
     crate::outln!("{:<16} {:>12} {:>6}  band", "method", "NMSE", "max Δ")?;
