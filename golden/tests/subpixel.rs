@@ -330,7 +330,8 @@ fn shared_subpixel_edges_are_covered_exactly_once() {
 }
 
 /// The four-triangle block with sub-pixel parents (SPEC §7 on the finer grid): on seeded
-/// parents of every shape, the four sub-triangles (at `SUBPIXEL_BITS` + 1 fraction bits) tile
+/// parents of every shape, and on integer ones, the four sub-triangles (at one more fraction
+/// bit than the parent) tile
 /// the parent's pixel set exactly, each judged by the f64 reference alone; and the sub-pixel
 /// block's model, loaded with the parents back to back, emits on lane k exactly the f64
 /// reference's pixels of every parent's sub-triangle k, in walk order.
@@ -350,6 +351,15 @@ fn subpixel_parents_split_into_four_that_tile_them_through_the_block_model() {
             frac: F,
         });
     }
+    // Integer parents (half-pixel sub-triangles), judged by the same reference.
+    tris.extend(
+        triangles(1_000, "subpixel-four-integer")
+            .iter()
+            .map(|t| SubpixelTriangle {
+                v: t.v.map(|(x, y)| (x >> F, y >> F)),
+                frac: 0,
+            }),
+    );
     let mut setups = Vec::new();
     let mut lanes_want: Vec<Vec<(i32, i32)>> = vec![Vec::new(); LANES];
     let mut covered = 0usize;

@@ -5,7 +5,7 @@
 
 use golden::raster::edge_function_pixels;
 use golden::testing::{runner, seed_for};
-use golden::types::ScreenTriangle;
+use golden::types::{ScreenTriangle, SubpixelTriangle};
 use golden::units::address_block::AddressOutputs;
 use golden::units::four_triangle::{self as g4, FourOutputs, FourTriangleSetup, LANES};
 use proptest::prelude::*;
@@ -48,11 +48,13 @@ fn lane_segments(
 fn check_pixels(ts: &[ScreenTriangle], out: &[FourOutputs]) -> Result<(), String> {
     let segs = lane_segments(out, ts.len())?;
     for (i, t) in ts.iter().enumerate() {
-        let subs = g4::subdivide(t);
+        let subs = g4::subdivide_subpixel(&SubpixelTriangle::of(t));
         let mut seen = HashSet::new();
         for k in 0..LANES {
             let got = golden::units::address_block::stream_pixels(&segs[k][i]);
-            let expect = subs.map(|s| g4::walk(&s[k]).pixels()).unwrap_or_default();
+            let expect = subs
+                .map(|s| golden::raster::walk_subpixel(&s[k]).pixels())
+                .unwrap_or_default();
             if got != expect {
                 return Err(format!(
                     "parent {i} lane {k}: stream differs from the sub-triangle walk"

@@ -54,7 +54,7 @@ pub fn setup(tri: &ScreenTriangle, ctx: &ShadeContext) -> Option<SubdivisionSetu
         i(midpoint_normal(t.normal, b.normal)),
         i(midpoint_normal(m.normal, b.normal)),
     );
-    // The lanes' vertices in `four_triangle::subdivide`'s order.
+    // The lanes' vertices in `four_triangle::subdivide_subpixel`'s order.
     let values: [[[f64; 3]; 3]; 4] = [
         [it, i_tm, i_tb],
         [i_tm, im, i_mb],

@@ -5,9 +5,11 @@
 //!
 //! # Geometry
 //!
-//! Parent vertices sorted by (y, x): top T, middle M, bottom B (integer screen addresses).
-//! Edge midpoints `m_tm`, `m_tb`, `m_mb` lie on half-integers when an edge's extent is odd, so
-//! sub-triangles are kept in **doubled coordinates** (half-pixel units, all integers). Lanes:
+//! Parent vertices sorted by (y, x): top T, middle M, bottom B (screen addresses with F
+//! fraction bits: F = 0 for integer vertices, `SUBPIXEL_BITS` for sub-pixel ones). Edge
+//! midpoints `m_tm`, `m_tb`, `m_mb` need one more bit, so sub-triangles are kept in **doubled
+//! coordinates**, with F + 1 fraction bits ([`subdivide_subpixel`]; half-pixel units for
+//! integer parents). Lanes:
 //!
 //! | lane | sub-triangle           | shape                        |
 //! |------|------------------------|------------------------------|
@@ -19,19 +21,20 @@
 //! # Fill rule (SPEC §7's open point)
 //!
 //! Every sub-triangle is rasterized under the **same top-left rule as the single address
-//! block, applied exactly to its half-integer vertices**: pixel (x, y) is sampled at its centre
-//! (2x + 1, 2y + 1) in doubled units; a centre strictly inside is in; a centre on an edge is
-//! in only for a *left* edge (interior on +x) or a *top* edge (horizontal, interior below).
-//! With half-integer vertices a centre *can* now lie on a horizontal edge or on a vertex; the
+//! block, applied exactly to its vertices on the finer grid** (`crate::raster::Grid`): pixel
+//! (x, y) is sampled at its centre, (2x + 1, 2y + 1) in half-pixel units; a centre strictly
+//! inside is in; a centre on an edge is in only for a *left* edge (interior on +x) or a *top*
+//! edge (horizontal, interior below). With half-integer (or finer) vertices a centre *can* lie
+//! on a horizontal edge or on a vertex; the
 //! rule is equivalent to moving the sample point by (ε, ε²) with ε → 0⁺, and a point that is in
 //! no line of the subdivision lies in exactly one sub-triangle. Hence the four sub-triangles
-//! tile the parent's pixel set ([`crate::raster::edge_function_pixels`]) exactly: no pixel
+//! tile the parent's pixel set ([`crate::raster::edge_function_pixels_of`]) exactly: no pixel
 //! twice, none lost (tested exhaustively on small triangles here, and on seeded random parents
 //! through the RTL in `testbenches/tests/four_triangle.rs`).
 //!
 //! Rows follow from the same rule: a sub-triangle owns the rows whose centre 2y + 1 lies in
 //! [Y_top, Y_bottom) (doubled), and the other side switches to the third edge on the first row
-//! whose centre is at or below the middle vertex (`row_of`).
+//! whose centre is at or below the middle vertex (`Grid::row_at_or_below`).
 //!
 //! # Why the hardware shares increments but not error terms
 //!
@@ -44,18 +47,9 @@
 //! extent is even. The block therefore keeps one shared (f, r, D) per parent edge and one
 //! (b0, e0) register pair per lane and edge, and walks all four lanes in parallel.
 
-use crate::raster::{edge_steps, orientation, orientation_of, Grid};
-use crate::types::{Row, ScreenTriangle, SubpixelTriangle, Walk};
+use crate::raster::{orientation_of, Grid};
+use crate::types::{ScreenTriangle, SubpixelTriangle};
 use crate::units::address_block::{AddressBlockModel, AddressOutputs, AddressSetup, EdgeSetup};
-
-/// A point in doubled coordinates (half-pixel units).
-pub type P2 = (i64, i64);
-
-/// A sub-triangle: vertices in doubled coordinates.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub struct HalfTriangle {
-    pub v: [P2; 3],
-}
 
 /// Number of lanes (sub-triangles) of the block.
 pub const LANES: usize = 4;
@@ -63,41 +57,9 @@ pub const LANES: usize = 4;
 /// The lane of the middle sub-triangle (turned by 180°).
 pub const MIDDLE_LANE: usize = 3;
 
-fn div_ceil(n: i64, d: i64) -> i64 {
-    -((-n).div_euclid(d))
-}
-
-/// The first raster line whose pixel centre is at or below doubled height `y2`.
-pub fn row_of(y2: i64) -> i64 {
-    div_ceil(y2 - 1, 2)
-}
-
-/// Edge function of the directed edge a→b at p (doubled): ≥ 0 on the +x side of a downward
-/// edge.
-fn edge_fn(a: P2, b: P2, p: P2) -> i64 {
-    (p.0 - a.0) * (b.1 - a.1) - (p.1 - a.1) * (b.0 - a.0)
-}
-
-/// The four sub-triangles of `tri` in lane order (module doc); `None` for zero area.
-pub fn subdivide(tri: &ScreenTriangle) -> Option<[HalfTriangle; 4]> {
-    let o = orientation(tri)?;
-    let d = |p: (i32, i32)| (2 * p.0 as i64, 2 * p.1 as i64);
-    let mid = |a: (i32, i32), b: (i32, i32)| (a.0 as i64 + b.0 as i64, a.1 as i64 + b.1 as i64);
-    let (t, m, b) = (d(o.top), d(o.mid), d(o.bot));
-    let (m_tm, m_tb, m_mb) = (mid(o.top, o.mid), mid(o.top, o.bot), mid(o.mid, o.bot));
-    Some([
-        HalfTriangle { v: [t, m_tm, m_tb] },
-        HalfTriangle { v: [m_tm, m, m_mb] },
-        HalfTriangle { v: [m_tb, m_mb, b] },
-        HalfTriangle {
-            v: [m_tm, m_mb, m_tb],
-        },
-    ])
-}
-
 /// The four sub-triangles of a triangle with sub-pixel vertices (`frac` F), in lane order:
-/// the doubled coordinates of the module doc with F + 1 fraction bits (an integer parent gives
-/// [`subdivide`]'s vertices at frac 1). `None` for zero area.
+/// the doubled coordinates of the module doc with F + 1 fraction bits (half-pixel vertices,
+/// frac 1, for an integer parent). `None` for zero area.
 pub fn subdivide_subpixel(tri: &SubpixelTriangle) -> Option<[SubpixelTriangle; 4]> {
     let o = orientation_of(tri)?;
     let d = |p: (i32, i32)| (2 * p.0, 2 * p.1);
@@ -116,197 +78,12 @@ pub fn subdivide_subpixel(tri: &SubpixelTriangle) -> Option<[SubpixelTriangle; 4
     )
 }
 
-/// A half triangle's vertices sorted by (y, x) and whether the working edge is the left one.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct HalfOrientation {
-    pub top: P2,
-    pub mid: P2,
-    pub bot: P2,
-    pub left: bool,
-}
-
-impl HalfTriangle {
-    /// Twice the signed area in doubled units (4× the pixel-unit value).
-    pub fn area2(&self) -> i64 {
-        let [a, b, c] = self.v;
-        (b.0 - a.0) * (c.1 - a.1) - (c.0 - a.0) * (b.1 - a.1)
-    }
-
-    /// Sorted vertices and working-edge side; `None` for zero area.
-    pub fn orientation(&self) -> Option<HalfOrientation> {
-        if self.area2() == 0 {
-            return None;
-        }
-        let mut v = self.v;
-        v.sort_by_key(|&(x, y)| (y, x));
-        let side = edge_fn(v[0], v[2], v[1]);
-        Some(HalfOrientation {
-            top: v[0],
-            mid: v[1],
-            bot: v[2],
-            left: side > 0,
-        })
-    }
-
-    /// The centre of pixel (x, y) in doubled units.
-    fn centre(x: i64, y: i64) -> P2 {
-        (2 * x + 1, 2 * y + 1)
-    }
-
-    /// Reference rasterizer: every pixel whose centre passes the three edge functions under the
-    /// full top-left rule (module doc), row-major.
-    pub fn edge_function_pixels(&self) -> Vec<(i32, i32)> {
-        let area = self.area2();
-        if area == 0 {
-            return Vec::new();
-        }
-        let mut p = self.v;
-        if area > 0 {
-            p.swap(1, 2);
-        }
-        let edges: Vec<(P2, P2, bool)> = (0..3)
-            .map(|i| {
-                let (a, b) = (p[i], p[(i + 1) % 3]);
-                (a, b, b.1 > a.1 || (b.1 == a.1 && b.0 < a.0))
-            })
-            .collect();
-        let xs = self.v.map(|v| v.0);
-        let ys = self.v.map(|v| v.1);
-        let (x0, x1) = (
-            xs.iter().min().unwrap() / 2,
-            (xs.iter().max().unwrap() + 1) / 2,
-        );
-        let (y0, y1) = (
-            ys.iter().min().unwrap() / 2,
-            (ys.iter().max().unwrap() + 1) / 2,
-        );
-        let mut out = Vec::new();
-        for y in y0..=y1 {
-            for x in x0..=x1 {
-                let c = Self::centre(x, y);
-                let inside = edges.iter().all(|&(a, b, ties)| {
-                    let f = edge_fn(a, b, c);
-                    f > 0 || (f == 0 && ties)
-                });
-                if inside {
-                    out.push((x as i32, y as i32));
-                }
-            }
-        }
-        out
-    }
-}
-
-/// Smallest x whose centre on row y is on or right of the downward edge a→b (doubled),
-/// evaluated directly (no DDA): the golden walk's boundary.
-fn boundary(a: P2, b: P2, y: i64) -> i64 {
-    let (dx, dy) = (b.0 - a.0, b.1 - a.1);
-    // (2x + 1 − a.x)·dy − (2y + 1 − a.y)·dx ≥ 0
-    div_ceil((2 * y + 1 - a.1) * dx + (a.0 - 1) * dy, 2 * dy)
-}
-
-/// The SPEC §5 walk of a sub-triangle (the walk contract of [`Row`], with the rows and switch
-/// row of the module doc), computed from the edge functions row by row.
-pub fn walk(h: &HalfTriangle) -> Walk {
-    let Some(o) = h.orientation() else {
-        return Walk::default();
-    };
-    let dir: i8 = if o.left { 1 } else { -1 };
-    let (y0, y1) = (row_of(o.top.1), row_of(o.bot.1));
-    let mut rows = Vec::new();
-    let mut prev: Option<i64> = None;
-    for y in y0..y1 {
-        let bw = boundary(o.top, o.bot, y);
-        let bo = if 2 * y + 1 < o.mid.1 {
-            boundary(o.top, o.mid, y)
-        } else {
-            boundary(o.mid, o.bot, y)
-        };
-        let (x_start, len) = if o.left {
-            (bw, bo - bw)
-        } else {
-            (bw - 1, bw - bo)
-        };
-        let edge_steps = match prev {
-            None => Vec::new(),
-            Some(p) => edge_steps(x_start - p),
-        };
-        prev = Some(x_start);
-        rows.push(Row {
-            y: y as i32,
-            edge_steps,
-            x_start: x_start as i32,
-            len: len.max(0) as u32,
-            dir,
-        });
-    }
-    Walk { rows }
-}
-
-/// The DDA set-up of a sub-triangle's edge `upper`→`lower` (doubled, upper.y < lower.y) on
-/// its first row: `D = 2Δy`, `N(y) = (2y + 1 − Y0)·Δx + (X0 − 1)·Δy` (Δ in doubled units, which
-/// are the parent edge's Δ in pixels), `B = ⌈N/D⌉`, `e = B·D − N`, `f = ⌊Δx/Δy⌋`,
-/// `r = 2Δx − f·D`: the `address_block` form with half-integer end points.
-pub fn edge_setup(upper: P2, lower: P2) -> EdgeSetup {
-    let (dx, dy) = (lower.0 - upper.0, lower.1 - upper.1);
-    if dy <= 0 {
-        return EdgeSetup::default();
-    }
-    let y = row_of(upper.1);
-    let d = 2 * dy;
-    let n = (2 * y + 1 - upper.1) * dx + (upper.0 - 1) * dy;
-    let b0 = div_ceil(n, d);
-    let e0 = b0 * d - n;
-    let f = dx.div_euclid(dy);
-    let r = 2 * dx - f * d;
-    debug_assert!((0..d).contains(&e0) && (0..d).contains(&r));
-    EdgeSetup {
-        b0: b0.rem_euclid(4096) as u32,
-        e0: e0 as u32,
-        f: f as i32,
-        r: r as u32,
-        d: d as u32,
-    }
-}
-
-/// The single address block's set-up of a sub-triangle (what one lane of the block walks).
-pub fn address_setup(h: &HalfTriangle) -> AddressSetup {
-    let Some(o) = h.orientation() else {
-        let y = h.v.iter().map(|p| p.1).min().unwrap_or(0);
-        return AddressSetup {
-            y_top: row_of(y).clamp(0, 4095) as u32,
-            ..AddressSetup::default()
-        };
-    };
-    let (y_top, y_end, y_switch) = (row_of(o.top.1), row_of(o.bot.1), row_of(o.mid.1));
-    let w = edge_setup(o.top, o.bot);
-    let mut t = edge_setup(o.mid, o.bot);
-    if y_switch >= y_end {
-        // The third edge is never reached: keep its increments (shared words), no start.
-        t.b0 = 0;
-        t.e0 = 0;
-    }
-    let a = if y_switch > y_top {
-        edge_setup(o.top, o.mid)
-    } else {
-        t
-    };
-    AddressSetup {
-        w,
-        a,
-        t,
-        y_top: y_top as u32,
-        rows: (y_end - y_top) as u32,
-        y_switch: y_switch.rem_euclid(4096) as u32,
-        dir_neg: !o.left,
-    }
-}
-
-/// [`address_setup`] of a sub-triangle with any fraction bits (`frac` ≥ 1; coordinates in
-/// 2^−frac pixel): the same rows and edge placements, each edge's words from
-/// [`EdgeSetup::subpixel`] (D = 2^frac·Δy, 2^frac·Δx = f·D + r, e the edge function at the
-/// boundary pixel's centre). A third edge that is never reached loads no start, and a lane
-/// without rows still loads its edges' increments (the shared words).
+/// The single address block's set-up of a sub-triangle (what one lane of the block walks;
+/// `frac` ≥ 1, coordinates in 2^−frac pixel): rows from the first centre at or below each
+/// vertex, each edge's words from [`EdgeSetup::subpixel`] (D = 2^frac·Δy, 2^frac·Δx = f·D + r,
+/// e the edge function at the boundary pixel's centre). A third edge that is never reached
+/// loads no start, and a lane without rows still loads its edges' increments (the shared
+/// words), unlike [`AddressSetup::subpixel`].
 pub fn lane_setup(h: &SubpixelTriangle) -> AddressSetup {
     let g = Grid::of(h.frac);
     let Some(o) = orientation_of(h) else {
@@ -531,15 +308,6 @@ impl FourTriangleModel {
             }),
         }
     }
-    /// The model for parents with `frac` fraction bits: the integer block for 0, else the
-    /// sub-pixel one.
-    pub fn for_frac(frac: u32) -> Self {
-        if frac == 0 {
-            Self::new()
-        } else {
-            Self::subpixel()
-        }
-    }
     pub fn ready(&self) -> bool {
         self.lanes.iter().all(|l| l.ready())
     }
@@ -638,13 +406,18 @@ pub fn lane_pixels(out: &[FourOutputs], k: usize) -> Vec<crate::types::WalkPixel
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::raster::edge_function_pixels;
+    use crate::raster::{edge_function_pixels_of, walk_subpixel};
     use std::collections::HashSet;
 
+    /// An integer parent: the four tile its pixel set; each lane's walk is its sub-triangle's
+    /// edge-function set; the model emits each walk; a lane with rows whose third edge is
+    /// reached loads the single block's set-up of its sub-triangle.
     fn check(p: [(i32, i32); 3]) {
         let tri = ScreenTriangle::from_points(p);
-        let parent: HashSet<(i32, i32)> = edge_function_pixels(&tri).into_iter().collect();
-        let Some(subs) = subdivide(&tri) else {
+        let parent: HashSet<(i32, i32)> = edge_function_pixels_of(&SubpixelTriangle::of(&tri))
+            .into_iter()
+            .collect();
+        let Some(subs) = subdivide_subpixel(&SubpixelTriangle::of(&tri)) else {
             assert!(parent.is_empty());
             return;
         };
@@ -652,11 +425,12 @@ mod tests {
         let setup = FourTriangleSetup::new(&tri);
         let (out, _) = run(&[setup]);
         for (k, h) in subs.iter().enumerate() {
-            let px = h.edge_function_pixels();
+            assert_eq!(h.frac, 1);
+            let px = edge_function_pixels_of(h);
             for q in &px {
                 assert!(union.insert(*q), "{p:?}: pixel {q:?} twice (lane {k})");
             }
-            let w = walk(h);
+            let w = walk_subpixel(h);
             let mut wp: Vec<_> = w.pixels().iter().map(|q| (q.x, q.y)).collect();
             wp.sort_by_key(|&(x, y)| (y, x));
             assert_eq!(wp, px, "{p:?} lane {k}: walk vs edge functions");
@@ -665,11 +439,10 @@ mod tests {
                 w.pixels(),
                 "{p:?} lane {k}: model vs walk"
             );
-            assert_eq!(
-                setup.lane(k),
-                address_setup(h),
-                "{p:?} lane {k}: shared words"
-            );
+            let single = AddressSetup::subpixel(h);
+            if single.rows > 0 && single.y_switch < single.y_top + single.rows {
+                assert_eq!(setup.lane(k), single, "{p:?} lane {k}: shared words");
+            }
         }
         assert_eq!(union, parent, "{p:?}: union differs from the parent");
     }
