@@ -12,4 +12,5 @@ pub mod lighting_unit;
 pub mod normalizer;
 pub mod power_unit;
 pub mod quadric_unit;
+pub mod texture_coord;
 pub mod vector_interpolator;
