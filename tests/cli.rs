@@ -611,9 +611,9 @@ fn sweep_has_a_scene_axis_that_agrees_with_render() {
     }
 }
 
-/// `--subpixel 4` (issue 38): every hardware method's RTL image within 2 LSB of its golden
-/// image (the lit and Gouraud tops' sub-pixel address block, the span methods' set-up from the
-/// sub-pixel walk; subdivision, whose four-triangle block rounds its parents); other values are
+/// `--subpixel 4` (issue 38, the default): every hardware method's RTL image within 2 LSB of its
+/// golden image (the lit and Gouraud tops' sub-pixel address block, the span methods' set-up
+/// from the sub-pixel walk, subdivision's sub-pixel four-triangle block); other values are
 /// one-line errors. On the torus (rez 10, 200×200, `--subdivide auto`) sub-pixel vertices bring
 /// `quadric` and `cubic` closer to the reference than integer ones (measured 4.13e-5 → 3.14e-5
 /// and 8.9e-6 → 2.8e-6): the midpoints land where they are, not up to half a pixel away.
