@@ -21,21 +21,12 @@ const F: u32 = SUBPIXEL_BITS;
 const ONE: i32 = 1 << F;
 const MAX: i32 = 4095 * ONE;
 
-/// xorshift64*: seeded stimulus without a dependency.
-struct Rng(u64);
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        self.0.wrapping_mul(0x2545_F491_4F6C_DD1D)
-    }
-    fn below(&mut self, n: i32) -> i32 {
-        (self.next() % n as u64) as i32
-    }
-    fn around(&mut self, c: i32, r: i32) -> i32 {
-        (c + self.below(2 * r + 1) - r).clamp(0, MAX)
-    }
+mod common;
+use common::Rng;
+
+/// A coordinate within `r` of `c`, clamped to the address range.
+fn around(rng: &mut Rng, c: i32, r: i32) -> i32 {
+    (c + rng.below(2 * r + 1) - r).clamp(0, MAX)
 }
 
 /// The f64 reference: pixel (x, y) is covered when its centre (x + ½, y + ½) passes the three
@@ -94,7 +85,7 @@ fn triangles(n: usize, name: &str) -> Vec<SubpixelTriangle> {
         };
         let mut v = [(0, 0); 3];
         for p in v.iter_mut() {
-            *p = (rng.around(c.0, r), rng.around(c.1, r));
+            *p = (around(&mut rng, c.0, r), around(&mut rng, c.1, r));
         }
         match i % 7 {
             // A sliver: the third vertex close to the line through the first two.
@@ -269,8 +260,8 @@ fn shared_subpixel_edges_are_covered_exactly_once() {
     let mut rng = Rng(seed_for("subpixel-fans") | 1);
     for _ in 0..300 {
         let centre = (
-            rng.around(2048 * ONE, 2000 * ONE),
-            rng.around(2048 * ONE, 2000 * ONE),
+            around(&mut rng, 2048 * ONE, 2000 * ONE),
+            around(&mut rng, 2048 * ONE, 2000 * ONE),
         );
         let r = [ONE, 4 * ONE, 30 * ONE][rng.below(3) as usize];
         // A convex polygon around the centre, by angle, each vertex off the grid.

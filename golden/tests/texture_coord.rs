@@ -11,22 +11,8 @@ use golden::units::texture_coord::{
     clocks_for, exact_u, nearest_texel, walk_span, words_at, PctCoeffs, PctWalker,
 };
 
-/// xorshift64*: seeded stimulus without a dependency.
-struct Rng(u64);
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        self.0.wrapping_mul(0x2545_F491_4F6C_DD1D)
-    }
-    fn unit(&mut self) -> f64 {
-        (self.next() >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn range(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.unit()
-    }
-}
+mod common;
+use common::Rng;
 
 struct Span {
     c: PctCoeffs,

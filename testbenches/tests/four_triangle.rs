@@ -12,9 +12,9 @@ use proptest::prelude::*;
 use proptest::strategy::ValueTree;
 use proptest::test_runner::TestCaseError;
 use std::collections::{HashMap, HashSet};
-use testbenches::units::address_block::triangle_strategy;
+use testbenches::units::address_block::{subpixel_triangles, triangle_strategy};
 use testbenches::units::four_triangle::{
-    check as check_rtl, check_subpixel, run_reactive, stimulus, subpixel_parents,
+    check as check_rtl, check_subpixel, run_reactive, stimulus,
 };
 
 type Tri = [(i32, i32); 3];
@@ -131,7 +131,7 @@ fn subpixel_parents_through_the_subpixel_block() {
     use golden::raster::{edge_function_pixels_of, walk_subpixel};
     let name = "four_triangle_subpixel";
     let seed = seed_for(name);
-    let parents = subpixel_parents(seed, 150);
+    let parents = subpixel_triangles(seed, 150);
     let setups: Vec<FourTriangleSetup> = parents.iter().map(FourTriangleSetup::subpixel).collect();
     let (_, out) = check_subpixel(name, seed, &setups).unwrap_or_else(|f| panic!("{f}"));
     let segs = lane_segments(&out, parents.len()).unwrap_or_else(|e| panic!("{e}"));

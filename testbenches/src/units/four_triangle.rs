@@ -6,9 +6,9 @@
 
 use crate::harness::{CheckSpec, Compare, Expected, Failure, Report};
 use crate::registry::{self, Bench, Twin};
+use crate::units::address_block::subpixel_triangles;
 use golden::testing::seeded_runner;
 use golden::types::ScreenTriangle;
-use golden::types::SubpixelTriangle;
 use golden::units::four_triangle::{FourOutputs, FourTriangleModel, FourTriangleSetup};
 pub use pipeline::walkers::four_triangle::*;
 use proptest::strategy::{Strategy, ValueTree};
@@ -59,11 +59,8 @@ fn check_on<B: rtl::core::sim::Dut>(
         seed,
         compare: vec![Compare::Exact; OUTPUTS],
     };
-    let expected: Vec<Vec<Expected>> = expected
-        .iter()
-        .map(|o| outputs_row(o).into_iter().map(Expected::Word).collect())
-        .collect();
-    let report = crate::harness::run_rows(build, &spec, &rows, &expected).map_err(Box::new)?;
+    let report = crate::harness::run_rows(build, &spec, &rows, &expected_rows(&expected))
+        .map_err(Box::new)?;
     let outs = report.outputs.iter().map(|r| row_outputs(r)).collect();
     Ok((report, outs))
 }
@@ -92,76 +89,68 @@ impl Twin for FourRows {
     }
 }
 
+/// Every output port of every clock the model predicts, as exact expectations.
+fn expected_rows(outputs: &[FourOutputs]) -> Vec<Vec<Expected>> {
+    outputs
+        .iter()
+        .map(|o| outputs_row(o).into_iter().map(Expected::Word).collect())
+        .collect()
+}
+
+/// The registry's stimulus for either build: `setups` back to back as `model` schedules them.
+fn bench_stimulus(model: FourTriangleModel, setups: &[FourTriangleSetup]) -> registry::Stimulus {
+    let (rows, expected) = stimulus_on(model, setups);
+    registry::Stimulus {
+        rows,
+        expected: expected_rows(&expected),
+        compare: vec![Compare::Exact; OUTPUTS],
+    }
+}
+
+/// The registry's edge rows for either build: `setups` presented in half the clocks (taken
+/// when `ready`), `hold` in a quarter.
+fn bench_edge_rows(setups: &[FourTriangleSetup], seed: u64) -> Vec<Vec<u64>> {
+    held_edge_rows(seed, 1500, |k, hold| {
+        four_row(k.map(|k| &setups[k % setups.len()]), hold)
+    })
+}
+
 impl Bench for FourTriangle {
     const ITEMS: &'static str = "triangles";
     const DEFAULT_ITEMS: usize = 20;
     fn stimulus(_: &NoParams, n: usize, seed: u64) -> registry::Stimulus {
-        let setups: Vec<FourTriangleSetup> = random_triangles(seed, n)
-            .iter()
-            .map(FourTriangleSetup::new)
-            .collect();
-        let (rows, expected) = stimulus(&setups);
-        registry::Stimulus {
-            rows,
-            expected: expected
-                .iter()
-                .map(|o| outputs_row(o).into_iter().map(Expected::Word).collect())
-                .collect(),
-            compare: vec![Compare::Exact; OUTPUTS],
-        }
+        let tris = random_triangles(seed, n);
+        let setups: Vec<_> = tris.iter().map(FourTriangleSetup::new).collect();
+        bench_stimulus(FourTriangleModel::new(), &setups)
     }
     fn twin(_: &NoParams) -> Box<dyn Twin> {
         Box::new(FourRows(FourTriangleModel::new()))
     }
-    /// Parents presented in half the clocks (taken when `ready`), `hold` in a quarter.
     fn edge_rows(_: &NoParams, seed: u64) -> Vec<Vec<u64>> {
-        let setups: Vec<FourTriangleSetup> = random_triangles(seed ^ 0x4e1d, 12)
-            .iter()
-            .map(FourTriangleSetup::new)
-            .collect();
-        held_edge_rows(seed, 1500, |k, hold| {
-            four_row(k.map(|k| &setups[k % setups.len()]), hold)
-        })
+        let tris = random_triangles(seed ^ 0x4e1d, 12);
+        let setups: Vec<_> = tris.iter().map(FourTriangleSetup::new).collect();
+        bench_edge_rows(&setups, seed)
     }
 }
 
-/// Seeded parents with `SUBPIXEL_BITS` fractional bits: the address block's sub-pixel
-/// families ([`crate::units::address_block::subpixel_triangles`]: the largest D, vertices on
-/// centres, horizontal edges through centres, one-pixel and sub-pixel triangles, slivers).
-pub fn subpixel_parents(seed: u64, n: usize) -> Vec<SubpixelTriangle> {
-    crate::units::address_block::subpixel_triangles(seed, n)
-}
-
+/// `four-triangle-subpixel` on parents with `SUBPIXEL_BITS` fractional bits: the address
+/// block's sub-pixel families ([`subpixel_triangles`]: the largest D, vertices on centres,
+/// horizontal edges through centres, one-pixel and sub-pixel triangles, slivers).
 impl Bench for SubpixelFourTriangle {
     const ITEMS: &'static str = "triangles";
     const DEFAULT_ITEMS: usize = 20;
     fn stimulus(_: &NoParams, n: usize, seed: u64) -> registry::Stimulus {
-        let setups: Vec<FourTriangleSetup> = subpixel_parents(seed, n)
-            .iter()
-            .map(FourTriangleSetup::subpixel)
-            .collect();
-        let (rows, expected) = stimulus_on(FourTriangleModel::subpixel(), &setups);
-        registry::Stimulus {
-            rows,
-            expected: expected
-                .iter()
-                .map(|o| outputs_row(o).into_iter().map(Expected::Word).collect())
-                .collect(),
-            compare: vec![Compare::Exact; OUTPUTS],
-        }
+        let tris = subpixel_triangles(seed, n);
+        let setups: Vec<_> = tris.iter().map(FourTriangleSetup::subpixel).collect();
+        bench_stimulus(FourTriangleModel::subpixel(), &setups)
     }
     fn twin(_: &NoParams) -> Box<dyn Twin> {
         Box::new(FourRows(FourTriangleModel::subpixel()))
     }
-    /// Parents presented in half the clocks (taken when `ready`), `hold` in a quarter.
     fn edge_rows(_: &NoParams, seed: u64) -> Vec<Vec<u64>> {
-        let setups: Vec<FourTriangleSetup> = subpixel_parents(seed ^ 0x4e1d, 12)
-            .iter()
-            .map(FourTriangleSetup::subpixel)
-            .collect();
-        held_edge_rows(seed, 1500, |k, hold| {
-            four_row(k.map(|k| &setups[k % setups.len()]), hold)
-        })
+        let tris = subpixel_triangles(seed ^ 0x4e1d, 12);
+        let setups: Vec<_> = tris.iter().map(FourTriangleSetup::subpixel).collect();
+        bench_edge_rows(&setups, seed)
     }
 }
 
