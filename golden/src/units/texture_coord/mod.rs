@@ -58,6 +58,72 @@ impl PctCoeffs {
     }
 }
 
+/// A screen-space plane value·(X, Y) = kx·X + ky·Y + k0 through three vertices (f64), or
+/// `None` for a triangle of zero area.
+fn plane(p: [(f64, f64); 3], val: [f64; 3]) -> Option<[f64; 3]> {
+    let (x1, y1) = (p[1].0 - p[0].0, p[1].1 - p[0].1);
+    let (x2, y2) = (p[2].0 - p[0].0, p[2].1 - p[0].1);
+    let det = x1 * y2 - x2 * y1;
+    if det == 0.0 {
+        return None;
+    }
+    let (v1, v2) = (val[1] - val[0], val[2] - val[0]);
+    let kx = (v1 * y2 - v2 * y1) / det;
+    let ky = (x1 * v2 - x2 * v1) / det;
+    Some([kx, ky, val[0] - kx * p[0].0 - ky * p[0].1])
+}
+
+/// The perspective-correct planes of a triangle in f64: screen vertices `p` (pixel (x, y) has
+/// its centre at (x + ½, y + ½)), clip w per vertex (> 0) and texel coordinates `st` per
+/// vertex. Returns the planes of 1/w, s/w and t/w: u = (s/w)/(1/w) at any screen point.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PctPlanes {
+    pub q: [f64; 3],
+    pub s: [f64; 3],
+    pub t: [f64; 3],
+}
+
+impl PctPlanes {
+    pub fn new(p: [(f64, f64); 3], w: [f64; 3], st: [(f64, f64); 3]) -> Option<PctPlanes> {
+        let q = w.map(|w| 1.0 / w);
+        Some(PctPlanes {
+            q: plane(p, q)?,
+            s: plane(p, [0, 1, 2].map(|k| st[k].0 * q[k]))?,
+            t: plane(p, [0, 1, 2].map(|k| st[k].1 * q[k]))?,
+        })
+    }
+
+    /// The exact (u, v) at pixel (x, y)'s centre, in f64 (the reference).
+    pub fn exact(&self, x: i64, y: i64) -> (f64, f64) {
+        let (cx, cy) = (x as f64 + 0.5, y as f64 + 0.5);
+        let ev = |k: &[f64; 3]| k[0] * cx + k[1] * cy + k[2];
+        let d = ev(&self.q);
+        (ev(&self.s) / d, ev(&self.t) / d)
+    }
+
+    /// Integer coefficients relative to pixel `origin` (x and y in the coefficients are
+    /// x − origin.x, y − origin.y at pixel centres), scaled so that D's largest value at the
+    /// vertices is `d_max` (N/D is unchanged by the common scale), each rounded to the nearest
+    /// integer. `vmax`: the largest 1/w at the vertices.
+    pub fn coeffs(&self, origin: (i64, i64), vmax: f64, d_max: f64) -> (PctCoeffs, PctCoeffs) {
+        let scale = d_max / vmax;
+        let (cx, cy) = (origin.0 as f64 + 0.5, origin.1 as f64 + 0.5);
+        let int = |k: &[f64; 3]| {
+            (
+                (k[0] * scale).round() as i64,
+                (k[1] * scale).round() as i64,
+                ((k[0] * cx + k[1] * cy + k[2]) * scale).round() as i64,
+            )
+        };
+        let (g, h, i) = int(&self.q);
+        let c = |k: &[f64; 3]| {
+            let (a, b, c) = int(k);
+            PctCoeffs { a, b, c, g, h, i }
+        };
+        (c(&self.s), c(&self.t))
+    }
+}
+
 /// The exact texture coordinate N/D at pixel (x, y), in f64 (the float face).
 pub fn exact_u(c: &PctCoeffs, x: i64, y: i64) -> f64 {
     c.n(x, y) as f64 / c.d(x, y) as f64
@@ -268,3 +334,5 @@ mod tests {
         assert_eq!(clocks_for(4, 4), 1);
     }
 }
+
+pub mod block;
