@@ -52,6 +52,7 @@ macro_rules! with_blocks {
             rtl::stream::fast_stream::FastStream,
             rtl::stream::quadric_stream::QuadricStream,
             rtl::units::quadric_unit::QuadricUnit,
+            rtl::units::texture_coord::TextureCoord,
         ]
     };
 }

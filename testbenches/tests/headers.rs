@@ -3,7 +3,8 @@
 //!   the block (`… as "name"`) names `LATENCY` clocks on a line about latency, and a port row
 //!   saying `valid_out` is `valid_in` N clocks later says N = `LATENCY`;
 //! - the one control vocabulary of `rtl/README.md` ("Shared handshake"): `valid_in`/`valid_out`
-//!   for streams of items, `load`/`ready`/`hold` and `done` for walkers, lanes as a suffix
+//!   for streams of items, `load`/`ready`/`hold` and `done` for walkers, `ready` with
+//!   `valid_out`/`done_out` for a block after the address block that can stall it, lanes as a suffix
 //!   (`_a`, `_b`, `_l0` … `_l3`), AXI4-Stream names at a stream top's boundary.
 
 use flow::blocks::BLOCKS;
@@ -166,7 +167,16 @@ fn every_block_speaks_the_one_control_vocabulary() {
         if has("valid_in") != has("valid_out") && !has("load") {
             bad("a stream of items carries `valid_in` and `valid_out` both".into());
         }
-        if has("ready") && !b.name().ends_with("-stream") {
+        if has("ready") && has("row_start_in") {
+            // A block downstream of the address block that can stall it.
+            for n in ["load", "hold", "valid_out", "done_out", "done_in"] {
+                if !has(n) {
+                    bad(format!(
+                        "a stalling block after the address block (it has `ready`) needs `{n}`"
+                    ));
+                }
+            }
+        } else if has("ready") && !b.name().ends_with("-stream") {
             for n in ["load", "hold", "done"] {
                 if !has(n) {
                     bad(format!("a walker (it has `ready`) needs `{n}`"));

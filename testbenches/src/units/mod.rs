@@ -14,4 +14,5 @@ pub mod normalizer;
 pub mod power_unit;
 pub mod quadric_unit;
 pub mod span;
+pub mod texture_coord;
 pub mod vector_interpolator;
