@@ -21,6 +21,22 @@
 //! (`golden::units::texture_coord::block::TexCoordSetup`) gives E, W, P_m at the first line start
 //! (one division there for u0, v0) and the ΔE_m; u and v share E, D and the moves.
 //!
+//! # The loop in one adder
+//!
+//! A pixel's correction decides the next pixel's words, so the pixel loop is the critical
+//! path. Every word is formed from registers in one adder for every j side by side, and the
+//! comparators' decision only selects:
+//!
+//! - the block keeps W − 1, so "W + j·E > 0" is the sign bit of (W − 1) + j·E;
+//! - X = (W − 1) + P_line, the next pixel's W − 1 before its corrections, is a register:
+//!   the next pixel's W − 1 is X + j·Z and its X is X + P_line + j·K (one carry-save stage
+//!   and an adder, [`Add3`]), with Z = E + ΔE_line and K = E + 2ΔE_line registers beside E;
+//! - P_m + j·ΔE_m, u + j, and E's next values (3E, Z, K and the saved line start's Z_short,
+//!   Z_long after each kind of move) likewise;
+//! - a line start moves from the saved line-start registers only. When it arrives in the
+//!   clock its previous line's only pixel settles (the saved state is being written), the
+//!   block takes it, keeps `ready` low for one clock and moves in the next (`defer`).
+//!
 //! # Steps per clock: the build parameter k
 //!
 //! `k=1` (the seed's one step per clock) or `k=2`. Each clock the comparators look at
@@ -35,7 +51,7 @@
 //! | `load` | 1 | write the shadow set-up (the next triangle's), any clock |
 //! | `e0`, `de_line`, `de_short`, `de_long` | 48 each | E at the first line start; ΔE of the three moves |
 //! | `u_u0`, `v_u0` | 16 each | start texels (two's complement) |
-//! | `u_w0` … `u_p_long`, `v_w0` … `v_p_long` | 48 each | W and P_line, P_short, P_long at the start |
+//! | `u_w0` … `u_p_long`, `v_w0` … `v_p_long` | 48 each | W − 1 and P_line, P_short, P_long at the start |
 //! | `valid_in`, `row_start_in`, `step_in` (2), `carry_in`, `x_in` (12), `y_in` (12), `done_in` | | the address block's event (its ports `valid`, `row_start`, `step`, `carry`, `x`, `y`, `done`) |
 //! | `hold` | 1 | stall (the consumer's back-pressure): nothing taken or shown this clock; the pending pixel's corrections go on |
 //! | `ready` | 1 | the event shown this clock is taken |
@@ -54,11 +70,14 @@
 //! Handshake: an event (`valid_in`, `row_start_in` or `done_in` high) is taken in a clock with
 //! `ready` high; otherwise it must be shown again (the address block's `hold` = !`ready` does
 //! that). `ready` is a function of the block's registers (through the comparators) and of
-//! `hold` (one AND gate), never of the event: high when `hold` is low and no pixel is pending or
-//! the pending one settles this clock. A pixel
-//! taken in clock t settles in clock t + c (c = max(1, ⌈q/k⌉) for q steps on its worse axis)
+//! `hold` (one AND gate), never of the event: high when `hold` is low, no line start is
+//! deferred, and no pixel is pending or the pending one settles this clock. A pixel taken in
+//! clock t settles in clock t + c (c = max(1, ⌈q/k⌉) for q steps on its worse axis)
 //! and shows in clock t + c + 1 with `valid_out`: one pixel per clock while every pixel needs at
-//! most k steps per axis, and the pipe holds only beyond that.
+//! most k steps per axis, and the pipe holds only beyond that. A line start moves f or f + 1
+//! pixels along the edge at once, so its texel can move by several texels: on shallow edges
+//! line starts cost more clocks than pixels along a line; a line of one pixel costs a clock
+//! more (the deferred line start after it).
 //!
 //! Latency (the block's `LATENCY`): 2 clocks, valid_in to valid_out for a pixel that settles in its first clock.
 //!
@@ -109,14 +128,45 @@ impl BlockParams for TexCoordParams {
 }
 
 crate::hw_block! {
-    /// One coordinate (u or v): its texel, W, the three P registers, their saved line-start
-    /// copy and shadow set-up; the comparators and the correction.
+    /// a + b + c (+1 with `cin`) modulo 2^48 through one carry-save stage and one adder: the
+    /// three-operand sums of the pixel loop cost one carry chain.
+    pub struct Add3 {
+        in { a: Bits<48>, b: Bits<48>, c: Bits<48>, cin: Bit }
+        out { sum: Bits<48> }
+        /// The carry-save pair: bitwise sum and majority carries (shifted up, `cin` in bit 0).
+        half: Signal<Local, Bits<48>>, carries: Signal<Local, Bits<48>>,
+    }
+}
+
+impl Logic for Add3 {
+    #[hdl_gen]
+    fn update(&mut self) {
+        self.half.next = self.a.val() ^ self.b.val() ^ self.c.val();
+        self.carries.next = ((self.a.val() & self.b.val())
+            | (self.a.val() & self.c.val())
+            | (self.b.val() & self.c.val()))
+            << 1;
+        if self.cin.val() {
+            self.carries.next = (((self.a.val() & self.b.val())
+                | (self.a.val() & self.c.val())
+                | (self.b.val() & self.c.val()))
+                << 1)
+                | 1;
+        }
+        self.sum.next = self.half.val() + self.carries.val();
+    }
+}
+
+crate::hw_block! {
+    /// One coordinate (u or v): its texel, W − 1, X (W − 1 of the next pixel along the line
+    /// before corrections), the three P registers, their saved line-start copy and shadow
+    /// set-up; the comparators, and every candidate of the next words side by side.
     pub struct TexAxis(clock) {
         in {
             load: Bit, set_u0: Bits<16>, set_w0: Bits<48>,
             set_p0: Bits<48>, set_p1: Bits<48>, set_p2: Bits<48>,
-            /// E, 2E, 3E and the three ΔE of the current triangle.
-            e: Bits<48>, e2: Bits<48>, e3: Bits<48>,
+            /// E, 2E, 3E; Z = E + ΔE_line, K = E + 2ΔE_line; the three ΔE.
+            e: Bits<48>, e2: Bits<48>, e3: Bits<48>, z: Bits<48>, k: Bits<48>,
             de0: Bits<48>, de1: Bits<48>, de2: Bits<48>,
             k2: Bit, pending: Bit,
             take_first: Bit, take_row: Bit, take_line: Bit, long_move: Bit, save: Bit,
@@ -127,34 +177,41 @@ crate::hw_block! {
             /// The texel after this clock's correction.
             u_star: Bits<16>,
         }
-        u_q: DFF<Bits<16>>, w_q: DFF<Bits<48>>,
+        u_q: DFF<Bits<16>>, w_q: DFF<Bits<48>>, x_q: DFF<Bits<48>>,
         p0_q: DFF<Bits<48>>, p1_q: DFF<Bits<48>>, p2_q: DFF<Bits<48>>,
-        /// The saved line start.
+        /// The saved line start (W − 1 and P; X is formed at the move).
         ur_q: DFF<Bits<16>>, wr_q: DFF<Bits<48>>,
         pr0_q: DFF<Bits<48>>, pr1_q: DFF<Bits<48>>, pr2_q: DFF<Bits<48>>,
         /// The shadow set-up.
         su_q: DFF<Bits<16>>, sw_q: DFF<Bits<48>>,
         sp0_q: DFF<Bits<48>>, sp1_q: DFF<Bits<48>>, sp2_q: DFF<Bits<48>>,
-        /// W + j·E side by side (j = +1, +2, −1, −2, −3).
+        /// (W − 1) + j·E side by side (j = +1, +2, −1, −2, −3): "W + j·E > 0" is a sign bit.
         v_p1: Signal<Local, Bits<48>>, v_p2: Signal<Local, Bits<48>>,
         v_m1: Signal<Local, Bits<48>>, v_m2: Signal<Local, Bits<48>>, v_m3: Signal<Local, Bits<48>>,
-        /// "> 0" of W and of each candidate.
-        pos_w: Signal<Local, Bit>, pos_p1: Signal<Local, Bit>, pos_p2: Signal<Local, Bit>,
-        pos_m1: Signal<Local, Bit>, pos_m2: Signal<Local, Bit>, pos_m3: Signal<Local, Bit>,
         /// The chosen correction: |j| = 2 (else 1 when `step`), its sign, and whether any.
         step: Signal<Local, Bit>, two: Signal<Local, Bit>, neg: Signal<Local, Bit>,
         ok_w: Signal<Local, Bit>,
-        /// j as a 16-bit word, |j|·ΔE_m, and the corrected words.
-        j16: Signal<Local, Bits<16>>,
-        dp0: Signal<Local, Bits<48>>, dp1: Signal<Local, Bits<48>>, dp2: Signal<Local, Bits<48>>,
-        w_star: Signal<Local, Bits<48>>,
+        /// The next pixel along the line: X + j·Z (its W − 1), and X + P0 + j·K (its X).
+        n_0: Signal<Local, Bits<48>>, n_p1: Signal<Local, Bits<48>>, n_p2: Signal<Local, Bits<48>>,
+        n_m1: Signal<Local, Bits<48>>, n_m2: Signal<Local, Bits<48>>,
+        c_0: Signal<Local, Bits<48>>,
+        pub c_p1: Add3, pub c_p2: Add3, pub c_m1: Add3, pub c_m2: Add3,
+        /// P_m + j·ΔE_m for each j.
+        q0_p1: Signal<Local, Bits<48>>, q0_p2: Signal<Local, Bits<48>>,
+        q0_m1: Signal<Local, Bits<48>>, q0_m2: Signal<Local, Bits<48>>,
+        q1_p1: Signal<Local, Bits<48>>, q1_p2: Signal<Local, Bits<48>>,
+        q1_m1: Signal<Local, Bits<48>>, q1_m2: Signal<Local, Bits<48>>,
+        q2_p1: Signal<Local, Bits<48>>, q2_p2: Signal<Local, Bits<48>>,
+        q2_m1: Signal<Local, Bits<48>>, q2_m2: Signal<Local, Bits<48>>,
+        /// The selected words: corrected, and moved along the line.
+        w_star: Signal<Local, Bits<48>>, x_star: Signal<Local, Bits<48>>,
         p0_star: Signal<Local, Bits<48>>, p1_star: Signal<Local, Bits<48>>, p2_star: Signal<Local, Bits<48>>,
-        u_new: Signal<Local, Bits<16>>,
-        /// The base of a line start (the saved state, or the settling first pixel's) and W
-        /// after the moves.
-        rb_u: Signal<Local, Bits<16>>, rb_w: Signal<Local, Bits<48>>,
-        rb_p0: Signal<Local, Bits<48>>, rb_p1: Signal<Local, Bits<48>>, rb_p2: Signal<Local, Bits<48>>,
-        w_line: Signal<Local, Bits<48>>, w_row: Signal<Local, Bits<48>>,
+        u_new: Signal<Local, Bits<16>>, x_line: Signal<Local, Bits<48>>,
+        /// A line start from the saved state, after a short and after a long edge move: W − 1
+        /// and X after it.
+        w_row1: Signal<Local, Bits<48>>, w_row2: Signal<Local, Bits<48>>,
+        pub x_row1: Add3, pub x_row2: Add3,
+        x_first: Signal<Local, Bits<48>>,
     }
 }
 
@@ -162,20 +219,15 @@ impl Logic for TexAxis {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(
-            self, clock, u_q, w_q, p0_q, p1_q, p2_q, ur_q, wr_q, pr0_q, pr1_q, pr2_q, su_q, sw_q,
-            sp0_q, sp1_q, sp2_q
+            self, clock, u_q, w_q, x_q, p0_q, p1_q, p2_q, ur_q, wr_q, pr0_q, pr1_q, pr2_q, su_q,
+            sw_q, sp0_q, sp1_q, sp2_q
         );
+        // The comparators, from registers through one adder each.
         self.v_p1.next = self.w_q.q.val() + self.e.val();
         self.v_p2.next = self.w_q.q.val() + self.e2.val();
         self.v_m1.next = self.w_q.q.val() - self.e.val();
         self.v_m2.next = self.w_q.q.val() - self.e2.val();
         self.v_m3.next = self.w_q.q.val() - self.e3.val();
-        self.pos_w.next = !self.w_q.q.val().get_bit(47) & self.w_q.q.val().any();
-        self.pos_p1.next = !self.v_p1.val().get_bit(47) & self.v_p1.val().any();
-        self.pos_p2.next = !self.v_p2.val().get_bit(47) & self.v_p2.val().any();
-        self.pos_m1.next = !self.v_m1.val().get_bit(47) & self.v_m1.val().any();
-        self.pos_m2.next = !self.v_m2.val().get_bit(47) & self.v_m2.val().any();
-        self.pos_m3.next = !self.v_m3.val().get_bit(47) & self.v_m3.val().any();
 
         // The correction (golden `correction`): W ≤ 0 steps up, W − E > 0 steps down; one
         // step settles when the next candidate is on the other side, two (k = 2) when the one
@@ -185,20 +237,20 @@ impl Logic for TexAxis {
         self.neg.next = false;
         self.ok_w.next = true;
         if self.pending.val() {
-            if !self.pos_w.val() {
+            if self.w_q.q.val().get_bit(47) {
                 self.step.next = true;
-                if !self.pos_p1.val() {
+                if self.v_p1.val().get_bit(47) {
                     self.two.next = self.k2.val();
-                    if !(self.k2.val() & self.pos_p2.val()) {
+                    if !(self.k2.val() & !self.v_p2.val().get_bit(47)) {
                         self.ok_w.next = false;
                     }
                 }
-            } else if self.pos_m1.val() {
+            } else if !self.v_m1.val().get_bit(47) {
                 self.step.next = true;
                 self.neg.next = true;
-                if self.pos_m2.val() {
+                if !self.v_m2.val().get_bit(47) {
                     self.two.next = self.k2.val();
-                    if !(self.k2.val() & !self.pos_m3.val()) {
+                    if !(self.k2.val() & self.v_m3.val().get_bit(47)) {
                         self.ok_w.next = false;
                     }
                 }
@@ -206,67 +258,107 @@ impl Logic for TexAxis {
         }
         self.ok.next = self.ok_w.val();
 
+        // Every candidate of the next words, from registers, side by side.
+        self.n_0.next = self.x_q.q.val();
+        self.n_p1.next = self.x_q.q.val() + self.z.val();
+        self.n_p2.next = self.x_q.q.val() + (self.z.val() << 1);
+        self.n_m1.next = self.x_q.q.val() - self.z.val();
+        self.n_m2.next = self.x_q.q.val() - (self.z.val() << 1);
+        self.c_0.next = self.x_q.q.val() + self.p0_q.q.val();
+        self.c_p1.a.next = self.x_q.q.val();
+        self.c_p1.b.next = self.p0_q.q.val();
+        self.c_p1.c.next = self.k.val();
+        self.c_p1.cin.next = false;
+        self.c_p2.a.next = self.x_q.q.val();
+        self.c_p2.b.next = self.p0_q.q.val();
+        self.c_p2.c.next = self.k.val() << 1;
+        self.c_p2.cin.next = false;
+        self.c_m1.a.next = self.x_q.q.val();
+        self.c_m1.b.next = self.p0_q.q.val();
+        self.c_m1.c.next = !self.k.val();
+        self.c_m1.cin.next = true;
+        self.c_m2.a.next = self.x_q.q.val();
+        self.c_m2.b.next = self.p0_q.q.val();
+        self.c_m2.c.next = !(self.k.val() << 1);
+        self.c_m2.cin.next = true;
+        self.q0_p1.next = self.p0_q.q.val() + self.de0.val();
+        self.q0_p2.next = self.p0_q.q.val() + (self.de0.val() << 1);
+        self.q0_m1.next = self.p0_q.q.val() - self.de0.val();
+        self.q0_m2.next = self.p0_q.q.val() - (self.de0.val() << 1);
+        self.q1_p1.next = self.p1_q.q.val() + self.de1.val();
+        self.q1_p2.next = self.p1_q.q.val() + (self.de1.val() << 1);
+        self.q1_m1.next = self.p1_q.q.val() - self.de1.val();
+        self.q1_m2.next = self.p1_q.q.val() - (self.de1.val() << 1);
+        self.q2_p1.next = self.p2_q.q.val() + self.de2.val();
+        self.q2_p2.next = self.p2_q.q.val() + (self.de2.val() << 1);
+        self.q2_m1.next = self.p2_q.q.val() - self.de2.val();
+        self.q2_m2.next = self.p2_q.q.val() - (self.de2.val() << 1);
+
+        // The selection by j: W + j·E, X + j·Z (X after the correction: the next pixel's
+        // W − 1 before its own), X + P0 + j·K (the next pixel's X), P_m + j·ΔE_m, u + j.
+        self.u_new.next = self.u_q.q.val();
         self.w_star.next = self.w_q.q.val();
-        self.j16.next = 0.into();
-        self.dp0.next = 0.into();
-        self.dp1.next = 0.into();
-        self.dp2.next = 0.into();
-        if self.step.val() {
-            self.j16.next = 1.into();
-            self.dp0.next = self.de0.val();
-            self.dp1.next = self.de1.val();
-            self.dp2.next = self.de2.val();
-            if self.two.val() {
-                self.j16.next = 2.into();
-                self.dp0.next = self.de0.val() << 1;
-                self.dp1.next = self.de1.val() << 1;
-                self.dp2.next = self.de2.val() << 1;
-            }
-        }
-        self.u_new.next = self.u_q.q.val() + self.j16.val();
-        self.p0_star.next = self.p0_q.q.val() + self.dp0.val();
-        self.p1_star.next = self.p1_q.q.val() + self.dp1.val();
-        self.p2_star.next = self.p2_q.q.val() + self.dp2.val();
-        if self.step.val() {
+        self.x_star.next = self.n_0.val();
+        self.x_line.next = self.c_0.val();
+        self.p0_star.next = self.p0_q.q.val();
+        self.p1_star.next = self.p1_q.q.val();
+        self.p2_star.next = self.p2_q.q.val();
+        if self.step.val() & !self.neg.val() & !self.two.val() {
+            self.u_new.next = self.u_q.q.val() + 1;
             self.w_star.next = self.v_p1.val();
-            if self.two.val() {
-                self.w_star.next = self.v_p2.val();
-            }
+            self.x_star.next = self.n_p1.val();
+            self.x_line.next = self.c_p1.sum.val();
+            self.p0_star.next = self.q0_p1.val();
+            self.p1_star.next = self.q1_p1.val();
+            self.p2_star.next = self.q2_p1.val();
         }
-        if self.neg.val() {
-            self.u_new.next = self.u_q.q.val() - self.j16.val();
-            self.p0_star.next = self.p0_q.q.val() - self.dp0.val();
-            self.p1_star.next = self.p1_q.q.val() - self.dp1.val();
-            self.p2_star.next = self.p2_q.q.val() - self.dp2.val();
+        if self.step.val() & !self.neg.val() & self.two.val() {
+            self.u_new.next = self.u_q.q.val() + 2;
+            self.w_star.next = self.v_p2.val();
+            self.x_star.next = self.n_p2.val();
+            self.x_line.next = self.c_p2.sum.val();
+            self.p0_star.next = self.q0_p2.val();
+            self.p1_star.next = self.q1_p2.val();
+            self.p2_star.next = self.q2_p2.val();
+        }
+        if self.step.val() & self.neg.val() & !self.two.val() {
+            self.u_new.next = self.u_q.q.val() - 1;
             self.w_star.next = self.v_m1.val();
-            if self.two.val() {
-                self.w_star.next = self.v_m2.val();
-            }
+            self.x_star.next = self.n_m1.val();
+            self.x_line.next = self.c_m1.sum.val();
+            self.p0_star.next = self.q0_m1.val();
+            self.p1_star.next = self.q1_m1.val();
+            self.p2_star.next = self.q2_m1.val();
+        }
+        if self.step.val() & self.neg.val() & self.two.val() {
+            self.u_new.next = self.u_q.q.val() - 2;
+            self.w_star.next = self.v_m2.val();
+            self.x_star.next = self.n_m2.val();
+            self.x_line.next = self.c_m2.sum.val();
+            self.p0_star.next = self.q0_m2.val();
+            self.p1_star.next = self.q1_m2.val();
+            self.p2_star.next = self.q2_m2.val();
         }
         self.u_star.next = self.u_new.val();
 
-        // Moves: along the line from the settled state; a line start from the saved one (or
-        // from the first pixel settling in this very clock).
-        self.rb_u.next = self.ur_q.q.val();
-        self.rb_w.next = self.wr_q.q.val();
-        self.rb_p0.next = self.pr0_q.q.val();
-        self.rb_p1.next = self.pr1_q.q.val();
-        self.rb_p2.next = self.pr2_q.q.val();
-        if self.save.val() {
-            self.rb_u.next = self.u_new.val();
-            self.rb_w.next = self.w_star.val();
-            self.rb_p0.next = self.p0_star.val();
-            self.rb_p1.next = self.p1_star.val();
-            self.rb_p2.next = self.p2_star.val();
-        }
-        self.w_line.next = self.w_star.val() + self.p0_star.val();
-        self.w_row.next = self.rb_w.val() + self.rb_p1.val();
-        if self.long_move.val() {
-            self.w_row.next = self.rb_w.val() + self.rb_p2.val();
-        }
+        // A line start moves from the saved state only (a line start in the clock its
+        // previous line's only pixel settles waits a clock: the parent's `defer`).
+        self.w_row1.next = self.wr_q.q.val() + self.pr1_q.q.val();
+        self.w_row2.next = self.wr_q.q.val() + self.pr2_q.q.val();
+        self.x_row1.a.next = self.wr_q.q.val();
+        self.x_row1.b.next = self.pr1_q.q.val();
+        self.x_row1.c.next = self.pr0_q.q.val();
+        self.x_row1.cin.next = false;
+        self.x_row2.a.next = self.wr_q.q.val();
+        self.x_row2.b.next = self.pr2_q.q.val();
+        self.x_row2.c.next = self.pr0_q.q.val();
+        self.x_row2.cin.next = false;
+        self.x_first.next = self.sw_q.q.val() + self.sp0_q.q.val();
 
+        // Corrected by default; X after the correction is the next pixel's W − 1.
         self.u_q.d.next = self.u_new.val();
         self.w_q.d.next = self.w_star.val();
+        self.x_q.d.next = self.x_star.val();
         self.p0_q.d.next = self.p0_star.val();
         self.p1_q.d.next = self.p1_star.val();
         self.p2_q.d.next = self.p2_star.val();
@@ -280,6 +372,7 @@ impl Logic for TexAxis {
         if self.take_first.val() {
             self.u_q.d.next = self.su_q.q.val();
             self.w_q.d.next = self.sw_q.q.val();
+            self.x_q.d.next = self.x_first.val();
             self.p0_q.d.next = self.sp0_q.q.val();
             self.p1_q.d.next = self.sp1_q.q.val();
             self.p2_q.d.next = self.sp2_q.q.val();
@@ -289,18 +382,21 @@ impl Logic for TexAxis {
             self.pr1_q.d.next = self.sp1_q.q.val();
             self.pr2_q.d.next = self.sp2_q.q.val();
         } else if self.take_row.val() {
-            self.u_q.d.next = self.rb_u.val();
-            self.w_q.d.next = self.w_row.val();
-            self.p0_q.d.next = self.rb_p0.val();
-            self.p1_q.d.next = self.rb_p1.val();
-            self.p2_q.d.next = self.rb_p2.val();
-            self.ur_q.d.next = self.rb_u.val();
-            self.wr_q.d.next = self.w_row.val();
-            self.pr0_q.d.next = self.rb_p0.val();
-            self.pr1_q.d.next = self.rb_p1.val();
-            self.pr2_q.d.next = self.rb_p2.val();
+            self.u_q.d.next = self.ur_q.q.val();
+            self.w_q.d.next = self.w_row1.val();
+            self.x_q.d.next = self.x_row1.sum.val();
+            self.p0_q.d.next = self.pr0_q.q.val();
+            self.p1_q.d.next = self.pr1_q.q.val();
+            self.p2_q.d.next = self.pr2_q.q.val();
+            self.wr_q.d.next = self.w_row1.val();
+            if self.long_move.val() {
+                self.w_q.d.next = self.w_row2.val();
+                self.x_q.d.next = self.x_row2.sum.val();
+                self.wr_q.d.next = self.w_row2.val();
+            }
         } else if self.take_line.val() {
-            self.w_q.d.next = self.w_line.val();
+            self.w_q.d.next = self.x_star.val();
+            self.x_q.d.next = self.x_line.val();
         }
         if self.load.val() {
             self.su_q.d.next = self.set_u0.val();
@@ -335,25 +431,34 @@ crate::hw_block! {
         /// 0: u, 1: v.
         pub axis: [TexAxis; 2],
         k2: Constant<Bit> = Constant::new(p.k == 2),
-        /// E, 3E, Z_m = E + ΔE_m, the saved line start's Z_m, ΔE_m, the shadow E and ΔE.
-        e_q: DFF<Bits<48>>, e3_q: DFF<Bits<48>>,
-        z0_q: DFF<Bits<48>>, z1_q: DFF<Bits<48>>, z2_q: DFF<Bits<48>>,
-        zr0_q: DFF<Bits<48>>, zr1_q: DFF<Bits<48>>, zr2_q: DFF<Bits<48>>,
+        /// E, 3E, Z = E + ΔE_line, K = E + 2ΔE_line; the saved line start's E + ΔE_short and
+        /// E + ΔE_long; ΔE of the three moves; the shadow E and ΔE.
+        e_q: DFF<Bits<48>>, e3_q: DFF<Bits<48>>, z_q: DFF<Bits<48>>, k_q: DFF<Bits<48>>,
+        zr1_q: DFF<Bits<48>>, zr2_q: DFF<Bits<48>>,
         de0_q: DFF<Bits<48>>, de1_q: DFF<Bits<48>>, de2_q: DFF<Bits<48>>,
         se_q: DFF<Bits<48>>, sde0_q: DFF<Bits<48>>, sde1_q: DFF<Bits<48>>, sde2_q: DFF<Bits<48>>,
         /// The pending pixel: whether there is one, whether it starts its line, its address.
         pending_q: DFF<Bit>, first_px_q: DFF<Bit>,
         px_x_q: DFF<Bits<12>>, px_y_q: DFF<Bits<12>>, px_done_q: DFF<Bit>,
+        /// A line start waiting a clock for the saved state: its carry, and whether it has a
+        /// pixel.
+        defer_q: DFF<Bit>, dcarry_q: DFF<Bit>, dvalid_q: DFF<Bit>,
         valid_q: DFF<Bit>, u_q: DFF<Bits<16>>, v_q: DFF<Bits<16>>,
         x_q: DFF<Bits<12>>, y_q: DFF<Bits<12>>, done_q: DFF<Bit>,
         ok: Signal<Local, Bit>, ready_w: Signal<Local, Bit>, emit: Signal<Local, Bit>,
-        take: Signal<Local, Bit>, first: Signal<Local, Bit>,
+        save: Signal<Local, Bit>, take: Signal<Local, Bit>, first: Signal<Local, Bit>,
         take_first: Signal<Local, Bit>, take_row: Signal<Local, Bit>, take_line: Signal<Local, Bit>,
-        /// The moved E and Z: base, the ΔE added, the sums.
-        e_new: Signal<Local, Bits<48>>,
-        zb0: Signal<Local, Bits<48>>, zb1: Signal<Local, Bits<48>>, zb2: Signal<Local, Bits<48>>,
-        dz0: Signal<Local, Bits<48>>, dz1: Signal<Local, Bits<48>>, dz2: Signal<Local, Bits<48>>,
-        dmove: Signal<Local, Bits<48>>,
+        row_now: Signal<Local, Bit>, defer_now: Signal<Local, Bit>, long_move: Signal<Local, Bit>,
+        /// The moved E-words' candidates: along the line (3Z, K + ΔE_line), from the saved
+        /// Z_short or Z_long (3Z_m, Z_m + ΔE_line, Z_m + 2ΔE_line, Z_n + ΔE_m), from the shadow.
+        l_e3: Signal<Local, Bits<48>>, l_k: Signal<Local, Bits<48>>,
+        r1_e3: Signal<Local, Bits<48>>, r2_e3: Signal<Local, Bits<48>>,
+        r1_z: Signal<Local, Bits<48>>, r2_z: Signal<Local, Bits<48>>,
+        r1_k: Signal<Local, Bits<48>>, r2_k: Signal<Local, Bits<48>>,
+        r11: Signal<Local, Bits<48>>, r12: Signal<Local, Bits<48>>,
+        r21: Signal<Local, Bits<48>>, r22: Signal<Local, Bits<48>>,
+        f_e3: Signal<Local, Bits<48>>, f_z: Signal<Local, Bits<48>>, f_k: Signal<Local, Bits<48>>,
+        f_zr1: Signal<Local, Bits<48>>, f_zr2: Signal<Local, Bits<48>>,
     }
     new(p: &TexCoordParams);
 }
@@ -362,18 +467,28 @@ impl Logic for TextureCoord {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(
-            self, clock, e_q, e3_q, z0_q, z1_q, z2_q, zr0_q, zr1_q, zr2_q, de0_q, de1_q, de2_q,
-            se_q, sde0_q, sde1_q, sde2_q, pending_q, first_px_q, px_x_q, px_y_q, px_done_q,
-            valid_q, u_q, v_q, x_q, y_q, done_q
+            self, clock, e_q, e3_q, z_q, k_q, zr1_q, zr2_q, de0_q, de1_q, de2_q, se_q, sde0_q,
+            sde1_q, sde2_q, pending_q, first_px_q, px_x_q, px_y_q, px_done_q, defer_q, dcarry_q,
+            dvalid_q, valid_q, u_q, v_q, x_q, y_q, done_q
         );
         self.ok.next = self.axis[0].ok.val() & self.axis[1].ok.val();
-        self.ready_w.next = (!self.pending_q.q.val() | self.ok.val()) & !self.hold.val();
+        self.ready_w.next =
+            !self.defer_q.q.val() & (!self.pending_q.q.val() | self.ok.val()) & !self.hold.val();
         self.emit.next = self.pending_q.q.val() & self.ok.val() & !self.hold.val();
+        self.save.next = self.emit.val() & self.first_px_q.q.val();
         self.take.next = self.ready_w.val()
             & (self.valid_in.val() | self.row_start_in.val() | self.done_in.val());
         self.first.next = self.row_start_in.val() & (self.step_in.val() == 0);
         self.take_first.next = self.take.val() & self.first.val();
-        self.take_row.next = self.take.val() & self.row_start_in.val() & !self.first.val();
+        self.row_now.next =
+            self.take.val() & self.row_start_in.val() & !self.first.val() & !self.save.val();
+        self.defer_now.next =
+            self.take.val() & self.row_start_in.val() & !self.first.val() & self.save.val();
+        self.take_row.next = self.row_now.val() | self.defer_q.q.val();
+        self.long_move.next = self.carry_in.val();
+        if self.defer_q.q.val() {
+            self.long_move.next = self.dcarry_q.q.val();
+        }
         self.take_line.next = self.take.val() & self.valid_in.val() & !self.row_start_in.val();
 
         for i in 0..2 {
@@ -382,6 +497,8 @@ impl Logic for TextureCoord {
             self.axis[i].e.next = self.e_q.q.val();
             self.axis[i].e2.next = self.e_q.q.val() << 1;
             self.axis[i].e3.next = self.e3_q.q.val();
+            self.axis[i].z.next = self.z_q.q.val();
+            self.axis[i].k.next = self.k_q.q.val();
             self.axis[i].de0.next = self.de0_q.q.val();
             self.axis[i].de1.next = self.de1_q.q.val();
             self.axis[i].de2.next = self.de2_q.q.val();
@@ -390,8 +507,8 @@ impl Logic for TextureCoord {
             self.axis[i].take_first.next = self.take_first.val();
             self.axis[i].take_row.next = self.take_row.val();
             self.axis[i].take_line.next = self.take_line.val();
-            self.axis[i].long_move.next = self.carry_in.val();
-            self.axis[i].save.next = self.emit.val() & self.first_px_q.q.val();
+            self.axis[i].long_move.next = self.long_move.val();
+            self.axis[i].save.next = self.save.val();
         }
         self.axis[0].set_u0.next = self.u_u0.val();
         self.axis[0].set_w0.next = self.u_w0.val();
@@ -404,50 +521,57 @@ impl Logic for TextureCoord {
         self.axis[1].set_p1.next = self.v_p_short.val();
         self.axis[1].set_p2.next = self.v_p_long.val();
 
-        // E after the move: from Z_line along the line, from the saved Z_short/Z_long at a line
-        // start, the shadow E0 at a triangle's first event; every Z moves by the same ΔE.
-        self.e_new.next = self.z0_q.q.val();
-        self.zb0.next = self.z0_q.q.val();
-        self.zb1.next = self.z1_q.q.val();
-        self.zb2.next = self.z2_q.q.val();
-        self.dmove.next = self.de0_q.q.val();
-        if self.take_row.val() {
-            self.zb0.next = self.zr0_q.q.val();
-            self.zb1.next = self.zr1_q.q.val();
-            self.zb2.next = self.zr2_q.q.val();
-            self.e_new.next = self.zr1_q.q.val();
-            self.dmove.next = self.de1_q.q.val();
-            if self.carry_in.val() {
-                self.e_new.next = self.zr2_q.q.val();
-                self.dmove.next = self.de2_q.q.val();
-            }
-        }
-        self.dz0.next = self.dmove.val();
-        self.dz1.next = self.dmove.val();
-        self.dz2.next = self.dmove.val();
+        // E after a move, every candidate formed from registers side by side so that the
+        // decision to move only selects. Along the line: E ← Z, Z ← K, K += ΔE_line. A line
+        // start from the saved Z_m (m by the carry): E ← Z_m, Z ← Z_m + ΔE_line,
+        // K ← Z_m + 2ΔE_line, and the saved Z_short, Z_long move by ΔE_m. A first event from
+        // the shadow E0 and ΔE.
+        self.l_e3.next = self.z_q.q.val() + (self.z_q.q.val() << 1);
+        self.l_k.next = self.k_q.q.val() + self.de0_q.q.val();
+        self.r1_e3.next = self.zr1_q.q.val() + (self.zr1_q.q.val() << 1);
+        self.r2_e3.next = self.zr2_q.q.val() + (self.zr2_q.q.val() << 1);
+        self.r1_z.next = self.zr1_q.q.val() + self.de0_q.q.val();
+        self.r2_z.next = self.zr2_q.q.val() + self.de0_q.q.val();
+        self.r1_k.next = self.zr1_q.q.val() + (self.de0_q.q.val() << 1);
+        self.r2_k.next = self.zr2_q.q.val() + (self.de0_q.q.val() << 1);
+        self.r11.next = self.zr1_q.q.val() + self.de1_q.q.val();
+        self.r12.next = self.zr1_q.q.val() + self.de2_q.q.val();
+        self.r21.next = self.zr2_q.q.val() + self.de1_q.q.val();
+        self.r22.next = self.zr2_q.q.val() + self.de2_q.q.val();
+        self.f_e3.next = self.se_q.q.val() + (self.se_q.q.val() << 1);
+        self.f_z.next = self.se_q.q.val() + self.sde0_q.q.val();
+        self.f_k.next = self.se_q.q.val() + (self.sde0_q.q.val() << 1);
+        self.f_zr1.next = self.se_q.q.val() + self.sde1_q.q.val();
+        self.f_zr2.next = self.se_q.q.val() + self.sde2_q.q.val();
         if self.take_first.val() {
-            self.e_new.next = self.se_q.q.val();
-            self.zb0.next = self.se_q.q.val();
-            self.zb1.next = self.se_q.q.val();
-            self.zb2.next = self.se_q.q.val();
-            self.dz0.next = self.sde0_q.q.val();
-            self.dz1.next = self.sde1_q.q.val();
-            self.dz2.next = self.sde2_q.q.val();
+            self.e_q.d.next = self.se_q.q.val();
+            self.e3_q.d.next = self.f_e3.val();
+            self.z_q.d.next = self.f_z.val();
+            self.k_q.d.next = self.f_k.val();
+            self.zr1_q.d.next = self.f_zr1.val();
+            self.zr2_q.d.next = self.f_zr2.val();
             self.de0_q.d.next = self.sde0_q.q.val();
             self.de1_q.d.next = self.sde1_q.q.val();
             self.de2_q.d.next = self.sde2_q.q.val();
-        }
-        if self.take_first.val() | self.take_row.val() | self.take_line.val() {
-            self.e_q.d.next = self.e_new.val();
-            self.e3_q.d.next = self.e_new.val() + (self.e_new.val() << 1);
-            self.z0_q.d.next = self.zb0.val() + self.dz0.val();
-            self.z1_q.d.next = self.zb1.val() + self.dz1.val();
-            self.z2_q.d.next = self.zb2.val() + self.dz2.val();
-        }
-        if self.take_first.val() | self.take_row.val() {
-            self.zr0_q.d.next = self.zb0.val() + self.dz0.val();
-            self.zr1_q.d.next = self.zb1.val() + self.dz1.val();
-            self.zr2_q.d.next = self.zb2.val() + self.dz2.val();
+        } else if self.take_row.val() & !self.long_move.val() {
+            self.e_q.d.next = self.zr1_q.q.val();
+            self.e3_q.d.next = self.r1_e3.val();
+            self.z_q.d.next = self.r1_z.val();
+            self.k_q.d.next = self.r1_k.val();
+            self.zr1_q.d.next = self.r11.val();
+            self.zr2_q.d.next = self.r21.val();
+        } else if self.take_row.val() {
+            self.e_q.d.next = self.zr2_q.q.val();
+            self.e3_q.d.next = self.r2_e3.val();
+            self.z_q.d.next = self.r2_z.val();
+            self.k_q.d.next = self.r2_k.val();
+            self.zr1_q.d.next = self.r12.val();
+            self.zr2_q.d.next = self.r22.val();
+        } else if self.take_line.val() {
+            self.e_q.d.next = self.z_q.q.val();
+            self.e3_q.d.next = self.l_e3.val();
+            self.z_q.d.next = self.k_q.q.val();
+            self.k_q.d.next = self.l_k.val();
         }
         if self.load.val() {
             self.se_q.d.next = self.e0.val();
@@ -457,8 +581,15 @@ impl Logic for TextureCoord {
         }
 
         // The pending pixel.
-        if self.take.val() {
-            self.pending_q.d.next = self.valid_in.val();
+        self.defer_q.d.next = self.defer_now.val();
+        if self.defer_now.val() {
+            self.dcarry_q.d.next = self.carry_in.val();
+            self.dvalid_q.d.next = self.valid_in.val();
+        }
+        if self.defer_q.q.val() {
+            self.pending_q.d.next = self.dvalid_q.q.val();
+        } else if self.take.val() {
+            self.pending_q.d.next = self.valid_in.val() & !self.defer_now.val();
             self.first_px_q.d.next = self.valid_in.val() & self.row_start_in.val();
             self.px_x_q.d.next = self.x_in.val();
             self.px_y_q.d.next = self.y_in.val();

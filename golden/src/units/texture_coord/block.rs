@@ -9,7 +9,9 @@
 //! The address block's walk makes three kinds of move (SPEC §5): along the line (dx = dir,
 //! dy = 0), a line start after a short edge move (dx = f, dy = 1) and after a long one
 //! (dx = f + 1, dy = 1). A line start moves from the previous line's start, kept in a saved copy
-//! of the state (as the BVI keeps RG5). For a move m with (dx, dy) the recurrences of SPEC §14
+//! of the state (as the BVI keeps RG5) and written with the settled words of the line's first
+//! pixel. A line start that arrives in the clock that first pixel settles (a line of one pixel)
+//! is taken, and moves one clock later, with `ready` low in between. For a move m with (dx, dy) the recurrences of SPEC §14
 //! become, with ΔE_m = 2(g·dx + h·dy) and ΔL_m = dx(2a − g) + dy(2b − h):
 //!
 //! ```text
@@ -153,13 +155,14 @@ impl TexCoordSetup {
     }
 
     /// The set-up ports' values in port order: e0, de_line, de_short, de_long, then per axis
-    /// (u, v) u0, w0, p_line, p_short, p_long.
+    /// (u, v) u0, W0 − 1 (the block keeps W − 1, so "W > 0" is a sign bit), p_line, p_short,
+    /// p_long.
     pub fn ports(&self) -> Vec<u64> {
         let mut p = vec![word(self.e0)];
         p.extend(self.de.map(word));
         for a in &self.axes {
             p.push(texel_word(a.u0));
-            p.push(word(a.w0));
+            p.push(word(wrap(a.w0 as i128 - 1)));
             p.extend(a.p0.map(word));
         }
         p
@@ -169,7 +172,7 @@ impl TexCoordSetup {
     pub fn from_ports(p: &[u64]) -> TexCoordSetup {
         let axis = |o: usize| AxisSetup {
             u0: unword_texel(p[o]),
-            w0: unword(p[o + 1]),
+            w0: wrap(unword(p[o + 1]) as i128 + 1),
             p0: [unword(p[o + 2]), unword(p[o + 3]), unword(p[o + 4])],
         };
         TexCoordSetup {
@@ -275,6 +278,9 @@ pub struct TexCoordModel {
     pending: bool,
     first_px: bool,
     px: (u32, u32, bool),
+    /// A line start taken in the clock its previous line's only pixel settled: its move waits
+    /// a clock for the saved state (with its carry and whether it has a pixel).
+    defer: Option<(bool, bool)>,
     out: TexOutputs,
     /// Correction steps taken so far (|j| summed), for the benches' statistics.
     pub steps: u64,
@@ -292,6 +298,7 @@ impl TexCoordModel {
             pending: false,
             first_px: false,
             px: (0, 0, false),
+            defer: None,
             out: TexOutputs::default(),
             steps: 0,
         }
@@ -308,9 +315,10 @@ impl TexCoordModel {
         ([c[0].0, c[1].0], c[0].1 && c[1].1)
     }
 
-    /// `ready` without `hold`: no pixel pending, or the pending one settles now.
+    /// `ready` without `hold`: no line start being moved, and no pixel pending or the pending
+    /// one settles now.
     pub fn ready(&self) -> bool {
-        !self.pending || self.corrections().1
+        self.defer.is_none() && (!self.pending || self.corrections().1)
     }
 
     /// The ports this clock, with `hold` low.
@@ -348,7 +356,7 @@ impl TexCoordModel {
     /// `hold` nothing is taken or shown, and the pending pixel's corrections go on.
     pub fn clock_held(&mut self, load: Option<&TexCoordSetup>, ev: &TexEvent, hold: bool) {
         let (j, settled) = self.corrections();
-        let ready = (!self.pending || settled) && !hold;
+        let ready = self.ready() && !hold;
         let emit = self.pending && settled && !hold;
         let mut sstar = self.s;
         for (a, &j) in sstar.ax.iter_mut().zip(&j) {
@@ -371,12 +379,18 @@ impl TexCoordModel {
             self.out.y = self.px.1;
         }
         self.out.done = (emit && self.px.2) || (take && !ev.valid && ev.done);
-        // The saved line start takes the settled state of its line's first pixel.
-        let line_base = if emit && self.first_px { sstar } else { self.r };
-        if emit && self.first_px {
-            self.r = sstar;
+        // The saved line start takes the settled state of its line's first pixel (E and Z
+        // have not moved since the line start).
+        let save = emit && self.first_px;
+        if save {
+            self.r.ax = sstar.ax;
         }
-        if take {
+        if let Some((carry, valid)) = self.defer.take() {
+            let st = self.moved(&self.r, 1 + carry as usize);
+            self.s = st;
+            self.r = st;
+            self.pending = valid;
+        } else if take {
             if ev.row_start && ev.step == 0 {
                 let sh = self.sh;
                 self.de = sh.de;
@@ -392,8 +406,11 @@ impl TexCoordModel {
                 };
                 self.s = st;
                 self.r = st;
+            } else if ev.row_start && save {
+                self.defer = Some((ev.carry, ev.valid));
+                self.s = sstar;
             } else if ev.row_start {
-                let st = self.moved(&line_base, 1 + ev.carry as usize);
+                let st = self.moved(&self.r, 1 + ev.carry as usize);
                 self.s = st;
                 self.r = st;
             } else if ev.valid {
@@ -401,7 +418,7 @@ impl TexCoordModel {
             } else {
                 self.s = sstar;
             }
-            self.pending = ev.valid;
+            self.pending = ev.valid && self.defer.is_none();
             self.first_px = ev.valid && ev.row_start;
             self.px = (ev.x, ev.y, ev.done);
         } else {
