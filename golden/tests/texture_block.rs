@@ -221,7 +221,7 @@ fn the_block_emits_the_nearest_texel_of_every_pixel() {
         for k in [1, 2] {
             let r = run(&tris, k);
             eprintln!(
-                "depth ratio ≤ {ratio}, texel spread ≤ {span} per pixel of the box, k = {k}: {} pixels, {:.3} clocks/pixel, \
+                "depth ratio ≤ {ratio}, texel coordinates within ±{span}·(box size), k = {k}: {} pixels, {:.3} clocks/pixel, \
                  {:.3} steps/pixel (u and v); {} texels differ from the f64 planes' (the \
                  farthest from a tie at {:.3} of the rounding bound); {dropped} triangles out of \
                  range dropped",
