@@ -24,6 +24,19 @@ pub struct ScreenVertex {
     pub normal: DVec3,
 }
 
+impl ScreenVertex {
+    /// A vertex at pixel address (x, y) with depth ½ and the normal +z: for tests and set-ups
+    /// that need the position only.
+    pub fn at(x: i32, y: i32) -> ScreenVertex {
+        ScreenVertex {
+            x,
+            y,
+            z: 0.5,
+            normal: DVec3::Z,
+        }
+    }
+}
+
 /// A projected, front-facing triangle ready for rasterization.
 ///
 /// Vertex coordinates are in units of 2^−`frac` pixel: `frac` = 0 (integer addresses, the

@@ -8,11 +8,12 @@
 //! the count is printed. Every fifth triangle is affine with N/D on half texels at many
 //! pixels (the tie rule: up). Clocks per pixel are measured for k = 1 and 2.
 
+use golden::raster;
 use golden::seed::seed_for;
 use golden::types::{ScreenTriangle, ScreenVertex};
 use golden::units::address_block::{AddressBlockModel, AddressSetup};
 use golden::units::texture_coord::block::{walk_geometry, TexCoordModel, TexCoordSetup, TexEvent};
-use golden::units::texture_coord::{nearest_texel, PctCoeffs, PctPlanes};
+use golden::units::texture_coord::{nearest_texel, tie_coeffs, PctCoeffs, PctPlanes};
 
 mod common;
 use common::Rng;
@@ -29,32 +30,6 @@ struct Tri {
     pixels: Vec<(u32, u32)>,
 }
 
-fn vertex(x: i32, y: i32) -> ScreenVertex {
-    ScreenVertex {
-        x,
-        y,
-        z: 0.5,
-        normal: glam::DVec3::Z,
-    }
-}
-
-/// The pixels of one triangle's walk, in order.
-fn walk(a: &AddressSetup) -> Vec<(u32, u32)> {
-    let mut m = AddressBlockModel::new();
-    let mut px = Vec::new();
-    m.clock(Some(a));
-    loop {
-        let o = m.outputs();
-        if o.valid {
-            px.push((o.x, o.y));
-        }
-        m.clock(None);
-        if o.done {
-            return px;
-        }
-    }
-}
-
 /// Seeded triangles: small and medium boxes and slivers, depth ratio up to `ratio` between
 /// vertices, texel coordinates spanning up to `span` texels per pixel of the box. Out-of-range ones are dropped
 /// (counted).
@@ -66,7 +41,7 @@ fn triangles(seed: u64, n: usize, ratio: f64, span: f64) -> (Vec<Tri>, usize) {
         let (x0, y0) = (rng.below(3000), rng.below(3000));
         let v = [0; 3].map(|_| (x0 + rng.below(size), y0 + rng.below(size)));
         let tri = ScreenTriangle {
-            v: v.map(|(x, y)| vertex(x, y)),
+            v: v.map(|(x, y)| ScreenVertex::at(x, y)),
             frac: 0,
         };
         let addr = AddressSetup::new(&tri);
@@ -84,22 +59,13 @@ fn triangles(seed: u64, n: usize, ratio: f64, span: f64) -> (Vec<Tri>, usize) {
         if out.len() % 5 == 4 {
             planes = None;
             // Ties: u = x/2 − y/4, v = 3y/4 + x/2 exactly, on half texels at many pixels.
-            let d = 1 << 21;
-            cu = PctCoeffs {
-                a: d / 2,
-                b: -d / 4,
-                c: 0,
-                g: 0,
-                h: 0,
-                i: d,
-            };
-            cv = PctCoeffs {
-                a: d / 2,
-                b: 3 * d / 4,
-                ..cu
-            };
+            (cu, cv) = tie_coeffs();
         }
-        let pixels = walk(&addr);
+        let pixels: Vec<(u32, u32)> = raster::walk(&tri)
+            .pixels()
+            .iter()
+            .map(|p| (p.x as u32, p.y as u32))
+            .collect();
         let rel: Vec<(i64, i64)> = pixels
             .iter()
             .map(|&(x, y)| (x as i64 - origin.0, y as i64 - origin.1))
@@ -179,15 +145,7 @@ fn run(tris: &[Tri], k: u32) -> Run {
         }
         let hold = !o.ready;
         let a = addr.outputs_held(hold);
-        let ev = TexEvent {
-            valid: a.valid,
-            row_start: a.row_start,
-            step: a.step,
-            carry: a.carry,
-            x: a.x,
-            y: a.y,
-            done: a.done,
-        };
+        let ev = TexEvent::from(&a);
         if o.ready && ev.row_start && ev.step == 0 {
             first_taken = true;
         }

@@ -20,12 +20,13 @@
 //!   division) and here by the twin every clock.
 //! - `x`, `y`: the address block's pixel, in walk order (exact).
 
+use golden::raster;
 use golden::types::{ScreenTriangle, ScreenVertex};
 use golden::units::address_block::{AddressBlockModel, AddressSetup};
 use golden::units::texture_coord::block::{
     texel_word, walk_geometry, TexCoordModel, TexCoordSetup, TexEvent, TexOutputs, SETUP_PORTS,
 };
-use golden::units::texture_coord::{exact_u, PctCoeffs, PctPlanes};
+use golden::units::texture_coord::{exact_u, tie_coeffs, PctCoeffs, PctPlanes};
 use rtl::core::fixed::QFormat;
 use rtl::units::texture_coord::{TexCoordParams, TextureCoord};
 
@@ -64,32 +65,6 @@ pub struct TexTriangle {
     pub origin: (i64, i64),
 }
 
-fn vertex(x: i32, y: i32) -> ScreenVertex {
-    ScreenVertex {
-        x,
-        y,
-        z: 0.5,
-        normal: glam::DVec3::Z,
-    }
-}
-
-/// The pixels of a triangle's walk, relative to `origin` (from the address block alone).
-fn walk_rel(a: &AddressSetup, origin: (i64, i64)) -> Vec<(i64, i64)> {
-    let mut m = AddressBlockModel::subpixel();
-    let mut px = Vec::new();
-    m.clock(Some(a));
-    loop {
-        let o = m.outputs();
-        if o.valid {
-            px.push((o.x as i64 - origin.0, o.y as i64 - origin.1));
-        }
-        m.clock(None);
-        if o.done {
-            return px;
-        }
-    }
-}
-
 /// `n` seeded triangles in the block's range (see the module doc).
 pub fn tex_triangles(seed: u64, n: usize) -> Vec<TexTriangle> {
     let mut rng = Rng64::new(seed);
@@ -99,7 +74,7 @@ pub fn tex_triangles(seed: u64, n: usize) -> Vec<TexTriangle> {
         let (x0, y0) = (rng.below(3900) as i32, rng.below(3900) as i32);
         let v = [0; 3].map(|_| (x0 + rng.below(size) as i32, y0 + rng.below(size) as i32));
         let tri = ScreenTriangle {
-            v: v.map(|(x, y)| vertex(x, y)),
+            v: v.map(|(x, y)| ScreenVertex::at(x, y)),
             frac: 0,
         };
         let addr = AddressSetup::new(&tri);
@@ -116,22 +91,14 @@ pub fn tex_triangles(seed: u64, n: usize) -> Vec<TexTriangle> {
         if out.len() % 5 == 4 {
             // Ties: u = x/2 − y/4 and v = 3y/4 + x/2 exactly (D constant), so N/D lands on
             // half texels at many pixels and the tie rule (up) decides.
-            let d = 1 << 21;
-            cu = PctCoeffs {
-                a: d / 2,
-                b: -d / 4,
-                c: 0,
-                g: 0,
-                h: 0,
-                i: d,
-            };
-            cv = PctCoeffs {
-                a: d / 2,
-                b: 3 * d / 4,
-                ..cu
-            };
+            (cu, cv) = tie_coeffs();
         }
-        if TexCoordSetup::check(&cu, &cv, &walk_rel(&addr, origin)).is_err() {
+        let rel: Vec<(i64, i64)> = raster::walk(&tri)
+            .pixels()
+            .iter()
+            .map(|p| (p.x as i64 - origin.0, p.y as i64 - origin.1))
+            .collect();
+        if TexCoordSetup::check(&cu, &cv, &rel).is_err() {
             continue;
         }
         let setup = TexCoordSetup::new(&cu, &cv, f, dir);
@@ -231,15 +198,7 @@ pub fn tex_system(
         outs.push((o, owner));
         let hold = !o.ready;
         let a = addr.outputs_held(hold);
-        let ev = TexEvent {
-            valid: a.valid,
-            row_start: a.row_start,
-            step: a.step,
-            carry: a.carry,
-            x: a.x,
-            y: a.y,
-            done: a.done,
-        };
+        let ev = TexEvent::from(&a);
         if o.ready && ev.row_start && ev.step == 0 {
             first_taken = true;
             current = next_load - 1;

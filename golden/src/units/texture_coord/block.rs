@@ -33,7 +33,7 @@
 //! takes the low bits).
 
 use super::{nearest_texel, words_at, PctCoeffs};
-use crate::units::address_block::AddressSetup;
+use crate::units::address_block::{AddressOutputs, AddressSetup};
 
 /// Width of E, W, P and ΔE (two's complement, modulo 2^48).
 pub const WORD_BITS: u32 = 48;
@@ -203,6 +203,21 @@ pub struct TexEvent {
     pub x: u32,
     pub y: u32,
     pub done: bool,
+}
+
+impl From<&AddressOutputs> for TexEvent {
+    /// The address block's event as the block takes it.
+    fn from(a: &AddressOutputs) -> TexEvent {
+        TexEvent {
+            valid: a.valid,
+            row_start: a.row_start,
+            step: a.step,
+            carry: a.carry,
+            x: a.x,
+            y: a.y,
+            done: a.done,
+        }
+    }
 }
 
 impl TexEvent {

@@ -124,6 +124,26 @@ impl PctPlanes {
     }
 }
 
+/// Coefficients whose quotients land on half texels at many pixels (D constant,
+/// u = x/2 − y/4, v = x/2 + 3y/4): stimulus for the tie rule (a tie goes up).
+pub fn tie_coeffs() -> (PctCoeffs, PctCoeffs) {
+    let d = 1 << 21;
+    let cu = PctCoeffs {
+        a: d / 2,
+        b: -d / 4,
+        c: 0,
+        g: 0,
+        h: 0,
+        i: d,
+    };
+    let cv = PctCoeffs {
+        a: d / 2,
+        b: 3 * d / 4,
+        ..cu
+    };
+    (cu, cv)
+}
+
 /// The exact texture coordinate N/D at pixel (x, y), in f64 (the float face).
 pub fn exact_u(c: &PctCoeffs, x: i64, y: i64) -> f64 {
     c.n(x, y) as f64 / c.d(x, y) as f64
