@@ -53,6 +53,7 @@ macro_rules! with_blocks {
             rtl::stream::quadric_stream::QuadricStream,
             rtl::units::quadric_unit::QuadricUnit,
             rtl::units::texture_coord::TextureCoord,
+            rtl::units::texture_quadratic::TextureQuadratic,
         ]
     };
 }

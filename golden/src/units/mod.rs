@@ -13,4 +13,5 @@ pub mod normalizer;
 pub mod power_unit;
 pub mod quadric_unit;
 pub mod texture_coord;
+pub mod texture_quadratic;
 pub mod vector_interpolator;

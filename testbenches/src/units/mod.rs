@@ -15,4 +15,5 @@ pub mod power_unit;
 pub mod quadric_unit;
 pub mod span;
 pub mod texture_coord;
+pub mod texture_quadratic;
 pub mod vector_interpolator;
