@@ -12,6 +12,7 @@ pub mod lighting_unit;
 pub mod normalizer;
 pub mod power_unit;
 pub mod quadric_unit;
+pub mod texture_bezier;
 pub mod texture_coord;
 pub mod texture_quadratic;
 pub mod vector_interpolator;
