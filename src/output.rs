@@ -106,7 +106,7 @@ impl RenderDir {
         match lock.try_lock() {
             Ok(()) => {
                 // Who holds it, for a user who finds the file.
-                let _ = (&lock).set_len(0);
+                let _ = lock.set_len(0);
                 let _ = std::io::Write::write_all(
                     &mut &lock,
                     format!("{}\n", std::process::id()).as_bytes(),

@@ -160,7 +160,7 @@ fn subpixel_setups_drive_the_block_model_through_the_walk() {
         .flat_map(|e| [e.e0, e.r, e.d]);
     let widest = words.max().unwrap();
     assert!(
-        widest < 1 << 20 && widest >= 1 << 13,
+        ((1 << 13)..(1 << 20)).contains(&widest),
         "widest error word {widest}"
     );
 }
@@ -335,7 +335,7 @@ fn subpixel_parents_split_into_four_that_tile_them_through_the_block_model() {
         let x = rng.below(MAX - 64 * ONE);
         let mut p = || (x + rng.below(64 * ONE), rng.below(MAX + 1));
         let (mut a, b, mut c) = (p(), p(), p());
-        a.1 = a.1 % (100 * ONE);
+        a.1 %= 100 * ONE;
         c.1 = MAX - c.1 % (100 * ONE);
         tris.push(SubpixelTriangle {
             v: [a, b, c],
@@ -407,7 +407,7 @@ fn subpixel_parents_split_into_four_that_tile_them_through_the_block_model() {
     });
     let widest = words.max().unwrap();
     assert!(
-        widest < 1 << SUBPIXEL_LANE_ERR_BITS && widest >= 1 << 20,
+        ((1 << 20)..(1 << SUBPIXEL_LANE_ERR_BITS)).contains(&widest),
         "widest error word {widest}"
     );
 }

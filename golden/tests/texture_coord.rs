@@ -108,7 +108,7 @@ fn every_pixel_is_the_nearest_texel_of_the_exact_quotient() {
     );
     assert!(pixels > 50_000, "{pixels} pixels");
     // More steps per clock never costs clocks, and a pixel never takes less than one.
-    assert!(clocks[0] >= clocks[1] && clocks[1] >= clocks[2] && clocks[2] as u64 >= started / 2);
+    assert!(clocks[0] >= clocks[1] && clocks[1] >= clocks[2] && clocks[2] >= started / 2);
 }
 
 #[test]
