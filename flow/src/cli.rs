@@ -28,6 +28,10 @@ pub struct BuildArgs {
     /// default) or pipelined (three multipliers, one pixel per clock).
     #[arg(long)]
     pub horner: Option<String>,
+    /// The texture-coordinate block's k: correction steps resolved per clock, 1 (the seed's)
+    /// or 2 (the default).
+    #[arg(long)]
+    pub tex_k: Option<String>,
 }
 
 impl BuildArgs {
@@ -39,6 +43,7 @@ impl BuildArgs {
             ("bump", "--bump", &self.bump),
             ("inv-sqrt", "--inv-sqrt", &self.inv_sqrt),
             ("horner", "--horner", &self.horner),
+            ("tex-k", "--tex-k", &self.tex_k),
         ]
         .into_iter()
         .filter_map(|(k, f, v)| v.as_deref().map(|v| (k, f, v)))

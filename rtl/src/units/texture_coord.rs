@@ -39,7 +39,8 @@
 //!
 //! # Steps per clock: the build parameter k
 //!
-//! `k=1` (the seed's one step per clock) or `k=2`. Each clock the comparators look at
+//! `tex-k=1` (the seed's one step per clock) or `tex-k=2` (the default; `--tex-k` on the
+//! command line). Each clock the comparators look at
 //! W + j·E for j ∈ {−(k+1) … k} side by side (2E a shift, 3E the register E3) and pick the j
 //! that settles the texel; a pixel needing q steps on an axis stays max(1, ⌈q/k⌉) clocks, both
 //! axes in parallel. A pixel that settles with at most k steps per axis costs one clock.
@@ -108,10 +109,10 @@ impl Default for TexCoordParams {
 }
 
 impl BlockParams for TexCoordParams {
-    const KEYS: &'static [&'static str] = &["k"];
-    /// `k=1` or `k=2` (default).
+    const KEYS: &'static [&'static str] = &["tex-k"];
+    /// `tex-k=1` or `tex-k=2` (default): k, the correction steps per clock.
     fn from_options(o: &Options) -> Result<Self, String> {
-        match o.get("k") {
+        match o.get("tex-k") {
             None | Some("2") => Ok(TexCoordParams { k: 2 }),
             Some("1") => Ok(TexCoordParams { k: 1 }),
             Some(other) => Err(format!(
@@ -123,7 +124,7 @@ impl BlockParams for TexCoordParams {
         Some(format!("k = {} correction steps per clock", self.k))
     }
     fn test_sets() -> Vec<Options> {
-        vec![Options::new(), Options::new().with("k", "1")]
+        vec![Options::new(), Options::new().with("tex-k", "1")]
     }
 }
 
