@@ -40,9 +40,8 @@
 //! # Steps per clock: the build parameter k
 //!
 //! `tex-k=1` (the seed's one step per clock) or `tex-k=2` (the default; `--tex-k` on the
-//! command line). Each clock the comparators look at
-//! W + j·E for j ∈ {−(k+1) … k} side by side (2E a shift, 3E the register E3) and pick the j
-//! that settles the texel; a pixel needing q steps on an axis stays max(1, ⌈q/k⌉) clocks, both
+//! command line). Each clock the comparators look at W + j·E for j ∈ {−(k+1) … k} side by
+//! side (2E a shift, 3E the register E3) and pick the j that settles the texel; a pixel needing q steps on an axis stays max(1, ⌈q/k⌉) clocks, both
 //! axes in parallel. A pixel that settles with at most k steps per axis costs one clock.
 //!
 //! # Ports
