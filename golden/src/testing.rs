@@ -135,3 +135,31 @@ pub fn named_with_prefix(prefix: &str) -> Vec<[(i32, i32); 3]> {
         .flat_map(|c| c.tris)
         .collect()
 }
+
+/// xorshift64*: seeded stimulus without proptest's machinery, for benches that draw many
+/// plain numbers (seed it with a test's seed; 0 is made odd).
+pub struct Rng(pub u64);
+
+impl Rng {
+    pub fn new(seed: u64) -> Rng {
+        Rng(seed | 1)
+    }
+    pub fn next_u64(&mut self) -> u64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        self.0.wrapping_mul(0x2545_F491_4F6C_DD1D)
+    }
+    /// Uniform in 0..n.
+    pub fn below(&mut self, n: i32) -> i32 {
+        (self.next_u64() % n as u64) as i32
+    }
+    /// Uniform in [0, 1).
+    pub fn unit(&mut self) -> f64 {
+        (self.next_u64() >> 11) as f64 / (1u64 << 53) as f64
+    }
+    /// Uniform in [lo, hi).
+    pub fn range(&mut self, lo: f64, hi: f64) -> f64 {
+        lo + (hi - lo) * self.unit()
+    }
+}

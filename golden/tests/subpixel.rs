@@ -21,8 +21,7 @@ const F: u32 = SUBPIXEL_BITS;
 const ONE: i32 = 1 << F;
 const MAX: i32 = 4095 * ONE;
 
-mod common;
-use common::Rng;
+use golden::testing::Rng;
 
 /// A coordinate within `r` of `c`, clamped to the address range.
 fn around(rng: &mut Rng, c: i32, r: i32) -> i32 {

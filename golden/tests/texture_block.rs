@@ -15,8 +15,7 @@ use golden::units::address_block::{AddressBlockModel, AddressSetup};
 use golden::units::texture_coord::block::{walk_geometry, TexCoordModel, TexCoordSetup, TexEvent};
 use golden::units::texture_coord::{nearest_texel, tie_coeffs, PctCoeffs, PctPlanes};
 
-mod common;
-use common::Rng;
+use golden::testing::Rng;
 
 struct Tri {
     addr: AddressSetup,

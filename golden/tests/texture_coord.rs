@@ -11,8 +11,7 @@ use golden::units::texture_coord::{
     clocks_for, exact_u, nearest_texel, walk_span, words_at, PctCoeffs, PctWalker,
 };
 
-mod common;
-use common::Rng;
+use golden::testing::Rng;
 
 struct Span {
     c: PctCoeffs,
@@ -24,12 +23,12 @@ struct Span {
 /// A span whose texture coordinate runs from s0 to s1 texels (of a p-texel texture) while D
 /// changes by the depth ratio r between its ends; integer coefficients at a 2^12 scale of D.
 fn span(rng: &mut Rng) -> Span {
-    let len = 8 + (rng.next() % 393) as u32;
-    let p = [64.0, 256.0, 1024.0][(rng.next() % 3) as usize];
+    let len = 8 + (rng.next_u64() % 393) as u32;
+    let p = [64.0, 256.0, 1024.0][(rng.next_u64() % 3) as usize];
     let r = (rng.range(0.2f64.ln(), 5.0f64.ln())).exp();
     let (s0, s1) = (rng.range(0.0, p), rng.range(0.0, p));
-    let x0 = (rng.next() % 3000) as i64;
-    let y = (rng.next() % 2000) as i64;
+    let x0 = (rng.next_u64() % 3000) as i64;
+    let y = (rng.next_u64() % 2000) as i64;
     let d0 = rng.range(1024.0, 65536.0);
     let d1 = d0 * r;
     let l = len as f64;
@@ -38,7 +37,10 @@ fn span(rng: &mut Rng) -> Span {
     let g = ((d1 - d0) / l).round() as i64;
     let (n0, n1) = (s0 * d0, s1 * d1);
     let a = ((n1 - n0) / l).round() as i64;
-    let (b, h) = ((rng.next() % 41) as i64 - 20, (rng.next() % 5) as i64 - 2);
+    let (b, h) = (
+        (rng.next_u64() % 41) as i64 - 20,
+        (rng.next_u64() % 5) as i64 - 2,
+    );
     let c = PctCoeffs {
         a,
         b,

@@ -136,9 +136,6 @@ impl QuadAxis {
             }
         }
     }
-    pub fn u(&self) -> u64 {
-        self.u
-    }
 }
 
 /// The bit-exact twin of `texture-quadratic`: u and v, and the output register one clock

@@ -32,29 +32,7 @@ use rtl::units::texture_coord::{TexCoordParams, TextureCoord};
 
 use crate::harness::{Compare, Expected, Tolerance};
 use crate::registry::{Bench, Stimulus, Twin};
-
-/// Seeded stimulus: xorshift64* (the seed printed by the harness reproduces it).
-struct Rng64(u64);
-
-impl Rng64 {
-    fn new(seed: u64) -> Rng64 {
-        Rng64(seed | 1)
-    }
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        self.0.wrapping_mul(0x2545_F491_4F6C_DD1D)
-    }
-    /// Uniform in 0..n.
-    fn below(&mut self, n: u64) -> u64 {
-        self.next() % n
-    }
-    /// Uniform in [0, 1).
-    fn unit(&mut self) -> f64 {
-        (self.next() >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
+use golden::testing::Rng;
 
 /// One triangle of the stimulus.
 pub struct TexTriangle {
@@ -67,12 +45,12 @@ pub struct TexTriangle {
 
 /// `n` seeded triangles in the block's range (see the module doc).
 pub fn tex_triangles(seed: u64, n: usize) -> Vec<TexTriangle> {
-    let mut rng = Rng64::new(seed);
+    let mut rng = Rng::new(seed);
     let mut out = Vec::new();
     while out.len() < n {
         let size = [3, 12, 40, 120][rng.below(4) as usize];
-        let (x0, y0) = (rng.below(3900) as i32, rng.below(3900) as i32);
-        let v = [0; 3].map(|_| (x0 + rng.below(size) as i32, y0 + rng.below(size) as i32));
+        let (x0, y0) = (rng.below(3900), rng.below(3900));
+        let v = [0; 3].map(|_| (x0 + rng.below(size), y0 + rng.below(size)));
         let tri = ScreenTriangle {
             v: v.map(|(x, y)| ScreenVertex::at(x, y)),
             frac: 0,
@@ -176,7 +154,7 @@ pub fn tex_system(
     k: u32,
     seed: u64,
 ) -> (Vec<Vec<u64>>, Vec<(TexOutputs, usize)>) {
-    let mut rng = Rng64::new(seed ^ 0x401d);
+    let mut rng = Rng::new(seed ^ 0x401d);
     let mut addr = AddressBlockModel::subpixel();
     let mut tex = TexCoordModel::new(k);
     let (mut rows, mut outs) = (Vec::new(), Vec::new());
@@ -282,22 +260,22 @@ impl Bench for TextureCoord {
     }
     /// Random words on every input: set-ups out of range, events in any order.
     fn edge_rows(_p: &TexCoordParams, seed: u64) -> Vec<Vec<u64>> {
-        let mut rng = Rng64::new(seed ^ 0x7E7);
+        let mut rng = Rng::new(seed ^ 0x7E7);
         (0..400)
             .map(|_| {
                 let mut r = vec![(rng.below(8) == 0) as u64];
                 for k in 0..SETUP_PORTS {
                     let bits = if k == 4 || k == 9 { 16 } else { 48 };
-                    r.push(rng.next() & ((1 << bits) - 1));
+                    r.push(rng.next_u64() & ((1 << bits) - 1));
                 }
                 let small = rng.below(4) != 0;
                 r.extend([
-                    rng.below(2),
+                    rng.below(2) as u64,
                     (rng.below(3) == 0) as u64,
-                    rng.below(4),
-                    rng.below(2),
-                    rng.below(4096),
-                    rng.below(4096),
+                    rng.below(4) as u64,
+                    rng.below(2) as u64,
+                    rng.below(4096) as u64,
+                    rng.below(4096) as u64,
                     (rng.below(6) == 0) as u64,
                     (rng.below(5) == 0) as u64,
                 ]);
@@ -306,7 +284,7 @@ impl Bench for TextureCoord {
                     for k in [1, 5, 10] {
                         r[1 + k] = texel_word(rng.below(50) as i64 - 25) & 0xFFFF_FFFF_FFFF;
                     }
-                    r[1] = rng.below(1000) + 1;
+                    r[1] = rng.below(1000) as u64 + 1;
                 }
                 r
             })

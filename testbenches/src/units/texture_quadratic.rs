@@ -27,24 +27,7 @@ use rtl::units::texture_quadratic::TextureQuadratic;
 
 use crate::harness::{Compare, Expected, Tolerance};
 use crate::registry::{Bench, Stimulus, Twin};
-
-/// Seeded stimulus: xorshift64*.
-struct Rng64(u64);
-
-impl Rng64 {
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        self.0.wrapping_mul(0x2545_F491_4F6C_DD1D)
-    }
-    fn below(&mut self, n: u64) -> u64 {
-        self.next() % n
-    }
-    fn unit(&mut self) -> f64 {
-        (self.next() >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
+use golden::testing::Rng;
 
 /// One line: its set-up words and, per pixel, the f64 quadratic of u and v and the f64
 /// arithmetic's own error bound there (`f64_slack`, the larger of the two axes).
@@ -54,10 +37,10 @@ struct Line {
     slack: Vec<f64>,
 }
 
-fn line(rng: &mut Rng64) -> Line {
+fn line(rng: &mut Rng) -> Line {
     let len = if rng.below(4) == 0 { 3000 } else { 300 };
     let n = 1 + rng.below(len) as usize;
-    let x0 = rng.below(4096 - n as u64) as f64;
+    let x0 = rng.below(4096 - n as i32) as f64;
     let dir = if rng.below(2) == 0 { 1.0 } else { -1.0 };
     let xs = if dir > 0.0 { x0 } else { x0 + n as f64 - 1.0 };
     let xe = xs + dir * (n as f64 - 1.0);
@@ -114,7 +97,7 @@ impl Bench for TextureQuadratic {
     const ITEMS: &'static str = "lines";
     const DEFAULT_ITEMS: usize = 30;
     fn stimulus(_: &NoParams, n: usize, seed: u64) -> Stimulus {
-        let mut rng = Rng64(seed | 1);
+        let mut rng = Rng::new(seed | 1);
         let lines: Vec<Line> = (0..n).map(|_| line(&mut rng)).collect();
         let (mut rows, mut expected) = (Vec::new(), vec![vec![Expected::Word(0)]]);
         expected[0].extend([Expected::DontCare; 4]);
@@ -168,11 +151,11 @@ impl Bench for TextureQuadratic {
     }
     /// Random words and flags on every input.
     fn edge_rows(_: &NoParams, seed: u64) -> Vec<Vec<u64>> {
-        let mut rng = Rng64(seed ^ 0x5ad | 1);
+        let mut rng = Rng::new(seed ^ 0x5ad | 1);
         (0..300)
             .map(|_| {
-                let mut r = vec![rng.below(2), (rng.below(4) == 0) as u64];
-                r.extend((0..6).map(|_| rng.next() & ((1 << 48) - 1)));
+                let mut r = vec![rng.below(2) as u64, (rng.below(4) == 0) as u64];
+                r.extend((0..6).map(|_| rng.next_u64() & ((1 << 48) - 1)));
                 r
             })
             .collect()

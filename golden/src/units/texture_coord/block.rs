@@ -371,7 +371,7 @@ impl TexCoordModel {
     /// `hold` nothing is taken or shown, and the pending pixel's corrections go on.
     pub fn clock_held(&mut self, load: Option<&TexCoordSetup>, ev: &TexEvent, hold: bool) {
         let (j, settled) = self.corrections();
-        let ready = self.ready() && !hold;
+        let ready = self.defer.is_none() && (!self.pending || settled) && !hold;
         let emit = self.pending && settled && !hold;
         let mut sstar = self.s;
         for (a, &j) in sstar.ax.iter_mut().zip(&j) {
