@@ -46,6 +46,8 @@ fn large_triangles(n: usize) -> Vec<ScreenTriangle> {
             z: 0.0,
             normal: glam::DVec3::new(rnd(100) as f64 - 50.0, rnd(100) as f64 - 50.0, 100.0)
                 .normalize(),
+            uv: glam::DVec2::ZERO,
+            w: 1.0,
         });
         let t = ScreenTriangle { v, frac: 0 };
         if walk(&t).pixel_count() >= 1000 {

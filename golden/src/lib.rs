@@ -16,6 +16,7 @@ pub mod shade;
 pub mod shading;
 #[cfg(feature = "testing")]
 pub mod testing;
+pub mod texture;
 pub mod types;
 pub mod units;
 

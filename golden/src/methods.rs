@@ -18,9 +18,15 @@
 //! | cubic | [`crate::shading::cubic`] (§9) | Horner per span |
 //! | brdf-k4/8/16 | [`crate::shading::brdf`] (§2) | W(n, γ) |
 //! | bump | [`crate::shading::bump`] (§2) | cos(γ ± dγ) |
+//! | texture-reference, texture, texture-quadratic, texture-bezier, texture-affine | [`crate::shading::texture`] (§14–§16) | a texel as the diffuse colour, lit as normalizer-fit |
+//!
+//! The textured methods read a texture: [`shade_triangle_textured`] takes it,
+//! [`shade_triangle`] uses the built-in one ([`Texture::builtin`]). Their reference is
+//! `texture-reference` ([`Method::reference_of`]), not the untextured `reference`.
 
 use crate::shade::ShadeContext;
 pub use crate::shading::{row_end, row_xs, span_end_normals, Emit};
+use crate::texture::Texture;
 use crate::types::{ScreenTriangle, Walk};
 use std::fmt;
 use std::str::FromStr;
@@ -52,6 +58,16 @@ pub enum Method {
     BrdfK8,
     BrdfK16,
     Bump,
+    /// The textured reference: the exact perspective-correct texture coordinate in f64.
+    TextureReference,
+    /// SPEC §14: the additive, division-free perspective-correct texture coordinate.
+    Texture,
+    /// SPEC §15: quadratic along the raster line.
+    TextureQuadratic,
+    /// SPEC §16: quadratic Bézier along the raster line.
+    TextureBezier,
+    /// Screen-linear texture coordinates (no perspective correction).
+    TextureAffine,
 }
 
 impl Method {
@@ -74,9 +90,36 @@ impl Method {
         Method::Bump,
     ];
 
-    /// Every method, the reference first.
+    /// The textured methods, compared with [`Method::TextureReference`].
+    pub const TEXTURED: [Method; 4] = [
+        Method::Texture,
+        Method::TextureQuadratic,
+        Method::TextureBezier,
+        Method::TextureAffine,
+    ];
+
+    /// Every method: the reference, the shading methods, the textured reference, the textured
+    /// methods.
     pub fn all() -> impl Iterator<Item = Method> {
-        std::iter::once(Method::Reference).chain(Method::ALL_NON_REFERENCE)
+        std::iter::once(Method::Reference)
+            .chain(Method::ALL_NON_REFERENCE)
+            .chain(std::iter::once(Method::TextureReference))
+            .chain(Method::TEXTURED)
+    }
+
+    /// Whether the method reads a texture.
+    pub fn is_textured(self) -> bool {
+        self == Method::TextureReference || Method::TEXTURED.contains(&self)
+    }
+
+    /// The image a method is judged against: `texture-reference` for the textured methods,
+    /// `reference` for every other.
+    pub fn reference_of(self) -> Method {
+        if self.is_textured() {
+            Method::TextureReference
+        } else {
+            Method::Reference
+        }
     }
 
     /// The name used on the command line and in file names.
@@ -98,6 +141,11 @@ impl Method {
             Method::BrdfK8 => "brdf-k8",
             Method::BrdfK16 => "brdf-k16",
             Method::Bump => "bump",
+            Method::TextureReference => "texture-reference",
+            Method::Texture => "texture",
+            Method::TextureQuadratic => "texture-quadratic",
+            Method::TextureBezier => "texture-bezier",
+            Method::TextureAffine => "texture-affine",
         }
     }
 }
@@ -135,7 +183,8 @@ impl FromStr for Method {
 
 /// Shade one triangle: emits exactly one colour for every pixel of `walk.pixels()`, in walk
 /// order. `walk` must be the golden walk of `tri` (SPEC §5 contract in [`crate::types::Row`]).
-/// A zero-area triangle has no pixels and emits nothing.
+/// A zero-area triangle has no pixels and emits nothing. Textured methods read the built-in
+/// texture.
 pub fn shade_triangle(
     method: Method,
     tri: &ScreenTriangle,
@@ -143,6 +192,19 @@ pub fn shade_triangle(
     ctx: &ShadeContext,
     emit: &mut dyn FnMut(i32, i32, [u8; 3]),
 ) {
+    shade_triangle_textured(method, tri, walk, ctx, Texture::builtin(), emit)
+}
+
+/// [`shade_triangle`] with the texture the textured methods read.
+pub fn shade_triangle_textured(
+    method: Method,
+    tri: &ScreenTriangle,
+    walk: &Walk,
+    ctx: &ShadeContext,
+    texture: &Texture,
+    emit: &mut dyn FnMut(i32, i32, [u8; 3]),
+) {
+    use crate::shading::texture::Coord;
     use crate::shading::*;
     use crate::units::normalizer;
     if walk.pixel_count() == 0 {
@@ -165,5 +227,10 @@ pub fn shade_triangle(
         Method::BrdfK8 => brdf::shade(tri, walk, ctx, 8, emit),
         Method::BrdfK16 => brdf::shade(tri, walk, ctx, 16, emit),
         Method::Bump => bump::shade(tri, walk, ctx, emit),
+        Method::TextureReference => texture::shade(tri, walk, ctx, texture, Coord::Reference, emit),
+        Method::Texture => texture::shade(tri, walk, ctx, texture, Coord::Additive, emit),
+        Method::TextureQuadratic => texture::shade(tri, walk, ctx, texture, Coord::Quadratic, emit),
+        Method::TextureBezier => texture::shade(tri, walk, ctx, texture, Coord::Bezier, emit),
+        Method::TextureAffine => texture::shade(tri, walk, ctx, texture, Coord::Affine, emit),
     }
 }

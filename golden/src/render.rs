@@ -5,9 +5,10 @@
 //! pixel centre (nearer = smaller z wins; ties keep the first writer). The RTL engine resolves
 //! depth the same way, so both engines see identical visibility.
 
-use crate::methods::{shade_triangle, Method};
+use crate::methods::{shade_triangle_textured, Method};
 use crate::raster;
 use crate::shade::ShadeContext;
+use crate::texture::Texture;
 use crate::types::ScreenTriangle;
 
 /// An 8-bit RGB framebuffer with its depth buffer and a per-pixel write counter.
@@ -56,11 +57,24 @@ impl Frame {
     }
 }
 
-/// Render `tris` with `method` into a `width`×`height` frame.
+/// Render `tris` with `method` into a `width`×`height` frame (textured methods read the
+/// built-in texture).
 pub fn render(
     tris: &[ScreenTriangle],
     method: Method,
     ctx: &ShadeContext,
+    width: u32,
+    height: u32,
+) -> Frame {
+    render_textured(tris, method, ctx, Texture::builtin(), width, height)
+}
+
+/// [`render`] with the texture the textured methods read.
+pub fn render_textured(
+    tris: &[ScreenTriangle],
+    method: Method,
+    ctx: &ShadeContext,
+    texture: &Texture,
     width: u32,
     height: u32,
 ) -> Frame {
@@ -70,7 +84,7 @@ pub fn render(
             continue; // zero area: no pixel centre inside
         };
         let walk = raster::walk(tri);
-        shade_triangle(method, tri, &walk, ctx, &mut |x, y, rgb| {
+        shade_triangle_textured(method, tri, &walk, ctx, texture, &mut |x, y, rgb| {
             frame.put(x, y, depth.at_pixel(x, y), rgb);
         });
     }

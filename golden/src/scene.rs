@@ -2,9 +2,10 @@
 //!
 //! | module | what |
 //! |---|---|
-//! | [`mesh`] | the [`Mesh`] type and its checks, procedural UV sphere and torus |
+//! | [`mesh`] | the [`Mesh`] type and its checks, procedural UV sphere, torus and ground plane |
 //! | [`obj`] | Wavefront OBJ meshes through `tobj`, smooth normals where the file has none |
-//! | [`projection`] | orthographic [`Camera`], [`project`] with back-face culling, the light |
+//! | [`camera`] | the [`Camera`] fitted to a mesh, orthographic or perspective |
+//! | [`projection`] | [`project`] with back-face culling, the light |
 //! | [`snap`] | [`screen_addresses`]: rounding to integer addresses with the fold repair |
 //!
 //! Every public item is re-exported here, so `scene::X` names it whatever module it lives in;
@@ -16,8 +17,11 @@ pub mod obj;
 pub mod projection;
 pub mod snap;
 
-pub use camera::Camera;
-pub use mesh::{torus, uv_sphere, Mesh, REZ_RANGE, TORUS_MAJOR, TORUS_MINOR};
+pub use camera::{Camera, PLANE_ELEVATION_DEG, PLANE_EYE_RADII, PLANE_YAW_DEG};
+pub use mesh::{
+    plane, torus, uv_sphere, Mesh, PLANE_DEPTH, PLANE_HALF_WIDTH, REZ_RANGE, TORUS_MAJOR,
+    TORUS_MINOR,
+};
 pub use obj::{
     load_obj, load_obj_counting, read_regular_file, BYTES_PER_TRIANGLE, BYTES_PER_VERTEX,
     MAX_COORDINATE, MAX_OBJ_BYTES, MAX_TRIANGLES, MAX_VERTICES, MEMORY_BUDGET_BYTES, MIN_EXTENT,
@@ -77,6 +81,20 @@ pub enum SceneError {
         triangle: usize,
         index: u32,
         count: usize,
+    },
+    #[error("{origin}: texture coordinates are given for {given} of {triangles} triangles (all or none)")]
+    TexCoordCount {
+        origin: String,
+        given: usize,
+        triangles: usize,
+    },
+    #[error("{origin}: triangle {triangle} has a non-finite texture coordinate")]
+    BadTexCoord { origin: String, triangle: usize },
+    #[error("{origin}: texture coordinate (vt) on line {line} is not finite: {text}")]
+    BadVt {
+        origin: String,
+        line: usize,
+        text: String,
     },
     #[error("{origin}: {positions} positions but {normals} normals")]
     Inconsistent {

@@ -62,6 +62,7 @@ pub fn split_vertices(m: &Mesh) -> Mesh {
         }
         out.triangles.push([base, base + 1, base + 2]);
     }
+    out.uvs = m.uvs.clone();
     out
 }
 

@@ -8,7 +8,7 @@
 //! - Normals are unit vectors in view space (viewer looks down −z, so a front face has n.z > 0).
 //! - Light and viewer are at infinity (directional), so L, V and H are constant over a frame.
 
-use glam::DVec3;
+use glam::{DVec2, DVec3};
 
 /// Largest screen address: vertex coordinates must lie in `0..=MAX_ADDRESS` (12 bits).
 pub const MAX_ADDRESS: i32 = 4095;
@@ -22,6 +22,12 @@ pub struct ScreenVertex {
     pub z: f64,
     /// Unit normal in view space.
     pub normal: DVec3,
+    /// Texture coordinates (s, t) of this corner, in texture repeats (1 is the texture's side;
+    /// t up, as OBJ's `vt`); zero where the mesh has none.
+    pub uv: DVec2,
+    /// The projection's divisor w > 0 at this vertex (1 under the orthographic camera): 1/w,
+    /// s/w and t/w are affine in screen space.
+    pub w: f64,
 }
 
 impl ScreenVertex {
@@ -33,6 +39,8 @@ impl ScreenVertex {
             y,
             z: 0.5,
             normal: DVec3::Z,
+            uv: DVec2::ZERO,
+            w: 1.0,
         }
     }
 }
@@ -148,6 +156,8 @@ impl ScreenTriangle {
                 y,
                 z: 0.0,
                 normal: glam::DVec3::Z,
+                uv: DVec2::ZERO,
+                w: 1.0,
             }),
             frac: 0,
         }

@@ -125,6 +125,8 @@ fn vertex(x: i32, y: i32, n: DVec3) -> ScreenVertex {
         y,
         z: 0.0,
         normal: n.normalize(),
+        uv: glam::DVec2::ZERO,
+        w: 1.0,
     }
 }
 
@@ -255,6 +257,11 @@ fn method_names_round_trip() {
         "brdf-k8",
         "brdf-k16",
         "bump",
+        "texture-reference",
+        "texture",
+        "texture-quadratic",
+        "texture-bezier",
+        "texture-affine",
     ];
     let names: Vec<&str> = Method::all().map(Method::name).collect();
     assert_eq!(names, expected);
@@ -264,6 +271,16 @@ fn method_names_round_trip() {
     }
     assert_eq!(Method::ALL_NON_REFERENCE.len(), 15);
     assert!(!Method::ALL_NON_REFERENCE.contains(&Method::Reference));
+    for m in Method::all() {
+        let textured = m.name().starts_with("texture");
+        assert_eq!(m.is_textured(), textured, "{m}");
+        let want = if textured {
+            "texture-reference"
+        } else {
+            "reference"
+        };
+        assert_eq!(m.reference_of().name(), want, "{m}");
+    }
 }
 
 #[test]
@@ -434,7 +451,9 @@ fn methods_are_sane_on_a_simple_triangle() {
         let reference = shade(Method::Reference, &tri, &ctx);
         assert!(reference.len() > 300, "{} pixels", reference.len());
         let floor = ctx.combine(0.0, 0.0);
-        for m in Method::all() {
+        // The textured methods' diffuse colour is the texel's, not the material's: their floor
+        // is the texel's ambient (`textured_methods_light_the_texel`).
+        for m in Method::all().filter(|m| !m.is_textured()) {
             let got = shade(m, &tri, &ctx);
             // Never below the ambient floor.
             for (p, c) in &got {
@@ -851,6 +870,35 @@ fn tangent_fit_beats_value_only_minimax_on_spheres() {
             let (t, v) = (nmse_of(normalizer::FIT), nmse_of(value_only));
             println!("rez {rez} n {n}: tangent fit {t:.2e}, value-only minimax {v:.2e}");
             assert!(t < v, "rez {rez} n {n}: {t} vs {v}");
+        }
+    }
+}
+
+/// The textured methods light the texel as `normalizer-fit` lights the material: with every
+/// corner's texture coordinate inside one texel, each textured method's colour is
+/// `normalizer-fit`'s with that texel as the diffuse colour, pixel for pixel.
+#[test]
+fn textured_methods_light_the_texel() {
+    let tex = golden::texture::Texture::builtin();
+    // Texel (12, 4) of the built-in texture (a dark checker square), its centre in (s, t).
+    let st = glam::DVec2::new(12.5 / 256.0, 4.5 / 256.0);
+    let mut tri = simple_triangle();
+    for v in &mut tri.v {
+        v.uv = st;
+    }
+    let texel = tex.texel(12, 4);
+    assert_ne!(texel.map(f64::from), Material::default().diffuse);
+    for lighting in lightings() {
+        let ctx = ShadeContext {
+            lighting,
+            ..ShadeContext::default()
+        };
+        let mut lit = ctx;
+        lit.material.diffuse = texel.map(f64::from);
+        let want = shade(Method::NormalizerFit, &tri, &lit);
+        assert!(want.len() > 300);
+        for m in std::iter::once(Method::TextureReference).chain(Method::TEXTURED) {
+            assert_eq!(shade(m, &tri, &ctx), want, "{m} {lighting:?}");
         }
     }
 }

@@ -20,6 +20,8 @@ fn tri(v: [V; 3]) -> ScreenTriangle {
             y,
             z: 0.0,
             normal: DVec3::Z,
+            uv: glam::DVec2::ZERO,
+            w: 1.0,
         }),
         frac: 0,
     }

@@ -167,7 +167,14 @@ fn inside(t: &ScreenTriangle, x: f64, y: f64) -> bool {
 /// depth is the parent's there.
 #[test]
 fn refined_vertices_keep_the_parents_normal_direction_and_depth() {
-    let v = |x, y, z, n: DVec3| ScreenVertex { x, y, z, normal: n };
+    let v = |x, y, z, n: DVec3| ScreenVertex {
+        x,
+        y,
+        z,
+        normal: n,
+        uv: glam::DVec2::ZERO,
+        w: 1.0,
+    };
     let ring: Vec<(i32, i32)> = (0..8)
         .map(|k| {
             let a = k as f64 * std::f64::consts::TAU / 8.0;

@@ -227,6 +227,8 @@ fn integer_vertices_give_the_integer_setup() {
                 y,
                 z: 0.0,
                 normal: glam::DVec3::Z,
+                uv: glam::DVec2::ZERO,
+                w: 1.0,
             }),
             frac: 0,
         };

@@ -147,6 +147,8 @@ pub fn parse_tri(s: &str) -> Result<ScreenTriangle> {
         y: c[2 * i + 1],
         z: 0.0,
         normal: glam::DVec3::Z,
+        uv: glam::DVec2::ZERO,
+        w: 1.0,
     };
     Ok(ScreenTriangle {
         v: [v(0), v(1), v(2)],

@@ -211,6 +211,8 @@ fn tiled_region_written_exactly_once() {
                             y,
                             z: 0.0,
                             normal: DVec3::new(x as f64, y as f64, 100.0).normalize(),
+                            uv: glam::DVec2::ZERO,
+                            w: 1.0,
                         });
                         tris.push(ScreenTriangle { v, frac: 0 });
                     }

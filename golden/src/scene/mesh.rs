@@ -1,9 +1,9 @@
 //! Triangle meshes: the [`Mesh`] type and its checks, the procedural UV sphere (tessellated as
-//! the thesis prototype's `drawSolidSphere`) and torus.
+//! the thesis prototype's `drawSolidSphere`), torus and textured ground [`plane`].
 //!
 //! Model space is right-handed with y up. Meshes wind counter-clockwise seen from outside.
 
-use glam::DVec3;
+use glam::{DVec2, DVec3};
 
 use super::SceneError;
 
@@ -22,6 +22,9 @@ pub struct Mesh {
     pub normals: Vec<DVec3>,
     /// Counter-clockwise seen from outside.
     pub triangles: Vec<[u32; 3]>,
+    /// Texture coordinates (s, t) per triangle corner, in the order of `triangles` (a vertex on
+    /// a texture seam has one per side): empty when the mesh has none, else one per triangle.
+    pub uvs: Vec<[DVec2; 3]>,
 }
 
 impl Mesh {
@@ -55,6 +58,23 @@ impl Mesh {
                     problem,
                 });
             }
+        }
+        if !self.uvs.is_empty() && self.uvs.len() != self.triangles.len() {
+            return Err(SceneError::TexCoordCount {
+                origin: origin.into(),
+                given: self.uvs.len(),
+                triangles: self.triangles.len(),
+            });
+        }
+        if let Some(triangle) = self
+            .uvs
+            .iter()
+            .position(|t| !t.iter().all(|c| c.is_finite()))
+        {
+            return Err(SceneError::BadTexCoord {
+                origin: origin.into(),
+                triangle,
+            });
         }
         let count = self.positions.len();
         if let Some((triangle, index)) = first_bad_index(&self.triangles, count) {
@@ -137,9 +157,16 @@ pub fn uv_sphere(rez: u32) -> Result<Mesh, SceneError> {
     positions.push(-DVec3::Y);
     let south = positions.len() as u32 - 1;
     let ring = |i: u32, j: u32| 1 + (i - 1) * n + j % n;
+    // Texture coordinates: s = 2·azimuth/2π (two repeats around, so a texel is about square on
+    // the equator), t = 1 − polar/π; the seam's corners take s = 2 (j = n), a pole s of its
+    // fan triangle's middle.
+    let st = |i: u32, j: f64| DVec2::new(2.0 * j / n as f64, 1.0 - i as f64 / n as f64);
     let mut triangles = Vec::with_capacity((2 * n * (n - 1)) as usize);
+    let mut uvs = Vec::with_capacity(triangles.capacity());
     for j in 0..n {
         triangles.push([0, ring(1, j), ring(1, j + 1)]);
+        let jf = j as f64;
+        uvs.push([st(0, jf + 0.5), st(1, jf), st(1, jf + 1.0)]);
     }
     for i in 1..n - 1 {
         for j in 0..n {
@@ -147,16 +174,24 @@ pub fn uv_sphere(rez: u32) -> Result<Mesh, SceneError> {
             let (c, d) = (ring(i + 1, j), ring(i + 1, j + 1));
             triangles.push([a, c, d]);
             triangles.push([a, d, b]);
+            let jf = j as f64;
+            let (ta, tb) = (st(i, jf), st(i, jf + 1.0));
+            let (tc, td) = (st(i + 1, jf), st(i + 1, jf + 1.0));
+            uvs.push([ta, tc, td]);
+            uvs.push([ta, td, tb]);
         }
     }
     for j in 0..n {
         triangles.push([ring(n - 1, j), south, ring(n - 1, j + 1)]);
+        let jf = j as f64;
+        uvs.push([st(n - 1, jf), st(n, jf + 0.5), st(n - 1, jf + 1.0)]);
     }
     let normals = positions.iter().map(|p| p.normalize()).collect();
     Ok(Mesh {
         positions,
         normals,
         triangles,
+        uvs,
     })
 }
 
@@ -180,7 +215,11 @@ pub fn torus(rez: u32) -> Result<Mesh, SceneError> {
         }
     }
     let idx = |i: u32, j: u32| (i % nu) * nv + j % nv;
+    // Texture coordinates: s = 3 repeats around the y axis, t = 1 around the tube (a texel is
+    // then about square on the outer equator); the seams' corners take s = 3, t = 1.
+    let st = |i: u32, j: u32| DVec2::new(3.0 * i as f64 / nu as f64, j as f64 / nv as f64);
     let mut triangles = Vec::with_capacity((2 * nu * nv) as usize);
+    let mut uvs = Vec::with_capacity(triangles.capacity());
     for i in 0..nu {
         for j in 0..nv {
             // ∂P/∂v × ∂P/∂u points outwards: step along v first, then along u.
@@ -188,13 +227,62 @@ pub fn torus(rez: u32) -> Result<Mesh, SceneError> {
             let (c, d) = (idx(i + 1, j + 1), idx(i + 1, j));
             triangles.push([a, b, c]);
             triangles.push([a, c, d]);
+            let (ta, tb) = (st(i, j), st(i, j + 1));
+            let (tc, td) = (st(i + 1, j + 1), st(i + 1, j));
+            uvs.push([ta, tb, tc]);
+            uvs.push([ta, tc, td]);
         }
     }
     Ok(Mesh {
         positions,
         normals,
         triangles,
+        uvs,
     })
+}
+
+/// Half the width of the ground [`plane`] (model units).
+pub const PLANE_HALF_WIDTH: f64 = 2.0;
+/// Depth of the ground [`plane`] (model units).
+pub const PLANE_DEPTH: f64 = 10.0;
+
+/// A textured ground plane for the perspective camera: y = 0, x in ±[`PLANE_HALF_WIDTH`], z
+/// from 0 (near) to −[`PLANE_DEPTH`] (far), normal +y, a grid of `max(1, rez/10)` quads across
+/// and five times as many deep (rez in 3..=100; 5 × 25 quads, 250 triangles at the default
+/// 50). Texture coordinates: s = (x + half width)/width, t = −z/width: one repeat across, five
+/// deep, square texels on the ground.
+pub fn plane(rez: u32) -> Result<Mesh, SceneError> {
+    check_rez("plane", rez)?;
+    let nx = (rez / 10).max(1);
+    let nz = 5 * nx;
+    let width = 2.0 * PLANE_HALF_WIDTH;
+    let mut m = Mesh::default();
+    for k in 0..=nz {
+        for i in 0..=nx {
+            let x = -PLANE_HALF_WIDTH + width * i as f64 / nx as f64;
+            let z = -PLANE_DEPTH * k as f64 / nz as f64;
+            m.positions.push(DVec3::new(x, 0.0, z));
+            m.normals.push(DVec3::Y);
+        }
+    }
+    let idx = |i: u32, k: u32| k * (nx + 1) + i;
+    let st = |i: u32| {
+        let p = m.positions[i as usize];
+        DVec2::new((p.x + PLANE_HALF_WIDTH) / width, -p.z / width)
+    };
+    let mut triangles = Vec::new();
+    for k in 0..nz {
+        for i in 0..nx {
+            // Counter-clockwise seen from +y: z decreases away from the viewer.
+            let (a, b) = (idx(i, k), idx(i + 1, k));
+            let (c, d) = (idx(i + 1, k + 1), idx(i, k + 1));
+            triangles.push([a, b, c]);
+            triangles.push([a, c, d]);
+        }
+    }
+    m.uvs = triangles.iter().map(|t| t.map(st)).collect();
+    m.triangles = triangles;
+    Ok(m)
 }
 
 #[cfg(test)]
@@ -273,6 +361,64 @@ mod tests {
             let f = face_normal(&m, t);
             let n = t.iter().map(|&i| m.normals[i as usize]).sum::<DVec3>();
             assert!(f.dot(n) > 0.0, "triangle {t:?} winds inwards");
+        }
+    }
+
+    /// Texture coordinates against the shapes' parametrisation: each corner's (s, t) names its
+    /// vertex's angles, and no triangle wraps around a seam (its s and t span one step).
+    #[test]
+    fn texture_coordinates_follow_the_parametrisation() {
+        use std::f64::consts::{PI, TAU};
+        let close = |a: f64, b: f64, period: f64| {
+            let d = (a - b).rem_euclid(period);
+            d.min(period - d) < 1e-9
+        };
+        for rez in [3, 7, 50] {
+            let m = uv_sphere(rez).unwrap();
+            assert_eq!(m.uvs.len(), m.triangles.len());
+            for (t, uv) in m.triangles.iter().zip(&m.uvs) {
+                for (&i, st) in t.iter().zip(uv) {
+                    let p = m.positions[i as usize];
+                    assert!((st.y - (1.0 - p.y.clamp(-1.0, 1.0).acos() / PI)).abs() < 1e-9);
+                    if p.y.abs() < 1.0 - 1e-12 {
+                        assert!(close(st.x * PI, p.x.atan2(p.z), TAU), "{p} {st}");
+                    }
+                }
+                let span = |f: fn(&DVec2) -> f64| {
+                    let v = uv.map(|c| f(&c));
+                    v.iter().cloned().fold(f64::MIN, f64::max)
+                        - v.iter().cloned().fold(f64::MAX, f64::min)
+                };
+                assert!(span(|c| c.x) <= 2.0 / rez as f64 + 1e-12);
+                assert!(span(|c| c.y) <= 1.0 / rez as f64 + 1e-12);
+            }
+            let m = torus(rez).unwrap();
+            assert_eq!(m.uvs.len(), m.triangles.len());
+            for (t, uv) in m.triangles.iter().zip(&m.uvs) {
+                for (&i, st) in t.iter().zip(uv) {
+                    let p = m.positions[i as usize];
+                    // s = 3·(angle about y)/2π, t = (angle about the tube)/2π.
+                    assert!(close(st.x / 3.0 * TAU, p.z.atan2(p.x), TAU), "{p} {st}");
+                    let r = (p.x * p.x + p.z * p.z).sqrt() - TORUS_MAJOR;
+                    assert!(close(st.y * TAU, p.y.atan2(r), TAU), "{p} {st}");
+                }
+            }
+        }
+        let m = plane(50).unwrap();
+        m.validate().unwrap();
+        assert_eq!(m.triangles.len(), 2 * 5 * 25);
+        for (t, uv) in m.triangles.iter().zip(&m.uvs) {
+            let p = t.map(|i| m.positions[i as usize]);
+            // Counter-clockwise seen from above: the face normal is +y.
+            assert!((p[1] - p[0])
+                .cross(p[2] - p[0])
+                .normalize()
+                .abs_diff_eq(DVec3::Y, 1e-12));
+            for (q, st) in p.iter().zip(uv) {
+                let w = 2.0 * PLANE_HALF_WIDTH;
+                assert!((st.x - (q.x + PLANE_HALF_WIDTH) / w).abs() < 1e-12);
+                assert!((st.y + q.z / w).abs() < 1e-12);
+            }
         }
     }
 

@@ -125,6 +125,34 @@ fn count_elements(text: &str) -> (u64, u64) {
     (tris, verts)
 }
 
+/// The first `vt` line with a coordinate that reads as NaN or ±infinity (which `tobj` accepts):
+/// an error naming the line, counted from 1.
+fn check_vt(text: &str, shown: &str) -> Result<(), SceneError> {
+    for (k, line) in text.lines().enumerate() {
+        let mut words = line.split_whitespace();
+        if words.next() != Some("vt") {
+            continue;
+        }
+        if words.any(|w| w.parse::<f64>().is_ok_and(|v| !v.is_finite())) {
+            let mut text = line.trim().to_string();
+            if text.len() > 60 {
+                let cut = (0..=60)
+                    .rev()
+                    .find(|&i| text.is_char_boundary(i))
+                    .unwrap_or(0);
+                text.truncate(cut);
+                text.push('…');
+            }
+            return Err(SceneError::BadVt {
+                origin: format!("OBJ file {shown}"),
+                line: k + 1,
+                text,
+            });
+        }
+    }
+    Ok(())
+}
+
 /// [`load_obj`], also returning how many vertices got their first face's normal because the
 /// area-weighted sum of their faces' normals vanished (faces that cancel, common in scans).
 pub fn load_obj_counting(path: &Path) -> Result<(Mesh, usize), SceneError> {
@@ -144,6 +172,7 @@ pub fn load_obj_counting(path: &Path) -> Result<(Mesh, usize), SceneError> {
     // A UTF-8 byte-order mark (some Windows tools write one) is no part of the first line.
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let (tris, verts) = count_elements(text);
+    check_vt(text, &shown)?;
     let budget = MEMORY_BUDGET_BYTES >> 20;
     for (count, max, what, per) in [
         (tris, MAX_TRIANGLES, "triangles", BYTES_PER_TRIANGLE),
@@ -191,6 +220,8 @@ fn from_models(models: &[tobj::Model], shown: &str) -> Result<(Mesh, usize), Sce
     let origin = format!("OBJ file {shown}");
     let mut mesh = Mesh::default();
     let mut fallbacks = 0;
+    // Triangles whose corners have texture coordinates: all or none.
+    let mut textured = 0;
     for model in models {
         let m = &model.mesh;
         let base = mesh.positions.len();
@@ -262,7 +293,31 @@ fn from_models(models: &[tobj::Model], shown: &str) -> Result<(Mesh, usize), Sce
                 vertices: count,
             });
         }
+        if m.texcoords.len() == 2 * count && count > 0 {
+            textured += tris.len();
+            mesh.uvs.extend(tris.iter().map(|t| {
+                t.map(|i| {
+                    let k = 2 * (i as usize - base);
+                    glam::DVec2::new(m.texcoords[k], m.texcoords[k + 1])
+                })
+            }));
+        } else if !m.texcoords.is_empty() {
+            return Err(SceneError::ObjMalformed {
+                path: shown.into(),
+                reason: format!(
+                    "texture coordinates (vt) are given for {} of {count} vertices of an object (all or none)",
+                    m.texcoords.len() / 2
+                ),
+            });
+        }
         mesh.triangles.extend(tris);
+    }
+    if textured != 0 && textured != mesh.triangles.len() {
+        return Err(SceneError::TexCoordCount {
+            origin,
+            given: textured,
+            triangles: mesh.triangles.len(),
+        });
     }
     if mesh.triangles.is_empty() {
         return Err(SceneError::ObjEmpty { path: shown.into() });
@@ -386,6 +441,59 @@ mod tests {
         assert!((by_pos(DVec3::X) - shared).length() < 1e-12);
         assert!((by_pos(DVec3::Y) - DVec3::Z).length() < 1e-12);
         assert!((by_pos(DVec3::new(0.0, 0.0, 2.0)) - DVec3::Y).length() < 1e-12);
+    }
+
+    #[test]
+    fn obj_texture_coordinates_are_read_per_corner() {
+        // Two triangles sharing the edge 1–3, with a texture seam along it: vertex 1 has
+        // different vt in the two faces.
+        let f = TempObj::new(
+            "vt",
+            "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0.25 0.75\nvt 5 -2\nf 1/1 2/2 3/3\nf 1/5 3/3 4/4\n",
+        );
+        let m = load_obj(&f.0).unwrap();
+        assert_eq!(m.uvs.len(), 2);
+        let uv = |p: [f64; 3], t: usize| {
+            let k = m.triangles[t]
+                .iter()
+                .position(|&i| m.positions[i as usize] == DVec3::from(p))
+                .unwrap();
+            m.uvs[t][k].to_array()
+        };
+        assert_eq!(uv([0.0, 0.0, 0.0], 0), [0.0, 0.0]);
+        assert_eq!(uv([1.0, 0.0, 0.0], 0), [1.0, 0.0]);
+        assert_eq!(uv([1.0, 1.0, 0.0], 0), [1.0, 1.0]);
+        assert_eq!(uv([0.0, 0.0, 0.0], 1), [5.0, -2.0]);
+        assert_eq!(uv([0.0, 1.0, 0.0], 1), [0.25, 0.75]);
+        // Without vt: no texture coordinates.
+        let plain = TempObj::new("novt", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+        assert!(load_obj(&plain.0).unwrap().uvs.is_empty());
+    }
+
+    #[test]
+    fn obj_bad_texture_coordinates_are_one_line_errors() {
+        for (name, text, want) in [
+            (
+                "vtnan",
+                "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt nan 0\nvt 0 1\nf 1/1 2/2 3/3\n",
+                "texture coordinate (vt) on line 5 is not finite: vt nan 0",
+            ),
+            (
+                "vtinf",
+                "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 -inf\nf 1/1 2/2 3/3\n",
+                "on line 6 is not finite",
+            ),
+            (
+                "vtsome",
+                "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nf 1/1 2/2 3/3\nf 2 4 3\n",
+                "texture coordinates",
+            ),
+        ] {
+            let f = TempObj::new(name, text);
+            let e = load_obj(&f.0).unwrap_err().to_string();
+            assert!(e.contains(want), "{name}: {e}");
+            assert!(!e.contains('\n'), "{name}: {e}");
+        }
     }
 
     #[test]

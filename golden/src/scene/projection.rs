@@ -1,8 +1,9 @@
-//! The camera and projection: an orthographic [`Camera`] fitted to a mesh, [`project`] to
+//! The projection: the [`Camera`] fitted to a mesh, [`project`] to
 //! integer 12-bit screen addresses (through the fold repair of [`screen_addresses`]) with
 //! back-face culling, and the directional light.
 //!
-//! **Camera model: orthographic.** The shading model puts the viewer at infinity (V = +z in view
+//! **Camera model: orthographic** (the `plane` scene alone has a perspective camera, for its
+//! texture: [`Camera::fit_perspective`]). The shading model puts the viewer at infinity (V = +z in view
 //! space, constant over the frame, see `types.rs`); an orthographic projection is the projection
 //! that matches it, so the faces kept by screen-space culling are exactly those whose geometric
 //! normal faces V (up to the rounding of vertex addresses), and the depth is affine in screen
@@ -93,8 +94,10 @@ pub fn project_subpixel(
             y: 0,
             z: 0.0,
             normal: DVec3::Z,
+            uv: glam::DVec2::ZERO,
+            w: 1.0,
         }; 3];
-        for (k, &i) in [tri[0], tri[2], tri[1]].iter().enumerate() {
+        for (k, &(corner, i)) in [(0, tri[0]), (2, tri[2]), (1, tri[1])].iter().enumerate() {
             let s = screen[i as usize];
             for (axis, value, r) in [
                 ('x', s.x, rounded[i as usize].0),
@@ -114,6 +117,8 @@ pub fn project_subpixel(
                 y: rounded[i as usize].1 as i32,
                 z: s.z,
                 normal: (camera.rotation * mesh.normals[i as usize]).normalize(),
+                uv: mesh.uvs.get(t).map_or(glam::DVec2::ZERO, |uv| uv[corner]),
+                w: camera.w(mesh.positions[i as usize]),
             };
         }
         let st = ScreenTriangle { v, frac };

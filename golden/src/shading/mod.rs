@@ -13,6 +13,7 @@ pub mod phong;
 pub mod quadric;
 pub mod refine;
 pub mod subdivision;
+pub mod texture;
 
 use crate::shade::ShadeContext;
 use crate::types::{Row, VecPlane};

@@ -137,6 +137,21 @@ fn midpoint(t: &ScreenTriangle, a: &ScreenVertex, b: &ScreenVertex) -> ScreenVer
     };
     let mean = 0.5 * (a.normal + b.normal);
     let np = t.normal_plane();
+    // The perspective-correct texture coordinates: 1/w, s/w and t/w on the parent's screen
+    // planes, so the sub-triangles texture exactly as the parent does.
+    let over_w = |f: fn(&ScreenVertex) -> f64, v: &ScreenVertex| f(v) / v.w;
+    let at_q = |f: fn(&ScreenVertex) -> f64| {
+        let vals = t.v.map(|v| over_w(f, &v));
+        let (lo, hi) = vals
+            .iter()
+            .fold((f64::MAX, f64::MIN), |(l, h), &v| (l.min(v), h.max(v)));
+        t.scalar_plane(vals)
+            .map_or(0.5 * (over_w(f, a) + over_w(f, b)), |p| {
+                p.a * x as f64 * u + p.b * y as f64 * u + p.c
+            })
+            .clamp(lo, hi)
+    };
+    let q = at_q(|_| 1.0);
     ScreenVertex {
         x,
         y,
@@ -146,6 +161,8 @@ fn midpoint(t: &ScreenTriangle, a: &ScreenVertex, b: &ScreenVertex) -> ScreenVer
             at(np.map(|p| p.y), mean.y, |v| v.normal.y),
             at(np.map(|p| p.z), mean.z, |v| v.normal.z),
         ),
+        uv: glam::DVec2::new(at_q(|v| v.uv.x), at_q(|v| v.uv.y)) / q,
+        w: 1.0 / q,
     }
 }
 
@@ -290,6 +307,8 @@ mod tests {
             y,
             z: 0.0,
             normal: n.normalize(),
+            uv: glam::DVec2::ZERO,
+            w: 1.0,
         }
     }
 

@@ -108,6 +108,11 @@ pub fn texel(w: u64) -> u64 {
     (w >> FRAC_BITS) & 0xFFFF
 }
 
+/// The texel of a word as a signed integer (its integer part, 16-bit two's complement).
+pub fn signed_texel(w: u64) -> i64 {
+    texel(w) as u16 as i16 as i64
+}
+
 /// One axis of the twin: the running u and Δ, and ΔΔ.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct QuadAxis {
@@ -117,6 +122,11 @@ pub struct QuadAxis {
 }
 
 impl QuadAxis {
+    /// The running u word.
+    pub fn word(&self) -> u64 {
+        self.u
+    }
+
     /// One clock: on `valid` with `load`, take the words; on `valid` alone, step.
     pub fn clock(&mut self, valid: bool, load: Option<&QuadWords>) {
         if !valid {

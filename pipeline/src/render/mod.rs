@@ -310,6 +310,8 @@ mod tests {
             y: 0,
             z: 0.0,
             normal: glam::DVec3::Z,
+            uv: glam::DVec2::ZERO,
+            w: 1.0,
         };
         let t = ScreenTriangle {
             v: [v, v, v],

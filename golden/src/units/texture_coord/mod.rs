@@ -276,6 +276,15 @@ impl PctWalker {
         self.q += self.gu - self.ax_hi;
     }
 
+    /// Move to the previous pixel of the line (x − 1): the x step run backwards,
+    /// E −= 2g; W −= G − (2a − g); Q −= G − (2a + g) (a line walked right to left).
+    pub fn step_x_back(&mut self) {
+        self.x -= 1;
+        self.e -= self.g2;
+        self.w -= self.gu - self.ax_lo;
+        self.q -= self.gu - self.ax_hi;
+    }
+
     /// Move to the next line (y + 1).
     pub fn step_y(&mut self) {
         self.y += 1;

@@ -1,0 +1,316 @@
+//! The textured methods (SPEC §14, §15, §16): the texel colour takes the place of the
+//! material's diffuse colour, and the pixel is lit as `normalizer-fit` lights it (the vector
+//! interpolator and the normalizer with [`normalizer::FIT`]), so that only the texture
+//! coordinate differs between these methods.
+//!
+//! | method | texture coordinate per pixel |
+//! |---|---|
+//! | texture-reference | the exact quotient u = (a·x + b·y + c)/(g·x + h·y + i) in f64, at the pixel centre, from the unquantized planes |
+//! | texture | SPEC §14: the additive walker on the integer PCT coefficients (the nearest texel of their exact quotient, no division) |
+//! | texture-quadratic | SPEC §15: per raster line the quadratic through the exact u at the line's ends and middle, stepped by forward differences in the block's Q15.32 words |
+//! | texture-bezier | SPEC §16: per raster line the quadratic Bézier with the tangents' intersection as control point, stepped in t by forward differences (f64) |
+//! | texture-affine | u, v linear in screen space through the vertices' (the naive form, for comparison) |
+//!
+//! Every method picks the nearest texel of its coordinate by the texel-centre rule of
+//! [`crate::texture`]; u and v are in texel space. The set-up per triangle (software) moves
+//! the triangle's texel coordinates by whole repeats of the texture so that their mean lies in
+//! the first repeat (GL_REPEAT gives the same texels), then forms the planes of 1/w, u/w and
+//! v/w ([`PctPlanes`]).
+//!
+//! The §14 walker's integer coefficients are [`PctPlanes::coeffs`] relative to the walk's first
+//! pixel, D scaled to 2^29 at the vertex nearest the eye ([`D_MAX`]); a triangle outside the
+//! block's range ([`TexCoordSetup::check`]) falls back to the reference's coordinate (the CLI
+//! refuses such a scene before rendering: [`range_error`]).
+//!
+//! The Bézier's per-pixel rule (the rate): a line of n pixels is sampled at m = 2(n − 1) steps
+//! of t (dt = 1/m); with the control point inside the line (it is clamped there), x(t) moves
+//! at most one pixel a step, so every pixel has a sample within half a pixel of its centre.
+//! Pixel x takes the sample whose x(t) is nearest its centre (a comparator on consecutive
+//! samples): two samples per pixel.
+
+use crate::shade::ShadeContext;
+use crate::shading::{row_end, Emit};
+use crate::texture::Texture;
+use crate::types::{Plane, Row, ScreenTriangle, Walk};
+use crate::units::normalizer;
+use crate::units::texture_bezier;
+use crate::units::texture_coord::block::TexCoordSetup;
+use crate::units::texture_coord::{PctCoeffs, PctPlanes, PctWalker};
+use crate::units::texture_quadratic::{self as quad, QuadWords};
+use glam::DVec2;
+
+/// D at the vertex nearest the eye in the §14 walker's integer coefficients.
+pub const D_MAX: f64 = (1u64 << 29) as f64;
+
+/// How a textured method forms its texture coordinate.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Coord {
+    Reference,
+    Additive,
+    Quadratic,
+    Bezier,
+    Affine,
+}
+
+/// The per-triangle set-up shared by the textured methods: the vertices' texel coordinates
+/// (moved by whole repeats) and the perspective-correct planes.
+#[derive(Clone, Copy, Debug)]
+pub struct TexSetup {
+    /// Texel-space (u, v) per vertex.
+    pub uv: [DVec2; 3],
+    /// The planes of 1/w, u/w and v/w.
+    pub planes: PctPlanes,
+    /// The largest 1/w at the vertices.
+    pub vmax: f64,
+    /// The screen-linear planes of u and v through the vertices (`texture-affine`).
+    pub affine: [Plane; 2],
+}
+
+/// The set-up of `tri` for `texture`; `None` for a zero-area triangle or a non-finite or
+/// non-positive w.
+pub fn setup(tri: &ScreenTriangle, texture: &Texture) -> Option<TexSetup> {
+    if !tri.v.iter().all(|v| v.w.is_finite() && v.w > 0.0) {
+        return None;
+    }
+    let mut uv = tri.v.map(|v| texture.texel_space(v.uv));
+    let mean = (uv[0] + uv[1] + uv[2]) / 3.0;
+    let size = DVec2::new(texture.width() as f64, texture.height() as f64);
+    let shift = (mean / size).floor() * size;
+    if shift.is_finite() {
+        for p in &mut uv {
+            *p -= shift;
+        }
+    }
+    let p = std::array::from_fn(|k| tri.position(k));
+    let planes = PctPlanes::new(p, tri.v.map(|v| v.w), uv.map(|c| (c.x, c.y)))?;
+    let vmax = tri.v.iter().map(|v| 1.0 / v.w).fold(0.0, f64::max);
+    let affine = [
+        tri.scalar_plane(uv.map(|c| c.x))?,
+        tri.scalar_plane(uv.map(|c| c.y))?,
+    ];
+    Some(TexSetup {
+        uv,
+        planes,
+        vmax,
+        affine,
+    })
+}
+
+/// The §14 walker's integer coefficients of `s` relative to the walk's first pixel, if the
+/// block accepts them over `walk`'s pixels.
+pub fn additive_coeffs(s: &TexSetup, walk: &Walk) -> Option<((i64, i64), PctCoeffs, PctCoeffs)> {
+    let first = walk.rows.iter().find(|r| r.len > 0)?;
+    let origin = (first.x_start as i64, first.y as i64);
+    let (cu, cv) = s.planes.coeffs(origin, s.vmax, D_MAX);
+    let pixels: Vec<(i64, i64)> = walk
+        .pixels()
+        .iter()
+        .map(|p| (p.x as i64 - origin.0, p.y as i64 - origin.1))
+        .collect();
+    TexCoordSetup::check(&cu, &cv, &pixels).ok()?;
+    Some((origin, cu, cv))
+}
+
+/// Why the §14 block cannot take a textured triangle of `tris`, if one exists: a one-line
+/// message naming the triangle (its texels beyond the block's range, or its depth too).
+pub fn range_error(tris: &[ScreenTriangle], texture: &Texture) -> Option<String> {
+    for (k, tri) in tris.iter().enumerate() {
+        let walk = crate::raster::walk(tri);
+        if walk.pixel_count() == 0 {
+            continue;
+        }
+        let Some(s) = setup(tri, texture) else {
+            continue;
+        };
+        let first = walk.rows.iter().find(|r| r.len > 0)?;
+        let origin = (first.x_start as i64, first.y as i64);
+        let (cu, cv) = s.planes.coeffs(origin, s.vmax, D_MAX);
+        let pixels: Vec<(i64, i64)> = walk
+            .pixels()
+            .iter()
+            .map(|p| (p.x as i64 - origin.0, p.y as i64 - origin.1))
+            .collect();
+        if let Err(e) = TexCoordSetup::check(&cu, &cv, &pixels) {
+            return Some(format!(
+                "triangle {k} cannot be textured by the texture-coordinate block: {e}"
+            ));
+        }
+    }
+    None
+}
+
+/// The texel-space coordinate of every pixel of `walk`, in walk order, by `coord`.
+pub fn coordinates(s: &TexSetup, walk: &Walk, coord: Coord) -> Vec<DVec2> {
+    let exact = |x: i32, y: i32| {
+        let (u, v) = s.planes.exact(x as i64, y as i64);
+        DVec2::new(u, v)
+    };
+    let mut out = Vec::with_capacity(walk.pixel_count());
+    match coord {
+        Coord::Reference => {
+            for p in walk.pixels() {
+                out.push(exact(p.x, p.y));
+            }
+        }
+        Coord::Affine => {
+            for p in walk.pixels() {
+                out.push(DVec2::new(
+                    s.affine[0].at_pixel(p.x, p.y),
+                    s.affine[1].at_pixel(p.x, p.y),
+                ));
+            }
+        }
+        Coord::Additive => match additive_coeffs(s, walk) {
+            Some((origin, cu, cv)) => {
+                let mut walkers: Option<[PctWalker; 2]> = None;
+                for row in walk.rows.iter().filter(|r| r.len > 0) {
+                    for k in 0..row.len as i64 {
+                        let x = row.x_start as i64 + k * row.dir as i64 - origin.0;
+                        let y = row.y as i64 - origin.1;
+                        let ws = walkers.get_or_insert_with(|| {
+                            [
+                                PctWalker::start(&cu, x, y, 0),
+                                PctWalker::start(&cv, x, y, 0),
+                            ]
+                        });
+                        let mut texel = [0i64; 2];
+                        for (a, wk) in ws.iter_mut().enumerate() {
+                            move_to(wk, x, y);
+                            wk.settle();
+                            texel[a] = wk.u;
+                        }
+                        out.push(DVec2::new(texel[0] as f64, texel[1] as f64));
+                    }
+                }
+            }
+            None => return coordinates(s, walk, Coord::Reference),
+        },
+        Coord::Quadratic => {
+            for row in walk.rows.iter().filter(|r| r.len > 0) {
+                let [u, v] = [0, 1].map(|a| quadratic_row(row, |x| exact(x, row.y)[a]));
+                out.extend(u.into_iter().zip(v).map(|(u, v)| DVec2::new(u, v)));
+            }
+        }
+        Coord::Bezier => {
+            for row in walk.rows.iter().filter(|r| r.len > 0) {
+                let [u, v] = [0, 1].map(|a| bezier_row(s, row, a));
+                out.extend(u.into_iter().zip(v).map(|(u, v)| DVec2::new(u, v)));
+            }
+        }
+    }
+    out
+}
+
+/// Move a walker to pixel (x, y) of the walk by its own steps: down by +1 (the address block
+/// never moves up), then along the line by ±1.
+fn move_to(wk: &mut PctWalker, x: i64, y: i64) {
+    debug_assert!(wk.y <= y, "the walk moved up");
+    while wk.y < y {
+        wk.step_y();
+    }
+    while wk.x < x {
+        wk.step_x();
+    }
+    while wk.x > x {
+        wk.step_x_back();
+    }
+}
+
+/// The §15 quadratic's texel-space coordinate at each pixel of `row`, in walk order: the
+/// quadratic in raw screen x through the exact value at the line's first, middle and last
+/// pixel, stepped in the block's words (the bit-exact twin's arithmetic); a one-pixel line is
+/// its exact value, a two-pixel line a straight line.
+fn quadratic_row(row: &Row, exact: impl Fn(i32) -> f64) -> Vec<f64> {
+    let (x0, x2) = (row.x_start, row_end(row));
+    let n = row.len as usize;
+    let a = match n {
+        1 => [0.0, 0.0, exact(x0)],
+        2 => {
+            let (u0, u2) = (exact(x0), exact(x2));
+            let slope = (u2 - u0) / (x2 - x0) as f64;
+            [0.0, slope, u0 - slope * x0 as f64]
+        }
+        _ => {
+            let x1 = x0 + (n as i32 / 2) * row.dir as i32;
+            let xs = [x0, x1, x2].map(|x| x as f64);
+            quad::lagrange_coeffs(xs, [exact(x0), exact(x1), exact(x2)])
+        }
+    };
+    let words = QuadWords::of(quad::differences(&a, x0 as f64, row.dir as f64));
+    let mut axis = quad::QuadAxis::default();
+    let mut out = Vec::with_capacity(n);
+    for k in 0..n {
+        axis.clock(true, (k == 0).then_some(&words));
+        // The word carries +½: its integer part is the texel; return the texel as a
+        // texel-space coordinate (its centre).
+        out.push(quad::signed_texel(axis.word()) as f64);
+    }
+    out
+}
+
+/// The §16 Bézier's texel-space coordinate (axis 0: u, 1: v) at each pixel of `row`.
+fn bezier_row(s: &TexSetup, row: &Row, axis: usize) -> Vec<f64> {
+    let num = if axis == 0 { s.planes.s } else { s.planes.t };
+    let q = s.planes.q;
+    // The planes at pixel indices: value = k0·x + k1·y + (k2 + (k0 + k1)/2).
+    let at_index = |k: [f64; 3]| [k[0], k[1], k[2] + 0.5 * (k[0] + k[1])];
+    let (n3, q3) = (at_index(num), at_index(q));
+    let k = [n3[0], n3[1], n3[2], q3[0], q3[1], q3[2]];
+    let (x0, x2) = (row.x_start as f64, row_end(row) as f64);
+    let y = row.y as f64;
+    let u = |x: f64| (k[0] * x + k[1] * y + k[2]) / (k[3] * x + k[4] * y + k[5]);
+    let n = row.len as usize;
+    if n == 1 {
+        return vec![u(x0)];
+    }
+    let (mut x1, u1) = texture_bezier::control_point(k, y, x0, x2);
+    x1 = x1.clamp(x0.min(x2), x0.max(x2));
+    let m = 2 * (n - 1);
+    let dt = 1.0 / m as f64;
+    let (mut xs, mut dx, ddx) = texture_bezier::differences([x0, x1, x2], dt);
+    let (mut us, mut du, ddu) = texture_bezier::differences([u(x0), u1, u(x2)], dt);
+    let mut samples = Vec::with_capacity(m + 1);
+    for _ in 0..=m {
+        samples.push((xs, us));
+        xs += dx;
+        dx += ddx;
+        us += du;
+        du += ddu;
+    }
+    // x(t) is monotone (the control point lies within the line), so the distance from a pixel
+    // centre falls, then rises, along the samples.
+    let dir = row.dir as f64;
+    let mut j = 0;
+    (0..n)
+        .map(|i| {
+            let p = x0 + dir * i as f64;
+            while j + 1 < samples.len() && (samples[j + 1].0 - p).abs() <= (samples[j].0 - p).abs()
+            {
+                j += 1;
+            }
+            samples[j].1
+        })
+        .collect()
+}
+
+/// Shade one triangle with a textured method: the texel colour is the diffuse colour, lit as
+/// `normalizer-fit` lights the pixel.
+pub fn shade(
+    tri: &ScreenTriangle,
+    walk: &Walk,
+    ctx: &ShadeContext,
+    texture: &Texture,
+    coord: Coord,
+    emit: Emit,
+) {
+    let Some(s) = setup(tri, texture) else { return };
+    let uv = coordinates(&s, walk, coord);
+    let mut k = 0;
+    normalizer::shade_front_end(tri, walk, ctx, normalizer::FIT, emit, |_, _, d, sp| {
+        let texel = texture.nearest(uv.get(k).copied().unwrap_or(DVec2::ZERO));
+        k += 1;
+        let mut c = *ctx;
+        c.material.diffuse = texel.map(f64::from);
+        c.combine(d, c.specular_power(sp))
+    });
+}

@@ -1,0 +1,212 @@
+//! The textured methods (SPEC §14–§16) on the sphere, the torus and the perspective `plane`,
+//! with the built-in texture, as the CLI builds the scenes (400×400, vertices at 1/16 pixel):
+//!
+//! - `texture` (the §14 walker) picks at every pixel the nearest texel of the exact quotient of
+//!   the integer coefficients it was given, computed here by division (`nearest_texel`), not
+//!   through the walker's words: 0 differ.
+//! - Against the f64 reference with unquantized planes, it differs only where the exact
+//!   coordinate lies within the coefficients' quantization of a half texel (a tie); the count
+//!   is printed.
+//! - `texture-affine` differs from the reference on `plane` (perspective) and not on the
+//!   orthographic scenes beyond ties.
+//! - The quadratic and the Bézier: NMSE against `texture-reference` per scene, printed; on
+//!   `plane` each is nearer the reference than `texture-affine`.
+
+use glam::DVec2;
+use golden::methods::Method;
+use golden::nmse::nmse;
+use golden::raster::walk;
+use golden::render::render;
+use golden::scene::{self, Camera};
+use golden::shade::ShadeContext;
+use golden::shading::texture::{additive_coeffs, coordinates, setup, Coord};
+use golden::texture::Texture;
+use golden::units::texture_coord::nearest_texel;
+use golden::ScreenTriangle;
+
+fn scene_tris(name: &str) -> Vec<ScreenTriangle> {
+    let (w, h) = (400, 400);
+    let (mesh, cam) = match name {
+        "sphere" => {
+            let m = scene::uv_sphere(50).unwrap();
+            let c = Camera::fit(&m, w, h, glam::DQuat::IDENTITY);
+            (m, c)
+        }
+        "torus" => {
+            let m = scene::torus(50).unwrap();
+            let c = Camera::fit(&m, w, h, glam::DQuat::from_rotation_x(55f64.to_radians()));
+            (m, c)
+        }
+        "plane" => {
+            let m = scene::plane(50).unwrap();
+            let c = Camera::plane_view(&m, w, h);
+            (m, c)
+        }
+        _ => unreachable!(),
+    };
+    scene::project_subpixel(&mesh, &cam, w, h, golden::SUBPIXEL_BITS).unwrap()
+}
+
+#[derive(Default, Debug)]
+struct Counts {
+    pixels: usize,
+    /// `texture` against the nearest texel of its coefficients' quotient, by division.
+    vs_division: usize,
+    /// `texture` against the f64 reference's texel.
+    vs_reference: usize,
+    /// Of those, at a tie within the quantization bound.
+    at_tie: usize,
+    /// `texture-affine` against the reference's texel.
+    affine: usize,
+}
+
+fn counts(tris: &[ScreenTriangle], tex: &Texture) -> Counts {
+    let mut c = Counts::default();
+    for tri in tris {
+        let wk = walk(tri);
+        if wk.pixel_count() == 0 {
+            continue;
+        }
+        let s = setup(tri, tex).expect("a textured triangle with an area");
+        let (origin, cu, cv) = additive_coeffs(&s, &wk).expect("within the block's range");
+        let add = coordinates(&s, &wk, Coord::Additive);
+        let reference = coordinates(&s, &wk, Coord::Reference);
+        let affine = coordinates(&s, &wk, Coord::Affine);
+        let nearest = |p: DVec2| ((p.x + 0.5).floor() as i64, (p.y + 0.5).floor() as i64);
+        for (k, p) in wk.pixels().iter().enumerate() {
+            c.pixels += 1;
+            let (x, y) = (p.x as i64 - origin.0, p.y as i64 - origin.1);
+            let by_division = (nearest_texel(&cu, x, y), nearest_texel(&cv, x, y));
+            let got = (add[k].x as i64, add[k].y as i64);
+            if got != by_division {
+                c.vs_division += 1;
+            }
+            let r = nearest(reference[k]);
+            if got != r {
+                c.vs_reference += 1;
+                // The quotient's error from rounding each coefficient by at most ½:
+                // |ΔN| + |u|·|ΔD| over D, with |ΔN|, |ΔD| ≤ ½(|x| + |y| + 1).
+                let dn = 0.5 * (x.abs() + y.abs() + 1) as f64;
+                let tie = |exact: f64, cc: &golden::units::texture_coord::PctCoeffs| {
+                    let d = cc.d(x, y) as f64;
+                    let bound = dn * (1.0 + exact.abs()) / d;
+                    ((exact + 0.5) - (exact + 0.5).round()).abs() <= bound
+                };
+                let differs_u = got.0 != r.0;
+                let differs_v = got.1 != r.1;
+                if (!differs_u || tie(reference[k].x, &cu))
+                    && (!differs_v || tie(reference[k].y, &cv))
+                {
+                    c.at_tie += 1;
+                } else {
+                    eprintln!(
+                        "pixel ({}, {}): texture {got:?}, reference {r:?} from {:?}",
+                        p.x, p.y, reference[k]
+                    );
+                }
+            }
+            if nearest(affine[k]) != r {
+                c.affine += 1;
+            }
+        }
+    }
+    c
+}
+
+#[test]
+fn the_additive_texel_is_the_nearest_texel_of_its_coefficients_on_every_scene() {
+    let tex = Texture::builtin();
+    for name in ["sphere", "torus", "plane"] {
+        let tris = scene_tris(name);
+        let c = counts(&tris, tex);
+        eprintln!(
+            "{name}: {} pixels; texture vs its coefficients' quotient by division: {} differ; vs the f64 reference: {} differ ({} of them at a tie within the coefficients' quantization); texture-affine vs the reference: {} differ",
+            c.pixels, c.vs_division, c.vs_reference, c.at_tie, c.affine
+        );
+        assert!(c.pixels > 10_000, "{name}: {c:?}");
+        assert_eq!(c.vs_division, 0, "{name}: {c:?}");
+        assert_eq!(
+            c.at_tie, c.vs_reference,
+            "{name}: a difference not at a tie: {c:?}"
+        );
+        if name == "plane" {
+            assert!(c.affine > c.pixels / 10, "{name}: {c:?}");
+        } else {
+            // Orthographic: w = 1, the affine coordinate is the reference's up to rounding.
+            assert!(c.affine <= c.pixels / 1000, "{name}: {c:?}");
+        }
+    }
+}
+
+#[test]
+fn the_span_approximations_against_the_textured_reference() {
+    let ctx = ShadeContext::default();
+    for name in ["sphere", "torus", "plane"] {
+        let tris = scene_tris(name);
+        let r = render(&tris, Method::TextureReference, &ctx, 400, 400);
+        let e = |m| nmse(&r.rgb, &render(&tris, m, &ctx, 400, 400).rgb);
+        let (add, quad, bez, aff) = (
+            e(Method::Texture),
+            e(Method::TextureQuadratic),
+            e(Method::TextureBezier),
+            e(Method::TextureAffine),
+        );
+        eprintln!(
+            "{name}: NMSE against texture-reference: texture {add:.3e}, texture-quadratic {quad:.3e}, texture-bezier {bez:.3e}, texture-affine {aff:.3e}"
+        );
+        if name == "plane" {
+            assert!(quad < aff && bez < aff, "{name}");
+        }
+    }
+}
+
+/// The set-up's perspective-correct planes against geometry: on `plane` projected with 20
+/// fraction bits (so the vertices' rounding is negligible), the reference coordinate at every
+/// pixel centre of every triangle is the texture coordinate of the point where the ray from
+/// the eye through that centre meets the ground, computed from the camera and the plane's own
+/// parametrisation (not through `PctPlanes`).
+#[test]
+fn the_reference_coordinate_is_where_the_eye_ray_meets_the_plane() {
+    let (w, h) = (400, 400);
+    let mesh = scene::plane(50).unwrap();
+    let cam = Camera::plane_view(&mesh, w, h);
+    let d = cam.eye.expect("a perspective camera");
+    let tris = scene::project_subpixel(&mesh, &cam, w, h, 20).unwrap();
+    assert_eq!(
+        tris.len(),
+        mesh.triangles.len(),
+        "every face of the plane faces the eye"
+    );
+    let tex = Texture::builtin();
+    let inv = cam.rotation.inverse();
+    let width = 2.0 * scene::PLANE_HALF_WIDTH;
+    let mut worst: f64 = 0.0;
+    let mut n = 0;
+    for tri in &tris {
+        let wk = walk(tri);
+        let s = setup(tri, tex).unwrap();
+        let got = coordinates(&s, &wk, Coord::Reference);
+        for (k, p) in wk.pixels().iter().enumerate() {
+            // The ray: view points v = (a·w, b·w, d − d·w), w > 0.
+            let a = (p.x as f64 + 0.5 - cam.screen_centre.x) / cam.scale;
+            let b = -(p.y as f64 + 0.5 - cam.screen_centre.y) / cam.scale;
+            let base = cam.centre + inv * glam::DVec3::new(0.0, 0.0, d);
+            let dir = inv * glam::DVec3::new(a, b, -d);
+            let ww = -base.y / dir.y;
+            let hit = base + dir * ww;
+            let st = DVec2::new((hit.x + scene::PLANE_HALF_WIDTH) / width, -hit.z / width);
+            let want = tex.texel_space(st);
+            // The set-up moved the triangle by whole repeats.
+            let off = want - got[k];
+            let rep = DVec2::new(
+                (off.x / 256.0).round() * 256.0,
+                (off.y / 256.0).round() * 256.0,
+            );
+            worst = worst.max((off - rep).abs().max_element());
+            n += 1;
+        }
+    }
+    eprintln!("plane: {n} pixels, largest |reference − ray-cast| {worst:.2e} texel");
+    assert!(n > 10_000);
+    assert!(worst < 1e-4, "{worst}");
+}
