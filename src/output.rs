@@ -66,7 +66,8 @@ pub fn fnv1a(bytes: &[u8]) -> String {
 }
 
 /// Whether `name` is a file a render writes: `report.json`, `reference.png`, `sheet.png`, or
-/// `<method>[-diff|-rtl|-rtl-diff|-golden|-rtl-vs-golden-diff].png`.
+/// `<method>[-diff|-rtl|-rtl-diff|-golden|-rtl-vs-golden-diff].png` (the methods include
+/// `texture-reference`).
 pub fn is_render_output(name: &str) -> bool {
     if matches!(name, REPORT_FILE | "reference.png" | "sheet.png") {
         return true;
@@ -84,8 +85,8 @@ pub fn is_render_output(name: &str) -> bool {
     .iter()
     .find_map(|s| stem.strip_suffix(s))
     .unwrap_or(stem);
-    golden::methods::Method::ALL_NON_REFERENCE
-        .iter()
+    golden::methods::Method::all()
+        .filter(|&m| m != golden::methods::Method::Reference)
         .any(|m| m.name() == method)
 }
 

@@ -7,6 +7,7 @@ use anyhow::{bail, Context, Result};
 use glam::{DQuat, DVec3};
 use golden::scene::{self, Camera};
 use golden::shade::{LightingModel, Material, ShadeContext};
+use golden::texture::Texture;
 use golden::ScreenTriangle;
 
 /// Lighting model for every method (`--lighting`).
@@ -32,8 +33,9 @@ impl From<Lighting> for LightingModel {
 /// prototype's: sphere, tessellation 50, shininess 50, light at 90°.
 #[derive(clap::Args, Debug, Clone, serde::Serialize)]
 pub struct SceneArgs {
-    /// `sphere`, `torus`, or the path of a Wavefront .obj mesh (any path the system accepts,
-    /// UTF-8 or not).
+    /// `sphere`, `torus`, `plane` (a textured ground plane receding to the horizon, through a
+    /// perspective camera), or the path of a Wavefront .obj mesh (any path the system accepts,
+    /// UTF-8 or not; its `vt` texture coordinates are read).
     #[arg(long, default_value = "sphere")]
     #[serde(serialize_with = "lossy_path")]
     pub scene: PathBuf,
@@ -67,6 +69,13 @@ pub struct SceneArgs {
     /// every method, golden and RTL) or 0 (integer 12-bit addresses).
     #[arg(long, default_value_t = golden::SUBPIXEL_BITS, value_parser = parse_subpixel)]
     pub subpixel: u32,
+    /// The texture the textured methods read: a PNG of power-of-two sides from 1 to 1024 texels
+    /// (8-bit; grey or alpha channels are converted to RGB, alpha ignored), wrapped with GL_REPEAT,
+    /// (s, t) = (0, 0) at its bottom-left corner. Default: the built-in 256×256 checkerboard with
+    /// a coloured grid.
+    #[arg(long)]
+    #[serde(serialize_with = "lossy_opt_path")]
+    pub texture: Option<PathBuf>,
 }
 
 /// Parse `--subpixel`: 0 or [`golden::SUBPIXEL_BITS`].
@@ -92,6 +101,7 @@ impl Default for SceneArgs {
             lighting: Lighting::Blinn,
             subdivide: golden::shading::refine::Subdivide::OFF,
             subpixel: golden::SUBPIXEL_BITS,
+            texture: None,
         }
     }
 }
@@ -125,13 +135,85 @@ pub struct Setup {
     pub ctx: ShadeContext,
     pub width: u32,
     pub height: u32,
+    /// The texture the textured methods read (`--texture`, or the built-in one).
+    pub texture: Texture,
+    /// Whether the mesh has texture coordinates (the procedural scenes do; an OBJ file when it
+    /// has `vt`).
+    pub textured_mesh: bool,
 }
 
 fn lossy_path<S: serde::Serializer>(p: &Path, s: S) -> std::result::Result<S::Ok, S::Error> {
     s.serialize_str(&p.to_string_lossy())
 }
 
+fn lossy_opt_path<S: serde::Serializer>(
+    p: &Option<PathBuf>,
+    s: S,
+) -> std::result::Result<S::Ok, S::Error> {
+    match p {
+        Some(p) => s.serialize_str(&p.to_string_lossy()),
+        None => s.serialize_none(),
+    }
+}
+
+/// Largest texture PNG file read (bytes): a 1024×1024 RGB8 image, uncompressed, with room.
+const MAX_TEXTURE_BYTES: u64 = 16 << 20;
+
+/// Read the texture PNG `path`: a regular file of at most 16 MiB, a PNG whose sides are powers
+/// of two from 1 to 1024 (checked from its header, before decoding), decoded to RGB8.
+pub fn load_texture(path: &Path) -> Result<Texture> {
+    use golden::scene::SceneError;
+    let shown = path.display();
+    let bytes = golden::scene::read_regular_file(path, MAX_TEXTURE_BYTES).map_err(|e| match e {
+        SceneError::ObjMissing { .. } => anyhow::anyhow!("texture file {shown} not found"),
+        SceneError::ObjUnreadable { reason, .. } => {
+            anyhow::anyhow!("texture file {shown} cannot be read: {reason}")
+        }
+        e => anyhow::anyhow!("texture file {shown}: {e}"),
+    })?;
+    let reader = || {
+        image::ImageReader::with_format(std::io::Cursor::new(&bytes[..]), image::ImageFormat::Png)
+    };
+    let bad =
+        |e: image::ImageError| anyhow::anyhow!("texture file {shown} is not a readable PNG: {e}");
+    let (width, height) = reader().into_dimensions().map_err(bad)?;
+    let side_ok = |n: u32| n.is_power_of_two() && n <= golden::texture::MAX_TEXTURE_SIDE;
+    if !side_ok(width) || !side_ok(height) {
+        bail!(
+            "texture file {shown} is {width}x{height}: each side must be a power of two from 1 to {}",
+            golden::texture::MAX_TEXTURE_SIDE
+        );
+    }
+    let mut r = reader();
+    let mut limits = image::Limits::default();
+    limits.max_image_width = Some(golden::texture::MAX_TEXTURE_SIDE);
+    limits.max_image_height = Some(golden::texture::MAX_TEXTURE_SIDE);
+    limits.max_alloc = Some(64 << 20);
+    r.limits(limits);
+    let img = r.decode().map_err(bad)?.to_rgb8();
+    let rgb = img.pixels().map(|p| p.0).collect();
+    Texture::new(width, height, rgb).map_err(|e| anyhow::anyhow!("texture file {shown}: {e}"))
+}
+
 impl Setup {
+    /// An error when a textured method is asked for a scene it cannot texture: a mesh without
+    /// texture coordinates, or a triangle beyond the texture-coordinate block's range.
+    pub fn check_textured(&self, methods: &[golden::methods::Method], scene: &Path) -> Result<()> {
+        let Some(m) = methods.iter().find(|m| m.is_textured()) else {
+            return Ok(());
+        };
+        if !self.textured_mesh {
+            bail!(
+                "method {m} needs texture coordinates, and scene {} has none (an OBJ file gives them with `vt` lines)",
+                scene.display()
+            );
+        }
+        if let Some(e) = golden::shading::texture::range_error(&self.tris, &self.texture) {
+            bail!("scene {}: {e}", scene.display());
+        }
+        Ok(())
+    }
+
     /// An error unless some front-facing triangle covers a pixel of the canvas: a scene that
     /// draws nothing would report every method "identical" on a black image (`render`,
     /// `sweep`) or stream no triangle (`stream`). Empty work is an error everywhere.
@@ -183,12 +265,18 @@ impl SceneArgs {
 /// Build the scene described by `args`.
 pub fn build(args: &SceneArgs) -> Result<Setup> {
     let (width, height) = args.size;
+    let mut perspective = false;
     let (mesh, rotation) = match args.scene.to_str() {
         Some("sphere") => (scene::uv_sphere(args.rez)?, DQuat::IDENTITY),
         Some("torus") => (
             scene::torus(args.rez)?,
             DQuat::from_rotation_x(55f64.to_radians()),
         ),
+        Some("plane") => {
+            // Its perspective camera: `Camera::plane_view`.
+            perspective = true;
+            (scene::plane(args.rez)?, DQuat::IDENTITY)
+        }
         _ if args.is_obj() => {
             let (mesh, fallbacks) = scene::load_obj_counting(&args.scene)?;
             if fallbacks > 0 {
@@ -205,11 +293,20 @@ pub fn build(args: &SceneArgs) -> Result<Setup> {
             (mesh, DQuat::IDENTITY)
         }
         _ => bail!(
-            "unknown scene {:?}: expected `sphere`, `torus` or the path of a .obj file",
+            "unknown scene {:?}: expected `sphere`, `torus`, `plane` or the path of a .obj file",
             args.scene.display().to_string()
         ),
     };
-    let camera = Camera::fit(&mesh, width, height, rotation);
+    let camera = if perspective {
+        Camera::plane_view(&mesh, width, height)
+    } else {
+        Camera::fit(&mesh, width, height, rotation)
+    };
+    let textured_mesh = !mesh.uvs.is_empty();
+    let texture = match &args.texture {
+        Some(p) => load_texture(p)?,
+        None => Texture::builtin().clone(),
+    };
     let base = scene::project_subpixel(&mesh, &camera, width, height, args.subpixel)
         .with_context(|| format!("projecting scene {:?}", args.scene))?;
     let tris = golden::shading::refine::refine(&base, args.subdivide);
@@ -229,5 +326,7 @@ pub fn build(args: &SceneArgs) -> Result<Setup> {
         ctx,
         width,
         height,
+        texture,
+        textured_mesh,
     })
 }

@@ -67,6 +67,16 @@ fn render_writes_every_file_of_the_default_scene() {
         assert!(entry["band"].is_string(), "{m}: no band");
     }
     assert!(dir.path().join("sheet.png").exists());
+    // The textured methods, judged against texture-reference (against the untextured
+    // reference their NMSE would be above 1e-2): the additive texture differs at ties only.
+    assert!(dir.path().join("texture-reference.png").exists());
+    for m in Method::TEXTURED.map(Method::name) {
+        assert!(dir.path().join(format!("{m}.png")).exists(), "{m}");
+        let nmse = report["methods"][m]["nmse"].as_f64().unwrap();
+        assert!(nmse < 1e-4, "{m}: NMSE {nmse} against texture-reference");
+    }
+    let texture = report["methods"]["texture"]["nmse"].as_f64().unwrap();
+    assert!(texture < 1e-6, "texture: NMSE {texture}");
     // The metric must discriminate: flat shading is far from Phong.
     let flat = report["methods"]["flat"]["nmse"].as_f64().unwrap();
     assert!(
@@ -130,9 +140,10 @@ fn main_job_renders_golden_and_rtl_of_every_hardware_method() {
         assert_eq!(vs["visibility_mismatches"].as_u64(), Some(0), "{m}");
     }
     // The sheet: 16 tiles of 400×400 (the reference and 15 methods) in bands of 5, each band a
-    // golden and an RTL row.
+    // golden and an RTL row; then the textured row (texture-reference and the four textured
+    // methods, no hardware: no RTL row).
     let sheet = image::open(dir.path().join("sheet.png")).unwrap();
-    assert_eq!(sheet.height(), 8 * (400 + 14 + 4) + 4, "sheet rows");
+    assert_eq!(sheet.height(), 9 * (400 + 14 + 4) + 4, "sheet rows");
     // The parallel run's frame equals the method rendered alone.
     let alone = tempfile::tempdir().unwrap();
     let out = shadecore(&[
@@ -681,4 +692,80 @@ fn subpixel_vertices_render_golden_and_through_every_top() {
     }
     let out = dir("refused");
     assert_clean_error(&["render", "--out", &out, "--subpixel", "3"], "expected 0");
+}
+
+/// The textured scene `plane` through the CLI: `texture` within ties of `texture-reference`,
+/// `texture-affine` visibly not (perspective), every textured file written; and the textured
+/// methods' bad input as one-line errors.
+#[test]
+fn plane_renders_textured_and_bad_textures_are_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("plane");
+    let o = shadecore(&[
+        "render",
+        "--scene",
+        "plane",
+        "--engine",
+        "golden",
+        "--method",
+        "texture,texture-affine,texture-quadratic,texture-bezier",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap()).unwrap();
+    let nmse = |m: &str| report["methods"][m]["nmse"].as_f64().unwrap();
+    assert!(nmse("texture") < 1e-4, "texture {}", nmse("texture"));
+    assert!(
+        nmse("texture-affine") > 1e-2,
+        "affine {}",
+        nmse("texture-affine")
+    );
+    assert!(nmse("texture-quadratic") < nmse("texture-affine"));
+    assert!(nmse("texture-bezier") < nmse("texture-affine"));
+    for f in [
+        "texture-reference.png",
+        "texture-affine-diff.png",
+        "sheet.png",
+    ] {
+        assert!(out.join(f).is_file(), "{f}");
+    }
+
+    let obj = dir.path().join("nan.obj");
+    std::fs::write(
+        &obj,
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt nan 0\nvt 0 1\nf 1/1 2/2 3/3\n",
+    )
+    .unwrap();
+    let plain = dir.path().join("plain.obj");
+    std::fs::write(&plain, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").unwrap();
+    let text = dir.path().join("t.png");
+    std::fs::write(&text, "not a png").unwrap();
+    let bad_out = dir.path().join("bad");
+    let bad = |args: &[&str], needle: &str| {
+        let mut all = vec![
+            "render", "--engine", "golden", "--size", "64x48", "--method",
+        ];
+        all.extend(args);
+        all.extend(["--out", bad_out.to_str().unwrap()]);
+        let o = shadecore(&all);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(!o.status.success(), "{args:?} succeeded");
+        assert_eq!(err.trim().lines().count(), 1, "{args:?}: {err}");
+        assert!(err.contains(needle), "{args:?}: {err}");
+        assert!(!err.contains("panicked"), "{args:?}: {err}");
+    };
+    bad(
+        &["texture", "--scene", obj.to_str().unwrap()],
+        "line 5 is not finite",
+    );
+    bad(
+        &["texture-affine", "--scene", plain.to_str().unwrap()],
+        "texture coordinates",
+    );
+    bad(
+        &["texture", "--texture", text.to_str().unwrap()],
+        "not a readable PNG",
+    );
 }

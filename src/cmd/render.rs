@@ -7,7 +7,7 @@ use std::path::PathBuf;
 use anyhow::{Context, Result};
 use golden::methods::Method;
 use golden::nmse::{self, Band};
-use golden::render::{render, Frame};
+use golden::render::Frame;
 use indicatif::{MultiProgress, ProgressBar, ProgressStyle};
 use rayon::prelude::*;
 use serde::Serialize;
@@ -39,7 +39,9 @@ pub struct Args {
     pub scene: SceneArgs,
     /// Methods to render, comma-separated (default: all; with `--engine rtl`, all the hardware
     /// has). Names: flat, gouraud, subdivision, normalizer, normalizer-fit, normalizer-pw, fast,
-    /// fast-fit, angular, quadric, cubic, brdf-k4, brdf-k8, brdf-k16, bump.
+    /// fast-fit, angular, quadric, cubic, brdf-k4, brdf-k8, brdf-k16, bump; the textured
+    /// methods texture, texture-quadratic, texture-bezier, texture-affine (judged against
+    /// texture-reference, rendered with them).
     #[arg(long, value_delimiter = ',')]
     pub method: Vec<String>,
     /// Output directory.
@@ -154,7 +156,9 @@ struct Report<'a> {
 /// Parse `--method` names (empty = every method).
 pub fn parse_methods(names: &[String]) -> Result<Vec<Method>> {
     if names.is_empty() {
-        return Ok(Method::ALL_NON_REFERENCE.to_vec());
+        let mut all = Method::ALL_NON_REFERENCE.to_vec();
+        all.extend(Method::TEXTURED);
+        return Ok(all);
     }
     let mut out: Vec<Method> = Vec::with_capacity(names.len());
     for n in names {
@@ -170,26 +174,61 @@ pub fn parse_methods(names: &[String]) -> Result<Vec<Method>> {
     Ok(out)
 }
 
-/// Render the reference and `methods` with the golden engine, in parallel.
-pub fn render_golden(setup: &Setup, methods: &[Method], bar: &ProgressBar) -> (Frame, Vec<Frame>) {
-    let reference = render(
-        &setup.base,
-        Method::Reference,
+/// The reference images `methods` are judged against ([`Method::reference_of`]): `reference`,
+/// and `texture-reference` when a textured method is among them; golden, from the undivided
+/// mesh.
+pub fn render_references(setup: &Setup, methods: &[Method]) -> References {
+    let textured = methods
+        .iter()
+        .any(|m| m.reference_of() == Method::TextureReference)
+        .then(|| render_setup(setup, &setup.base, Method::TextureReference));
+    References {
+        plain: render_setup(setup, &setup.base, Method::Reference),
+        textured,
+    }
+}
+
+/// The reference images of a render.
+pub struct References {
+    pub plain: Frame,
+    /// `texture-reference`, when a textured method is rendered.
+    pub textured: Option<Frame>,
+}
+
+impl References {
+    /// The image `m` is judged against.
+    pub fn of(&self, m: Method) -> &Frame {
+        match m.reference_of() {
+            Method::TextureReference => self.textured.as_ref().expect("rendered with its methods"),
+            _ => &self.plain,
+        }
+    }
+}
+
+/// `m` on `tris` of the set-up, golden, with the set-up's texture.
+fn render_setup(setup: &Setup, tris: &[golden::ScreenTriangle], m: Method) -> Frame {
+    golden::render::render_textured(
+        tris,
+        m,
         &setup.ctx,
+        &setup.texture,
         setup.width,
         setup.height,
-    );
+    )
+}
+
+/// Render the references and `methods` with the golden engine, in parallel.
+pub fn render_golden(
+    setup: &Setup,
+    methods: &[Method],
+    bar: &ProgressBar,
+) -> (References, Vec<Frame>) {
+    let reference = render_references(setup, methods);
     bar.inc(1);
     let frames = methods
         .par_iter()
         .map(|&m| {
-            let f = colours_only(render(
-                &setup.tris,
-                m,
-                &setup.ctx,
-                setup.width,
-                setup.height,
-            ));
+            let f = colours_only(render_setup(setup, &setup.tris, m));
             bar.inc(1);
             f
         })
@@ -232,7 +271,7 @@ fn progress_bar(methods: usize, engine: Engine) -> ProgressBar {
 /// The frames of one render: the reference, and per method the golden frame and/or the RTL
 /// frame with the hardware's counters.
 struct Frames {
-    reference: Frame,
+    reference: References,
     golden: Vec<Option<Frame>>,
     rtl: Vec<Option<(Frame, RtlStats)>>,
 }
@@ -361,11 +400,7 @@ fn render_frames(
     let multi = MultiProgress::new();
     let ticker = crate::output::LogTicker::start("render");
     let (reference, golden) = if engine == Engine::Rtl {
-        let (w, h) = (setup.width, setup.height);
-        (
-            render(&setup.base, Method::Reference, &setup.ctx, w, h),
-            vec![None; n],
-        )
+        (render_references(setup, methods), vec![None; n])
     } else {
         let bar = multi.add(progress_bar(n, Engine::Golden));
         ticker.watch("golden images", &bar);
@@ -415,7 +450,7 @@ fn compare_with_golden(
     let golden = match golden {
         Some(g) => g,
         None => {
-            rendered = render(&setup.tris, m, &setup.ctx, w, h);
+            rendered = render_setup(setup, &setup.tris, m);
             save_png(
                 &out.join(format!("{}-golden.png", m.name())),
                 w,
@@ -472,11 +507,39 @@ fn write_images(
     out: &std::path::Path,
 ) -> Result<BTreeMap<String, MethodReport>> {
     let (w, h) = (setup.width, setup.height);
-    let reference = &frames.reference;
-    save_png(&out.join("reference.png"), w, h, &reference.rgb)?;
+    let cols = 5;
+    save_png(
+        &out.join("reference.png"),
+        w,
+        h,
+        &frames.reference.plain.rgb,
+    )?;
     let mut reports = BTreeMap::new();
-    let mut tiles: Vec<SheetColumn> = vec![("reference".into(), Some(&reference.rgb[..]), None)];
-    for (i, &m) in methods.iter().enumerate() {
+    let mut tiles: Vec<SheetColumn> = vec![(
+        "reference".into(),
+        Some(&frames.reference.plain.rgb[..]),
+        None,
+    )];
+    // The textured methods start a row of the sheet, after their reference.
+    let mut order: Vec<usize> = (0..methods.len()).collect();
+    order.sort_by_key(|&i| methods[i].is_textured());
+    let mut textured_row = false;
+    for i in order {
+        let m = methods[i];
+        if m.is_textured() && !textured_row {
+            textured_row = true;
+            let t = frames
+                .reference
+                .textured
+                .as_ref()
+                .expect("rendered with its methods");
+            save_png(&out.join("texture-reference.png"), w, h, &t.rgb)?;
+            while !tiles.len().is_multiple_of(cols) {
+                tiles.push((String::new(), None, None));
+            }
+            tiles.push(("texture-reference".into(), Some(&t.rgb[..]), None));
+        }
+        let reference = frames.reference.of(m);
         let golden = frames.golden[i].as_ref();
         let rtl = frames.rtl[i].as_ref();
         // The engine's image for `<method>.png`: golden, or the RTL one under `--engine rtl`.
@@ -514,11 +577,10 @@ fn write_images(
         ));
         reports.insert(m.name().to_string(), r);
     }
-    let cols = 5;
     let grid: Vec<(String, Option<&[[u8; 3]]>)> =
         if frames.rtl.iter().any(Option::is_some) && frames.golden.iter().any(Option::is_some) {
             // Bands of two rows: golden images, then the RTL image under each (blank where the
-            // hardware has no such method).
+            // hardware has no such method; no second row where none of the band has).
             let mut g = Vec::new();
             for band in tiles.chunks(cols) {
                 g.extend(band.iter().map(|(l, img, _)| (l.clone(), *img)));
@@ -526,6 +588,9 @@ fn write_images(
                     (String::new(), None),
                     cols - band.len(),
                 ));
+                if band.iter().all(|(_, _, r)| r.is_none()) {
+                    continue; // no method of the band has hardware (the textured row)
+                }
                 g.extend(band.iter().map(|(_, _, r)| match r {
                     Some((l, img)) => (l.clone(), Some(*img)),
                     None => (String::new(), None),
@@ -560,7 +625,7 @@ fn print_table(args: &Args, setup: &Setup, methods: &[Method], report: &Report) 
     )?;
     if args.engine == Engine::Both {
         crate::outln!(
-            "{:<16} {:>10} {:>10}  {:<22} {:>13} {:>9} {:>9} {:>7}",
+            "{:<18} {:>10} {:>10}  {:<22} {:>13} {:>9} {:>9} {:>7}",
             "method",
             "golden",
             "rtl",
@@ -574,7 +639,7 @@ fn print_table(args: &Args, setup: &Setup, methods: &[Method], report: &Report) 
             let r = &report.methods[m.name()];
             match &r.rtl {
                 Some(t) => crate::outln!(
-                    "{:<16} {:>10.3e} {:>10.3e}  {:<22} {:>9} LSB {:>9} {:>9.3} {:>7.1}",
+                    "{:<18} {:>10.3e} {:>10.3e}  {:<22} {:>9} LSB {:>9} {:>9.3} {:>7.1}",
                     m.name(),
                     r.nmse,
                     t.nmse,
@@ -585,7 +650,7 @@ fn print_table(args: &Args, setup: &Setup, methods: &[Method], report: &Report) 
                     t.vs_golden.seconds
                 )?,
                 None => crate::outln!(
-                    "{:<16} {:>10.3e} {:>10}  {:<22} {:>13}",
+                    "{:<18} {:>10.3e} {:>10}  {:<22} {:>13}",
                     m.name(),
                     r.nmse,
                     "-",
@@ -594,14 +659,14 @@ fn print_table(args: &Args, setup: &Setup, methods: &[Method], report: &Report) 
                 )?,
             }
         }
-        crate::outln!("NMSE against the reference; \"rtl vs golden\": largest channel difference between the RTL and golden images of the same method; \"other vis\": pixels where the hardware's depth words show another surface than the f64 depth planes")?;
+        crate::outln!("NMSE against the reference (the textured methods: against texture-reference); \"rtl vs golden\": largest channel difference between the RTL and golden images of the same method; \"other vis\": pixels where the hardware's depth words show another surface than the f64 depth planes")?;
         return Ok(());
     }
-    crate::outln!("{:<16} {:>12} {:>6}  band", "method", "NMSE", "max Δ")?;
+    crate::outln!("{:<18} {:>12} {:>6}  band", "method", "NMSE", "max Δ")?;
     for m in methods {
         let r = &report.methods[m.name()];
         crate::outln!(
-            "{:<16} {:>12.3e} {:>6}  {}",
+            "{:<18} {:>12.3e} {:>6}  {}",
             m.name(),
             r.nmse,
             r.max_abs_diff,
@@ -698,6 +763,7 @@ pub fn run(args: Args) -> Result<()> {
     check_rtl_flags(&args, &methods)?;
     let setup = build(&args.scene)?;
     setup.ensure_drawn()?;
+    setup.check_textured(&methods, &args.scene.scene)?;
     let dir = crate::output::RenderDir::open(&args.out)?;
     let sim = if args.engine == Engine::Golden {
         crate::sim::Sim::RustHdl

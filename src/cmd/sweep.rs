@@ -67,6 +67,7 @@ pub fn run(args: Args) -> Result<()> {
                             lighting: args.lighting,
                             subdivide: args.subdivide,
                             subpixel: args.subpixel,
+                            texture: None,
                         },
                         built_in,
                     ));
@@ -97,7 +98,10 @@ pub fn run(args: Args) -> Result<()> {
         .par_iter()
         .map(|setup| {
             let (reference, frames) = render_golden(setup, methods, &bar);
-            frames.iter().map(|f| compare(&reference, f).nmse).collect()
+            frames
+                .iter()
+                .map(|f| compare(&reference.plain, f).nmse)
+                .collect()
         })
         .collect();
     bar.finish_and_clear();
