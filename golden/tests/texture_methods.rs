@@ -68,10 +68,10 @@ fn counts(tris: &[ScreenTriangle], tex: &Texture) -> Counts {
             continue;
         }
         let s = setup(tri, tex).expect("a textured triangle with an area");
-        let (origin, cu, cv) = additive_coeffs(&s, &wk).expect("within the block's range");
-        let add = coordinates(&s, &wk, Coord::Additive);
-        let reference = coordinates(&s, &wk, Coord::Reference);
-        let affine = coordinates(&s, &wk, Coord::Affine);
+        let (origin, cu, cv) = additive_coeffs(tri, &s, &wk).expect("within the block's range");
+        let add = coordinates(tri, &s, &wk, Coord::Additive);
+        let reference = coordinates(tri, &s, &wk, Coord::Reference);
+        let affine = coordinates(tri, &s, &wk, Coord::Affine);
         let nearest = |p: DVec2| ((p.x + 0.5).floor() as i64, (p.y + 0.5).floor() as i64);
         for (k, p) in wk.pixels().iter().enumerate() {
             c.pixels += 1;
@@ -185,7 +185,7 @@ fn the_reference_coordinate_is_where_the_eye_ray_meets_the_plane() {
     for tri in &tris {
         let wk = walk(tri);
         let s = setup(tri, tex).unwrap();
-        let got = coordinates(&s, &wk, Coord::Reference);
+        let got = coordinates(tri, &s, &wk, Coord::Reference);
         for (k, p) in wk.pixels().iter().enumerate() {
             // The ray: view points v = (a·w, b·w, d − d·w), w > 0.
             let a = (p.x as f64 + 0.5 - cam.screen_centre.x) / cam.scale;
@@ -209,4 +209,105 @@ fn the_reference_coordinate_is_where_the_eye_ray_meets_the_plane() {
     eprintln!("plane: {n} pixels, largest |reference − ray-cast| {worst:.2e} texel");
     assert!(n > 10_000);
     assert!(worst < 1e-4, "{worst}");
+}
+
+/// The `texture-coord` block on the scenes: the address block's cycle model held by the
+/// block twin's `ready`, every triangle of the scene back to back (the next loaded once the
+/// previous one's first event is taken). Every pixel's texel is the golden `texture` method's;
+/// fragments per clock are printed per scene and k (the address block alone beside them).
+/// The default k = 2 keeps at least 0.95 of the address block's rate on the default scene.
+#[test]
+fn the_texture_coord_block_on_the_scenes_texels_and_fragments_per_clock() {
+    use golden::units::address_block::{AddressBlockModel, AddressSetup};
+    use golden::units::texture_coord::block::{
+        walk_geometry, TexCoordModel, TexCoordSetup, TexEvent,
+    };
+    let tex = Texture::builtin();
+    for name in ["sphere", "torus", "plane"] {
+        let tris = scene_tris(name);
+        // Per triangle: the address set-up, the block's set-up, and the golden texels.
+        let mut jobs = Vec::new();
+        let mut want: Vec<(u32, u32, i64, i64)> = Vec::new();
+        for tri in &tris {
+            let wk = walk(tri);
+            if wk.pixel_count() == 0 {
+                continue;
+            }
+            let s = setup(tri, tex).unwrap();
+            let addr = AddressSetup::new(tri);
+            let (origin, f, dir) = walk_geometry(&addr);
+            let (cu, cv) = s
+                .planes
+                .coeffs(origin, s.vmax, golden::shading::texture::D_MAX);
+            let golden_texels = coordinates(tri, &s, &wk, Coord::Additive);
+            for (p, t) in wk.pixels().iter().zip(&golden_texels) {
+                want.push((p.x as u32, p.y as u32, t.x as i64, t.y as i64));
+            }
+            jobs.push((addr, TexCoordSetup::new(&cu, &cv, f, dir)));
+        }
+        let run = |k: u32, textured: bool| -> (u64, u64) {
+            let mut addr = if tris[0].frac == 0 {
+                AddressBlockModel::new()
+            } else {
+                AddressBlockModel::subpixel()
+            };
+            let mut tc = TexCoordModel::new(k);
+            let (mut next, mut got, mut clocks, mut first_taken) = (0, 0usize, 0u64, true);
+            while got < want.len() {
+                clocks += 1;
+                assert!(clocks < 100_000_000, "{name}: no progress");
+                let (ready, hold) = if textured {
+                    let o = tc.outputs();
+                    if o.valid {
+                        let (x, y, u, v) = want[got];
+                        assert_eq!(
+                            (o.x, o.y, o.u, o.v),
+                            (x, y, u, v),
+                            "{name} k {k} pixel {got}"
+                        );
+                        got += 1;
+                    }
+                    (o.ready, !o.ready)
+                } else {
+                    (true, false)
+                };
+                let a = addr.outputs_held(hold);
+                if !textured && a.valid {
+                    got += 1;
+                }
+                let ev = TexEvent::from(&a);
+                if ready && ev.row_start && ev.step == 0 {
+                    first_taken = true;
+                }
+                let load = (next < jobs.len() && addr.ready() && first_taken).then(|| {
+                    first_taken = false;
+                    next += 1;
+                    &jobs[next - 1]
+                });
+                if textured {
+                    tc.clock(load.map(|j| &j.1), &ev);
+                }
+                addr.clock_held(load.map(|j| &j.0), hold);
+            }
+            (want.len() as u64, clocks)
+        };
+        let (px, alone) = run(1, false);
+        let rate = |c: u64| px as f64 / c as f64;
+        let (_, k1) = run(1, true);
+        let (_, k2) = run(2, true);
+        eprintln!(
+            "{name}: {px} pixels; fragments per clock: address block alone {:.3}, with texture-coord k = 1 {:.3}, k = 2 {:.3} ({:.3} of the address block's rate)",
+            rate(alone),
+            rate(k1),
+            rate(k2),
+            alone as f64 / k2 as f64
+        );
+        if name == "sphere" {
+            assert!(
+                alone as f64 / k2 as f64 >= 0.95,
+                "{name}: k = 2 keeps {:.3}",
+                alone as f64 / k2 as f64
+            );
+        }
+    }
 }

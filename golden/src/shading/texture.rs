@@ -17,8 +17,8 @@
 //! the first repeat (GL_REPEAT gives the same texels), then forms the planes of 1/w, u/w and
 //! v/w ([`PctPlanes`]).
 //!
-//! The §14 walker's integer coefficients are [`PctPlanes::coeffs`] relative to the walk's first
-//! pixel, D scaled to 2^29 at the vertex nearest the eye ([`D_MAX`]); a triangle outside the
+//! The §14 walker's integer coefficients are [`PctPlanes::coeffs`] relative to the address
+//! block's first line start ([`coeff_origin`], as the block's set-up places them), D scaled to 2^29 at the vertex nearest the eye ([`D_MAX`]); a triangle outside the
 //! block's range ([`TexCoordSetup::check`]) falls back to the reference's coordinate (the CLI
 //! refuses such a scene before rendering: [`range_error`]).
 //!
@@ -32,9 +32,10 @@ use crate::shade::ShadeContext;
 use crate::shading::{row_end, Emit};
 use crate::texture::Texture;
 use crate::types::{Plane, Row, ScreenTriangle, Walk};
+use crate::units::address_block::AddressSetup;
 use crate::units::normalizer;
 use crate::units::texture_bezier;
-use crate::units::texture_coord::block::TexCoordSetup;
+use crate::units::texture_coord::block::{walk_geometry, TexCoordSetup};
 use crate::units::texture_coord::{PctCoeffs, PctPlanes, PctWalker};
 use crate::units::texture_quadratic::{self as quad, QuadWords};
 use glam::DVec2;
@@ -96,19 +97,29 @@ pub fn setup(tri: &ScreenTriangle, texture: &Texture) -> Option<TexSetup> {
     })
 }
 
-/// The §14 walker's integer coefficients of `s` relative to the walk's first pixel, if the
-/// block accepts them over `walk`'s pixels.
-pub fn additive_coeffs(s: &TexSetup, walk: &Walk) -> Option<((i64, i64), PctCoeffs, PctCoeffs)> {
-    let first = walk.rows.iter().find(|r| r.len > 0)?;
-    let origin = (first.x_start as i64, first.y as i64);
+/// The origin of the §14 block's coefficients for `tri`: the address block's first line start
+/// (`walk_geometry`), where the block's set-up places its words.
+pub fn coeff_origin(tri: &ScreenTriangle) -> (i64, i64) {
+    walk_geometry(&AddressSetup::new(tri)).0
+}
+
+/// The §14 walker's integer coefficients of `s` relative to [`coeff_origin`], if the block
+/// accepts them over `walk`'s pixels: the origin and the u and v coefficients.
+pub fn additive_coeffs(
+    tri: &ScreenTriangle,
+    s: &TexSetup,
+    walk: &Walk,
+) -> Option<((i64, i64), PctCoeffs, PctCoeffs)> {
+    let origin = coeff_origin(tri);
     let (cu, cv) = s.planes.coeffs(origin, s.vmax, D_MAX);
     let pixels: Vec<(i64, i64)> = walk
         .pixels()
         .iter()
         .map(|p| (p.x as i64 - origin.0, p.y as i64 - origin.1))
         .collect();
-    TexCoordSetup::check(&cu, &cv, &pixels).ok()?;
-    Some((origin, cu, cv))
+    TexCoordSetup::check(&cu, &cv, &pixels)
+        .ok()
+        .map(|()| (origin, cu, cv))
 }
 
 /// Why the §14 block cannot take a textured triangle of `tris`, if one exists: a one-line
@@ -122,8 +133,7 @@ pub fn range_error(tris: &[ScreenTriangle], texture: &Texture) -> Option<String>
         let Some(s) = setup(tri, texture) else {
             continue;
         };
-        let first = walk.rows.iter().find(|r| r.len > 0)?;
-        let origin = (first.x_start as i64, first.y as i64);
+        let origin = coeff_origin(tri);
         let (cu, cv) = s.planes.coeffs(origin, s.vmax, D_MAX);
         let pixels: Vec<(i64, i64)> = walk
             .pixels()
@@ -140,7 +150,7 @@ pub fn range_error(tris: &[ScreenTriangle], texture: &Texture) -> Option<String>
 }
 
 /// The texel-space coordinate of every pixel of `walk`, in walk order, by `coord`.
-pub fn coordinates(s: &TexSetup, walk: &Walk, coord: Coord) -> Vec<DVec2> {
+pub fn coordinates(tri: &ScreenTriangle, s: &TexSetup, walk: &Walk, coord: Coord) -> Vec<DVec2> {
     let exact = |x: i32, y: i32| {
         let (u, v) = s.planes.exact(x as i64, y as i64);
         DVec2::new(u, v)
@@ -160,7 +170,7 @@ pub fn coordinates(s: &TexSetup, walk: &Walk, coord: Coord) -> Vec<DVec2> {
                 ));
             }
         }
-        Coord::Additive => match additive_coeffs(s, walk) {
+        Coord::Additive => match additive_coeffs(tri, s, walk) {
             Some((origin, cu, cv)) => {
                 let mut walkers: Option<[PctWalker; 2]> = None;
                 for row in walk.rows.iter().filter(|r| r.len > 0) {
@@ -183,7 +193,7 @@ pub fn coordinates(s: &TexSetup, walk: &Walk, coord: Coord) -> Vec<DVec2> {
                     }
                 }
             }
-            None => return coordinates(s, walk, Coord::Reference),
+            None => return coordinates(tri, s, walk, Coord::Reference),
         },
         Coord::Quadratic => {
             for row in walk.rows.iter().filter(|r| r.len > 0) {
@@ -304,7 +314,7 @@ pub fn shade(
     emit: Emit,
 ) {
     let Some(s) = setup(tri, texture) else { return };
-    let uv = coordinates(&s, walk, coord);
+    let uv = coordinates(tri, &s, walk, coord);
     let mut k = 0;
     normalizer::shade_front_end(tri, walk, ctx, normalizer::FIT, emit, |_, _, d, sp| {
         let texel = texture.nearest(uv.get(k).copied().unwrap_or(DVec2::ZERO));
