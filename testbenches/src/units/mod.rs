@@ -15,5 +15,6 @@ pub mod power_unit;
 pub mod quadric_unit;
 pub mod span;
 pub mod texture_coord;
+pub mod texture_memory;
 pub mod texture_quadratic;
 pub mod vector_interpolator;
