@@ -259,6 +259,21 @@ struct State {
 fn correction(w: i64, e: i64, e3: i64, k: u32) -> (i64, bool) {
     let pos = |v: i128| wrap(v) > 0;
     let (w, e, e3) = (w as i128, e as i128, e3 as i128);
+    if k > 2 {
+        // A block not built (`TexCoordModel::unbuilt`): the same comparisons for j up to k.
+        let k = k as i128;
+        return if !pos(w) {
+            (1..=k)
+                .find(|&j| pos(w + j * e))
+                .map_or((k as i64, false), |j| (j as i64, true))
+        } else if pos(w - e) {
+            (1..=k)
+                .find(|&j| !pos(w - (j + 1) * e))
+                .map_or((-(k as i64), false), |j| (-(j as i64), true))
+        } else {
+            (0, true)
+        };
+    }
     if !pos(w) {
         // W ≤ 0: up.
         if pos(w + e) {
@@ -304,6 +319,14 @@ pub struct TexCoordModel {
 impl TexCoordModel {
     pub fn new(k: u32) -> TexCoordModel {
         assert!(K_VALUES.contains(&k), "k = {k}: built for {K_VALUES:?}");
+        TexCoordModel::unbuilt(k)
+    }
+
+    /// The model with k correction steps per clock for any k ≥ 1: for k in [`K_VALUES`] the
+    /// block's twin ([`TexCoordModel::new`]); for a larger k the same design with k parallel
+    /// comparisons per axis, which is not built (a throughput estimate).
+    pub fn unbuilt(k: u32) -> TexCoordModel {
+        assert!(k >= 1, "k = 0");
         TexCoordModel {
             k,
             sh: TexCoordSetup::default(),
