@@ -41,11 +41,14 @@
 //!
 //! # Overflow and error budget
 //!
-//! Exact: no arithmetic but the masks. The set-up keeps log_w, log_h ≤ 10 and W·H ≤ 2^16
+//! Exact: no arithmetic but the masks. Every texel reads 0 until it is written (the block
+//! RAM's initial contents). The set-up keeps log_w, log_h ≤ 10 and W·H ≤ 2^16
 //! (256×256, or 1024×64, …); beyond that the address is taken modulo 2^16 (the texels alias).
 //! The memory holds 2^16 texels of 24 bits (1.5 Mbit: block RAM on ECP5) in four banks of 2^14.
 
 use rust_hdl::prelude::*;
+
+use crate::core::primitives::Bram;
 
 crate::hw_block! {
     /// The texture memory (see the module header): the masks, the address register, four
@@ -62,7 +65,7 @@ crate::hw_block! {
         }
         out { valid_out: Bit, red: Bits<8>, green: Bits<8>, blue: Bits<8> }
         /// Bank k holds the addresses with bits 15..14 = k.
-        pub bank: [RAM<Bits<24>, 14>; 4],
+        pub bank: [Bram<Bits<24>, 14>; 4],
         /// The address register (the RAM blocks' address then comes from a flip-flop), each
         /// bank's read registered (a RAM block's output goes straight to a flip-flop), the bank
         /// of the read twice, the output register and `valid_in` four times.
@@ -86,8 +89,7 @@ impl Logic for TextureMemory {
         for k in 0..4 {
             self.bank_q[k].clock.next = self.clock.val();
             self.valid_q[k].clock.next = self.clock.val();
-            self.bank[k].read_clock.next = self.clock.val();
-            self.bank[k].write_clock.next = self.clock.val();
+            self.bank[k].clock.next = self.clock.val();
             self.bank[k].read_address.next = self.address_q.q.val().get_bits::<14>(0);
             self.bank[k].write_address.next = self.waddr.val().get_bits::<14>(0);
             self.bank[k].write_data.next = self.wdata.val();

@@ -163,3 +163,61 @@ impl<D: Synth, const N: usize> Logic for Lutram<D, N> {
         ))
     }
 }
+
+/// A block RAM: synchronous write and synchronous read (`read_data` = `mem[read_address]` of
+/// the previous rising edge, read before that edge's write: FPGA block RAM in read-first mode).
+/// 2^N words, every one 0 before its first write in every simulator and on the FPGA: the
+/// Verilog zeroes the array in an `initial` loop for the simulators (rust-hdl's `RAM` leaves it
+/// uninitialised, which Icarus shows as `x`). The loop is left out under `SYNTHESIS` (Yosys
+/// defines it; unrolling 2^14 writes took Yosys' `proc` minutes): the FPGA's block RAM starts
+/// at 0 without it (ECP5 DP16KD and iCE40 SB_RAM40_4K initial contents default to 0).
+#[derive(LogicBlock)]
+pub struct Bram<D: Synth, const N: usize> {
+    pub clock: Signal<In, Clock>,
+    pub write_enable: Signal<In, Bit>,
+    pub write_address: Signal<In, Bits<N>>,
+    pub write_data: Signal<In, D>,
+    pub read_address: Signal<In, Bits<N>>,
+    pub read_data: Signal<Out, D>,
+    #[allow(clippy::box_collection)]
+    _mem: Box<Vec<D>>,
+}
+
+impl<D: Synth, const N: usize> Default for Bram<D, N> {
+    fn default() -> Self {
+        assert!(N < 20, "a block RAM of 2^{N} words is too deep");
+        Self {
+            clock: Signal::default(),
+            write_enable: Signal::default(),
+            write_address: Signal::default(),
+            write_data: Signal::default(),
+            read_address: Signal::default(),
+            read_data: Signal::new_with_default(D::default()),
+            _mem: Box::new(vec![D::default(); 1 << N]),
+        }
+    }
+}
+
+impl<D: Synth, const N: usize> Logic for Bram<D, N> {
+    fn update(&mut self) {
+        if self.clock.pos_edge() {
+            self.read_data.next = self._mem[self.read_address.val().index()];
+            if self.write_enable.val() {
+                let a = self.write_address.val().index();
+                self._mem[a] = self.write_data.val();
+            }
+        }
+    }
+    fn connect(&mut self) {
+        self.read_data.connect();
+    }
+    fn hdl(&self) -> Verilog {
+        Verilog::Custom(format!(
+            "reg [{d}:0] mem [0:{last}];\ninteger i;\n\n\
+             `ifndef SYNTHESIS\ninitial begin\n   for (i = 0; i <= {last}; i = i + 1) mem[i] = 0;\n   read_data = 0;\nend\n`endif\n\n\
+             always @(posedge clock) begin\n   read_data <= mem[read_address];\n   if (write_enable) mem[write_address] <= write_data;\nend",
+            d = D::BITS - 1,
+            last = (1usize << N) - 1,
+        ))
+    }
+}
