@@ -28,7 +28,7 @@ the default 400x400: 0.7 s); with --sim rust-hdl the RTL images take about 400 t
     Render(cmd::render::Args),
     /// Measure each approximation's maximum error over its domain beside the sources' claims.
     Accuracy(cmd::accuracy::Args),
-    /// NMSE of every method over a grid of tessellations, exponents and light angles.
+    /// NMSE of every shading method (not the textured ones) over a grid of tessellations, exponents and light angles.
     Sweep(cmd::sweep::Args),
     /// Write synthesizable Verilog of RTL blocks.
     ExportVerilog(cmd::rtl::ExportArgs),

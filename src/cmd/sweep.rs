@@ -1,4 +1,4 @@
-//! `shadecore sweep`: NMSE of every method over scene × rez × shininess × light angle, as CSV
+//! `shadecore sweep`: NMSE of every shading method (the textured ones are not swept) over scene × rez × shininess × light angle, as CSV
 //! and Markdown. The rez axis applies to the built-in scenes; an OBJ mesh is swept once per
 //! shininess and light angle.
 
