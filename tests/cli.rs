@@ -769,3 +769,33 @@ fn plane_renders_textured_and_bad_textures_are_refused() {
         "not a readable PNG",
     );
 }
+
+/// Without `--method`, a mesh without texture coordinates renders every shading method and
+/// leaves the textured ones out with a note (asked for by name, they are an error: above).
+#[test]
+fn default_methods_leave_the_textured_ones_out_without_vt() {
+    let dir = tempfile::tempdir().unwrap();
+    let obj = dir.path().join("tet.obj");
+    std::fs::write(
+        &obj,
+        "v 0 0 1\nv 1 0 0\nv 0 1 0\nv -1 -1 -1\nf 1 2 3\nf 1 3 4\nf 1 4 2\nf 2 4 3\n",
+    )
+    .unwrap();
+    let out = dir.path().join("o");
+    let o = shadecore(&[
+        "render",
+        "--engine",
+        "golden",
+        "--size",
+        "64x48",
+        "--scene",
+        obj.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{err}");
+    assert!(err.contains("textured methods are left out"), "{err}");
+    assert!(out.join("gouraud.png").is_file());
+    assert!(!out.join("texture.png").exists());
+}

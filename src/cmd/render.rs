@@ -37,8 +37,8 @@ pub enum Engine {
 pub struct Args {
     #[command(flatten)]
     pub scene: SceneArgs,
-    /// Methods to render, comma-separated (default: all; with `--engine rtl`, all the hardware
-    /// has). Names: flat, gouraud, subdivision, normalizer, normalizer-fit, normalizer-pw, fast,
+    /// Methods to render, comma-separated (default: all, the textured ones where the scene has
+    /// texture coordinates; with `--engine rtl`, all the hardware has). Names: flat, gouraud, subdivision, normalizer, normalizer-fit, normalizer-pw, fast,
     /// fast-fit, angular, quadric, cubic, brdf-k4, brdf-k8, brdf-k16, bump; the textured
     /// methods texture, texture-quadratic, texture-bezier, texture-affine (judged against
     /// texture-reference, rendered with them).
@@ -754,7 +754,7 @@ fn check_rtl_flags(args: &Args, methods: &[Method]) -> Result<()> {
 }
 
 pub fn run(args: Args) -> Result<()> {
-    let methods = if args.engine == Engine::Rtl && args.method.is_empty() {
+    let mut methods = if args.engine == Engine::Rtl && args.method.is_empty() {
         // The RTL engine's default: every method the hardware has.
         crate::rtl_engine::rtl_methods()
     } else {
@@ -763,7 +763,16 @@ pub fn run(args: Args) -> Result<()> {
     check_rtl_flags(&args, &methods)?;
     let setup = build(&args.scene)?;
     setup.ensure_drawn()?;
-    setup.check_textured(&methods, &args.scene.scene)?;
+    if args.method.is_empty() {
+        // The default list: the textured methods only where the scene can be textured (a mesh
+        // with texture coordinates, within the texture-coordinate block's range).
+        if let Err(e) = setup.check_textured(&methods, &args.scene.scene) {
+            methods.retain(|m| !m.is_textured());
+            eprintln!("note: the textured methods are left out: {e:#}");
+        }
+    } else {
+        setup.check_textured(&methods, &args.scene.scene)?;
+    }
     let dir = crate::output::RenderDir::open(&args.out)?;
     let sim = if args.engine == Engine::Golden {
         crate::sim::Sim::RustHdl
