@@ -4,12 +4,16 @@
 //!
 //! # Stimulus
 //!
-//! Seeded textures of random power-of-two sides (W·H up to 2^12 texels, every eighth up to
-//! 2^16), random texels, each written through the set-up port as the set-up software writes it
-//! (`load_words`), with a random read address beside every write (the memory reads every
-//! clock; `valid_in` low); then 300 reads of random 16-bit (u, v) words (any integers modulo 2^16: wrapping on both
-//! sides, negative coordinates), a seeded tenth of the clocks without a read. The next
-//! texture overwrites the last. Edge rows: random words on every input, `log_w` and `log_h`
+//! Seeded textures of random power-of-two sides and random texels:
+//! - W·H up to 2^10 texels, written whole through the set-up port as the set-up software writes
+//!   them (`load_words`);
+//! - every eighth texture W·H = 2^16 (the whole address range, all four banks), 2048 random
+//!   texels of it written (`write_address`, `texel_word`).
+//!
+//! A random read address beside every write (the memory reads every clock; `valid_in` low).
+//! Then 300 reads of written texels at random repeats: any 16-bit (u, v) words ≡ (i, j), so
+//! negative coordinates and wrapping on both sides; a seeded tenth of the clocks without a
+//! read. The next texture overwrites the last. Edge rows: random words on every input, `log_w` and `log_h`
 //! up to 15.
 //!
 //! # Tolerances (from the formats)
@@ -19,7 +23,9 @@
 //! alone.
 
 use golden::texture::Texture;
-use golden::units::texture_memory::{load_words, MemoryInputs, MemoryTwin};
+use golden::units::texture_memory::{
+    load_words, texel_word, write_address, MemoryInputs, MemoryTwin,
+};
 use rtl::core::registry::NoParams;
 use rtl::units::texture_memory::TextureMemory;
 
@@ -66,18 +72,49 @@ impl Bench for TextureMemory {
         // Latency 4: the outputs of the first four clocks are the reset's.
         let (mut rows, mut expected) = (Vec::new(), vec![QUIET.to_vec(); 4]);
         for item in 0..n {
-            let bits = if item % 8 == 7 { 16 } else { 12 };
-            let log_w = rng.below(11.min(bits + 1)) as u32;
-            let log_h = rng.below((bits as u32 - log_w).min(10) as i32 + 1) as u32;
+            // Every eighth texture fills the whole memory's address range (W·H = 2^16, all four
+            // banks) but is written sparsely; the others are written whole.
+            let sparse = item % 8 == 7;
+            let bits = if sparse { 16 } else { 10 };
+            let log_w = if sparse {
+                6 + rng.below(5) as u32
+            } else {
+                rng.below(bits + 1) as u32
+            };
+            let log_h = if sparse {
+                16 - log_w
+            } else {
+                rng.below(bits - log_w as i32 + 1) as u32
+            };
             let (w, h) = (1u32 << log_w, 1u32 << log_h);
-            let rgb = (0..w * h)
-                .map(|_| {
-                    let x = rng.next_u64();
-                    [x as u8, (x >> 8) as u8, (x >> 16) as u8]
-                })
-                .collect();
+            let texel = |rng: &mut Rng| {
+                let x = rng.next_u64();
+                [x as u8, (x >> 8) as u8, (x >> 16) as u8]
+            };
+            // The texels written (i, j from the bottom), and the texture they make (unwritten
+            // texels 0 there; only written ones are read back).
+            let mut rgb = vec![[0u8; 3]; (w * h) as usize];
+            let mut written: Vec<(u32, u32)> = Vec::new();
+            let mut writes: Vec<(u32, u32)> = Vec::new();
+            if sparse {
+                for _ in 0..2048 {
+                    let (i, j) = (rng.below(w as i32) as u32, rng.below(h as i32) as u32);
+                    let c = texel(&mut rng);
+                    rgb[((h - 1 - j) * w + i) as usize] = c;
+                    written.push((i, j));
+                    writes.push((write_address(log_w, i, j), texel_word(c)));
+                }
+            } else {
+                for c in rgb.iter_mut() {
+                    *c = texel(&mut rng);
+                }
+            }
             let t = Texture::new(w, h, rgb).expect("power-of-two sides up to 1024");
-            for (a, d) in load_words(&t).expect("at most 2^16 texels") {
+            if !sparse {
+                writes = load_words(&t).expect("at most 2^16 texels");
+                written = (0..h).flat_map(|j| (0..w).map(move |i| (i, j))).collect();
+            }
+            for (a, d) in writes {
                 // The memory reads every clock: a random address beside the write, its texel
                 // the previous texture's, partly overwritten (the twin's alone).
                 rows.push(row(&MemoryInputs {
@@ -103,10 +140,11 @@ impl Bench for TextureMemory {
                     expected.push(QUIET.to_vec());
                     continue;
                 }
-                let (u, v) = (
-                    rng.next_u64() as u32 & 0xFFFF,
-                    rng.next_u64() as u32 & 0xFFFF,
-                );
+                // A written texel at any of its repeats (W and H divide 2^16, so every 16-bit
+                // word ≡ i mod W is one).
+                let (i, j) = written[rng.below(written.len() as i32) as usize];
+                let u = i.wrapping_add(w.wrapping_mul(rng.next_u64() as u32)) & 0xFFFF;
+                let v = j.wrapping_add(h.wrapping_mul(rng.next_u64() as u32)) & 0xFFFF;
                 rows.push(row(&MemoryInputs {
                     log_w,
                     log_h,
