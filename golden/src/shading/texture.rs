@@ -18,9 +18,10 @@
 //! v/w ([`PctPlanes`]).
 //!
 //! The §14 walker's integer coefficients are [`PctPlanes::coeffs`] relative to the address
-//! block's first line start ([`coeff_origin`], as the block's set-up places them), D scaled to 2^29 at the vertex nearest the eye ([`D_MAX`]); a triangle outside the
-//! block's range ([`TexCoordSetup::check`]) falls back to the reference's coordinate (the CLI
-//! refuses such a scene before rendering: [`range_error`]).
+//! block's first line start ([`coeff_origin`], as the block's set-up places them), D scaled to
+//! 2^29 at the vertex nearest the eye ([`D_MAX`]); a triangle outside the block's range
+//! ([`TexCoordSetup::check`]) falls back to the reference's coordinate (the CLI refuses such a
+//! scene before rendering: [`range_error`]).
 //!
 //! The Bézier's per-pixel rule (the rate): a line of n pixels is sampled at m = 2(n − 1) steps
 //! of t (dt = 1/m); with the control point inside the line (it is clamped there), x(t) moves
@@ -103,13 +104,13 @@ pub fn coeff_origin(tri: &ScreenTriangle) -> (i64, i64) {
     walk_geometry(&AddressSetup::new(tri)).0
 }
 
-/// The §14 walker's integer coefficients of `s` relative to [`coeff_origin`], if the block
-/// accepts them over `walk`'s pixels: the origin and the u and v coefficients.
-pub fn additive_coeffs(
+/// The §14 walker's integer coefficients of `s` relative to [`coeff_origin`] (the origin and
+/// the u and v coefficients), or why the block cannot take them over `walk`'s pixels.
+pub fn checked_coeffs(
     tri: &ScreenTriangle,
     s: &TexSetup,
     walk: &Walk,
-) -> Option<((i64, i64), PctCoeffs, PctCoeffs)> {
+) -> Result<((i64, i64), PctCoeffs, PctCoeffs), String> {
     let origin = coeff_origin(tri);
     let (cu, cv) = s.planes.coeffs(origin, s.vmax, D_MAX);
     let pixels: Vec<(i64, i64)> = walk
@@ -117,36 +118,28 @@ pub fn additive_coeffs(
         .iter()
         .map(|p| (p.x as i64 - origin.0, p.y as i64 - origin.1))
         .collect();
-    TexCoordSetup::check(&cu, &cv, &pixels)
-        .ok()
-        .map(|()| (origin, cu, cv))
+    TexCoordSetup::check(&cu, &cv, &pixels).map(|()| (origin, cu, cv))
+}
+
+/// [`checked_coeffs`], if the block accepts them.
+pub fn additive_coeffs(
+    tri: &ScreenTriangle,
+    s: &TexSetup,
+    walk: &Walk,
+) -> Option<((i64, i64), PctCoeffs, PctCoeffs)> {
+    checked_coeffs(tri, s, walk).ok()
 }
 
 /// Why the §14 block cannot take a textured triangle of `tris`, if one exists: a one-line
-/// message naming the triangle (its texels beyond the block's range, or its depth too).
+/// message naming the triangle (its texels or its depth beyond the block's range).
 pub fn range_error(tris: &[ScreenTriangle], texture: &Texture) -> Option<String> {
-    for (k, tri) in tris.iter().enumerate() {
+    tris.iter().enumerate().find_map(|(k, tri)| {
         let walk = crate::raster::walk(tri);
-        if walk.pixel_count() == 0 {
-            continue;
-        }
-        let Some(s) = setup(tri, texture) else {
-            continue;
-        };
-        let origin = coeff_origin(tri);
-        let (cu, cv) = s.planes.coeffs(origin, s.vmax, D_MAX);
-        let pixels: Vec<(i64, i64)> = walk
-            .pixels()
-            .iter()
-            .map(|p| (p.x as i64 - origin.0, p.y as i64 - origin.1))
-            .collect();
-        if let Err(e) = TexCoordSetup::check(&cu, &cv, &pixels) {
-            return Some(format!(
-                "triangle {k} cannot be textured by the texture-coordinate block: {e}"
-            ));
-        }
-    }
-    None
+        let s = setup(tri, texture).filter(|_| walk.pixel_count() > 0)?;
+        checked_coeffs(tri, &s, &walk).err().map(|e| {
+            format!("triangle {k} cannot be textured by the texture-coordinate block: {e}")
+        })
+    })
 }
 
 /// The texel-space coordinate of every pixel of `walk`, in walk order, by `coord`.
