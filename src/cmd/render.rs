@@ -38,10 +38,11 @@ pub struct Args {
     #[command(flatten)]
     pub scene: SceneArgs,
     /// Methods to render, comma-separated (default: all, the textured ones where the scene has
-    /// texture coordinates; with `--engine rtl`, all the hardware has). Names: flat, gouraud, subdivision, normalizer, normalizer-fit, normalizer-pw, fast,
-    /// fast-fit, angular, quadric, cubic, brdf-k4, brdf-k8, brdf-k16, bump; the textured
-    /// methods texture, texture-quadratic, texture-bezier, texture-affine (judged against
-    /// texture-reference, rendered with them).
+    /// texture coordinates; with `--engine rtl`, all the hardware has). Names: flat, gouraud,
+    /// subdivision, normalizer, normalizer-fit, normalizer-pw, fast, fast-fit, angular,
+    /// quadric, cubic, brdf-k4, brdf-k8, brdf-k16, bump; the textured methods texture,
+    /// texture-quadratic, texture-bezier, texture-affine (judged against texture-reference,
+    /// rendered with them).
     #[arg(long, value_delimiter = ',')]
     pub method: Vec<String>,
     /// Output directory.
@@ -99,8 +100,8 @@ pub enum Horner {
 /// Per-method result in `report.json`.
 #[derive(Serialize, Debug, Clone)]
 pub struct MethodReport {
-    /// Against the reference (Phong shading, exact normalization): the golden image's, or
-    /// with `--engine rtl` the RTL image's.
+    /// Against the reference (Phong shading, exact normalization; for a textured method
+    /// `texture-reference`): the golden image's, or with `--engine rtl` the RTL image's.
     pub nmse: f64,
     pub band: Band,
     pub max_abs_diff: u8,
