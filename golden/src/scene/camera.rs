@@ -38,7 +38,8 @@ pub const PLANE_ELEVATION_DEG: f64 = 20.0;
 /// the span methods would be exact on it).
 pub const PLANE_YAW_DEG: f64 = 30.0;
 /// The `plane` scene's eye: its distance from the middle of the plane, in bounding-sphere radii
-/// (the near edge is then about ten times nearer than the far one).
+/// (its corners span w = 0.154 … 1.846, whatever the rez: the nearest is 12 times nearer
+/// than the farthest).
 pub const PLANE_EYE_RADII: f64 = 1.1;
 
 impl Camera {
