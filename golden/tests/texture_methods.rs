@@ -335,3 +335,21 @@ fn the_texture_coord_block_on_the_scenes_texels_and_fragments_per_clock() {
         }
     }
 }
+
+/// `--subdivide` on a textured scene: the midpoints carry 1/w, u/w and v/w on the parent's
+/// planes, so every sub-triangle's reference coordinate is the parent's at each pixel: the
+/// textured reference of `plane` refined once equals the undivided one's, image for image, up
+/// to the rounding of the midpoint addresses (a few pixels at most).
+#[test]
+fn refined_triangles_texture_as_their_parents() {
+    let ctx = ShadeContext::default();
+    let base = scene_tris("plane");
+    let refined =
+        golden::shading::refine::refine(&base, golden::shading::refine::Subdivide::Levels(1));
+    assert!(refined.len() > base.len());
+    let a = render(&base, Method::TextureReference, &ctx, 400, 400);
+    let b = render(&refined, Method::TextureReference, &ctx, 400, 400);
+    let differ = a.rgb.iter().zip(&b.rgb).filter(|(p, q)| p != q).count();
+    eprintln!("plane refined once: {differ} pixels differ from the undivided texture-reference");
+    assert!(differ <= 50, "{differ} pixels differ");
+}
