@@ -109,38 +109,51 @@ impl<D: Synth, const N: usize> Logic for Prom<D, N> {
     }
 }
 
-/// A small RAM with synchronous write and asynchronous read (FPGA distributed RAM: ECP5
-/// TRELLIS_DPR16X4 slices, Xilinx LUTRAM): `mem[write_address] ← write_data` on the rising
-/// edge when `write_enable`; `read_data` = `mem[read_address]` at once (also the word written
-/// at the last edge). 2^N words, 0 in the rust-hdl simulation before their first write; the
-/// Verilog leaves them uninitialised, so a reader must not use a word before it is written
-/// (the FIFO in `pixel_stream` gates its output with its `valid`).
-#[derive(LogicBlock)]
-pub struct Lutram<D: Synth, const N: usize> {
-    pub clock: Signal<In, Clock>,
-    pub write_enable: Signal<In, Bit>,
-    pub write_address: Signal<In, Bits<N>>,
-    pub write_data: Signal<In, D>,
-    pub read_address: Signal<In, Bits<N>>,
-    pub read_data: Signal<Out, D>,
-    #[allow(clippy::box_collection)]
-    _mem: Box<Vec<D>>,
+/// The ports and the simulation store of a RAM with one write and one read port, and its
+/// `Default` (every word 0), for [`Lutram`] and [`Bram`], which differ in how they read.
+macro_rules! ram_ports {
+    ($(#[$m:meta])* $name:ident, $max:expr, $what:literal) => {
+        $(#[$m])*
+        #[derive(LogicBlock)]
+        pub struct $name<D: Synth, const N: usize> {
+            pub clock: Signal<In, Clock>,
+            pub write_enable: Signal<In, Bit>,
+            pub write_address: Signal<In, Bits<N>>,
+            pub write_data: Signal<In, D>,
+            pub read_address: Signal<In, Bits<N>>,
+            pub read_data: Signal<Out, D>,
+            #[allow(clippy::box_collection)]
+            _mem: Box<Vec<D>>,
+        }
+
+        impl<D: Synth, const N: usize> Default for $name<D, N> {
+            fn default() -> Self {
+                assert!(N <= $max, "a {} of 2^{N} words is too deep", $what);
+                Self {
+                    clock: Signal::default(),
+                    write_enable: Signal::default(),
+                    write_address: Signal::default(),
+                    write_data: Signal::default(),
+                    read_address: Signal::default(),
+                    read_data: Signal::new_with_default(D::default()),
+                    _mem: Box::new(vec![D::default(); 1 << N]),
+                }
+            }
+        }
+    };
 }
 
-impl<D: Synth, const N: usize> Default for Lutram<D, N> {
-    fn default() -> Self {
-        assert!(N <= 8, "a distributed RAM of 2^{N} words is too deep");
-        Self {
-            clock: Signal::default(),
-            write_enable: Signal::default(),
-            write_address: Signal::default(),
-            write_data: Signal::default(),
-            read_address: Signal::default(),
-            read_data: Signal::new_with_default(D::default()),
-            _mem: Box::new(vec![D::default(); 1 << N]),
-        }
-    }
-}
+ram_ports!(
+    /// A small RAM with synchronous write and asynchronous read (FPGA distributed RAM: ECP5
+    /// TRELLIS_DPR16X4 slices, Xilinx LUTRAM): `mem[write_address] ← write_data` on the rising
+    /// edge when `write_enable`; `read_data` = `mem[read_address]` at once (also the word written
+    /// at the last edge). 2^N words, 0 in the rust-hdl simulation before their first write; the
+    /// Verilog leaves them uninitialised, so a reader must not use a word before it is written
+    /// (the FIFO in `pixel_stream` gates its output with its `valid`).
+    Lutram,
+    8,
+    "distributed RAM"
+);
 
 impl<D: Synth, const N: usize> Logic for Lutram<D, N> {
     fn update(&mut self) {
@@ -164,39 +177,18 @@ impl<D: Synth, const N: usize> Logic for Lutram<D, N> {
     }
 }
 
-/// A block RAM: synchronous write and synchronous read (`read_data` = `mem[read_address]` of
-/// the previous rising edge, read before that edge's write: FPGA block RAM in read-first mode).
-/// 2^N words, every one 0 before its first write in every simulator and on the FPGA: the
-/// Verilog zeroes the array in an `initial` loop for the simulators (rust-hdl's `RAM` leaves it
-/// uninitialised, which Icarus shows as `x`). The loop is left out under `SYNTHESIS` (Yosys
-/// defines it; unrolling 2^14 writes took Yosys' `proc` minutes): the FPGA's block RAM starts
-/// at 0 without it (ECP5 DP16KD and iCE40 SB_RAM40_4K initial contents default to 0).
-#[derive(LogicBlock)]
-pub struct Bram<D: Synth, const N: usize> {
-    pub clock: Signal<In, Clock>,
-    pub write_enable: Signal<In, Bit>,
-    pub write_address: Signal<In, Bits<N>>,
-    pub write_data: Signal<In, D>,
-    pub read_address: Signal<In, Bits<N>>,
-    pub read_data: Signal<Out, D>,
-    #[allow(clippy::box_collection)]
-    _mem: Box<Vec<D>>,
-}
-
-impl<D: Synth, const N: usize> Default for Bram<D, N> {
-    fn default() -> Self {
-        assert!(N < 20, "a block RAM of 2^{N} words is too deep");
-        Self {
-            clock: Signal::default(),
-            write_enable: Signal::default(),
-            write_address: Signal::default(),
-            write_data: Signal::default(),
-            read_address: Signal::default(),
-            read_data: Signal::new_with_default(D::default()),
-            _mem: Box::new(vec![D::default(); 1 << N]),
-        }
-    }
-}
+ram_ports!(
+    /// A block RAM: synchronous write and synchronous read (`read_data` = `mem[read_address]` of
+    /// the previous rising edge, read before that edge's write: FPGA block RAM in read-first mode).
+    /// 2^N words, every one 0 before its first write in every simulator and on the FPGA: the
+    /// Verilog zeroes the array in an `initial` loop for the simulators (rust-hdl's `RAM` leaves it
+    /// uninitialised, which Icarus shows as `x`). The loop is left out under `SYNTHESIS` (Yosys
+    /// defines it; unrolling 2^14 writes took Yosys' `proc` minutes): the FPGA's block RAM starts
+    /// at 0 without it (ECP5 DP16KD and iCE40 SB_RAM40_4K initial contents default to 0).
+    Bram,
+    19,
+    "block RAM"
+);
 
 impl<D: Synth, const N: usize> Logic for Bram<D, N> {
     fn update(&mut self) {
