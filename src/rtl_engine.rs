@@ -54,11 +54,36 @@ pub fn render_rtl(
 }
 
 /// [`render_rtl`] with the build choices `build`: `progress` gets the number of set-up records
-/// (triangles, parents or lines) and advances as the hardware finishes each.
+/// (triangles, parents or lines) and advances as the hardware finishes each. The textured
+/// methods read the built-in texture.
 pub fn render_rtl_with(
     tris: &[ScreenTriangle],
     method: Method,
     ctx: &ShadeContext,
+    width: u32,
+    height: u32,
+    progress: &ProgressBar,
+    build: RtlBuild,
+) -> Result<RtlRender> {
+    render_rtl_textured(
+        tris,
+        method,
+        ctx,
+        golden::texture::Texture::builtin(),
+        width,
+        height,
+        progress,
+        build,
+    )
+}
+
+/// [`render_rtl_with`] with the texture the textured methods read.
+#[allow(clippy::too_many_arguments)]
+pub fn render_rtl_textured(
+    tris: &[ScreenTriangle],
+    method: Method,
+    ctx: &ShadeContext,
+    texture: &golden::texture::Texture,
     width: u32,
     height: u32,
     progress: &ProgressBar,
@@ -69,6 +94,7 @@ pub fn render_rtl_with(
         ctx,
         width,
         height,
+        texture: Some(texture),
     };
     pipeline::render::render(&scene, method, &build, &mut |t| match t {
         pipeline::render::Tick::Total(n) => {

@@ -55,6 +55,7 @@ macro_rules! with_blocks {
             rtl::units::texture_coord::TextureCoord,
             rtl::units::texture_quadratic::TextureQuadratic,
             rtl::units::texture_memory::TextureMemory,
+            rtl::pipelines::textured_pipeline::TexturedPipeline,
         ]
     };
 }

@@ -20,4 +20,5 @@ pub mod lit;
 pub mod render;
 pub mod span;
 pub mod subdivision;
+pub mod textured;
 pub mod walkers;

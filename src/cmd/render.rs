@@ -294,6 +294,7 @@ fn rtl_cost(m: Method) -> u32 {
     match m {
         Method::Cubic => 30,
         m if pipeline::lit::LIT_METHODS.contains(&m) => 16,
+        m if pipeline::textured::TEXTURED_RTL_METHODS.contains(&m) => 18,
         m if pipeline::span::SPAN_METHODS.contains(&m) => 6,
         _ => 2,
     }
@@ -348,10 +349,11 @@ fn render_rtl_parallel(
                 );
                 ticker.watch(&format!("rtl {m}"), &bar);
                 let t0 = std::time::Instant::now();
-                let r = crate::rtl_engine::render_rtl_with(
+                let r = crate::rtl_engine::render_rtl_textured(
                     &setup.tris,
                     m,
                     &setup.ctx,
+                    &setup.texture,
                     setup.width,
                     setup.height,
                     &bar,

@@ -9,6 +9,7 @@ use crate::gouraud::{clock_budget, Pipe, TriangleJob};
 use crate::lit::{lit_clock_budget, LitJob, LitPipe, ShadingRegs};
 use crate::span::{span_clock_budget, span_jobs, SpanPipe};
 use crate::subdivision::{SubJob, SubPipe};
+use crate::textured::{tex_clock_budget, TexJob, TexRegs, TexturedPipe, ENGINE_K};
 
 /// `gouraud` through the raster pipe (`rtl::pipelines::gouraud_raster`: address block + BVI),
 /// by default through its AXI4-Stream top `gouraud-stream`: the address set-up
@@ -215,6 +216,65 @@ impl Family for Span {
                 &regs,
                 span_clock_budget(&spans),
                 |f| writer.put(f.triangle, f.x, f.y, f.z, f.rgb, &depth[f.triangle]),
+                |done| progress(Tick::Done(done)),
+            )
+            .map_err(|e| format!("RTL simulation: {e}"))?;
+        Ok(writer.finish(stats))
+    }
+}
+
+/// `texture` through `textured-pipeline` (tex-k = [`ENGINE_K`], on its ports): the texture
+/// written into the memory first (one texel per clock, not counted in the clocks), then one
+/// `TexJob` per triangle in the set-up order; depth from the hardware's z words.
+///
+/// Errors (one line): as the lit family, plus a triangle beyond the texture-coordinate block's
+/// range, a k_a or k_d whose white-texel weight does not fit Q8.8, a texture over 2^16 texels.
+pub(super) struct Textured;
+
+impl Family for Textured {
+    fn design(&self, _o: &Options) -> Result<verilated::Design, String> {
+        TexturedPipe::design(ENGINE_K)
+    }
+
+    fn render(
+        &self,
+        s: &Scene,
+        o: &Options,
+        progress: &mut dyn FnMut(Tick),
+    ) -> Result<Rendered, String> {
+        check_addresses(s.tris, s.width, s.height)?;
+        let texture = s.texture.unwrap_or(golden::texture::Texture::builtin());
+        let regs = ShadingRegs::of(s.ctx).map_err(|e| format!("RTL set-up: {e}"))?;
+        let tregs = TexRegs::of(s.ctx, texture).map_err(|e| format!("RTL set-up: {e}"))?;
+        let mut jobs = Vec::with_capacity(s.tris.len());
+        let mut depth = Vec::with_capacity(s.tris.len());
+        for (i, t) in s.tris.iter().enumerate() {
+            let job = TexJob::new(t, texture).map_err(|e| format!("triangle {i}: {e}"))?;
+            let (Some(d), Some(job)) = (t.depth_plane(), job) else {
+                continue;
+            };
+            jobs.push(job);
+            depth.push(d);
+        }
+        progress(Tick::Total(jobs.len() as u64));
+        let order = o
+            .setup_order
+            .of_addrs(&jobs.iter().map(|j| j.lit.addr).collect::<Vec<_>>());
+        let sent: Vec<TexJob> = order.iter().map(|&i| jobs[i]).collect();
+        let mut writer = FrameWriter::new(s.width, s.height);
+        let mut pipe = TexturedPipe::on(ENGINE_K, o.sim).map_err(|e| format!("RTL set-up: {e}"))?;
+        pipe.load_texture(texture, &regs, &tregs)
+            .map_err(|e| format!("RTL simulation: {e}"))?;
+        let stats = pipe
+            .run(
+                &sent,
+                &regs,
+                &tregs,
+                tex_clock_budget(&sent),
+                |f| {
+                    let k = order[f.job];
+                    writer.put(k, f.x, f.y, f.z, f.rgb, &depth[k])
+                },
                 |done| progress(Tick::Done(done)),
             )
             .map_err(|e| format!("RTL simulation: {e}"))?;

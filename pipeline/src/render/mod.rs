@@ -5,8 +5,8 @@
 //! (`crate::gouraud::Pipe`, `crate::subdivision::SubPipe`, `crate::lit::LitPipe`,
 //! `crate::span::SpanPipe`, each on either simulator and through its ports or its AXI4-Stream
 //! top) and its fragment-to-frame step; [`family`] picks the family of a method and
-//! [`Options`]. A new family (the textured one) is one more implementation in
-//! [`families`](self::families) and one more arm in [`family`].
+//! [`Options`]. The textured family (`crate::textured::TexturedPipe`) renders `texture`
+//! through `textured-pipeline` (its ports only: it has no stream top).
 //!
 //! Every triangle the golden renderer would draw (the same list, in the same order; zero-area
 //! triangles skipped as `golden::render::render` skips them) gets its set-up in software and is
@@ -27,6 +27,7 @@ use golden::types::{ScreenTriangle, MAX_ADDRESS};
 use crate::axis::PipeStats;
 use crate::lit::LIT_METHODS;
 use crate::span::SPAN_METHODS;
+use crate::textured::TEXTURED_RTL_METHODS;
 use flow::engine::Sim;
 
 /// What is drawn: the screen triangles (mesh order), the shading context, the canvas.
@@ -36,6 +37,9 @@ pub struct Scene<'a> {
     pub ctx: &'a ShadeContext,
     pub width: u32,
     pub height: u32,
+    /// The texture the textured methods read (`None`: the built-in one,
+    /// `golden::texture::Texture::builtin`, as `golden::render::render` reads).
+    pub texture: Option<&'a golden::texture::Texture>,
 }
 
 /// A render through the hardware: the frame and the hardware's clock counts.
@@ -176,12 +180,13 @@ pub trait Family {
 }
 
 /// The methods the hardware renders, in order: Gouraud, subdivision, the lit pipeline's, the
-/// span pipelines'.
+/// span pipelines', the textured pipeline's.
 pub fn methods() -> Vec<Method> {
     [Method::Gouraud, Method::Subdivision]
         .into_iter()
         .chain(LIT_METHODS)
         .chain(SPAN_METHODS)
+        .chain(TEXTURED_RTL_METHODS)
         .collect()
 }
 
@@ -228,6 +233,7 @@ pub fn family(method: Method, o: &Options) -> Result<Box<dyn Family>, String> {
         }
         (Method::Gouraud, _) => Box::new(families::Gouraud),
         (m, _) if SPAN_METHODS.contains(&m) => Box::new(families::Span(m)),
+        (m, _) if TEXTURED_RTL_METHODS.contains(&m) => Box::new(families::Textured),
         (m, _) => Box::new(families::Lit(m)),
     })
 }
@@ -330,6 +336,7 @@ mod tests {
                 ctx: &ctx,
                 width,
                 height: 10,
+                texture: None,
             };
             render(&s, m, o, &mut |_| {}).unwrap_err()
         };

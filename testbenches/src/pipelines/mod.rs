@@ -5,3 +5,4 @@ pub mod pixel_pipeline;
 pub mod span_held;
 pub mod span_pipeline;
 pub mod subdivision_raster;
+pub mod textured_pipeline;

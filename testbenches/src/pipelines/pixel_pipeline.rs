@@ -55,6 +55,13 @@ impl DelayLine {
 /// Twin of the whole pipeline.
 pub struct PipelineTwin {
     addr: AddressBlockModel,
+    back: LitBack,
+}
+
+/// Twin of the pipeline after the address block: the event register, the interpolators, the
+/// lighting, BRZSSK, power and colour stages and the delay lines beside them (shared with the
+/// textured pipeline, whose events come from its FIFO).
+pub struct LitBack {
     /// The register on the address block's event before the interpolators.
     ev: AddressOutputs,
     /// The accepted load's interpolator words, registered with the event.
@@ -80,6 +87,14 @@ impl PipelineTwin {
     pub fn new(p: &PipelineParams) -> Self {
         PipelineTwin {
             addr: AddressBlockModel::subpixel(),
+            back: LitBack::new(p),
+        }
+    }
+}
+
+impl LitBack {
+    pub fn new(p: &PipelineParams) -> Self {
+        LitBack {
             ev: AddressOutputs::default(),
             ld: None,
             normal: VectorTwin::default(),
@@ -100,15 +115,11 @@ impl PipelineTwin {
             done: DelayLine::new(EVENT_TO_FRAGMENT),
         }
     }
-}
 
-impl Twin for PipelineTwin {
-    fn step(&mut self, r: &[u64]) -> Vec<u64> {
-        let hold = r[pipeline::lit::HOLD_AT] != 0;
-        let a = self.addr.outputs_held(hold);
+    /// This clock's outputs: valid, x, y, z, red, green, blue, done.
+    pub fn outputs(&self) -> [u64; 8] {
         let (cv, rgb) = self.colour.outputs();
-        let o = vec![
-            a.ready as u64,
+        [
             cv as u64,
             self.x.out(),
             self.y.out(),
@@ -117,16 +128,25 @@ impl Twin for PipelineTwin {
             rgb[1],
             rgb[2],
             self.done.out(),
-        ];
-        let (job, regs) = row_job(r);
-        let accepted = job.filter(|_| a.ready);
+        ]
+    }
+
+    /// One clock: the event `a` (the address block's, or what takes its place), the load
+    /// accepted this clock, the frame registers and this clock's colour weights (amb, dif,
+    /// spc words as the colour combine's inputs show them).
+    pub fn clock(
+        &mut self,
+        a: &AddressOutputs,
+        accepted: Option<LitJob>,
+        regs: &ShadingRegs,
+        weights: &[u64; 9],
+    ) {
         let (nv, n) = self.n_reg;
         self.n_reg = self.normal.outputs();
         let (lv, cos_phi, cos_gamma) = self.light.outputs();
         let (bv, cos_phi_b, cos_gamma_b) = self.bump.outputs();
         let (pv, spec) = self.power.outputs();
-        self.colour
-            .clock(pv, self.cos_phi.out(), spec, &regs.weights);
+        self.colour.clock(pv, self.cos_phi.out(), spec, weights);
         self.power.clock(bv, cos_gamma_b, regs.n);
         self.cos_phi.clock(cos_phi_b);
         self.bump.clock(
@@ -141,7 +161,7 @@ impl Twin for PipelineTwin {
         let s = |w: [u64; 3]| w.map(|x| NORMAL.to_int(x));
         self.light.clock(nv, n, s(regs.light), s(regs.half));
         self.z.clock(self.depth.word() as u64);
-        let ev = std::mem::replace(&mut self.ev, a);
+        let ev = std::mem::replace(&mut self.ev, *a);
         let ld = std::mem::replace(&mut self.ld, accepted);
         self.normal.clock(ld.as_ref().map(|j| &j.normal), &ev);
         let first = ev.row_start && ev.step == 0;
@@ -155,6 +175,18 @@ impl Twin for PipelineTwin {
         self.x.clock(a.x as u64);
         self.y.clock(a.y as u64);
         self.done.clock(a.done as u64);
+    }
+}
+
+impl Twin for PipelineTwin {
+    fn step(&mut self, r: &[u64]) -> Vec<u64> {
+        let hold = r[pipeline::lit::HOLD_AT] != 0;
+        let a = self.addr.outputs_held(hold);
+        let mut o = vec![a.ready as u64];
+        o.extend(self.back.outputs());
+        let (job, regs) = row_job(r);
+        let accepted = job.filter(|_| a.ready);
+        self.back.clock(&a, accepted, &regs, &regs.weights);
         self.addr
             .clock_held(accepted.as_ref().map(|j| &j.addr), hold);
         o

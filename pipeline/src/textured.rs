@@ -1,0 +1,319 @@
+//! The textured pixel pipeline (`rtl::pipelines::textured_pipeline`) as a render driver: the
+//! lit pipeline's set-up ([`crate::lit::LitJob`]) plus the texture-coordinate block's
+//! (`golden::units::texture_coord::block::TexCoordSetup`, from the coefficients the golden
+//! `texture` method walks with), the texture written into the memory first, fragments out in
+//! hardware order.
+//!
+//! Row layout (the top's input ports in order): `load`, the address set-up (19 words), the
+//! normal words (12), the depth words (4), the texture-coordinate set-up (14), the shading
+//! registers without the ambient and diffuse weights (lx ly lz hx hy hz n spc_r spc_g spc_b:
+//! the texel gives the others), `ka`, `kd`, `log_w`, `log_h`,
+//! `tex_we`, `tex_waddr`, `tex_wdata`, `hold`. Outputs: ready, valid, x, y, z, red, green,
+//! blue, done.
+
+use golden::methods::Method;
+use golden::shade::ShadeContext;
+use golden::texture::Texture;
+use golden::types::ScreenTriangle;
+use golden::units::colour_combine::Weights;
+use golden::units::texture_coord::block::{walk_geometry, TexCoordSetup, SETUP_PORTS};
+use rtl::core::registry::{BlockParams, Options};
+use rtl::core::sim::Model;
+use rtl::pipelines::textured_pipeline::{TexturedParams, TexturedPipeline};
+
+use flow::engine::Sim;
+
+use crate::axis::PipeStats;
+use crate::lit::{lit_row, row_job, Fragment, LitJob, ShadingRegs, REGS_AT};
+
+/// Where the texture-coordinate set-up starts in a row.
+pub const TEX_AT: usize = REGS_AT;
+/// Where the shading registers start.
+pub const TREGS_AT: usize = TEX_AT + SETUP_PORTS;
+/// Where `ka` is (then `kd`, `log_w`, `log_h`, `tex_we`, `tex_waddr`, `tex_wdata`).
+pub const KA_AT: usize = TREGS_AT + 10;
+/// Where `hold` is.
+pub const TEX_HOLD_AT: usize = KA_AT + 7;
+/// Input words per row.
+pub const TEX_ROW_WIDTH: usize = TEX_HOLD_AT + 1;
+
+/// The methods the textured pipeline renders.
+pub const TEXTURED_RTL_METHODS: [Method; 1] = [Method::Texture];
+
+/// The k the engine builds (correction steps per clock: the block's default).
+pub const ENGINE_K: &str = "2";
+
+/// One triangle's set-up: the lit pipeline's and the texture-coordinate block's.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TexJob {
+    pub lit: LitJob,
+    pub tex: TexCoordSetup,
+}
+
+impl TexJob {
+    /// The set-up of `tri` for `texture`; `None` when the golden method draws nothing (zero
+    /// area, or a w that is not finite and positive). Errors (one line): a vertex depth beyond
+    /// the depth words, coefficients beyond the texture-coordinate block's range.
+    pub fn new(tri: &ScreenTriangle, texture: &Texture) -> Result<Option<TexJob>, String> {
+        let Some(lit) = LitJob::new(tri)? else {
+            return Ok(None);
+        };
+        let Some(s) = golden::shading::texture::setup(tri, texture) else {
+            return Ok(None);
+        };
+        let walk = golden::raster::walk(tri);
+        let (_, cu, cv) = golden::shading::texture::checked_coeffs(tri, &s, &walk)?;
+        let (_, f, dir) = walk_geometry(&lit.addr);
+        Ok(Some(TexJob {
+            lit,
+            tex: TexCoordSetup::new(&cu, &cv, f, dir),
+        }))
+    }
+}
+
+/// The texture registers: k_a and k_d (unsigned Q1.15) and the texture's sides (log₂).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct TexRegs {
+    pub ka: u64,
+    pub kd: u64,
+    pub log_w: u64,
+    pub log_h: u64,
+}
+
+impl TexRegs {
+    /// The registers of `ctx` for `texture`. Errors (one line): a k_a or k_d whose weight for
+    /// a white texel (255·k) does not fit the colour combine's Q8.8, a texture of more than
+    /// 2^16 texels.
+    pub fn of(ctx: &ShadeContext, texture: &Texture) -> Result<TexRegs, String> {
+        let mut white = *ctx;
+        white.material.diffuse = [255.0; 3];
+        Weights::of(&white)
+            .words()
+            .map_err(|e| format!("with a white texel: {e}"))?;
+        let (w, h) = (texture.width(), texture.height());
+        if (w as u64) * (h as u64) > 1 << golden::units::texture_memory::ADDRESS_BITS {
+            return Err(format!(
+                "a {w}x{h} texture does not fit the texture memory (2^16 texels)"
+            ));
+        }
+        let q = |k: f64| (k * 32768.0).round() as u64;
+        Ok(TexRegs {
+            ka: q(ctx.material.ka),
+            kd: q(ctx.material.kd),
+            log_w: w.trailing_zeros() as u64,
+            log_h: h.trailing_zeros() as u64,
+        })
+    }
+}
+
+/// The pipeline's input row: `load` with a job's set-up (or idle), the registers, a texel
+/// write (address, word) or none, `hold`.
+pub fn tex_row(
+    job: Option<&TexJob>,
+    regs: &ShadingRegs,
+    t: &TexRegs,
+    write: Option<(u32, u32)>,
+    hold: bool,
+) -> Vec<u64> {
+    let mut row = lit_row(job.map(|j| &j.lit), regs);
+    row.truncate(REGS_AT);
+    row.extend(job.map_or(vec![0; SETUP_PORTS], |j| j.tex.ports()));
+    let r = regs.row();
+    row.extend(&r[..7]);
+    row.extend(&r[13..]);
+    row.extend([t.ka, t.kd, t.log_w, t.log_h]);
+    match write {
+        Some((a, w)) => row.extend([1, a as u64, w as u64]),
+        None => row.extend([0, 0, 0]),
+    }
+    row.push(hold as u64);
+    debug_assert_eq!(row.len(), TEX_ROW_WIDTH);
+    row
+}
+
+/// One row's fields, as [`tex_row`] packs them.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TexRow {
+    pub job: Option<TexJob>,
+    pub regs: ShadingRegs,
+    pub t: TexRegs,
+    pub write: Option<(u32, u32)>,
+    pub hold: bool,
+}
+
+/// The inverse of [`tex_row`] (the registers' ambient and diffuse weights read 0).
+pub fn row_tex(row: &[u64]) -> TexRow {
+    let mut lit = row[..REGS_AT].to_vec();
+    lit.extend(&row[TREGS_AT..TREGS_AT + 7]);
+    lit.extend([0; 6]);
+    lit.extend(&row[TREGS_AT + 7..KA_AT]);
+    lit.push(0);
+    let (job, regs) = row_job(&lit);
+    let k = &row[KA_AT..];
+    TexRow {
+        job: job.map(|lit| TexJob {
+            lit,
+            tex: TexCoordSetup::from_ports(&row[TEX_AT..TREGS_AT]),
+        }),
+        regs,
+        t: TexRegs {
+            ka: k[0],
+            kd: k[1],
+            log_w: k[2],
+            log_h: k[3],
+        },
+        write: (k[4] & 1 != 0).then(|| (k[5] as u32, k[6] as u32)),
+        hold: row[TEX_HOLD_AT] & 1 != 0,
+    }
+}
+
+/// The build of `k` (1 or 2).
+pub fn params(k: &str) -> Result<TexturedParams, String> {
+    TexturedParams::from_options(&Options::new().with("tex-k", k))
+}
+
+/// `textured-pipeline` on either simulator.
+pub struct TexturedPipe {
+    model: Box<dyn Model>,
+}
+
+impl TexturedPipe {
+    /// The pipeline with `tex-k` = `k`, on `sim`.
+    pub fn on(k: &str, sim: Sim) -> Result<TexturedPipe, String> {
+        Ok(TexturedPipe {
+            model: flow::engine::model::<TexturedPipeline>(&params(k)?, sim)?,
+        })
+    }
+
+    /// The design [`TexturedPipe::on`] builds under Verilator.
+    pub fn design(k: &str) -> Result<verilated::Design, String> {
+        Ok(flow::engine::design::<TexturedPipeline>(&params(k)?))
+    }
+
+    /// Write `texture` into the memory (one texel per clock); returns the clocks taken.
+    pub fn load_texture(
+        &mut self,
+        texture: &Texture,
+        regs: &ShadingRegs,
+        t: &TexRegs,
+    ) -> Result<u64, String> {
+        let words = golden::units::texture_memory::load_words(texture).ok_or_else(|| {
+            format!(
+                "a {}x{} texture does not fit the texture memory (2^16 texels)",
+                texture.width(),
+                texture.height()
+            )
+        })?;
+        let mut out = vec![0u64; 9];
+        for &w in &words {
+            self.model
+                .step(&tex_row(None, regs, t, Some(w), false), &mut out)?;
+        }
+        Ok(words.len() as u64)
+    }
+
+    /// Run `jobs` (after [`TexturedPipe::load_texture`]), each loaded as soon as `ready` is
+    /// high; `fragment` for every valid output, `progress(done_triangles)` after each `done`.
+    /// Stops after the last `done`, or with an error after `max_clocks`.
+    pub fn run(
+        &mut self,
+        jobs: &[TexJob],
+        regs: &ShadingRegs,
+        t: &TexRegs,
+        max_clocks: u64,
+        mut fragment: impl FnMut(Fragment),
+        mut progress: impl FnMut(u64),
+    ) -> Result<PipeStats, String> {
+        let mut st = PipeStats::default();
+        let mut out = vec![0u64; 9];
+        let idle = tex_row(None, regs, t, None, false);
+        let mut next = 0;
+        while st.triangles < jobs.len() as u64 {
+            if st.clocks >= max_clocks {
+                return Err(format!(
+                    "textured pipeline: {} of {} triangles done after {max_clocks} clocks",
+                    st.triangles,
+                    jobs.len()
+                ));
+            }
+            // `ready` (output 0) is a function of registers: settled before the clock's step.
+            let ready = self.model.peek(0) != 0;
+            let load = (ready && next < jobs.len()).then(|| &jobs[next]);
+            next += load.is_some() as usize;
+            match load {
+                Some(j) => self
+                    .model
+                    .step(&tex_row(Some(j), regs, t, None, false), &mut out)?,
+                None => self.model.step(&idle, &mut out)?,
+            }
+            st.clocks += 1;
+            if out[1] != 0 {
+                st.pixels += 1;
+                fragment(Fragment {
+                    job: st.triangles as usize,
+                    x: out[2] as u32,
+                    y: out[3] as u32,
+                    z: out[4] as u32 as i32,
+                    rgb: [out[5] as u8, out[6] as u8, out[7] as u8],
+                    clock: st.clocks - 1,
+                });
+            }
+            if out[8] != 0 {
+                st.triangles += 1;
+                progress(st.triangles);
+            }
+        }
+        self.model.stop_vcd()?;
+        Ok(st)
+    }
+}
+
+/// A clock budget for `jobs`: every row at full length, each pixel at the texture-coordinate
+/// block's worst rate (a runaway guard, not an estimate), plus the latency.
+pub fn tex_clock_budget(jobs: &[TexJob]) -> u64 {
+    jobs.iter()
+        .map(|j| 8 + j.lit.addr.rows as u64 * 4097 * 64)
+        .sum::<u64>()
+        + TexturedPipeline::LATENCY as u64
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::DVec2;
+
+    #[test]
+    fn rows_round_trip() {
+        let mut t = ScreenTriangle::from_points([(3, 1), (40, 7), (11, 30)]);
+        for (k, v) in t.v.iter_mut().enumerate() {
+            v.uv = DVec2::new(k as f64 * 0.3, 0.1 + k as f64 * 0.2);
+            v.w = 1.0 + k as f64;
+        }
+        let texture = Texture::builtin();
+        let job = TexJob::new(&t, texture).unwrap().unwrap();
+        let ctx = ShadeContext::default();
+        let regs = ShadingRegs::of(&ctx).unwrap();
+        let tr = TexRegs::of(&ctx, texture).unwrap();
+        assert_eq!((tr.log_w, tr.log_h), (8, 8));
+        let row = tex_row(Some(&job), &regs, &tr, Some((5, 0xABCDEF)), true);
+        assert_eq!(row.len(), TEX_ROW_WIDTH);
+        let back = row_tex(&row);
+        let mut no_amb_dif = regs;
+        no_amb_dif.weights[..6].fill(0);
+        assert_eq!(back.regs, no_amb_dif);
+        assert_eq!(back.t, tr);
+        assert_eq!(back.write, Some((5, 0xABCDEF)));
+        assert!(back.hold);
+        let bj = back.job.unwrap();
+        assert_eq!(bj.tex, job.tex);
+        assert_eq!(
+            (bj.lit.normal, bj.lit.depth),
+            (job.lit.normal, job.lit.depth)
+        );
+        assert_eq!(row_tex(&tex_row(None, &regs, &tr, None, false)).job, None);
+        // A k_d whose white-texel weight is 256 or more is an error, not a wrap.
+        let mut bright = ctx;
+        bright.material.kd = 1.01;
+        assert!(TexRegs::of(&bright, texture).unwrap_err().contains("dif"));
+    }
+}

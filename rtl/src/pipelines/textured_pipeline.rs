@@ -1,0 +1,711 @@
+//! The textured pixel pipeline (SPEC §14 with §0–§2, §5, §6): the lit pixel pipeline
+//! (`pixel_pipeline`, built as `normalizer-fit`) whose diffuse colour is, per pixel, the nearest
+//! texel of the division-free perspective-correct texture coordinate (`texture_coord`), read
+//! from the texture memory (`texture_memory`). Golden: the `texture` method
+//! (`golden::shading::texture::shade` with `Coord::Additive`): the texel takes the place of the
+//! material's diffuse colour in the ambient and diffuse terms, lit per pixel as `normalizer-fit`.
+//!
+//! ```text
+//!  load ─► SubpixelAddressBlock ─event─► FIFO 1 (8) ─head─► TextureCoord ─(u, v)─► TextureMemory (4) ─texel─► Delay ─► TexelWeights (3) ─amb, dif─┐
+//!            ▲ hold | FIFO 1 ≥ 7          └─taken─► FIFO 2 (8) ─pop (non-pixel, or texel shown)─► the lit path of pixel-pipeline (85) ─► ColourCombine ─► x, y, z, r, g, b
+//! ```
+//!
+//! # How the variable-rate texel meets the fixed-latency lit path
+//!
+//! The texture-coordinate block takes an event only while its `ready` is high, and a pixel
+//! needing more than k correction steps on an axis holds it. The address block's events go
+//! into a first 8-entry FIFO (the address block is held while it has 7 or more, a function of
+//! registers: at most one push a clock); the texture-coordinate block is shown the FIFO's head
+//! and takes it when ready, and the event taken moves into a second 8-entry FIFO. Its head
+//! leaves (`pop`) when it is not a pixel (a line start without a pixel, a lone `done`) or when
+//! the texture-coordinate block shows the pixel's texel (`valid_out`): the block keeps the
+//! walk's order, so the texel shown is the head's. From the pop on, the event and its texel
+//! travel at fixed latencies: the event through the lit path exactly as in `pixel-pipeline`
+//! (the pop takes the place of the address block's event), the texel through the memory, a
+//! delay line and the weight stage, so that its weights reach the colour combine with the
+//! pixel's cosines. (The first FIFO keeps the block's `ready` out of the address block's
+//! `hold`: that path through two sub-blocks and back made a combinational loop at the level of
+//! the exported Verilog's always blocks, which the in-process Verilator model evaluated
+//! differently from Icarus and rust-hdl.)
+//!
+//! The interpolators' shadow banks are written on the accepted load, so a load must not come
+//! before the previous triangle's first event has left the FIFO: `ready` is the address
+//! block's `ready` while no accepted load waits for its triangle's start to leave the FIFO
+//! (`first_wait`): its first event, or the lone `done` of a triangle without pixel centres
+//! (the address block shows no first event for it; `seen_first` tells such a `done` from the
+//! end of a triangle that had one). The second FIFO holds at most the pending pixel, the pixel being shown and
+//! the events taken between them; 8 entries have margin (the bench's twin checks that no push
+//! finds it full and that no texel is shown with a non-pixel at the head).
+//!
+//! # Ports
+//! | port | dir | format |
+//! |---|---|---|
+//! | `load` | in | accepted when `ready` is high: writes the address block, every shadow bank and the texture-coordinate block's shadow set-up |
+//! | address set-up (`w_b0` … `dir_neg`) | in | the sub-pixel address block's (`address_block`) |
+//! | `x_start` … `z_line` | in | the normal planes, signed Q3.29 (`vector_interpolator`) |
+//! | `d_start d_short d_long d_line` | in | the depth plane, signed Q16.16 pixels |
+//! | `tex_e0` … `tex_v_p_long` | in | the texture-coordinate block's set-up, its ports `e0` … `v_p_long` with `tex_` before each (`texture_coord`: 48-bit two's complement words, 16-bit texels) |
+//! | `lx ly lz`, `hx hy hz`, `n`, `spc_r spc_g spc_b` | in | as `pixel-pipeline` (frame and material registers; the ambient and diffuse weights come from the texel) |
+//! | `ka`, `kd` | in | the material's k_a and k_d, unsigned Q1.15 (registers; k·255 < 256 so every weight fits Q8.8) |
+//! | `log_w`, `log_h` | in | the texture's sides, 2^log_w × 2^log_h texels (registers, `texture_memory`) |
+//! | `tex_we`, `tex_waddr` (16), `tex_wdata` (24) | in | a texel write (`texture_memory`'s `we`, `waddr`, `wdata`): load the texture before the triangles that read it |
+//! | `hold` | in | stall the address block (no event this clock); the fragment stream gets empty clocks |
+//! | `ready` | out | a `load` is accepted this clock |
+//! | `valid`, `x`, `y`, `z`, `red green blue`, `done` | out | as `pixel-pipeline` |
+//!
+//! # Texel weights (`TexelWeights`)
+//! amb_c = ⌊(texel_c·ka + 2⁶) / 2⁷⌋, dif_c = ⌊(texel_c·kd + 2⁶) / 2⁷⌋: UQ8.0 × UQ1.15 →
+//! UQ9.15, rounded to the colour combine's UQ8.8 weight, saturated at 2¹⁶ − 1 (never reached
+//! when k·255 < 256). Two clocks of multiplier (`MulPipe`, 6 multipliers), one register on the
+//! rounded weight; amb waits two more clocks (the colour combine samples it two clocks after
+//! dif).
+//!
+//! # Latency, throughput
+//! Event → fragment 88 clocks when the pixel's texel settles in its first clock (the first
+//! FIFO's register 1, the texture-coordinate block 2, then the lit path's 85 from the pop),
+//! load → first fragment 91.
+//! One fragment per clock while every pixel needs at most k correction steps per axis; a pixel
+//! needing q steps on its worse axis costs max(1, ⌈q/k⌉) clocks, and a line start without a
+//! pixel one clock, as in the texture-coordinate block. A triangle's load waits until the
+//! previous triangle's first event has left the FIFO (about 3 clocks after the address block
+//! showed it).
+//!
+//! # Build parameters
+//! `texture` (additive: the §14 block; the quadratic and Bézier coordinates are not built into
+//! the pipeline) and `tex-k` (1 | 2: correction steps per clock). The lit path is
+//! `pixel-pipeline`'s `coeffs=fit power=exact bump=off` (the `normalizer-fit` lighting the
+//! textured methods use).
+//!
+//! # Overflow, error budget
+//! Those of the blocks. Against the golden `texture` method: the texel is the same (the block
+//! is exact on the coefficients the golden method uses); the weights add ≤ 2⁻⁹ + 255·2⁻¹⁶ each
+//! to the pipeline's colour budget; the bench and the image tests measure it (≤ 2 LSB
+//! required, 1 LSB asked).
+//!
+//! Latency (the block's `LATENCY`): 91 clocks, load to the first fragment, one fragment per clock.
+
+use rust_hdl::prelude::*;
+
+use crate::core::primitives::{Delay, MulPipe, MUL_LATENCY};
+use crate::core::registry::{BlockParams, Options};
+use crate::pipelines::pixel_pipeline::{
+    PipelineParams, EVENT_REGISTER, EVENT_TO_BRZSSK, EVENT_TO_FRAGMENT, NORMAL_REGISTER,
+};
+use crate::units::address_block::SubpixelAddressBlock;
+use crate::units::brzssk::Brzssk;
+use crate::units::colour_combine::ColourCombine;
+use crate::units::intensity_interpolator::IntensityChannel;
+use crate::units::lighting_unit::LightingUnit;
+use crate::units::power_unit::PowerUnit;
+use crate::units::texture_coord::{TexCoordParams, TextureCoord};
+use crate::units::texture_memory::TextureMemory;
+use crate::units::vector_interpolator::VectorInterpolator;
+
+/// Entries of the event FIFO (the update's loops are written for 8).
+pub const EVENT_FIFO: usize = 8;
+
+/// Clocks of the texel weight stage: the multiplier, then the rounded weight's register.
+pub const WEIGHT_LATENCY: usize = MUL_LATENCY + 1;
+
+/// Clocks from the pop to the colour combine's input (where the dif weights must be).
+pub const POP_TO_COLOUR: usize = EVENT_TO_FRAGMENT - ColourCombine::LATENCY;
+
+/// The texel's delay between the memory and the weight stage.
+pub const TEXEL_DELAY: usize = POP_TO_COLOUR - TextureMemory::LATENCY - WEIGHT_LATENCY;
+
+/// Clocks from an address event to its fragment, for a pixel whose texel settles in its first
+/// clock: the first FIFO's register, the texture-coordinate block's latency, then the lit path.
+pub const TEX_EVENT_TO_FRAGMENT: usize = 1 + TextureCoord::LATENCY + EVENT_TO_FRAGMENT;
+
+/// Build parameters: the texture coordinate (additive only) and its k.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TexturedParams {
+    pub k: TexCoordParams,
+    /// The lit path's build (always `coeffs=fit power=exact bump=off`).
+    pub lit: PipelineParams,
+}
+
+impl TexturedParams {
+    fn lit() -> PipelineParams {
+        PipelineParams::from_options(
+            &Options::new()
+                .with("coeffs", "fit")
+                .with("power", "exact")
+                .with("bump", "off"),
+        )
+        .expect("the normalizer-fit build")
+    }
+}
+
+impl Default for TexturedParams {
+    fn default() -> Self {
+        TexturedParams {
+            k: TexCoordParams::default(),
+            lit: Self::lit(),
+        }
+    }
+}
+
+impl BlockParams for TexturedParams {
+    const KEYS: &'static [&'static str] = &["texture", "tex-k"];
+    /// `texture=additive` (the default; `quadratic` and `bezier` are not built into the
+    /// pipeline: an error) and `tex-k=1|2` (default 2).
+    fn from_options(o: &Options) -> Result<Self, String> {
+        match o.get("texture") {
+            None | Some("additive") => {}
+            Some(t @ ("quadratic" | "bezier")) => {
+                return Err(format!(
+                "texture={t} is not built into the pipeline (only texture=additive, the §14 block)"
+            ))
+            }
+            Some(other) => {
+                return Err(format!(
+                    "unknown texture coordinate {other:?} (expected additive)"
+                ))
+            }
+        }
+        Ok(TexturedParams {
+            k: TexCoordParams::from_options(o)?,
+            lit: Self::lit(),
+        })
+    }
+    fn describe(&self) -> Option<String> {
+        Some(format!(
+            "texture = additive (SPEC §14), {}; lit as normalizer-fit",
+            self.k.describe().unwrap_or_default()
+        ))
+    }
+    fn test_sets() -> Vec<Options> {
+        vec![Options::new(), Options::new().with("tex-k", "1")]
+    }
+}
+
+/// The texture-coordinate block's fourteen set-up words (`texture_coord`).
+#[macro_export]
+macro_rules! texture_setup_ports {
+    ($($then:tt)*) => {
+        $crate::hw_bundle! {
+            [
+                tex_e0: Bits<48>, tex_de_line: Bits<48>, tex_de_short: Bits<48>, tex_de_long: Bits<48>,
+                tex_u_u0: Bits<16>, tex_u_w0: Bits<48>, tex_u_p_line: Bits<48>, tex_u_p_short: Bits<48>, tex_u_p_long: Bits<48>,
+                tex_v_u0: Bits<16>, tex_v_w0: Bits<48>, tex_v_p_line: Bits<48>, tex_v_p_short: Bits<48>, tex_v_p_long: Bits<48>,
+            ]
+            $($then)*
+        }
+    };
+}
+
+crate::hw_block! {
+    /// The texel weights: amb_c = texel_c·ka, dif_c = texel_c·kd rounded to UQ8.8 (see the
+    /// module header). dif after [`WEIGHT_LATENCY`] clocks, amb two clocks after that.
+    pub struct TexelWeights(clock) {
+        in { red: Bits<8>, green: Bits<8>, blue: Bits<8>, ka: Bits<16>, kd: Bits<16> }
+        out {
+            amb_r: Bits<16>, amb_g: Bits<16>, amb_b: Bits<16>,
+            dif_r: Bits<16>, dif_g: Bits<16>, dif_b: Bits<16>,
+        }
+        /// 0..2: texel·ka, 3..5: texel·kd.
+        m: [MulPipe; 6],
+        /// The rounded product (bits 7.. of product + 2⁶), 25 bits so the sum cannot wrap.
+        w_rnd: [Signal<Local, Bits<32>>; 6],
+        wq: [DFF<Bits<16>>; 6],
+        amb_late: [Delay<Bits<16>, 2>; 3],
+        half: Constant<Bits<32>> = Constant::new(64u64.into()),
+        top: Constant<Bits<16>> = Constant::new(0xFFFFu64.into()),
+    }
+}
+
+impl Logic for TexelWeights {
+    #[hdl_gen]
+    fn update(&mut self) {
+        for i in 0..6 {
+            self.m[i].clock.next = self.clock.val();
+            self.wq[i].clock.next = self.clock.val();
+        }
+        for c in 0..3 {
+            self.amb_late[c].clock.next = self.clock.val();
+        }
+        self.m[0].a.next = bit_cast::<16, 8>(self.red.val());
+        self.m[1].a.next = bit_cast::<16, 8>(self.green.val());
+        self.m[2].a.next = bit_cast::<16, 8>(self.blue.val());
+        self.m[3].a.next = bit_cast::<16, 8>(self.red.val());
+        self.m[4].a.next = bit_cast::<16, 8>(self.green.val());
+        self.m[5].a.next = bit_cast::<16, 8>(self.blue.val());
+        for c in 0..3 {
+            self.m[c].b.next = self.ka.val();
+            self.m[c + 3].b.next = self.kd.val();
+        }
+        for i in 0..6 {
+            self.w_rnd[i].next = self.m[i].p.val() + self.half.val();
+            if self.w_rnd[i].val().get_bits::<9>(23).any() {
+                self.wq[i].d.next = self.top.val();
+            } else {
+                self.wq[i].d.next = self.w_rnd[i].val().get_bits::<16>(7);
+            }
+        }
+        for c in 0..3 {
+            self.amb_late[c].d.next = self.wq[c].q.val();
+        }
+        self.amb_r.next = self.amb_late[0].q.val();
+        self.amb_g.next = self.amb_late[1].q.val();
+        self.amb_b.next = self.amb_late[2].q.val();
+        self.dif_r.next = self.wq[3].q.val();
+        self.dif_g.next = self.wq[4].q.val();
+        self.dif_b.next = self.wq[5].q.val();
+    }
+}
+
+crate::hw_block! {
+    /// An event FIFO of [`EVENT_FIFO`] entries (shift register: entry 0 is the head, the
+    /// entries in use a prefix). `pop` is ignored when empty; the head's fields read zero then.
+    /// `nearly_full`: 7 or more entries (a function of the registers).
+    pub struct EventFifo(clock) {
+        in {
+            push: Bit, pop: Bit,
+            in_valid: Bit, in_row: Bit, in_step: Bits<2>, in_carry: Bit, in_first: Bit,
+            in_done: Bit, in_x: Bits<12>, in_y: Bits<12>,
+        }
+        out {
+            any: Bit, nearly_full: Bit,
+            h_valid: Bit, h_row: Bit, h_step: Bits<2>, h_carry: Bit, h_first: Bit,
+            h_done: Bit, h_x: Bits<12>, h_y: Bits<12>,
+        }
+        occ: [DFF<Bit>; EVENT_FIFO],
+        f_valid: [DFF<Bit>; EVENT_FIFO], f_row: [DFF<Bit>; EVENT_FIFO],
+        f_step: [DFF<Bits<2>>; EVENT_FIFO], f_carry: [DFF<Bit>; EVENT_FIFO],
+        f_first: [DFF<Bit>; EVENT_FIFO], f_done: [DFF<Bit>; EVENT_FIFO],
+        f_x: [DFF<Bits<12>>; EVENT_FIFO], f_y: [DFF<Bits<12>>; EVENT_FIFO],
+        /// After the pop: entry i in use (entry i + 1 moved down, or i kept).
+        kept: [Signal<Local, Bit>; EVENT_FIFO],
+        /// The push lands in entry i.
+        put: [Signal<Local, Bit>; EVENT_FIFO],
+        go: Signal<Local, Bit>,
+    }
+}
+
+impl Logic for EventFifo {
+    #[hdl_gen]
+    fn update(&mut self) {
+        for i in 0..8 {
+            clock!(self, clock, occ[i], f_valid[i], f_row[i], f_step[i], f_carry[i]);
+            clock!(self, clock, f_first[i], f_done[i], f_x[i], f_y[i]);
+        }
+        self.go.next = self.pop.val() & self.occ[0].q.val();
+        for i in 0..8 {
+            self.kept[i].next = self.occ[i].q.val();
+        }
+        for i in 0..7 {
+            if self.go.val() {
+                self.kept[i].next = self.occ[i + 1].q.val();
+            }
+        }
+        if self.go.val() {
+            self.kept[7].next = false;
+        }
+        self.put[0].next = self.push.val() & !self.kept[0].val();
+        for i in 1..8 {
+            self.put[i].next = self.push.val() & !self.kept[i].val() & self.kept[i - 1].val();
+        }
+        for i in 0..8 {
+            self.occ[i].d.next = self.kept[i].val() | self.put[i].val();
+            self.f_valid[i].d.next = self.f_valid[i].q.val();
+            self.f_row[i].d.next = self.f_row[i].q.val();
+            self.f_step[i].d.next = self.f_step[i].q.val();
+            self.f_carry[i].d.next = self.f_carry[i].q.val();
+            self.f_first[i].d.next = self.f_first[i].q.val();
+            self.f_done[i].d.next = self.f_done[i].q.val();
+            self.f_x[i].d.next = self.f_x[i].q.val();
+            self.f_y[i].d.next = self.f_y[i].q.val();
+        }
+        for i in 0..7 {
+            if self.go.val() {
+                self.f_valid[i].d.next = self.f_valid[i + 1].q.val();
+                self.f_row[i].d.next = self.f_row[i + 1].q.val();
+                self.f_step[i].d.next = self.f_step[i + 1].q.val();
+                self.f_carry[i].d.next = self.f_carry[i + 1].q.val();
+                self.f_first[i].d.next = self.f_first[i + 1].q.val();
+                self.f_done[i].d.next = self.f_done[i + 1].q.val();
+                self.f_x[i].d.next = self.f_x[i + 1].q.val();
+                self.f_y[i].d.next = self.f_y[i + 1].q.val();
+            }
+        }
+        for i in 0..8 {
+            if self.put[i].val() {
+                self.f_valid[i].d.next = self.in_valid.val();
+                self.f_row[i].d.next = self.in_row.val();
+                self.f_step[i].d.next = self.in_step.val();
+                self.f_carry[i].d.next = self.in_carry.val();
+                self.f_first[i].d.next = self.in_first.val();
+                self.f_done[i].d.next = self.in_done.val();
+                self.f_x[i].d.next = self.in_x.val();
+                self.f_y[i].d.next = self.in_y.val();
+            }
+        }
+        self.any.next = self.occ[0].q.val();
+        self.nearly_full.next = self.occ[6].q.val();
+        self.h_valid.next = false;
+        self.h_row.next = false;
+        self.h_step.next = 0.into();
+        self.h_carry.next = false;
+        self.h_first.next = false;
+        self.h_done.next = false;
+        self.h_x.next = 0.into();
+        self.h_y.next = 0.into();
+        if self.occ[0].q.val() {
+            self.h_valid.next = self.f_valid[0].q.val();
+            self.h_row.next = self.f_row[0].q.val();
+            self.h_step.next = self.f_step[0].q.val();
+            self.h_carry.next = self.f_carry[0].q.val();
+            self.h_first.next = self.f_first[0].q.val();
+            self.h_done.next = self.f_done[0].q.val();
+            self.h_x.next = self.f_x[0].q.val();
+            self.h_y.next = self.f_y[0].q.val();
+        }
+    }
+}
+
+crate::hw_block! {
+    /// The textured pixel pipeline (see the module header).
+    pub struct TexturedPipeline(clock) as "textured-pipeline" {
+        summary: "one triangle's set-up in, textured lit fragments out: the lit pixel pipeline whose diffuse colour is the nearest texel of the division-free perspective-correct (u, v), read from block RAM (SPEC §14, §0–§2, §5–§6)",
+        latency: SubpixelAddressBlock::LATENCY + TEX_EVENT_TO_FRAGMENT
+            => "load to the first fragment, one fragment per clock while every pixel needs at most k correction steps per axis",
+        multipliers: 44,
+        in {
+            load: Bit, address_setup_ports!, normal_setup_ports!, depth_setup_ports!,
+            texture_setup_ports!,
+            lx: Bits<16>, ly: Bits<16>, lz: Bits<16>, hx: Bits<16>, hy: Bits<16>, hz: Bits<16>,
+            n: Bits<10>, spc_r: Bits<16>, spc_g: Bits<16>, spc_b: Bits<16>,
+            ka: Bits<16>, kd: Bits<16>, log_w: Bits<4>, log_h: Bits<4>,
+            tex_we: Bit, tex_waddr: Bits<16>, tex_wdata: Bits<24>,
+            hold: Bit,
+        }
+        out {
+            ready: Bit, valid: Bit, x: Bits<12>, y: Bits<12>, z: Bits<32>,
+            red: Bits<8>, green: Bits<8>, blue: Bits<8>, done: Bit,
+        }
+        pub addr: SubpixelAddressBlock,
+        pub coord: TextureCoord = TextureCoord::new(&p.k),
+        pub memory: TextureMemory,
+        pub normal: VectorInterpolator,
+        pub depth: IntensityChannel,
+        n_reg: [Delay<Bits<19>, NORMAL_REGISTER>; 3],
+        n_valid_reg: Delay<Bit, NORMAL_REGISTER>,
+        pub light: LightingUnit = LightingUnit::new(&p.lit.coeffs),
+        pub bump: Brzssk = Brzssk::new(&p.lit.bump),
+        x_to_bump: Delay<Bits<12>, { EVENT_TO_BRZSSK }>,
+        y_to_bump: Delay<Bits<12>, { EVENT_TO_BRZSSK }>,
+        pub power: PowerUnit = PowerUnit::new(&p.lit.power),
+        pub colour: ColourCombine,
+        pub weights: TexelWeights,
+        texel_r: Delay<Bits<8>, { TEXEL_DELAY }>,
+        texel_g: Delay<Bits<8>, { TEXEL_DELAY }>,
+        texel_b: Delay<Bits<8>, { TEXEL_DELAY }>,
+        /// The address block's events before the texture-coordinate block takes them.
+        pub taken_q: EventFifo,
+        /// The events taken, until their texels show (a non-pixel leaves at once).
+        pub lit_q: EventFifo,
+        pop: Signal<Local, Bit>,
+        /// An accepted load waits for its triangle's start to leave the FIFO: its first event,
+        /// or, for a triangle without one (no pixel centre inside), its lone `done`.
+        first_wait: DFF<Bit>,
+        /// The popped stream is inside a triangle: its first event has left, its `done` not.
+        seen_first: DFF<Bit>,
+        start: Signal<Local, Bit>,
+        gate: Signal<Local, Bit>,
+        accepted: Signal<Local, Bit>,
+        /// The popped event (zero when nothing pops), as `pixel-pipeline` sees the address
+        /// block's.
+        p_valid: Signal<Local, Bit>, p_row: Signal<Local, Bit>, p_step: Signal<Local, Bits<2>>,
+        p_carry: Signal<Local, Bit>, p_first: Signal<Local, Bit>, p_done: Signal<Local, Bit>,
+        p_x: Signal<Local, Bits<12>>, p_y: Signal<Local, Bits<12>>,
+        ev_valid: DFF<Bit>, ev_row_start: DFF<Bit>, ev_step: DFF<Bits<2>>, ev_carry: DFF<Bit>,
+        ev_first: DFF<Bit>,
+        ld_q: DFF<Bit>,
+        sw: [DFF<Bits<32>>; 16],
+        cos_phi_to_colour: Delay<Bits<16>, { PowerUnit::LATENCY }>,
+        z_to_out: Delay<Bits<32>, { EVENT_TO_FRAGMENT - EVENT_REGISTER - 1 }>,
+        x_to_out: Delay<Bits<12>, { EVENT_TO_FRAGMENT }>,
+        y_to_out: Delay<Bits<12>, { EVENT_TO_FRAGMENT }>,
+        done_to_out: Delay<Bit, { EVENT_TO_FRAGMENT }>,
+    }
+    new(p: &TexturedParams);
+}
+
+impl Logic for TexturedPipeline {
+    #[hdl_gen]
+    fn update(&mut self) {
+        clock!(
+            self,
+            clock,
+            addr,
+            coord,
+            memory,
+            normal,
+            depth,
+            n_valid_reg,
+            light,
+            bump,
+            x_to_bump,
+            y_to_bump,
+            power,
+            colour,
+            weights,
+            texel_r,
+            texel_g,
+            texel_b,
+            cos_phi_to_colour,
+            z_to_out,
+            x_to_out,
+            y_to_out,
+            done_to_out,
+            ev_valid,
+            ev_row_start,
+            ev_step,
+            ev_carry,
+            ev_first,
+            ld_q,
+            first_wait,
+            seen_first,
+            taken_q,
+            lit_q
+        );
+        for i in 0..16 {
+            self.sw[i].clock.next = self.clock.val();
+        }
+
+        // The address block, held while the texture-coordinate block cannot take an event;
+        // a load only while no accepted load waits for its first event to leave the FIFO.
+        self.gate.next = !self.first_wait.q.val();
+        self.accepted.next = self.load.val() & self.addr.ready.val() & self.gate.val();
+        self.addr.load.next = self.load.val() & self.gate.val();
+        self.addr.hold.next = self.hold.val() | self.taken_q.nearly_full.val();
+        self.addr.w_b0.next = self.w_b0.val();
+        self.addr.w_e0.next = self.w_e0.val();
+        self.addr.w_f.next = self.w_f.val();
+        self.addr.w_r.next = self.w_r.val();
+        self.addr.w_d.next = self.w_d.val();
+        self.addr.a_b0.next = self.a_b0.val();
+        self.addr.a_e0.next = self.a_e0.val();
+        self.addr.a_f.next = self.a_f.val();
+        self.addr.a_r.next = self.a_r.val();
+        self.addr.a_d.next = self.a_d.val();
+        self.addr.t_b0.next = self.t_b0.val();
+        self.addr.t_e0.next = self.t_e0.val();
+        self.addr.t_f.next = self.t_f.val();
+        self.addr.t_r.next = self.t_r.val();
+        self.addr.t_d.next = self.t_d.val();
+        self.addr.y_top.next = self.y_top.val();
+        self.addr.rows.next = self.rows.val();
+        self.addr.y_switch.next = self.y_switch.val();
+        self.addr.dir_neg.next = self.dir_neg.val();
+
+        // The texture-coordinate block's set-up.
+        self.coord.load.next = self.accepted.val();
+        self.coord.e0.next = self.tex_e0.val();
+        self.coord.de_line.next = self.tex_de_line.val();
+        self.coord.de_short.next = self.tex_de_short.val();
+        self.coord.de_long.next = self.tex_de_long.val();
+        self.coord.u_u0.next = self.tex_u_u0.val();
+        self.coord.u_w0.next = self.tex_u_w0.val();
+        self.coord.u_p_line.next = self.tex_u_p_line.val();
+        self.coord.u_p_short.next = self.tex_u_p_short.val();
+        self.coord.u_p_long.next = self.tex_u_p_long.val();
+        self.coord.v_u0.next = self.tex_v_u0.val();
+        self.coord.v_w0.next = self.tex_v_w0.val();
+        self.coord.v_p_line.next = self.tex_v_p_line.val();
+        self.coord.v_p_short.next = self.tex_v_p_short.val();
+        self.coord.v_p_long.next = self.tex_v_p_long.val();
+
+        // The first FIFO takes every event the address block shows (held while it has 7 or
+        // more: at most one push a clock); the texture-coordinate block takes its head when
+        // ready, and the event moves into the second FIFO, whose head leaves when it is not a
+        // pixel or its texel shows.
+        self.taken_q.push.next =
+            self.addr.valid.val() | self.addr.row_start.val() | self.addr.done.val();
+        self.taken_q.in_valid.next = self.addr.valid.val();
+        self.taken_q.in_row.next = self.addr.row_start.val();
+        self.taken_q.in_step.next = self.addr.step.val();
+        self.taken_q.in_carry.next = self.addr.carry.val();
+        self.taken_q.in_first.next = self.addr.row_start.val() & (self.addr.step.val() == 0);
+        self.taken_q.in_done.next = self.addr.done.val();
+        self.taken_q.in_x.next = self.addr.x.val();
+        self.taken_q.in_y.next = self.addr.y.val();
+        self.taken_q.pop.next = self.coord.ready.val();
+        self.coord.valid_in.next = self.taken_q.h_valid.val();
+        self.coord.row_start_in.next = self.taken_q.h_row.val();
+        self.coord.step_in.next = self.taken_q.h_step.val();
+        self.coord.carry_in.next = self.taken_q.h_carry.val();
+        self.coord.x_in.next = self.taken_q.h_x.val();
+        self.coord.y_in.next = self.taken_q.h_y.val();
+        self.coord.done_in.next = self.taken_q.h_done.val();
+        self.coord.hold.next = false;
+        self.lit_q.push.next = self.coord.ready.val() & self.taken_q.any.val();
+        self.lit_q.in_valid.next = self.taken_q.h_valid.val();
+        self.lit_q.in_row.next = self.taken_q.h_row.val();
+        self.lit_q.in_step.next = self.taken_q.h_step.val();
+        self.lit_q.in_carry.next = self.taken_q.h_carry.val();
+        self.lit_q.in_first.next = self.taken_q.h_first.val();
+        self.lit_q.in_done.next = self.taken_q.h_done.val();
+        self.lit_q.in_x.next = self.taken_q.h_x.val();
+        self.lit_q.in_y.next = self.taken_q.h_y.val();
+        self.pop.next = !self.lit_q.h_valid.val() | self.coord.valid_out.val();
+        self.lit_q.pop.next = self.pop.val();
+        // The popped event (the head is zero when the FIFO is empty).
+        self.p_valid.next = false;
+        self.p_row.next = false;
+        self.p_step.next = 0.into();
+        self.p_carry.next = false;
+        self.p_first.next = false;
+        self.p_done.next = false;
+        self.p_x.next = 0.into();
+        self.p_y.next = 0.into();
+        if self.pop.val() {
+            self.p_valid.next = self.lit_q.h_valid.val();
+            self.p_row.next = self.lit_q.h_row.val();
+            self.p_step.next = self.lit_q.h_step.val();
+            self.p_carry.next = self.lit_q.h_carry.val();
+            self.p_first.next = self.lit_q.h_first.val();
+            self.p_done.next = self.lit_q.h_done.val();
+            self.p_x.next = self.lit_q.h_x.val();
+            self.p_y.next = self.lit_q.h_y.val();
+        }
+        self.start.next = self.p_first.val() | (self.p_done.val() & !self.seen_first.q.val());
+        self.seen_first.d.next = self.seen_first.q.val();
+        if self.p_first.val() {
+            self.seen_first.d.next = true;
+        }
+        if self.p_done.val() {
+            self.seen_first.d.next = false;
+        }
+        self.first_wait.d.next = self.first_wait.q.val();
+        if self.start.val() {
+            self.first_wait.d.next = false;
+        }
+        if self.accepted.val() {
+            self.first_wait.d.next = true;
+        }
+
+        // The texel: fetched at the pop, delayed, weighted.
+        self.memory.we.next = self.tex_we.val();
+        self.memory.waddr.next = self.tex_waddr.val();
+        self.memory.wdata.next = self.tex_wdata.val();
+        self.memory.log_w.next = self.log_w.val();
+        self.memory.log_h.next = self.log_h.val();
+        self.memory.valid_in.next = self.coord.valid_out.val();
+        self.memory.u.next = self.coord.u.val();
+        self.memory.v.next = self.coord.v.val();
+        self.texel_r.d.next = self.memory.red.val();
+        self.texel_g.d.next = self.memory.green.val();
+        self.texel_b.d.next = self.memory.blue.val();
+        self.weights.red.next = self.texel_r.q.val();
+        self.weights.green.next = self.texel_g.q.val();
+        self.weights.blue.next = self.texel_b.q.val();
+        self.weights.ka.next = self.ka.val();
+        self.weights.kd.next = self.kd.val();
+
+        // The lit path: pixel-pipeline's, from the popped event.
+        self.ld_q.d.next = self.accepted.val();
+        self.sw[0].d.next = self.x_start.val();
+        self.sw[1].d.next = self.x_short.val();
+        self.sw[2].d.next = self.x_long.val();
+        self.sw[3].d.next = self.x_line.val();
+        self.sw[4].d.next = self.y_start.val();
+        self.sw[5].d.next = self.y_short.val();
+        self.sw[6].d.next = self.y_long.val();
+        self.sw[7].d.next = self.y_line.val();
+        self.sw[8].d.next = self.z_start.val();
+        self.sw[9].d.next = self.z_short.val();
+        self.sw[10].d.next = self.z_long.val();
+        self.sw[11].d.next = self.z_line.val();
+        self.sw[12].d.next = self.d_start.val();
+        self.sw[13].d.next = self.d_short.val();
+        self.sw[14].d.next = self.d_long.val();
+        self.sw[15].d.next = self.d_line.val();
+        self.normal.load.next = self.ld_q.q.val();
+        self.normal.x_start.next = self.sw[0].q.val();
+        self.normal.x_short.next = self.sw[1].q.val();
+        self.normal.x_long.next = self.sw[2].q.val();
+        self.normal.x_line.next = self.sw[3].q.val();
+        self.normal.y_start.next = self.sw[4].q.val();
+        self.normal.y_short.next = self.sw[5].q.val();
+        self.normal.y_long.next = self.sw[6].q.val();
+        self.normal.y_line.next = self.sw[7].q.val();
+        self.normal.z_start.next = self.sw[8].q.val();
+        self.normal.z_short.next = self.sw[9].q.val();
+        self.normal.z_long.next = self.sw[10].q.val();
+        self.normal.z_line.next = self.sw[11].q.val();
+        self.ev_valid.d.next = self.p_valid.val();
+        self.ev_row_start.d.next = self.p_row.val();
+        self.ev_step.d.next = self.p_step.val();
+        self.ev_carry.d.next = self.p_carry.val();
+        self.ev_first.d.next = self.p_first.val();
+        self.normal.valid_in.next = self.ev_valid.q.val();
+        self.normal.row_start_in.next = self.ev_row_start.q.val();
+        self.normal.step_in.next = self.ev_step.q.val();
+        self.normal.carry_in.next = self.ev_carry.q.val();
+        self.depth.load.next = self.ld_q.q.val();
+        self.depth.set_start.next = self.sw[12].q.val();
+        self.depth.set_short.next = self.sw[13].q.val();
+        self.depth.set_long.next = self.sw[14].q.val();
+        self.depth.set_line.next = self.sw[15].q.val();
+        self.depth.ev_first.next = self.ev_first.q.val();
+        self.depth.ev_row_start.next = self.ev_row_start.q.val();
+        self.depth.ev_carry.next = self.ev_carry.q.val();
+        self.depth.ev_valid.next = self.ev_valid.q.val();
+        for k in 0..3 {
+            self.n_reg[k].clock.next = self.clock.val();
+        }
+        self.n_reg[0].d.next = self.normal.nx.val();
+        self.n_reg[1].d.next = self.normal.ny.val();
+        self.n_reg[2].d.next = self.normal.nz.val();
+        self.n_valid_reg.d.next = self.normal.valid_out.val();
+        self.light.valid_in.next = self.n_valid_reg.q.val();
+        self.light.x.next = self.n_reg[0].q.val();
+        self.light.y.next = self.n_reg[1].q.val();
+        self.light.z.next = self.n_reg[2].q.val();
+        self.light.lx.next = self.lx.val();
+        self.light.ly.next = self.ly.val();
+        self.light.lz.next = self.lz.val();
+        self.light.hx.next = self.hx.val();
+        self.light.hy.next = self.hy.val();
+        self.light.hz.next = self.hz.val();
+        self.x_to_bump.d.next = self.p_x.val();
+        self.y_to_bump.d.next = self.p_y.val();
+        self.bump.valid_in.next = self.light.valid_out.val();
+        self.bump.cos_phi.next = self.light.cos_phi.val();
+        self.bump.cos_gamma.next = self.light.cos_gamma.val();
+        self.bump.x.next = self.x_to_bump.q.val();
+        self.bump.y.next = self.y_to_bump.q.val();
+        self.power.valid_in.next = self.bump.valid_out.val();
+        self.power.cos_gamma.next = self.bump.cos_gamma_out.val();
+        self.power.n.next = self.n.val();
+        self.cos_phi_to_colour.d.next = self.bump.cos_phi_out.val();
+        self.colour.valid_in.next = self.power.valid_out.val();
+        self.colour.cos_phi.next = self.cos_phi_to_colour.q.val();
+        self.colour.spec.next = self.power.spec.val();
+        self.colour.amb_r.next = self.weights.amb_r.val();
+        self.colour.amb_g.next = self.weights.amb_g.val();
+        self.colour.amb_b.next = self.weights.amb_b.val();
+        self.colour.dif_r.next = self.weights.dif_r.val();
+        self.colour.dif_g.next = self.weights.dif_g.val();
+        self.colour.dif_b.next = self.weights.dif_b.val();
+        self.colour.spc_r.next = self.spc_r.val();
+        self.colour.spc_g.next = self.spc_g.val();
+        self.colour.spc_b.next = self.spc_b.val();
+        self.z_to_out.d.next = self.depth.word.val();
+        self.x_to_out.d.next = self.p_x.val();
+        self.y_to_out.d.next = self.p_y.val();
+        self.done_to_out.d.next = self.p_done.val();
+
+        self.ready.next = self.addr.ready.val() & self.gate.val();
+        self.valid.next = self.colour.valid_out.val();
+        self.x.next = self.x_to_out.q.val();
+        self.y.next = self.y_to_out.q.val();
+        self.z.next = self.z_to_out.q.val();
+        self.red.next = self.colour.red.val();
+        self.green.next = self.colour.green.val();
+        self.blue.next = self.colour.blue.val();
+        self.done.next = self.done_to_out.q.val();
+    }
+}
