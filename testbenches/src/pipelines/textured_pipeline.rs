@@ -70,9 +70,20 @@ pub fn texel_weight(texel: u64, k: u64) -> u64 {
 
 impl TexturedTwin {
     pub fn new(p: &TexturedParams) -> Self {
+        Self::with_coord(p, TexCoordModel::new(p.k.k))
+    }
+
+    /// The pipeline with a texture-coordinate model of any k, built or not
+    /// (`TexCoordModel::unbuilt`): what a wider comparator set would give (a model, not a
+    /// twin of an RTL build).
+    pub fn with_k(p: &TexturedParams, k: u32) -> Self {
+        Self::with_coord(p, TexCoordModel::unbuilt(k))
+    }
+
+    fn with_coord(p: &TexturedParams, coord: TexCoordModel) -> Self {
         TexturedTwin {
             addr: AddressBlockModel::subpixel(),
-            coord: TexCoordModel::new(p.k.k),
+            coord,
             taken: VecDeque::new(),
             fifo: VecDeque::new(),
             first_wait: false,
