@@ -10,6 +10,9 @@
 //!   [`lit::ShadingRegs`], and [`lit::LitPipe`], which runs jobs to fragments with depth.
 //! - The simulator switch is `flow::engine` ([`flow::engine::Sim`]: rust-hdl or Verilator in
 //!   process), the one place a driver's top is made.
+//! - [`textured`]: the textured pixel pipeline (`rtl::pipelines::textured_pipeline`):
+//!   [`textured::TexJob`] (the lit set-up and the texture-coordinate block's), the texture
+//!   written into the memory, [`textured::TexturedPipe`].
 //! - [`span`]: the span pipelines (`rtl::pipelines::span_pipeline`, angular and fast): the span front end
 //!   ([`span::span_jobs`], one set-up per raster line) and [`span::SpanPipe`], two fragments
 //!   per clock.
