@@ -1,9 +1,9 @@
 //! `texture` (SPEC §14) through `textured-pipeline` on the built-in scenes: the RTL image
 //! against the golden `texture` image (largest channel difference, pixels differing; the
 //! issue's bound is 1 LSB) and against `texture-reference` (NMSE), every fragment the golden
-//! method draws and no other; then the pipeline's rate, fragments per clock, for k = 1 and 2
-//! (the RTL under Verilator) and k = 4 (the twin with a modelled four-step block, not built),
-//! and the clocks from the first load to the first fragment.
+//! method draws and no other; then the pipeline's rate, fragments per clock, for k = 1, 2 and
+//! 4 (the RTL under Verilator; k = 4 also through the pipeline's twin, which must take the
+//! same clocks), and the clocks from the first load to the first fragment.
 //!
 //! `cargo test --release --test rtl_texture -- --nocapture` prints the figures
 //! `docs/measurements.md` quotes.
@@ -117,7 +117,8 @@ fn run_rtl(s: &Setup, jobs: &[TexJob], k: &str) -> (u64, u64, u64) {
     (st.pixels, st.clocks, first.unwrap_or(0))
 }
 
-/// Fragments and clocks for `jobs` through the twin with a modelled k.
+/// Fragments and clocks for `jobs` through the pipeline's twin with k (any k: the block's
+/// model, `TexCoordModel::unbuilt`).
 fn run_model(s: &Setup, jobs: &[TexJob], k: u32) -> (u64, u64) {
     use testbenches::registry::Twin;
     let regs = ShadingRegs::of(&s.ctx).unwrap();
@@ -159,16 +160,22 @@ fn textured_pipeline_fragments_per_clock_on_the_scenes() {
         for (label, jobs) in sets {
             let (p1, c1, first1) = run_rtl(&s, &jobs, "1");
             let (p2, c2, first2) = run_rtl(&s, &jobs, "2");
-            let (p4, c4) = run_model(&s, &jobs, 4);
+            let (p4, c4, first4) = run_rtl(&s, &jobs, "4");
+            let (pm, cm) = run_model(&s, &jobs, 4);
             assert!(
                 p1 == p2 && p2 == p4,
                 "{name} {label}: the builds drew different counts"
             );
+            assert_eq!(
+                (pm, cm),
+                (p4, c4),
+                "{name} {label}: the twin's k = 4 run differs from the RTL's"
+            );
             let r = |p: u64, c: u64| p as f64 / c as f64;
             println!(
                 "{name} ({label}, {} triangles, {p2} fragments): fragments per clock k = 1 \
-                 {:.3}, k = 2 {:.3}, k = 4 (model) {:.3}; first load to first fragment {first1} \
-                 clocks (k = 1), {first2} (k = 2)",
+                 {:.3}, k = 2 {:.3}, k = 4 {:.3}; first load to first fragment {first1} \
+                 clocks (k = 1), {first2} (k = 2), {first4} (k = 4)",
                 jobs.len(),
                 r(p1, c1),
                 r(p2, c2),

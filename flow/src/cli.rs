@@ -28,8 +28,8 @@ pub struct BuildArgs {
     /// default) or pipelined (three multipliers, one pixel per clock).
     #[arg(long)]
     pub horner: Option<String>,
-    /// The texture-coordinate block's k: correction steps resolved per clock, 1 (the seed's)
-    /// or 2 (the default).
+    /// The texture-coordinate block's k: correction steps resolved per clock, 1 (the seed's),
+    /// 2 or 4 (the default: 2 for `texture-coord`, 4 for `textured-pipeline`).
     #[arg(long)]
     pub tex_k: Option<String>,
 }

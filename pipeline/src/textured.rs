@@ -40,8 +40,9 @@ pub const TEX_ROW_WIDTH: usize = TEX_HOLD_AT + 1;
 /// The methods the textured pipeline renders.
 pub const TEXTURED_RTL_METHODS: [Method; 1] = [Method::Texture];
 
-/// The k the engine builds (correction steps per clock: the block's default).
-pub const ENGINE_K: &str = "2";
+/// The k the engine builds (correction steps per clock: the pipeline's default,
+/// `rtl::pipelines::textured_pipeline::DEFAULT_K`).
+pub const ENGINE_K: &str = "4";
 
 /// One triangle's set-up: the lit pipeline's and the texture-coordinate block's.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -167,7 +168,7 @@ pub fn row_tex(row: &[u64]) -> TexRow {
     }
 }
 
-/// The build of `k` (1 or 2).
+/// The build of `k` (1, 2 or 4).
 pub fn params(k: &str) -> Result<TexturedParams, String> {
     TexturedParams::from_options(&Options::new().with("tex-k", k))
 }

@@ -39,10 +39,13 @@
 //!
 //! # Steps per clock: the build parameter k
 //!
-//! `tex-k=1` (the seed's one step per clock) or `tex-k=2` (the default; `--tex-k` on the
-//! command line). Each clock the comparators look at W + j·E for j ∈ {−(k+1) … k} side by
-//! side (2E a shift, 3E the register E3) and pick the j that settles the texel; a pixel needing q steps on an axis stays max(1, ⌈q/k⌉) clocks, both
-//! axes in parallel. A pixel that settles with at most k steps per axis costs one clock.
+//! `tex-k=1` (the seed's one step per clock), `tex-k=2` (the default; `--tex-k` on the
+//! command line) or `tex-k=4`. Each clock the comparators look at W + j·E for
+//! j ∈ {−(k+1) … k} side by side (2E and 4E shifts, 3E the register E3, 5E = 4E + E) and pick
+//! the first j that settles the texel; a pixel needing q steps on an axis stays
+//! max(1, ⌈q/k⌉) clocks, both axes in parallel. A pixel that settles with at most k steps per
+//! axis costs one clock. For k = 4 the candidates of j = ±3, ±4 (X + j·Z, X + P0 + j·K,
+//! P_m + j·ΔE_m) are two adders deep, not formed through one carry-save stage as ±1, ±2 are.
 //!
 //! # Ports
 //!
@@ -84,7 +87,7 @@
 //! # Overflow and error budget
 //!
 //! Accepted set-ups (`TexCoordSetup::check`): D ∈ [1, 2^30) at every pixel walked, and every
-//! texel and |u − N/D| within 2^15 − 4. Then E < 2^31 and |W + j·E| < 2^47 for |j| ≤ 3: every
+//! texel and |u − N/D| within 2^15 − 4. Then E < 2^31 and |W + j·E| < 2^47 for |j| ≤ 5: every
 //! comparison sees the true sign. That covers a 4096-pixel screen with D scaled to 2^29 at the
 //! nearest vertex and textures up to 1024 texels repeated 31 times across one triangle.
 //! Error budget: exact — the texel is the nearest one of the quotient of the integer
@@ -109,13 +112,14 @@ impl Default for TexCoordParams {
 
 impl BlockParams for TexCoordParams {
     const KEYS: &'static [&'static str] = &["tex-k"];
-    /// `tex-k=1` or `tex-k=2` (default): k, the correction steps per clock.
+    /// `tex-k=1`, `tex-k=2` (default) or `tex-k=4`: k, the correction steps per clock.
     fn from_options(o: &Options) -> Result<Self, String> {
         match o.get("tex-k") {
             None | Some("2") => Ok(TexCoordParams { k: 2 }),
             Some("1") => Ok(TexCoordParams { k: 1 }),
+            Some("4") => Ok(TexCoordParams { k: 4 }),
             Some(other) => Err(format!(
-                "unknown k {other:?} (expected 1 or 2 correction steps per clock)"
+                "unknown k {other:?} (expected 1, 2 or 4 correction steps per clock)"
             )),
         }
     }
@@ -123,7 +127,11 @@ impl BlockParams for TexCoordParams {
         Some(format!("k = {} correction steps per clock", self.k))
     }
     fn test_sets() -> Vec<Options> {
-        vec![Options::new(), Options::new().with("tex-k", "1")]
+        vec![
+            Options::new(),
+            Options::new().with("tex-k", "1"),
+            Options::new().with("tex-k", "4"),
+        ]
     }
 }
 
@@ -168,7 +176,7 @@ crate::hw_block! {
             /// E, 2E, 3E; Z = E + ΔE_line, K = E + 2ΔE_line; the three ΔE.
             e: Bits<48>, e2: Bits<48>, e3: Bits<48>, z: Bits<48>, k: Bits<48>,
             de0: Bits<48>, de1: Bits<48>, de2: Bits<48>,
-            k2: Bit, pending: Bit,
+            k2: Bit, k4: Bit, pending: Bit,
             take_first: Bit, take_row: Bit, take_line: Bit, long_move: Bit, save: Bit,
         }
         out {
@@ -185,16 +193,27 @@ crate::hw_block! {
         /// The shadow set-up.
         su_q: DFF<Bits<16>>, sw_q: DFF<Bits<48>>,
         sp0_q: DFF<Bits<48>>, sp1_q: DFF<Bits<48>>, sp2_q: DFF<Bits<48>>,
-        /// (W − 1) + j·E side by side (j = +1, +2, −1, −2, −3): "W + j·E > 0" is a sign bit.
+        /// (W − 1) + j·E side by side (j = +1 … +4, −1 … −5; ±3, ±4 and −5 used by k = 4 only):
+        /// "W + j·E > 0" is a sign bit.
         v_p1: Signal<Local, Bits<48>>, v_p2: Signal<Local, Bits<48>>,
+        v_p3: Signal<Local, Bits<48>>, v_p4: Signal<Local, Bits<48>>,
         v_m1: Signal<Local, Bits<48>>, v_m2: Signal<Local, Bits<48>>, v_m3: Signal<Local, Bits<48>>,
-        /// The chosen correction: |j| = 2 (else 1 when `step`), its sign, and whether any.
-        step: Signal<Local, Bit>, two: Signal<Local, Bit>, neg: Signal<Local, Bit>,
+        v_m4: Signal<Local, Bits<48>>, v_m5: Signal<Local, Bits<48>>,
+        /// The chosen correction j (one-hot; none: j = 0), and whether it settles the texel.
+        sel_p1: Signal<Local, Bit>, sel_p2: Signal<Local, Bit>,
+        sel_p3: Signal<Local, Bit>, sel_p4: Signal<Local, Bit>,
+        sel_m1: Signal<Local, Bit>, sel_m2: Signal<Local, Bit>,
+        sel_m3: Signal<Local, Bit>, sel_m4: Signal<Local, Bit>,
         ok_w: Signal<Local, Bit>,
         /// The next pixel along the line: X + j·Z (its W − 1), and X + P0 + j·K (its X).
         n_0: Signal<Local, Bits<48>>, n_p1: Signal<Local, Bits<48>>, n_p2: Signal<Local, Bits<48>>,
         n_m1: Signal<Local, Bits<48>>, n_m2: Signal<Local, Bits<48>>,
+        n_p3: Signal<Local, Bits<48>>, n_p4: Signal<Local, Bits<48>>,
+        n_m3: Signal<Local, Bits<48>>, n_m4: Signal<Local, Bits<48>>,
         c_0: Signal<Local, Bits<48>>,
+        /// X + P0 ± 3K, ± 4K (k = 4).
+        c_p3: Signal<Local, Bits<48>>, c_p4: Signal<Local, Bits<48>>,
+        c_m3: Signal<Local, Bits<48>>, c_m4: Signal<Local, Bits<48>>,
         pub c_p1: Add3, pub c_p2: Add3, pub c_m1: Add3, pub c_m2: Add3,
         /// P_m + j·ΔE_m for each j.
         q0_p1: Signal<Local, Bits<48>>, q0_p2: Signal<Local, Bits<48>>,
@@ -203,6 +222,13 @@ crate::hw_block! {
         q1_m1: Signal<Local, Bits<48>>, q1_m2: Signal<Local, Bits<48>>,
         q2_p1: Signal<Local, Bits<48>>, q2_p2: Signal<Local, Bits<48>>,
         q2_m1: Signal<Local, Bits<48>>, q2_m2: Signal<Local, Bits<48>>,
+        /// P_m ± 3ΔE_m, ± 4ΔE_m (k = 4).
+        q0_p3: Signal<Local, Bits<48>>, q0_p4: Signal<Local, Bits<48>>,
+        q0_m3: Signal<Local, Bits<48>>, q0_m4: Signal<Local, Bits<48>>,
+        q1_p3: Signal<Local, Bits<48>>, q1_p4: Signal<Local, Bits<48>>,
+        q1_m3: Signal<Local, Bits<48>>, q1_m4: Signal<Local, Bits<48>>,
+        q2_p3: Signal<Local, Bits<48>>, q2_p4: Signal<Local, Bits<48>>,
+        q2_m3: Signal<Local, Bits<48>>, q2_m4: Signal<Local, Bits<48>>,
         /// The selected words: corrected, and moved along the line.
         w_star: Signal<Local, Bits<48>>, x_star: Signal<Local, Bits<48>>,
         p0_star: Signal<Local, Bits<48>>, p1_star: Signal<Local, Bits<48>>, p2_star: Signal<Local, Bits<48>>,
@@ -222,36 +248,67 @@ impl Logic for TexAxis {
             self, clock, u_q, w_q, x_q, p0_q, p1_q, p2_q, ur_q, wr_q, pr0_q, pr1_q, pr2_q, su_q,
             sw_q, sp0_q, sp1_q, sp2_q
         );
-        // The comparators, from registers through one adder each.
+        // The comparators, from registers through one adder each (±3E, ±4E and 5E, k = 4
+        // only, through two).
         self.v_p1.next = self.w_q.q.val() + self.e.val();
         self.v_p2.next = self.w_q.q.val() + self.e2.val();
+        self.v_p3.next = self.w_q.q.val() + self.e3.val();
+        self.v_p4.next = self.w_q.q.val() + (self.e2.val() << 1);
         self.v_m1.next = self.w_q.q.val() - self.e.val();
         self.v_m2.next = self.w_q.q.val() - self.e2.val();
         self.v_m3.next = self.w_q.q.val() - self.e3.val();
+        self.v_m4.next = self.w_q.q.val() - (self.e2.val() << 1);
+        self.v_m5.next = self.w_q.q.val() - (self.e2.val() << 1) - self.e.val();
 
-        // The correction (golden `correction`): W ≤ 0 steps up, W − E > 0 steps down; one
-        // step settles when the next candidate is on the other side, two (k = 2) when the one
-        // after is; otherwise the pixel keeps k steps of progress and stays.
-        self.step.next = false;
-        self.two.next = false;
-        self.neg.next = false;
+        // The correction (golden `correction`): W ≤ 0 steps up, W − E > 0 steps down, by the
+        // first j ≤ k whose candidate is on the other side; otherwise the pixel keeps k steps
+        // of progress and stays.
+        self.sel_p1.next = false;
+        self.sel_p2.next = false;
+        self.sel_p3.next = false;
+        self.sel_p4.next = false;
+        self.sel_m1.next = false;
+        self.sel_m2.next = false;
+        self.sel_m3.next = false;
+        self.sel_m4.next = false;
         self.ok_w.next = true;
         if self.pending.val() {
             if self.w_q.q.val().get_bit(47) {
-                self.step.next = true;
-                if self.v_p1.val().get_bit(47) {
-                    self.two.next = self.k2.val();
-                    if !(self.k2.val() & !self.v_p2.val().get_bit(47)) {
-                        self.ok_w.next = false;
+                if !self.v_p1.val().get_bit(47) {
+                    self.sel_p1.next = true;
+                } else if self.k2.val() & !self.v_p2.val().get_bit(47) {
+                    self.sel_p2.next = true;
+                } else if self.k4.val() & !self.v_p3.val().get_bit(47) {
+                    self.sel_p3.next = true;
+                } else if self.k4.val() & !self.v_p4.val().get_bit(47) {
+                    self.sel_p4.next = true;
+                } else {
+                    self.ok_w.next = false;
+                    if self.k4.val() {
+                        self.sel_p4.next = true;
+                    } else if self.k2.val() {
+                        self.sel_p2.next = true;
+                    } else {
+                        self.sel_p1.next = true;
                     }
                 }
             } else if !self.v_m1.val().get_bit(47) {
-                self.step.next = true;
-                self.neg.next = true;
-                if !self.v_m2.val().get_bit(47) {
-                    self.two.next = self.k2.val();
-                    if !(self.k2.val() & self.v_m3.val().get_bit(47)) {
-                        self.ok_w.next = false;
+                if self.v_m2.val().get_bit(47) {
+                    self.sel_m1.next = true;
+                } else if self.k2.val() & self.v_m3.val().get_bit(47) {
+                    self.sel_m2.next = true;
+                } else if self.k4.val() & self.v_m4.val().get_bit(47) {
+                    self.sel_m3.next = true;
+                } else if self.k4.val() & self.v_m5.val().get_bit(47) {
+                    self.sel_m4.next = true;
+                } else {
+                    self.ok_w.next = false;
+                    if self.k4.val() {
+                        self.sel_m4.next = true;
+                    } else if self.k2.val() {
+                        self.sel_m2.next = true;
+                    } else {
+                        self.sel_m1.next = true;
                     }
                 }
             }
@@ -293,6 +350,26 @@ impl Logic for TexAxis {
         self.q2_p2.next = self.p2_q.q.val() + (self.de2.val() << 1);
         self.q2_m1.next = self.p2_q.q.val() - self.de2.val();
         self.q2_m2.next = self.p2_q.q.val() - (self.de2.val() << 1);
+        self.n_p3.next = self.x_q.q.val() + self.z.val() + (self.z.val() << 1);
+        self.n_p4.next = self.x_q.q.val() + (self.z.val() << 2);
+        self.n_m3.next = self.x_q.q.val() - self.z.val() - (self.z.val() << 1);
+        self.n_m4.next = self.x_q.q.val() - (self.z.val() << 2);
+        self.c_p3.next = self.c_0.val() + self.k.val() + (self.k.val() << 1);
+        self.c_p4.next = self.c_0.val() + (self.k.val() << 2);
+        self.c_m3.next = self.c_0.val() - self.k.val() - (self.k.val() << 1);
+        self.c_m4.next = self.c_0.val() - (self.k.val() << 2);
+        self.q0_p3.next = self.p0_q.q.val() + self.de0.val() + (self.de0.val() << 1);
+        self.q0_p4.next = self.p0_q.q.val() + (self.de0.val() << 2);
+        self.q0_m3.next = self.p0_q.q.val() - self.de0.val() - (self.de0.val() << 1);
+        self.q0_m4.next = self.p0_q.q.val() - (self.de0.val() << 2);
+        self.q1_p3.next = self.p1_q.q.val() + self.de1.val() + (self.de1.val() << 1);
+        self.q1_p4.next = self.p1_q.q.val() + (self.de1.val() << 2);
+        self.q1_m3.next = self.p1_q.q.val() - self.de1.val() - (self.de1.val() << 1);
+        self.q1_m4.next = self.p1_q.q.val() - (self.de1.val() << 2);
+        self.q2_p3.next = self.p2_q.q.val() + self.de2.val() + (self.de2.val() << 1);
+        self.q2_p4.next = self.p2_q.q.val() + (self.de2.val() << 2);
+        self.q2_m3.next = self.p2_q.q.val() - self.de2.val() - (self.de2.val() << 1);
+        self.q2_m4.next = self.p2_q.q.val() - (self.de2.val() << 2);
 
         // The selection by j: W + j·E, X + j·Z (X after the correction: the next pixel's
         // W − 1 before its own), X + P0 + j·K (the next pixel's X), P_m + j·ΔE_m, u + j.
@@ -303,7 +380,7 @@ impl Logic for TexAxis {
         self.p0_star.next = self.p0_q.q.val();
         self.p1_star.next = self.p1_q.q.val();
         self.p2_star.next = self.p2_q.q.val();
-        if self.step.val() & !self.neg.val() & !self.two.val() {
+        if self.sel_p1.val() {
             self.u_new.next = self.u_q.q.val() + 1;
             self.w_star.next = self.v_p1.val();
             self.x_star.next = self.n_p1.val();
@@ -312,7 +389,7 @@ impl Logic for TexAxis {
             self.p1_star.next = self.q1_p1.val();
             self.p2_star.next = self.q2_p1.val();
         }
-        if self.step.val() & !self.neg.val() & self.two.val() {
+        if self.sel_p2.val() {
             self.u_new.next = self.u_q.q.val() + 2;
             self.w_star.next = self.v_p2.val();
             self.x_star.next = self.n_p2.val();
@@ -321,7 +398,7 @@ impl Logic for TexAxis {
             self.p1_star.next = self.q1_p2.val();
             self.p2_star.next = self.q2_p2.val();
         }
-        if self.step.val() & self.neg.val() & !self.two.val() {
+        if self.sel_m1.val() {
             self.u_new.next = self.u_q.q.val() - 1;
             self.w_star.next = self.v_m1.val();
             self.x_star.next = self.n_m1.val();
@@ -330,7 +407,7 @@ impl Logic for TexAxis {
             self.p1_star.next = self.q1_m1.val();
             self.p2_star.next = self.q2_m1.val();
         }
-        if self.step.val() & self.neg.val() & self.two.val() {
+        if self.sel_m2.val() {
             self.u_new.next = self.u_q.q.val() - 2;
             self.w_star.next = self.v_m2.val();
             self.x_star.next = self.n_m2.val();
@@ -338,6 +415,42 @@ impl Logic for TexAxis {
             self.p0_star.next = self.q0_m2.val();
             self.p1_star.next = self.q1_m2.val();
             self.p2_star.next = self.q2_m2.val();
+        }
+        if self.sel_p3.val() {
+            self.u_new.next = self.u_q.q.val() + 3;
+            self.w_star.next = self.v_p3.val();
+            self.x_star.next = self.n_p3.val();
+            self.x_line.next = self.c_p3.val();
+            self.p0_star.next = self.q0_p3.val();
+            self.p1_star.next = self.q1_p3.val();
+            self.p2_star.next = self.q2_p3.val();
+        }
+        if self.sel_p4.val() {
+            self.u_new.next = self.u_q.q.val() + 4;
+            self.w_star.next = self.v_p4.val();
+            self.x_star.next = self.n_p4.val();
+            self.x_line.next = self.c_p4.val();
+            self.p0_star.next = self.q0_p4.val();
+            self.p1_star.next = self.q1_p4.val();
+            self.p2_star.next = self.q2_p4.val();
+        }
+        if self.sel_m3.val() {
+            self.u_new.next = self.u_q.q.val() - 3;
+            self.w_star.next = self.v_m3.val();
+            self.x_star.next = self.n_m3.val();
+            self.x_line.next = self.c_m3.val();
+            self.p0_star.next = self.q0_m3.val();
+            self.p1_star.next = self.q1_m3.val();
+            self.p2_star.next = self.q2_m3.val();
+        }
+        if self.sel_m4.val() {
+            self.u_new.next = self.u_q.q.val() - 4;
+            self.w_star.next = self.v_m4.val();
+            self.x_star.next = self.n_m4.val();
+            self.x_line.next = self.c_m4.val();
+            self.p0_star.next = self.q0_m4.val();
+            self.p1_star.next = self.q1_m4.val();
+            self.p2_star.next = self.q2_m4.val();
         }
         self.u_star.next = self.u_new.val();
 
@@ -430,7 +543,8 @@ crate::hw_block! {
         }
         /// 0: u, 1: v.
         pub axis: [TexAxis; 2],
-        k2: Constant<Bit> = Constant::new(p.k == 2),
+        k2: Constant<Bit> = Constant::new(p.k >= 2),
+        k4: Constant<Bit> = Constant::new(p.k == 4),
         /// E, 3E, Z = E + ΔE_line, K = E + 2ΔE_line; the saved line start's E + ΔE_short and
         /// E + ΔE_long; ΔE of the three moves; the shadow E and ΔE.
         e_q: DFF<Bits<48>>, e3_q: DFF<Bits<48>>, z_q: DFF<Bits<48>>, k_q: DFF<Bits<48>>,
@@ -503,6 +617,7 @@ impl Logic for TextureCoord {
             self.axis[i].de1.next = self.de1_q.q.val();
             self.axis[i].de2.next = self.de2_q.q.val();
             self.axis[i].k2.next = self.k2.val();
+            self.axis[i].k4.next = self.k4.val();
             self.axis[i].pending.next = self.pending_q.q.val();
             self.axis[i].take_first.next = self.take_first.val();
             self.axis[i].take_row.next = self.take_row.val();

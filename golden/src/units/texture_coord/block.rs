@@ -44,7 +44,7 @@ pub const D_LIMIT: i128 = 1 << 30;
 /// Largest |texel| and |u − N/D| the words hold (see the module doc).
 pub const TEXEL_LIMIT: i64 = (1 << 15) - 4;
 /// The build parameter k (correction steps resolved per clock) the block is built for.
-pub const K_VALUES: [u32; 2] = [1, 2];
+pub const K_VALUES: [u32; 3] = [1, 2, 4];
 
 const MASK: u64 = (1 << WORD_BITS) - 1;
 
