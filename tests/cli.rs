@@ -799,3 +799,45 @@ fn default_methods_leave_the_textured_ones_out_without_vt() {
     assert!(out.join("gouraud.png").is_file());
     assert!(!out.join("texture.png").exists());
 }
+
+/// A texture larger than the texture memory (2^16 texels): `--engine rtl --method texture` is a
+/// one-line error; `--engine both` renders `texture` golden only, with a note, and the other
+/// methods through the hardware as before.
+#[test]
+fn a_texture_beyond_the_texture_memory_is_golden_only() {
+    let dir = tempfile::tempdir().unwrap();
+    let png = dir.path().join("big.png");
+    image::RgbImage::from_fn(512, 256, |x, y| image::Rgb([x as u8, y as u8, 7]))
+        .save(&png)
+        .unwrap();
+    let out = dir.path().join("o");
+    let run = |engine: &str| {
+        shadecore(&[
+            "render",
+            "--engine",
+            engine,
+            "--size",
+            "48x48",
+            "--rez",
+            "8",
+            "--method",
+            "texture,gouraud",
+            "--texture",
+            png.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ])
+    };
+    let o = run("rtl");
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success(), "{err}");
+    assert_eq!(err.trim().lines().count(), 1, "{err}");
+    assert!(err.contains("does not fit the texture memory"), "{err}");
+    let o = run("both");
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{err}");
+    assert!(err.contains("texture is rendered golden only"), "{err}");
+    assert!(out.join("texture.png").is_file());
+    assert!(!out.join("texture-rtl.png").exists());
+    assert!(out.join("gouraud-rtl.png").is_file());
+}

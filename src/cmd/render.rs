@@ -418,9 +418,14 @@ fn render_frames(
                 crate::rtl_engine::check_rtl_method(m)?;
             }
         }
-        // `both`: the methods the hardware has (the others are golden only).
+        // `both`: the methods the hardware has (the others are golden only), `texture` only
+        // with a texture the texture memory holds (`run` notes it).
         let hw = crate::rtl_engine::rtl_methods();
-        let idx: Vec<usize> = (0..n).filter(|&i| hw.contains(&methods[i])).collect();
+        let fits = texture_fits(setup).is_ok();
+        let idx: Vec<usize> = (0..n)
+            .filter(|&i| hw.contains(&methods[i]))
+            .filter(|&i| engine == Engine::Rtl || fits || methods[i] != Method::Texture)
+            .collect();
         let ms: Vec<Method> = idx.iter().map(|&i| methods[i]).collect();
         crate::sim::prepare(build.sim, crate::rtl_engine::designs(&ms, build)?, &multi)?;
         for (i, f) in idx
@@ -756,6 +761,19 @@ fn check_rtl_flags(args: &Args, methods: &[Method]) -> Result<()> {
     Ok(())
 }
 
+/// Whether the texture memory of `textured-pipeline` holds the set-up's texture (2^16 texels);
+/// the one-line reason if not.
+fn texture_fits(setup: &Setup) -> std::result::Result<(), String> {
+    let (w, h) = (setup.texture.width(), setup.texture.height());
+    if (w as u64) * (h as u64) > 1 << golden::units::texture_memory::ADDRESS_BITS {
+        Err(format!(
+            "a {w}x{h} texture does not fit the texture memory (2^16 texels)"
+        ))
+    } else {
+        Ok(())
+    }
+}
+
 pub fn run(args: Args) -> Result<()> {
     let mut methods = if args.engine == Engine::Rtl && args.method.is_empty() {
         // The RTL engine's default: every method the hardware has.
@@ -775,6 +793,18 @@ pub fn run(args: Args) -> Result<()> {
         }
     } else {
         setup.check_textured(&methods, &args.scene.scene)?;
+    }
+    if args.engine != Engine::Golden && methods.contains(&Method::Texture) {
+        if let Err(e) = texture_fits(&setup) {
+            match (args.engine, args.method.is_empty()) {
+                (Engine::Rtl, false) => anyhow::bail!("method texture through the hardware: {e}"),
+                (Engine::Rtl, true) => {
+                    methods.retain(|&m| m != Method::Texture);
+                    eprintln!("note: texture is left out: {e}");
+                }
+                _ => eprintln!("note: texture is rendered golden only: {e}"),
+            }
+        }
     }
     let dir = crate::output::RenderDir::open(&args.out)?;
     let sim = if args.engine == Engine::Golden {
