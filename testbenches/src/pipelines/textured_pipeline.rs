@@ -50,7 +50,7 @@ pub struct TexturedTwin {
     addr: AddressBlockModel,
     coord: TexCoordModel,
     /// The events before the texture-coordinate block takes them.
-    taken: VecDeque<Entry>,
+    waiting: VecDeque<Entry>,
     /// The events taken, until their texels show.
     fifo: VecDeque<Entry>,
     first_wait: bool,
@@ -84,7 +84,7 @@ impl TexturedTwin {
         TexturedTwin {
             addr: AddressBlockModel::subpixel(),
             coord,
-            taken: VecDeque::new(),
+            waiting: VecDeque::new(),
             fifo: VecDeque::new(),
             first_wait: false,
             seen_first: false,
@@ -107,8 +107,8 @@ impl TexturedTwin {
         let co = self.coord.outputs_held(false);
         format!(
             "first FIFO {} (head {:?}), second FIFO {} (head {:?}), texture-coordinate ready {}, address ready {}, first_wait {}",
-            self.taken.len(),
-            self.taken.front().map(|e| (e.a.valid, e.a.row_start, e.a.step, e.a.done, e.a.x, e.a.y)),
+            self.waiting.len(),
+            self.waiting.front().map(|e| (e.a.valid, e.a.row_start, e.a.step, e.a.done, e.a.x, e.a.y)),
             self.fifo.len(),
             self.fifo.front().map(|e| (e.a.valid, e.a.row_start, e.a.step, e.a.done, e.a.x, e.a.y)),
             co.ready,
@@ -123,10 +123,10 @@ impl Twin for TexturedTwin {
         let row = row_tex(r);
         let co = self.coord.outputs_held(false);
         let gate = !self.first_wait;
-        let a_hold = row.hold || self.taken.len() >= EVENT_FIFO - 1;
+        let a_hold = row.hold || self.waiting.len() >= EVENT_FIFO - 1;
         let a = self.addr.outputs_held(a_hold);
         // The texture-coordinate block sees the first FIFO's head and takes it when ready.
-        let shown = self.taken.front().copied();
+        let shown = self.waiting.front().copied();
         let take = co.ready && shown.is_some();
         let ev_in = shown.map_or(TexEvent::default(), |e| TexEvent::from(&e.a));
         let mut o = vec![(a.ready && gate) as u64];
@@ -194,7 +194,7 @@ impl Twin for TexturedTwin {
             self.fifo.pop_front();
         }
         if take {
-            self.taken.pop_front();
+            self.waiting.pop_front();
             assert!(
                 self.fifo.len() < EVENT_FIFO,
                 "an event pushed into the full second FIFO"
@@ -203,10 +203,10 @@ impl Twin for TexturedTwin {
         }
         if a.valid || a.row_start || a.done {
             assert!(
-                self.taken.len() < EVENT_FIFO,
+                self.waiting.len() < EVENT_FIFO,
                 "an event pushed into the full first FIFO"
             );
-            self.taken.push_back(Entry {
+            self.waiting.push_back(Entry {
                 a,
                 first: a.row_start && a.step == 0,
             });
