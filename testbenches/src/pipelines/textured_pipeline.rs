@@ -333,7 +333,7 @@ pub fn textured_system(
 
 impl Bench for TexturedPipeline {
     const ITEMS: &'static str = "triangles";
-    const DEFAULT_ITEMS: usize = 12;
+    const DEFAULT_ITEMS: usize = 8;
     fn stimulus(p: &TexturedParams, n: usize, seed: u64) -> Stimulus {
         let ctx = ShadeContext::default();
         let texture = bench_texture(seed);
