@@ -329,46 +329,70 @@ impl LitPipe {
                 &mut progress,
             );
         }
-        let mut st = PipeStats::default();
-        let mut out = vec![0u64; 9];
-        let idle = lit_row(None, regs);
-        let mut next = 0;
-        while st.triangles < jobs.len() as u64 {
-            if st.clocks >= max_clocks {
-                return Err(format!(
-                    "pixel pipeline: {} of {} triangles done after {max_clocks} clocks",
-                    st.triangles,
-                    jobs.len()
-                ));
-            }
-            // `ready` (output 0) is a register output: settled before the clock's step.
-            let ready = self.model.peek(0) != 0;
-            let load = (ready && next < jobs.len()).then(|| &jobs[next]);
-            next += load.is_some() as usize;
-            match load {
-                Some(j) => self.model.step(&lit_row(Some(j), regs), &mut out)?,
-                None => self.model.step(&idle, &mut out)?,
-            }
-            st.clocks += 1;
-            if out[1] != 0 {
-                st.pixels += 1;
-                fragment(Fragment {
-                    job: st.triangles as usize,
-                    x: out[2] as u32,
-                    y: out[3] as u32,
-                    z: out[4] as u32 as i32,
-                    rgb: [out[5] as u8, out[6] as u8, out[7] as u8],
-                    clock: st.clocks - 1,
-                });
-            }
-            if out[8] != 0 {
-                st.triangles += 1;
-                progress(st.triangles);
-            }
-        }
-        self.model.stop_vcd()?;
-        Ok(st)
+        run_ports(
+            self.model.as_mut(),
+            "pixel pipeline",
+            jobs.len(),
+            &mut |k| lit_row(k.map(|k| &jobs[k]), regs),
+            max_clocks,
+            &mut fragment,
+            &mut progress,
+        )
     }
+}
+
+/// The run loop of a top with `pixel-pipeline`'s outputs (ready, valid, x, y, z, r, g, b,
+/// done) on its ports: job k loaded (`row(Some(k))`) as soon as `ready` is high, idle rows
+/// (`row(None)`) otherwise; `fragment` for every valid output, `progress(done_triangles)`
+/// after each `done`. Stops after the last `done`, or with an error naming `what` after
+/// `max_clocks`. Shared by `LitPipe` and `crate::textured::TexturedPipe`.
+pub fn run_ports(
+    model: &mut dyn Model,
+    what: &str,
+    jobs: usize,
+    row: &mut dyn FnMut(Option<usize>) -> Vec<u64>,
+    max_clocks: u64,
+    fragment: &mut dyn FnMut(Fragment),
+    progress: &mut dyn FnMut(u64),
+) -> Result<PipeStats, String> {
+    let mut st = PipeStats::default();
+    let mut out = vec![0u64; 9];
+    let idle = row(None);
+    let mut next = 0;
+    while st.triangles < jobs as u64 {
+        if st.clocks >= max_clocks {
+            return Err(format!(
+                "{what}: {} of {jobs} triangles done after {max_clocks} clocks",
+                st.triangles
+            ));
+        }
+        // `ready` (output 0) is a function of registers: settled before the clock's step.
+        let ready = model.peek(0) != 0;
+        if ready && next < jobs {
+            model.step(&row(Some(next)), &mut out)?;
+            next += 1;
+        } else {
+            model.step(&idle, &mut out)?;
+        }
+        st.clocks += 1;
+        if out[1] != 0 {
+            st.pixels += 1;
+            fragment(Fragment {
+                job: st.triangles as usize,
+                x: out[2] as u32,
+                y: out[3] as u32,
+                z: out[4] as u32 as i32,
+                rgb: [out[5] as u8, out[6] as u8, out[7] as u8],
+                clock: st.clocks - 1,
+            });
+        }
+        if out[8] != 0 {
+            st.triangles += 1;
+            progress(st.triangles);
+        }
+    }
+    model.stop_vcd()?;
+    Ok(st)
 }
 
 /// A clock budget for `jobs` (every row at full length plus the pipeline's latency).

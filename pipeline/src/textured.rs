@@ -225,47 +225,15 @@ impl TexturedPipe {
         mut fragment: impl FnMut(Fragment),
         mut progress: impl FnMut(u64),
     ) -> Result<PipeStats, String> {
-        let mut st = PipeStats::default();
-        let mut out = vec![0u64; 9];
-        let idle = tex_row(None, regs, t, None, false);
-        let mut next = 0;
-        while st.triangles < jobs.len() as u64 {
-            if st.clocks >= max_clocks {
-                return Err(format!(
-                    "textured pipeline: {} of {} triangles done after {max_clocks} clocks",
-                    st.triangles,
-                    jobs.len()
-                ));
-            }
-            // `ready` (output 0) is a function of registers: settled before the clock's step.
-            let ready = self.model.peek(0) != 0;
-            let load = (ready && next < jobs.len()).then(|| &jobs[next]);
-            next += load.is_some() as usize;
-            match load {
-                Some(j) => self
-                    .model
-                    .step(&tex_row(Some(j), regs, t, None, false), &mut out)?,
-                None => self.model.step(&idle, &mut out)?,
-            }
-            st.clocks += 1;
-            if out[1] != 0 {
-                st.pixels += 1;
-                fragment(Fragment {
-                    job: st.triangles as usize,
-                    x: out[2] as u32,
-                    y: out[3] as u32,
-                    z: out[4] as u32 as i32,
-                    rgb: [out[5] as u8, out[6] as u8, out[7] as u8],
-                    clock: st.clocks - 1,
-                });
-            }
-            if out[8] != 0 {
-                st.triangles += 1;
-                progress(st.triangles);
-            }
-        }
-        self.model.stop_vcd()?;
-        Ok(st)
+        crate::lit::run_ports(
+            self.model.as_mut(),
+            "textured pipeline",
+            jobs.len(),
+            &mut |k| tex_row(k.map(|k| &jobs[k]), regs, t, None, false),
+            max_clocks,
+            &mut fragment,
+            &mut progress,
+        )
     }
 }
 
