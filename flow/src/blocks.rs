@@ -54,6 +54,7 @@ macro_rules! with_blocks {
             rtl::units::quadric_unit::QuadricUnit,
             rtl::units::texture_coord::TextureCoord,
             rtl::units::texture_quadratic::TextureQuadratic,
+            rtl::units::texture_bezier::TextureBezier,
             rtl::units::texture_memory::TextureMemory,
             rtl::pipelines::textured_pipeline::TexturedPipeline,
         ]

@@ -8,7 +8,7 @@
 //! | texture-reference | the exact quotient u = (a·x + b·y + c)/(g·x + h·y + i) in f64, at the pixel centre, from the unquantized planes |
 //! | texture | SPEC §14: the additive walker on the integer PCT coefficients (the nearest texel of their exact quotient, no division) |
 //! | texture-quadratic | SPEC §15: per raster line the quadratic through the exact u at the line's ends and middle, stepped by forward differences in the block's Q15.32 words |
-//! | texture-bezier | SPEC §16: per raster line the quadratic Bézier with the tangents' intersection as control point, stepped in t by forward differences (f64) |
+//! | texture-bezier | SPEC §16: per raster line the quadratic Bézier with the tangents' intersection as control point, sampled at m = 2(n − 1) steps of t (f64; the block `texture-bezier` steps it by forward differences) |
 //! | texture-affine | u, v linear in screen space through the vertices' (the naive form, for comparison) |
 //!
 //! Every method picks the nearest texel of its coordinate by the texel-centre rule of
@@ -251,48 +251,45 @@ fn quadratic_row(row: &Row, exact: impl Fn(i32) -> f64) -> Vec<f64> {
     out
 }
 
-/// The §16 Bézier's texel-space coordinate (axis 0: u, 1: v) at each pixel of `row`.
-fn bezier_row(s: &TexSetup, row: &Row, axis: usize) -> Vec<f64> {
-    let num = if axis == 0 { s.planes.s } else { s.planes.t };
-    let q = s.planes.q;
+/// The §16 Bézier's control points of `row` as the block `texture-bezier` takes them: X (the
+/// pixel distance along the walk: 0, X1, n − 1), u and v (texel space). x1 is where the
+/// tangents to u(x) and v(x) at the line's ends meet, the same for both (it depends on the
+/// depth alone: [`texture_bezier::control_x`]); u1, v1 lie on the tangent at the first pixel.
+pub fn bezier_points(s: &TexSetup, row: &Row) -> [[f64; 3]; 3] {
     // The planes at pixel indices: value = k0·x + k1·y + (k2 + (k0 + k1)/2).
     let at_index = |k: [f64; 3]| [k[0], k[1], k[2] + 0.5 * (k[0] + k[1])];
-    let (n3, q3) = (at_index(num), at_index(q));
-    let k = [n3[0], n3[1], n3[2], q3[0], q3[1], q3[2]];
+    let q = at_index(s.planes.q);
     let (x0, x2) = (row.x_start as f64, row_end(row) as f64);
     let y = row.y as f64;
-    let u = |x: f64| (k[0] * x + k[1] * y + k[2]) / (k[3] * x + k[4] * y + k[5]);
-    let n = row.len as usize;
-    if n == 1 {
-        return vec![u(x0)];
-    }
-    let (mut x1, u1) = texture_bezier::control_point(k, y, x0, x2);
-    x1 = x1.clamp(x0.min(x2), x0.max(x2));
-    let m = 2 * (n - 1);
-    let dt = 1.0 / m as f64;
-    let (mut xs, mut dx, ddx) = texture_bezier::differences([x0, x1, x2], dt);
-    let (mut us, mut du, ddu) = texture_bezier::differences([u(x0), u1, u(x2)], dt);
-    let mut samples = Vec::with_capacity(m + 1);
-    for _ in 0..=m {
-        samples.push((xs, us));
-        xs += dx;
-        dx += ddx;
-        us += du;
-        du += ddu;
-    }
-    // x(t) is monotone (the control point lies within the line), so the distance from a pixel
-    // centre falls, then rises, along the samples.
-    let dir = row.dir as f64;
-    let mut j = 0;
-    (0..n)
-        .map(|i| {
-            let p = x0 + dir * i as f64;
-            while j + 1 < samples.len() && (samples[j + 1].0 - p).abs() <= (samples[j].0 - p).abs()
-            {
-                j += 1;
-            }
-            samples[j].1
-        })
+    let d = |x: f64| q[0] * x + q[1] * y + q[2];
+    let x1 = texture_bezier::control_x(d(x0), d(x2), x0, x2).clamp(x0.min(x2), x0.max(x2));
+    let points = |k: [f64; 3]| {
+        let k = at_index(k);
+        let nn = |x: f64| k[0] * x + k[1] * y + k[2];
+        let u = |x: f64| nn(x) / d(x);
+        let slope = (k[0] * d(x0) - nn(x0) * q[0]) / (d(x0) * d(x0));
+        [u(x0), u(x0) + slope * (x1 - x0), u(x2)]
+    };
+    [
+        [0.0, (x1 - x0).abs(), (x2 - x0).abs()],
+        points(s.planes.s),
+        points(s.planes.t),
+    ]
+}
+
+/// The §16 Bézier's texel-space coordinate (axis 0: u, 1: v) at each pixel of `row`: the f64
+/// curve at t = j/m ([`texture_bezier::samples`]), each pixel the sample nearest its centre
+/// ([`texture_bezier::pick`]).
+fn bezier_row(s: &TexSetup, row: &Row, axis: usize) -> Vec<f64> {
+    let [xp, up, vp] = bezier_points(s, row);
+    let c = if axis == 0 { up } else { vp };
+    let n = row.len;
+    let m = texture_bezier::samples(n) as usize;
+    let t = |j: usize| if m == 0 { 0.0 } else { j as f64 / m as f64 };
+    let xs: Vec<f64> = (0..=m).map(|j| texture_bezier::bezier(xp, t(j))).collect();
+    texture_bezier::pick(&xs, n)
+        .into_iter()
+        .map(|j| texture_bezier::bezier(c, t(j)))
         .collect()
 }
 

@@ -14,6 +14,7 @@ pub mod line_interpolator;
 pub mod normalizer;
 pub mod power_unit;
 pub mod quadric_unit;
+pub mod texture_bezier;
 pub mod texture_coord;
 pub mod texture_memory;
 pub mod texture_quadratic;

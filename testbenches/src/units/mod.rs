@@ -14,6 +14,7 @@ pub mod normalizer;
 pub mod power_unit;
 pub mod quadric_unit;
 pub mod span;
+pub mod texture_bezier;
 pub mod texture_coord;
 pub mod texture_memory;
 pub mod texture_quadratic;
