@@ -2,10 +2,12 @@
 //! block `texture-bezier`) on every raster line of the sphere, the torus and `plane`, the lines
 //! streamed back to back as the set-up software records them (`bezier_points`):
 //!
-//! - it shows every pixel of every line, in order, with `index` and `done`;
-//! - its texel is the golden `texture-bezier` method's (the f64 curve's nearest sample) except
-//!   where the block's fixed-point comparisons may pick another sample as near the pixel centre
-//!   (`may_show`): every difference lies within that, and the count is printed;
+//! - it shows every pixel of every line, in order, with `index` and `done`, and its texels are
+//!   the golden `texture-bezier` method's (which runs the twin line by line: a check of that
+//!   wiring);
+//! - its texel is the f64 curve's nearest sample's except where the block's fixed-point
+//!   comparisons may pick another sample as near the pixel centre (`may_show`): every
+//!   difference lies within that, and the count is printed;
 //! - the clocks it takes are the header's rate: one per pixel plus ⌊s/3⌋ for a pixel whose
 //!   sample lies s samples beyond the previous pixel's, the next line's load taken in the clock
 //!   of the last pixel (no clock between lines), plus the first load and the output register.
@@ -48,6 +50,8 @@ fn scene_tris(name: &str) -> Vec<ScreenTriangle> {
 struct Line {
     rec: BezierLine,
     method: Vec<[i64; 2]>,
+    /// The f64 curve's nearest sample's texel.
+    nearest: Vec<[i64; 2]>,
     may: Vec<[(f64, f64); 2]>,
     clocks: u64,
 }
@@ -82,6 +86,10 @@ fn lines(name: &str, tex: &Texture) -> Vec<Line> {
                     .iter()
                     .map(|p| [(p.x + 0.5).floor() as i64, (p.y + 0.5).floor() as i64])
                     .collect(),
+                nearest: picks
+                    .iter()
+                    .map(|&j| [&us, &vs].map(|c| (c[j] + 0.5).floor() as i64))
+                    .collect(),
                 may: picks
                     .iter()
                     .enumerate()
@@ -113,16 +121,18 @@ fn the_bezier_block_shows_the_methods_texels_at_the_headers_rate() {
                 assert_eq!(o.index as usize, pixel, "{name}: line {line}");
                 assert_eq!(o.done, pixel + 1 == l.method.len(), "{name}: line {line}");
                 let got = [o.u, o.v].map(|t| t as u16 as i16 as i64);
-                let want = l.method[pixel].map(|t| (t as u16 as i16) as i64);
+                assert_eq!(
+                    got, l.method[pixel],
+                    "{name}: line {line} pixel {pixel}: the method"
+                );
+                let want = l.nearest[pixel].map(|t| (t as u16 as i16) as i64);
                 if got != want {
                     differ += 1;
-                    for a in 0..2 {
-                        let (c, h) = l.may[pixel][a];
+                    for (a, (&g, &(c, h))) in got.iter().zip(&l.may[pixel]).enumerate() {
                         let b = 0.5 + h + pick_slack(l.rec.end_index + 1);
-                        if (got[a] as f64 - c).abs() > b {
+                        if (g as f64 - c).abs() > b {
                             beyond.push(format!(
-                                "line {line} pixel {pixel} axis {a}: texel {} against {c:.4} ± {b:.4}",
-                                got[a]
+                                "line {line} pixel {pixel} axis {a}: texel {g} against {c:.4} ± {b:.4}"
                             ));
                         }
                     }
@@ -144,7 +154,7 @@ fn the_bezier_block_shows_the_methods_texels_at_the_headers_rate() {
         }
         let clocks = last_clock + 1;
         eprintln!(
-            "{name}: {} lines, {pixels} pixels in {clocks} clocks ({:.3} pixels per clock; the header's rate gives {rate_clocks}); texels differing from the golden method's: {differ}",
+            "{name}: {} lines, {pixels} pixels in {clocks} clocks ({:.3} pixels per clock; the header's rate gives {rate_clocks}); texels differing from the f64 curve's nearest sample's: {differ}",
             lines.len(),
             pixels as f64 / clocks as f64
         );

@@ -8,7 +8,7 @@
 //! | texture-reference | the exact quotient u = (a·x + b·y + c)/(g·x + h·y + i) in f64, at the pixel centre, from the unquantized planes |
 //! | texture | SPEC §14: the additive walker on the integer PCT coefficients (the nearest texel of their exact quotient, no division) |
 //! | texture-quadratic | SPEC §15: per raster line the quadratic through the exact u at the line's ends and middle, stepped by forward differences in the block's Q15.32 words |
-//! | texture-bezier | SPEC §16: per raster line the quadratic Bézier with the tangents' intersection as control point, sampled at m = 2(n − 1) steps of t (f64; the block `texture-bezier` steps it by forward differences) |
+//! | texture-bezier | SPEC §16: per raster line the quadratic Bézier with the tangents' intersection as control point, sampled at m = 2(n − 1) steps of t by forward differences in the block's Q15.32 words (its twin) |
 //! | texture-affine | u, v linear in screen space through the vertices' (the naive form, for comparison) |
 //!
 //! Every method picks the nearest texel of its coordinate by the texel-centre rule of
@@ -35,7 +35,7 @@ use crate::texture::Texture;
 use crate::types::{Plane, Row, ScreenTriangle, Walk};
 use crate::units::address_block::AddressSetup;
 use crate::units::normalizer;
-use crate::units::texture_bezier;
+use crate::units::texture_bezier::{self, BezierLine, BezierTwin};
 use crate::units::texture_coord::block::{walk_geometry, TexCoordSetup};
 use crate::units::texture_coord::{PctCoeffs, PctPlanes, PctWalker};
 use crate::units::texture_quadratic::{self as quad, QuadWords};
@@ -196,8 +196,7 @@ pub fn coordinates(tri: &ScreenTriangle, s: &TexSetup, walk: &Walk, coord: Coord
         }
         Coord::Bezier => {
             for row in walk.rows.iter().filter(|r| r.len > 0) {
-                let [u, v] = [0, 1].map(|a| bezier_row(s, row, a));
-                out.extend(u.into_iter().zip(v).map(|(u, v)| DVec2::new(u, v)));
+                out.extend(bezier_row(s, row));
             }
         }
     }
@@ -277,20 +276,27 @@ pub fn bezier_points(s: &TexSetup, row: &Row) -> [[f64; 3]; 3] {
     ]
 }
 
-/// The §16 Bézier's texel-space coordinate (axis 0: u, 1: v) at each pixel of `row`: the f64
-/// curve at t = j/m ([`texture_bezier::samples`]), each pixel the sample nearest its centre
-/// ([`texture_bezier::pick`]).
-fn bezier_row(s: &TexSetup, row: &Row, axis: usize) -> Vec<f64> {
+/// The §16 Bézier's texel (u, v) at each pixel of `row`, in walk order: the line's record
+/// ([`bezier_points`], [`BezierLine`]) stepped by the block's bit-exact twin ([`BezierTwin`]:
+/// forward differences in Q15.32 words, two samples per pixel step, each pixel the sample
+/// nearest its centre by the block's comparisons), as `texture-quadratic` steps the quadratic
+/// block's words. It differs from the f64 curve's nearest sample only where two samples are
+/// as near within the words' rounding (`golden/tests/texture_bezier_block.rs` counts them).
+fn bezier_row(s: &TexSetup, row: &Row) -> Vec<DVec2> {
     let [xp, up, vp] = bezier_points(s, row);
-    let c = if axis == 0 { up } else { vp };
-    let n = row.len;
-    let m = texture_bezier::samples(n) as usize;
-    let t = |j: usize| if m == 0 { 0.0 } else { j as f64 / m as f64 };
-    let xs: Vec<f64> = (0..=m).map(|j| texture_bezier::bezier(xp, t(j))).collect();
-    texture_bezier::pick(&xs, n)
-        .into_iter()
-        .map(|j| texture_bezier::bezier(c, t(j)))
-        .collect()
+    let n = row.len as usize;
+    let mut twin = BezierTwin::default();
+    twin.clock(Some(&BezierLine::new(row.len, xp, up, vp)), false);
+    let mut out = Vec::with_capacity(n);
+    let texel = |t: u64| t as u16 as i16 as f64;
+    while out.len() < n {
+        let o = twin.outputs(false);
+        if o.valid {
+            out.push(DVec2::new(texel(o.u), texel(o.v)));
+        }
+        twin.clock(None, false);
+    }
+    out
 }
 
 /// Shade one triangle with a textured method: the texel colour is the diffuse colour, lit as

@@ -140,7 +140,7 @@ pub struct BezierLine {
 
 impl BezierLine {
     /// The record of a line of `n` pixels (1 ≤ n ≤ 4096) whose curves have the control points
-    /// `x` (X: 0, X1, n − 1), `u` and `v` (texel space): the forward differences in
+    /// `x` (X: 0, X1, n − 1; its start is 0 whatever `x[0]` is), `u` and `v` (texel space): the forward differences in
     /// dt = 1/m ([`samples`]) rounded to 2^−32, u and v carrying +½ so that a word's integer
     /// part is the nearest texel.
     pub fn new(n: u32, x: [f64; 3], u: [f64; 3], v: [f64; 3]) -> BezierLine {
@@ -162,15 +162,23 @@ impl BezierLine {
         };
         BezierLine {
             end_index: n - 1,
-            lanes: [lane(x, 0.0), lane(u, 0.5), lane(v, 0.5)],
+            lanes: [
+                LaneWords {
+                    start: 0,
+                    ..lane(x, 0.0)
+                },
+                lane(u, 0.5),
+                lane(v, 0.5),
+            ],
         }
     }
 
-    /// The record as the block's input ports after `load`: end_index, then per lane start, step,
-    /// step2.
+    /// The record as the block's input ports after `load`: end_index, X's step and step2
+    /// (X starts at 0: no port), then u's and v's start, step, step2.
     pub fn ports(&self) -> Vec<u64> {
-        let mut p = vec![self.end_index as u64];
-        for l in &self.lanes {
+        let x = &self.lanes[0];
+        let mut p = vec![self.end_index as u64, x.step, x.step2];
+        for l in &self.lanes[1..] {
             p.extend([l.start, l.step, l.step2]);
         }
         p
@@ -179,13 +187,21 @@ impl BezierLine {
     /// The record from the ports ([`BezierLine::ports`]' order), masked to the port widths.
     pub fn from_ports(p: &[u64]) -> BezierLine {
         let l = |k: usize| LaneWords {
-            start: p[1 + 3 * k] & MASK,
-            step: p[2 + 3 * k] & MASK,
-            step2: p[3 + 3 * k] & MASK,
+            start: p[3 * k] & MASK,
+            step: p[1 + 3 * k] & MASK,
+            step2: p[2 + 3 * k] & MASK,
         };
         BezierLine {
             end_index: (p[0] & 0xFFF) as u32,
-            lanes: [l(0), l(1), l(2)],
+            lanes: [
+                LaneWords {
+                    start: 0,
+                    step: p[1] & MASK,
+                    step2: p[2] & MASK,
+                },
+                l(1),
+                l(2),
+            ],
         }
     }
 }
@@ -254,13 +270,17 @@ pub struct BezierOutputs {
     pub done: bool,
 }
 
-/// The bit-exact twin of `texture-bezier` (see that block's header): per clock, the window's
-/// comparisons X(j + k − 1) + X(j + k) ≤ 2i (k = 1, 2, 3, sample j + k existing) give r, the
-/// number that hold in a row; r < 3 shows pixel i with sample j + r and moves the window by r;
-/// r = 3 moves it by 3 with no pixel.
+/// The bit-exact twin of `texture-bezier` (see that block's header): the line's first pixel
+/// takes sample 0; then per clock, the window's comparisons X(j + k − 1) + X(j + k) ≤ 2i
+/// (k = 1, 2, 3, sample j + k existing) give r, the number that hold in a row; r < 3 shows
+/// pixel i with sample j + r and moves the window by r; r = 3 moves it by 3 with no pixel. The
+/// twin loads the window on the load; the block forms it in the first pixel's clock (which
+/// does not use it), the same state where it is read.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct BezierTwin {
     busy: bool,
+    /// The line's first pixel is next: it takes sample 0.
+    first: bool,
     end_index: u32,
     /// The pixel index i and the samples left after the window's first, m − j.
     i: u32,
@@ -270,8 +290,11 @@ pub struct BezierTwin {
 }
 
 impl BezierTwin {
-    /// r: how many of the window's comparisons hold in a row.
+    /// r: how many of the window's comparisons hold in a row (0 for the line's first pixel).
     fn r(&self) -> usize {
+        if self.first {
+            return 0;
+        }
         let x = &self.lanes[0].w;
         let ni = !((self.i as u64) << (FRAC_BITS + 1)) & MASK;
         let mut r = 0;
@@ -327,6 +350,7 @@ impl BezierTwin {
             self.rem -= r as u32;
         }
         if emit {
+            self.first = false;
             if self.i == self.end_index {
                 self.busy = false;
             } else {
@@ -338,6 +362,7 @@ impl BezierTwin {
                 *l = WindowLane::load(w);
             }
             self.busy = true;
+            self.first = true;
             self.end_index = line.end_index;
             self.i = 0;
             self.rem = 2 * line.end_index;

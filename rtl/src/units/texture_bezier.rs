@@ -22,14 +22,22 @@
 //!
 //! # The window: several samples per clock
 //!
-//! Each lane keeps a window of four samples j … j + 3, Δ(j + 3), d and 3d (registers). Three
+//! Each lane keeps a window of four samples j … j + 3 and, for the moves, Δ = Δ(j + 3),
+//! E2 = 2Δ + d and E3 = 3Δ + 3d (the steps to samples j + 5 and j + 6), d, 3d and 9d. Three
 //! comparisons side by side, X(j + k − 1) + X(j + k) ≤ 2i for k = 1, 2, 3 (sample j + k
 //! existing), give r, the number that hold in a row. For r < 3 the block shows pixel i with
 //! sample j + r, moves the window by r and goes to pixel i + 1; for r = 3 it moves the window
-//! by 3 and shows nothing. The samples j + 4 … j + 6 beyond the window are w3 + Δ,
-//! w3 + 2Δ + d and w3 + 3Δ + 3d, two adders deep; the comparison is the sign of
-//! X(j + k − 1) + X(j + k) + ¬(2i·2^32), a three-operand sum. On a load the same adders form
-//! the window from the line's words (samples 0 … 3).
+//! by 3 and shows nothing. The line's first pixel takes sample 0 (its record's start; X(1) > 0
+//! on every line of more than one pixel).
+//!
+//! The loop in short paths: the comparison sums X(j + k − 1) + X(j + k) + ¬(2i·2^32) are
+//! registers, and so are flags of the count of samples left (after a move by r the count is
+//! at least t when it was at least t + r): r is a function of register bits. Every register's
+//! candidate after a move is at most two adders from the registers: samples j + 4 … j + 6 are
+//! w3 + Δ, w3 + E2, w3 + E3; Δ, E2, E3 move by r·d, 2r·d, 3r·d; the sums of the samples
+//! beyond the window come from Z = 2·X(j + 3) + ¬(2i·2^32), kept beside Z − 2^33 (the next
+//! pixel's). The load takes the record with sums at most two adders deep; the first pixel's
+//! clock forms the window from them (samples 0 … 3 and the second pixel's sums).
 //!
 //! # Ports
 //!
@@ -37,7 +45,7 @@
 //! |---|---|---|
 //! | `load` | 1 | take a line's record (when `ready`) |
 //! | `end_index` | 12 | n − 1, the line's last pixel index (n ≤ 4096) |
-//! | `x_start`, `x_step`, `x_step2` | 48 each | signed Q15.32: X(0) = 0, Δ(0), d |
+//! | `x_step`, `x_step2` | 48 each | signed Q15.32: X's Δ(0), d (X(0) = 0: no port) |
 //! | `u_start`, `u_step`, `u_step2` (and `v_…`) | 48 each | signed Q15.32: u(0) + ½, Δ(0), d |
 //! | `hold` | 1 | stall (the consumer's back-pressure): nothing taken, no step, nothing shown in the next clock |
 //! | `ready` | 1 | a `load` shown this clock is taken |
@@ -78,94 +86,146 @@
 use rust_hdl::prelude::*;
 
 crate::hw_block! {
-    /// One lane: the window of samples j … j + 3, Δ(j + 3), d and 3d.
+    /// One lane: the record's words taken on the load (with sums one adder deep), and the
+    /// window of samples j … j + 3 with Δ(j + 3), E2 = 2Δ(j + 3) + d, E3 = 3Δ(j + 3) + 3d, d, 3d
+    /// and 9d.
     pub struct BezLane(clock) {
         in {
-            load: Bit, step_in: Bit, r: Bits<2>,
+            take: Bit, first: Bit, step_in: Bit, r: Bits<2>,
             start: Bits<48>, step: Bits<48>, step2: Bits<48>,
         }
-        out { w0: Bits<48>, w1: Bits<48>, w2: Bits<48>, w3: Bits<48> }
+        out {
+            w0: Bits<48>, w1: Bits<48>, w2: Bits<48>, w3: Bits<48>,
+            d: Bits<48>, e2: Bits<48>, e3: Bits<48>,
+            /// The taken record's start, start + Δ(0), 2Δ(0) + d and 3Δ(0) + 3d.
+            head: Bits<48>, head1: Bits<48>, head_c: Bits<48>, head_t3: Bits<48>,
+        }
+        ps0: DFF<Bits<48>>, ps1: DFF<Bits<48>>, pc: DFF<Bits<48>>, pt3: DFF<Bits<48>>,
+        pstep: DFF<Bits<48>>, pdd: DFF<Bits<48>>, pdd3: DFF<Bits<48>>, pdd9: DFF<Bits<48>>,
         w0_q: DFF<Bits<48>>, w1_q: DFF<Bits<48>>, w2_q: DFF<Bits<48>>, w3_q: DFF<Bits<48>>,
-        d_q: DFF<Bits<48>>, dd_q: DFF<Bits<48>>, dd3_q: DFF<Bits<48>>,
-        /// The adders' operands: the window's last sample, Δ, d, 3d (or the load's words).
-        base: Signal<Local, Bits<48>>, bd: Signal<Local, Bits<48>>,
-        bdd: Signal<Local, Bits<48>>, bdd3: Signal<Local, Bits<48>>,
-        two_bd: Signal<Local, Bits<48>>, dd3_in: Signal<Local, Bits<48>>,
+        d_q: DFF<Bits<48>>, e2_q: DFF<Bits<48>>, e3_q: DFF<Bits<48>>,
+        dd_q: DFF<Bits<48>>, dd3_q: DFF<Bits<48>>, dd9_q: DFF<Bits<48>>,
+        /// On the load: 3d, 9d, 3Δ(0), start + Δ(0), 2Δ(0) + d, 3Δ(0) + 3d.
+        dd3_in: Signal<Local, Bits<48>>, dd9_in: Signal<Local, Bits<48>>,
+        st3_in: Signal<Local, Bits<48>>, s1_in: Signal<Local, Bits<48>>,
+        c_in: Signal<Local, Bits<48>>, t3_in: Signal<Local, Bits<48>>,
+        /// The first pixel's clock: samples 2 and 3, Δ(3), E2, E3.
+        fw2: Signal<Local, Bits<48>>, fw3: Signal<Local, Bits<48>>, fd: Signal<Local, Bits<48>>,
+        fe2: Signal<Local, Bits<48>>, fe3: Signal<Local, Bits<48>>,
         /// Samples j + 4, j + 5, j + 6.
         x4: Signal<Local, Bits<48>>, x5: Signal<Local, Bits<48>>, x6: Signal<Local, Bits<48>>,
-        /// Δ after a move by 1, 2, 3 (3: also the load's Δ(3)).
-        d_p1: Signal<Local, Bits<48>>, d_p2: Signal<Local, Bits<48>>, d_p3: Signal<Local, Bits<48>>,
+        /// Δ, E2, E3 after a move by 1, 2, 3.
+        d_1: Signal<Local, Bits<48>>, d_2: Signal<Local, Bits<48>>, d_3: Signal<Local, Bits<48>>,
+        e2_1: Signal<Local, Bits<48>>, e2_2: Signal<Local, Bits<48>>, e2_3: Signal<Local, Bits<48>>,
+        e3_1: Signal<Local, Bits<48>>, e3_2: Signal<Local, Bits<48>>, e3_3: Signal<Local, Bits<48>>,
     }
 }
 
 impl Logic for BezLane {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, w0_q, w1_q, w2_q, w3_q, d_q, dd_q, dd3_q);
+        dff_setup!(
+            self, clock, ps0, ps1, pc, pt3, pstep, pdd, pdd3, pdd9, w0_q, w1_q, w2_q, w3_q, d_q,
+            e2_q, e3_q, dd_q, dd3_q, dd9_q
+        );
+        // The load: the words and sums of them at most two adders deep.
         self.dd3_in.next = self.step2.val() + (self.step2.val() << 1);
-        self.base.next = self.w3_q.q.val();
-        self.bd.next = self.d_q.q.val();
-        self.bdd.next = self.dd_q.q.val();
-        self.bdd3.next = self.dd3_q.q.val();
-        if self.load.val() {
-            self.base.next = self.start.val();
-            self.bd.next = self.step.val();
-            self.bdd.next = self.step2.val();
-            self.bdd3.next = self.dd3_in.val();
+        self.dd9_in.next = self.step2.val() + (self.step2.val() << 3);
+        self.st3_in.next = self.step.val() + (self.step.val() << 1);
+        self.s1_in.next = self.start.val() + self.step.val();
+        self.c_in.next = (self.step.val() << 1) + self.step2.val();
+        self.t3_in.next = self.st3_in.val() + self.dd3_in.val();
+        if self.take.val() {
+            self.ps0.d.next = self.start.val();
+            self.ps1.d.next = self.s1_in.val();
+            self.pc.d.next = self.c_in.val();
+            self.pt3.d.next = self.t3_in.val();
+            self.pstep.d.next = self.step.val();
+            self.pdd.d.next = self.step2.val();
+            self.pdd3.d.next = self.dd3_in.val();
+            self.pdd9.d.next = self.dd9_in.val();
         }
-        self.two_bd.next = self.bd.val() << 1;
-        self.x4.next = self.base.val() + self.bd.val();
-        self.x5.next = self.base.val() + self.two_bd.val() + self.bdd.val();
-        self.x6.next = self.x4.val() + self.two_bd.val() + self.bdd3.val();
-        self.d_p1.next = self.d_q.q.val() + self.dd_q.q.val();
-        self.d_p2.next = self.d_q.q.val() + (self.dd_q.q.val() << 1);
-        self.d_p3.next = self.bd.val() + self.bdd3.val();
-        if self.load.val() {
-            self.w0_q.d.next = self.start.val();
-            self.w1_q.d.next = self.x4.val();
-            self.w2_q.d.next = self.x5.val();
-            self.w3_q.d.next = self.x6.val();
-            self.d_q.d.next = self.d_p3.val();
-            self.dd_q.d.next = self.step2.val();
-            self.dd3_q.d.next = self.dd3_in.val();
+        // The first pixel's clock forms the window (samples 0 … 3) from those.
+        self.fw2.next = self.ps0.q.val() + self.pc.q.val();
+        self.fw3.next = self.ps0.q.val() + self.pt3.q.val();
+        self.fd.next = self.pstep.q.val() + self.pdd3.q.val();
+        self.fe2.next = self.pc.q.val() + (self.pdd3.q.val() << 1);
+        self.fe3.next = self.pt3.q.val() + self.pdd9.q.val();
+        // A move: one adder from the registers for every candidate.
+        self.x4.next = self.w3_q.q.val() + self.d_q.q.val();
+        self.x5.next = self.w3_q.q.val() + self.e2_q.q.val();
+        self.x6.next = self.w3_q.q.val() + self.e3_q.q.val();
+        self.d_1.next = self.d_q.q.val() + self.dd_q.q.val();
+        self.d_2.next = self.d_q.q.val() + (self.dd_q.q.val() << 1);
+        self.d_3.next = self.d_q.q.val() + self.dd3_q.q.val();
+        self.e2_1.next = self.e2_q.q.val() + (self.dd_q.q.val() << 1);
+        self.e2_2.next = self.e2_q.q.val() + (self.dd_q.q.val() << 2);
+        self.e2_3.next = self.e2_q.q.val() + (self.dd3_q.q.val() << 1);
+        self.e3_1.next = self.e3_q.q.val() + self.dd3_q.q.val();
+        self.e3_2.next = self.e3_q.q.val() + (self.dd3_q.q.val() << 1);
+        self.e3_3.next = self.e3_q.q.val() + self.dd9_q.q.val();
+        if self.first.val() {
+            self.w0_q.d.next = self.ps0.q.val();
+            self.w1_q.d.next = self.ps1.q.val();
+            self.w2_q.d.next = self.fw2.val();
+            self.w3_q.d.next = self.fw3.val();
+            self.d_q.d.next = self.fd.val();
+            self.e2_q.d.next = self.fe2.val();
+            self.e3_q.d.next = self.fe3.val();
+            self.dd_q.d.next = self.pdd.q.val();
+            self.dd3_q.d.next = self.pdd3.q.val();
+            self.dd9_q.d.next = self.pdd9.q.val();
         } else if self.step_in.val() {
             if self.r.val() == 1 {
                 self.w0_q.d.next = self.w1_q.q.val();
                 self.w1_q.d.next = self.w2_q.q.val();
                 self.w2_q.d.next = self.w3_q.q.val();
                 self.w3_q.d.next = self.x4.val();
-                self.d_q.d.next = self.d_p1.val();
+                self.d_q.d.next = self.d_1.val();
+                self.e2_q.d.next = self.e2_1.val();
+                self.e3_q.d.next = self.e3_1.val();
             } else if self.r.val() == 2 {
                 self.w0_q.d.next = self.w2_q.q.val();
                 self.w1_q.d.next = self.w3_q.q.val();
                 self.w2_q.d.next = self.x4.val();
                 self.w3_q.d.next = self.x5.val();
-                self.d_q.d.next = self.d_p2.val();
+                self.d_q.d.next = self.d_2.val();
+                self.e2_q.d.next = self.e2_2.val();
+                self.e3_q.d.next = self.e3_2.val();
             } else if self.r.val() == 3 {
                 self.w0_q.d.next = self.w3_q.q.val();
                 self.w1_q.d.next = self.x4.val();
                 self.w2_q.d.next = self.x5.val();
                 self.w3_q.d.next = self.x6.val();
-                self.d_q.d.next = self.d_p3.val();
+                self.d_q.d.next = self.d_3.val();
+                self.e2_q.d.next = self.e2_3.val();
+                self.e3_q.d.next = self.e3_3.val();
             }
         }
         self.w0.next = self.w0_q.q.val();
         self.w1.next = self.w1_q.q.val();
         self.w2.next = self.w2_q.q.val();
         self.w3.next = self.w3_q.q.val();
+        self.d.next = self.d_q.q.val();
+        self.e2.next = self.e2_q.q.val();
+        self.e3.next = self.e3_q.q.val();
+        self.head.next = self.ps0.q.val();
+        self.head1.next = self.ps1.q.val();
+        self.head_c.next = self.pc.q.val();
+        self.head_t3.next = self.pt3.q.val();
     }
 }
 
 crate::hw_block! {
-    /// The Bézier texture-coordinate unit: lanes X, u, v ([`BezLane`]), the comparisons, the
-    /// pixel counter and the output register.
+    /// The Bézier texture-coordinate unit: lanes X, u, v ([`BezLane`]), X's comparison sums
+    /// kept as registers, the pixel counter and the output register.
     pub struct TextureBezier(clock) as "texture-bezier" {
         summary: "per-line quadratic-Bézier texel (u, v) along a raster line by forward differences in t, a window of samples compared against the pixel centre, adders only (SPEC §16)",
         latency: 2 => "load to the line's first valid_out; one pixel per clock while a pixel moves the window by at most two samples",
         multipliers: 0,
         in {
             load: Bit, end_index: Bits<12>,
-            x_start: Bits<48>, x_step: Bits<48>, x_step2: Bits<48>,
+            x_step: Bits<48>, x_step2: Bits<48>,
             u_start: Bits<48>, u_step: Bits<48>, u_step2: Bits<48>,
             v_start: Bits<48>, v_step: Bits<48>, v_step2: Bits<48>,
             hold: Bit,
@@ -173,15 +233,36 @@ crate::hw_block! {
         out { ready: Bit, valid_out: Bit, u: Bits<16>, v: Bits<16>, index: Bits<12>, done: Bit }
         /// 0: X, 1: u, 2: v.
         pub lane: [BezLane; 3],
-        busy_q: DFF<Bit>, end_q: DFF<Bits<12>>, i_q: DFF<Bits<12>>,
-        /// ¬(2i·2^32) and m − j (the samples after the window's first).
-        ni_q: DFF<Bits<48>>, rem_q: DFF<Bits<13>>,
+        busy_q: DFF<Bit>, first_q: DFF<Bit>, end_q: DFF<Bits<12>>, i_q: DFF<Bits<12>>,
+        /// m − j (the samples after the window's first), and whether it is at least 1, 2, 3.
+        rem_q: DFF<Bits<13>>, g1_q: DFF<Bit>, g2_q: DFF<Bit>, g3_q: DFF<Bit>,
+        /// rem ≥ t for t = 2 … 6 (the flags after a move by r are rem ≥ t + r).
+        ge: [Signal<Local, Bit>; 5],
+        lim: [Constant<Bits<13>>; 5] = [1u64, 2, 3, 4, 5].map(|t| Constant::new(t.into())),
+        one12: Constant<Bits<12>> = Constant::new(1u64.into()),
+        /// X(j + k − 1) + X(j + k) + ¬(2i·2^32) for k = 1, 2, 3, and 2·X(j + 3) + ¬(2i·2^32)
+        /// and that − 2^33 (the next pixel's).
+        p1_q: DFF<Bits<48>>, p2_q: DFF<Bits<48>>, p3_q: DFF<Bits<48>>,
+        z_q: DFF<Bits<48>>, zm_q: DFF<Bits<48>>,
         valid_q: DFF<Bit>, u_q: DFF<Bits<16>>, v_q: DFF<Bits<16>>, index_q: DFF<Bits<12>>,
         done_q: DFF<Bit>,
-        ni_step: Constant<Bits<48>> = Constant::new((1u64 << 33).into()),
-        ones: Constant<Bits<48>> = Constant::new(((1u64 << 48) - 1).into()),
-        /// The three comparisons' sums and outcomes, r, and the clock's decisions.
-        s1: Signal<Local, Bits<48>>, s2: Signal<Local, Bits<48>>, s3: Signal<Local, Bits<48>>,
+        zero: Constant<Bits<48>> = Constant::new(0u64.into()),
+        /// ¬(2·1·2^32) = −2^33 − 1 (the second pixel's), that − 2^33, and −2^33.
+        k1: Constant<Bits<48>> = Constant::new(((1u64 << 48) - (1u64 << 33) - 1).into()),
+        k1m: Constant<Bits<48>> = Constant::new(((1u64 << 48) - (1u64 << 34) - 1).into()),
+        minus2: Constant<Bits<48>> = Constant::new(((1u64 << 48) - (1u64 << 33)).into()),
+        /// The first pixel's clock: the sums for the second pixel.
+        f_p2a: Signal<Local, Bits<48>>, f_p3a: Signal<Local, Bits<48>>,
+        f_p1: Signal<Local, Bits<48>>, f_p2: Signal<Local, Bits<48>>, f_p3: Signal<Local, Bits<48>>,
+        f_z: Signal<Local, Bits<48>>, f_zm: Signal<Local, Bits<48>>,
+        /// Candidates: the sums less 2^33, the sums of samples beyond the window, z and zm next.
+        p1m: Signal<Local, Bits<48>>, p2m: Signal<Local, Bits<48>>, p3m: Signal<Local, Bits<48>>,
+        q4: Signal<Local, Bits<48>>, q5: Signal<Local, Bits<48>>, q6a: Signal<Local, Bits<48>>,
+        q6: Signal<Local, Bits<48>>, q4m: Signal<Local, Bits<48>>, q5m: Signal<Local, Bits<48>>,
+        zm_1: Signal<Local, Bits<48>>, zm_2: Signal<Local, Bits<48>>,
+        zmm_0: Signal<Local, Bits<48>>, zmm_1: Signal<Local, Bits<48>>,
+        zmm_2: Signal<Local, Bits<48>>, z_3: Signal<Local, Bits<48>>, zm_3: Signal<Local, Bits<48>>,
+        /// The comparisons, r, and the clock's decisions.
         c1: Signal<Local, Bit>, c2: Signal<Local, Bit>, c3: Signal<Local, Bit>,
         r: Signal<Local, Bits<2>>, step_now: Signal<Local, Bit>, emit: Signal<Local, Bit>,
         is_last: Signal<Local, Bit>, rdy: Signal<Local, Bit>, take: Signal<Local, Bit>,
@@ -194,20 +275,18 @@ impl Logic for TextureBezier {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(
-            self, clock, busy_q, end_q, i_q, ni_q, rem_q, valid_q, u_q, v_q, index_q, done_q
+            self, clock, busy_q, first_q, end_q, i_q, rem_q, g1_q, g2_q, g3_q, p1_q, p2_q, p3_q,
+            z_q, zm_q, valid_q, u_q, v_q, index_q, done_q
         );
-        self.s1.next = self.lane[0].w0.val() + self.lane[0].w1.val() + self.ni_q.q.val();
-        self.s2.next = self.lane[0].w1.val() + self.lane[0].w2.val() + self.ni_q.q.val();
-        self.s3.next = self.lane[0].w2.val() + self.lane[0].w3.val() + self.ni_q.q.val();
-        self.c1.next = self.s1.val().get_bit(47) & (self.rem_q.q.val() != 0);
-        self.c2.next =
-            self.s2.val().get_bit(47) & (self.rem_q.q.val() != 0) & (self.rem_q.q.val() != 1);
-        self.c3.next = self.s3.val().get_bit(47)
-            & (self.rem_q.q.val() != 0)
-            & (self.rem_q.q.val() != 1)
-            & (self.rem_q.q.val() != 2);
+        // The comparisons are the sums' sign bits: r from registers alone.
+        self.c1.next = self.p1_q.q.val().get_bit(47) & self.g1_q.q.val();
+        self.c2.next = self.p2_q.q.val().get_bit(47) & self.g2_q.q.val();
+        self.c3.next = self.p3_q.q.val().get_bit(47) & self.g3_q.q.val();
+        for t in 0..5 {
+            self.ge[t].next = self.rem_q.q.val() > self.lim[t].val();
+        }
         self.r.next = 3.into();
-        if !self.c1.val() {
+        if self.first_q.q.val() | !self.c1.val() {
             self.r.next = 0.into();
         } else if !self.c2.val() {
             self.r.next = 1.into();
@@ -222,11 +301,12 @@ impl Logic for TextureBezier {
         self.take.next = self.load.val() & self.rdy.val();
         for k in 0..3 {
             self.lane[k].clock.next = self.clock.val();
-            self.lane[k].load.next = self.take.val();
-            self.lane[k].step_in.next = self.step_now.val();
+            self.lane[k].take.next = self.take.val();
+            self.lane[k].first.next = self.first_q.q.val();
+            self.lane[k].step_in.next = self.step_now.val() & !self.first_q.q.val();
             self.lane[k].r.next = self.r.val();
         }
-        self.lane[0].start.next = self.x_start.val();
+        self.lane[0].start.next = self.zero.val();
         self.lane[0].step.next = self.x_step.val();
         self.lane[0].step2.next = self.x_step2.val();
         self.lane[1].start.next = self.u_start.val();
@@ -235,9 +315,71 @@ impl Logic for TextureBezier {
         self.lane[2].start.next = self.v_start.val();
         self.lane[2].step.next = self.v_step.val();
         self.lane[2].step2.next = self.v_step2.val();
+        // The first pixel's clock: X's window is 0, Δ(0), 2Δ(0) + d, 3Δ(0) + 3d.
+        self.f_p1.next = self.lane[0].head1.val() + self.k1.val();
+        self.f_p2a.next = self.lane[0].head1.val() + self.lane[0].head_c.val();
+        self.f_p2.next = self.f_p2a.val() + self.k1.val();
+        self.f_p3a.next = self.lane[0].head_c.val() + self.lane[0].head_t3.val();
+        self.f_p3.next = self.f_p3a.val() + self.k1.val();
+        self.f_z.next = (self.lane[0].head_t3.val() << 1) + self.k1.val();
+        self.f_zm.next = (self.lane[0].head_t3.val() << 1) + self.k1m.val();
+        // Later pixels: every candidate at most two adders from the registers.
+        self.p1m.next = self.p1_q.q.val() + self.minus2.val();
+        self.p2m.next = self.p2_q.q.val() + self.minus2.val();
+        self.p3m.next = self.p3_q.q.val() + self.minus2.val();
+        self.q4.next = self.z_q.q.val() + self.lane[0].d.val();
+        self.q5.next = self.q4.val() + self.lane[0].e2.val();
+        self.q6a.next = self.z_q.q.val() + self.lane[0].e2.val();
+        self.q6.next = self.q6a.val() + self.lane[0].e3.val();
+        self.q4m.next = self.zm_q.q.val() + self.lane[0].d.val();
+        self.q5m.next = self.q4m.val() + self.lane[0].e2.val();
+        self.zm_1.next = self.zm_q.q.val() + (self.lane[0].d.val() << 1);
+        self.zm_2.next = self.zm_q.q.val() + (self.lane[0].e2.val() << 1);
+        self.zmm_0.next = self.zm_q.q.val() + self.minus2.val();
+        self.zmm_1.next = self.zm_1.val() + self.minus2.val();
+        self.zmm_2.next = self.zm_2.val() + self.minus2.val();
+        self.z_3.next = self.z_q.q.val() + (self.lane[0].e3.val() << 1);
+        self.zm_3.next = self.zm_q.q.val() + (self.lane[0].e3.val() << 1);
+        if self.first_q.q.val() {
+            self.p1_q.d.next = self.f_p1.val();
+            self.p2_q.d.next = self.f_p2.val();
+            self.p3_q.d.next = self.f_p3.val();
+            self.z_q.d.next = self.f_z.val();
+            self.zm_q.d.next = self.f_zm.val();
+        } else if self.step_now.val() {
+            if self.r.val() == 0 {
+                self.p1_q.d.next = self.p1m.val();
+                self.p2_q.d.next = self.p2m.val();
+                self.p3_q.d.next = self.p3m.val();
+                self.z_q.d.next = self.zm_q.q.val();
+                self.zm_q.d.next = self.zmm_0.val();
+            } else if self.r.val() == 1 {
+                self.p1_q.d.next = self.p2m.val();
+                self.p2_q.d.next = self.p3m.val();
+                self.p3_q.d.next = self.q4m.val();
+                self.z_q.d.next = self.zm_1.val();
+                self.zm_q.d.next = self.zmm_1.val();
+            } else if self.r.val() == 2 {
+                self.p1_q.d.next = self.p3m.val();
+                self.p2_q.d.next = self.q4m.val();
+                self.p3_q.d.next = self.q5m.val();
+                self.z_q.d.next = self.zm_2.val();
+                self.zm_q.d.next = self.zmm_2.val();
+            } else {
+                self.p1_q.d.next = self.q4.val();
+                self.p2_q.d.next = self.q5.val();
+                self.p3_q.d.next = self.q6.val();
+                self.z_q.d.next = self.z_3.val();
+                self.zm_q.d.next = self.zm_3.val();
+            }
+        }
+        // The texels: the first pixel's is the record's start; later ones sample j + r.
         self.su.next = self.lane[1].w0.val().get_bits::<16>(32);
         self.sv.next = self.lane[2].w0.val().get_bits::<16>(32);
-        if self.r.val() == 1 {
+        if self.first_q.q.val() {
+            self.su.next = self.lane[1].head.val().get_bits::<16>(32);
+            self.sv.next = self.lane[2].head.val().get_bits::<16>(32);
+        } else if self.r.val() == 1 {
             self.su.next = self.lane[1].w1.val().get_bits::<16>(32);
             self.sv.next = self.lane[2].w1.val().get_bits::<16>(32);
         } else if self.r.val() == 2 {
@@ -246,6 +388,7 @@ impl Logic for TextureBezier {
         }
         self.valid_q.d.next = self.emit.val();
         if self.emit.val() {
+            self.first_q.d.next = false;
             self.u_q.d.next = self.su.val();
             self.v_q.d.next = self.sv.val();
             self.index_q.d.next = self.i_q.q.val();
@@ -254,18 +397,34 @@ impl Logic for TextureBezier {
                 self.busy_q.d.next = false;
             } else {
                 self.i_q.d.next = self.i_q.q.val() + 1;
-                self.ni_q.d.next = self.ni_q.q.val() - self.ni_step.val();
             }
         }
         if self.step_now.val() {
             self.rem_q.d.next = self.rem_q.q.val() - bit_cast::<13, 2>(self.r.val());
+            if self.r.val() == 1 {
+                self.g1_q.d.next = self.ge[0].val();
+                self.g2_q.d.next = self.ge[1].val();
+                self.g3_q.d.next = self.ge[2].val();
+            } else if self.r.val() == 2 {
+                self.g1_q.d.next = self.ge[1].val();
+                self.g2_q.d.next = self.ge[2].val();
+                self.g3_q.d.next = self.ge[3].val();
+            } else if self.r.val() == 3 {
+                self.g1_q.d.next = self.ge[2].val();
+                self.g2_q.d.next = self.ge[3].val();
+                self.g3_q.d.next = self.ge[4].val();
+            }
         }
         if self.take.val() {
             self.busy_q.d.next = true;
+            self.first_q.d.next = true;
             self.end_q.d.next = self.end_index.val();
             self.i_q.d.next = 0.into();
-            self.ni_q.d.next = self.ones.val();
             self.rem_q.d.next = bit_cast::<13, 12>(self.end_index.val()) << 1;
+            // m = 2(n − 1) is at least 1 and 2 when n ≥ 2, at least 3 when n ≥ 3.
+            self.g1_q.d.next = self.end_index.val() != 0;
+            self.g2_q.d.next = self.end_index.val() != 0;
+            self.g3_q.d.next = self.end_index.val() > self.one12.val();
         }
         self.ready.next = self.rdy.val();
         self.valid_out.next = self.valid_q.q.val();

@@ -87,7 +87,7 @@ fn line(rng: &mut Rng, flat: bool) -> Line {
 /// One input row: `load` and the record, then `hold`.
 fn row(load: Option<&BezierLine>, hold: bool) -> Vec<u64> {
     let mut r = vec![load.is_some() as u64];
-    r.extend(load.map_or(vec![0; 10], |l| l.ports()));
+    r.extend(load.map_or(vec![0; 9], |l| l.ports()));
     r.push(hold as u64);
     r
 }
@@ -190,7 +190,7 @@ impl Bench for TextureBezier {
         (0..400)
             .map(|_| {
                 let mut r = vec![(rng.below(3) == 0) as u64, rng.below(64) as u64];
-                r.extend((0..9).map(|_| rng.next_u64() & ((1 << 48) - 1)));
+                r.extend((0..8).map(|_| rng.next_u64() & ((1 << 48) - 1)));
                 r.push((rng.below(5) == 0) as u64);
                 r
             })
@@ -203,9 +203,9 @@ struct BezierRows(BezierTwin);
 
 impl Twin for BezierRows {
     fn step(&mut self, r: &[u64]) -> Vec<u64> {
-        let hold = r[11] & 1 != 0;
+        let hold = r[10] & 1 != 0;
         let o = out_row(&self.0.outputs(hold));
-        let load = (r[0] & 1 != 0).then(|| BezierLine::from_ports(&r[1..11]));
+        let load = (r[0] & 1 != 0).then(|| BezierLine::from_ports(&r[1..10]));
         self.0.clock(load.as_ref(), hold);
         o
     }
