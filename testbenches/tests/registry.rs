@@ -22,8 +22,9 @@ use testbenches::registry::{self, test_rows, Entry, BLOCKS};
 fn items(b: &dyn Entry) -> usize {
     match b.items() {
         "triangles" => 12,
-        // A span of up to 61 pixels takes up to 61 clocks.
-        "spans" => 200,
+        // A span of up to 61 pixels takes up to 61 clocks; a line of up to 3 000 pixels (the
+        // line units' benches) up to 3 000.
+        "spans" | "lines" => 200,
         _ => 3000,
     }
 }

@@ -8,7 +8,7 @@
 //! control points as the set-up software takes them (x1 from the depth, `control_x`; u1, v1 on
 //! the tangent at the first pixel). Each line is loaded as soon as the block is `ready`, or
 //! after a seeded gap of idle clocks; `hold` is high in a seeded tenth of the clocks. Every
-//! tenth line has a constant depth (the samples evenly spaced: the tie rule at every pixel).
+//! tenth line has a constant depth (the samples evenly spaced, every pixel on a sample).
 //! Edge rows: random words and flags on every input.
 //!
 //! # Tolerances (from the formats)
