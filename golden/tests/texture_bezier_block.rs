@@ -14,36 +14,13 @@
 //!   The pixels per clock are printed.
 
 use golden::raster::walk;
-use golden::scene::{self, Camera};
 use golden::shading::texture::{bezier_points, coordinates, setup, Coord};
 use golden::texture::Texture;
 use golden::units::texture_bezier::{
     bezier, may_show, pick, pick_slack, samples, BezierLine, BezierTwin,
 };
-use golden::ScreenTriangle;
-
-fn scene_tris(name: &str) -> Vec<ScreenTriangle> {
-    let (w, h) = (400, 400);
-    let (mesh, cam) = match name {
-        "sphere" => {
-            let m = scene::uv_sphere(50).unwrap();
-            let c = Camera::fit(&m, w, h, glam::DQuat::IDENTITY);
-            (m, c)
-        }
-        "torus" => {
-            let m = scene::torus(50).unwrap();
-            let c = Camera::fit(&m, w, h, glam::DQuat::from_rotation_x(55f64.to_radians()));
-            (m, c)
-        }
-        "plane" => {
-            let m = scene::plane(50).unwrap();
-            let c = Camera::plane_view(&m, w, h);
-            (m, c)
-        }
-        _ => unreachable!(),
-    };
-    scene::project_subpixel(&mesh, &cam, w, h, golden::SUBPIXEL_BITS).unwrap()
-}
+mod common;
+use common::scene_tris;
 
 /// One line: its record, the method's texels, the ranges the block may show, and the clocks
 /// the header's rate gives its pixels.
