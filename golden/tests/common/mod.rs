@@ -4,7 +4,6 @@ use golden::scene::{self, Camera};
 use golden::ScreenTriangle;
 
 /// The triangles of `sphere`, `torus` or `plane` (400×400, vertices at 1/16 pixel).
-
 pub fn scene_tris(name: &str) -> Vec<ScreenTriangle> {
     let (w, h) = (400, 400);
     let (mesh, cam) = match name {
