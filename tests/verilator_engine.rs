@@ -133,7 +133,8 @@ fn verilator_four_triangle_raster_equals_rust_hdl() {
 
 /// The main job (`render`, every method golden and through the RTL) on a small scene writes the
 /// same files on both engines: every image byte for byte, and `report.json` equal but for the
-/// wall times (`seconds`).
+/// wall times (`seconds`). A 16×16 texture (`--texture`): the built-in 256×256 one is 65 536
+/// load clocks, about a minute of rust-hdl.
 #[test]
 fn main_job_files_are_identical_on_both_engines() {
     if !tools::require(
@@ -143,11 +144,28 @@ fn main_job_files_are_identical_on_both_engines() {
         return;
     }
     let dirs = [tempfile::tempdir().unwrap(), tempfile::tempdir().unwrap()];
+    let texture = tempfile::tempdir().unwrap();
+    let texture = texture.path().join("checker.png");
+    image::RgbImage::from_fn(16, 16, |x, y| {
+        let on = (x / 2 + y / 2) % 2 == 0;
+        image::Rgb([if on { 230 } else { 20 }, (x * 16) as u8, (y * 16) as u8])
+    })
+    .save(&texture)
+    .unwrap();
     for (dir, sim) in dirs.iter().zip(["verilator", "rust-hdl"]) {
         let o = std::process::Command::new(env!("CARGO_BIN_EXE_shadecore"))
             .args([
-                "render", "--rez", "8", "--size", "64x64", "--sim", sim, "--out",
+                "render",
+                "--rez",
+                "8",
+                "--size",
+                "48x48",
+                "--sim",
+                sim,
+                "--texture",
             ])
+            .arg(&texture)
+            .arg("--out")
             .arg(dir.path())
             .output()
             .unwrap();

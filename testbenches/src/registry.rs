@@ -270,11 +270,13 @@ pub fn sim_to_vcd(
 ) -> Result<SimOutcome, String> {
     let stim = block.stimulus(o, n, seed)?;
     let name = format!("sim-{}", block.name());
-    block
+    // One rust-hdl run checked two ways: against the twin, and its recorded outputs against
+    // the golden expectations.
+    let twin = block
         .run_twin(o, &stim.rows, &format!("{name}-twin"), seed)
         .map_err(|f| f.to_string())?;
     let report = block
-        .run_golden(o, &stim, &name, seed)
+        .check_golden(o, &stim, &twin.outputs, &name, seed)
         .map_err(|f| f.to_string())?;
     block.write_vcd(o, &report.inputs, vcd)?;
     Ok(SimOutcome {
@@ -304,34 +306,85 @@ pub fn assert_mutants_caught(
     rows: &[Vec<u64>],
     mutants: &[flow::verilog::Mutant],
 ) {
-    use flow::verilog::{differential_rows, DiffError, Simulator};
     let o = Options::new();
     let good = block.verilog(&o).expect("export");
     let expected = block.simulate(&o, rows).expect("rust-hdl simulation");
+    let tag = format!("mutant-{}", block.name());
+    for (what, caught) in icarus_mutant_runs(block, &good, rows, &expected, mutants, &tag) {
+        match caught {
+            Ok(d) => println!("caught mutant [{what}]: {d}"),
+            Err(e) => panic!("{e}"),
+        }
+    }
+}
+
+/// The unmodified Verilog `good` of `block`, then each of `mutants` applied to it, under
+/// Icarus on `rows` against `expected`, two runs at a time (each an Icarus process in its own
+/// folder). Panics when the unmodified Verilog differs or fails to run; returns, per mutant in
+/// order, where it was caught, or why it was not.
+fn icarus_mutant_runs(
+    block: &dyn Entry,
+    good: &str,
+    rows: &[Vec<u64>],
+    expected: &[Vec<u64>],
+    mutants: &[flow::verilog::Mutant],
+    tag: &str,
+) -> Vec<(String, Result<String, String>)> {
+    use flow::verilog::{differential_rows, DiffError, Simulator};
     let run = |v: &str, tag: &str| {
-        let m = block.module_name();
         differential_rows(
             v,
-            &m,
+            &block.module_name(),
             block.ports(),
             rows,
-            &expected,
+            expected,
             Simulator::Icarus,
             tag,
         )
     };
-    run(&good, &format!("mutant-control-{}", block.name()))
-        .unwrap_or_else(|e| panic!("control: {e}"));
-    for m in mutants {
-        match run(&m.apply(&good), &format!("mutant-{}", block.name())) {
-            Err(DiffError::Mismatch(d)) => println!("caught mutant [{}]: {d}", m.what),
-            Err(DiffError::Tool(e)) => panic!("mutant [{}] did not run: {e}", m.what),
-            Ok(_) => panic!(
-                "mutant [{}] was NOT caught by the differential test",
-                m.what
-            ),
+    // Job 0 is the control: the unmodified Verilog.
+    let texts: Vec<String> = std::iter::once(good.to_string())
+        .chain(mutants.iter().map(|m| m.apply(good)))
+        .collect();
+    let results: Vec<std::sync::Mutex<Option<Result<_, DiffError>>>> =
+        texts.iter().map(|_| std::sync::Mutex::new(None)).collect();
+    let next = std::sync::atomic::AtomicUsize::new(0);
+    std::thread::scope(|s| {
+        for _ in 0..2 {
+            s.spawn(|| loop {
+                let k = next.fetch_add(1, std::sync::atomic::Ordering::SeqCst);
+                let Some(text) = texts.get(k) else { break };
+                let t = if k == 0 {
+                    format!("{tag}-control")
+                } else {
+                    tag.to_string()
+                };
+                *results[k].lock().unwrap() = Some(run(text, &t));
+            });
         }
+    });
+    let mut results = results
+        .into_iter()
+        .map(|r| r.into_inner().unwrap().expect("every job ran"));
+    match results.next().expect("the control ran") {
+        Ok(_) => {}
+        Err(e) => panic!("{} control: {e}", block.name()),
     }
+    mutants
+        .iter()
+        .zip(results)
+        .map(|(m, r)| {
+            let caught = match r {
+                Err(DiffError::Mismatch(d)) => Ok(d.to_string()),
+                Err(DiffError::Tool(e)) => Err(format!("mutant [{}] did not run: {e}", m.what)),
+                Ok(_) => Err(format!(
+                    "mutant [{}] was NOT caught by the differential test",
+                    m.what
+                )),
+            };
+            (m.what.to_string(), caught)
+        })
+        .collect()
 }
 
 /// The twin catches a wrong rounding: `block` (built with `o`) runs its test rows (`n` items,
@@ -344,33 +397,16 @@ pub fn assert_mutants_caught_by_twin(
     n: usize,
     mutants: &[flow::verilog::Mutant],
 ) {
-    use flow::verilog::{differential_rows, DiffError, Simulator};
     let b = find(block).unwrap();
     let name = format!("quarter-lsb-{block}");
     let seed = golden::seed::seed_for(&name);
     let rows = test_rows(b, o, n, seed).unwrap();
     let twin = b.twin_rows(o, &rows).unwrap();
     let v = b.verilog(o).unwrap();
-    let run = |text: &str, tag: &str| {
-        differential_rows(
-            text,
-            &b.module_name(),
-            b.ports(),
-            &rows,
-            &twin,
-            Simulator::Icarus,
-            tag,
-        )
-    };
-    run(&v, &format!("{name}-control")).unwrap_or_else(|e| panic!("{block} control: {e}"));
-    for m in mutants {
-        match run(&m.apply(&v), &name) {
-            Err(DiffError::Mismatch(d)) => println!("{block}: caught [{}]: {d}", m.what),
-            Err(DiffError::Tool(e)) => panic!("{block} [{}] did not run: {e}", m.what),
-            Ok(_) => panic!(
-                "{block} [{}] was NOT caught by the twin (seed {seed})",
-                m.what
-            ),
+    for (what, caught) in icarus_mutant_runs(b, &v, &rows, &twin, mutants, &name) {
+        match caught {
+            Ok(d) => println!("{block}: caught [{what}]: {d}"),
+            Err(e) => panic!("{block}: {e} (seed {seed})"),
         }
     }
 }

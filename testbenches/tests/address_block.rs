@@ -156,7 +156,7 @@ fn differential_run(sim: Simulator, n: usize, tag: &str) {
 
 #[test]
 fn address_block_differential_icarus() {
-    differential_run(Simulator::Icarus, 40, "diff-address-block-icarus");
+    differential_run(Simulator::Icarus, 10, "diff-address-block-icarus");
 }
 
 /// The same differential check under Verilator (the shared testbench reads `$fscanf` into
@@ -171,7 +171,7 @@ fn broken_address_block_export_is_caught() {
     if !Simulator::Icarus.require("broken_address_block_export_is_caught") {
         return;
     }
-    let rows = stimulus(&differential_setups(20)).rows;
+    let rows = stimulus(&differential_setups(5)).rows;
     #[rustfmt::skip]
     let mutants = [
         Mutant { what: "CTx step: +1 → +2", module: "", from: "p_x$d = p_x$q + 12'h1", to: "p_x$d = p_x$q + 12'h2" },

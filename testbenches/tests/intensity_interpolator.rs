@@ -356,7 +356,7 @@ fn yosys_keeps_the_bvi_registers() {
     assert!(rep.ffs() >= 3 * 9 * 32, "nine 32-bit registers per channel");
 }
 
-/// The BVI (60 seeded triangles' streams) and the raster pipe (30) against their exported
+/// The BVI (20 seeded triangles' streams) and the raster pipe (10) against their exported
 /// Verilog under Icarus, bit-exact every clock.
 #[test]
 fn bvi_and_pipe_differential_icarus() {
@@ -364,8 +364,8 @@ fn bvi_and_pipe_differential_icarus() {
         return;
     }
     let runs = [
-        ("intensity-interpolator", bvi_rows(&differential_jobs(60)).0),
-        ("gouraud-raster", pipe_rows(&differential_jobs(30))),
+        ("intensity-interpolator", bvi_rows(&differential_jobs(20)).0),
+        ("gouraud-raster", pipe_rows(&differential_jobs(10))),
     ];
     for (name, rows) in runs {
         let rep = flow::blocks::differential(

@@ -53,7 +53,8 @@ fn verilator_wall_is_clean_on_every_exported_block() {
     let dir = tools::unique_dir("lint").unwrap();
     let waivers = export::write_waivers(&dir).unwrap();
     let mut seen = BTreeSet::new();
-    let (mut linted, mut unwaived, mut failures) = (0, 0, Vec::new());
+    // Every distinct export, written under the module's own name in a folder of its own.
+    let mut jobs = Vec::new();
     for b in BLOCKS {
         let mut sets = b.test_sets();
         sets.insert(0, Options::new());
@@ -65,31 +66,45 @@ fn verilator_wall_is_clean_on_every_exported_block() {
             if !seen.insert((b.name(), body)) {
                 continue;
             }
-            let file = dir.join(format!("{}_{k}.v", b.module_name()));
-            std::fs::write(&file, &text).unwrap();
             // The file name differs from the module's only by the set index: lint under the
             // module's own name, as a user's flow would see it.
-            let sub = dir.join(format!("set{k}"));
+            let sub = dir.join(format!("{}-set{k}", b.name()));
             std::fs::create_dir_all(&sub).unwrap();
             let named = sub.join(format!("{}.v", b.module_name()));
             std::fs::write(&named, &text).unwrap();
-            linted += 1;
-            // Without the waivers until one export shows the file is not vacuous (each lint
-            // is a Verilator run; the waived lint below is the check).
-            if unwaived == 0 {
-                unwaived += lint(&sub, &b.module_name(), &named, None).len();
-            }
-            let w = lint(&sub, &b.module_name(), &named, Some(&waivers));
-            if !w.is_empty() {
-                failures.push(format!(
-                    "{} ({o:?}): {} warning(s), first:\n  {}",
-                    b.name(),
-                    w.len(),
-                    w.iter().take(5).cloned().collect::<Vec<_>>().join("\n  ")
-                ));
-            }
+            jobs.push((b.name(), format!("{o:?}"), b.module_name(), sub, named));
         }
     }
+    let linted = jobs.len();
+    // Without the waivers on the first export until one shows the file is not vacuous (each
+    // lint is a Verilator run; the waived lint below is the check).
+    let unwaived = jobs
+        .iter()
+        .map(|(_, _, m, sub, named)| lint(sub, m, named, None).len())
+        .find(|&n| n > 0)
+        .unwrap_or(0);
+    // The waived lint of every export, two Verilator runs at a time.
+    let queue = std::sync::Mutex::new(jobs.iter());
+    let failures = std::sync::Mutex::new(Vec::new());
+    std::thread::scope(|s| {
+        for _ in 0..2 {
+            s.spawn(|| loop {
+                let Some((name, o, m, sub, named)) = queue.lock().unwrap().next() else {
+                    break;
+                };
+                let w = lint(sub, m, named, Some(&waivers));
+                if !w.is_empty() {
+                    failures.lock().unwrap().push(format!(
+                        "{name} ({o}): {} warning(s), first:\n  {}",
+                        w.len(),
+                        w.iter().take(5).cloned().collect::<Vec<_>>().join("\n  ")
+                    ));
+                }
+            });
+        }
+    });
+    let mut failures = failures.into_inner().unwrap();
+    failures.sort();
     println!(
         "verilator -Wall: {linted} distinct exports of {} blocks; {unwaived} warnings without \
          the waiver file on the first that has any, {} with it",
