@@ -74,6 +74,17 @@ pub trait Entry: Block {
     /// Run `rows` through the RTL, requiring every output port in every clock to equal the
     /// twin's bit for bit.
     fn run_twin(&self, o: &Options, rows: &[Vec<u64>], name: &str, seed: u64) -> Checked;
+    /// Check `outputs`, recorded from `rows` on any simulator, against the twin every port
+    /// every clock without simulating again (a failure replays `rows` under rust-hdl into the
+    /// failure's VCD).
+    fn check_twin(
+        &self,
+        o: &Options,
+        rows: &[Vec<u64>],
+        outputs: &[Vec<u64>],
+        name: &str,
+        seed: u64,
+    ) -> Checked;
     /// The twin's output rows for `rows` (what the hardware must show, clock by clock).
     fn twin_rows(&self, o: &Options, rows: &[Vec<u64>]) -> Result<Vec<Vec<u64>>, String>;
     /// `n` seeded items in constant memory: batches of the block's default size (batch k
@@ -166,6 +177,27 @@ impl<B: Bench + 'static> Entry for Registered<B> {
             |_, row| twin.step(row).into_iter().map(Expected::Word).collect(),
         )
         .map_err(Box::new)
+    }
+    fn check_twin(
+        &self,
+        o: &Options,
+        rows: &[Vec<u64>],
+        outputs: &[Vec<u64>],
+        name: &str,
+        seed: u64,
+    ) -> Checked {
+        let p = B::Params::from_options(o).map_err(|e| failure(name, seed, e))?;
+        let mut twin = B::twin(&p);
+        let expected: Vec<Vec<Expected>> = rows
+            .iter()
+            .map(|r| twin.step(r).into_iter().map(Expected::Word).collect())
+            .collect();
+        let spec = CheckSpec {
+            name: name.into(),
+            seed,
+            compare: vec![Compare::Exact; self.ports().1.len()],
+        };
+        harness::check_recorded(|| B::build(&p), &spec, rows, outputs, &expected).map_err(Box::new)
     }
     fn twin_rows(&self, o: &Options, rows: &[Vec<u64>]) -> Result<Vec<Vec<u64>>, String> {
         let mut twin = B::twin(&B::Params::from_options(o)?);
