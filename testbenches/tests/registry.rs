@@ -305,11 +305,15 @@ fn verilog_items(b: &dyn Entry, sim: Simulator) -> usize {
     }
 }
 
+/// The Verilog of each block's first option set under `sim`, bit-exact with rust-hdl on its own
+/// seeded rows. The everyday tier runs every option set under Verilator; a construct that only
+/// another set has is checked under Verilator alone.
 fn verilog_bit_exact(sim: Simulator, test: &str) {
     if !tools::require(sim.tools(), test) {
         return;
     }
-    for (b, o, label) in variants() {
+    let mut seen = std::collections::HashSet::new();
+    for (b, o, label) in variants().into_iter().filter(|(b, _, _)| seen.insert(b.name())) {
         let name = format!("{test}-{label}");
         let seed = seed_for(&name);
         let rows = test_rows(b, &o, verilog_items(b, sim), seed).unwrap();
@@ -323,7 +327,7 @@ fn verilog_bit_exact(sim: Simulator, test: &str) {
 }
 
 #[test]
-#[ignore = "full tier: Icarus over every block"]
+#[ignore = "full tier: Icarus over every block (its first option set)"]
 fn every_block_verilog_is_bit_exact_under_icarus() {
     verilog_bit_exact(Simulator::Icarus, "icarus_bit_exact");
 }
