@@ -410,7 +410,7 @@ fn icarus_mutant_runs(
                 Err(DiffError::Mismatch(d)) => Ok(d.to_string()),
                 Err(DiffError::Tool(e)) => Err(format!("mutant [{}] did not run: {e}", m.what)),
                 Ok(_) => Err(format!(
-                    "mutant [{}] was NOT caught by the differential test",
+                    "mutant [{}] was NOT caught: its outputs equal the expected ones every clock",
                     m.what
                 )),
             };

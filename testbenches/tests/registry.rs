@@ -1,11 +1,14 @@
 //! Generic tests over every block in the registry (`testbenches::registry::BLOCKS`): a block
 //! that is registered gets all of them without a line of its own.
 //!
-//! - its bit-exact twin equals the RTL on every port in every clock (seeded stimulus plus the
-//!   block's edge rows), and the golden f64 model agrees within the format-derived bound;
+//! - its bit-exact twin equals the RTL (its exported Verilog under Verilator, itself equal to
+//!   the rust-hdl simulation on the first quarter of the clocks) on every port in every clock
+//!   (seeded stimulus plus the block's edge rows), and the golden f64 model agrees within the
+//!   format-derived bound;
 //! - Yosys synthesizes it cleanly with the registry's multiplier count of SB_MAC16;
-//! - its exported Verilog is bit-exact with the rust-hdl simulation under Icarus and Verilator;
-//! - each parameter set it reads (`coeffs=published|fit`) builds.
+//! - its exported Verilog is bit-exact with the rust-hdl simulation under Icarus (the first
+//!   parameter set) and Verilator;
+//! - each parameter set it reads (`coeffs=published|fit`) builds and passes the above.
 //!
 //! Tests needing a tool skip with a notice when it is missing, and fail when `CI` is set.
 //! `SHADECORE_SEED` replays or varies the seeds.
@@ -313,7 +316,10 @@ fn verilog_bit_exact(sim: Simulator, test: &str) {
         return;
     }
     let mut seen = std::collections::HashSet::new();
-    for (b, o, label) in variants().into_iter().filter(|(b, _, _)| seen.insert(b.name())) {
+    for (b, o, label) in variants()
+        .into_iter()
+        .filter(|(b, _, _)| seen.insert(b.name()))
+    {
         let name = format!("{test}-{label}");
         let seed = seed_for(&name);
         let rows = test_rows(b, &o, verilog_items(b, sim), seed).unwrap();

@@ -491,9 +491,14 @@ fn compile_into(
         if group.is_empty() {
             continue;
         }
+        // Relative to the unit (`obj/…` and `wrapper.cpp`: names Verilator and this crate
+        // chose), so that no character of the cache's path reaches the C++ source.
         let text: String = group
             .iter()
-            .map(|p| format!("#include \"{}\"\n", p.display()))
+            .map(|p| {
+                let rel = p.strip_prefix(tmp).unwrap_or(p);
+                format!("#include \"{}\"\n", rel.display())
+            })
             .collect();
         write(name, &text)?;
         units.push((tmp.join(name), opt));
