@@ -187,10 +187,11 @@ impl<B: Bench + 'static> Entry for Registered<B> {
         seed: u64,
     ) -> Checked {
         let p = B::Params::from_options(o).map_err(|e| failure(name, seed, e))?;
-        let mut twin = B::twin(&p);
-        let expected: Vec<Vec<Expected>> = rows
-            .iter()
-            .map(|r| twin.step(r).into_iter().map(Expected::Word).collect())
+        let expected: Vec<Vec<Expected>> = self
+            .twin_rows(o, rows)
+            .map_err(|e| failure(name, seed, e))?
+            .into_iter()
+            .map(|r| r.into_iter().map(Expected::Word).collect())
             .collect();
         let spec = CheckSpec {
             name: name.into(),
