@@ -372,45 +372,114 @@ fn lock(path: &Path) -> Result<File, String> {
 }
 
 /// The Verilator runtime (`verilated.cpp`, `verilated_threads.cpp`) compiled once per toolchain
-/// into `target/verilated/runtime-<hash>/` and linked into every model.
-fn runtime(cache: &Path, tools: &Toolchain) -> Result<Vec<PathBuf>, String> {
+/// into `target/verilated/runtime-<hash>/` and linked into every model, beside a precompiled
+/// `verilated.h` for each optimisation level the models use.
+struct Runtime {
+    /// The runtime's objects.
+    objects: Vec<PathBuf>,
+    dir: PathBuf,
+}
+
+/// The header every generated file includes first, precompiled.
+const PCH: &str = "sc_pch.h";
+
+impl Runtime {
+    /// `-include` of the precompiled `verilated.h` built at `opt`. Every generated file and the
+    /// wrapper include `verilated.h`, whose parse is most of a small unit's compile time (on
+    /// `pixel-stream`: 5.1 s of compiler time for its two units without it, 3.3 s with it). A
+    /// header GCC cannot use is read as text, with the same result.
+    fn include_pch(&self, opt: &str) -> [String; 2] {
+        [
+            "-include".into(),
+            self.dir
+                .join(format!("pch{opt}"))
+                .join(PCH)
+                .display()
+                .to_string(),
+        ]
+    }
+}
+
+fn runtime(cache: &Path, tools: &Toolchain) -> Result<Runtime, String> {
     const UNITS: [&str; 2] = ["verilated", "verilated_threads"];
     let name = format!(
         "runtime-{:016x}",
-        fnv(format!("{}\n{OPT_FAST}\nabi {ABI_VERSION}", tools.versions).as_bytes())
+        fnv(format!(
+            "{}\n{OPT_FAST}\n{OPT_SLOW}\npch {PCH}\nabi {ABI_VERSION}",
+            tools.versions
+        )
+        .as_bytes())
     );
     let dir = cache.join(&name);
     let objects: Vec<PathBuf> = UNITS.iter().map(|u| dir.join(format!("{u}.o"))).collect();
-    if objects.iter().all(|o| o.exists()) {
-        return Ok(objects);
+    let headers: Vec<PathBuf> = [OPT_FAST, OPT_SLOW]
+        .iter()
+        .map(|o| dir.join(format!("pch{o}")).join(format!("{PCH}.gch")))
+        .collect();
+    let whole = || objects.iter().chain(&headers).all(|o| o.exists());
+    let done = || Runtime {
+        objects: objects.clone(),
+        dir: dir.clone(),
+    };
+    if whole() {
+        return Ok(done());
     }
     let _guard = lock(&cache.join(format!("{name}.lock")))?;
-    if objects.iter().all(|o| o.exists()) {
-        return Ok(objects);
+    if whole() {
+        return Ok(done());
     }
     let tmp = temp_dir(cache, "runtime")?;
     let flags = cxx_flags(tools);
+    // (what, compiler arguments after the flags)
+    let mut jobs: Vec<(String, Vec<String>)> = UNITS
+        .iter()
+        .map(|u| {
+            let src = tools.root.join("include").join(format!("{u}.cpp"));
+            (
+                format!("compiling {u}.cpp"),
+                vec![
+                    OPT_FAST.to_string(),
+                    "-c".into(),
+                    src.display().to_string(),
+                    "-o".into(),
+                    format!("{u}.o"),
+                ],
+            )
+        })
+        .collect();
+    for opt in [OPT_FAST, OPT_SLOW] {
+        let sub = tmp.join(format!("pch{opt}"));
+        std::fs::create_dir_all(&sub)
+            .map_err(|e| format!("cannot create {}: {e}", sub.display()))?;
+        std::fs::write(sub.join(PCH), "#include \"verilated.h\"\n")
+            .map_err(|e| format!("cannot write {}: {e}", sub.join(PCH).display()))?;
+        jobs.push((
+            format!("precompiling verilated.h at {opt}"),
+            vec![
+                opt.to_string(),
+                "-x".into(),
+                "c++-header".into(),
+                format!("pch{opt}/{PCH}"),
+                "-o".into(),
+                format!("pch{opt}/{PCH}.gch"),
+            ],
+        ));
+    }
     std::thread::scope(|s| {
-        let jobs: Vec<_> = UNITS
+        let workers: Vec<_> = jobs
             .iter()
-            .map(|u| {
+            .map(|(what, rest)| {
                 let tmp = &tmp;
                 let flags = &flags;
                 s.spawn(move || {
-                    let src = tools.root.join("include").join(format!("{u}.cpp"));
                     let mut args = flags.clone();
-                    args.extend([
-                        OPT_FAST.to_string(),
-                        "-c".into(),
-                        src.display().to_string(),
-                        "-o".into(),
-                        format!("{u}.o"),
-                    ]);
-                    run(tmp, &tools.cxx, &args, &format!("compiling {u}.cpp"))
+                    args.extend(rest.iter().cloned());
+                    run(tmp, &tools.cxx, &args, what)
                 })
             })
             .collect();
-        jobs.into_iter()
+        workers
+            .into_iter()
             .map(|j| {
                 j.join()
                     .unwrap_or_else(|_| Err("a compile thread panicked".into()))
@@ -420,7 +489,7 @@ fn runtime(cache: &Path, tools: &Toolchain) -> Result<Vec<PathBuf>, String> {
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::rename(&tmp, &dir)
         .map_err(|e| format!("cannot move the runtime into {}: {e}", dir.display()))?;
-    Ok(objects)
+    Ok(done())
 }
 
 /// Compile `design` into `<tmp>/lib.so`.
@@ -511,9 +580,11 @@ fn compile_into(
             .zip(&objects)
             .map(|((src, opt), obj)| {
                 let flags = &flags;
+                let runtime = &runtime;
                 s.spawn(move || -> Result<(), String> {
                     let file = src.file_name().map(|f| f.to_string_lossy().to_string());
                     let mut args = flags.clone();
+                    args.extend(runtime.include_pch(opt));
                     args.extend([
                         opt.to_string(),
                         format!("-I{}", tmp.join("obj").display()),
@@ -546,7 +617,7 @@ fn compile_into(
         "lib.so".into(),
     ];
     link.extend(objects.iter().map(|o| o.display().to_string()));
-    link.extend(runtime.iter().map(|o| o.display().to_string()));
+    link.extend(runtime.objects.iter().map(|o| o.display().to_string()));
     link.extend(["-pthread".into(), "-latomic".into()]);
     run(tmp, &tools.cxx, &link, "linking lib.so")?;
     let lib = std::fs::read(tmp.join("lib.so")).map_err(|e| format!("cannot read lib.so: {e}"))?;
