@@ -69,6 +69,9 @@ pub struct SynthReport {
     /// Generic `synth` cell count and table (empty when it did not run).
     pub generic_total: u64,
     pub generic: CellCounts,
+    /// Whether `synth_ice40 -dsp` stopped after its `coarse` step ([`check_and_map_ice40_dsp`]):
+    /// then its table holds coarse cells and SB_MAC16, no LUT or iCE40 flip-flop.
+    pub ice40_coarse: bool,
     /// `synth_ice40 -dsp` cell count and table.
     pub ice40_total: u64,
     pub ice40: CellCounts,
@@ -117,6 +120,15 @@ impl std::fmt::Display for SynthReport {
                 self.generic_total,
                 self.generic_ffs()
             )?;
+        }
+        if self.ice40_coarse {
+            return writeln!(
+                f,
+                "{}: Yosys synth_ice40 -dsp up to its coarse step: {} SB_MAC16 ({} cells)",
+                self.top,
+                self.mac16(),
+                self.ice40_total
+            );
         }
         writeln!(
             f,
