@@ -193,3 +193,15 @@ fn textured_pipeline_fragments_per_clock_on_the_scenes() {
         }
     }
 }
+
+/// The twin's texel weighting (`testbenches`'s only unit test, kept here so that the
+/// test-support crate builds no unit-test binary of its own).
+#[test]
+fn texel_weights_round_and_saturate() {
+    use testbenches::pipelines::textured_pipeline::texel_weight;
+    // 255 · 1.0 (Q1.15) = 255.0 exactly; ½ LSB of Q8.8 rounds up.
+    assert_eq!(texel_weight(255, 32768), 255 << 8);
+    assert_eq!(texel_weight(1, 64), 1); // 64/128 = ½ → 1
+    assert_eq!(texel_weight(1, 63), 0);
+    assert_eq!(texel_weight(255, 0xFFFF), 0xFFFF);
+}

@@ -405,17 +405,3 @@ impl Bench for TexturedPipeline {
         Box::new(TexturedTwin::new(p))
     }
 }
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn texel_weights_round_and_saturate() {
-        // 255 · 1.0 (Q1.15) = 255.0 exactly; ½ LSB of Q8.8 rounds up.
-        assert_eq!(texel_weight(255, 32768), 255 << 8);
-        assert_eq!(texel_weight(1, 64), 1); // 64/128 = ½ → 1
-        assert_eq!(texel_weight(1, 63), 0);
-        assert_eq!(texel_weight(255, 0xFFFF), 0xFFFF);
-    }
-}
