@@ -8,7 +8,7 @@
 //! Tests needing a tool skip with a notice when it is missing, and fail when `CI` is set.
 
 use flow::blocks::differential;
-use flow::synth::{check_and_map_ice40, check_and_synth};
+use flow::synth::{check_and_map_ice40, check_and_map_ice40_dsp, check_and_synth};
 use flow::tools::{self, Tool};
 use flow::verilog::{self as verilog, DiffError, Mutant, Simulator};
 use golden::testing::seed_for;
@@ -54,13 +54,46 @@ fn yosys_check_rejects_a_latch() {
     let e = check_and_synth(undriven, "undriven", "yosys-undriven")
         .expect_err("an undriven wire must be rejected");
     println!("{e}");
-    // The same checks without the generic synth (the registry test's path).
-    let e =
-        check_and_map_ice40(v, "latchy", "yosys-latch-map").expect_err("a latch must be rejected");
-    println!("{e}");
-    let e = check_and_map_ice40(undriven, "undriven", "yosys-undriven-map")
-        .expect_err("an undriven wire must be rejected");
-    println!("{e}");
+    // The same checks without the generic synth, and with the iCE40 map stopped after its
+    // multiplier packing (the registry test's path).
+    for (map, tag) in [
+        (check_and_map_ice40 as Map, "map"),
+        (check_and_map_ice40_dsp, "dsp"),
+    ] {
+        let e =
+            map(v, "latchy", &format!("yosys-latch-{tag}")).expect_err("a latch must be rejected");
+        println!("{e}");
+        let e = map(undriven, "undriven", &format!("yosys-undriven-{tag}"))
+            .expect_err("an undriven wire must be rejected");
+        println!("{e}");
+    }
+}
+
+type Map = fn(&str, &str, &str) -> Result<flow::synth::SynthReport, String>;
+
+/// The stopped iCE40 map has packed the products: a registered 16×16 product is one SB_MAC16
+/// there, as in the whole map, and a 20×16 one is two.
+#[test]
+fn yosys_packs_products_before_the_lut_map() {
+    if !tools::require(&[Tool::Yosys], "yosys_packs_products_before_the_lut_map") {
+        return;
+    }
+    for (a, want) in [(16, 1), (20, 2)] {
+        let v = format!(
+            "module mul(input clock, input [{}:0] a, input [15:0] b, output reg [{}:0] p);\n\
+             reg [{}:0] ar; reg [15:0] br;\n\
+             always @(posedge clock) begin ar <= a; br <= b; p <= ar * br; end\nendmodule\n",
+            a - 1,
+            a + 15,
+            a - 1
+        );
+        let stopped = check_and_map_ice40_dsp(&v, "mul", &format!("yosys-mul{a}-dsp")).unwrap();
+        let whole = check_and_map_ice40(&v, "mul", &format!("yosys-mul{a}-map")).unwrap();
+        println!("{stopped}{whole}");
+        assert!(stopped.ice40_coarse && stopped.luts() == 0, "{stopped}");
+        assert_eq!(stopped.mac16(), want, "{a}×16 stopped");
+        assert_eq!(whole.mac16(), want, "{a}×16 whole");
+    }
 }
 
 /// `rows` through the registered block `name` (published coefficients) and its exported
