@@ -225,14 +225,13 @@ fn yosys_checks_every_block_and_packs_its_multipliers() {
     }
     // Every block and option set: the latch and `check -assert` checks on the elaborated
     // design, then `synth_ice40 -dsp` up to its multiplier packing, whose SB_MAC16 count must
-    // be the declared one. The LUT mapping after it (most of the 15.4 CPU minutes this test
-    // took with each block's first set mapped whole; two thirds of a whole map on a large top)
-    // packs no multiplier and is left to `shadecore synth --block all` and to the iCE40 smoke
+    // be the declared one. The LUT mapping after it (two thirds of a whole map's time on a
+    // large top) packs no multiplier and is left to `shadecore synth --block all` and to the iCE40 smoke
     // place-and-route below. Two Yosys runs at a time (one core each); each run has its own
     // directory, and every variant is checked even when one fails.
     //
     // A pipeline top wrapped whole by a stream top is synthesized inside it (its logic is the
-    // stream's submodule: 7.5 of the test's 22 CPU minutes went to synthesizing these twice);
+    // stream's submodule, so synthesizing it alone would repeat that work);
     // here its declared multipliers must equal the stream's for every option set, and its
     // Verilog must be part of the stream's (the stream has more modules). `shadecore synth
     // --block` still synthesizes each on its own.
