@@ -109,21 +109,13 @@ pub fn prepare(
         .progress_chars("=> "),
     );
     verilated::set_quiet(true);
-    let queue = std::sync::Mutex::new(designs.iter());
     let first_error = std::sync::Mutex::new(None);
-    std::thread::scope(|s| {
-        for _ in 0..2 {
-            s.spawn(|| loop {
-                let Some(d) = queue.lock().expect("queue").next() else {
-                    return;
-                };
-                bar.set_message(d.name.clone());
-                if let Err(e) = verilated::build(d) {
-                    first_error.lock().expect("error").get_or_insert(e);
-                }
-                bar.inc(1);
-            });
+    crate::tools::two_at_a_time(designs.iter(), |d| {
+        bar.set_message(d.name.clone());
+        if let Err(e) = verilated::build(d) {
+            first_error.lock().expect("error").get_or_insert(e);
         }
+        bar.inc(1);
     });
     bar.finish_and_clear();
     match first_error.into_inner().expect("error") {

@@ -202,3 +202,46 @@ pub fn cocotb_python() -> Option<PathBuf> {
         })
         .clone()
 }
+
+/// `f` on every item, two at a time (the machines this project targets have two cores, and
+/// each job here is one tool process or one simulation): two threads take the items in order
+/// from one queue. A panic in `f` ends its thread and reaches the caller when both are done;
+/// the other thread goes on with the queue.
+pub fn two_at_a_time<T: Send>(items: impl IntoIterator<Item = T>, f: impl Fn(T) + Sync) {
+    let queue = std::sync::Mutex::new(items.into_iter().collect::<Vec<T>>().into_iter());
+    std::thread::scope(|s| {
+        for _ in 0..2 {
+            s.spawn(|| loop {
+                // The guard is dropped before `f` runs, so a panicking job poisons nothing.
+                let next = queue.lock().unwrap_or_else(|e| e.into_inner()).next();
+                let Some(item) = next else { break };
+                f(item);
+            });
+        }
+    });
+}
+
+#[cfg(test)]
+mod tests {
+    use super::two_at_a_time;
+    use std::sync::atomic::{AtomicU64, Ordering};
+
+    #[test]
+    fn two_at_a_time_runs_every_item_once_and_passes_a_panic_on() {
+        let sum = AtomicU64::new(0);
+        two_at_a_time(1..=100u64, |k| {
+            sum.fetch_add(1 << (k % 60), Ordering::SeqCst);
+        });
+        let want: u64 = (1..=100u64).map(|k| 1 << (k % 60)).sum();
+        assert_eq!(sum.load(Ordering::SeqCst), want);
+        let ran = AtomicU64::new(0);
+        let r = std::panic::catch_unwind(|| {
+            two_at_a_time(0..10, |k| {
+                ran.fetch_add(1, Ordering::SeqCst);
+                assert!(k != 3, "job 3 fails");
+            })
+        });
+        assert!(r.is_err(), "the panic reaches the caller");
+        assert_eq!(ran.load(Ordering::SeqCst), 10, "the other jobs still ran");
+    }
+}

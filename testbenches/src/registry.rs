@@ -381,20 +381,13 @@ fn icarus_mutant_runs(
         .collect();
     let results: Vec<std::sync::Mutex<Option<Result<_, DiffError>>>> =
         texts.iter().map(|_| std::sync::Mutex::new(None)).collect();
-    let next = std::sync::atomic::AtomicUsize::new(0);
-    std::thread::scope(|s| {
-        for _ in 0..2 {
-            s.spawn(|| loop {
-                let k = next.fetch_add(1, std::sync::atomic::Ordering::SeqCst);
-                let Some(text) = texts.get(k) else { break };
-                let t = if k == 0 {
-                    format!("{tag}-control")
-                } else {
-                    tag.to_string()
-                };
-                *results[k].lock().unwrap() = Some(run(text, &t));
-            });
-        }
+    flow::tools::two_at_a_time(texts.iter().enumerate(), |(k, text)| {
+        let t = if k == 0 {
+            format!("{tag}-control")
+        } else {
+            tag.to_string()
+        };
+        *results[k].lock().unwrap() = Some(run(text, &t));
     });
     let mut results = results
         .into_iter()

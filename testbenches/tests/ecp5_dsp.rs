@@ -9,7 +9,7 @@
 //! Skips with a notice without Verilator or Icarus (fails when `CI` is set). `SHADECORE_SEED`
 //! varies the seeds.
 
-use flow::tools::{self, Tool};
+use flow::tools::{self, two_at_a_time, Tool};
 use flow::verilog::{differential_rows, DiffError, Simulator};
 use golden::testing::seed_for;
 use rtl::core::registry::Options;
@@ -106,25 +106,20 @@ fn mapped_multipliers_are_bit_exact_with_the_simulation() {
         })
         .collect();
     let checked = builds.len();
-    let work = std::sync::Mutex::new(builds.into_iter().enumerate());
-    std::thread::scope(|s| {
-        for _ in 0..2 {
-            s.spawn(|| loop {
-                let Some((i, (b, o, v, products))) = work.lock().unwrap().next() else {
-                    break;
-                };
-                let label = format!("ecp5-dsp-{}-{}", b.name(), i);
-                let seed = seed_for(&label);
-                let clocks = run_verilated(b, &o, &v, &label)
-                    .unwrap_or_else(|e| panic!("{}: {e} (seed {seed})", b.name()));
-                println!(
+    two_at_a_time(
+        builds.into_iter().enumerate(),
+        |(i, (b, o, v, products))| {
+            let label = format!("ecp5-dsp-{}-{}", b.name(), i);
+            let seed = seed_for(&label);
+            let clocks = run_verilated(b, &o, &v, &label)
+                .unwrap_or_else(|e| panic!("{}: {e} (seed {seed})", b.name()));
+            println!(
                     "[{label}] {} ({:?}, seed {seed}): {products} products on MULT18X18D, bit-exact over {clocks} clocks under Verilator",
                     b.name(),
                     o,
                 );
-            });
-        }
-    });
+        },
+    );
     // The lit path's blocks all have such products; a mapping that found none would pass
     // vacuously.
     assert!(

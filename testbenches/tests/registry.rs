@@ -15,7 +15,7 @@
 
 use flow::blocks::differential;
 use flow::synth::check_and_map_ice40_dsp;
-use flow::tools::{self, Tool};
+use flow::tools::{self, two_at_a_time, Tool};
 use flow::verilog::Simulator;
 use golden::testing::seed_for;
 use rtl::core::registry::Options;
@@ -105,63 +105,56 @@ fn every_block_equals_its_twin_golden_and_verilog_every_clock() {
         &[Tool::Verilator],
         "every_block_equals_its_twin_golden_and_verilog_every_clock (the Verilog third)",
     );
-    let work = std::sync::Mutex::new(variants().into_iter());
-    std::thread::scope(|s| {
-        for _ in 0..2 {
-            s.spawn(|| loop {
-                let Some((b, o, label)) = work.lock().unwrap().next() else {
-                    break;
-                };
-                let name = format!("twin-{label}");
-                let seed = seed_for(&name);
-                let stim = b.stimulus(&o, items(b), seed).unwrap();
-                let mut rows = stim.rows.clone();
-                rows.extend(b.edge_rows(&o, seed).unwrap());
-                assert!(rows.len() > 100);
-                let (outputs, verilog) = if verilator {
-                    let v = b
-                        .simulate_on(&o, &rows, flow::engine::Sim::Verilator)
-                        .unwrap_or_else(|e| panic!("{label}: {e}"));
-                    let k = rust_hdl_clocks(rows.len());
-                    let r = b
-                        .simulate(&o, &rows[..k])
-                        .unwrap_or_else(|e| panic!("{label}: {e}"));
-                    flow::verilog::compare_outputs(&b.ports().1, &r, &v[..k])
-                        .unwrap_or_else(|e| {
-                            panic!("{label}: the Verilog under Verilator differs from rust-hdl: {e} (seed {seed})")
-                        });
-                    (
-                        v,
-                        format!(
-                            "; the Verilog under Verilator, equal to rust-hdl on the first {k} clocks, \
-                             carries the checks"
-                        ),
-                    )
-                } else {
-                    let rep = b
-                        .run_twin(&o, &rows, &name, seed)
-                        .unwrap_or_else(|f| panic!("{f}"));
-                    (rep.outputs, String::new())
-                };
-                let rep = b
-                    .check_twin(&o, &rows, &outputs, &name, seed)
-                    .unwrap_or_else(|f| panic!("{f}"));
-                assert_eq!(rep.cycles as usize, rows.len());
-                let golden = b
-                    .check_golden(&o, &stim, &outputs, &format!("golden-{label}"), seed)
-                    .unwrap_or_else(|f| panic!("{f}"));
-                // Something was actually compared: the valid flag (output 0 or 1) every clock.
-                assert!(golden
-                    .ports
-                    .iter()
-                    .all(|p| p.checked > 0 || p.name.contains("word")));
-                println!(
-                    "[{name}] seed {seed}: {} clocks × {} ports bit-exact with the twin{verilog}\n{golden}",
-                    rep.cycles,
-                    rep.ports.len()
-                );
+    two_at_a_time(variants(), |(b, o, label)| {
+        let name = format!("twin-{label}");
+        let seed = seed_for(&name);
+        let stim = b.stimulus(&o, items(b), seed).unwrap();
+        let mut rows = stim.rows.clone();
+        rows.extend(b.edge_rows(&o, seed).unwrap());
+        assert!(rows.len() > 100);
+        let (outputs, verilog) = if verilator {
+            let v = b
+                .simulate_on(&o, &rows, flow::engine::Sim::Verilator)
+                .unwrap_or_else(|e| panic!("{label}: {e}"));
+            let k = rust_hdl_clocks(rows.len());
+            let r = b
+                .simulate(&o, &rows[..k])
+                .unwrap_or_else(|e| panic!("{label}: {e}"));
+            flow::verilog::compare_outputs(&b.ports().1, &r, &v[..k]).unwrap_or_else(|e| {
+                panic!(
+                    "{label}: the Verilog under Verilator differs from rust-hdl: {e} (seed {seed})"
+                )
             });
-        }
+            (
+                v,
+                format!(
+                    "; the Verilog under Verilator, equal to rust-hdl on the first {k} clocks, \
+                             carries the checks"
+                ),
+            )
+        } else {
+            let rep = b
+                .run_twin(&o, &rows, &name, seed)
+                .unwrap_or_else(|f| panic!("{f}"));
+            (rep.outputs, String::new())
+        };
+        let rep = b
+            .check_twin(&o, &rows, &outputs, &name, seed)
+            .unwrap_or_else(|f| panic!("{f}"));
+        assert_eq!(rep.cycles as usize, rows.len());
+        let golden = b
+            .check_golden(&o, &stim, &outputs, &format!("golden-{label}"), seed)
+            .unwrap_or_else(|f| panic!("{f}"));
+        // Something was actually compared: the valid flag (output 0 or 1) every clock.
+        assert!(golden
+            .ports
+            .iter()
+            .all(|p| p.checked > 0 || p.name.contains("word")));
+        println!(
+            "[{name}] seed {seed}: {} clocks × {} ports bit-exact with the twin{verilog}\n{golden}",
+            rep.cycles,
+            rep.ports.len()
+        );
     });
 }
 
@@ -271,35 +264,27 @@ fn yosys_checks_every_block_and_packs_its_multipliers() {
         })
         .collect();
     jobs.sort_by_key(|j| std::cmp::Reverse(j.3.len()));
-    let work = std::sync::Mutex::new(jobs.into_iter());
     let failures = std::sync::Mutex::new(Vec::<String>::new());
-    std::thread::scope(|s| {
-        for _ in 0..2 {
-            s.spawn(|| loop {
-                let Some((b, o, label, v)) = work.lock().unwrap().next() else {
-                    break;
-                };
-                let tag = format!("yosys-{label}");
-                let fail = match check_and_map_ice40_dsp(&v, &b.module_name(), &tag) {
-                    Err(e) => Some(format!("{}: {e}", b.name())),
-                    Ok(rep) => {
-                        print!("{rep}");
-                        let want = b.multipliers_with(&o).unwrap() as u64;
-                        if rep.mac16() != want {
-                            Some(format!(
-                                "{label}: {} multipliers mapped to SB_MAC16, {want} declared",
-                                rep.mac16()
-                            ))
-                        } else if rep.ice40_total <= rep.mac16() {
-                            Some(format!("{label}: empty netlist?"))
-                        } else {
-                            None
-                        }
-                    }
-                };
-                failures.lock().unwrap().extend(fail);
-            });
-        }
+    two_at_a_time(jobs, |(b, o, label, v)| {
+        let tag = format!("yosys-{label}");
+        let fail = match check_and_map_ice40_dsp(&v, &b.module_name(), &tag) {
+            Err(e) => Some(format!("{}: {e}", b.name())),
+            Ok(rep) => {
+                print!("{rep}");
+                let want = b.multipliers_with(&o).unwrap() as u64;
+                if rep.mac16() != want {
+                    Some(format!(
+                        "{label}: {} multipliers mapped to SB_MAC16, {want} declared",
+                        rep.mac16()
+                    ))
+                } else if rep.ice40_total <= rep.mac16() {
+                    Some(format!("{label}: empty netlist?"))
+                } else {
+                    None
+                }
+            }
+        };
+        failures.lock().unwrap().extend(fail);
     });
     let failures = failures.into_inner().unwrap();
     assert!(failures.is_empty(), "{}", failures.join("\n"));
@@ -324,35 +309,24 @@ fn verilog_bit_exact(sim: Simulator, test: &str) {
         return;
     }
     let mut seen = std::collections::HashSet::new();
-    let work = std::sync::Mutex::new(
-        variants()
-            .into_iter()
-            .filter(|(b, _, _)| seen.insert(b.name()))
-            .collect::<Vec<_>>()
-            .into_iter(),
-    );
+    let firsts = variants()
+        .into_iter()
+        .filter(|(b, _, _)| seen.insert(b.name()));
     // Two blocks at a time (a simulator process each); every block runs even when one fails.
     let failures = std::sync::Mutex::new(Vec::<String>::new());
-    std::thread::scope(|s| {
-        for _ in 0..2 {
-            s.spawn(|| loop {
-                let Some((b, o, label)) = work.lock().unwrap().next() else {
-                    break;
-                };
-                let name = format!("{test}-{label}");
-                let seed = seed_for(&name);
-                let rows = test_rows(b, &o, verilog_items(b, sim), seed).unwrap();
-                match differential(b, &o, &rows, sim, &name) {
-                    Ok(rep) => println!(
-                        "[{name}] {:?}: bit-exact over {} clocks × {} ports",
-                        sim, rep.cycles, rep.ports
-                    ),
-                    Err(e) => failures
-                        .lock()
-                        .unwrap()
-                        .push(format!("{label}: {e} (seed {seed})")),
-                }
-            });
+    two_at_a_time(firsts, |(b, o, label)| {
+        let name = format!("{test}-{label}");
+        let seed = seed_for(&name);
+        let rows = test_rows(b, &o, verilog_items(b, sim), seed).unwrap();
+        match differential(b, &o, &rows, sim, &name) {
+            Ok(rep) => println!(
+                "[{name}] {:?}: bit-exact over {} clocks × {} ports",
+                sim, rep.cycles, rep.ports
+            ),
+            Err(e) => failures
+                .lock()
+                .unwrap()
+                .push(format!("{label}: {e} (seed {seed})")),
         }
     });
     let failures = failures.into_inner().unwrap();
@@ -413,16 +387,8 @@ fn every_block_simulates_and_the_check_can_fail() {
     let seed = seed_for("blocks_sim");
     println!("[blocks_sim] seed {seed}");
     // Two blocks at a time.
-    let queue = std::sync::Mutex::new(BLOCKS.iter());
-    std::thread::scope(|s| {
-        for _ in 0..2 {
-            s.spawn(|| loop {
-                let Some(b) = queue.lock().unwrap().next() else {
-                    break;
-                };
-                simulates_and_fails(*b, seed);
-            });
-        }
+    two_at_a_time(BLOCKS.iter(), |b| {
+        simulates_and_fails(*b, seed);
     });
 }
 

@@ -9,7 +9,7 @@ use std::collections::BTreeSet;
 use std::path::Path;
 use std::process::Command;
 
-use flow::tools::{self, Tool};
+use flow::tools::{self, two_at_a_time, Tool};
 use rtl::core::export;
 use rtl::core::registry::Options;
 use testbenches::registry::{self, BLOCKS};
@@ -84,23 +84,15 @@ fn verilator_wall_is_clean_on_every_exported_block() {
         .find(|&n| n > 0)
         .unwrap_or(0);
     // The waived lint of every export, two Verilator runs at a time.
-    let queue = std::sync::Mutex::new(jobs.iter());
     let failures = std::sync::Mutex::new(Vec::new());
-    std::thread::scope(|s| {
-        for _ in 0..2 {
-            s.spawn(|| loop {
-                let Some((name, o, m, sub, named)) = queue.lock().unwrap().next() else {
-                    break;
-                };
-                let w = lint(sub, m, named, Some(&waivers));
-                if !w.is_empty() {
-                    failures.lock().unwrap().push(format!(
-                        "{name} ({o}): {} warning(s), first:\n  {}",
-                        w.len(),
-                        w.iter().take(5).cloned().collect::<Vec<_>>().join("\n  ")
-                    ));
-                }
-            });
+    two_at_a_time(jobs.iter(), |(name, o, m, sub, named)| {
+        let w = lint(sub, m, named, Some(&waivers));
+        if !w.is_empty() {
+            failures.lock().unwrap().push(format!(
+                "{name} ({o}): {} warning(s), first:\n  {}",
+                w.len(),
+                w.iter().take(5).cloned().collect::<Vec<_>>().join("\n  ")
+            ));
         }
     });
     let mut failures = failures.into_inner().unwrap();
