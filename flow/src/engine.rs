@@ -55,6 +55,28 @@ impl std::fmt::Display for Sim {
     }
 }
 
+/// The simulator for a long run of test `what`: Verilator in process (proven bit-exact against
+/// rust-hdl by the registry's test) when it is installed; otherwise rust-hdl — the same
+/// verdict, minutes slower — with a notice on stderr, or a failure when `CI` is set.
+/// `SHADECORE_SIM=rust-hdl` runs them on rust-hdl on purpose (the one switch for the tests).
+pub fn fast_sim(what: &str) -> Sim {
+    if std::env::var("SHADECORE_SIM").as_deref() == Ok("rust-hdl") {
+        return Sim::RustHdl;
+    }
+    if verilated::available() {
+        return Sim::Verilator;
+    }
+    if crate::tools::in_ci() {
+        panic!("{what}: Verilator is not installed (CI is set, so this is a failure)");
+    }
+    use std::io::Write;
+    let _ = writeln!(
+        std::io::stderr(),
+        "SLOW {what}: Verilator is not installed, so this runs on rust-hdl (apt-get install verilator g++)"
+    );
+    Sim::RustHdl
+}
+
 /// Block `B` built with `p`, on `sim` (Verilator: compiled first if its cache has no build).
 pub fn model<B: RtlBlock + 'static>(p: &B::Params, sim: Sim) -> Result<Box<dyn Model>, String> {
     Ok(match sim {

@@ -111,28 +111,6 @@ pub fn skip(what: &str, why: &str) {
     );
 }
 
-/// The simulator for a long run of test `what`: Verilator in process (proven bit-exact against
-/// rust-hdl by the registry's test) when it is installed; otherwise rust-hdl — the same
-/// verdict, minutes slower — with a notice on stderr, or a failure when `CI` is set.
-/// `SHADECORE_SIM=rust-hdl` runs them on rust-hdl on purpose (the one switch for the tests).
-pub fn fast_sim(what: &str) -> crate::engine::Sim {
-    if std::env::var("SHADECORE_SIM").as_deref() == Ok("rust-hdl") {
-        return crate::engine::Sim::RustHdl;
-    }
-    if verilated::available() {
-        return crate::engine::Sim::Verilator;
-    }
-    if in_ci() {
-        panic!("{what}: Verilator is not installed (CI is set, so this is a failure)");
-    }
-    use std::io::Write;
-    let _ = writeln!(
-        std::io::stderr(),
-        "SLOW {what}: Verilator is not installed, so this runs on rust-hdl (apt-get install verilator g++)"
-    );
-    crate::engine::Sim::RustHdl
-}
-
 static DIR_COUNTER: AtomicU64 = AtomicU64::new(0);
 
 /// A fresh directory `target/tool-runs/<tag>-<pid>-<n>` (unique per process and call, so

@@ -37,7 +37,7 @@ fn rtl_beats(pipelined: bool, run: &CubicStreamRun) -> (Vec<Beat>, bool) {
         .simulate_on(
             &options(pipelined),
             &run.rows,
-            flow::tools::fast_sim("cubic_stream"),
+            flow::engine::fast_sim("cubic_stream"),
         )
         .unwrap();
     // The twin that made the rows (record reader, banks, FIFO, hold) agrees every clock,
@@ -351,7 +351,7 @@ fn latency_from_last_word_to_first_beat() {
                 .simulate_on(
                     &options(pipelined),
                     &rows,
-                    flow::tools::fast_sim("cubic_stream"),
+                    flow::engine::fast_sim("cubic_stream"),
                 )
                 .unwrap();
             assert!(

@@ -124,7 +124,7 @@ fn subdivision_hold_keeps_every_pixel_and_matches_the_twin() {
     let entry = find("subdivision-raster").unwrap();
     let lanes = |rows: &[Vec<u64>]| -> Vec<Vec<LanePixel>> {
         let out = entry
-            .simulate_on(&o, rows, flow::tools::fast_sim("four_hold"))
+            .simulate_on(&o, rows, flow::engine::fast_sim("four_hold"))
             .unwrap();
         let mut px = vec![Vec::new(); LANES];
         for (c, r) in out.iter().enumerate() {

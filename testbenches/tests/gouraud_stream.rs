@@ -24,7 +24,7 @@ fn rtl_beats(run: &GouraudStreamRun) -> (Vec<Beat>, bool) {
         .simulate_on(
             &Options::new(),
             &run.rows,
-            flow::tools::fast_sim("gouraud_stream"),
+            flow::engine::fast_sim("gouraud_stream"),
         )
         .unwrap();
     // The twin that made the rows (record reader, banks, FIFO, hold) agrees every clock,
@@ -275,7 +275,7 @@ fn latency_from_last_word_to_first_beat() {
         .simulate_on(
             &Options::new(),
             &rows,
-            flow::tools::fast_sim("gouraud_stream"),
+            flow::engine::fast_sim("gouraud_stream"),
         )
         .unwrap();
     assert!(

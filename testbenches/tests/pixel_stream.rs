@@ -23,7 +23,7 @@ fn params() -> (PipelineParams, Options) {
 fn rtl_beats(run: &StreamRun, o: &Options) -> (Vec<Beat>, bool) {
     let b = find("pixel-stream").unwrap();
     let out = b
-        .simulate_on(o, &run.rows, flow::tools::fast_sim("pixel_stream"))
+        .simulate_on(o, &run.rows, flow::engine::fast_sim("pixel_stream"))
         .unwrap();
     // The twin that made the rows (record reader, banks, FIFO, hold) agrees every clock,
     // bad records and stalls included.
@@ -259,7 +259,7 @@ fn latency_from_last_word_to_first_beat() {
     rows.extend(std::iter::repeat_n(vec![0, 0, 0, 1], latency + 10));
     let out = find("pixel-stream")
         .unwrap()
-        .simulate_on(&o, &rows, flow::tools::fast_sim("pixel_stream"))
+        .simulate_on(&o, &rows, flow::engine::fast_sim("pixel_stream"))
         .unwrap();
     assert!(
         out[..=last]

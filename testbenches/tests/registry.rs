@@ -500,7 +500,7 @@ fn every_block_streams_batches_back_to_back() {
                 if vcd.is_some() {
                     flow::engine::Sim::RustHdl
                 } else {
-                    tools::fast_sim("every_block_streams_batches_back_to_back")
+                    flow::engine::fast_sim("every_block_streams_batches_back_to_back")
                 },
                 &mut |_| seen += 1,
             )

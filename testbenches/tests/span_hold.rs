@@ -40,7 +40,7 @@ fn verilog_outputs(kind: SpanKind, run: &HeldRun) -> Vec<Vec<u64>> {
     let (name, o) = block(kind);
     find(name)
         .unwrap()
-        .simulate_on(&o, &run.rows, flow::tools::fast_sim("span_hold"))
+        .simulate_on(&o, &run.rows, flow::engine::fast_sim("span_hold"))
         .unwrap()
 }
 

@@ -75,7 +75,7 @@ fn rtl_beats(top: &Top, run: &SpanStreamRun) -> ([Vec<Beat>; 2], bool) {
         .simulate_on(
             &top.options,
             &run.rows,
-            flow::tools::fast_sim("span_stream"),
+            flow::engine::fast_sim("span_stream"),
         )
         .unwrap();
     // The twin that made the rows (record reader, banks, registers, FIFOs, hold) agrees every
@@ -501,7 +501,7 @@ fn latency_from_last_word_to_first_beat() {
         rows.extend(std::iter::repeat_n(idle, top.latency + 10));
         let out = top
             .entry()
-            .simulate_on(&top.options, &rows, flow::tools::fast_sim("span_stream"))
+            .simulate_on(&top.options, &rows, flow::engine::fast_sim("span_stream"))
             .unwrap();
         assert!(
             out[..=last]

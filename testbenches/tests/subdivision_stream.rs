@@ -30,7 +30,7 @@ fn rtl_beats(run: &SubdivisionStreamRun) -> ([Vec<Beat>; LANES], bool) {
         .simulate_on(
             &Options::new(),
             &run.rows,
-            flow::tools::fast_sim("subdivision_stream"),
+            flow::engine::fast_sim("subdivision_stream"),
         )
         .unwrap();
     // The twin that made the rows (record reader, banks, FIFOs, hold) agrees every clock, bad
@@ -317,7 +317,7 @@ fn latency_from_last_word_to_first_beat() {
         .simulate_on(
             &Options::new(),
             &rows,
-            flow::tools::fast_sim("subdivision_stream"),
+            flow::engine::fast_sim("subdivision_stream"),
         )
         .unwrap();
     assert!(
