@@ -301,7 +301,17 @@ pub fn sim_to_vcd(
     seed: u64,
     vcd: &Path,
 ) -> Result<SimOutcome, String> {
-    let stim = block.stimulus(o, n, seed)?;
+    sim_stimulus_to_vcd(block, o, &block.stimulus(o, n, seed)?, seed, vcd)
+}
+
+/// [`sim_to_vcd`] on a stimulus of the caller's (e.g. cut short after its first valid clock).
+pub fn sim_stimulus_to_vcd(
+    block: &dyn Entry,
+    o: &Options,
+    stim: &Stimulus,
+    seed: u64,
+    vcd: &Path,
+) -> Result<SimOutcome, String> {
     let name = format!("sim-{}", block.name());
     // One rust-hdl run checked two ways: against the twin, and its recorded outputs against
     // the golden expectations.
@@ -309,7 +319,7 @@ pub fn sim_to_vcd(
         .run_twin(o, &stim.rows, &format!("{name}-twin"), seed)
         .map_err(|f| f.to_string())?;
     let report = block
-        .check_golden(o, &stim, &twin.outputs, &name, seed)
+        .check_golden(o, stim, &twin.outputs, &name, seed)
         .map_err(|f| f.to_string())?;
     block.write_vcd(o, &report.inputs, vcd)?;
     Ok(SimOutcome {
