@@ -25,10 +25,12 @@ use crate::ABI_VERSION;
 
 /// C++ optimisation of the model's evaluation code and of its construction code (Verilator's own
 /// makefile uses `-Os` and none). `-O1` is a compromise for the cold build, which a test run
-/// from a clean clone pays: with it `pixel-stream` runs at about 1.6 M clocks/s in process
-/// (docs/measurements/sim-speed.md); other levels were not measured.
+/// from a clean clone pays (its speed in process: docs/measurements/sim-speed.md); other levels
+/// were not measured.
 const OPT_FAST: &str = "-O1";
 const OPT_SLOW: &str = "-O0";
+/// Verilator's `--output-split-cfuncs` (see `compile_into`); part of a model's cache key.
+const SPLIT_CFUNCS: &str = "250";
 
 /// FNV-1a, 64 bits.
 pub(crate) fn fnv(bytes: &[u8]) -> u64 {
@@ -263,7 +265,7 @@ SC_API uint64_t sc_bench(void* p, const uint64_t* rows, uint64_t n) {{
 /// Key of `design` with the toolchain: the entry's directory name.
 fn entry_name(design: &Design, tools: &Toolchain) -> String {
     let all = format!(
-        "{}\n{}\n{}\n{OPT_FAST} {OPT_SLOW}\nabi {ABI_VERSION}\n{}",
+        "{}\n{}\n{}\n{OPT_FAST} {OPT_SLOW} split {SPLIT_CFUNCS}\nabi {ABI_VERSION}\n{}",
         design.key,
         tools.versions,
         design.module,
@@ -517,6 +519,14 @@ fn compile_into(
         "--Mdir",
         "obj",
         "-O3",
+        // Evaluation code in functions of at most about 250 statements: the compiler's time
+        // grows faster than linearly with a function's size. On `pixel-stream` (2026-11-28,
+        // this crate's bench `sim_speed`, two runs each): `g++ -O1` of the evaluation unit
+        // 3.3 s unsplit, 1.1 s split; the model's build 7.3 s -> 5.6 s; clocks/s in process
+        // about a fifth lower (330-411x rust-hdl split, 455-515x unsplit). A test run builds
+        // some sixty models and steps most for well under a second, so the build wins.
+        "--output-split-cfuncs",
+        SPLIT_CFUNCS,
         "-Wno-fatal",
         "-Wno-lint",
         "-Wno-style",
