@@ -33,7 +33,8 @@ fn verilator_frames_equal_rust_hdl_frames() {
         (Method::Cubic, false),
         (Method::Cubic, true),
     ];
-    for (m, pipelined) in cases {
+    // Two methods at a time (each run is one simulation on one core).
+    flow::tools::two_at_a_time(cases, |(m, pipelined)| {
         let run = |sim: Sim| {
             render_rtl_with(
                 &s.tris,
@@ -77,7 +78,7 @@ fn verilator_frames_equal_rust_hdl_frames() {
             (r.stats.clocks, r.stats.pixels),
             "{m}: clock counts differ"
         );
-    }
+    });
 }
 
 /// `raster --sim verilator` gives the address block's per-clock outputs of the rust-hdl run,
