@@ -529,9 +529,14 @@ fn max_extent_square_splits_into_two_triangles_without_overlap_or_hole() {
 
 #[test]
 fn corner_vertices_at_address_limits() {
-    for v in golden::testing::named_with_prefix("corner_") {
-        check_walk(v).unwrap();
-    }
+    // Triangles up to the whole 4096² range: half of them on a second thread.
+    let cases = golden::testing::named_with_prefix("corner_");
+    let (a, b) = cases.split_at(cases.len() / 2);
+    std::thread::scope(|s| {
+        let other = s.spawn(|| a.iter().for_each(|v| check_walk(*v).unwrap()));
+        b.iter().for_each(|v| check_walk(*v).unwrap());
+        other.join().unwrap();
+    });
 }
 
 // ---------------------------------------------------------------------------------------------
