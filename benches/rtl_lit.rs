@@ -11,26 +11,16 @@
 //!   clock beside `pixel-pipeline`'s, in mesh order and in the driver's balanced order
 //!   (`SHADECORE_BENCH_ONLY=stream` prints only this).
 
+mod common;
+use common::default_scene;
 use std::time::Instant;
 
-use criterion::{criterion_group, criterion_main, Criterion, Throughput};
-use glam::DQuat;
+use criterion::{Criterion, Throughput};
 use golden::methods::Method;
-use golden::shade::ShadeContext;
 use golden::types::ScreenTriangle;
 use pipeline::gouraud::{clock_budget, Pipe, TriangleJob};
 use pipeline::lit::{lit_clock_budget, LitJob, LitPipe, ShadingRegs, LIT_METHODS};
 
-fn default_scene() -> (Vec<ScreenTriangle>, ShadeContext) {
-    let mesh = golden::scene::uv_sphere(50).unwrap();
-    let cam = golden::scene::Camera::fit(&mesh, 400, 400, DQuat::IDENTITY);
-    let tris = golden::scene::project(&mesh, &cam, 400, 400).unwrap();
-    let ctx = ShadeContext {
-        light: golden::scene::light_direction(90.0).unwrap(),
-        ..ShadeContext::default()
-    };
-    (tris, ctx)
-}
 
 fn lit_jobs(tris: &[ScreenTriangle]) -> Vec<LitJob> {
     tris.iter()
@@ -179,10 +169,4 @@ fn bench(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group! {
-    name = benches;
-    // No plots: the plotters backend needs fonts the CI image may lack.
-    config = Criterion::default().without_plots();
-    targets = bench
-}
-criterion_main!(benches);
+criterion_without_plots!(bench);

@@ -9,8 +9,9 @@
 //! - measured by criterion: simulated clocks per second of the hand-stepped rust-hdl model of
 //!   the two blocks together, and of the four-triangle pipe (throughput in elements = clocks).
 
-use criterion::{criterion_group, criterion_main, Criterion, Throughput};
-use glam::DQuat;
+mod common;
+use common::default_scene;
+use criterion::{Criterion, Throughput};
 use golden::raster::walk;
 use golden::shade::ShadeContext;
 use golden::types::{ScreenTriangle, ScreenVertex};
@@ -18,16 +19,6 @@ use pipeline::axis::PipeStats;
 use pipeline::gouraud::{clock_budget, Pipe, TriangleJob};
 use pipeline::subdivision::{clock_budget as sub_budget, SubJob, SubPipe};
 
-fn default_scene() -> (Vec<ScreenTriangle>, ShadeContext) {
-    let mesh = golden::scene::uv_sphere(50).unwrap();
-    let cam = golden::scene::Camera::fit(&mesh, 400, 400, DQuat::IDENTITY);
-    let tris = golden::scene::project(&mesh, &cam, 400, 400).unwrap();
-    let ctx = ShadeContext {
-        light: golden::scene::light_direction(90.0).unwrap(),
-        ..ShadeContext::default()
-    };
-    (tris, ctx)
-}
 
 /// Seeded random triangles with at least 1000 pixels, extents up to 400.
 fn large_triangles(n: usize) -> Vec<ScreenTriangle> {
@@ -193,10 +184,4 @@ fn bench(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group! {
-    name = benches;
-    // No plots: the plotters backend needs fonts the CI image may lack.
-    config = Criterion::default().without_plots();
-    targets = bench
-}
-criterion_main!(benches);
+criterion_without_plots!(bench);

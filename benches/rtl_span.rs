@@ -23,8 +23,10 @@
 //!
 //! Then criterion measures simulated clocks per second.
 
-use criterion::{criterion_group, criterion_main, Criterion, Throughput};
-use glam::{DQuat, DVec3};
+mod common;
+use common::default_scene;
+use criterion::{Criterion, Throughput};
+use glam::DVec3;
 use golden::methods::span_end_normals;
 use golden::methods::Method;
 use golden::shade::ShadeContext;
@@ -42,13 +44,7 @@ use rtl::units::fast_unit::{FastParams, FastUnit};
 
 /// The default scene's end normals per span, with its context.
 fn span_normals() -> (Vec<(DVec3, DVec3, u32)>, golden::shade::ShadeContext) {
-    let mesh = golden::scene::uv_sphere(50).unwrap();
-    let cam = golden::scene::Camera::fit(&mesh, 400, 400, DQuat::IDENTITY);
-    let tris = golden::scene::project(&mesh, &cam, 400, 400).unwrap();
-    let ctx = golden::shade::ShadeContext {
-        light: golden::scene::light_direction(90.0).unwrap(),
-        ..Default::default()
-    };
+    let (tris, ctx) = default_scene();
     let mut out = Vec::new();
     for t in &tris {
         let Some(plane) = t.normal_plane() else {
@@ -224,16 +220,6 @@ fn run_top_with(
     )
 }
 
-fn default_scene() -> (Vec<ScreenTriangle>, ShadeContext) {
-    let mesh = golden::scene::uv_sphere(50).unwrap();
-    let cam = golden::scene::Camera::fit(&mesh, 400, 400, DQuat::IDENTITY);
-    let tris = golden::scene::project(&mesh, &cam, 400, 400).unwrap();
-    let ctx = ShadeContext {
-        light: golden::scene::light_direction(90.0).unwrap(),
-        ..ShadeContext::default()
-    };
-    (tris, ctx)
-}
 
 /// Per line of a whole-scene run through the top for `method`, from the fragments' clock
 /// stamps: (pixels, clocks since the previous line's last fragment). Lines of ≥ 16 pixels
@@ -455,10 +441,4 @@ fn bench(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group! {
-    name = benches;
-    // No plots: the plotters backend needs fonts the CI image may lack.
-    config = Criterion::default().without_plots();
-    targets = bench
-}
-criterion_main!(benches);
+criterion_without_plots!(bench);

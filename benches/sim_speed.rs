@@ -15,12 +15,11 @@
 //! `SHADECORE_BENCH_RUST_HDL_TRIANGLES=N` runs rust-hdl on the first N triangles only (default
 //! all: about half a minute).
 
+mod common;
 use std::time::Instant;
 
 use flow::engine::{model, Sim};
-use glam::DQuat;
 use golden::methods::Method;
-use golden::shade::ShadeContext;
 use pipeline::lit::{lit_clock_budget, method_options, LitJob, ShadingRegs};
 use rtl::core::registry::BlockParams;
 use rtl::core::sim::{Model, Port};
@@ -67,13 +66,7 @@ impl Model for Recorder {
 }
 
 fn scene() -> (Vec<LitJob>, ShadingRegs) {
-    let mesh = golden::scene::uv_sphere(50).unwrap();
-    let cam = golden::scene::Camera::fit(&mesh, 400, 400, DQuat::IDENTITY);
-    let tris = golden::scene::project(&mesh, &cam, 400, 400).unwrap();
-    let ctx = ShadeContext {
-        light: golden::scene::light_direction(90.0).unwrap(),
-        ..ShadeContext::default()
-    };
+    let (tris, ctx) = common::default_scene();
     let jobs: Vec<LitJob> = tris
         .iter()
         .filter_map(|t| LitJob::new(t).unwrap())
@@ -116,19 +109,6 @@ fn drive(
     (st.clocks, frags, t.elapsed().as_secs_f64(), rec)
 }
 
-fn machine() -> String {
-    let cpu = std::fs::read_to_string("/proc/cpuinfo")
-        .ok()
-        .and_then(|t| {
-            t.lines()
-                .find(|l| l.starts_with("model name"))
-                .and_then(|l| l.split(':').nth(1))
-                .map(|s| s.trim().to_string())
-        })
-        .unwrap_or_else(|| "unknown CPU".into());
-    let cores = std::thread::available_parallelism().map_or(0, |n| n.get());
-    format!("{cpu}, {cores} cores")
-}
 
 fn main() {
     if let Err(e) = verilated::toolchain() {
@@ -178,12 +158,7 @@ fn main() {
         );
     }
 
-    let date = std::process::Command::new("date")
-        .arg("-u")
-        .arg("+%Y-%m-%d %H:%M UTC")
-        .output()
-        .map(|o| String::from_utf8_lossy(&o.stdout).trim().to_string())
-        .unwrap_or_default();
+    let (date, machine) = flow::tools::stamp();
     let table = format!(
         "# Simulation speed\n\n\
          Written by `cargo bench --bench sim_speed` on {date}, {machine}, one core per simulator.\n\
@@ -196,7 +171,6 @@ fn main() {
          | Verilator in process (a call per clock, the render's driver) | {clocks} | {t_in:.3} | {in_process:.0} | {r1:.0}× | {c1:.2} |\n\
          | Verilator from memory, C++ loop (ceiling) | {clocks} | {t_ceiling:.3} | {ceiling:.0} | {r2:.0}× | 1.00 |\n\
          | rust-hdl (the render's driver) | {rc} | {t_rust:.2} | {rust:.0} | 1× | {c3:.4} |\n",
-        machine = machine(),
         n = jobs.len(),
         f = frags.len(),
         r1 = in_process / rust,

@@ -111,6 +111,27 @@ pub fn skip(what: &str, why: &str) {
     );
 }
 
+/// `(date, machine)` for a measured figure's line: the UTC minute (`date -u`) and the CPU's
+/// model name with the core count, e.g. `("2026-11-28 18:56 UTC", "AMD EPYC, 2 cores")`.
+pub fn stamp() -> (String, String) {
+    let date = Command::new("date")
+        .args(["-u", "+%Y-%m-%d %H:%M UTC"])
+        .output()
+        .map(|o| String::from_utf8_lossy(&o.stdout).trim().to_string())
+        .unwrap_or_default();
+    let cpu = std::fs::read_to_string("/proc/cpuinfo")
+        .ok()
+        .and_then(|t| {
+            t.lines()
+                .find(|l| l.starts_with("model name"))
+                .and_then(|l| l.split(':').nth(1))
+                .map(|s| s.trim().to_string())
+        })
+        .unwrap_or_else(|| "unknown CPU".into());
+    let cores = std::thread::available_parallelism().map_or(0, |n| n.get());
+    (date, format!("{cpu}, {cores} cores"))
+}
+
 static DIR_COUNTER: AtomicU64 = AtomicU64::new(0);
 
 /// A fresh directory `target/tool-runs/<tag>-<pid>-<n>` (unique per process and call, so

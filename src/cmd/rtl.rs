@@ -301,28 +301,14 @@ fn write_table(a: &SynthArgs, rows: &[String]) -> anyhow::Result<()> {
     let Some(path) = &a.table else {
         return Ok(());
     };
-    let date = std::process::Command::new("date")
-        .args(["-u", "+%Y-%m-%d %H:%M UTC"])
-        .output()
-        .map(|o| String::from_utf8_lossy(&o.stdout).trim().to_string())
-        .unwrap_or_default();
-    let cpu = std::fs::read_to_string("/proc/cpuinfo")
-        .ok()
-        .and_then(|t| {
-            t.lines()
-                .find(|l| l.starts_with("model name"))
-                .and_then(|l| l.split(':').nth(1))
-                .map(|s| s.trim().to_string())
-        })
-        .unwrap_or_else(|| "unknown CPU".into());
-    let cores = std::thread::available_parallelism().map_or(0, |n| n.get());
+    let (date, machine) = flow::tools::stamp();
     let target = match a.target {
         Target::Ecp5 => "ECP5 (Yosys `synth_ecp5`, nextpnr-ecp5 in a timing shell, speed grade 6)",
         Target::Ice40 => "iCE40 UP5K (Yosys `synth_ice40 -dsp`, nextpnr-ice40 in a timing shell)",
     };
     let text = format!(
         "# FPGA figures: {target}\n\nWritten by `shadecore synth --block {} --target {}{}` on {date}, \
-         {cpu}, {cores} cores. Figures, not tests: Fmax moves with placement.\n\n\
+         {machine}. Figures, not tests: Fmax moves with placement.\n\n\
          | block | part | LUT4 | flip-flops | multipliers | Fmax |\n|---|---|---:|---:|---|---|\n{}\n",
         a.block,
         match a.target {
