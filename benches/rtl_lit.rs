@@ -21,7 +21,6 @@ use golden::types::ScreenTriangle;
 use pipeline::gouraud::{clock_budget, Pipe, TriangleJob};
 use pipeline::lit::{lit_clock_budget, LitJob, LitPipe, ShadingRegs, LIT_METHODS};
 
-
 fn lit_jobs(tris: &[ScreenTriangle]) -> Vec<LitJob> {
     tris.iter()
         .filter_map(|t| LitJob::new(t).unwrap())

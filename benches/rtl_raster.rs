@@ -19,7 +19,6 @@ use pipeline::axis::PipeStats;
 use pipeline::gouraud::{clock_budget, Pipe, TriangleJob};
 use pipeline::subdivision::{clock_budget as sub_budget, SubJob, SubPipe};
 
-
 /// Seeded random triangles with at least 1000 pixels, extents up to 400.
 fn large_triangles(n: usize) -> Vec<ScreenTriangle> {
     let mut state = 0x9E37_79B9_7F4A_7C15u64;

@@ -220,7 +220,6 @@ fn run_top_with(
     )
 }
 
-
 /// Per line of a whole-scene run through the top for `method`, from the fragments' clock
 /// stamps: (pixels, clocks since the previous line's last fragment). Lines of ≥ 16 pixels
 /// measured this way include whatever the hardware spends between lines (the quadric tracker's

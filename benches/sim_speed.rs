@@ -109,7 +109,6 @@ fn drive(
     (st.clocks, frags, t.elapsed().as_secs_f64(), rec)
 }
 
-
 fn main() {
     if let Err(e) = verilated::toolchain() {
         eprintln!("SKIPPED sim_speed: {e}");

@@ -307,7 +307,14 @@ fn readmes_are_short_and_undated() {
     let top = std::fs::read_to_string(format!("{root}/README.md")).unwrap();
     let lines = top.lines().count();
     assert!(lines <= 260, "README.md has {lines} lines (at most 260)");
-    for dir in ["", "golden/", "rtl/", "pipeline/", "testbenches/", "vendor/"] {
+    for dir in [
+        "",
+        "golden/",
+        "rtl/",
+        "pipeline/",
+        "testbenches/",
+        "vendor/",
+    ] {
         let path = format!("{root}/{dir}README.md");
         let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path}: {e}"));
         for (k, line) in text.lines().enumerate() {
@@ -318,7 +325,11 @@ fn readmes_are_short_and_undated() {
                     && w[7] == b'-'
                     && w[8..10].iter().all(u8::is_ascii_digit)
             });
-            assert!(!dated, "{path}:{}: a dated entry in a README: {line}", k + 1);
+            assert!(
+                !dated,
+                "{path}:{}: a dated entry in a README: {line}",
+                k + 1
+            );
         }
     }
 }

@@ -58,7 +58,10 @@ fn structure(text: &str) -> String {
         if c == '\'' && chars.peek().is_some_and(|b| "hdbo".contains(*b)) {
             out.push(chars.next().unwrap());
             out.push('#');
-            while chars.peek().is_some_and(|d| d.is_ascii_hexdigit() || "_xz".contains(*d)) {
+            while chars
+                .peek()
+                .is_some_and(|d| d.is_ascii_hexdigit() || "_xz".contains(*d))
+            {
                 chars.next();
             }
         }
