@@ -48,18 +48,33 @@
 //! crate::hw_block! { pub struct Top(clock) { in { load: Bit, my_setup_ports!, c: Bit } … } }
 //! ```
 //!
-//! # What stays hand-written
+//! # `update()`
 //!
-//! `impl Logic` with its `#[hdl_gen] fn update`. `#[hdl_gen]` accepts no macro inside
-//! `update()` but `dff_setup!`/`clock!`, and an `update()` whose statements a caller passes
-//! into a `macro_rules!` does not compile: the `connect()`/`hdl()` that `#[hdl_gen]` adds take
-//! `self` with the expansion's hygiene, which cannot see the `self` of the caller's
-//! statements. A whole `impl Logic` written in a macro's own text compiles (one hygiene):
-//! [`two_lane_stream!`](crate::two_lane_stream) declares three stream tops that way,
-//! [`one_lane_stream!`](crate::one_lane_stream) two more, and `span_pipeline!` (in
-//! `pipelines::span_pipeline`) the angular and fast pipelines. So a
-//! composite's forwarding into a child (`self.addr.w_b0.next = self.w_b0.val();`) is written
-//! out; it is type-checked against the child's ports, so widths cannot drift.
+//! `impl Logic` with its `#[hdl_gen] fn update` is written by hand. `#[hdl_gen]` accepts no
+//! macro inside `update()` but `dff_setup!`/`clock!`, so a macro that writes statements must
+//! write the whole `impl Logic`; it compiles when the caller passes `#[hdl_gen]` and `self`
+//! as tokens (`$pound:tt $attr:tt fn update(&mut $s:ident)`): the `connect()`/`hdl()` that
+//! `#[hdl_gen]` adds then have the hygiene of the caller's statements. (With `#[hdl_gen]`
+//! written in the macro's own text they take the expansion's `self`, which cannot see the
+//! caller's.) [`hdl_update!`](crate::hdl_update) is that wrapper, with one statement of its
+//! own: `forward CHILD <- BUNDLE!;` forwards a port bundle into a child
+//! (`self.addr.w_b0.next = self.w_b0.val();` for each port):
+//! ```text
+//! crate::hdl_update! {
+//!     impl Logic for Top {
+//!         #[hdl_gen]
+//!         fn update(&mut self) {
+//!             { clock!(self, clock, addr); self.addr.load.next = self.load.val(); }
+//!             forward addr <- my_setup_ports!;
+//!             { self.y.next = self.addr.y.val(); }
+//!         }
+//!     }
+//! }
+//! ```
+//! `lit_pipeline!` (`pipelines::pixel_pipeline`) writes the lit path of `pixel-pipeline` and
+//! `textured-pipeline` once that way; [`two_lane_stream!`](crate::two_lane_stream),
+//! [`one_lane_stream!`](crate::one_lane_stream) and `span_pipeline!` write whole blocks in
+//! their own text (one hygiene). The Verilog is the text written out.
 
 /// Declare a block once: struct, constructor, `Dut` view and registry facts. See the
 /// [module documentation](crate::core::declare) for the syntax.
@@ -199,5 +214,45 @@ macro_rules! hw_block {
 macro_rules! hw_bundle {
     ([$($p:ident : $t:ty),* $(,)?] @ports [$($done:tt)*] $($state:tt)*) => {
         $crate::hw_block!(@in [$($done)* $($p: $t,)*] $($state)*);
+    };
+    // The bundle's port names, for `hdl_update!`'s `forward`.
+    ([$($p:ident : $t:ty),* $(,)?] @names $($state:tt)*) => {
+        $crate::hdl_update!(@forwarded [$($p)*] $($state)*);
+    };
+}
+
+/// An `impl Logic` whose `update` forwards port bundles into a child: the body is a sequence
+/// of statement groups `{ … }` and lines `forward CHILD <- BUNDLE!;`, each of which becomes
+/// `self.CHILD.PORT.next = self.PORT.val();` for every port of the bundle, in its order (see
+/// the [module documentation](crate::core::declare)). The caller writes `#[hdl_gen]` and
+/// `self`, so that its statements and the functions `#[hdl_gen]` adds have one hygiene.
+#[macro_export]
+macro_rules! hdl_update {
+    (
+        impl Logic for $name:ident {
+            $pound:tt $attr:tt
+            fn update(&mut $s:ident) { $($body:tt)* }
+        }
+    ) => {
+        $crate::hdl_update!(@munch [$name $pound $attr $s] [] $($body)*);
+    };
+    (@munch $head:tt [$($done:tt)*] { $($stmts:tt)* } $($rest:tt)*) => {
+        $crate::hdl_update!(@munch $head [$($done)* $($stmts)*] $($rest)*);
+    };
+    (@munch $head:tt $done:tt forward $child:ident <- $bundle:ident ! ; $($rest:tt)*) => {
+        $crate::$bundle! { @names $head $done $child [$($rest)*] }
+    };
+    (@forwarded [$($p:ident)*] [$name:ident $pound:tt $attr:tt $s:ident] [$($done:tt)*]
+        $child:ident [$($rest:tt)*]) => {
+        $crate::hdl_update!(@munch [$name $pound $attr $s]
+            [$($done)* $($s.$child.$p.next = $s.$p.val();)*] $($rest)*);
+    };
+    (@munch [$name:ident $pound:tt $attr:tt $s:ident] [$($done:tt)*]) => {
+        impl Logic for $name {
+            $pound $attr
+            fn update(&mut $s) {
+                $($done)*
+            }
+        }
     };
 }

@@ -53,62 +53,41 @@ crate::hw_block! {
     }
 }
 
-impl Logic for GouraudRaster {
-    #[hdl_gen]
-    fn update(&mut self) {
-        clock!(self, clock, addr, bvi, x_p1, y_p1, done_p1);
-        self.addr.load.next = self.load.val();
-        self.addr.hold.next = self.hold.val();
-        self.addr.w_b0.next = self.w_b0.val();
-        self.addr.w_e0.next = self.w_e0.val();
-        self.addr.w_f.next = self.w_f.val();
-        self.addr.w_r.next = self.w_r.val();
-        self.addr.w_d.next = self.w_d.val();
-        self.addr.a_b0.next = self.a_b0.val();
-        self.addr.a_e0.next = self.a_e0.val();
-        self.addr.a_f.next = self.a_f.val();
-        self.addr.a_r.next = self.a_r.val();
-        self.addr.a_d.next = self.a_d.val();
-        self.addr.t_b0.next = self.t_b0.val();
-        self.addr.t_e0.next = self.t_e0.val();
-        self.addr.t_f.next = self.t_f.val();
-        self.addr.t_r.next = self.t_r.val();
-        self.addr.t_d.next = self.t_d.val();
-        self.addr.y_top.next = self.y_top.val();
-        self.addr.rows.next = self.rows.val();
-        self.addr.y_switch.next = self.y_switch.val();
-        self.addr.dir_neg.next = self.dir_neg.val();
+crate::hdl_update! {
+    impl Logic for GouraudRaster {
+        #[hdl_gen]
+        fn update(&mut self) {
+            {
+                clock!(self, clock, addr, bvi, x_p1, y_p1, done_p1);
+                self.addr.load.next = self.load.val();
+                self.addr.hold.next = self.hold.val();
+            }
+            forward addr <- address_setup_ports!;
+            {
+                // The BVI's shadow bank is written on the same accepted load as the address
+                // block.
+                self.bvi.load.next = self.load.val() & self.addr.ready.val();
+            }
+            forward bvi <- intensity_setup_ports!;
+            {
+                self.bvi.valid_in.next = self.addr.valid.val();
+                self.bvi.row_start_in.next = self.addr.row_start.val();
+                self.bvi.step_in.next = self.addr.step.val();
+                self.bvi.carry_in.next = self.addr.carry.val();
 
-        // The BVI's shadow bank is written on the same accepted load as the address block.
-        self.bvi.load.next = self.load.val() & self.addr.ready.val();
-        self.bvi.r_start.next = self.r_start.val();
-        self.bvi.r_short.next = self.r_short.val();
-        self.bvi.r_long.next = self.r_long.val();
-        self.bvi.r_line.next = self.r_line.val();
-        self.bvi.g_start.next = self.g_start.val();
-        self.bvi.g_short.next = self.g_short.val();
-        self.bvi.g_long.next = self.g_long.val();
-        self.bvi.g_line.next = self.g_line.val();
-        self.bvi.b_start.next = self.b_start.val();
-        self.bvi.b_short.next = self.b_short.val();
-        self.bvi.b_long.next = self.b_long.val();
-        self.bvi.b_line.next = self.b_line.val();
-        self.bvi.valid_in.next = self.addr.valid.val();
-        self.bvi.row_start_in.next = self.addr.row_start.val();
-        self.bvi.step_in.next = self.addr.step.val();
-        self.bvi.carry_in.next = self.addr.carry.val();
+                self.x_p1.d.next = self.addr.x.val();
+                self.y_p1.d.next = self.addr.y.val();
+                self.done_p1.d.next = self.addr.done.val();
 
-        self.x_p1.d.next = self.addr.x.val();
-        self.y_p1.d.next = self.addr.y.val();
-        self.done_p1.d.next = self.addr.done.val();
-
-        self.ready.next = self.addr.ready.val();
-        self.valid.next = self.bvi.valid_out.val();
-        self.x.next = self.x_p1.q.val();
-        self.y.next = self.y_p1.q.val();
-        self.red.next = self.bvi.red.val();
-        self.green.next = self.bvi.green.val();
-        self.blue.next = self.bvi.blue.val();
-        self.done.next = self.done_p1.q.val();
+                self.ready.next = self.addr.ready.val();
+                self.valid.next = self.bvi.valid_out.val();
+                self.x.next = self.x_p1.q.val();
+                self.y.next = self.y_p1.q.val();
+                self.red.next = self.bvi.red.val();
+                self.green.next = self.bvi.green.val();
+                self.blue.next = self.bvi.blue.val();
+                self.done.next = self.done_p1.q.val();
+            }
+        }
     }
 }

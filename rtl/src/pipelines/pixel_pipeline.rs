@@ -195,7 +195,212 @@ macro_rules! shading_registers {
     };
 }
 
-crate::hw_block! {
+/// The lit pipeline's one text: the struct of `pixel-pipeline` or `textured-pipeline` and its
+/// `update`, whose lit path (the shadow words, the vector interpolator, the depth channel,
+/// lighting, BRZSSK, the power unit, the colour combine and the fragment's delays) is written
+/// here once. A caller gives the fields and statements before the lit path (its event
+/// source), the event the lit path takes, the ambient and diffuse weights, and `ready`.
+/// `#[hdl_gen]`, `self` and the parameter's name come from the caller, so that its statements,
+/// these and the functions `#[hdl_gen]` adds have one hygiene; the exported Verilog is the
+/// text written out in each block.
+macro_rules! lit_pipeline {
+    (
+        $(#[$sm:meta])*
+        pub struct $name:ident(clock) as $export:literal {
+            summary: $summary:literal,
+            latency: $lat:expr => $lm:literal,
+            multipliers: $mul:expr,
+            in { $($ins:tt)* }
+            fields { $($front_f:tt)* }
+            more_fields { $($mid_f:tt)* }
+        }
+        new($p:ident: &$pt:ty), lit: ($($lit:tt)*);
+
+        impl Logic for $_name:ident {
+            $hdl_pound:tt $hdl_attr:tt
+            fn update(&mut $s:ident) {
+                front { $($front:tt)* }
+                event {
+                    before { $($before:tt)* }
+                    valid [$($ev_v:tt)*] row_start [$($ev_r:tt)*] step [$($ev_s:tt)*]
+                    carry [$($ev_c:tt)*] first [$($ev_f:tt)*]
+                    x [$($ev_x:tt)*] y [$($ev_y:tt)*] done [$($ev_d:tt)*]
+                }
+                amb [$($ar:tt)*] [$($ag:tt)*] [$($ab:tt)*]
+                dif [$($dr:tt)*] [$($dg:tt)*] [$($db:tt)*]
+                ready [$($ready:tt)*]
+            }
+        }
+    ) => {
+        crate::hw_block! {
+            $(#[$sm])*
+            pub struct $name(clock) as $export {
+                summary: $summary,
+                latency: $lat => $lm,
+                multipliers: $mul,
+                in { $($ins)* }
+                out {
+                    ready: Bit, valid: Bit, x: Bits<12>, y: Bits<12>, z: Bits<32>,
+                    red: Bits<8>, green: Bits<8>, blue: Bits<8>, done: Bit,
+                }
+                $($front_f)*
+                pub normal: VectorInterpolator,
+                pub depth: IntensityChannel,
+                n_reg: [Delay<Bits<19>, NORMAL_REGISTER>; 3],
+                n_valid_reg: Delay<Bit, NORMAL_REGISTER>,
+                pub light: LightingUnit = LightingUnit::new(&$($lit)*.coeffs),
+                pub bump: Brzssk = Brzssk::new(&$($lit)*.bump),
+                x_to_bump: Delay<Bits<12>, { EVENT_TO_BRZSSK }>,
+                y_to_bump: Delay<Bits<12>, { EVENT_TO_BRZSSK }>,
+                pub power: PowerUnit = PowerUnit::new(&$($lit)*.power),
+                pub colour: ColourCombine,
+                $($mid_f)*
+                ev_valid: DFF<Bit>, ev_row_start: DFF<Bit>, ev_step: DFF<Bits<2>>,
+                ev_carry: DFF<Bit>, ev_first: DFF<Bit>,
+                /// The accepted load and its 16 words (x, y, z planes, then depth), registered.
+                ld_q: DFF<Bit>,
+                sw: [DFF<Bits<32>>; 16],
+                cos_phi_to_colour: Delay<Bits<16>, { PowerUnit::LATENCY }>,
+                z_to_out: Delay<Bits<32>, { EVENT_TO_FRAGMENT - EVENT_REGISTER - 1 }>,
+                x_to_out: Delay<Bits<12>, { EVENT_TO_FRAGMENT }>,
+                y_to_out: Delay<Bits<12>, { EVENT_TO_FRAGMENT }>,
+                done_to_out: Delay<Bit, { EVENT_TO_FRAGMENT }>,
+            }
+            new($p: &$pt);
+        }
+
+        crate::hdl_update! {
+            impl Logic for $name {
+                $hdl_pound $hdl_attr
+                fn update(&mut $s) {
+                    $($front)*
+                    {
+                        // Normal planes.
+                        $s.ld_q.d.next = $s.accepted.val();
+                        $s.sw[0].d.next = $s.x_start.val();
+                        $s.sw[1].d.next = $s.x_short.val();
+                        $s.sw[2].d.next = $s.x_long.val();
+                        $s.sw[3].d.next = $s.x_line.val();
+                        $s.sw[4].d.next = $s.y_start.val();
+                        $s.sw[5].d.next = $s.y_short.val();
+                        $s.sw[6].d.next = $s.y_long.val();
+                        $s.sw[7].d.next = $s.y_line.val();
+                        $s.sw[8].d.next = $s.z_start.val();
+                        $s.sw[9].d.next = $s.z_short.val();
+                        $s.sw[10].d.next = $s.z_long.val();
+                        $s.sw[11].d.next = $s.z_line.val();
+                        $s.sw[12].d.next = $s.d_start.val();
+                        $s.sw[13].d.next = $s.d_short.val();
+                        $s.sw[14].d.next = $s.d_long.val();
+                        $s.sw[15].d.next = $s.d_line.val();
+                        $s.normal.load.next = $s.ld_q.q.val();
+                        $s.normal.x_start.next = $s.sw[0].q.val();
+                        $s.normal.x_short.next = $s.sw[1].q.val();
+                        $s.normal.x_long.next = $s.sw[2].q.val();
+                        $s.normal.x_line.next = $s.sw[3].q.val();
+                        $s.normal.y_start.next = $s.sw[4].q.val();
+                        $s.normal.y_short.next = $s.sw[5].q.val();
+                        $s.normal.y_long.next = $s.sw[6].q.val();
+                        $s.normal.y_line.next = $s.sw[7].q.val();
+                        $s.normal.z_start.next = $s.sw[8].q.val();
+                        $s.normal.z_short.next = $s.sw[9].q.val();
+                        $s.normal.z_long.next = $s.sw[10].q.val();
+                        $s.normal.z_line.next = $s.sw[11].q.val();
+                        // The event, registered (see EVENT_REGISTER).
+                        $($before)*
+                        $s.ev_valid.d.next = $($ev_v)*;
+                        $s.ev_row_start.d.next = $($ev_r)*;
+                        $s.ev_step.d.next = $($ev_s)*;
+                        $s.ev_carry.d.next = $($ev_c)*;
+                        $s.ev_first.d.next = $($ev_f)*;
+                        $s.normal.valid_in.next = $s.ev_valid.q.val();
+                        $s.normal.row_start_in.next = $s.ev_row_start.q.val();
+                        $s.normal.step_in.next = $s.ev_step.q.val();
+                        $s.normal.carry_in.next = $s.ev_carry.q.val();
+
+                        // Depth plane: one more BVI channel on the same events.
+                        $s.depth.load.next = $s.ld_q.q.val();
+                        $s.depth.set_start.next = $s.sw[12].q.val();
+                        $s.depth.set_short.next = $s.sw[13].q.val();
+                        $s.depth.set_long.next = $s.sw[14].q.val();
+                        $s.depth.set_line.next = $s.sw[15].q.val();
+                        $s.depth.ev_first.next = $s.ev_first.q.val();
+                        $s.depth.ev_row_start.next = $s.ev_row_start.q.val();
+                        $s.depth.ev_carry.next = $s.ev_carry.q.val();
+                        $s.depth.ev_valid.next = $s.ev_valid.q.val();
+
+                        // Lighting: normalizer, N'·L, N'·H.
+                        for k in 0..3 {
+                            $s.n_reg[k].clock.next = $s.clock.val();
+                        }
+                        $s.n_reg[0].d.next = $s.normal.nx.val();
+                        $s.n_reg[1].d.next = $s.normal.ny.val();
+                        $s.n_reg[2].d.next = $s.normal.nz.val();
+                        $s.n_valid_reg.d.next = $s.normal.valid_out.val();
+                        $s.light.valid_in.next = $s.n_valid_reg.q.val();
+                        $s.light.x.next = $s.n_reg[0].q.val();
+                        $s.light.y.next = $s.n_reg[1].q.val();
+                        $s.light.z.next = $s.n_reg[2].q.val();
+                        $s.light.lx.next = $s.lx.val();
+                        $s.light.ly.next = $s.ly.val();
+                        $s.light.lz.next = $s.lz.val();
+                        $s.light.hx.next = $s.hx.val();
+                        $s.light.hy.next = $s.hy.val();
+                        $s.light.hz.next = $s.hz.val();
+
+                        // BRZSSK: both cosines perturbed by the pixel's code (or passed through).
+                        $s.x_to_bump.d.next = $($ev_x)*;
+                        $s.y_to_bump.d.next = $($ev_y)*;
+                        $s.bump.valid_in.next = $s.light.valid_out.val();
+                        $s.bump.cos_phi.next = $s.light.cos_phi.val();
+                        $s.bump.cos_gamma.next = $s.light.cos_gamma.val();
+                        $s.bump.x.next = $s.x_to_bump.q.val();
+                        $s.bump.y.next = $s.y_to_bump.q.val();
+
+                        // Specular power; cos φ waits beside it.
+                        $s.power.valid_in.next = $s.bump.valid_out.val();
+                        $s.power.cos_gamma.next = $s.bump.cos_gamma_out.val();
+                        $s.power.n.next = $s.n.val();
+                        $s.cos_phi_to_colour.d.next = $s.bump.cos_phi_out.val();
+
+                        // Colour.
+                        $s.colour.valid_in.next = $s.power.valid_out.val();
+                        $s.colour.cos_phi.next = $s.cos_phi_to_colour.q.val();
+                        $s.colour.spec.next = $s.power.spec.val();
+                        $s.colour.amb_r.next = $($ar)*;
+                        $s.colour.amb_g.next = $($ag)*;
+                        $s.colour.amb_b.next = $($ab)*;
+                        $s.colour.dif_r.next = $($dr)*;
+                        $s.colour.dif_g.next = $($dg)*;
+                        $s.colour.dif_b.next = $($db)*;
+                        $s.colour.spc_r.next = $s.spc_r.val();
+                        $s.colour.spc_g.next = $s.spc_g.val();
+                        $s.colour.spc_b.next = $s.spc_b.val();
+
+                        // The fragment's address, depth and triangle end travel beside it.
+                        $s.z_to_out.d.next = $s.depth.word.val();
+                        $s.x_to_out.d.next = $($ev_x)*;
+                        $s.y_to_out.d.next = $($ev_y)*;
+                        $s.done_to_out.d.next = $($ev_d)*;
+
+                        $s.ready.next = $($ready)*;
+                        $s.valid.next = $s.colour.valid_out.val();
+                        $s.x.next = $s.x_to_out.q.val();
+                        $s.y.next = $s.y_to_out.q.val();
+                        $s.z.next = $s.z_to_out.q.val();
+                        $s.red.next = $s.colour.red.val();
+                        $s.green.next = $s.colour.green.val();
+                        $s.blue.next = $s.colour.blue.val();
+                        $s.done.next = $s.done_to_out.q.val();
+                    }
+                }
+            }
+        }
+    };
+}
+pub(crate) use lit_pipeline;
+
+lit_pipeline! {
     /// The lit pixel pipeline (see the module header).
     pub struct PixelPipeline(clock) as "pixel-pipeline" {
         summary: "one triangle's set-up in, lit fragments (x, y, z, r, g, b) out: address block, vector interpolator, normalizer, Blinn lighting, BRZSSK, power unit, colour combine (SPEC §0–§2, §5–§6)",
@@ -206,208 +411,45 @@ crate::hw_block! {
             load: Bit, address_setup_ports!, normal_setup_ports!, depth_setup_ports!,
             shading_registers!, hold: Bit,
         }
-        out {
-            ready: Bit, valid: Bit, x: Bits<12>, y: Bits<12>, z: Bits<32>,
-            red: Bits<8>, green: Bits<8>, blue: Bits<8>, done: Bit,
-        }
-        pub addr: SubpixelAddressBlock,
-        pub normal: VectorInterpolator,
-        pub depth: IntensityChannel,
-        n_reg: [Delay<Bits<19>, NORMAL_REGISTER>; 3],
-        n_valid_reg: Delay<Bit, NORMAL_REGISTER>,
-        pub light: LightingUnit = LightingUnit::new(&p.coeffs),
-        pub bump: Brzssk = Brzssk::new(&p.bump),
-        x_to_bump: Delay<Bits<12>, { EVENT_TO_BRZSSK }>,
-        y_to_bump: Delay<Bits<12>, { EVENT_TO_BRZSSK }>,
-        pub power: PowerUnit = PowerUnit::new(&p.power),
-        pub colour: ColourCombine,
-        accepted: Signal<Local, Bit>,
-        first: Signal<Local, Bit>,
-        ev_valid: DFF<Bit>, ev_row_start: DFF<Bit>, ev_step: DFF<Bits<2>>, ev_carry: DFF<Bit>,
-        ev_first: DFF<Bit>,
-        /// The accepted load and its 16 words (x, y, z planes, then depth), registered.
-        ld_q: DFF<Bit>,
-        sw: [DFF<Bits<32>>; 16],
-        cos_phi_to_colour: Delay<Bits<16>, { PowerUnit::LATENCY }>,
-        z_to_out: Delay<Bits<32>, { EVENT_TO_FRAGMENT - EVENT_REGISTER - 1 }>,
-        x_to_out: Delay<Bits<12>, { EVENT_TO_FRAGMENT }>,
-        y_to_out: Delay<Bits<12>, { EVENT_TO_FRAGMENT }>,
-        done_to_out: Delay<Bit, { EVENT_TO_FRAGMENT }>,
+        fields { pub addr: SubpixelAddressBlock, }
+        more_fields { accepted: Signal<Local, Bit>, first: Signal<Local, Bit>, }
     }
-    new(p: &PipelineParams);
-}
+    new(p: &PipelineParams), lit: (p);
 
-impl Logic for PixelPipeline {
-    #[hdl_gen]
-    fn update(&mut self) {
-        clock!(
-            self,
-            clock,
-            addr,
-            normal,
-            depth,
-            n_valid_reg,
-            light,
-            bump,
-            x_to_bump,
-            y_to_bump,
-            power,
-            colour,
-            cos_phi_to_colour,
-            z_to_out,
-            x_to_out,
-            y_to_out,
-            done_to_out,
-            ev_valid,
-            ev_row_start,
-            ev_step,
-            ev_carry,
-            ev_first,
-            ld_q
-        );
-        for i in 0..16 {
-            self.sw[i].clock.next = self.clock.val();
+    impl Logic for PixelPipeline {
+        #[hdl_gen]
+        fn update(&mut self) {
+            front {
+                {
+                    clock!(
+                        self, clock, addr, normal, depth, n_valid_reg, light, bump, x_to_bump,
+                        y_to_bump, power, colour, cos_phi_to_colour, z_to_out, x_to_out, y_to_out,
+                        done_to_out, ev_valid, ev_row_start, ev_step, ev_carry, ev_first, ld_q
+                    );
+                    for i in 0..16 {
+                        self.sw[i].clock.next = self.clock.val();
+                    }
+                    self.addr.load.next = self.load.val();
+                    self.addr.hold.next = self.hold.val();
+                }
+                forward addr <- address_setup_ports!;
+                {
+                    // Every shadow bank is written on the address block's accepted load.
+                    self.accepted.next = self.load.val() & self.addr.ready.val();
+                }
+            }
+            event {
+                before {
+                    self.first.next = self.addr.row_start.val() & (self.addr.step.val() == 0);
+                }
+                valid [self.addr.valid.val()] row_start [self.addr.row_start.val()]
+                step [self.addr.step.val()] carry [self.addr.carry.val()]
+                first [self.first.val()]
+                x [self.addr.x.val()] y [self.addr.y.val()] done [self.addr.done.val()]
+            }
+            amb [self.amb_r.val()] [self.amb_g.val()] [self.amb_b.val()]
+            dif [self.dif_r.val()] [self.dif_g.val()] [self.dif_b.val()]
+            ready [self.addr.ready.val()]
         }
-        self.addr.load.next = self.load.val();
-        self.addr.hold.next = self.hold.val();
-        self.addr.w_b0.next = self.w_b0.val();
-        self.addr.w_e0.next = self.w_e0.val();
-        self.addr.w_f.next = self.w_f.val();
-        self.addr.w_r.next = self.w_r.val();
-        self.addr.w_d.next = self.w_d.val();
-        self.addr.a_b0.next = self.a_b0.val();
-        self.addr.a_e0.next = self.a_e0.val();
-        self.addr.a_f.next = self.a_f.val();
-        self.addr.a_r.next = self.a_r.val();
-        self.addr.a_d.next = self.a_d.val();
-        self.addr.t_b0.next = self.t_b0.val();
-        self.addr.t_e0.next = self.t_e0.val();
-        self.addr.t_f.next = self.t_f.val();
-        self.addr.t_r.next = self.t_r.val();
-        self.addr.t_d.next = self.t_d.val();
-        self.addr.y_top.next = self.y_top.val();
-        self.addr.rows.next = self.rows.val();
-        self.addr.y_switch.next = self.y_switch.val();
-        self.addr.dir_neg.next = self.dir_neg.val();
-        // Every shadow bank is written on the address block's accepted load.
-        self.accepted.next = self.load.val() & self.addr.ready.val();
-
-        // Normal planes.
-        self.ld_q.d.next = self.accepted.val();
-        self.sw[0].d.next = self.x_start.val();
-        self.sw[1].d.next = self.x_short.val();
-        self.sw[2].d.next = self.x_long.val();
-        self.sw[3].d.next = self.x_line.val();
-        self.sw[4].d.next = self.y_start.val();
-        self.sw[5].d.next = self.y_short.val();
-        self.sw[6].d.next = self.y_long.val();
-        self.sw[7].d.next = self.y_line.val();
-        self.sw[8].d.next = self.z_start.val();
-        self.sw[9].d.next = self.z_short.val();
-        self.sw[10].d.next = self.z_long.val();
-        self.sw[11].d.next = self.z_line.val();
-        self.sw[12].d.next = self.d_start.val();
-        self.sw[13].d.next = self.d_short.val();
-        self.sw[14].d.next = self.d_long.val();
-        self.sw[15].d.next = self.d_line.val();
-        self.normal.load.next = self.ld_q.q.val();
-        self.normal.x_start.next = self.sw[0].q.val();
-        self.normal.x_short.next = self.sw[1].q.val();
-        self.normal.x_long.next = self.sw[2].q.val();
-        self.normal.x_line.next = self.sw[3].q.val();
-        self.normal.y_start.next = self.sw[4].q.val();
-        self.normal.y_short.next = self.sw[5].q.val();
-        self.normal.y_long.next = self.sw[6].q.val();
-        self.normal.y_line.next = self.sw[7].q.val();
-        self.normal.z_start.next = self.sw[8].q.val();
-        self.normal.z_short.next = self.sw[9].q.val();
-        self.normal.z_long.next = self.sw[10].q.val();
-        self.normal.z_line.next = self.sw[11].q.val();
-        // The event, registered (see EVENT_REGISTER).
-        self.first.next = self.addr.row_start.val() & (self.addr.step.val() == 0);
-        self.ev_valid.d.next = self.addr.valid.val();
-        self.ev_row_start.d.next = self.addr.row_start.val();
-        self.ev_step.d.next = self.addr.step.val();
-        self.ev_carry.d.next = self.addr.carry.val();
-        self.ev_first.d.next = self.first.val();
-        self.normal.valid_in.next = self.ev_valid.q.val();
-        self.normal.row_start_in.next = self.ev_row_start.q.val();
-        self.normal.step_in.next = self.ev_step.q.val();
-        self.normal.carry_in.next = self.ev_carry.q.val();
-
-        // Depth plane: one more BVI channel on the same events.
-        self.depth.load.next = self.ld_q.q.val();
-        self.depth.set_start.next = self.sw[12].q.val();
-        self.depth.set_short.next = self.sw[13].q.val();
-        self.depth.set_long.next = self.sw[14].q.val();
-        self.depth.set_line.next = self.sw[15].q.val();
-        self.depth.ev_first.next = self.ev_first.q.val();
-        self.depth.ev_row_start.next = self.ev_row_start.q.val();
-        self.depth.ev_carry.next = self.ev_carry.q.val();
-        self.depth.ev_valid.next = self.ev_valid.q.val();
-
-        // Lighting: normalizer, N'·L, N'·H.
-        for k in 0..3 {
-            self.n_reg[k].clock.next = self.clock.val();
-        }
-        self.n_reg[0].d.next = self.normal.nx.val();
-        self.n_reg[1].d.next = self.normal.ny.val();
-        self.n_reg[2].d.next = self.normal.nz.val();
-        self.n_valid_reg.d.next = self.normal.valid_out.val();
-        self.light.valid_in.next = self.n_valid_reg.q.val();
-        self.light.x.next = self.n_reg[0].q.val();
-        self.light.y.next = self.n_reg[1].q.val();
-        self.light.z.next = self.n_reg[2].q.val();
-        self.light.lx.next = self.lx.val();
-        self.light.ly.next = self.ly.val();
-        self.light.lz.next = self.lz.val();
-        self.light.hx.next = self.hx.val();
-        self.light.hy.next = self.hy.val();
-        self.light.hz.next = self.hz.val();
-
-        // BRZSSK: both cosines perturbed by the pixel's code (or passed through).
-        self.x_to_bump.d.next = self.addr.x.val();
-        self.y_to_bump.d.next = self.addr.y.val();
-        self.bump.valid_in.next = self.light.valid_out.val();
-        self.bump.cos_phi.next = self.light.cos_phi.val();
-        self.bump.cos_gamma.next = self.light.cos_gamma.val();
-        self.bump.x.next = self.x_to_bump.q.val();
-        self.bump.y.next = self.y_to_bump.q.val();
-
-        // Specular power; cos φ waits beside it.
-        self.power.valid_in.next = self.bump.valid_out.val();
-        self.power.cos_gamma.next = self.bump.cos_gamma_out.val();
-        self.power.n.next = self.n.val();
-        self.cos_phi_to_colour.d.next = self.bump.cos_phi_out.val();
-
-        // Colour.
-        self.colour.valid_in.next = self.power.valid_out.val();
-        self.colour.cos_phi.next = self.cos_phi_to_colour.q.val();
-        self.colour.spec.next = self.power.spec.val();
-        self.colour.amb_r.next = self.amb_r.val();
-        self.colour.amb_g.next = self.amb_g.val();
-        self.colour.amb_b.next = self.amb_b.val();
-        self.colour.dif_r.next = self.dif_r.val();
-        self.colour.dif_g.next = self.dif_g.val();
-        self.colour.dif_b.next = self.dif_b.val();
-        self.colour.spc_r.next = self.spc_r.val();
-        self.colour.spc_g.next = self.spc_g.val();
-        self.colour.spc_b.next = self.spc_b.val();
-
-        // The fragment's address, depth and triangle end travel beside it.
-        self.z_to_out.d.next = self.depth.word.val();
-        self.x_to_out.d.next = self.addr.x.val();
-        self.y_to_out.d.next = self.addr.y.val();
-        self.done_to_out.d.next = self.addr.done.val();
-
-        self.ready.next = self.addr.ready.val();
-        self.valid.next = self.colour.valid_out.val();
-        self.x.next = self.x_to_out.q.val();
-        self.y.next = self.y_to_out.q.val();
-        self.z.next = self.z_to_out.q.val();
-        self.red.next = self.colour.red.val();
-        self.green.next = self.colour.green.val();
-        self.blue.next = self.colour.blue.val();
-        self.done.next = self.done_to_out.q.val();
     }
 }

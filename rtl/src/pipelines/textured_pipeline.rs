@@ -377,7 +377,7 @@ impl Logic for EventFifo {
     }
 }
 
-crate::hw_block! {
+crate::pipelines::pixel_pipeline::lit_pipeline! {
     /// The textured pixel pipeline (see the module header).
     pub struct TexturedPipeline(clock) as "textured-pipeline" {
         summary: "one triangle's set-up in, textured lit fragments out: the lit pixel pipeline whose diffuse colour is the nearest texel of the division-free perspective-correct (u, v), read from block RAM (SPEC §14, §0–§2, §5–§6)",
@@ -393,332 +393,177 @@ crate::hw_block! {
             tex_we: Bit, tex_waddr: Bits<16>, tex_wdata: Bits<24>,
             hold: Bit,
         }
-        out {
-            ready: Bit, valid: Bit, x: Bits<12>, y: Bits<12>, z: Bits<32>,
-            red: Bits<8>, green: Bits<8>, blue: Bits<8>, done: Bit,
+        fields {
+            pub addr: SubpixelAddressBlock,
+            pub coord: TextureCoord = TextureCoord::new(&p.k),
+            pub memory: TextureMemory,
         }
-        pub addr: SubpixelAddressBlock,
-        pub coord: TextureCoord = TextureCoord::new(&p.k),
-        pub memory: TextureMemory,
-        pub normal: VectorInterpolator,
-        pub depth: IntensityChannel,
-        n_reg: [Delay<Bits<19>, NORMAL_REGISTER>; 3],
-        n_valid_reg: Delay<Bit, NORMAL_REGISTER>,
-        pub light: LightingUnit = LightingUnit::new(&p.lit.coeffs),
-        pub bump: Brzssk = Brzssk::new(&p.lit.bump),
-        x_to_bump: Delay<Bits<12>, { EVENT_TO_BRZSSK }>,
-        y_to_bump: Delay<Bits<12>, { EVENT_TO_BRZSSK }>,
-        pub power: PowerUnit = PowerUnit::new(&p.lit.power),
-        pub colour: ColourCombine,
-        pub weights: TexelWeights,
-        texel_r: Delay<Bits<8>, { TEXEL_DELAY }>,
-        texel_g: Delay<Bits<8>, { TEXEL_DELAY }>,
-        texel_b: Delay<Bits<8>, { TEXEL_DELAY }>,
-        /// The address block's events before the texture-coordinate block takes them.
-        pub coord_q: EventFifo,
-        /// The events taken, until their texels show (a non-pixel leaves at once).
-        pub lit_q: EventFifo,
-        pop: Signal<Local, Bit>,
-        /// An accepted load waits for its triangle's start to leave the FIFO: its first event,
-        /// or, for a triangle without one (no pixel centre inside), its lone `done`.
-        first_wait: DFF<Bit>,
-        /// The popped stream is inside a triangle: its first event has left, its `done` not.
-        seen_first: DFF<Bit>,
-        start: Signal<Local, Bit>,
-        gate: Signal<Local, Bit>,
-        accepted: Signal<Local, Bit>,
-        /// The popped event (zero when nothing pops), as `pixel-pipeline` sees the address
-        /// block's.
-        p_valid: Signal<Local, Bit>, p_row: Signal<Local, Bit>, p_step: Signal<Local, Bits<2>>,
-        p_carry: Signal<Local, Bit>, p_first: Signal<Local, Bit>, p_done: Signal<Local, Bit>,
-        p_x: Signal<Local, Bits<12>>, p_y: Signal<Local, Bits<12>>,
-        ev_valid: DFF<Bit>, ev_row_start: DFF<Bit>, ev_step: DFF<Bits<2>>, ev_carry: DFF<Bit>,
-        ev_first: DFF<Bit>,
-        ld_q: DFF<Bit>,
-        sw: [DFF<Bits<32>>; 16],
-        cos_phi_to_colour: Delay<Bits<16>, { PowerUnit::LATENCY }>,
-        z_to_out: Delay<Bits<32>, { EVENT_TO_FRAGMENT - EVENT_REGISTER - 1 }>,
-        x_to_out: Delay<Bits<12>, { EVENT_TO_FRAGMENT }>,
-        y_to_out: Delay<Bits<12>, { EVENT_TO_FRAGMENT }>,
-        done_to_out: Delay<Bit, { EVENT_TO_FRAGMENT }>,
+        more_fields {
+            pub weights: TexelWeights,
+            texel_r: Delay<Bits<8>, { TEXEL_DELAY }>,
+            texel_g: Delay<Bits<8>, { TEXEL_DELAY }>,
+            texel_b: Delay<Bits<8>, { TEXEL_DELAY }>,
+            /// The address block's events before the texture-coordinate block takes them.
+            pub coord_q: EventFifo,
+            /// The events taken, until their texels show (a non-pixel leaves at once).
+            pub lit_q: EventFifo,
+            pop: Signal<Local, Bit>,
+            /// An accepted load waits for its triangle's start to leave the FIFO: its first event,
+            /// or, for a triangle without one (no pixel centre inside), its lone `done`.
+            first_wait: DFF<Bit>,
+            /// The popped stream is inside a triangle: its first event has left, its `done` not.
+            seen_first: DFF<Bit>,
+            start: Signal<Local, Bit>,
+            gate: Signal<Local, Bit>,
+            accepted: Signal<Local, Bit>,
+            /// The popped event (zero when nothing pops), as `pixel-pipeline` sees the address
+            /// block's.
+            p_valid: Signal<Local, Bit>, p_row: Signal<Local, Bit>, p_step: Signal<Local, Bits<2>>,
+            p_carry: Signal<Local, Bit>, p_first: Signal<Local, Bit>, p_done: Signal<Local, Bit>,
+            p_x: Signal<Local, Bits<12>>, p_y: Signal<Local, Bits<12>>,
+        }
     }
-    new(p: &TexturedParams);
-}
+    new(p: &TexturedParams), lit: (p.lit);
 
-impl Logic for TexturedPipeline {
-    #[hdl_gen]
-    fn update(&mut self) {
-        clock!(
-            self,
-            clock,
-            addr,
-            coord,
-            memory,
-            normal,
-            depth,
-            n_valid_reg,
-            light,
-            bump,
-            x_to_bump,
-            y_to_bump,
-            power,
-            colour,
-            weights,
-            texel_r,
-            texel_g,
-            texel_b,
-            cos_phi_to_colour,
-            z_to_out,
-            x_to_out,
-            y_to_out,
-            done_to_out,
-            ev_valid,
-            ev_row_start,
-            ev_step,
-            ev_carry,
-            ev_first,
-            ld_q,
-            first_wait,
-            seen_first,
-            coord_q,
-            lit_q
-        );
-        for i in 0..16 {
-            self.sw[i].clock.next = self.clock.val();
+    impl Logic for TexturedPipeline {
+        #[hdl_gen]
+        fn update(&mut self) {
+            front {
+                {
+                    clock!(
+                        self, clock, addr, coord, memory, normal, depth, n_valid_reg, light, bump,
+                        x_to_bump, y_to_bump, power, colour, weights, texel_r, texel_g, texel_b,
+                        cos_phi_to_colour, z_to_out, x_to_out, y_to_out, done_to_out, ev_valid,
+                        ev_row_start, ev_step, ev_carry, ev_first, ld_q, first_wait, seen_first,
+                        coord_q, lit_q
+                    );
+                    for i in 0..16 {
+                        self.sw[i].clock.next = self.clock.val();
+                    }
+                    // The address block, held while the texture-coordinate block cannot take
+                    // an event; a load only while no accepted load waits for its first event to
+                    // leave the FIFO.
+                    self.gate.next = !self.first_wait.q.val();
+                    self.accepted.next = self.load.val() & self.addr.ready.val() & self.gate.val();
+                    self.addr.load.next = self.load.val() & self.gate.val();
+                    self.addr.hold.next = self.hold.val() | self.coord_q.nearly_full.val();
+                }
+                forward addr <- address_setup_ports!;
+                {
+                    // The texture-coordinate block's set-up.
+                    self.coord.load.next = self.accepted.val();
+                    self.coord.e0.next = self.tex_e0.val();
+                    self.coord.de_line.next = self.tex_de_line.val();
+                    self.coord.de_short.next = self.tex_de_short.val();
+                    self.coord.de_long.next = self.tex_de_long.val();
+                    self.coord.u_u0.next = self.tex_u_u0.val();
+                    self.coord.u_w0.next = self.tex_u_w0.val();
+                    self.coord.u_p_line.next = self.tex_u_p_line.val();
+                    self.coord.u_p_short.next = self.tex_u_p_short.val();
+                    self.coord.u_p_long.next = self.tex_u_p_long.val();
+                    self.coord.v_u0.next = self.tex_v_u0.val();
+                    self.coord.v_w0.next = self.tex_v_w0.val();
+                    self.coord.v_p_line.next = self.tex_v_p_line.val();
+                    self.coord.v_p_short.next = self.tex_v_p_short.val();
+                    self.coord.v_p_long.next = self.tex_v_p_long.val();
+                    // The first FIFO takes every event the address block shows (held while it
+                    // has 7 or more: at most one push a clock); the texture-coordinate block
+                    // takes its head when ready, and the event moves into the second FIFO, whose
+                    // head leaves when it is not a pixel or its texel shows.
+                    self.coord_q.push.next =
+                        self.addr.valid.val() | self.addr.row_start.val() | self.addr.done.val();
+                    self.coord_q.in_valid.next = self.addr.valid.val();
+                    self.coord_q.in_row.next = self.addr.row_start.val();
+                    self.coord_q.in_step.next = self.addr.step.val();
+                    self.coord_q.in_carry.next = self.addr.carry.val();
+                    self.coord_q.in_first.next =
+                        self.addr.row_start.val() & (self.addr.step.val() == 0);
+                    self.coord_q.in_done.next = self.addr.done.val();
+                    self.coord_q.in_x.next = self.addr.x.val();
+                    self.coord_q.in_y.next = self.addr.y.val();
+                    self.coord_q.pop.next = self.coord.ready.val();
+                    self.coord.valid_in.next = self.coord_q.h_valid.val();
+                    self.coord.row_start_in.next = self.coord_q.h_row.val();
+                    self.coord.step_in.next = self.coord_q.h_step.val();
+                    self.coord.carry_in.next = self.coord_q.h_carry.val();
+                    self.coord.x_in.next = self.coord_q.h_x.val();
+                    self.coord.y_in.next = self.coord_q.h_y.val();
+                    self.coord.done_in.next = self.coord_q.h_done.val();
+                    self.coord.hold.next = false;
+                    self.lit_q.push.next = self.coord.ready.val() & self.coord_q.any.val();
+                    self.lit_q.in_valid.next = self.coord_q.h_valid.val();
+                    self.lit_q.in_row.next = self.coord_q.h_row.val();
+                    self.lit_q.in_step.next = self.coord_q.h_step.val();
+                    self.lit_q.in_carry.next = self.coord_q.h_carry.val();
+                    self.lit_q.in_first.next = self.coord_q.h_first.val();
+                    self.lit_q.in_done.next = self.coord_q.h_done.val();
+                    self.lit_q.in_x.next = self.coord_q.h_x.val();
+                    self.lit_q.in_y.next = self.coord_q.h_y.val();
+                    self.pop.next = !self.lit_q.h_valid.val() | self.coord.valid_out.val();
+                    self.lit_q.pop.next = self.pop.val();
+                    // The popped event (the head is zero when the FIFO is empty).
+                    self.p_valid.next = false;
+                    self.p_row.next = false;
+                    self.p_step.next = 0.into();
+                    self.p_carry.next = false;
+                    self.p_first.next = false;
+                    self.p_done.next = false;
+                    self.p_x.next = 0.into();
+                    self.p_y.next = 0.into();
+                    if self.pop.val() {
+                        self.p_valid.next = self.lit_q.h_valid.val();
+                        self.p_row.next = self.lit_q.h_row.val();
+                        self.p_step.next = self.lit_q.h_step.val();
+                        self.p_carry.next = self.lit_q.h_carry.val();
+                        self.p_first.next = self.lit_q.h_first.val();
+                        self.p_done.next = self.lit_q.h_done.val();
+                        self.p_x.next = self.lit_q.h_x.val();
+                        self.p_y.next = self.lit_q.h_y.val();
+                }
+                    self.start.next =
+                        self.p_first.val() | (self.p_done.val() & !self.seen_first.q.val());
+                    self.seen_first.d.next = self.seen_first.q.val();
+                    if self.p_first.val() {
+                        self.seen_first.d.next = true;
+                }
+                    if self.p_done.val() {
+                        self.seen_first.d.next = false;
+                }
+                    self.first_wait.d.next = self.first_wait.q.val();
+                    if self.start.val() {
+                        self.first_wait.d.next = false;
+                }
+                    if self.accepted.val() {
+                        self.first_wait.d.next = true;
+                }
+                    // The texel: fetched at the pop, delayed, weighted.
+                    self.memory.we.next = self.tex_we.val();
+                    self.memory.waddr.next = self.tex_waddr.val();
+                    self.memory.wdata.next = self.tex_wdata.val();
+                    self.memory.log_w.next = self.log_w.val();
+                    self.memory.log_h.next = self.log_h.val();
+                    self.memory.valid_in.next = self.coord.valid_out.val();
+                    self.memory.u.next = self.coord.u.val();
+                    self.memory.v.next = self.coord.v.val();
+                    self.texel_r.d.next = self.memory.red.val();
+                    self.texel_g.d.next = self.memory.green.val();
+                    self.texel_b.d.next = self.memory.blue.val();
+                    self.weights.red.next = self.texel_r.q.val();
+                    self.weights.green.next = self.texel_g.q.val();
+                    self.weights.blue.next = self.texel_b.q.val();
+                    self.weights.ka.next = self.ka.val();
+                    self.weights.kd.next = self.kd.val();
+                }
+            }
+            event {
+                before {}
+                valid [self.p_valid.val()] row_start [self.p_row.val()] step [self.p_step.val()]
+                carry [self.p_carry.val()] first [self.p_first.val()]
+                x [self.p_x.val()] y [self.p_y.val()] done [self.p_done.val()]
+            }
+            amb [self.weights.amb_r.val()] [self.weights.amb_g.val()] [self.weights.amb_b.val()]
+            dif [self.weights.dif_r.val()] [self.weights.dif_g.val()] [self.weights.dif_b.val()]
+            ready [self.addr.ready.val() & self.gate.val()]
         }
-
-        // The address block, held while the texture-coordinate block cannot take an event;
-        // a load only while no accepted load waits for its first event to leave the FIFO.
-        self.gate.next = !self.first_wait.q.val();
-        self.accepted.next = self.load.val() & self.addr.ready.val() & self.gate.val();
-        self.addr.load.next = self.load.val() & self.gate.val();
-        self.addr.hold.next = self.hold.val() | self.coord_q.nearly_full.val();
-        self.addr.w_b0.next = self.w_b0.val();
-        self.addr.w_e0.next = self.w_e0.val();
-        self.addr.w_f.next = self.w_f.val();
-        self.addr.w_r.next = self.w_r.val();
-        self.addr.w_d.next = self.w_d.val();
-        self.addr.a_b0.next = self.a_b0.val();
-        self.addr.a_e0.next = self.a_e0.val();
-        self.addr.a_f.next = self.a_f.val();
-        self.addr.a_r.next = self.a_r.val();
-        self.addr.a_d.next = self.a_d.val();
-        self.addr.t_b0.next = self.t_b0.val();
-        self.addr.t_e0.next = self.t_e0.val();
-        self.addr.t_f.next = self.t_f.val();
-        self.addr.t_r.next = self.t_r.val();
-        self.addr.t_d.next = self.t_d.val();
-        self.addr.y_top.next = self.y_top.val();
-        self.addr.rows.next = self.rows.val();
-        self.addr.y_switch.next = self.y_switch.val();
-        self.addr.dir_neg.next = self.dir_neg.val();
-
-        // The texture-coordinate block's set-up.
-        self.coord.load.next = self.accepted.val();
-        self.coord.e0.next = self.tex_e0.val();
-        self.coord.de_line.next = self.tex_de_line.val();
-        self.coord.de_short.next = self.tex_de_short.val();
-        self.coord.de_long.next = self.tex_de_long.val();
-        self.coord.u_u0.next = self.tex_u_u0.val();
-        self.coord.u_w0.next = self.tex_u_w0.val();
-        self.coord.u_p_line.next = self.tex_u_p_line.val();
-        self.coord.u_p_short.next = self.tex_u_p_short.val();
-        self.coord.u_p_long.next = self.tex_u_p_long.val();
-        self.coord.v_u0.next = self.tex_v_u0.val();
-        self.coord.v_w0.next = self.tex_v_w0.val();
-        self.coord.v_p_line.next = self.tex_v_p_line.val();
-        self.coord.v_p_short.next = self.tex_v_p_short.val();
-        self.coord.v_p_long.next = self.tex_v_p_long.val();
-
-        // The first FIFO takes every event the address block shows (held while it has 7 or
-        // more: at most one push a clock); the texture-coordinate block takes its head when
-        // ready, and the event moves into the second FIFO, whose head leaves when it is not a
-        // pixel or its texel shows.
-        self.coord_q.push.next =
-            self.addr.valid.val() | self.addr.row_start.val() | self.addr.done.val();
-        self.coord_q.in_valid.next = self.addr.valid.val();
-        self.coord_q.in_row.next = self.addr.row_start.val();
-        self.coord_q.in_step.next = self.addr.step.val();
-        self.coord_q.in_carry.next = self.addr.carry.val();
-        self.coord_q.in_first.next = self.addr.row_start.val() & (self.addr.step.val() == 0);
-        self.coord_q.in_done.next = self.addr.done.val();
-        self.coord_q.in_x.next = self.addr.x.val();
-        self.coord_q.in_y.next = self.addr.y.val();
-        self.coord_q.pop.next = self.coord.ready.val();
-        self.coord.valid_in.next = self.coord_q.h_valid.val();
-        self.coord.row_start_in.next = self.coord_q.h_row.val();
-        self.coord.step_in.next = self.coord_q.h_step.val();
-        self.coord.carry_in.next = self.coord_q.h_carry.val();
-        self.coord.x_in.next = self.coord_q.h_x.val();
-        self.coord.y_in.next = self.coord_q.h_y.val();
-        self.coord.done_in.next = self.coord_q.h_done.val();
-        self.coord.hold.next = false;
-        self.lit_q.push.next = self.coord.ready.val() & self.coord_q.any.val();
-        self.lit_q.in_valid.next = self.coord_q.h_valid.val();
-        self.lit_q.in_row.next = self.coord_q.h_row.val();
-        self.lit_q.in_step.next = self.coord_q.h_step.val();
-        self.lit_q.in_carry.next = self.coord_q.h_carry.val();
-        self.lit_q.in_first.next = self.coord_q.h_first.val();
-        self.lit_q.in_done.next = self.coord_q.h_done.val();
-        self.lit_q.in_x.next = self.coord_q.h_x.val();
-        self.lit_q.in_y.next = self.coord_q.h_y.val();
-        self.pop.next = !self.lit_q.h_valid.val() | self.coord.valid_out.val();
-        self.lit_q.pop.next = self.pop.val();
-        // The popped event (the head is zero when the FIFO is empty).
-        self.p_valid.next = false;
-        self.p_row.next = false;
-        self.p_step.next = 0.into();
-        self.p_carry.next = false;
-        self.p_first.next = false;
-        self.p_done.next = false;
-        self.p_x.next = 0.into();
-        self.p_y.next = 0.into();
-        if self.pop.val() {
-            self.p_valid.next = self.lit_q.h_valid.val();
-            self.p_row.next = self.lit_q.h_row.val();
-            self.p_step.next = self.lit_q.h_step.val();
-            self.p_carry.next = self.lit_q.h_carry.val();
-            self.p_first.next = self.lit_q.h_first.val();
-            self.p_done.next = self.lit_q.h_done.val();
-            self.p_x.next = self.lit_q.h_x.val();
-            self.p_y.next = self.lit_q.h_y.val();
-        }
-        self.start.next = self.p_first.val() | (self.p_done.val() & !self.seen_first.q.val());
-        self.seen_first.d.next = self.seen_first.q.val();
-        if self.p_first.val() {
-            self.seen_first.d.next = true;
-        }
-        if self.p_done.val() {
-            self.seen_first.d.next = false;
-        }
-        self.first_wait.d.next = self.first_wait.q.val();
-        if self.start.val() {
-            self.first_wait.d.next = false;
-        }
-        if self.accepted.val() {
-            self.first_wait.d.next = true;
-        }
-
-        // The texel: fetched at the pop, delayed, weighted.
-        self.memory.we.next = self.tex_we.val();
-        self.memory.waddr.next = self.tex_waddr.val();
-        self.memory.wdata.next = self.tex_wdata.val();
-        self.memory.log_w.next = self.log_w.val();
-        self.memory.log_h.next = self.log_h.val();
-        self.memory.valid_in.next = self.coord.valid_out.val();
-        self.memory.u.next = self.coord.u.val();
-        self.memory.v.next = self.coord.v.val();
-        self.texel_r.d.next = self.memory.red.val();
-        self.texel_g.d.next = self.memory.green.val();
-        self.texel_b.d.next = self.memory.blue.val();
-        self.weights.red.next = self.texel_r.q.val();
-        self.weights.green.next = self.texel_g.q.val();
-        self.weights.blue.next = self.texel_b.q.val();
-        self.weights.ka.next = self.ka.val();
-        self.weights.kd.next = self.kd.val();
-
-        // The lit path: pixel-pipeline's, from the popped event.
-        self.ld_q.d.next = self.accepted.val();
-        self.sw[0].d.next = self.x_start.val();
-        self.sw[1].d.next = self.x_short.val();
-        self.sw[2].d.next = self.x_long.val();
-        self.sw[3].d.next = self.x_line.val();
-        self.sw[4].d.next = self.y_start.val();
-        self.sw[5].d.next = self.y_short.val();
-        self.sw[6].d.next = self.y_long.val();
-        self.sw[7].d.next = self.y_line.val();
-        self.sw[8].d.next = self.z_start.val();
-        self.sw[9].d.next = self.z_short.val();
-        self.sw[10].d.next = self.z_long.val();
-        self.sw[11].d.next = self.z_line.val();
-        self.sw[12].d.next = self.d_start.val();
-        self.sw[13].d.next = self.d_short.val();
-        self.sw[14].d.next = self.d_long.val();
-        self.sw[15].d.next = self.d_line.val();
-        self.normal.load.next = self.ld_q.q.val();
-        self.normal.x_start.next = self.sw[0].q.val();
-        self.normal.x_short.next = self.sw[1].q.val();
-        self.normal.x_long.next = self.sw[2].q.val();
-        self.normal.x_line.next = self.sw[3].q.val();
-        self.normal.y_start.next = self.sw[4].q.val();
-        self.normal.y_short.next = self.sw[5].q.val();
-        self.normal.y_long.next = self.sw[6].q.val();
-        self.normal.y_line.next = self.sw[7].q.val();
-        self.normal.z_start.next = self.sw[8].q.val();
-        self.normal.z_short.next = self.sw[9].q.val();
-        self.normal.z_long.next = self.sw[10].q.val();
-        self.normal.z_line.next = self.sw[11].q.val();
-        self.ev_valid.d.next = self.p_valid.val();
-        self.ev_row_start.d.next = self.p_row.val();
-        self.ev_step.d.next = self.p_step.val();
-        self.ev_carry.d.next = self.p_carry.val();
-        self.ev_first.d.next = self.p_first.val();
-        self.normal.valid_in.next = self.ev_valid.q.val();
-        self.normal.row_start_in.next = self.ev_row_start.q.val();
-        self.normal.step_in.next = self.ev_step.q.val();
-        self.normal.carry_in.next = self.ev_carry.q.val();
-        self.depth.load.next = self.ld_q.q.val();
-        self.depth.set_start.next = self.sw[12].q.val();
-        self.depth.set_short.next = self.sw[13].q.val();
-        self.depth.set_long.next = self.sw[14].q.val();
-        self.depth.set_line.next = self.sw[15].q.val();
-        self.depth.ev_first.next = self.ev_first.q.val();
-        self.depth.ev_row_start.next = self.ev_row_start.q.val();
-        self.depth.ev_carry.next = self.ev_carry.q.val();
-        self.depth.ev_valid.next = self.ev_valid.q.val();
-        for k in 0..3 {
-            self.n_reg[k].clock.next = self.clock.val();
-        }
-        self.n_reg[0].d.next = self.normal.nx.val();
-        self.n_reg[1].d.next = self.normal.ny.val();
-        self.n_reg[2].d.next = self.normal.nz.val();
-        self.n_valid_reg.d.next = self.normal.valid_out.val();
-        self.light.valid_in.next = self.n_valid_reg.q.val();
-        self.light.x.next = self.n_reg[0].q.val();
-        self.light.y.next = self.n_reg[1].q.val();
-        self.light.z.next = self.n_reg[2].q.val();
-        self.light.lx.next = self.lx.val();
-        self.light.ly.next = self.ly.val();
-        self.light.lz.next = self.lz.val();
-        self.light.hx.next = self.hx.val();
-        self.light.hy.next = self.hy.val();
-        self.light.hz.next = self.hz.val();
-        self.x_to_bump.d.next = self.p_x.val();
-        self.y_to_bump.d.next = self.p_y.val();
-        self.bump.valid_in.next = self.light.valid_out.val();
-        self.bump.cos_phi.next = self.light.cos_phi.val();
-        self.bump.cos_gamma.next = self.light.cos_gamma.val();
-        self.bump.x.next = self.x_to_bump.q.val();
-        self.bump.y.next = self.y_to_bump.q.val();
-        self.power.valid_in.next = self.bump.valid_out.val();
-        self.power.cos_gamma.next = self.bump.cos_gamma_out.val();
-        self.power.n.next = self.n.val();
-        self.cos_phi_to_colour.d.next = self.bump.cos_phi_out.val();
-        self.colour.valid_in.next = self.power.valid_out.val();
-        self.colour.cos_phi.next = self.cos_phi_to_colour.q.val();
-        self.colour.spec.next = self.power.spec.val();
-        self.colour.amb_r.next = self.weights.amb_r.val();
-        self.colour.amb_g.next = self.weights.amb_g.val();
-        self.colour.amb_b.next = self.weights.amb_b.val();
-        self.colour.dif_r.next = self.weights.dif_r.val();
-        self.colour.dif_g.next = self.weights.dif_g.val();
-        self.colour.dif_b.next = self.weights.dif_b.val();
-        self.colour.spc_r.next = self.spc_r.val();
-        self.colour.spc_g.next = self.spc_g.val();
-        self.colour.spc_b.next = self.spc_b.val();
-        self.z_to_out.d.next = self.depth.word.val();
-        self.x_to_out.d.next = self.p_x.val();
-        self.y_to_out.d.next = self.p_y.val();
-        self.done_to_out.d.next = self.p_done.val();
-
-        self.ready.next = self.addr.ready.val() & self.gate.val();
-        self.valid.next = self.colour.valid_out.val();
-        self.x.next = self.x_to_out.q.val();
-        self.y.next = self.y_to_out.q.val();
-        self.z.next = self.z_to_out.q.val();
-        self.red.next = self.colour.red.val();
-        self.green.next = self.colour.green.val();
-        self.blue.next = self.colour.blue.val();
-        self.done.next = self.done_to_out.q.val();
     }
 }
