@@ -382,6 +382,21 @@ pub struct SpanFragment {
     pub lane_b: bool,
 }
 
+impl SpanFragment {
+    /// The fragment a stream top's beat carries for line `span`, shown at `clock`.
+    fn of(span: &SpanJob, b: &crate::axis::Beat, clock: u64, lane_b: bool) -> Self {
+        SpanFragment {
+            triangle: span.triangle,
+            x: b.x,
+            y: b.y,
+            z: b.z,
+            rgb: b.rgb,
+            clock,
+            lane_b,
+        }
+    }
+}
+
 /// How a span top is driven.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum Shape {
@@ -637,17 +652,7 @@ fn run_cubic_stream(
         &crate::span::cubic_words(spans),
         n,
         max_clocks,
-        &mut |line, b, clock| {
-            fragment(SpanFragment {
-                triangle: spans[line].triangle,
-                x: b.x,
-                y: b.y,
-                z: b.z,
-                rgb: b.rgb,
-                clock,
-                lane_b: false,
-            })
-        },
+        &mut |line, b, clock| fragment(SpanFragment::of(&spans[line], &b, clock, false)),
         &mut |done| {
             if done % 256 == 0 || done == n {
                 progress(done);
@@ -675,17 +680,7 @@ fn run_lanes<T: crate::axis::LaneTop>(
         &crate::span::span_stream_words(kind, spans, regs),
         n,
         max_clocks,
-        &mut |line, b, clock, lane| {
-            fragment(SpanFragment {
-                triangle: spans[line].triangle,
-                x: b.x,
-                y: b.y,
-                z: b.z,
-                rgb: b.rgb,
-                clock,
-                lane_b: lane == 1,
-            })
-        },
+        &mut |line, b, clock, lane| fragment(SpanFragment::of(&spans[line], &b, clock, lane == 1)),
         &mut |done| {
             if done % 256 == 0 || done == n {
                 progress(done);

@@ -416,18 +416,9 @@ pub fn ecp5_with(
             rep.unplaced = Some(format!("nextpnr-ecp5 ran out of {}'s cells", rep.part.name));
             return Ok(rep);
         }
-        return Err(format!(
-            "nextpnr-ecp5 failed ({}); log in {}",
-            out.status,
-            dir.join("nextpnr-ecp5.log").display()
-        ));
+        return Err(nextpnr_failed(&out.status, &dir));
     }
-    rep.fmax = text
-        .lines()
-        .rfind(|l| l.contains("Max frequency for clock"))
-        .and_then(|l| l.split("': ").nth(1))
-        .and_then(|r| r.split_whitespace().next())
-        .and_then(|n| n.parse().ok());
+    rep.fmax = super::parse_fmax(&text);
     rep.critical = parse_critical_path(&text);
     if rep.fmax.is_none() {
         return Err(format!(
@@ -436,6 +427,14 @@ pub fn ecp5_with(
         ));
     }
     Ok(rep)
+}
+
+/// The one-line error of a nextpnr-ecp5 run that failed for another reason than room.
+pub(crate) fn nextpnr_failed(status: &std::process::ExitStatus, dir: &Path) -> String {
+    format!(
+        "nextpnr-ecp5 failed ({status}); log in {}",
+        dir.join("nextpnr-ecp5.log").display()
+    )
 }
 
 /// Place and route `json` (in `dir`) on `part` at speed grade 6, constrained at 100 MHz (the

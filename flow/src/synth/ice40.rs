@@ -159,17 +159,10 @@ pub fn fmax_ice40_up5k(
         String::from_utf8_lossy(&out.stdout),
         String::from_utf8_lossy(&out.stderr)
     );
-    // "Max frequency for clock 'clock$SB_IO_IN_$glb_clk': 23.45 MHz (PASS at 12.00 MHz)"; the
-    // last occurrence is after routing.
-    text.lines()
-        .rfind(|l| l.contains("Max frequency for clock"))
-        .and_then(|l| l.split("': ").nth(1))
-        .and_then(|r| r.split_whitespace().next())
-        .and_then(|n| n.parse().ok())
-        .ok_or_else(|| {
-            format!(
-                "no 'Max frequency' line in nextpnr's output (see {})",
-                dir.display()
-            )
-        })
+    super::parse_fmax(&text).ok_or_else(|| {
+        format!(
+            "no 'Max frequency' line in nextpnr's output (see {})",
+            dir.display()
+        )
+    })
 }

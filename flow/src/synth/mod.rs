@@ -204,6 +204,17 @@ pub fn timing_shell(module: &str, inputs: &[Port], outputs: &[Port]) -> String {
     v
 }
 
+/// nextpnr's last "Max frequency for clock" figure in MHz ("Max frequency for clock
+/// 'clock$SB_IO_IN_$glb_clk': 23.45 MHz (PASS at 12.00 MHz)"; the last occurrence is after
+/// routing), for nextpnr-ice40 and nextpnr-ecp5 alike.
+pub(crate) fn parse_fmax(log: &str) -> Option<f64> {
+    log.lines()
+        .rfind(|l| l.contains("Max frequency for clock"))
+        .and_then(|l| l.split("': ").nth(1))
+        .and_then(|r| r.split_whitespace().next())
+        .and_then(|n| n.parse().ok())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -272,6 +283,18 @@ mod tests {
         assert_eq!(ecp5_part_for_pins(p45, 664), p45);
         // A larger package never means a smaller die.
         assert_eq!(ecp5_part_for_pins(p85, 198).device, "85k");
+    }
+
+    /// The last figure counts (nextpnr prints one before and one after routing); none: None.
+    #[test]
+    fn fmax_is_the_last_figure() {
+        let log = "\
+Info: Max frequency for clock 'clk': 120.50 MHz (PASS at 12.00 MHz)
+Info: Routing..
+Info: Max frequency for clock '$glbnet$clock$TRELLIS_IO_IN': 95.24 MHz (FAIL at 100.00 MHz)
+";
+        assert_eq!(parse_fmax(log), Some(95.24));
+        assert_eq!(parse_fmax("Info: Routing..\n"), None);
     }
 
     /// A nextpnr-ecp5 critical path report (shortened from the lighting unit's): the design's

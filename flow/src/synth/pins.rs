@@ -3,7 +3,9 @@
 
 use std::path::PathBuf;
 
-use super::ecp5::{ecp5_verilog, nextpnr_ecp5, run_nextpnr_ecp5, Ecp5Part, MultRegs, ECP5_PARTS};
+use super::ecp5::{
+    ecp5_verilog, nextpnr_ecp5, nextpnr_failed, run_nextpnr_ecp5, Ecp5Part, MultRegs, ECP5_PARTS,
+};
 use super::yosys;
 use crate::tools;
 use rtl::core::sim::Port;
@@ -141,20 +143,9 @@ pub fn ecp5_on_pins_with(
                 rep.unplaced = Some(l.trim_start_matches("ERROR: ").trim().to_string());
                 return Ok(rep);
             }
-            None => {
-                return Err(format!(
-                    "nextpnr-ecp5 failed ({}); log in {}",
-                    out.status,
-                    dir.join("nextpnr-ecp5.log").display()
-                ))
-            }
+            None => return Err(nextpnr_failed(&out.status, &dir)),
         }
     }
-    rep.fmax = text
-        .lines()
-        .rfind(|l| l.contains("Max frequency for clock"))
-        .and_then(|l| l.split("': ").nth(1))
-        .and_then(|r| r.split_whitespace().next())
-        .and_then(|n| n.parse().ok());
+    rep.fmax = super::parse_fmax(&text);
     Ok(rep)
 }

@@ -535,7 +535,7 @@ pub fn stream_pixels(out: &[AddressOutputs]) -> Vec<crate::types::WalkPixel> {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use crate::raster::walk;
     use crate::types::StepType;
@@ -570,18 +570,27 @@ mod tests {
         }
     }
 
+    /// Named triangles for the walkers' tests (this block's and the four-triangle block's):
+    /// right angles either way, a general one in both windings, slivers across the whole
+    /// screen, the smallest, a zero-area line and a point.
+    pub(crate) const NAMED_TRIANGLES: [[(i32, i32); 3]; 10] = [
+        [(0, 0), (10, 0), (0, 10)],
+        [(0, 0), (10, 0), (10, 10)],
+        [(5, 0), (0, 10), (10, 10)],
+        [(3, 1), (40, 7), (11, 30)],
+        [(40, 1), (3, 7), (11, 30)],
+        [(0, 0), (4095, 1), (0, 2)],
+        [(4095, 0), (0, 4095), (4095, 4095)],
+        [(0, 0), (1, 0), (0, 1)],
+        [(0, 0), (1, 1), (2, 2)],
+        [(7, 7), (7, 7), (7, 7)],
+    ];
+
     #[test]
     fn named_triangles_follow_the_walk() {
-        check([(0, 0), (10, 0), (0, 10)]);
-        check([(0, 0), (10, 0), (10, 10)]);
-        check([(5, 0), (0, 10), (10, 10)]);
-        check([(3, 1), (40, 7), (11, 30)]);
-        check([(40, 1), (3, 7), (11, 30)]);
-        check([(0, 0), (4095, 1), (0, 2)]);
-        check([(4095, 0), (0, 4095), (4095, 4095)]);
-        check([(0, 0), (1, 0), (0, 1)]);
-        check([(0, 0), (1, 1), (2, 2)]); // zero area
-        check([(7, 7), (7, 7), (7, 7)]);
+        for p in NAMED_TRIANGLES {
+            check(p);
+        }
     }
 
     #[test]

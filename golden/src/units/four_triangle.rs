@@ -449,18 +449,19 @@ mod tests {
 
     #[test]
     fn named_triangles_tile_their_parent() {
-        check([(0, 0), (10, 0), (0, 10)]);
-        check([(0, 0), (11, 0), (0, 11)]);
-        check([(0, 0), (10, 0), (10, 10)]);
-        check([(5, 0), (0, 10), (10, 10)]);
-        check([(3, 1), (40, 7), (11, 30)]);
-        check([(40, 1), (3, 7), (11, 30)]);
-        check([(0, 0), (4095, 1), (0, 2)]);
-        check([(4095, 0), (0, 4095), (4095, 4095)]);
-        check([(0, 0), (1, 0), (0, 1)]);
-        check([(0, 0), (1, 1), (2, 2)]);
-        check([(1, 1), (2, 4), (5, 2)]);
-        check([(0, 0), (3, 1), (1, 3)]);
+        // The address block's named triangles, an odd-sided right angle (midpoints off the
+        // pixel grid) and two small general ones.
+        let more = [
+            [(0, 0), (11, 0), (0, 11)],
+            [(1, 1), (2, 4), (5, 2)],
+            [(0, 0), (3, 1), (1, 3)],
+        ];
+        for p in crate::units::address_block::tests::NAMED_TRIANGLES
+            .into_iter()
+            .chain(more)
+        {
+            check(p);
+        }
     }
 
     #[test]
