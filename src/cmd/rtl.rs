@@ -72,7 +72,7 @@ pub struct SynthArgs {
     #[arg(long, value_enum)]
     pub mult_regs: Option<MultRegsArg>,
     /// Also write the figures as a Markdown table (block, part, LUT4, flip-flops, multipliers,
-    /// Fmax) with the date and the machine, e.g. `--block all --table
+    /// on ECP5 the block RAMs, Fmax) with the date and the machine, e.g. `--block all --table
     /// docs/measurements/fpga-ice40.md`. Written whole when every block is done.
     #[arg(long)]
     pub table: Option<PathBuf>,
@@ -191,12 +191,13 @@ pub fn synth(a: SynthArgs) -> anyhow::Result<()> {
             let rep = rep?;
             crate::outln!("{rep}")?;
             rows.push(format!(
-                "| `{}` | {} | {} | {} | {} MULT18X18D | {} |",
+                "| `{}` | {} | {} | {} | {} MULT18X18D | {} DP16KD | {} |",
                 b.name(),
                 rep.part.name,
                 rep.luts(),
                 rep.ffs(),
                 rep.mult18(),
+                rep.dp16kd(),
                 rep.fmax
                     .map_or("not placed".into(), |f| format!("{f:.1} MHz"))
             ));
@@ -306,10 +307,18 @@ fn write_table(a: &SynthArgs, rows: &[String]) -> anyhow::Result<()> {
         Target::Ecp5 => "ECP5 (Yosys `synth_ecp5`, nextpnr-ecp5 in a timing shell, speed grade 6)",
         Target::Ice40 => "iCE40 UP5K (Yosys `synth_ice40 -dsp`, nextpnr-ice40 in a timing shell)",
     };
+    let header = match a.target {
+        Target::Ecp5 => {
+            "| block | part | LUT4 | flip-flops | multipliers | block RAM | Fmax |\n\
+             |---|---|---:|---:|---|---|---|"
+        }
+        Target::Ice40 => {
+            "| block | part | LUT4 | flip-flops | multipliers | Fmax |\n|---|---|---:|---:|---|---|"
+        }
+    };
     let text = format!(
         "# FPGA figures: {target}\n\nWritten by `shadecore synth --block {} --target {}{}` on {date}, \
-         {machine}. Figures, not tests: Fmax moves with placement.\n\n\
-         | block | part | LUT4 | flip-flops | multipliers | Fmax |\n|---|---|---:|---:|---|---|\n{}\n",
+         {machine}. Figures, not tests: Fmax moves with placement.\n\n{header}\n{}\n",
         a.block,
         match a.target {
             Target::Ecp5 => "ecp5",
