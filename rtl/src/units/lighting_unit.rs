@@ -111,6 +111,7 @@ crate::hw_block! {
     new(c: &NormalizerCoeffs);
 }
 
+seq_macro::seq!(N in 0..6 {
 impl Logic for LightingUnit {
     #[hdl_gen]
     fn update(&mut self) {
@@ -150,44 +151,16 @@ impl Logic for LightingUnit {
         self.mul[5].b.next = self.hz.val();
         self.valid_p1.d.next = self.norm.valid_out.val();
         // D2: exact sums, split at bit 16 (see the header).
-        // (rust-hdl resolves a loop index inside bit_cast arguments in neither backend:
-        // written out.)
-        if self.mul[0].p.val().get_bit(31) {
-            self.ext[0].next =
-                bit_cast::<32, 16>(self.mul[0].p.val().get_bits::<16>(16)) | self.sign_ext.val();
+        // (rust-hdl resolves a loop index inside bit_cast arguments in neither backend: the
+        // six products are one text repeated by `seq!`.)
+        #(
+        if self.mul[N].p.val().get_bit(31) {
+            self.ext[N].next =
+                bit_cast::<32, 16>(self.mul[N].p.val().get_bits::<16>(16)) | self.sign_ext.val();
         } else {
-            self.ext[0].next = bit_cast::<32, 16>(self.mul[0].p.val().get_bits::<16>(16));
+            self.ext[N].next = bit_cast::<32, 16>(self.mul[N].p.val().get_bits::<16>(16));
         }
-        if self.mul[1].p.val().get_bit(31) {
-            self.ext[1].next =
-                bit_cast::<32, 16>(self.mul[1].p.val().get_bits::<16>(16)) | self.sign_ext.val();
-        } else {
-            self.ext[1].next = bit_cast::<32, 16>(self.mul[1].p.val().get_bits::<16>(16));
-        }
-        if self.mul[2].p.val().get_bit(31) {
-            self.ext[2].next =
-                bit_cast::<32, 16>(self.mul[2].p.val().get_bits::<16>(16)) | self.sign_ext.val();
-        } else {
-            self.ext[2].next = bit_cast::<32, 16>(self.mul[2].p.val().get_bits::<16>(16));
-        }
-        if self.mul[3].p.val().get_bit(31) {
-            self.ext[3].next =
-                bit_cast::<32, 16>(self.mul[3].p.val().get_bits::<16>(16)) | self.sign_ext.val();
-        } else {
-            self.ext[3].next = bit_cast::<32, 16>(self.mul[3].p.val().get_bits::<16>(16));
-        }
-        if self.mul[4].p.val().get_bit(31) {
-            self.ext[4].next =
-                bit_cast::<32, 16>(self.mul[4].p.val().get_bits::<16>(16)) | self.sign_ext.val();
-        } else {
-            self.ext[4].next = bit_cast::<32, 16>(self.mul[4].p.val().get_bits::<16>(16));
-        }
-        if self.mul[5].p.val().get_bit(31) {
-            self.ext[5].next =
-                bit_cast::<32, 16>(self.mul[5].p.val().get_bits::<16>(16)) | self.sign_ext.val();
-        } else {
-            self.ext[5].next = bit_cast::<32, 16>(self.mul[5].p.val().get_bits::<16>(16));
-        }
+        )*
         self.lo_l.next = bit_cast::<32, 16>(self.mul[0].p.val().get_bits::<16>(0))
             + bit_cast::<32, 16>(self.mul[1].p.val().get_bits::<16>(0))
             + bit_cast::<32, 16>(self.mul[2].p.val().get_bits::<16>(0))
@@ -228,6 +201,7 @@ impl Logic for LightingUnit {
         self.cos_gamma.next = self.cos_gamma_q.q.val();
     }
 }
+});
 
 crate::hw_block! {
     /// One product of D1: `p = a·b` for a normalizer component `a` (signed Q2.17, 19 bits) and
