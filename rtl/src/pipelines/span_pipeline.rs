@@ -245,6 +245,8 @@ impl<const U1: usize> Default for SpanShader<U1> {
     }
 }
 
+// Lane L's colour weights are one text repeated by `seq!` (lanes `a`, `b`).
+seq_macro::seq!(L in 'a'..='b' {
 impl<const U1: usize> Logic for SpanShader<U1> {
     #[hdl_gen]
     fn update(&mut self) {
@@ -290,24 +292,17 @@ impl<const U1: usize> Logic for SpanShader<U1> {
         self.colour_b.cos_phi.next = self.cd_b_p.q.val();
         self.colour_b.spec.next = self.power_b.spec.val();
         // Weights (both lanes).
-        self.colour_a.amb_r.next = self.w[0].val();
-        self.colour_a.amb_g.next = self.w[1].val();
-        self.colour_a.amb_b.next = self.w[2].val();
-        self.colour_a.dif_r.next = self.w[3].val();
-        self.colour_a.dif_g.next = self.w[4].val();
-        self.colour_a.dif_b.next = self.w[5].val();
-        self.colour_a.spc_r.next = self.w[6].val();
-        self.colour_a.spc_g.next = self.w[7].val();
-        self.colour_a.spc_b.next = self.w[8].val();
-        self.colour_b.amb_r.next = self.w[0].val();
-        self.colour_b.amb_g.next = self.w[1].val();
-        self.colour_b.amb_b.next = self.w[2].val();
-        self.colour_b.dif_r.next = self.w[3].val();
-        self.colour_b.dif_g.next = self.w[4].val();
-        self.colour_b.dif_b.next = self.w[5].val();
-        self.colour_b.spc_r.next = self.w[6].val();
-        self.colour_b.spc_g.next = self.w[7].val();
-        self.colour_b.spc_b.next = self.w[8].val();
+        #(
+        self.colour_~L.amb_r.next = self.w[0].val();
+        self.colour_~L.amb_g.next = self.w[1].val();
+        self.colour_~L.amb_b.next = self.w[2].val();
+        self.colour_~L.dif_r.next = self.w[3].val();
+        self.colour_~L.dif_g.next = self.w[4].val();
+        self.colour_~L.dif_b.next = self.w[5].val();
+        self.colour_~L.spc_r.next = self.w[6].val();
+        self.colour_~L.spc_g.next = self.w[7].val();
+        self.colour_~L.spc_b.next = self.w[8].val();
+        )*
 
         // Addresses: x = x0 ± index.
         if self.dir_d.q.val() {
@@ -338,6 +333,7 @@ impl<const U1: usize> Logic for SpanShader<U1> {
         self.done.next = self.last_p.q.val();
     }
 }
+});
 
 /// Multipliers of the shared back end: two power units (exact) and two colour combines.
 pub const SHADER_MULTIPLIERS: usize =
