@@ -216,7 +216,7 @@ macro_rules! lit_pipeline {
         }
         new($p:ident: &$pt:ty), lit: ($($lit:tt)*);
 
-        impl Logic for $_name:ident {
+        impl Logic {
             $hdl_pound:tt $hdl_attr:tt
             fn update(&mut $s:ident) {
                 front { $($front:tt)* }
@@ -416,7 +416,7 @@ lit_pipeline! {
     }
     new(p: &PipelineParams), lit: (p);
 
-    impl Logic for PixelPipeline {
+    impl Logic {
         #[hdl_gen]
         fn update(&mut self) {
             front {

@@ -425,7 +425,7 @@ crate::pipelines::pixel_pipeline::lit_pipeline! {
     }
     new(p: &TexturedParams), lit: (p.lit);
 
-    impl Logic for TexturedPipeline {
+    impl Logic {
         #[hdl_gen]
         fn update(&mut self) {
             front {
