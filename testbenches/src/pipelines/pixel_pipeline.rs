@@ -5,7 +5,8 @@
 //!
 //! Stimulus: seeded random triangles (`crate::units::address_block::triangle_strategy`) with random
 //! unit vertex normals facing the viewer and random depths, lit by the default context (Blinn,
-//! L = (1,1,1)/√3, n = 50, the thesis material), loaded as soon as `ready` allows.
+//! n = 50, the thesis material) with L along (0.8, 0.35, 1) and specular colour (1, 0.75, 0.5),
+//! so that no two channels of L, H or the weights are equal, loaded as soon as `ready` allows.
 //! Tolerances: `ready`, `valid`, `x`, `y`, `done` exact; colours within 2 LSB of the golden
 //! method's colour (the bound for the image), RMS 0.5 LSB; `z` within the depth
 //! channel's bound (n·2⁻¹⁷ for n ≤ 8189 additions, ≤ 0.0625 pixels).
@@ -310,8 +311,12 @@ impl Bench for PixelPipeline {
     const ITEMS: &'static str = "triangles";
     const DEFAULT_ITEMS: usize = 12;
     fn stimulus(p: &PipelineParams, n: usize, seed: u64) -> Stimulus {
-        let ctx = ShadeContext::default();
-        let regs = ShadingRegs::of(&ctx).expect("default context fits the registers");
+        // L off the diagonal (so L's and H's components differ) and a specular colour with
+        // three different weights: a swap of two channels' wiring changes the output.
+        let mut ctx = ShadeContext::default();
+        ctx.light = glam::DVec3::new(0.8, 0.35, 1.0).normalize();
+        ctx.material.specular = [1.0, 0.75, 0.5];
+        let regs = ShadingRegs::of(&ctx).expect("the bench's context fits the registers");
         let tris = lit_triangles_subpixel(seed, n);
         let jobs: Vec<LitJob> = tris
             .iter()
