@@ -410,6 +410,76 @@ fn stream_methods_are_the_stream_tops() {
     assert_eq!(words, 23 * records, "23 words per Gouraud triangle record");
 }
 
+/// `stream --method texture` drives `textured-stream` (Verilator) with the register record,
+/// the built-in 256×256 texture as texel records (three words each) and the sphere's
+/// triangles; every beat's fragment is the golden `texture` image's pixel within 1 LSB, and the
+/// fragments cover exactly the golden flat image's pixels, each once (the sphere is convex and the
+/// fill rule gives every pixel to one triangle).
+#[test]
+fn stream_texture_drives_the_textured_top() {
+    use flow::tools::{self, Tool};
+    if !tools::require(&[Tool::Verilator], "stream_texture_drives_the_textured_top") {
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path().to_str().unwrap();
+    let scene = ["--size", "48x48", "--rez", "6"];
+    let out = shadecore_ok(
+        &[&["stream", "--method", "texture", "--sim", "verilator", "--out", d][..], &scene].concat(),
+    );
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(text.contains("textured-stream (texture, 256x256 texels)"), "{text}");
+    let setup = std::fs::read_to_string(dir.path().join("setup.txt")).unwrap();
+    // Records as (header, words): the register record (8 words), 65 536 texel records (3
+    // words), then the triangles (51 words).
+    let mut records: Vec<(String, usize)> = Vec::new();
+    let mut open = false;
+    for l in setup.lines().filter(|l| !l.starts_with('#')) {
+        if !open {
+            records.push((l[..8].to_string(), 0));
+        }
+        records.last_mut().unwrap().1 += 1;
+        open = !l.ends_with(" 1");
+    }
+    assert_eq!(records[0], ("00000002".to_string(), 8));
+    assert!(records[1..=65536].iter().all(|r| *r == ("00000003".to_string(), 3)));
+    assert!(records[65537..].iter().all(|r| *r == ("00000001".to_string(), 51)));
+    let golden_dir = dir.path().join("golden");
+    shadecore_ok(
+        &[
+            &["render", "--engine", "golden", "--method", "texture,flat", "--out"][..],
+            &[golden_dir.to_str().unwrap()],
+            &scene,
+        ]
+        .concat(),
+    );
+    let img = image::open(golden_dir.join("texture.png")).unwrap().to_rgb8();
+    let beats = std::fs::read_to_string(dir.path().join("beats.txt")).unwrap();
+    let mut seen = HashSet::new();
+    let mut worst = 0;
+    for l in beats.lines().filter(|l| !l.starts_with('#')) {
+        let v: Vec<i64> = l.split(' ').map(|w| w.parse().unwrap()).collect();
+        if v[2] == 0 {
+            continue;
+        }
+        let (x, y) = (v[0] as u32, v[1] as u32);
+        assert!(seen.insert((x, y)), "pixel ({x}, {y}) twice");
+        let g = img.get_pixel(x, y).0;
+        for c in 0..3 {
+            worst = worst.max((v[3 + c] - g[c] as i64).abs());
+        }
+    }
+    // Coverage from the flat image (a texel may be black; the flat colour is not).
+    let flat = image::open(golden_dir.join("flat.png")).unwrap().to_rgb8();
+    let covered: HashSet<(u32, u32)> = flat
+        .enumerate_pixels()
+        .filter(|p| p.2 .0 != [0, 0, 0])
+        .map(|p| (p.0, p.1))
+        .collect();
+    assert_eq!(seen, covered, "the fragments cover the golden image's pixels");
+    assert!(worst <= 1, "a fragment {worst} LSB from the golden texture image");
+}
+
 /// `synth --table` writes the figures as a Markdown table (whole, with the command and date):
 /// one row per block synthesized, its LUT4 and multiplier counts those printed.
 #[test]

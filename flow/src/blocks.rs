@@ -57,6 +57,7 @@ macro_rules! with_blocks {
             rtl::units::texture_bezier::TextureBezier,
             rtl::units::texture_memory::TextureMemory,
             rtl::pipelines::textured_pipeline::TexturedPipeline,
+            rtl::stream::textured_stream::TexturedStream,
         ]
     };
 }

@@ -127,6 +127,8 @@ impl StreamTop for rtl::stream::gouraud_stream::GouraudStream {
 
 impl StreamTop for rtl::stream::cubic_stream::CubicStream {}
 
+impl StreamTop for rtl::stream::textured_stream::TexturedStream {}
+
 /// The stream tops with a fragment stream per lane (`angular-stream`, `fast-stream`,
 /// `quadric-stream`: two lanes with `tuser`; `subdivision-stream`: four without), for
 /// [`drive_lanes`].

@@ -20,10 +20,11 @@ use golden::units::texture_coord::block::{walk_geometry, TexCoordSetup, SETUP_PO
 use rtl::core::registry::{BlockParams, Options};
 use rtl::core::sim::Model;
 use rtl::pipelines::textured_pipeline::{TexturedParams, TexturedPipeline};
+use rtl::stream::layout::{pack, TEXEL, TEXTURED_REGISTERS, TEXTURED_TRIANGLE};
 
 use flow::engine::Sim;
 
-use crate::axis::PipeStats;
+use crate::axis::{with_last, PipeStats, Word};
 use crate::lit::{lit_row, row_job, Fragment, LitJob, ShadingRegs, REGS_AT};
 
 /// Where the texture-coordinate set-up starts in a row.
@@ -235,6 +236,52 @@ impl TexturedPipe {
             &mut progress,
         )
     }
+}
+
+/// `textured-stream`'s triangle record of `job` (the field values `textured-pipeline`'s load
+/// row carries: the address, normal, depth and texture-coordinate set-up).
+pub fn textured_triangle_record(job: &TexJob) -> Vec<Word> {
+    let row = tex_row(Some(job), &ShadingRegs::default(), &TexRegs::default(), None, false);
+    with_last(pack(&TEXTURED_TRIANGLE, &row[1..TREGS_AT]))
+}
+
+/// `textured-stream`'s register record (L, H, n, the specular colour, k_a, k_d, the sides).
+pub fn textured_register_record(regs: &ShadingRegs, t: &TexRegs) -> Vec<Word> {
+    let row = tex_row(None, regs, t, None, false);
+    with_last(pack(&TEXTURED_REGISTERS, &row[TREGS_AT..KA_AT + 4]))
+}
+
+/// `textured-stream`'s texel records of `texture`, one per texel
+/// (`golden::units::texture_memory::load_words`: address v·2^log_w + u, colour 0xRRGGBB).
+/// Error (one line): a texture beyond the memory's 2^16 texels.
+pub fn texel_records(texture: &Texture) -> Result<Vec<Word>, String> {
+    let words = golden::units::texture_memory::load_words(texture).ok_or_else(|| {
+        format!(
+            "a {}x{} texture does not fit the texture memory (2^16 texels)",
+            texture.width(),
+            texture.height()
+        )
+    })?;
+    Ok(words
+        .iter()
+        .flat_map(|&(a, w)| with_last(pack(&TEXEL, &[a as u64, w as u64])))
+        .collect())
+}
+
+/// A textured scene's set-up stream for `textured-stream`: the registers, the texture, then
+/// every triangle.
+pub fn textured_scene_words(
+    jobs: &[TexJob],
+    regs: &ShadingRegs,
+    t: &TexRegs,
+    texture: &Texture,
+) -> Result<Vec<Word>, String> {
+    let mut w = textured_register_record(regs, t);
+    w.extend(texel_records(texture)?);
+    for j in jobs {
+        w.extend(textured_triangle_record(j));
+    }
+    Ok(w)
 }
 
 /// A clock budget for `jobs`: every row at full length, each pixel at the texture-coordinate

@@ -1,5 +1,6 @@
 //! `shadecore stream`: a scene as a stream top's AXI4-Stream set-up words (`pixel-stream` for
-//! the lit methods, `gouraud-stream` for `gouraud`, `cubic-stream` for `cubic`), with the
+//! the lit methods, `gouraud-stream` for `gouraud`, `cubic-stream` for `cubic`,
+//! `textured-stream` for `texture`, the texture's texel records included), with the
 //! fragment beats the simulation of that top delivers for them and its Verilog — what an
 //! external testbench (the cocotb test in `testbenches/cocotb/`) drives and checks. The top is
 //! driven as the renderer drives it (`pipeline::axis`: a word every clock the top takes one,
@@ -20,7 +21,8 @@ pub struct Args {
     pub scene: SceneArgs,
     /// The method: a lit one runs its `pixel-stream` build (normalizer, normalizer-fit,
     /// normalizer-pw, brdf-k4, brdf-k8, brdf-k16, bump); gouraud runs `gouraud-stream`; cubic runs
-    /// `cubic-stream` (one record per raster line, in walk order).
+    /// `cubic-stream` (one record per raster line, in walk order); texture runs
+    /// `textured-stream` (the texture first, a record per texel, then the triangles).
     #[arg(long, default_value = "normalizer-fit")]
     pub method: String,
     /// The order the triangles are sent in: balanced (large and small walks alternately, as
@@ -36,7 +38,7 @@ pub struct Args {
     #[arg(long, value_enum)]
     pub sim: Option<crate::sim::SimArg>,
     /// Output directory: setup.txt, beats.txt, and the top's Verilog (pixel_stream.v,
-    /// gouraud_stream.v or cubic_stream.v).
+    /// gouraud_stream.v, cubic_stream.v or textured_stream.v).
     #[arg(long, default_value = "target/stream")]
     pub out: PathBuf,
 }
@@ -49,9 +51,12 @@ pub fn run(a: Args) -> Result<()> {
     if method == golden::methods::Method::Cubic {
         return run_cubic(&a);
     }
+    if method == golden::methods::Method::Texture {
+        return run_textured(&a);
+    }
     let Some(o) = method_options(method) else {
         bail!(
-            "`stream` writes no streams for method {} (it writes pixel-stream's for normalizer, normalizer-fit, normalizer-pw, brdf-k4, brdf-k8, brdf-k16, bump; gouraud-stream's for gouraud; cubic-stream's for cubic; angular, fast, fast-fit, quadric and subdivision have stream tops with a fragment stream per lane, angular-stream, fast-stream, quadric-stream and subdivision-stream, that it does not write yet)",
+            "`stream` writes no streams for method {} (it writes pixel-stream's for normalizer, normalizer-fit, normalizer-pw, brdf-k4, brdf-k8, brdf-k16, bump; gouraud-stream's for gouraud; cubic-stream's for cubic; textured-stream's for texture; angular, fast, fast-fit, quadric and subdivision have stream tops with a fragment stream per lane, angular-stream, fast-stream, quadric-stream and subdivision-stream, that it does not write yet)",
             a.method
         );
     };
@@ -118,6 +123,53 @@ fn run_cubic(a: &Args) -> Result<()> {
         spans.len(),
         words.len(),
         beats.len(),
+        clocks,
+        a.out.display()
+    )?;
+    Ok(())
+}
+
+/// `stream --method texture`: the scene through `textured-stream` — the register record, the
+/// texture (a texel record per texel), then the triangles (the `texture` method's set-up,
+/// `pipeline::textured::TexJob`).
+fn run_textured(a: &Args) -> Result<()> {
+    use pipeline::textured::{textured_scene_words, TexJob, TexRegs};
+    let s = crate::setup::build(&a.scene)?;
+    s.check_textured(&[golden::methods::Method::Texture], &a.scene.scene)?;
+    s.ensure_drawn()?;
+    crate::rtl_engine::check_addresses(&s.tris, s.width, s.height)?;
+    let regs = ShadingRegs::of(&s.ctx).map_err(|e| anyhow!(e))?;
+    let tregs = TexRegs::of(&s.ctx, &s.texture).map_err(|e| anyhow!(e))?;
+    let mut jobs = Vec::new();
+    for (i, t) in s.tris.iter().enumerate() {
+        if let Some(j) = TexJob::new(t, &s.texture).map_err(|e| anyhow!("triangle {i}: {e}"))? {
+            jobs.push(j);
+        }
+    }
+    let order = a
+        .setup_order
+        .of_addrs(&jobs.iter().map(|j| j.lit.addr).collect::<Vec<_>>());
+    let jobs: Vec<TexJob> = order.iter().map(|&i| jobs[i]).collect();
+    let words = textured_scene_words(&jobs, &regs, &tregs, &s.texture).map_err(|e| anyhow!(e))?;
+    let order = format!("{:?}", a.setup_order).to_lowercase();
+    // The default build (tex-k = 4, the render engine's ENGINE_K).
+    let o = rtl::core::registry::Options::new();
+    let (beats, clocks) = simulate_and_write::<rtl::stream::textured_stream::TexturedStream>(
+        &a.out,
+        &o,
+        &words,
+        jobs.len() as u64,
+        &order,
+        crate::sim::resolve(a.sim)?,
+    )?;
+    crate::outln!(
+        "textured-stream (texture, {}x{} texels): {} triangles, {} set-up words, {} beats ({} fragments) in {} clocks -> {}",
+        s.texture.width(),
+        s.texture.height(),
+        jobs.len(),
+        words.len(),
+        beats.len(),
+        beats.iter().filter(|b| b.pixel).count(),
         clocks,
         a.out.display()
     )?;

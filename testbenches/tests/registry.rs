@@ -197,7 +197,7 @@ fn registry_names_are_unique_and_lookups_fail_clearly() {
 }
 
 /// (pipeline top, the stream top that wraps it whole).
-const INSIDE_STREAM: [(&str, &str); 7] = [
+const INSIDE_STREAM: [(&str, &str); 8] = [
     ("gouraud-raster", "gouraud-stream"),
     ("subdivision-raster", "subdivision-stream"),
     ("pixel-pipeline", "pixel-stream"),
@@ -205,6 +205,7 @@ const INSIDE_STREAM: [(&str, &str); 7] = [
     ("fast-pipeline", "fast-stream"),
     ("cubic-pipeline", "cubic-stream"),
     ("quadric-unit", "quadric-stream"),
+    ("textured-pipeline", "textured-stream"),
 ];
 
 #[test]

@@ -12,4 +12,5 @@ pub mod pixel_stream;
 pub mod quadric_stream;
 pub mod record_reader;
 pub mod subdivision_stream;
+pub mod textured_stream;
 pub mod two_lane;

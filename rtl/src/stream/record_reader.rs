@@ -1,21 +1,22 @@
-//! The set-up record reader shared by the stream tops (all seven: `pixel-stream`,
-//! `gouraud-stream`, `cubic-stream`, `angular-stream`, `fast-stream`, `quadric-stream`,
-//! `subdivision-stream`): the AXI4-Stream slave side that splits 32-bit words into records and says
-//! which payload word each accepted word is. The tops keep their word banks (generated from
+//! The set-up record reader shared by the stream tops (all eight: `pixel-stream`,
+//! `textured-stream`, `gouraud-stream`, `cubic-stream`, `angular-stream`, `fast-stream`,
+//! `quadric-stream`, `subdivision-stream`): the AXI4-Stream slave side that splits 32-bit words
+//! into records and says which payload word each accepted word is. The tops keep their word banks (generated from
 //! `rtl::stream::layout`), which take word k of a record when `take_word` and `index` = k + 1.
 //!
 //! # Records
-//! A header word (bits 3..0: the type; 1 and, when `len2` ≠ 0, 2 are known), then the type's
-//! payload words (`len1`, `len2`), `tlast` on the last. A header with `tlast` (no payload), an
-//! unknown type, a `tlast` before or after the type's length: the record is dropped whole (up to
-//! its `tlast`) and `error` is set (sticky). A complete record sets `pending`; until the top
-//! clears it (`take_record`, when it moves the record out of its receive bank) no word is accepted.
+//! A header word (bits 3..0: the type; 1 is known, and 2 and 3 when `len2`, `len3` ≠ 0), then
+//! the type's payload words (`len1`, `len2`, `len3`), `tlast` on the last. A header with
+//! `tlast` (no payload), an unknown type, a `tlast` before or after the type's length: the
+//! record is dropped whole (up to its `tlast`) and `error` is set (sticky). A complete record
+//! sets `pending`; until the top clears it (`take_record`, when it moves the record out of its
+//! receive bank) no word is accepted.
 //!
 //! # Ports
 //! | port | dir | format |
 //! |---|---|---|
 //! | `head`, `tvalid`, `tlast` | in | the set-up stream (`s_axis_*`): `head` is `tdata`'s bits 3..0, all of a word the reader reads (the type, when it is a header) |
-//! | `len1`, `len2` | in | `INDEX_BITS` (7) bits: payload words of record types 1 and 2 (≤ 127; `len2` = 0: type 2 unknown) |
+//! | `len1`, `len2`, `len3` | in | `INDEX_BITS` (7) bits: payload words of record types 1, 2 and 3 (≤ 127; `len2` = 0: type 2 unknown, likewise `len3`) |
 //! | `take_record` | in | the top takes the pending record this clock |
 //! | `tready` | out | `s_axis_tready`: low only while a complete record is pending |
 //! | `take_word` | out | this clock's word is payload word `index` − 1 of a record of a known length |
@@ -31,7 +32,7 @@
 
 use rust_hdl::prelude::*;
 
-/// Width of the word count (`len1`, `len2`, `index`): records of up to 127 payload words
+/// Width of the word count (`len1`, `len2`, `len3`, `index`): records of up to 127 payload words
 /// (`subdivision-stream`'s parent record has 72).
 pub const INDEX_BITS: usize = 7;
 
@@ -40,7 +41,7 @@ crate::hw_block! {
     pub struct RecordReader(clock) {
         in {
             head: Bits<4>, tvalid: Bit, tlast: Bit, len1: Bits<INDEX_BITS>, len2: Bits<INDEX_BITS>,
-            take_record: Bit,
+            len3: Bits<INDEX_BITS>, take_record: Bit,
         }
         out {
             tready: Bit, take_word: Bit, index: Bits<INDEX_BITS>, rec_type: Bits<4>, pending: Bit,
@@ -61,14 +62,19 @@ impl Logic for RecordReader {
         self.tready.next = !self.pend.q.val();
         self.accept.next = self.tvalid.val() & !self.pend.q.val();
         self.take.next = self.accept.val() & !self.skip.q.val() & (self.count.q.val() != 0);
-        self.known.next =
-            (self.type_q.q.val() == 1) | ((self.type_q.q.val() == 2) & (self.len2.val() != 0));
+        self.known.next = (self.type_q.q.val() == 1)
+            | ((self.type_q.q.val() == 2) & (self.len2.val() != 0))
+            | ((self.type_q.q.val() == 3) & (self.len3.val() != 0));
         self.head_type.next = self.head.val();
-        self.head_known.next =
-            (self.head_type.val() == 1) | ((self.head_type.val() == 2) & (self.len2.val() != 0));
+        self.head_known.next = (self.head_type.val() == 1)
+            | ((self.head_type.val() == 2) & (self.len2.val() != 0))
+            | ((self.head_type.val() == 3) & (self.len3.val() != 0));
         self.expected.next = self.len2.val();
         if self.type_q.q.val() == 1 {
             self.expected.next = self.len1.val();
+        }
+        if self.type_q.q.val() == 3 {
+            self.expected.next = self.len3.val();
         }
         self.at_end.next = self.count.q.val() == self.expected.val();
         if self.accept.val() & self.skip.q.val() {

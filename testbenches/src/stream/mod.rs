@@ -6,3 +6,4 @@ pub mod pixel_stream;
 pub mod span_stream;
 pub mod stream_twin;
 pub mod subdivision_stream;
+pub mod textured_stream;

@@ -18,12 +18,13 @@ pub fn core_file_name(top: &StreamTop) -> String {
 /// top's `hold` in; `s_axis_tready`, `error`, the wrapped top's outputs the fragment side reads
 /// and the fragment beats out) and its `update`: the record reader, the load bank's handshake
 /// (a load record loads when the wrapped top is `ready`; a register record applies when every
-/// load before it has left, `done` counted; a second load record loads with `first`), the
+/// load before it has left, `done` counted, and a texel record is written then with `tex_we`;
+/// a second load record loads with `first`), the
 /// word banks, the field selects and the fragment packing.
 pub fn core_file(top: &StreamTop) -> String {
     let (decl, up) = generated_rtl(top);
     let c = &top.core;
-    let second = top.registers.or(top.full);
+    let second = top.registers.or(top.full).or(top.texels);
     let mut ins = vec![
         "s_axis_tdata: Bits<32>".to_string(),
         "s_axis_tvalid: Bit".into(),
@@ -55,9 +56,10 @@ pub fn core_file(top: &StreamTop) -> String {
         /// The word the reader takes, and which payload word it is (+ 1).
         in_word: Signal<Local, Bits<32>>, take_word: Signal<Local, Bit>,
         word_index: Signal<Local, Bits<INDEX_BITS>>,
-        /// The payload words of record types 1 and 2 (0: no type 2).
+        /// The payload words of record types 1, 2 and 3 (0: no such type).
         len1: Constant<Bits<INDEX_BITS>> = Constant::new({}u64.into()),
         len2: Constant<Bits<INDEX_BITS>> = Constant::new({}u64.into()),
+        len3: Constant<Bits<INDEX_BITS>> = Constant::new({}u64.into()),
 ",
         if second.is_some() {
             ", of type `type_b`"
@@ -70,12 +72,25 @@ pub fn core_file(top: &StreamTop) -> String {
             ""
         },
         payload_words(&top.triangle),
-        second.map_or(0, |r| payload_words(&r)),
+        top.registers.or(top.full).map_or(0, |r| payload_words(&r)),
+        top.texels.map_or(0, |r| payload_words(&r)),
     );
     if top.registers.is_some() {
         fields.push_str(
             "        /// Loads whose `done` has not left the wrapped top; registers apply at 0.
         outstanding: DFF<Bits<16>>, apply_regs: Signal<Local, Bit>,
+",
+        );
+    }
+    assert!(
+        top.texels.is_none() || top.registers.is_some(),
+        "{}: a texel record drains as the register record does",
+        top.block
+    );
+    if top.texels.is_some() {
+        fields.push_str(
+            "        /// A texel record is written this clock (every load before it has left).
+        apply_texel: Signal<Local, Bit>,
 ",
         );
     }
@@ -88,6 +103,7 @@ pub fn core_file(top: &StreamTop) -> String {
         self.rd.tlast.next = self.s_axis_tlast.val();
         self.rd.len1.next = self.len1.val();
         self.rd.len2.next = self.len2.val();
+        self.rd.len3.next = self.len3.val();
         self.s_axis_tready.next = self.rd.tready.val();
         self.in_word.next = self.s_axis_tdata.val();
         self.take_word.next = self.rd.take_word.val();
@@ -128,6 +144,18 @@ pub fn core_file(top: &StreamTop) -> String {
         }
 ",
         );
+        if top.texels.is_some() {
+            setup.push_str(
+                "        // A texel record (type 3) is written when every load before it has left.
+        self.apply_texel.next =
+            self.pend_b.q.val() & (self.type_b.q.val() == 3) & (self.outstanding.q.val() == 0);
+        if self.apply_texel.val() {
+            self.pend_b.d.next = false;
+        }
+        self.pipe.tex_we.next = self.apply_texel.val();
+",
+            );
+        }
     } else {
         setup.push_str(
             "        // Either record type loads when the wrapped top is ready.
@@ -265,6 +293,19 @@ fn generated_rtl(top: &StreamTop) -> (String, String) {
                 "        self.pipe.{}.next = {};\n",
                 pl.name,
                 select(pl)
+            ));
+        }
+    }
+    if let Some(texel) = top.texels {
+        up.push_str(&format!(
+            "        // The {} record's fields (written with `tex_we`).\n",
+            texel.name
+        ));
+        for pl in place(&texel) {
+            up.push_str(&format!(
+                "        self.pipe.{}.next = {};\n",
+                pl.name,
+                select(&pl)
             ));
         }
     }

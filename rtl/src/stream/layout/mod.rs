@@ -1,5 +1,6 @@
-//! Word layouts of the AXI4-Stream tops (`pixel-stream`, `gouraud-stream`, `cubic-stream`,
-//! `angular-stream`, `fast-stream`, `quadric-stream`, `subdivision-stream`), defined once.
+//! Word layouts of the AXI4-Stream tops (`pixel-stream`, `textured-stream`, `gouraud-stream`,
+//! `cubic-stream`, `angular-stream`, `fast-stream`, `quadric-stream`, `subdivision-stream`),
+//! defined once.
 //!
 //! The set-up stream (`s_axis_*`, 32-bit words) carries *records*: a header word, then the
 //! record's fields packed LSB first into 32-bit words (a field of up to 32 bits never
@@ -15,14 +16,15 @@
 //!   [`unpack_fragment`];
 //! - each top's word banks, field selects and fragment packing are its generated core, a
 //!   whole file [`core_file`] writes and `rtl/build.rs` puts in `OUT_DIR`; the hand-written
-//!   top (`rtl/src/stream/pixel_stream.rs` and the other six: record reader, FIFOs, output
+//!   top (`rtl/src/stream/pixel_stream.rs` and the other seven: record reader, FIFOs, output
 //!   registers) includes it as its `core`;
 //! - `rtl/README.md`'s layout table is printed by [`markdown`] (checked by a test as well).
 //!
 //! Field names and widths are the wrapped top's input ports (`pixel-pipeline`'s,
-//! `gouraud-raster`'s, `cubic-pipeline`'s, `angular-pipeline`'s, `fast-pipeline`'s,
+//! `textured-pipeline`'s, `gouraud-raster`'s, `cubic-pipeline`'s, `angular-pipeline`'s, `fast-pipeline`'s,
 //! `quadric-unit`'s, `subdivision-raster`'s), in its port order — the quadric's by name —
-//! (checked against its port list by `testbenches/tests/pixel_stream.rs`, `gouraud_stream.rs`,
+//! (checked against its port list by `testbenches/tests/pixel_stream.rs`, `textured_stream.rs`,
+//! `gouraud_stream.rs`,
 //! `cubic_stream.rs`, `span_stream.rs` and `subdivision_stream.rs`).
 //!
 //! Not a block: no ports, no latency (the hardware that reads these words is the stream tops',
@@ -59,6 +61,9 @@ mod tests {
         }
         assert_eq!(payload_words(&TRIANGLE), 26);
         assert_eq!(payload_words(&REGISTERS), 8);
+        assert_eq!(payload_words(&TEXTURED_TRIANGLE), 50);
+        assert_eq!(payload_words(&TEXTURED_REGISTERS), 7);
+        assert_eq!(payload_words(&TEXEL), 2);
         assert_eq!(payload_words(&GOURAUD_TRIANGLE), 22);
         assert_eq!(payload_words(&CUBIC_LINE), 11);
         assert_eq!(payload_words(&ANGULAR_LINE), 13);

@@ -28,7 +28,7 @@ pub struct Record {
 /// each named quantity its plane's four signed Q16.16 words (start, short, long, line). One list
 /// for every record that loads an address block and a bilinear interpolator.
 macro_rules! triangle_fields {
-    ($($plane:literal),*) => {
+    ($($plane:literal),* $(; $($more:expr),* $(,)?)?) => {
         [
             f("w_b0", 12), f("w_e0", 20), f("w_f", 12), f("w_r", 20), f("w_d", 20),
             f("a_b0", 12), f("a_e0", 20), f("a_f", 12), f("a_r", 20), f("a_d", 20),
@@ -40,6 +40,7 @@ macro_rules! triangle_fields {
                 f(concat!($plane, "_long"), 32),
                 f(concat!($plane, "_line"), 32),
             )*
+            $($($more,)*)?
         ]
     };
 }
@@ -133,6 +134,9 @@ pub struct StreamTop {
     /// places, then more of the wrapped top's load ports; a record of this type loads with
     /// `first` = 1 (`quadric-stream`: a triangle's first line and its coefficients).
     pub full: Option<Record>,
+    /// A texel record (type 3), where the top has a texture memory: one write, applied when
+    /// every load before it has left (as a register record), `tex_we` high for that clock.
+    pub texels: Option<Record>,
     /// `m_axis_tuser`, when the top has one.
     pub tuser: Option<Field>,
     /// The wrapped top's output port for a fragment field, where it is not the field's name
@@ -183,6 +187,7 @@ impl StreamTop {
         std::iter::once(self.triangle)
             .chain(self.registers)
             .chain(self.full)
+            .chain(self.texels)
             .collect()
     }
 
@@ -216,6 +221,7 @@ pub const PIXEL_STREAM: StreamTop = StreamTop {
     triangle: TRIANGLE,
     registers: Some(REGISTERS),
     full: None,
+    texels: None,
     tuser: Some(TUSER),
     ports: &[],
     tlast: "the triangle's last event",
@@ -229,6 +235,72 @@ pub const PIXEL_STREAM: StreamTop = StreamTop {
     },
 };
 
+/// A textured triangle (`textured-stream`): a [`TRIANGLE`]'s fields, then the
+/// texture-coordinate block's set-up (`texture_setup_ports!` in
+/// `rtl::pipelines::textured_pipeline`: 48-bit two's complement words, 16-bit texels).
+pub const TEXTURED_TRIANGLE: Record = Record {
+    name: "textured triangle",
+    code: 1,
+    fields: &triangle_fields!(
+        "x", "y", "z", "d";
+        f("tex_e0", 48), f("tex_de_line", 48), f("tex_de_short", 48), f("tex_de_long", 48),
+        f("tex_u_u0", 16), f("tex_u_w0", 48), f("tex_u_p_line", 48), f("tex_u_p_short", 48),
+        f("tex_u_p_long", 48),
+        f("tex_v_u0", 16), f("tex_v_w0", 48), f("tex_v_p_line", 48), f("tex_v_p_short", 48),
+        f("tex_v_p_long", 48),
+    ),
+};
+
+/// The textured pipeline's frame and material registers: L, H, n, the specular colour, k_a
+/// and k_d (unsigned Q1.15: the texel gives the ambient and diffuse colours) and the texture's
+/// sides (log₂). Applied as [`REGISTERS`] are.
+pub const TEXTURED_REGISTERS: Record = Record {
+    name: "textured registers",
+    code: 2,
+    fields: &[
+        f("lx", 16),
+        f("ly", 16),
+        f("lz", 16),
+        f("hx", 16),
+        f("hy", 16),
+        f("hz", 16),
+        f("n", 10),
+        f("spc_r", 16),
+        f("spc_g", 16),
+        f("spc_b", 16),
+        f("ka", 16),
+        f("kd", 16),
+        f("log_w", 4),
+        f("log_h", 4),
+    ],
+};
+
+/// One texel written into the texture memory (`texture_memory`'s `waddr`, `wdata`: the
+/// address v·2^log_w + u, the colour 0xRRGGBB). Applied when every triangle loaded before it
+/// has left, so a texture is never rewritten under a triangle that reads it.
+pub const TEXEL: Record = Record {
+    name: "texel",
+    code: 3,
+    fields: &[f("tex_waddr", 16), f("tex_wdata", 24)],
+};
+
+/// The textured pixel pipeline's stream top.
+pub const TEXTURED_STREAM: StreamTop = StreamTop {
+    block: "textured-stream",
+    file: "stream/textured_stream.rs",
+    wraps: "textured-pipeline",
+    triangle: TEXTURED_TRIANGLE,
+    registers: Some(TEXTURED_REGISTERS),
+    texels: Some(TEXEL),
+    core: Core {
+        name: "TexturedStreamCore",
+        pipe: "TexturedPipeline",
+        params: Some("TexturedParams"),
+        ..PIXEL_STREAM.core
+    },
+    ..PIXEL_STREAM
+};
+
 /// The Gouraud raster pipe's stream top.
 pub const GOURAUD_STREAM: StreamTop = StreamTop {
     block: "gouraud-stream",
@@ -237,6 +309,7 @@ pub const GOURAUD_STREAM: StreamTop = StreamTop {
     triangle: GOURAUD_TRIANGLE,
     registers: None,
     full: None,
+    texels: None,
     tuser: None,
     ports: &[],
     tlast: "the triangle's last event",
@@ -258,6 +331,7 @@ pub const CUBIC_STREAM: StreamTop = StreamTop {
     triangle: CUBIC_LINE,
     registers: None,
     full: None,
+    texels: None,
     tuser: Some(TUSER),
     ports: &[("y", "y_out")],
     tlast: "the line's last pixel",
@@ -325,6 +399,7 @@ pub const ANGULAR_STREAM: StreamTop = StreamTop {
     triangle: ANGULAR_LINE,
     registers: Some(SPAN_REGISTERS),
     full: None,
+    texels: None,
     tuser: Some(TUSER),
     ports: &[("y", "y_out")],
     tlast: "the line's last clock, on both lanes (a lane without a pixel then sends a beat with `pixel` = 0)",
@@ -438,6 +513,7 @@ pub const QUADRIC_STREAM: StreamTop = StreamTop {
     triangle: QUADRIC_LINE,
     registers: None,
     full: Some(QUADRIC_TRIANGLE),
+    texels: None,
     core: Core {
         name: "QuadricStreamCore",
         pipe: "QuadricUnit",
@@ -495,6 +571,7 @@ pub const SUBDIVISION_STREAM: StreamTop = StreamTop {
     triangle: SUBDIVISION_PARENT,
     registers: None,
     full: None,
+    texels: None,
     tuser: None,
     ports: &[],
     tlast:
@@ -519,8 +596,9 @@ pub const SUBDIVISION_STREAM: StreamTop = StreamTop {
 };
 
 /// Every stream top.
-pub const TOPS: [StreamTop; 7] = [
+pub const TOPS: [StreamTop; 8] = [
     PIXEL_STREAM,
+    TEXTURED_STREAM,
     GOURAUD_STREAM,
     CUBIC_STREAM,
     ANGULAR_STREAM,

@@ -1,0 +1,152 @@
+//! `textured-stream`: the textured pixel pipeline (`textured_pipeline`, SPEC §14) behind
+//! AXI4-Stream interfaces: set-up records and the texture itself in on a 32-bit stream,
+//! fragments out on a 64-bit stream with back-pressure. Golden: `textured-pipeline`'s (the same
+//! fragments, in the same order, whatever the stalls).
+//!
+//! ```text
+//!  s_axis ─► header / word count ─► receive bank ─► load bank ─┬─ triangle fields ─► TexturedPipeline ─► FIFO (128) ─► m_axis
+//!  (32 bit)   (record type, errors)  sw0..sw49       lw0..lw49  ├─ register fields ─► r_* (applied          ▲   │
+//!                                                               │                       when drained)    hold ◄┘ (FIFO level)
+//!                                                               └─ texel fields ─► tex_we (when drained)
+//! ```
+//!
+//! # Ports
+//! | port | dir | format |
+//! |---|---|---|
+//! | `s_axis_tdata` | in | set-up word, 32 bits (layouts: `rtl::stream::layout`, `rtl/README.md`) |
+//! | `s_axis_tvalid`, `s_axis_tlast` | in | AXI4-Stream; `tlast` on a record's last word |
+//! | `s_axis_tready` | out | a word is accepted on `tvalid & tready` |
+//! | `m_axis_tready` | in | the consumer takes the beat on `tvalid & tready`; may be low for any time |
+//! | `m_axis_tvalid` | out | a beat is offered (held, with its data, until taken) |
+//! | `m_axis_tdata` | out | 64 bits: `x`, `y`, `pixel` (1: a fragment), `red`, `green`, `blue` |
+//! | `m_axis_tuser` | out | the fragment's depth `z`, 32 bits (signed Q16.16 pixels) |
+//! | `m_axis_tlast` | out | the beat is its triangle's last event (a beat with `pixel` = 0 carries only that) |
+//! | `error` | out | sticky: a record with an unknown type or the wrong length was dropped |
+//!
+//! # Records (`rtl::stream::layout`, one table for the hardware and the driver)
+//! A header word (bits 3..0: 1 triangle, 2 registers, 3 texel; the other bits 0), then the
+//! record's fields packed LSB first into words (a field of up to 32 bits never straddles two
+//! words; a 48-bit one takes a word and the next one's low 16 bits): a triangle is 50 payload
+//! words (the address block's set-up, the normal planes, the depth
+//! plane, the texture-coordinate block's set-up), the registers 7 (L, H, n, the specular
+//! colour, k_a, k_d, the texture's sides), a texel 2 (its address v·2^log_w + u and its colour
+//! 0xRRGGBB). A record whose `tlast` comes before or after its length, or with an unknown
+//! type, is dropped whole (up to its `tlast`) and sets `error`.
+//!
+//! # Handshake, latency, throughput
+//! - Two word banks, as `pixel-stream`: a complete record moves in one clock to the load bank
+//!   when that is free. A triangle waits there for the pipeline's `ready`; a register record
+//!   and a texel record wait until every triangle loaded before them has left the pipeline
+//!   (its `done` seen), so no fragment mixes two register sets and no texel is rewritten under
+//!   a triangle that reads it; a texel record is then written in one clock (`tex_we`).
+//!   Registers are 0 after reset, the texture memory is zeros: send the register record and
+//!   the texels first.
+//! - Loading the texture: three words a texel (header and two payload words), a texel every
+//!   four clocks while the producer keeps up (its three words, then the clock in which
+//!   `s_axis_tready` is low while the record moves to the load bank): a 256 × 256 texture is
+//!   196 608 words in 262 144 clocks.
+//! - Fragments (and triangle ends) enter a 128-entry FIFO. The address block is held (the
+//!   pipeline's `hold`) in the clock after the FIFO held more than 25 beats: at most
+//!   2·`EVENT_FIFO` + `EVENT_TO_FRAGMENT` + 2 = 103 events are then still in flight (the
+//!   pipeline's two event FIFOs, its lit path from the pop, the registered hold), so the FIFO
+//!   never overflows and never drops a fragment; with `m_axis_tready` high it holds at most one
+//!   beat and the address block is never held.
+//! - Throughput: `textured-pipeline`'s (one fragment per clock while every pixel needs at most
+//!   k correction steps per axis) as long as the set-up words keep ahead of the walk: a
+//!   triangle's set-up is 51 words at one word per clock, so a run of triangles smaller than
+//!   that is set-up bound (`cargo bench --bench rtl_lit` prints the figure on the default
+//!   scene).
+//! - Latency: a triangle record's last word accepted in clock t → its first beat offered in
+//!   clock t + 95 (the record is complete in t + 1, moves to the load bank in t + 1, loads in
+//!   t + 2; 91 clocks through `textured-pipeline` for a pixel whose texel settles at once, 2
+//!   through the FIFO and its output register).
+//!
+//! # Overflow, error budget
+//! None of its own: the FIFO cannot overflow (above), `outstanding` is 16 bits (triangles
+//! loaded and not finished, at most 2 in practice); the data are `textured-pipeline`'s, bit
+//! for bit.
+//!
+//! # Build parameters
+//! `textured-pipeline`'s: `tex-k` (1 | 2 | 4, default 4) and `texture` (additive).
+//!
+//! Latency (the block's `LATENCY`): 95 clocks, a triangle record's last word to its first fragment beat, one fragment per clock.
+
+use rust_hdl::prelude::*;
+
+use crate::pipelines::pixel_pipeline::EVENT_TO_FRAGMENT;
+use crate::pipelines::textured_pipeline::{TexturedParams, TexturedPipeline, EVENT_FIFO};
+use crate::stream::record_reader::{RecordReader, INDEX_BITS};
+
+/// FIFO depth (entries) and its address width.
+pub const FIFO_DEPTH: usize = 1 << FIFO_BITS;
+const FIFO_BITS: usize = 7;
+/// Events that may still reach the FIFO once the address block is held: both event FIFOs,
+/// the lit path from the pop, and the registered hold's clocks.
+pub const IN_FLIGHT: usize = 2 * EVENT_FIFO + EVENT_TO_FRAGMENT + 2;
+/// The FIFO level above which the address block is held (the clock after: `hold` is
+/// registered).
+pub const HOLD_ABOVE: usize = FIFO_DEPTH - IN_FLIGHT;
+
+crate::one_lane_stream! {
+    /// The textured pixel pipeline with AXI4-Stream set-up and fragment streams (see the
+    /// header).
+    pub struct TexturedStream as "textured-stream" {
+        summary: "AXI4-Stream top of the textured pixel pipeline: 32-bit set-up records and texels in, 64-bit fragment beats out with back-pressure (a FIFO and the address block's hold)",
+        latency: 2 + TexturedPipeline::LATENCY + 2
+            => "a triangle record's last word to its first fragment beat, one fragment per clock",
+        multipliers: 44,
+        core: TexturedStreamCore = TexturedStreamCore::new(p),
+        level: 8,
+        events: ev_beat,
+        push: ev_beat,
+    }
+    new(p: &TexturedParams);
+}
+
+/// The generated core: `rtl/build.rs` writes it from `rtl::stream::layout::TEXTURED_STREAM`
+/// (the record banks, the field selects into the wrapped top, the texel writes, the fragment
+/// packing).
+mod generated {
+    use super::*;
+    include!(concat!(env!("OUT_DIR"), "/textured_stream_core.rs"));
+}
+pub use generated::TexturedStreamCore;
+
+#[cfg(test)]
+mod tests {
+    use crate::core::registry::RtlBlock;
+    use crate::pipelines::pixel_pipeline::EVENT_TO_FRAGMENT;
+    use crate::pipelines::textured_pipeline::{TexturedPipeline, EVENT_FIFO};
+    use crate::stream::layout::{payload_words, TEXEL, TEXTURED_REGISTERS, TEXTURED_TRIANGLE};
+
+    /// The header's figures are the constants' (they move whenever a block is pipelined
+    /// further or a record grows).
+    #[test]
+    fn header_figures_are_the_constants() {
+        let text = include_str!("textured_stream.rs").replace("\n//! ", " ");
+        let lat = <TexturedPipeline as RtlBlock>::LATENCY;
+        for want in [
+            format!("{}-entry FIFO", super::FIFO_DEPTH),
+            format!("more than {} beats", super::HOLD_ABOVE),
+            format!(
+                "2·`EVENT_FIFO` + `EVENT_TO_FRAGMENT` + 2 = {} events",
+                2 * EVENT_FIFO + EVENT_TO_FRAGMENT + 2
+            ),
+            format!(
+                "clock t + {}",
+                <super::TexturedStream as RtlBlock>::LATENCY
+            ),
+            format!("{lat} clocks through `textured-pipeline`"),
+            format!(
+                "a triangle is {} payload words",
+                payload_words(&TEXTURED_TRIANGLE)
+            ),
+            format!("the registers {}", payload_words(&TEXTURED_REGISTERS)),
+            format!("a texel {}", payload_words(&TEXEL)),
+            format!("set-up is {} words", payload_words(&TEXTURED_TRIANGLE) + 1),
+            format!("sw0..sw{}", payload_words(&TEXTURED_TRIANGLE) - 1),
+        ] {
+            assert!(text.contains(&want), "header lacks {want:?}");
+        }
+    }
+}
