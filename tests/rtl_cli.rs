@@ -425,10 +425,25 @@ fn stream_texture_drives_the_textured_top() {
     let d = dir.path().to_str().unwrap();
     let scene = ["--size", "48x48", "--rez", "6"];
     let out = shadecore_ok(
-        &[&["stream", "--method", "texture", "--sim", "verilator", "--out", d][..], &scene].concat(),
+        &[
+            &[
+                "stream",
+                "--method",
+                "texture",
+                "--sim",
+                "verilator",
+                "--out",
+                d,
+            ][..],
+            &scene,
+        ]
+        .concat(),
     );
     let text = String::from_utf8_lossy(&out.stdout);
-    assert!(text.contains("textured-stream (texture, 256x256 texels)"), "{text}");
+    assert!(
+        text.contains("textured-stream (texture, 256x256 texels)"),
+        "{text}"
+    );
     let setup = std::fs::read_to_string(dir.path().join("setup.txt")).unwrap();
     // Records as (header, words): the register record (8 words), 65 536 texel records (3
     // words), then the triangles (51 words).
@@ -442,18 +457,31 @@ fn stream_texture_drives_the_textured_top() {
         open = !l.ends_with(" 1");
     }
     assert_eq!(records[0], ("00000002".to_string(), 8));
-    assert!(records[1..=65536].iter().all(|r| *r == ("00000003".to_string(), 3)));
-    assert!(records[65537..].iter().all(|r| *r == ("00000001".to_string(), 51)));
+    assert!(records[1..=65536]
+        .iter()
+        .all(|r| *r == ("00000003".to_string(), 3)));
+    assert!(records[65537..]
+        .iter()
+        .all(|r| *r == ("00000001".to_string(), 51)));
     let golden_dir = dir.path().join("golden");
     shadecore_ok(
         &[
-            &["render", "--engine", "golden", "--method", "texture,flat", "--out"][..],
+            &[
+                "render",
+                "--engine",
+                "golden",
+                "--method",
+                "texture,flat",
+                "--out",
+            ][..],
             &[golden_dir.to_str().unwrap()],
             &scene,
         ]
         .concat(),
     );
-    let img = image::open(golden_dir.join("texture.png")).unwrap().to_rgb8();
+    let img = image::open(golden_dir.join("texture.png"))
+        .unwrap()
+        .to_rgb8();
     let beats = std::fs::read_to_string(dir.path().join("beats.txt")).unwrap();
     let mut seen = HashSet::new();
     let mut worst = 0;
@@ -476,8 +504,14 @@ fn stream_texture_drives_the_textured_top() {
         .filter(|p| p.2 .0 != [0, 0, 0])
         .map(|p| (p.0, p.1))
         .collect();
-    assert_eq!(seen, covered, "the fragments cover the golden image's pixels");
-    assert!(worst <= 1, "a fragment {worst} LSB from the golden texture image");
+    assert_eq!(
+        seen, covered,
+        "the fragments cover the golden image's pixels"
+    );
+    assert!(
+        worst <= 1,
+        "a fragment {worst} LSB from the golden texture image"
+    );
 }
 
 /// `synth --table` writes the figures as a Markdown table (whole, with the command and date):

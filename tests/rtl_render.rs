@@ -32,6 +32,17 @@ const CASES: &[Case] = &[
         horner_pipelined: false,
         stream_slower: false,
     },
+    // Texture: textured-stream against textured-pipeline (the stream sends the built-in
+    // 256×256 texture as records, four clocks a texel; the ports write it uncounted).
+    Case {
+        scene: "sphere",
+        rez: 16,
+        size: 160,
+        methods: &[Method::Texture],
+        address: Address::Default,
+        horner_pipelined: false,
+        stream_slower: true,
+    },
     // Gouraud: gouraud-stream against gouraud-raster.
     Case {
         scene: "sphere",

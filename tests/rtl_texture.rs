@@ -99,7 +99,7 @@ fn jobs(s: &Setup) -> Vec<(TexJob, f64)> {
 fn run_rtl(s: &Setup, jobs: &[TexJob], k: &str) -> (u64, u64, u64) {
     let regs = ShadingRegs::of(&s.ctx).unwrap();
     let t = TexRegs::of(&s.ctx, &s.texture).unwrap();
-    let mut pipe = TexturedPipe::on(k, flow::engine::Sim::fastest()).unwrap();
+    let mut pipe = TexturedPipe::on(k, flow::engine::Sim::fastest(), false).unwrap();
     pipe.load_texture(&s.texture, &regs, &t).unwrap();
     let mut first = None;
     let st = pipe
@@ -115,6 +115,50 @@ fn run_rtl(s: &Setup, jobs: &[TexJob], k: &str) -> (u64, u64, u64) {
         )
         .unwrap();
     (st.pixels, st.clocks, first.unwrap_or(0))
+}
+
+/// `textured-stream` (k = 4) on `jobs` with `tready` high, the register record and the texture's
+/// texel records first: (fragments, clocks from the first triangle word's clock to the last
+/// beat, clocks of the records before it), from the stream's twin; the RTL under Verilator
+/// (through `TexturedPipe`'s stream mode) must take the same clocks in all.
+fn run_stream(s: &Setup, jobs: &[TexJob]) -> (u64, u64, u64) {
+    let regs = ShadingRegs::of(&s.ctx).unwrap();
+    let t = TexRegs::of(&s.ctx, &s.texture).unwrap();
+    let p = pipeline::textured::params("4").unwrap();
+    let before = pipeline::textured::textured_register_record(&regs, &t).len()
+        + pipeline::textured::texel_records(&s.texture).unwrap().len();
+    let words = pipeline::textured::textured_scene_words(jobs, &regs, &t, &s.texture).unwrap();
+    let run = testbenches::stream::textured_stream::run(
+        &p,
+        &words,
+        1,
+        0.0,
+        testbenches::stall::StallPattern::never(),
+    );
+    // The clock in which the first triangle word is taken: `before` words accepted.
+    let mut taken = 0;
+    let start = (0..run.rows.len())
+        .find(|&c| {
+            let hit = taken == before && run.rows[c][1] != 0 && run.outputs[c][0] != 0;
+            taken += (run.rows[c][1] != 0 && run.outputs[c][0] != 0) as usize;
+            hit
+        })
+        .unwrap();
+    let last = run.outputs.iter().rposition(|o| o[1] != 0).unwrap();
+    let fragments = run.beats[0].iter().filter(|b| b.pixel).count() as u64;
+    // The RTL, driven by `pipeline::axis::drive` (a word every clock it is taken), ends on its
+    // last `tlast` beat: the twin's last beat, one clock later than its index.
+    let mut pipe = TexturedPipe::on("4", flow::engine::Sim::fastest(), true).unwrap();
+    assert_eq!(pipe.load_texture(&s.texture, &regs, &t).unwrap(), 0);
+    let st = pipe
+        .run(jobs, &regs, &t, u64::MAX / 8, |_| {}, |_| {})
+        .unwrap();
+    assert_eq!(
+        (st.pixels, st.clocks),
+        (fragments, last as u64 + 1),
+        "the RTL's stream run differs from the twin's"
+    );
+    (fragments, (last + 1 - start) as u64, start as u64)
 }
 
 /// Fragments and clocks for `jobs` through the pipeline's twin with k (any k: the block's
@@ -190,6 +234,19 @@ fn textured_pipeline_fragments_per_clock_on_the_scenes() {
             assert!(
                 first2 as usize + 1 >= rtl::pipelines::textured_pipeline::TEX_EVENT_TO_FRAGMENT
             );
+            if label == "all" {
+                // The AXI4-Stream top, the same jobs: set-up words one per clock.
+                let (ps, cs, load) = run_stream(&s, &jobs);
+                assert_eq!(ps, p4, "{name}: the stream top drew a different count");
+                println!(
+                    "{name}: textured-stream (k = 4, tready high) {:.3} fragments per clock from \
+                     the first triangle word to the last beat ({cs} clocks; textured-pipeline \
+                     {:.3}, ratio {:.3}); the register and texel records before it {load} clocks",
+                    r(ps, cs),
+                    r(p4, c4),
+                    r(ps, cs) / r(p4, c4)
+                );
+            }
         }
     }
 }

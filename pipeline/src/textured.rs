@@ -21,6 +21,7 @@ use rtl::core::registry::{BlockParams, Options};
 use rtl::core::sim::Model;
 use rtl::pipelines::textured_pipeline::{TexturedParams, TexturedPipeline};
 use rtl::stream::layout::{pack, TEXEL, TEXTURED_REGISTERS, TEXTURED_TRIANGLE};
+use rtl::stream::textured_stream::TexturedStream;
 
 use flow::engine::Sim;
 
@@ -174,31 +175,55 @@ pub fn params(k: &str) -> Result<TexturedParams, String> {
     TexturedParams::from_options(&Options::new().with("tex-k", k))
 }
 
-/// `textured-pipeline` on either simulator.
+/// `textured-pipeline`, or its AXI4-Stream top `textured-stream`, on either simulator.
 pub struct TexturedPipe {
     model: Box<dyn Model>,
+    /// `textured-stream` (records in, beats out) rather than `textured-pipeline`'s ports.
+    stream: bool,
+    /// Stream only: the texel records [`TexturedPipe::load_texture`] queued, sent by
+    /// [`TexturedPipe::run`] after the register record.
+    texels: Vec<Word>,
 }
 
 impl TexturedPipe {
-    /// The pipeline with `tex-k` = `k`, on `sim`.
-    pub fn on(k: &str, sim: Sim) -> Result<TexturedPipe, String> {
+    /// The pipeline (or, if `stream`, `textured-stream`) with `tex-k` = `k`, on `sim`.
+    pub fn on(k: &str, sim: Sim, stream: bool) -> Result<TexturedPipe, String> {
+        let p = params(k)?;
+        let model = if stream {
+            flow::engine::model::<TexturedStream>(&p, sim)?
+        } else {
+            flow::engine::model::<TexturedPipeline>(&p, sim)?
+        };
         Ok(TexturedPipe {
-            model: flow::engine::model::<TexturedPipeline>(&params(k)?, sim)?,
+            model,
+            stream,
+            texels: Vec::new(),
         })
     }
 
     /// The design [`TexturedPipe::on`] builds under Verilator.
-    pub fn design(k: &str) -> Result<verilated::Design, String> {
-        Ok(flow::engine::design::<TexturedPipeline>(&params(k)?))
+    pub fn design(k: &str, stream: bool) -> Result<verilated::Design, String> {
+        let p = params(k)?;
+        Ok(if stream {
+            flow::engine::design::<TexturedStream>(&p)
+        } else {
+            flow::engine::design::<TexturedPipeline>(&p)
+        })
     }
 
-    /// Write `texture` into the memory (one texel per clock); returns the clocks taken.
+    /// Write `texture` into the memory: through the ports, one texel per clock, returning the
+    /// clocks taken; through the stream top, queued as texel records for [`TexturedPipe::run`]
+    /// (four clocks a texel, counted in its clocks), returning 0.
     pub fn load_texture(
         &mut self,
         texture: &Texture,
         regs: &ShadingRegs,
         t: &TexRegs,
     ) -> Result<u64, String> {
+        if self.stream {
+            self.texels = texel_records(texture)?;
+            return Ok(0);
+        }
         let words = golden::units::texture_memory::load_words(texture).ok_or_else(|| {
             format!(
                 "a {}x{} texture does not fit the texture memory (2^16 texels)",
@@ -226,6 +251,34 @@ impl TexturedPipe {
         mut fragment: impl FnMut(Fragment),
         mut progress: impl FnMut(u64),
     ) -> Result<PipeStats, String> {
+        if self.stream {
+            let mut words = textured_register_record(regs, t);
+            words.extend(std::mem::take(&mut self.texels));
+            for j in jobs {
+                words.extend(textured_triangle_record(j));
+            }
+            // The texture's records take four clocks a texel before the first triangle.
+            let budget = max_clocks + 4 * words.len() as u64;
+            return crate::axis::drive::<TexturedStream>(
+                self.model.as_mut(),
+                "textured-stream",
+                "triangles",
+                &words,
+                jobs.len() as u64,
+                budget,
+                &mut |job, b, clock| {
+                    fragment(Fragment {
+                        job,
+                        x: b.x,
+                        y: b.y,
+                        z: b.z,
+                        rgb: b.rgb,
+                        clock,
+                    })
+                },
+                &mut progress,
+            );
+        }
         crate::lit::run_ports(
             self.model.as_mut(),
             "textured pipeline",
@@ -241,7 +294,13 @@ impl TexturedPipe {
 /// `textured-stream`'s triangle record of `job` (the field values `textured-pipeline`'s load
 /// row carries: the address, normal, depth and texture-coordinate set-up).
 pub fn textured_triangle_record(job: &TexJob) -> Vec<Word> {
-    let row = tex_row(Some(job), &ShadingRegs::default(), &TexRegs::default(), None, false);
+    let row = tex_row(
+        Some(job),
+        &ShadingRegs::default(),
+        &TexRegs::default(),
+        None,
+        false,
+    );
     with_last(pack(&TEXTURED_TRIANGLE, &row[1..TREGS_AT]))
 }
 

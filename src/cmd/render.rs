@@ -77,9 +77,10 @@ pub struct Args {
     /// span pipelines, `subdivision-raster`: set-up on load ports). Default: stream for
     /// the lit methods and gouraud (the span methods and subdivision: pipeline, as
     /// their per-line and per-parent records make the stream set-up bound on short lines and
-    /// small triangles). The images are identical; the clock counts
+    /// small triangles; texture: pipeline, as the texture's records, four clocks a texel,
+    /// would dominate its clocks). The images are identical; the clock counts
     /// differ (the set-up stream carries 27 words per lit triangle, 23 per Gouraud one, 12 per
-    /// cubic line, 72 per subdivision parent).
+    /// cubic line, 72 per subdivision parent, 51 per textured triangle).
     #[arg(long, value_enum)]
     pub lit_top: Option<crate::rtl_engine::LitTop>,
     /// With the RTL engine: the order the lit methods' and gouraud's triangles are sent in — balanced (large

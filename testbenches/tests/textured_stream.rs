@@ -15,9 +15,9 @@ use rtl::pipelines::textured_pipeline::TexturedParams;
 use rtl::stream::textured_stream::{TexturedStream, FIFO_DEPTH};
 use testbenches::pipelines::textured_pipeline::bench_texture;
 use testbenches::registry::find;
+use testbenches::registry::Twin;
 use testbenches::stall::StallPattern;
 use testbenches::stream::stream_twin::LaneRun;
-use testbenches::registry::Twin;
 use testbenches::stream::textured_stream::{pipeline_beats, run, scene, TexturedStreamTwin};
 
 fn params() -> (TexturedParams, Options) {
@@ -162,7 +162,10 @@ fn latency_from_last_word_to_first_beat() {
     let at = rows.len();
     let mut k = 0;
     while k < texels.len() {
-        assert!(rows.len() - at < 16 * 4, "the texels take over four clocks each");
+        assert!(
+            rows.len() - at < 16 * 4,
+            "the texels take over four clocks each"
+        );
         let row = vec![texels[k].0 as u64, 1, texels[k].1 as u64, 1];
         k += (twin.step(&row)[0] != 0) as usize;
         rows.push(row);
@@ -193,7 +196,12 @@ fn latency_from_last_word_to_first_beat() {
     // The first event may be a line start without a pixel or a pixel needing steps: the
     // first beat comes at the latency or later, never earlier; a pixel settling at once is
     // the common case, and the seeded triangle's first pixel is one.
-    assert_eq!(first - last, latency, "first beat {} clocks after", first - last);
+    assert_eq!(
+        first - last,
+        latency,
+        "first beat {} clocks after",
+        first - last
+    );
 }
 
 /// The layout's textured records are `textured-pipeline`'s set-up, register and texel-write
@@ -211,7 +219,12 @@ fn layout_fields_are_the_pipeline_ports() {
         .map(|f| (f.name.to_string(), f.bits as usize))
         .collect();
     fields.push(("tex_we".to_string(), 1));
-    fields.extend(TEXEL.fields.iter().map(|f| (f.name.to_string(), f.bits as usize)));
+    fields.extend(
+        TEXEL
+            .fields
+            .iter()
+            .map(|f| (f.name.to_string(), f.bits as usize)),
+    );
     assert_eq!(ports.first().map(|p| p.0.as_str()), Some("load"));
     assert_eq!(ports.last().map(|p| p.0.as_str()), Some("hold"));
     assert_eq!(ports[1..ports.len() - 1], fields[..]);

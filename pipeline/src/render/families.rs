@@ -223,17 +223,20 @@ impl Family for Span {
     }
 }
 
-/// `texture` through `textured-pipeline` (tex-k = [`ENGINE_K`], on its ports): the texture
-/// written into the memory first (one texel per clock, not counted in the clocks), then one
-/// `TexJob` per triangle in the set-up order; depth from the hardware's z words.
+/// `texture` through `textured-pipeline` (tex-k = [`ENGINE_K`]), on its ports by default: the
+/// texture written into the memory first (one texel per clock, not counted in the clocks),
+/// then one `TexJob` per triangle in the set-up order; depth from the hardware's z words. With
+/// `--lit-top stream` (only when asked: the texture's records would dominate the clocks),
+/// through `textured-stream`: the register record, a texel record per texel (four clocks a
+/// texel, counted), then the triangle records.
 ///
 /// Errors (one line): as the lit family, plus a triangle beyond the texture-coordinate block's
 /// range, a k_a or k_d whose white-texel weight does not fit Q8.8, a texture over 2^16 texels.
 pub(super) struct Textured;
 
 impl Family for Textured {
-    fn design(&self, _o: &Options) -> Result<verilated::Design, String> {
-        TexturedPipe::design(ENGINE_K)
+    fn design(&self, o: &Options) -> Result<verilated::Design, String> {
+        TexturedPipe::design(ENGINE_K, o.lit_top == LitTop::Stream)
     }
 
     fn render(
@@ -262,7 +265,9 @@ impl Family for Textured {
             .of_addrs(&jobs.iter().map(|j| j.lit.addr).collect::<Vec<_>>());
         let sent: Vec<TexJob> = order.iter().map(|&i| jobs[i]).collect();
         let mut writer = FrameWriter::new(s.width, s.height);
-        let mut pipe = TexturedPipe::on(ENGINE_K, o.sim).map_err(|e| format!("RTL set-up: {e}"))?;
+        let stream = o.lit_top == LitTop::Stream;
+        let mut pipe =
+            TexturedPipe::on(ENGINE_K, o.sim, stream).map_err(|e| format!("RTL set-up: {e}"))?;
         pipe.load_texture(texture, &regs, &tregs)
             .map_err(|e| format!("RTL simulation: {e}"))?;
         let stats = pipe

@@ -102,8 +102,9 @@ pub enum LitTop {
     #[default]
     Default,
     /// `pixel-stream` / `gouraud-stream` / `cubic-stream` / `angular-stream` / `fast-stream` /
-    /// `quadric-stream`: set-up records on a 32-bit AXI4-Stream, fragment beats out (the span methods only when
-    /// asked: their per-line records make short lines set-up bound).
+    /// `quadric-stream` / `textured-stream`: set-up records on a 32-bit AXI4-Stream, fragment
+    /// beats out (the span methods only when asked: their per-line records make short lines
+    /// set-up bound; `texture` only when asked: its texture's records would dominate the clocks).
     Stream,
     /// `pixel-pipeline` / `gouraud-raster` / `cubic-pipeline`: the set-up on load ports, one
     /// triangle (cubic: one line) per load.
