@@ -76,6 +76,23 @@ pub struct SceneArgs {
     #[arg(long)]
     #[serde(serialize_with = "lossy_opt_path")]
     pub texture: Option<PathBuf>,
+    /// A perspective camera: the eye this many bounding-sphere radii from the scene's centre
+    /// (a number above 1; smaller is stronger perspective), the projected scene fitted to the
+    /// canvas. Only positions and texture coordinates see the perspective (the viewer of the
+    /// shading stays at infinity, V = +z). Default: orthographic for `sphere`, `torus` and OBJ
+    /// meshes; `plane`'s own camera (1.1 radii).
+    #[arg(long, value_parser = parse_eye, allow_negative_numbers = true)]
+    pub eye: Option<f64>,
+}
+
+/// Parse `--eye`: a finite number above 1 (the eye outside the bounding sphere).
+pub(crate) fn parse_eye(s: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(r) if r.is_finite() && r > 1.0 && r <= 1e6 => Ok(r),
+        _ => Err(format!(
+            "eye {s:?}: expected a number above 1 and at most 1e6 (bounding-sphere radii from the centre)"
+        )),
+    }
 }
 
 /// Parse `--subpixel`: 0 or [`golden::SUBPIXEL_BITS`].
@@ -102,6 +119,7 @@ impl Default for SceneArgs {
             subdivide: golden::shading::refine::Subdivide::OFF,
             subpixel: golden::SUBPIXEL_BITS,
             texture: None,
+            eye: None,
         }
     }
 }
@@ -297,10 +315,11 @@ pub fn build(args: &SceneArgs) -> Result<Setup> {
             args.scene.display().to_string()
         ),
     };
-    let camera = if perspective {
-        Camera::plane_view(&mesh, width, height)
-    } else {
-        Camera::fit(&mesh, width, height, rotation)
+    let camera = match (args.eye, perspective) {
+        (Some(r), true) => Camera::plane_view_at(&mesh, width, height, r),
+        (None, true) => Camera::plane_view(&mesh, width, height),
+        (Some(r), false) => Camera::fit_perspective(&mesh, width, height, rotation, r),
+        (None, false) => Camera::fit(&mesh, width, height, rotation),
     };
     let textured_mesh = !mesh.uvs.is_empty();
     let texture = match &args.texture {

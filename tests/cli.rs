@@ -846,3 +846,49 @@ fn a_texture_beyond_the_texture_memory_is_golden_only() {
     assert!(!out.join("texture-rtl.png").exists());
     assert!(out.join("gouraud-rtl.png").is_file());
 }
+
+/// `--eye R` puts any scene behind a perspective camera (the eye R bounding-sphere radii from
+/// its centre): screen-linear texturing then departs from the exact quotient, which it matches
+/// under the default orthographic camera; R ≤ 1, not finite or not a number is a one-line error.
+#[test]
+fn eye_gives_any_scene_a_perspective_camera() {
+    let tmp = tempfile::tempdir().unwrap();
+    let nmse = |eye: Option<&str>| -> f64 {
+        let out = tmp.path().join(eye.unwrap_or("ortho"));
+        let mut args = vec![
+            "render",
+            "--engine",
+            "golden",
+            "--method",
+            "texture,texture-affine",
+            "--size",
+            "96x96",
+            "--rez",
+            "12",
+            "--out",
+            out.to_str().unwrap(),
+        ];
+        if let Some(e) = eye {
+            args.extend(["--eye", e]);
+        }
+        let o = shadecore(&args);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let report: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap())
+                .unwrap();
+        assert_eq!(report["methods"]["texture"]["nmse"].as_f64(), Some(0.0));
+        report["methods"]["texture-affine"]["nmse"]
+            .as_f64()
+            .unwrap()
+    };
+    assert_eq!(nmse(None), 0.0, "orthographic: w = 1 everywhere");
+    let near = nmse(Some("1.5"));
+    let far = nmse(Some("6"));
+    assert!(
+        near > far && far > 0.0,
+        "NMSE at 1.5 radii {near}, at 6 {far}"
+    );
+    for bad in ["1", "0.5", "nan", "inf", "-3", "x"] {
+        assert_clean_error(&["render", "--eye", bad], "eye");
+    }
+}

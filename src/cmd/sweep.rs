@@ -68,6 +68,7 @@ pub fn run(args: Args) -> Result<()> {
                             subdivide: args.subdivide,
                             subpixel: args.subpixel,
                             texture: None,
+                            eye: None,
                         },
                         built_in,
                     ));

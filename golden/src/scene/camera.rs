@@ -136,9 +136,14 @@ impl Camera {
     /// The `plane` scene's camera ([`PLANE_YAW_DEG`], [`PLANE_ELEVATION_DEG`],
     /// [`PLANE_EYE_RADII`]).
     pub fn plane_view(mesh: &Mesh, width: u32, height: u32) -> Camera {
+        Camera::plane_view_at(mesh, width, height, PLANE_EYE_RADII)
+    }
+
+    /// The `plane` scene's view with the eye `eye_radii` bounding-sphere radii (> 1) away.
+    pub fn plane_view_at(mesh: &Mesh, width: u32, height: u32, eye_radii: f64) -> Camera {
         let rotation = DQuat::from_rotation_x(PLANE_ELEVATION_DEG.to_radians())
             * DQuat::from_rotation_y(PLANE_YAW_DEG.to_radians());
-        Camera::fit_perspective(mesh, width, height, rotation, PLANE_EYE_RADII)
+        Camera::fit_perspective(mesh, width, height, rotation, eye_radii)
     }
 
     /// The perspective divisor w of a view-space point (1 for orthographic).
