@@ -226,6 +226,20 @@ pub struct Fragment {
     pub clock: u64,
 }
 
+impl Fragment {
+    /// The fragment of a stream top's beat `b` of triangle `job`, shown in `clock`.
+    pub fn of_beat(job: usize, b: crate::axis::Beat, clock: u64) -> Fragment {
+        Fragment {
+            job,
+            x: b.x,
+            y: b.y,
+            z: b.z,
+            rgb: b.rgb,
+            clock,
+        }
+    }
+}
+
 /// The lit pipeline, `pixel-pipeline` or its AXI4-Stream top `pixel-stream`, on either
 /// simulator ([`flow::engine::Sim`]).
 pub struct LitPipe {
@@ -294,16 +308,7 @@ impl LitPipe {
             &crate::lit::scene_words(jobs, regs),
             jobs.len() as u64,
             max_clocks,
-            &mut |job, b, clock| {
-                fragment(Fragment {
-                    job,
-                    x: b.x,
-                    y: b.y,
-                    z: b.z,
-                    rgb: b.rgb,
-                    clock,
-                })
-            },
+            &mut |job, b, clock| fragment(Fragment::of_beat(job, b, clock)),
             progress,
         )
     }

@@ -224,13 +224,7 @@ impl TexturedPipe {
             self.texels = texel_records(texture)?;
             return Ok(0);
         }
-        let words = golden::units::texture_memory::load_words(texture).ok_or_else(|| {
-            format!(
-                "a {}x{} texture does not fit the texture memory (2^16 texels)",
-                texture.width(),
-                texture.height()
-            )
-        })?;
+        let words = memory_words(texture)?;
         let mut out = vec![0u64; 9];
         for &w in &words {
             self.model
@@ -266,16 +260,7 @@ impl TexturedPipe {
                 &words,
                 jobs.len() as u64,
                 budget,
-                &mut |job, b, clock| {
-                    fragment(Fragment {
-                        job,
-                        x: b.x,
-                        y: b.y,
-                        z: b.z,
-                        rgb: b.rgb,
-                        clock,
-                    })
-                },
+                &mut |job, b, clock| fragment(Fragment::of_beat(job, b, clock)),
                 &mut progress,
             );
         }
@@ -310,18 +295,23 @@ pub fn textured_register_record(regs: &ShadingRegs, t: &TexRegs) -> Vec<Word> {
     with_last(pack(&TEXTURED_REGISTERS, &row[TREGS_AT..KA_AT + 4]))
 }
 
-/// `textured-stream`'s texel records of `texture`, one per texel
-/// (`golden::units::texture_memory::load_words`: address v·2^log_w + u, colour 0xRRGGBB).
-/// Error (one line): a texture beyond the memory's 2^16 texels.
-pub fn texel_records(texture: &Texture) -> Result<Vec<Word>, String> {
-    let words = golden::units::texture_memory::load_words(texture).ok_or_else(|| {
+/// The texture memory's writes of `texture` (address, colour word), or a one-line error for a
+/// texture beyond its 2^16 texels.
+fn memory_words(texture: &Texture) -> Result<Vec<(u32, u32)>, String> {
+    golden::units::texture_memory::load_words(texture).ok_or_else(|| {
         format!(
             "a {}x{} texture does not fit the texture memory (2^16 texels)",
             texture.width(),
             texture.height()
         )
-    })?;
-    Ok(words
+    })
+}
+
+/// `textured-stream`'s texel records of `texture`, one per texel
+/// (`golden::units::texture_memory::load_words`: address v·2^log_w + u, colour 0xRRGGBB).
+/// Error (one line): a texture beyond the memory's 2^16 texels.
+pub fn texel_records(texture: &Texture) -> Result<Vec<Word>, String> {
+    Ok(memory_words(texture)?
         .iter()
         .flat_map(|&(a, w)| with_last(pack(&TEXEL, &[a as u64, w as u64])))
         .collect())

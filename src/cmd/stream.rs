@@ -63,31 +63,53 @@ pub fn run(a: Args) -> Result<()> {
     let s = crate::setup::build(&a.scene)?;
     s.ensure_drawn()?;
     let regs = ShadingRegs::of(&s.ctx).map_err(|e| anyhow!(e))?;
+    let jobs = triangle_jobs(&s, LitJob::new)?;
+    let jobs: Vec<LitJob> = a.setup_order.of(&jobs).iter().map(|&i| jobs[i]).collect();
+    stream_triangles::<rtl::stream::pixel_stream::PixelStream>(
+        &a,
+        &o,
+        &scene_words(&jobs, &regs),
+        jobs.len(),
+        &format!("pixel-stream ({})", a.method),
+    )
+}
+
+/// The set-up `job` gives each triangle of `s` (none where the method draws nothing); an
+/// error names the triangle.
+fn triangle_jobs<J>(
+    s: &crate::setup::Setup,
+    job: impl Fn(&golden::types::ScreenTriangle) -> Result<Option<J>, String>,
+) -> Result<Vec<J>> {
     let mut jobs = Vec::new();
     for (i, t) in s.tris.iter().enumerate() {
-        if let Some(j) = LitJob::new(t).map_err(|e| anyhow!("triangle {i}: {e}"))? {
-            jobs.push(j);
-        }
+        jobs.extend(job(t).map_err(|e| anyhow!("triangle {i}: {e}"))?);
     }
-    let jobs: Vec<LitJob> = a.setup_order.of(&jobs).iter().map(|&i| jobs[i]).collect();
-    let words = scene_words(&jobs, &regs);
+    Ok(jobs)
+}
+
+/// [`simulate_and_write`] for a top whose records are triangles, then the one line `stream`
+/// prints (`label`: the top and its build).
+fn stream_triangles<T: StreamTop + rtl::core::registry::RtlBlock>(
+    a: &Args,
+    o: &rtl::core::registry::Options,
+    words: &[Word],
+    triangles: usize,
+    label: &str,
+) -> Result<()> {
     let order = format!("{:?}", a.setup_order).to_lowercase();
-    let (beats, clocks) = simulate_and_write::<rtl::stream::pixel_stream::PixelStream>(
+    let (beats, clocks) = simulate_and_write::<T>(
         &a.out,
-        &o,
-        &words,
-        jobs.len() as u64,
+        o,
+        words,
+        triangles as u64,
         &order,
         crate::sim::resolve(a.sim)?,
     )?;
     crate::outln!(
-        "pixel-stream ({}): {} triangles, {} set-up words, {} beats ({} fragments) in {} clocks -> {}",
-        a.method,
-        jobs.len(),
+        "{label}: {triangles} triangles, {} set-up words, {} beats ({} fragments) in {clocks} clocks -> {}",
         words.len(),
         beats.len(),
         beats.iter().filter(|b| b.pixel).count(),
-        clocks,
         a.out.display()
     )?;
     Ok(())
@@ -140,40 +162,24 @@ fn run_textured(a: &Args) -> Result<()> {
     crate::rtl_engine::check_addresses(&s.tris, s.width, s.height)?;
     let regs = ShadingRegs::of(&s.ctx).map_err(|e| anyhow!(e))?;
     let tregs = TexRegs::of(&s.ctx, &s.texture).map_err(|e| anyhow!(e))?;
-    let mut jobs = Vec::new();
-    for (i, t) in s.tris.iter().enumerate() {
-        if let Some(j) = TexJob::new(t, &s.texture).map_err(|e| anyhow!("triangle {i}: {e}"))? {
-            jobs.push(j);
-        }
-    }
+    let jobs = triangle_jobs(&s, |t| TexJob::new(t, &s.texture))?;
     let order = a
         .setup_order
         .of_addrs(&jobs.iter().map(|j| j.lit.addr).collect::<Vec<_>>());
     let jobs: Vec<TexJob> = order.iter().map(|&i| jobs[i]).collect();
     let words = textured_scene_words(&jobs, &regs, &tregs, &s.texture).map_err(|e| anyhow!(e))?;
-    let order = format!("{:?}", a.setup_order).to_lowercase();
     // The default build (tex-k = 4, the render engine's ENGINE_K).
-    let o = rtl::core::registry::Options::new();
-    let (beats, clocks) = simulate_and_write::<rtl::stream::textured_stream::TexturedStream>(
-        &a.out,
-        &o,
+    stream_triangles::<rtl::stream::textured_stream::TexturedStream>(
+        a,
+        &rtl::core::registry::Options::new(),
         &words,
-        jobs.len() as u64,
-        &order,
-        crate::sim::resolve(a.sim)?,
-    )?;
-    crate::outln!(
-        "textured-stream (texture, {}x{} texels): {} triangles, {} set-up words, {} beats ({} fragments) in {} clocks -> {}",
-        s.texture.width(),
-        s.texture.height(),
         jobs.len(),
-        words.len(),
-        beats.len(),
-        beats.iter().filter(|b| b.pixel).count(),
-        clocks,
-        a.out.display()
-    )?;
-    Ok(())
+        &format!(
+            "textured-stream (texture, {}x{} texels)",
+            s.texture.width(),
+            s.texture.height()
+        ),
+    )
 }
 
 /// What every `stream --method` writes: the simulation on `sim` of stream top `T` built with
@@ -261,25 +267,11 @@ fn run_gouraud(a: &Args) -> Result<()> {
         .setup_order
         .of_addrs(&jobs.iter().map(|j| j.addr).collect::<Vec<_>>());
     let jobs: Vec<TriangleJob> = order.iter().map(|&i| jobs[i]).collect();
-    let words = pipeline::gouraud::gouraud_words(&jobs);
-    let order = format!("{:?}", a.setup_order).to_lowercase();
-    let o = rtl::core::registry::Options::new();
-    let (beats, clocks) = simulate_and_write::<rtl::stream::gouraud_stream::GouraudStream>(
-        &a.out,
-        &o,
-        &words,
-        jobs.len() as u64,
-        &order,
-        crate::sim::resolve(a.sim)?,
-    )?;
-    crate::outln!(
-        "gouraud-stream: {} triangles, {} set-up words, {} beats ({} fragments) in {} clocks -> {}",
+    stream_triangles::<rtl::stream::gouraud_stream::GouraudStream>(
+        a,
+        &rtl::core::registry::Options::new(),
+        &pipeline::gouraud::gouraud_words(&jobs),
         jobs.len(),
-        words.len(),
-        beats.len(),
-        beats.iter().filter(|b| b.pixel).count(),
-        clocks,
-        a.out.display()
-    )?;
-    Ok(())
+        "gouraud-stream",
+    )
 }

@@ -53,19 +53,23 @@ pub const TRIANGLE: Record = Record {
     fields: &triangle_fields!("x", "y", "z", "d"),
 };
 
+/// A register record's fields: the frame (L, H: signed Q1.15), the exponent n, then the
+/// material's words the pipeline takes.
+macro_rules! register_fields {
+    ($($more:expr),* $(,)?) => {
+        [
+            f("lx", 16), f("ly", 16), f("lz", 16), f("hx", 16), f("hy", 16), f("hz", 16),
+            f("n", 10), $($more),*
+        ]
+    };
+}
+
 /// The frame and material registers (L, H, n, the colour weights). Applied when every
 /// triangle loaded before it has left the pipeline, so no fragment mixes two sets.
 pub const REGISTERS: Record = Record {
     name: "registers",
     code: 2,
-    fields: &[
-        f("lx", 16),
-        f("ly", 16),
-        f("lz", 16),
-        f("hx", 16),
-        f("hy", 16),
-        f("hz", 16),
-        f("n", 10),
+    fields: &register_fields![
         f("amb_r", 16),
         f("amb_g", 16),
         f("amb_b", 16),
@@ -257,14 +261,7 @@ pub const TEXTURED_TRIANGLE: Record = Record {
 pub const TEXTURED_REGISTERS: Record = Record {
     name: "textured registers",
     code: 2,
-    fields: &[
-        f("lx", 16),
-        f("ly", 16),
-        f("lz", 16),
-        f("hx", 16),
-        f("hy", 16),
-        f("hz", 16),
-        f("n", 10),
+    fields: &register_fields![
         f("spc_r", 16),
         f("spc_g", 16),
         f("spc_b", 16),
