@@ -69,7 +69,6 @@ use rust_hdl::prelude::*;
 
 use crate::core::registry::RtlBlock;
 use crate::pipelines::cubic_pipeline::{CubicParams, CubicPipeline};
-use crate::stream::record_reader::{RecordReader, INDEX_BITS};
 
 /// Clocks from a pixel entering the units to its fragment at `cubic-pipeline`'s outputs (at
 /// most its load-to-first-fragment latency).
@@ -88,51 +87,33 @@ crate::one_lane_stream! {
             => "a line record's last word to its first fragment beat (pipelined units; serial: up to 2 more)",
         multipliers: 6,
         core: CubicStreamCore = CubicStreamCore::new(p),
+        core_file: "cubic_stream_core.rs",
         level: 6,
         push: core.valid,
     }
     new(p: &CubicParams);
 }
 
-/// The generated core: `rtl/build.rs` writes it from `rtl::stream::layout::CUBIC_STREAM` (the
-/// record banks, the field selects into the wrapped top, the fragment packing).
-mod generated {
-    use super::*;
-    include!(concat!(env!("OUT_DIR"), "/cubic_stream_core.rs"));
-}
-pub use generated::CubicStreamCore;
-
 #[cfg(test)]
 mod tests {
-    use crate::core::registry::RtlBlock;
     use crate::pipelines::cubic_pipeline::CubicPipeline;
 
     /// The header's latency, FIFO and record figures are the constants'.
     #[test]
     fn header_figures_are_the_constants() {
-        let text = include_str!("cubic_stream.rs").replace("\n//!  ", " ");
         let words = crate::stream::layout::payload_words(&crate::stream::layout::CUBIC_LINE);
-        for want in [
-            format!("{}-entry FIFO", super::FIFO_DEPTH),
-            format!("more than {} beats", super::HOLD_ABOVE),
-            format!(
-                "`EVENT_TO_FRAGMENT` + 1 = {} more fragments",
-                super::EVENT_TO_FRAGMENT + 1
-            ),
-            format!(
-                "never holds more than {}",
-                super::HOLD_ABOVE + 1 + super::EVENT_TO_FRAGMENT + 1
-            ),
-            format!("clock t + {}", <super::CubicStream as RtlBlock>::LATENCY),
-            format!(
-                "{} clocks through `cubic-pipeline`",
-                <CubicPipeline as RtlBlock>::LATENCY
-            ),
-            format!("then {words} payload words"),
-            format!("record is {} words", words + 1),
-            format!("FIFO ({})", super::FIFO_DEPTH),
-        ] {
-            assert!(text.contains(&want), "header lacks {want:?}");
-        }
+        let ev = super::EVENT_TO_FRAGMENT;
+        crate::stream::assert_header_states::<super::CubicStream>(
+            include_str!("cubic_stream.rs"),
+            (super::FIFO_DEPTH, super::HOLD_ABOVE),
+            ("cubic-pipeline", CubicPipeline::LATENCY),
+            &[
+                format!("`EVENT_TO_FRAGMENT` + 1 = {} more fragments", ev + 1),
+                format!("never holds more than {}", super::HOLD_ABOVE + 1 + ev + 1),
+                format!("then {words} payload words"),
+                format!("record is {} words", words + 1),
+                format!("FIFO ({})", super::FIFO_DEPTH),
+            ],
+        );
     }
 }

@@ -166,31 +166,23 @@ pub use generated::GouraudStreamCore;
 
 #[cfg(test)]
 mod tests {
-    use crate::core::registry::RtlBlock;
     use crate::pipelines::gouraud_raster::GouraudRaster;
+    use crate::stream::layout::{payload_words, GOURAUD_TRIANGLE};
 
     /// The header's latency and FIFO figures are the constants'.
     #[test]
     fn header_figures_are_the_constants() {
-        let text = include_str!("gouraud_stream.rs").replace("\n//!  ", " ");
-        for want in [
-            format!("{}-entry FIFO", super::FIFO_DEPTH),
-            format!("more than {} beats", super::HOLD_ABOVE),
-            format!(
-                "`EVENT_TO_FRAGMENT` + 2 = {} events",
-                super::EVENT_TO_FRAGMENT + 2
-            ),
-            format!("clock t + {}", <super::GouraudStream as RtlBlock>::LATENCY),
-            format!(
-                "{} clocks through `gouraud-raster`",
-                <GouraudRaster as RtlBlock>::LATENCY
-            ),
-            format!(
-                "then {} payload words",
-                crate::stream::layout::payload_words(&crate::stream::layout::GOURAUD_TRIANGLE)
-            ),
-        ] {
-            assert!(text.contains(&want), "header lacks {want:?}");
-        }
+        crate::stream::assert_header_states::<super::GouraudStream>(
+            include_str!("gouraud_stream.rs"),
+            (super::FIFO_DEPTH, super::HOLD_ABOVE),
+            ("gouraud-raster", GouraudRaster::LATENCY),
+            &[
+                format!(
+                    "`EVENT_TO_FRAGMENT` + 2 = {} events",
+                    super::EVENT_TO_FRAGMENT + 2
+                ),
+                format!("then {} payload words", payload_words(&GOURAUD_TRIANGLE)),
+            ],
+        );
     }
 }

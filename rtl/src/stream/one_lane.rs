@@ -9,7 +9,9 @@
 /// Declare a one-lane stream top with a depth stream. `push` names the signal that writes the
 /// FIFO: the local that `events` declares (`valid | done`: every fragment and every end of a
 /// triangle is a beat) or `core.valid` (every fragment; `tlast` rides on the last one).
-/// `level` is the level counter's width. The file defines `FIFO_BITS` and `HOLD_ABOVE`.
+/// `level` is the level counter's width; `core_file` names the generated core `rtl/build.rs`
+/// writes into `OUT_DIR` (`rtl::stream::layout::core_file_name`), which the macro includes. The
+/// file defines `FIFO_BITS` and `HOLD_ABOVE`.
 ///
 /// The whole `impl Logic` is in this macro's own text; the caller passes names only (see
 /// `crate::core::declare` on hygiene).
@@ -22,6 +24,7 @@ macro_rules! one_lane_stream {
             latency: $latency:expr => $latency_text:literal,
             multipliers: $mults:expr,
             core: $core:ident = $init:expr,
+            core_file: $core_file:literal,
             level: $level:literal,
             $(events: $events:ident,)?
             push: $($push:ident).+,
@@ -57,6 +60,15 @@ macro_rules! one_lane_stream {
             }
             new($arg: &$pt);
         }
+
+        /// The generated core: `rtl/build.rs` writes it from the top's layout table (the record
+        /// banks, the field selects into the wrapped top, the fragment packing).
+        mod generated {
+            use super::*;
+            use $crate::stream::record_reader::{RecordReader, INDEX_BITS};
+            include!(concat!(env!("OUT_DIR"), "/", $core_file));
+        }
+        pub use generated::$core;
 
         impl Logic for $name {
             #[hdl_gen]

@@ -71,7 +71,6 @@
 use rust_hdl::prelude::*;
 
 use crate::pipelines::pixel_pipeline::{PipelineParams, PixelPipeline, EVENT_TO_FRAGMENT};
-use crate::stream::record_reader::{RecordReader, INDEX_BITS};
 
 /// FIFO depth (entries) and its address width.
 pub const FIFO_DEPTH: usize = 1 << FIFO_BITS;
@@ -88,20 +87,13 @@ crate::one_lane_stream! {
             => "a triangle record's last word to its first fragment beat, one fragment per clock",
         multipliers: 38,
         core: PixelStreamCore = PixelStreamCore::new(p),
+        core_file: "pixel_stream_core.rs",
         level: 8,
         events: ev_beat,
         push: ev_beat,
     }
     new(p: &PipelineParams);
 }
-
-/// The generated core: `rtl/build.rs` writes it from `rtl::stream::layout::PIXEL_STREAM` (the
-/// record banks, the field selects into the wrapped top, the fragment packing).
-mod generated {
-    use super::*;
-    include!(concat!(env!("OUT_DIR"), "/pixel_stream_core.rs"));
-}
-pub use generated::PixelStreamCore;
 
 #[cfg(test)]
 mod tests {
@@ -112,28 +104,22 @@ mod tests {
     /// is pipelined further).
     #[test]
     fn header_figures_are_the_constants() {
-        let stream = include_str!("pixel_stream.rs").replace("\n//!  ", " ");
-        let pipe = include_str!("../pipelines/pixel_pipeline.rs").replace("\n//! ", " ");
         let lat = <PixelPipeline as RtlBlock>::LATENCY;
-        for (text, want) in [
-            (&stream, format!("{}-entry FIFO", super::FIFO_DEPTH)),
-            (&stream, format!("more than {} beats", super::HOLD_ABOVE)),
-            (
-                &stream,
-                format!("`EVENT_TO_FRAGMENT` + 2 = {} events", EVENT_TO_FRAGMENT + 2),
-            ),
-            (
-                &stream,
-                format!("clock t + {}", <super::PixelStream as RtlBlock>::LATENCY),
-            ),
-            (&stream, format!("{lat} clocks through `pixel-pipeline`")),
-            (
-                &pipe,
-                format!("Event → fragment {EVENT_TO_FRAGMENT} clocks"),
-            ),
-            (&pipe, format!("load → first fragment {lat}")),
+        crate::stream::assert_header_states::<super::PixelStream>(
+            include_str!("pixel_stream.rs"),
+            (super::FIFO_DEPTH, super::HOLD_ABOVE),
+            ("pixel-pipeline", lat),
+            &[format!(
+                "`EVENT_TO_FRAGMENT` + 2 = {} events",
+                EVENT_TO_FRAGMENT + 2
+            )],
+        );
+        let pipe = include_str!("../pipelines/pixel_pipeline.rs").replace("\n//! ", " ");
+        for want in [
+            format!("Event → fragment {EVENT_TO_FRAGMENT} clocks"),
+            format!("load → first fragment {lat}"),
         ] {
-            assert!(text.contains(&want), "header lacks {want:?}");
+            assert!(pipe.contains(&want), "header lacks {want:?}");
         }
     }
 }

@@ -78,7 +78,6 @@ use rust_hdl::prelude::*;
 
 use crate::pipelines::pixel_pipeline::EVENT_TO_FRAGMENT;
 use crate::pipelines::textured_pipeline::{TexturedParams, TexturedPipeline, EVENT_FIFO};
-use crate::stream::record_reader::{RecordReader, INDEX_BITS};
 
 /// FIFO depth (entries) and its address width.
 pub const FIFO_DEPTH: usize = 1 << FIFO_BITS;
@@ -99,6 +98,7 @@ crate::one_lane_stream! {
             => "a triangle record's last word to its first fragment beat, one fragment per clock",
         multipliers: 44,
         core: TexturedStreamCore = TexturedStreamCore::new(p),
+        core_file: "textured_stream_core.rs",
         level: 8,
         events: ev_beat,
         push: ev_beat,
@@ -106,18 +106,8 @@ crate::one_lane_stream! {
     new(p: &TexturedParams);
 }
 
-/// The generated core: `rtl/build.rs` writes it from `rtl::stream::layout::TEXTURED_STREAM`
-/// (the record banks, the field selects into the wrapped top, the texel writes, the fragment
-/// packing).
-mod generated {
-    use super::*;
-    include!(concat!(env!("OUT_DIR"), "/textured_stream_core.rs"));
-}
-pub use generated::TexturedStreamCore;
-
 #[cfg(test)]
 mod tests {
-    use crate::core::registry::RtlBlock;
     use crate::pipelines::pixel_pipeline::EVENT_TO_FRAGMENT;
     use crate::pipelines::textured_pipeline::{TexturedPipeline, EVENT_FIFO};
     use crate::stream::layout::{payload_words, TEXEL, TEXTURED_REGISTERS, TEXTURED_TRIANGLE};
@@ -126,27 +116,22 @@ mod tests {
     /// further or a record grows).
     #[test]
     fn header_figures_are_the_constants() {
-        let text = include_str!("textured_stream.rs").replace("\n//! ", " ");
-        let lat = <TexturedPipeline as RtlBlock>::LATENCY;
-        for want in [
-            format!("{}-entry FIFO", super::FIFO_DEPTH),
-            format!("more than {} beats", super::HOLD_ABOVE),
-            format!(
-                "2·`EVENT_FIFO` + `EVENT_TO_FRAGMENT` + 2 = {} events",
-                2 * EVENT_FIFO + EVENT_TO_FRAGMENT + 2
-            ),
-            format!("clock t + {}", <super::TexturedStream as RtlBlock>::LATENCY),
-            format!("{lat} clocks through `textured-pipeline`"),
-            format!(
-                "a triangle is {} payload words",
-                payload_words(&TEXTURED_TRIANGLE)
-            ),
-            format!("the registers {}", payload_words(&TEXTURED_REGISTERS)),
-            format!("a texel {}", payload_words(&TEXEL)),
-            format!("set-up is {} words", payload_words(&TEXTURED_TRIANGLE) + 1),
-            format!("sw0..sw{}", payload_words(&TEXTURED_TRIANGLE) - 1),
-        ] {
-            assert!(text.contains(&want), "header lacks {want:?}");
-        }
+        let triangle = payload_words(&TEXTURED_TRIANGLE);
+        crate::stream::assert_header_states::<super::TexturedStream>(
+            include_str!("textured_stream.rs"),
+            (super::FIFO_DEPTH, super::HOLD_ABOVE),
+            ("textured-pipeline", TexturedPipeline::LATENCY),
+            &[
+                format!(
+                    "2·`EVENT_FIFO` + `EVENT_TO_FRAGMENT` + 2 = {} events",
+                    2 * EVENT_FIFO + EVENT_TO_FRAGMENT + 2
+                ),
+                format!("a triangle is {triangle} payload words"),
+                format!("the registers {}", payload_words(&TEXTURED_REGISTERS)),
+                format!("a texel {}", payload_words(&TEXEL)),
+                format!("set-up is {} words", triangle + 1),
+                format!("sw0..sw{}", triangle - 1),
+            ],
+        );
     }
 }
