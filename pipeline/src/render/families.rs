@@ -127,37 +127,45 @@ impl Family for Lit {
     ) -> Result<Rendered, String> {
         check_addresses(s.tris, s.width, s.height)?;
         let regs = ShadingRegs::of(s.ctx).map_err(|e| format!("RTL set-up: {e}"))?;
-        let mut jobs = Vec::with_capacity(s.tris.len());
-        let mut depth = Vec::with_capacity(s.tris.len());
-        for (i, t) in s.tris.iter().enumerate() {
-            let job = LitJob::new(t).map_err(|e| format!("triangle {i}: {e}"))?;
-            let (Some(d), Some(job)) = (t.depth_plane(), job) else {
-                continue;
-            };
-            jobs.push(job);
-            depth.push(d);
-        }
-        progress(Tick::Total(jobs.len() as u64));
+        let (jobs, depth) = jobs_with_depth(s.tris, LitJob::new)?;
         let order = o.setup_order.of(&jobs);
-        let sent: Vec<LitJob> = order.iter().map(|&i| jobs[i]).collect();
-        let mut writer = FrameWriter::new(s.width, s.height);
         let stream = o.lit_top.resolve() == LitTop::Stream;
         let mut pipe =
             LitPipe::on(self.0, o.sim, stream).map_err(|e| format!("RTL set-up: {e}"))?;
-        let stats = pipe
-            .run(
-                &sent,
-                &regs,
-                lit_clock_budget(&sent),
-                |f| {
-                    let k = order[f.job];
-                    writer.put(k, f.x, f.y, f.z, f.rgb, &depth[k])
-                },
-                |done| progress(Tick::Done(done)),
-            )
-            .map_err(|e| format!("RTL simulation: {e}"))?;
-        Ok(writer.finish(stats))
+        render_in_order(s, &jobs, &depth, &order, progress, |sent, put, done| {
+            pipe.run(sent, &regs, lit_clock_budget(sent), put, done)
+        })
     }
+}
+
+/// Send `jobs` in `order` through `run` (its fragments' `job` indices count the sent jobs)
+/// and write each fragment into the frame as its triangle's (mesh order: the depth test's tie
+/// rule), depth from `depth`.
+fn render_in_order<J: Copy>(
+    s: &Scene,
+    jobs: &[J],
+    depth: &[golden::types::Plane],
+    order: &[usize],
+    progress: &mut dyn FnMut(Tick),
+    run: impl FnOnce(
+        &[J],
+        &mut dyn FnMut(crate::lit::Fragment),
+        &mut dyn FnMut(u64),
+    ) -> Result<crate::axis::PipeStats, String>,
+) -> Result<Rendered, String> {
+    progress(Tick::Total(jobs.len() as u64));
+    let sent: Vec<J> = order.iter().map(|&i| jobs[i]).collect();
+    let mut writer = FrameWriter::new(s.width, s.height);
+    let stats = run(
+        &sent,
+        &mut |f| {
+            let k = order[f.job];
+            writer.put(k, f.x, f.y, f.z, f.rgb, &depth[k])
+        },
+        &mut |done| progress(Tick::Done(done)),
+    )
+    .map_err(|e| format!("RTL simulation: {e}"))?;
+    Ok(writer.finish(stats))
 }
 
 /// A span method (`crate::span::SPAN_METHODS`): `angular`, `fast`, `fast-fit` through
@@ -249,40 +257,17 @@ impl Family for Textured {
         let texture = s.texture.unwrap_or(golden::texture::Texture::builtin());
         let regs = ShadingRegs::of(s.ctx).map_err(|e| format!("RTL set-up: {e}"))?;
         let tregs = TexRegs::of(s.ctx, texture).map_err(|e| format!("RTL set-up: {e}"))?;
-        let mut jobs = Vec::with_capacity(s.tris.len());
-        let mut depth = Vec::with_capacity(s.tris.len());
-        for (i, t) in s.tris.iter().enumerate() {
-            let job = TexJob::new(t, texture).map_err(|e| format!("triangle {i}: {e}"))?;
-            let (Some(d), Some(job)) = (t.depth_plane(), job) else {
-                continue;
-            };
-            jobs.push(job);
-            depth.push(d);
-        }
-        progress(Tick::Total(jobs.len() as u64));
+        let (jobs, depth) = jobs_with_depth(s.tris, |t| TexJob::new(t, texture))?;
         let order = o
             .setup_order
             .of_addrs(&jobs.iter().map(|j| j.lit.addr).collect::<Vec<_>>());
-        let sent: Vec<TexJob> = order.iter().map(|&i| jobs[i]).collect();
-        let mut writer = FrameWriter::new(s.width, s.height);
         let stream = o.lit_top == LitTop::Stream;
         let mut pipe =
             TexturedPipe::on(ENGINE_K, o.sim, stream).map_err(|e| format!("RTL set-up: {e}"))?;
         pipe.load_texture(texture, &regs, &tregs)
             .map_err(|e| format!("RTL simulation: {e}"))?;
-        let stats = pipe
-            .run(
-                &sent,
-                &regs,
-                &tregs,
-                tex_clock_budget(&sent),
-                |f| {
-                    let k = order[f.job];
-                    writer.put(k, f.x, f.y, f.z, f.rgb, &depth[k])
-                },
-                |done| progress(Tick::Done(done)),
-            )
-            .map_err(|e| format!("RTL simulation: {e}"))?;
-        Ok(writer.finish(stats))
+        render_in_order(s, &jobs, &depth, &order, progress, |sent, put, done| {
+            pipe.run(sent, &regs, &tregs, tex_clock_budget(sent), put, done)
+        })
     }
 }

@@ -119,16 +119,17 @@ impl PlaneWriter {
 }
 
 /// The jobs of the triangles the golden renderer draws (those with a depth plane, i.e. non-zero
-/// area, and a set-up from `job`), in order, with each one's f64 depth plane.
+/// area, and a set-up from `job`), in order, with each one's f64 depth plane. `job` sees every
+/// triangle, drawn or not; its error is returned naming the triangle (`triangle i: …`).
 pub fn jobs_with_depth<J>(
     tris: &[ScreenTriangle],
     mut job: impl FnMut(&ScreenTriangle) -> Result<Option<J>, String>,
 ) -> Result<(Vec<J>, Vec<Plane>), String> {
     let mut jobs = Vec::with_capacity(tris.len());
     let mut depth = Vec::with_capacity(tris.len());
-    for t in tris {
-        let Some(d) = t.depth_plane() else { continue };
-        if let Some(j) = job(t)? {
+    for (i, t) in tris.iter().enumerate() {
+        let j = job(t).map_err(|e| format!("triangle {i}: {e}"))?;
+        if let (Some(d), Some(j)) = (t.depth_plane(), j) {
             jobs.push(j);
             depth.push(d);
         }
