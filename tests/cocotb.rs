@@ -1,10 +1,10 @@
-//! The cocotb tests of the exported stream tops `pixel-stream`, `gouraud-stream` and
-//! `cubic-stream` (testbenches/cocotb/): `shadecore stream` writes a small scene's set-up
-//! words, the rust-hdl simulation's fragment beats and the Verilog; cocotb with cocotbext-axi
-//! drives the Verilog under Icarus with random gaps on the set-up stream and random
-//! back-pressure (long stretches included) on the fragment stream, and requires the same beats
-//! in the same order. The same test fails on the Verilog with one operator flipped (shown for
-//! two per top).
+//! The cocotb tests of the exported stream tops `pixel-stream`, `gouraud-stream`,
+//! `cubic-stream` and `textured-stream` (testbenches/cocotb/): `shadecore stream` writes a
+//! small scene's set-up words, the simulation's fragment beats and the Verilog; cocotb with
+//! cocotbext-axi drives the Verilog under Icarus with random gaps on the set-up stream and
+//! random back-pressure (long stretches included) on the fragment stream, and requires the
+//! same beats in the same order. The same test fails on the Verilog with one operator flipped
+//! (shown for two per top; one for `textured-stream`, whose FIFO is `pixel-stream`'s).
 //!
 //! Needs Icarus and a Python with cocotb, cocotb_tools and cocotbext-axi (`.ci/run` installs
 //! them into `.venv/`; `SHADECORE_PYTHON` names another): skips with a notice without them,
@@ -228,4 +228,30 @@ fn cocotb_drives_the_exported_cubic_stream_with_back_pressure() {
         ],
     );
     drive_stream_top("cubic", &["--horner", "pipelined"], "cubic_stream", &[]);
+}
+
+/// The same cocotb test on `textured-stream` (`shadecore stream --method texture`, an 8×8
+/// texture so the texel records stay short under Icarus): the texture's texel records, then
+/// the triangles; one operator flipped: the texel write strobe, this top's own (its FIFO is
+/// `pixel-stream`'s, whose read pointer is flipped above).
+#[test]
+#[ignore = "full tier: cocotb under Icarus"]
+fn cocotb_drives_the_exported_textured_stream_with_back_pressure() {
+    let dir = tempfile::tempdir().unwrap();
+    let png = dir.path().join("texture.png");
+    let texels: Vec<u8> = (0..8 * 8 * 3).map(|k| (k * 37 % 251) as u8).collect();
+    image::RgbImage::from_raw(8, 8, texels)
+        .unwrap()
+        .save(&png)
+        .unwrap();
+    drive_stream_top(
+        "texture",
+        &["--texture", png.to_str().unwrap()],
+        "textured_stream",
+        &[(
+            "texel write strobe: never",
+            "pipe$tex_we = apply_texel;",
+            "pipe$tex_we = 1'b0;",
+        )],
+    );
 }
