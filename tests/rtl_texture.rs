@@ -262,3 +262,98 @@ fn texel_weights_round_and_saturate() {
     assert_eq!(texel_weight(1, 63), 0);
     assert_eq!(texel_weight(255, 0xFFFF), 0xFFFF);
 }
+
+/// The span texture-coordinate blocks on every line of the scenes, under the fast simulator:
+/// `texture-quadratic` and `texture-bezier`, fed each line's record as the golden methods
+/// compute it (`golden::shading::texture::quadratic_line`, `bezier_line`), give at every
+/// pixel the texel the golden `texture-quadratic` and `texture-bezier` images are drawn with
+/// (their coordinates in walk order). Not a pipeline: the blocks alone, the scenes' lines back
+/// to back (a line per load; the Bézier block loads when `ready`).
+#[test]
+fn span_texture_blocks_give_the_golden_texels_on_the_scenes() {
+    use golden::shading::texture::{bezier_line, coordinates, quadratic_line, setup, Coord};
+    use rtl::core::registry::Options;
+    let sim = flow::engine::Sim::fastest();
+    let quad = flow::blocks::find("texture-quadratic").unwrap();
+    let bez = flow::blocks::find("texture-bezier").unwrap();
+    for (name, eye) in [("sphere", None), ("torus", Some(1.5)), ("plane", None)] {
+        let s = build(&SceneArgs {
+            scene: name.into(),
+            eye,
+            ..SceneArgs::default()
+        })
+        .unwrap();
+        let (mut want_q, mut want_b) = (Vec::new(), Vec::new());
+        let (mut q_rows, mut b_lines) = (Vec::new(), Vec::new());
+        for t in &s.tris {
+            let walk = golden::raster::walk(t);
+            let Some(ts) = setup(t, &s.texture).filter(|_| t.depth_plane().is_some()) else {
+                continue;
+            };
+            let texel = |c: &glam::DVec2| [c.x as i64, c.y as i64];
+            want_q.extend(
+                coordinates(t, &ts, &walk, Coord::Quadratic)
+                    .iter()
+                    .map(texel),
+            );
+            want_b.extend(coordinates(t, &ts, &walk, Coord::Bezier).iter().map(texel));
+            for row in walk.rows.iter().filter(|r| r.len > 0) {
+                let [u, v] = quadratic_line(&ts, row);
+                for k in 0..row.len {
+                    let mut r = vec![1, (k == 0) as u64];
+                    if k == 0 {
+                        r.extend([u.u, u.d, u.dd, v.u, v.d, v.dd]);
+                    } else {
+                        r.extend([0; 6]);
+                    }
+                    q_rows.push(r);
+                }
+                b_lines.push(bezier_line(&ts, row));
+            }
+        }
+        // The quadratic block: a pixel per clock, its texel a clock later.
+        q_rows.push(vec![0; 8]);
+        let out = quad.simulate_on(&Options::new(), &q_rows, sim).unwrap();
+        let got_q: Vec<[i64; 2]> = out
+            .iter()
+            .filter(|o| o[0] != 0)
+            .map(|o| [o[1] as u16 as i16 as i64, o[2] as u16 as i16 as i64])
+            .collect();
+        // The Bézier block: a line loaded whenever `ready`, the texels as `valid_out` shows them.
+        let mut model = bez.model(&Options::new(), sim).unwrap();
+        let (ins, outs) = bez.ports();
+        let mut o = vec![0u64; outs.len()];
+        let mut got_b = Vec::with_capacity(want_b.len());
+        let (mut next, mut clocks) = (0, 0u64);
+        while got_b.len() < want_b.len() {
+            clocks += 1;
+            assert!(
+                clocks < 100 * want_b.len() as u64 + 1000,
+                "{name}: the Bézier block stalls"
+            );
+            let ready = model.peek(0) != 0;
+            let mut row = vec![0u64; ins.len()];
+            if ready && next < b_lines.len() {
+                row[0] = 1;
+                row[1..ins.len() - 1].copy_from_slice(&b_lines[next].ports());
+                next += 1;
+            }
+            model.step(&row, &mut o).unwrap();
+            if o[1] != 0 {
+                got_b.push([o[2] as u16 as i16 as i64, o[3] as u16 as i16 as i64]);
+            }
+        }
+        let differ = |got: &[[i64; 2]], want: &[[i64; 2]]| {
+            assert_eq!(got.len(), want.len(), "{name}: texel count");
+            got.iter().zip(want).filter(|(g, w)| g != w).count()
+        };
+        let (dq, db) = (differ(&got_q, &want_q), differ(&got_b, &want_b));
+        println!(
+            "{name} (eye {eye:?}): {} pixels on {} lines; texels differing from golden: \
+             texture-quadratic {dq}, texture-bezier {db} ({clocks} clocks for the Bézier block)",
+            want_q.len(),
+            b_lines.len()
+        );
+        assert_eq!((dq, db), (0, 0), "{name}: the blocks' texels are golden's");
+    }
+}

@@ -190,7 +190,7 @@ pub fn coordinates(tri: &ScreenTriangle, s: &TexSetup, walk: &Walk, coord: Coord
         },
         Coord::Quadratic => {
             for row in walk.rows.iter().filter(|r| r.len > 0) {
-                let [u, v] = [0, 1].map(|a| quadratic_row(row, |x| exact(x, row.y)[a]));
+                let [u, v] = quadratic_line(s, row).map(|w| quadratic_row(row, &w));
                 out.extend(u.into_iter().zip(v).map(|(u, v)| DVec2::new(u, v)));
             }
         }
@@ -218,11 +218,34 @@ fn move_to(wk: &mut PctWalker, x: i64, y: i64) {
     }
 }
 
-/// The §15 quadratic's texel-space coordinate at each pixel of `row`, in walk order: the
-/// quadratic in raw screen x through the exact value at the line's first, middle and last
-/// pixel, stepped in the block's words (the bit-exact twin's arithmetic); a one-pixel line is
-/// its exact value, a two-pixel line a straight line.
-fn quadratic_row(row: &Row, exact: impl Fn(i32) -> f64) -> Vec<f64> {
+/// The §15 quadratic's texel-space coordinate at each pixel of `row`, in walk order, for one
+/// axis: the line's words ([`quadratic_line`]) stepped by the block's bit-exact twin.
+fn quadratic_row(row: &Row, words: &QuadWords) -> Vec<f64> {
+    let mut axis = quad::QuadAxis::default();
+    let mut out = Vec::with_capacity(row.len as usize);
+    for k in 0..row.len {
+        axis.clock(true, (k == 0).then_some(words));
+        // The word carries +½: its integer part is the texel; return the texel as a
+        // texel-space coordinate (its centre).
+        out.push(quad::signed_texel(axis.word()) as f64);
+    }
+    out
+}
+
+/// The §15 quadratic's set-up words of `row` (a line of the walk with pixels), u then v, as
+/// the block `texture-quadratic` takes them at the line's first pixel: the quadratic in raw
+/// screen x through the exact value at the line's first, middle and last pixel (a one-pixel
+/// line its exact value, a two-pixel line a straight line), as differences along the walk.
+pub fn quadratic_line(s: &TexSetup, row: &Row) -> [QuadWords; 2] {
+    [0, 1].map(|a| {
+        quadratic_words(row, |x| {
+            let (u, v) = s.planes.exact(x as i64, row.y as i64);
+            [u, v][a]
+        })
+    })
+}
+
+fn quadratic_words(row: &Row, exact: impl Fn(i32) -> f64) -> QuadWords {
     let (x0, x2) = (row.x_start, row_end(row));
     let n = row.len as usize;
     let a = match n {
@@ -238,16 +261,7 @@ fn quadratic_row(row: &Row, exact: impl Fn(i32) -> f64) -> Vec<f64> {
             quad::lagrange_coeffs(xs, [exact(x0), exact(x1), exact(x2)])
         }
     };
-    let words = QuadWords::of(quad::differences(&a, x0 as f64, row.dir as f64));
-    let mut axis = quad::QuadAxis::default();
-    let mut out = Vec::with_capacity(n);
-    for k in 0..n {
-        axis.clock(true, (k == 0).then_some(&words));
-        // The word carries +½: its integer part is the texel; return the texel as a
-        // texel-space coordinate (its centre).
-        out.push(quad::signed_texel(axis.word()) as f64);
-    }
-    out
+    QuadWords::of(quad::differences(&a, x0 as f64, row.dir as f64))
 }
 
 /// The §16 Bézier's control points of `row` as the block `texture-bezier` takes them: X (the
@@ -276,6 +290,13 @@ pub fn bezier_points(s: &TexSetup, row: &Row) -> [[f64; 3]; 3] {
     ]
 }
 
+/// The §16 Bézier's record of `row` (a line of the walk with pixels), as the block
+/// `texture-bezier` takes it: [`bezier_points`] in its words ([`BezierLine`]).
+pub fn bezier_line(s: &TexSetup, row: &Row) -> BezierLine {
+    let [xp, up, vp] = bezier_points(s, row);
+    BezierLine::new(row.len, xp, up, vp)
+}
+
 /// The §16 Bézier's texel (u, v) at each pixel of `row`, in walk order: the line's record
 /// ([`bezier_points`], [`BezierLine`]) stepped by the block's bit-exact twin ([`BezierTwin`]:
 /// forward differences in Q15.32 words, two samples per pixel step, each pixel the sample
@@ -283,10 +304,9 @@ pub fn bezier_points(s: &TexSetup, row: &Row) -> [[f64; 3]; 3] {
 /// block's words. It differs from the f64 curve's nearest sample only where two samples are
 /// as near within the words' rounding (`golden/tests/texture_bezier_block.rs` counts them).
 fn bezier_row(s: &TexSetup, row: &Row) -> Vec<DVec2> {
-    let [xp, up, vp] = bezier_points(s, row);
     let n = row.len as usize;
     let mut twin = BezierTwin::default();
-    twin.clock(Some(&BezierLine::new(row.len, xp, up, vp)), false);
+    twin.clock(Some(&bezier_line(s, row)), false);
     let mut out = Vec::with_capacity(n);
     let texel = |t: u64| t as u16 as i16 as f64;
     while out.len() < n {
