@@ -4,7 +4,7 @@
 //! cocotbext-axi drives the Verilog under Icarus with random gaps on the set-up stream and
 //! random back-pressure (long stretches included) on the fragment stream, and requires the
 //! same beats in the same order. The same test fails on the Verilog with one operator flipped
-//! (shown for two per top; one for `textured-stream`, whose FIFO is `pixel-stream`'s).
+//! (shown for two per top; for `textured-stream` tried once, not run in CI).
 //!
 //! Needs Icarus and a Python with cocotb, cocotb_tools and cocotbext-axi (`.ci/run` installs
 //! them into `.venv/`; `SHADECORE_PYTHON` names another): skips with a notice without them,
@@ -232,8 +232,9 @@ fn cocotb_drives_the_exported_cubic_stream_with_back_pressure() {
 
 /// The same cocotb test on `textured-stream` (`shadecore stream --method texture`, an 8×8
 /// texture so the texel records stay short under Icarus): the texture's texel records, then
-/// the triangles; one operator flipped: the texel write strobe, this top's own (its FIFO is
-/// `pixel-stream`'s, whose read pointer is flipped above).
+/// the triangles. No mutant is run here, to keep CI within its time: the same harness fails
+/// on two flipped operators per top above, and on this top with its texel write strobe tied
+/// low (`pipe$tex_we = 1'b0;`, tried once when the test was written).
 #[test]
 #[ignore = "full tier: cocotb under Icarus"]
 fn cocotb_drives_the_exported_textured_stream_with_back_pressure() {
@@ -248,10 +249,6 @@ fn cocotb_drives_the_exported_textured_stream_with_back_pressure() {
         "texture",
         &["--texture", png.to_str().unwrap()],
         "textured_stream",
-        &[(
-            "texel write strobe: never",
-            "pipe$tex_we = apply_texel;",
-            "pipe$tex_we = 1'b0;",
-        )],
+        &[],
     );
 }
