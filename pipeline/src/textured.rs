@@ -252,7 +252,7 @@ impl TexturedPipe {
                 words.extend(textured_triangle_record(j));
             }
             // The texture's records take four clocks a texel before the first triangle.
-            let budget = max_clocks + 4 * words.len() as u64;
+            let budget = max_clocks.saturating_add(4 * words.len() as u64);
             return crate::axis::drive::<TexturedStream>(
                 self.model.as_mut(),
                 "textured-stream",
