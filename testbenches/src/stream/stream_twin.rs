@@ -260,3 +260,17 @@ impl<T: Copy> BeatFifo<T> {
         }
     }
 }
+
+/// A one-lane top's outputs with a depth stream (`pixel-stream`, `cubic-stream`,
+/// `textured-stream`): `s_axis_tready`, `m_axis_tvalid`, `tdata`, `tuser`, `tlast`, `error`.
+pub fn one_lane_outputs(reader: &RecordReader, fifo: &BeatFifo<(u64, u64, bool)>) -> Vec<u64> {
+    let (tdata, tuser, tlast) = fifo.out.unwrap_or((0, 0, false));
+    vec![
+        reader.s_ready() as u64,
+        fifo.out.is_some() as u64,
+        tdata,
+        tuser,
+        tlast as u64,
+        reader.err as u64,
+    ]
+}

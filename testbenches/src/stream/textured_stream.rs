@@ -60,15 +60,7 @@ impl TexturedStreamTwin {
     }
 
     fn outputs(&self) -> Vec<u64> {
-        let (tdata, tuser, tlast) = self.fifo.out.unwrap_or((0, 0, false));
-        vec![
-            self.reader.s_ready() as u64,
-            self.fifo.out.is_some() as u64,
-            tdata,
-            tuser,
-            tlast as u64,
-            self.reader.err as u64,
-        ]
+        crate::stream::stream_twin::one_lane_outputs(&self.reader, &self.fifo)
     }
 }
 
