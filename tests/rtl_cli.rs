@@ -369,6 +369,131 @@ fn synth_ecp5_only_flags_are_one_line_errors() {
     }
 }
 
+/// The textured pipeline's build flags: `--tex-coord quadratic` with `--tex-k`, on a block that
+/// does not read it, on `textured-stream` (no line records), a Bézier or unknown coordinate,
+/// and `texture-quadratic` through a stream top are one-line errors naming what is wrong.
+#[test]
+fn texture_coordinate_builds_refuse_what_they_cannot_build() {
+    let dir = tempfile::tempdir().unwrap();
+    let out_dir = dir.path().to_str().unwrap();
+    for (args, words) in [
+        (
+            &[
+                "export-verilog",
+                "--block",
+                "textured-pipeline",
+                "--tex-coord",
+                "quadratic",
+                "--tex-k",
+                "2",
+                "--out",
+                out_dir,
+            ][..],
+            &["tex-k", "quadratic"][..],
+        ),
+        (
+            &[
+                "export-verilog",
+                "--block",
+                "texture-coord",
+                "--tex-coord",
+                "quadratic",
+                "--out",
+                out_dir,
+            ][..],
+            &["--tex-coord", "textured-pipeline"][..],
+        ),
+        (
+            &[
+                "export-verilog",
+                "--block",
+                "textured-stream",
+                "--tex-coord",
+                "quadratic",
+                "--out",
+                out_dir,
+            ][..],
+            &["textured-stream", "additive"][..],
+        ),
+        (
+            &[
+                "export-verilog",
+                "--block",
+                "textured-pipeline",
+                "--tex-coord",
+                "bezier",
+                "--out",
+                out_dir,
+            ][..],
+            &["bezier", "not built"][..],
+        ),
+        (
+            &[
+                "export-verilog",
+                "--block",
+                "textured-pipeline",
+                "--tex-coord",
+                "cubic",
+                "--out",
+                out_dir,
+            ][..],
+            &["cubic", "expected additive or quadratic"][..],
+        ),
+        (
+            &[
+                "render",
+                "--engine",
+                "rtl",
+                "--method",
+                "texture-quadratic",
+                "--lit-top",
+                "stream",
+                "--size",
+                "40x40",
+                "--out",
+                out_dir,
+            ][..],
+            &["--lit-top"][..],
+        ),
+        (
+            &[
+                "render",
+                "--engine",
+                "rtl",
+                "--method",
+                "texture,texture-quadratic",
+                "--lit-top",
+                "stream",
+                "--size",
+                "40x40",
+                "--out",
+                out_dir,
+            ][..],
+            &["textured-stream", "texture-quadratic"][..],
+        ),
+    ] {
+        let out = shadecore(args);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(
+            !out.status.success()
+                && err.trim().lines().count() == 1
+                && words.iter().all(|w| err.contains(w))
+                && !err.contains("panicked"),
+            "{args:?}: {err}"
+        );
+    }
+    // The quadratic build exports.
+    shadecore_ok(&[
+        "export-verilog",
+        "--block",
+        "textured-pipeline",
+        "--tex-coord",
+        "quadratic",
+        "--out",
+        out_dir,
+    ]);
+}
+
 /// `stream --method` with a method whose streams it does not write is a one-line error naming
 /// the methods each top it writes has (and, for `quadric`, the two-lane top it does not write
 /// yet); `--method gouraud` writes `gouraud-stream`'s files.

@@ -1,9 +1,10 @@
-//! `texture` (SPEC §14) through `textured-pipeline` on the built-in scenes: the RTL image
-//! against the golden `texture` image (largest channel difference, pixels differing; the
-//! issue's bound is 1 LSB) and against `texture-reference` (NMSE), every fragment the golden
-//! method draws and no other; then the pipeline's rate, fragments per clock, for k = 1, 2 and
-//! 4 (the RTL under Verilator; k = 4 also through the pipeline's twin, which must take the
-//! same clocks), and the clocks from the first load to the first fragment.
+//! `texture` (SPEC §14) and `texture-quadratic` (§15) through `textured-pipeline` (built
+//! additive and quadratic) on the built-in scenes: the RTL image against the golden image of
+//! the same method (largest channel difference, pixels differing; the issue's bound is 1 LSB)
+//! and against `texture-reference` (NMSE), every fragment the golden method draws and no
+//! other; then the pipeline's rate, fragments per clock, for k = 1, 2 and 4 and for the
+//! quadratic build (the RTL under Verilator; k = 4 also through the pipeline's twin, which
+//! must take the same clocks), and the clocks from the first load to the first fragment.
 //!
 //! `cargo test --release --test rtl_texture -- --include-ignored --nocapture` prints the
 //! figures `docs/measurements.md` quotes (the rates' test is full tier).
@@ -26,11 +27,14 @@ fn scene(name: &str) -> Setup {
 
 #[test]
 fn texture_through_the_rtl_is_within_one_lsb_of_golden_on_every_scene() {
-    for name in ["sphere", "torus", "plane"] {
+    for (method, name) in [Method::Texture, Method::TextureQuadratic]
+        .into_iter()
+        .flat_map(|m| ["sphere", "torus", "plane"].map(|n| (m, n)))
+    {
         let s = scene(name);
         let rtl = render_rtl_textured(
             &s.tris,
-            Method::Texture,
+            method,
             &s.ctx,
             &s.texture,
             s.width,
@@ -38,15 +42,8 @@ fn texture_through_the_rtl_is_within_one_lsb_of_golden_on_every_scene() {
             &ProgressBar::hidden(),
             RtlBuild::default(),
         )
-        .unwrap_or_else(|e| panic!("{name}: {e:#}"));
-        let gold = render_textured(
-            &s.tris,
-            Method::Texture,
-            &s.ctx,
-            &s.texture,
-            s.width,
-            s.height,
-        );
+        .unwrap_or_else(|e| panic!("{method} {name}: {e:#}"));
+        let gold = render_textured(&s.tris, method, &s.ctx, &s.texture, s.width, s.height);
         let reference = render_textured(
             &s.tris,
             Method::TextureReference,
@@ -57,13 +54,13 @@ fn texture_through_the_rtl_is_within_one_lsb_of_golden_on_every_scene() {
         );
         assert_eq!(
             rtl.frame.fragments, gold.fragments,
-            "{name}: the RTL's coverage differs from golden's"
+            "{method} {name}: the RTL's coverage differs from golden's"
         );
         let (max, n) = max_channel_diff(&rtl.frame, &gold);
         let nmse_rtl = golden::nmse::nmse(&reference.rgb, &rtl.frame.rgb);
         let nmse_gold = golden::nmse::nmse(&reference.rgb, &gold.rgb);
         println!(
-            "{name}: {} fragments in {} clocks ({:.3} per clock, k = 2); RTL vs golden: max \
+            "{method} {name}: {} fragments in {} clocks ({:.3} per clock); RTL vs golden: max \
              {max} LSB, {n} pixels differ; NMSE vs texture-reference: RTL {nmse_rtl:.3e}, golden \
              {nmse_gold:.3e}; {} pixels with other visibility",
             rtl.stats.pixels,
@@ -71,25 +68,32 @@ fn texture_through_the_rtl_is_within_one_lsb_of_golden_on_every_scene() {
             rtl.stats.pixels_per_clock(),
             rtl.visibility_mismatches
         );
-        assert!(max <= 1, "{name}: the RTL differs from golden by {max} LSB");
-        assert_eq!(rtl.visibility_mismatches, 0, "{name}: visibility differs");
+        assert!(
+            max <= 1,
+            "{method} {name}: the RTL differs from golden by {max} LSB"
+        );
+        assert_eq!(
+            rtl.visibility_mismatches, 0,
+            "{method} {name}: visibility differs"
+        );
     }
 }
 
-/// The jobs of `s` in the engine's (balanced) order, with their mean w.
-fn jobs(s: &Setup) -> Vec<(TexJob, f64)> {
+/// The jobs of `s` for the additive build (or the `quadratic` one) in the engine's (balanced)
+/// order, with their mean w.
+fn jobs_of(s: &Setup, quadratic: bool) -> Vec<(TexJob, f64)> {
     let mut v: Vec<(TexJob, f64)> = s
         .tris
         .iter()
         .filter(|t| t.depth_plane().is_some())
         .filter_map(|t| {
-            TexJob::new(t, &s.texture)
+            TexJob::of(t, &s.texture, quadratic)
                 .unwrap()
                 .map(|j| (j, t.v.iter().map(|v| v.w).sum::<f64>() / 3.0))
         })
         .collect();
     let order = pipeline::lit::balanced_order(&v.iter().map(|(j, _)| j.lit).collect::<Vec<_>>());
-    let sent = order.iter().map(|&i| v[i]).collect();
+    let sent = order.iter().map(|&i| v[i].clone()).collect();
     v.clear();
     sent
 }
@@ -187,19 +191,25 @@ fn run_model(s: &Setup, jobs: &[TexJob], k: u32) -> (u64, u64) {
 fn textured_pipeline_fragments_per_clock_on_the_scenes() {
     for name in ["sphere", "plane"] {
         let s = scene(name);
-        let all = jobs(&s);
+        let all = jobs_of(&s, false);
         let mut by_w: Vec<(TexJob, f64)> = all.clone();
         by_w.sort_by(|a, b| a.1.total_cmp(&b.1));
         let fifth = by_w.len() / 5;
-        let mut sets = vec![("all", all.iter().map(|(j, _)| *j).collect::<Vec<_>>())];
+        let mut sets = vec![(
+            "all",
+            all.iter().map(|(j, _)| j.clone()).collect::<Vec<_>>(),
+        )];
         if name == "plane" {
             sets.push((
                 "nearest fifth",
-                by_w[..fifth].iter().map(|(j, _)| *j).collect(),
+                by_w[..fifth].iter().map(|(j, _)| j.clone()).collect(),
             ));
             sets.push((
                 "farthest fifth",
-                by_w[by_w.len() - fifth..].iter().map(|(j, _)| *j).collect(),
+                by_w[by_w.len() - fifth..]
+                    .iter()
+                    .map(|(j, _)| j.clone())
+                    .collect(),
             ));
         }
         for (label, jobs) in sets {
@@ -236,6 +246,17 @@ fn textured_pipeline_fragments_per_clock_on_the_scenes() {
                 first2 as usize + 1 >= rtl::pipelines::textured_pipeline::TEX_EVENT_TO_FRAGMENT
             );
             if label == "all" {
+                // The quadratic build, the same triangles with their line records (pushed
+                // whenever `line_ready` is high).
+                let quad: Vec<TexJob> = jobs_of(&s, true).into_iter().map(|(j, _)| j).collect();
+                let (pq, cq, firstq) = run_rtl(&s, &quad, "quadratic");
+                assert_eq!(pq, p4, "{name}: the quadratic build drew a different count");
+                println!(
+                    "{name}: texture=quadratic {:.3} fragments per clock ({cq} clocks, {} line \
+                     records); first load to first fragment {firstq} clocks",
+                    r(pq, cq),
+                    quad.iter().map(|j| j.lines.len()).sum::<usize>()
+                );
                 // The AXI4-Stream top, the same jobs: set-up words one per clock.
                 let (ps, cs, load) = run_stream(&s, &jobs);
                 assert_eq!(ps, p4, "{name}: the stream top drew a different count");

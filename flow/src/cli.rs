@@ -32,6 +32,10 @@ pub struct BuildArgs {
     /// 2 or 4 (the default: 2 for `texture-coord`, 4 for `textured-pipeline`).
     #[arg(long)]
     pub tex_k: Option<String>,
+    /// The textured pipeline's texture coordinate: additive (SPEC §14's block; the default) or
+    /// quadratic (§15's unit on per-line records).
+    #[arg(long)]
+    pub tex_coord: Option<String>,
 }
 
 impl BuildArgs {
@@ -44,6 +48,7 @@ impl BuildArgs {
             ("inv-sqrt", "--inv-sqrt", &self.inv_sqrt),
             ("horner", "--horner", &self.horner),
             ("tex-k", "--tex-k", &self.tex_k),
+            ("texture", "--tex-coord", &self.tex_coord),
         ]
         .into_iter()
         .filter_map(|(k, f, v)| v.as_deref().map(|v| (k, f, v)))

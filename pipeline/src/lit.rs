@@ -334,11 +334,13 @@ impl LitPipe {
                 &mut progress,
             );
         }
+        let idle = lit_row(None, regs);
         run_ports(
             self.model.as_mut(),
             "pixel pipeline",
             jobs.len(),
-            &mut |k| lit_row(k.map(|k| &jobs[k]), regs),
+            9,
+            &mut |k, _| k.map_or_else(|| idle.clone(), |k| lit_row(Some(&jobs[k]), regs)),
             max_clocks,
             &mut fragment,
             &mut progress,
@@ -347,22 +349,23 @@ impl LitPipe {
 }
 
 /// The run loop of a top with `pixel-pipeline`'s outputs (ready, valid, x, y, z, r, g, b,
-/// done) on its ports: job k loaded (`row(Some(k))`) as soon as `ready` is high, idle rows
-/// (`row(None)`) otherwise; `fragment` for every valid output, `progress(done_triangles)`
+/// done, then any more: `outputs` in all) on its ports: job k loaded (`row(Some(k), model)`)
+/// as soon as `ready` is high, rows without a load (`row(None, model)`) otherwise (`model`
+/// for the row to peek at further outputs that are functions of registers); `fragment` for every valid output, `progress(done_triangles)`
 /// after each `done`. Stops after the last `done`, or with an error naming `what` after
 /// `max_clocks`. Shared by `LitPipe` and `crate::textured::TexturedPipe`.
 pub fn run_ports(
     model: &mut dyn Model,
     what: &str,
     jobs: usize,
-    row: &mut dyn FnMut(Option<usize>) -> Vec<u64>,
+    outputs: usize,
+    row: &mut dyn FnMut(Option<usize>, &dyn Model) -> Vec<u64>,
     max_clocks: u64,
     fragment: &mut dyn FnMut(Fragment),
     progress: &mut dyn FnMut(u64),
 ) -> Result<PipeStats, String> {
     let mut st = PipeStats::default();
-    let mut out = vec![0u64; 9];
-    let idle = row(None);
+    let mut out = vec![0u64; outputs];
     let mut next = 0;
     while st.triangles < jobs as u64 {
         if st.clocks >= max_clocks {
@@ -373,12 +376,13 @@ pub fn run_ports(
         }
         // `ready` (output 0) is a function of registers: settled before the clock's step.
         let ready = model.peek(0) != 0;
-        if ready && next < jobs {
-            model.step(&row(Some(next)), &mut out)?;
+        let r = if ready && next < jobs {
             next += 1;
+            row(Some(next - 1), &*model)
         } else {
-            model.step(&idle, &mut out)?;
-        }
+            row(None, &*model)
+        };
+        model.step(&r, &mut out)?;
         st.clocks += 1;
         if out[1] != 0 {
             st.pixels += 1;

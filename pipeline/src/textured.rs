@@ -8,8 +8,14 @@
 //! normal words (12), the depth words (4), the texture-coordinate set-up (14), the shading
 //! registers without the ambient and diffuse weights (lx ly lz hx hy hz n spc_r spc_g spc_b:
 //! the texel gives the others), `ka`, `kd`, `log_w`, `log_h`,
-//! `tex_we`, `tex_waddr`, `tex_wdata`, `hold`. Outputs: ready, valid, x, y, z, red, green,
-//! blue, done.
+//! `tex_we`, `tex_waddr`, `tex_wdata`, `line_push` and the line record's six words
+//! (`texture=quadratic`), `hold`. Outputs: ready, valid, x, y, z, red, green, blue, done,
+//! line_ready.
+//!
+//! Built `texture=quadratic` (`texture-quadratic` through the pipeline), a triangle's
+//! [`TexJob::lines`] are its line records, one per raster line with a pixel in walk order
+//! (`golden::shading::texture::quadratic_line`); [`TexturedPipe::run`] pushes them, in the
+//! triangles' order, whenever `line_ready` is high.
 
 use golden::methods::Method;
 use golden::shade::ShadeContext;
@@ -17,11 +23,12 @@ use golden::texture::Texture;
 use golden::types::ScreenTriangle;
 use golden::units::colour_combine::Weights;
 use golden::units::texture_coord::block::{walk_geometry, TexCoordSetup, SETUP_PORTS};
+use golden::units::texture_quadratic::QuadWords;
 use rtl::core::registry::{BlockParams, Options};
 use rtl::core::sim::Model;
 use rtl::pipelines::textured_pipeline::{TexturedParams, TexturedPipeline};
 use rtl::stream::layout::{pack, TEXEL, TEXTURED_REGISTERS, TEXTURED_TRIANGLE};
-use rtl::stream::textured_stream::TexturedStream;
+use rtl::stream::textured_stream::{TexturedStream, TexturedStreamParams};
 
 use flow::engine::Sim;
 
@@ -34,30 +41,52 @@ pub const TEX_AT: usize = REGS_AT;
 pub const TREGS_AT: usize = TEX_AT + SETUP_PORTS;
 /// Where `ka` is (then `kd`, `log_w`, `log_h`, `tex_we`, `tex_waddr`, `tex_wdata`).
 pub const KA_AT: usize = TREGS_AT + 10;
+/// Where `line_push` is (then the line record's words).
+pub const LINE_AT: usize = KA_AT + 7;
+/// Words of a line record: u start, Δ, ΔΔ, then v's.
+pub const LINE_WORDS: usize = 6;
 /// Where `hold` is.
-pub const TEX_HOLD_AT: usize = KA_AT + 7;
+pub const TEX_HOLD_AT: usize = LINE_AT + 1 + LINE_WORDS;
+/// Output ports: ready, valid, x, y, z, red, green, blue, done, line_ready.
+pub const TEX_OUTPUTS: usize = 10;
 /// Input words per row.
 pub const TEX_ROW_WIDTH: usize = TEX_HOLD_AT + 1;
 
-/// The methods the textured pipeline renders.
-pub const TEXTURED_RTL_METHODS: [Method; 1] = [Method::Texture];
+/// The methods the textured pipeline renders: `texture` built additive, `texture-quadratic`
+/// built quadratic.
+pub const TEXTURED_RTL_METHODS: [Method; 2] = [Method::Texture, Method::TextureQuadratic];
 
 /// The k the engine builds (correction steps per clock: the pipeline's default,
 /// `rtl::pipelines::textured_pipeline::DEFAULT_K`).
 pub const ENGINE_K: &str = "4";
 
-/// One triangle's set-up: the lit pipeline's and the texture-coordinate block's.
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// One triangle's set-up: the lit pipeline's, and the texture-coordinate block's or (built
+/// quadratic) the quadratic unit's line records.
+#[derive(Clone, Debug, PartialEq)]
 pub struct TexJob {
     pub lit: LitJob,
     pub tex: TexCoordSetup,
+    /// `texture=quadratic`: one record per raster line with a pixel, in walk order (empty for
+    /// the additive build).
+    pub lines: Vec<[QuadWords; 2]>,
 }
 
 impl TexJob {
-    /// The set-up of `tri` for `texture`; `None` when the golden method draws nothing (zero
-    /// area, or a w that is not finite and positive). Errors (one line): a vertex depth beyond
-    /// the depth words, coefficients beyond the texture-coordinate block's range.
+    /// The set-up of `tri` for `texture` (the additive build); `None` when the golden method
+    /// draws nothing (zero area, or a w that is not finite and positive). Errors (one line): a
+    /// vertex depth beyond the depth words, coefficients beyond the texture-coordinate block's
+    /// range.
     pub fn new(tri: &ScreenTriangle, texture: &Texture) -> Result<Option<TexJob>, String> {
+        Self::of(tri, texture, false)
+    }
+
+    /// The set-up of `tri` for the build `quadratic` or additive (as [`TexJob::new`]; built
+    /// quadratic the §14 words are zero and its range does not apply).
+    pub fn of(
+        tri: &ScreenTriangle,
+        texture: &Texture,
+        quadratic: bool,
+    ) -> Result<Option<TexJob>, String> {
         let Some(lit) = LitJob::new(tri)? else {
             return Ok(None);
         };
@@ -65,11 +94,24 @@ impl TexJob {
             return Ok(None);
         };
         let walk = golden::raster::walk(tri);
+        if quadratic {
+            return Ok(Some(TexJob {
+                lit,
+                tex: TexCoordSetup::default(),
+                lines: walk
+                    .rows
+                    .iter()
+                    .filter(|r| r.len > 0)
+                    .map(|r| golden::shading::texture::quadratic_line(&s, r))
+                    .collect(),
+            }));
+        }
         let (_, cu, cv) = golden::shading::texture::checked_coeffs(tri, &s, &walk)?;
         let (_, f, dir) = walk_geometry(&lit.addr);
         Ok(Some(TexJob {
             lit,
             tex: TexCoordSetup::new(&cu, &cv, f, dir),
+            lines: Vec::new(),
         }))
     }
 }
@@ -129,9 +171,18 @@ pub fn tex_row(
         Some((a, w)) => row.extend([1, a as u64, w as u64]),
         None => row.extend([0, 0, 0]),
     }
+    row.extend([0; 1 + LINE_WORDS]);
     row.push(hold as u64);
     debug_assert_eq!(row.len(), TEX_ROW_WIDTH);
     row
+}
+
+/// `row` ([`tex_row`]'s) with a line record pushed.
+pub fn push_line(row: &mut [u64], line: &[QuadWords; 2]) {
+    row[LINE_AT] = 1;
+    row[LINE_AT + 1..LINE_AT + 1 + LINE_WORDS].copy_from_slice(&[
+        line[0].u, line[0].d, line[0].dd, line[1].u, line[1].d, line[1].dd,
+    ]);
 }
 
 /// One row's fields, as [`tex_row`] packs them.
@@ -141,6 +192,7 @@ pub struct TexRow {
     pub regs: ShadingRegs,
     pub t: TexRegs,
     pub write: Option<(u32, u32)>,
+    pub line: Option<[QuadWords; 2]>,
     pub hold: bool,
 }
 
@@ -157,6 +209,7 @@ pub fn row_tex(row: &[u64]) -> TexRow {
         job: job.map(|lit| TexJob {
             lit,
             tex: TexCoordSetup::from_ports(&row[TEX_AT..TREGS_AT]),
+            lines: Vec::new(),
         }),
         regs,
         t: TexRegs {
@@ -166,13 +219,47 @@ pub fn row_tex(row: &[u64]) -> TexRow {
             log_h: k[3],
         },
         write: (k[4] & 1 != 0).then(|| (k[5] as u32, k[6] as u32)),
+        line: (row[LINE_AT] & 1 != 0).then(|| {
+            let w = &row[LINE_AT + 1..];
+            [
+                QuadWords {
+                    u: w[0],
+                    d: w[1],
+                    dd: w[2],
+                },
+                QuadWords {
+                    u: w[3],
+                    d: w[4],
+                    dd: w[5],
+                },
+            ]
+        }),
         hold: row[TEX_HOLD_AT] & 1 != 0,
     }
 }
 
-/// The build of `k` (1, 2 or 4).
+/// The build of `k` (1, 2 or 4), additive; or, `k` = `"quadratic"`, the quadratic build.
 pub fn params(k: &str) -> Result<TexturedParams, String> {
+    if k == QUADRATIC {
+        return TexturedParams::from_options(&Options::new().with("texture", "quadratic"));
+    }
     TexturedParams::from_options(&Options::new().with("tex-k", k))
+}
+
+/// [`params`]'s name of the quadratic build.
+pub const QUADRATIC: &str = "quadratic";
+
+/// [`params`] of `k`, or an error for the quadratic build behind the stream top.
+fn build(k: &str, stream: bool) -> Result<TexturedParams, String> {
+    let p = params(k)?;
+    if stream && p.quadratic {
+        return Err(
+            "textured-stream carries the additive build only (its records have no line \
+             record): texture-quadratic goes through textured-pipeline's ports"
+                .into(),
+        );
+    }
+    Ok(p)
 }
 
 /// `textured-pipeline`, or its AXI4-Stream top `textured-stream`, on either simulator.
@@ -186,11 +273,12 @@ pub struct TexturedPipe {
 }
 
 impl TexturedPipe {
-    /// The pipeline (or, if `stream`, `textured-stream`) with `tex-k` = `k`, on `sim`.
+    /// The pipeline (or, if `stream`, `textured-stream`) with `tex-k` = `k` (or, `k` =
+    /// [`QUADRATIC`], built quadratic: its ports only), on `sim`.
     pub fn on(k: &str, sim: Sim, stream: bool) -> Result<TexturedPipe, String> {
-        let p = params(k)?;
+        let p = build(k, stream)?;
         let model = if stream {
-            flow::engine::model::<TexturedStream>(&p, sim)?
+            flow::engine::model::<TexturedStream>(&TexturedStreamParams(p), sim)?
         } else {
             flow::engine::model::<TexturedPipeline>(&p, sim)?
         };
@@ -203,9 +291,9 @@ impl TexturedPipe {
 
     /// The design [`TexturedPipe::on`] builds under Verilator.
     pub fn design(k: &str, stream: bool) -> Result<verilated::Design, String> {
-        let p = params(k)?;
+        let p = build(k, stream)?;
         Ok(if stream {
-            flow::engine::design::<TexturedStream>(&p)
+            flow::engine::design::<TexturedStream>(&TexturedStreamParams(p))
         } else {
             flow::engine::design::<TexturedPipeline>(&p)
         })
@@ -225,7 +313,7 @@ impl TexturedPipe {
             return Ok(0);
         }
         let words = memory_words(texture)?;
-        let mut out = vec![0u64; 9];
+        let mut out = vec![0u64; TEX_OUTPUTS];
         for &w in &words {
             self.model
                 .step(&tex_row(None, regs, t, Some(w), false), &mut out)?;
@@ -234,6 +322,7 @@ impl TexturedPipe {
     }
 
     /// Run `jobs` (after [`TexturedPipe::load_texture`]), each loaded as soon as `ready` is
+    /// high, their line records (built quadratic) pushed in order whenever `line_ready` is
     /// high; `fragment` for every valid output, `progress(done_triangles)` after each `done`.
     /// Stops after the last `done`, or with an error after `max_clocks`.
     pub fn run(
@@ -264,11 +353,20 @@ impl TexturedPipe {
                 &mut progress,
             );
         }
+        let mut lines = jobs.iter().flat_map(|j| j.lines.iter()).peekable();
         crate::lit::run_ports(
             self.model.as_mut(),
             "textured pipeline",
             jobs.len(),
-            &mut |k| tex_row(k.map(|k| &jobs[k]), regs, t, None, false),
+            TEX_OUTPUTS,
+            &mut |k, model| {
+                let mut row = tex_row(k.map(|k| &jobs[k]), regs, t, None, false);
+                // `line_ready` (output 9) is a function of the registers.
+                if lines.peek().is_some() && model.peek(9) != 0 {
+                    push_line(&mut row, lines.next().unwrap());
+                }
+                row
+            },
             max_clocks,
             &mut fragment,
             &mut progress,
@@ -337,7 +435,7 @@ pub fn textured_scene_words(
 /// block's worst rate (a runaway guard, not an estimate), plus the latency.
 pub fn tex_clock_budget(jobs: &[TexJob]) -> u64 {
     jobs.iter()
-        .map(|j| 8 + j.lit.addr.rows as u64 * 4097 * 64)
+        .map(|j| 8 + j.lines.len() as u64 + j.lit.addr.rows as u64 * 4097 * 64)
         .sum::<u64>()
         + TexturedPipeline::LATENCY as u64
 }

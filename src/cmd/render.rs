@@ -9,6 +9,7 @@ use golden::methods::Method;
 use golden::nmse::{self, Band};
 use golden::render::Frame;
 use indicatif::{MultiProgress, ProgressBar, ProgressStyle};
+use pipeline::textured::TEXTURED_RTL_METHODS;
 use rayon::prelude::*;
 use serde::Serialize;
 
@@ -29,7 +30,9 @@ pub enum Engine {
     /// four-triangle block and four BVIs;
     /// normalizer, normalizer-fit, normalizer-pw, brdf-k4, brdf-k8, brdf-k16, bump through the
     /// lit pixel pipeline; angular, fast, fast-fit through the span pipelines, two pixels per clock;
-    /// cubic through the Horner units (--horner); without --method, all of them).
+    /// cubic through the Horner units (--horner); texture and texture-quadratic through the
+    /// textured pixel pipeline, built additive (SPEC §14) and quadratic (§15); without
+    /// --method, all of them).
     Rtl,
 }
 
@@ -78,7 +81,8 @@ pub struct Args {
     /// the lit methods and gouraud (the span methods and subdivision: pipeline, as
     /// their per-line and per-parent records make the stream set-up bound on short lines and
     /// small triangles; texture: pipeline, as the texture's records, four clocks a texel,
-    /// would dominate its clocks). The images are identical; the clock counts
+    /// would dominate its clocks; texture-quadratic has no stream top: its line records go
+    /// through `textured-pipeline`'s ports). The images are identical; the clock counts
     /// differ (the set-up stream carries 27 words per lit triangle, 23 per Gouraud one, 12 per
     /// cubic line, 72 per subdivision parent, 51 per textured triangle).
     #[arg(long, value_enum)]
@@ -419,13 +423,15 @@ fn render_frames(
                 crate::rtl_engine::check_rtl_method(m)?;
             }
         }
-        // `both`: the methods the hardware has (the others are golden only), `texture` only
-        // with a texture the texture memory holds (`run` notes it).
+        // `both`: the methods the hardware has (the others are golden only), the textured ones
+        // only with a texture the texture memory holds (`run` notes it).
         let hw = crate::rtl_engine::rtl_methods();
         let fits = texture_fits(setup).is_ok();
         let idx: Vec<usize> = (0..n)
             .filter(|&i| hw.contains(&methods[i]))
-            .filter(|&i| engine == Engine::Rtl || fits || methods[i] != Method::Texture)
+            .filter(|&i| {
+                engine == Engine::Rtl || fits || !TEXTURED_RTL_METHODS.contains(&methods[i])
+            })
             .collect();
         let ms: Vec<Method> = idx.iter().map(|&i| methods[i]).collect();
         crate::sim::prepare(build.sim, crate::rtl_engine::designs(&ms, build)?, &multi)?;
@@ -734,11 +740,11 @@ fn check_rtl_flags(args: &Args, methods: &[Method]) -> Result<()> {
         (
             args.lit_top.is_some(),
             "--lit-top",
-            "the lit methods, gouraud, the span methods or subdivision",
+            "the lit methods, gouraud, the span methods, subdivision or texture",
             any(&|m| {
                 LIT_METHODS.contains(&m)
                     || SPAN_METHODS.contains(&m)
-                    || matches!(m, Method::Gouraud | Method::Subdivision)
+                    || matches!(m, Method::Gouraud | Method::Subdivision | Method::Texture)
             }),
         ),
         (
@@ -795,15 +801,27 @@ pub fn run(args: Args) -> Result<()> {
     } else {
         setup.check_textured(&methods, &args.scene.scene)?;
     }
-    if args.engine != Engine::Golden && methods.contains(&Method::Texture) {
+    let hw_textured: Vec<Method> = methods
+        .iter()
+        .copied()
+        .filter(|m| TEXTURED_RTL_METHODS.contains(m))
+        .collect();
+    if args.engine != Engine::Golden && !hw_textured.is_empty() {
         if let Err(e) = texture_fits(&setup) {
+            let names = hw_textured
+                .iter()
+                .map(|m| m.name())
+                .collect::<Vec<_>>()
+                .join(", ");
             match (args.engine, args.method.is_empty()) {
-                (Engine::Rtl, false) => anyhow::bail!("method texture through the hardware: {e}"),
-                (Engine::Rtl, true) => {
-                    methods.retain(|&m| m != Method::Texture);
-                    eprintln!("note: texture is left out: {e}");
+                (Engine::Rtl, false) => {
+                    anyhow::bail!("method {} through the hardware: {e}", hw_textured[0])
                 }
-                _ => eprintln!("note: texture is rendered golden only: {e}"),
+                (Engine::Rtl, true) => {
+                    methods.retain(|m| !TEXTURED_RTL_METHODS.contains(m));
+                    eprintln!("note: {names} left out: {e}");
+                }
+                _ => eprintln!("note: {names} rendered golden only: {e}"),
             }
         }
     }

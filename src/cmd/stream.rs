@@ -166,7 +166,7 @@ fn run_textured(a: &Args) -> Result<()> {
     let order = a
         .setup_order
         .of_addrs(&jobs.iter().map(|j| j.lit.addr).collect::<Vec<_>>());
-    let jobs: Vec<TexJob> = order.iter().map(|&i| jobs[i]).collect();
+    let jobs: Vec<TexJob> = order.iter().map(|&i| jobs[i].clone()).collect();
     let words = textured_scene_words(&jobs, &regs, &tregs, &s.texture).map_err(|e| anyhow!(e))?;
     // The default build (tex-k = 4, the render engine's ENGINE_K).
     stream_triangles::<rtl::stream::textured_stream::TexturedStream>(

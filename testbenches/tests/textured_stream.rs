@@ -225,6 +225,14 @@ fn layout_fields_are_the_pipeline_ports() {
             .iter()
             .map(|f| (f.name.to_string(), f.bits as usize)),
     );
+    // Then the quadratic build's line record, which the stream does not carry (its core ties
+    // it off).
+    fields.push(("line_push".to_string(), 1));
+    for a in ["u", "v"] {
+        for w in ["start", "step", "step2"] {
+            fields.push((format!("line_{a}_{w}"), 48));
+        }
+    }
     assert_eq!(ports.first().map(|p| p.0.as_str()), Some("load"));
     assert_eq!(ports.last().map(|p| p.0.as_str()), Some("hold"));
     assert_eq!(ports[1..ports.len() - 1], fields[..]);

@@ -175,6 +175,67 @@ impl QuadTwin {
     }
 }
 
+/// Line records the textured pipeline's quadratic walk holds (`rtl`'s `QuadWalk`).
+pub const LINE_FIFO: usize = 4;
+
+/// The bit-exact twin of the textured pipeline's quadratic walk (`rtl`'s `QuadWalk`,
+/// written from its header): a [`LINE_FIFO`]-entry FIFO of line records, the unit
+/// ([`QuadTwin`]) loaded by each line's first pixel and stepped by the others, and one output
+/// register after it.
+#[derive(Clone, Debug, Default)]
+pub struct QuadWalkTwin {
+    lines: std::collections::VecDeque<[QuadWords; 2]>,
+    /// The next pixel is its line's first.
+    need: bool,
+    quad: QuadTwin,
+    /// The output register: valid_out, the u and v texels (16-bit two's complement).
+    out: (bool, [u64; 2]),
+}
+
+impl QuadWalkTwin {
+    /// `line_ready`: the FIFO takes a record this clock.
+    pub fn line_ready(&self) -> bool {
+        self.lines.len() < LINE_FIFO
+    }
+
+    /// Line records waiting.
+    pub fn lines(&self) -> usize {
+        self.lines.len()
+    }
+
+    /// `ready` with the event (`valid`, `row_start`) shown: low only for a line's first pixel
+    /// while no record waits.
+    pub fn ready(&self, valid: bool, row_start: bool) -> bool {
+        !(valid && (self.need || row_start)) || !self.lines.is_empty()
+    }
+
+    /// (valid_out, [u, v]) shown this clock.
+    pub fn outputs(&self) -> (bool, [u64; 2]) {
+        self.out
+    }
+
+    /// One rising edge with the event (`valid`, `row_start`) shown and a record pushed or not.
+    pub fn clock(&mut self, valid: bool, row_start: bool, push: Option<&[QuadWords; 2]>) {
+        let ready = self.ready(valid, row_start);
+        let pix = valid && ready;
+        let pull = valid && (self.need || row_start) && ready;
+        self.out = (self.quad.outputs().0, self.quad.outputs().1);
+        let load = if pull { self.lines.pop_front() } else { None };
+        self.quad.clock(pix, load.as_ref());
+        if row_start && ready {
+            self.need = true;
+        }
+        if pix {
+            self.need = false;
+        }
+        if let Some(w) = push {
+            if self.lines.len() < LINE_FIFO {
+                self.lines.push_back(*w);
+            }
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

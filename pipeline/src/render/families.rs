@@ -9,7 +9,7 @@ use crate::gouraud::{clock_budget, Pipe, TriangleJob};
 use crate::lit::{lit_clock_budget, LitJob, LitPipe, ShadingRegs};
 use crate::span::{span_clock_budget, span_jobs, SpanPipe};
 use crate::subdivision::{SubJob, SubPipe};
-use crate::textured::{tex_clock_budget, TexJob, TexRegs, TexturedPipe, ENGINE_K};
+use crate::textured::{tex_clock_budget, TexJob, TexRegs, TexturedPipe, ENGINE_K, QUADRATIC};
 
 /// `gouraud` through the raster pipe (`rtl::pipelines::gouraud_raster`: address block + BVI),
 /// by default through its AXI4-Stream top `gouraud-stream`: the address set-up
@@ -141,7 +141,7 @@ impl Family for Lit {
 /// Send `jobs` in `order` through `run` (its fragments' `job` indices count the sent jobs)
 /// and write each fragment into the frame as its triangle's (mesh order: the depth test's tie
 /// rule), depth from `depth`.
-fn render_in_order<J: Copy>(
+fn render_in_order<J: Clone>(
     s: &Scene,
     jobs: &[J],
     depth: &[golden::types::Plane],
@@ -154,7 +154,7 @@ fn render_in_order<J: Copy>(
     ) -> Result<crate::axis::PipeStats, String>,
 ) -> Result<Rendered, String> {
     progress(Tick::Total(jobs.len() as u64));
-    let sent: Vec<J> = order.iter().map(|&i| jobs[i]).collect();
+    let sent: Vec<J> = order.iter().map(|&i| jobs[i].clone()).collect();
     let mut writer = FrameWriter::new(s.width, s.height);
     let stats = run(
         &sent,
@@ -236,15 +236,29 @@ impl Family for Span {
 /// then one `TexJob` per triangle in the set-up order; depth from the hardware's z words. With
 /// `--lit-top stream` (only when asked: the texture's records would dominate the clocks),
 /// through `textured-stream`: the register record, a texel record per texel (four clocks a
-/// texel, counted), then the triangle records.
+/// texel, counted), then the triangle records. `texture-quadratic` through `textured-pipeline`
+/// built `texture=quadratic`, on its ports only: each triangle's line records pushed beside
+/// the loads.
 ///
 /// Errors (one line): as the lit family, plus a triangle beyond the texture-coordinate block's
-/// range, a k_a or k_d whose white-texel weight does not fit Q8.8, a texture over 2^16 texels.
-pub(super) struct Textured;
+/// range (`texture`), a k_a or k_d whose white-texel weight does not fit Q8.8, a texture over
+/// 2^16 texels, `--lit-top stream` with `texture-quadratic`.
+pub(super) struct Textured(pub(super) Method);
+
+impl Textured {
+    /// The build's [`crate::textured::params`] name.
+    fn build(&self) -> &'static str {
+        if self.0 == Method::TextureQuadratic {
+            QUADRATIC
+        } else {
+            ENGINE_K
+        }
+    }
+}
 
 impl Family for Textured {
     fn design(&self, o: &Options) -> Result<verilated::Design, String> {
-        TexturedPipe::design(ENGINE_K, o.lit_top == LitTop::Stream)
+        TexturedPipe::design(self.build(), o.lit_top == LitTop::Stream)
     }
 
     fn render(
@@ -257,13 +271,14 @@ impl Family for Textured {
         let texture = s.texture.unwrap_or(golden::texture::Texture::builtin());
         let regs = ShadingRegs::of(s.ctx).map_err(|e| format!("RTL set-up: {e}"))?;
         let tregs = TexRegs::of(s.ctx, texture).map_err(|e| format!("RTL set-up: {e}"))?;
-        let (jobs, depth) = jobs_with_depth(s.tris, |t| TexJob::new(t, texture))?;
+        let quadratic = self.0 == Method::TextureQuadratic;
+        let (jobs, depth) = jobs_with_depth(s.tris, |t| TexJob::of(t, texture, quadratic))?;
         let order = o
             .setup_order
             .of_addrs(&jobs.iter().map(|j| j.lit.addr).collect::<Vec<_>>());
         let stream = o.lit_top == LitTop::Stream;
-        let mut pipe =
-            TexturedPipe::on(ENGINE_K, o.sim, stream).map_err(|e| format!("RTL set-up: {e}"))?;
+        let mut pipe = TexturedPipe::on(self.build(), o.sim, stream)
+            .map_err(|e| format!("RTL set-up: {e}"))?;
         pipe.load_texture(texture, &regs, &tregs)
             .map_err(|e| format!("RTL simulation: {e}"))?;
         render_in_order(s, &jobs, &depth, &order, progress, |sent, put, done| {

@@ -6,7 +6,8 @@
 //! `crate::span::SpanPipe`, each on either simulator and through its ports or its AXI4-Stream
 //! top) and its fragment-to-frame step; [`family`] picks the family of a method and
 //! [`Options`]. The textured family (`crate::textured::TexturedPipe`) renders `texture`
-//! through `textured-pipeline` (its ports only: it has no stream top).
+//! through `textured-pipeline` (or, when asked, `textured-stream`) and `texture-quadratic`
+//! through `textured-pipeline` built `texture=quadratic` (its ports only).
 //!
 //! Every triangle the golden renderer would draw (the same list, in the same order; zero-area
 //! triangles skipped as `golden::render::render` skips them) gets its set-up in software and is
@@ -234,7 +235,7 @@ pub fn family(method: Method, o: &Options) -> Result<Box<dyn Family>, String> {
         }
         (Method::Gouraud, _) => Box::new(families::Gouraud),
         (m, _) if SPAN_METHODS.contains(&m) => Box::new(families::Span(m)),
-        (m, _) if TEXTURED_RTL_METHODS.contains(&m) => Box::new(families::Textured),
+        (m, _) if TEXTURED_RTL_METHODS.contains(&m) => Box::new(families::Textured(m)),
         (m, _) => Box::new(families::Lit(m)),
     })
 }

@@ -211,6 +211,7 @@ macro_rules! lit_pipeline {
             latency: $lat:expr => $lm:literal,
             multipliers: $mul:expr,
             in { $($ins:tt)* }
+            $(more_out { $($mo:tt)* })?
             fields { $($front_f:tt)* }
             more_fields { $($mid_f:tt)* }
         }
@@ -242,6 +243,7 @@ macro_rules! lit_pipeline {
                 out {
                     ready: Bit, valid: Bit, x: Bits<12>, y: Bits<12>, z: Bits<32>,
                     red: Bits<8>, green: Bits<8>, blue: Bits<8>, done: Bit,
+                    $($($mo)*)?
                 }
                 $($front_f)*
                 pub normal: VectorInterpolator,

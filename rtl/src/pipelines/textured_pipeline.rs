@@ -4,6 +4,9 @@
 //! from the texture memory (`texture_memory`). Golden: the `texture` method
 //! (`golden::shading::texture::shade` with `Coord::Additive`): the texel takes the place of the
 //! material's diffuse colour in the ambient and diffuse terms, lit per pixel as `normalizer-fit`.
+//! Built `texture=quadratic`, the texel comes instead from the §15 quadratic unit
+//! (`texture_quadratic`) stepped along each raster line from a per-line record (golden: the
+//! `texture-quadratic` method, `Coord::Quadratic`); see "The quadratic build" below.
 //!
 //! ```text
 //!  load ─► SubpixelAddressBlock ─event─► FIFO 1 (8) ─head─► TextureCoord ─(u, v)─► TextureMemory (4) ─texel─► Delay ─► TexelWeights (3) ─amb, dif─┐
@@ -38,6 +41,19 @@
 //! twin checks that no push finds either FIFO full and that no texel is shown with a
 //! non-pixel at the second one's head).
 //!
+//! # The quadratic build
+//!
+//! `texture=quadratic` puts a [`QuadWalk`] where the texture-coordinate block's outputs are
+//! read (both are built; a constant selects, and synthesis drops the other). The set-up
+//! software sends, beside the triangles, one line record per raster line with a pixel, in
+//! the walk's order (`line_push` with the line's u + ½, Δ, ΔΔ and v's: the words
+//! `texture-quadratic` takes, `golden::shading::texture::quadratic_line`), into a 4-entry line
+//! FIFO that takes a push while `line_ready` is high. The first pixel of a line loads the unit
+//! from the FIFO's head; the next ones step it; such a first pixel waits at the first event
+//! FIFO's head while no line record is there. The event side, the texel's latency (2 clocks
+//! from the take) and everything after are the additive build's. The `tex_e0` … `tex_v_p_long`
+//! words are not read in this build, and `line_push` is not read in the additive one.
+//!
 //! # Ports
 //! | port | dir | format |
 //! |---|---|---|
@@ -50,9 +66,11 @@
 //! | `ka`, `kd` | in | the material's k_a and k_d, unsigned Q1.15 (registers; k·255 < 256 so every weight fits Q8.8) |
 //! | `log_w`, `log_h` | in | the texture's sides, 2^log_w × 2^log_h texels (registers, `texture_memory`) |
 //! | `tex_we`, `tex_waddr` (16), `tex_wdata` (24) | in | a texel write (`texture_memory`'s `we`, `waddr`, `wdata`): load the texture before the triangles that read it |
+//! | `line_push`, `line_u_start line_u_step line_u_step2 line_v_start line_v_step line_v_step2` | in | `texture=quadratic`: a line record, its words signed Q15.32 in 48 bits (`texture_quadratic`), taken when `line_ready` is high |
 //! | `hold` | in | stall the address block (no event this clock); the fragment stream gets empty clocks |
 //! | `ready` | out | a `load` is accepted this clock |
 //! | `valid`, `x`, `y`, `z`, `red green blue`, `done` | out | as `pixel-pipeline` |
+//! | `line_ready` | out | the line FIFO takes a `line_push` this clock (a function of the registers) |
 //!
 //! # Texel weights (`TexelWeights`)
 //! amb_c = ⌊(texel_c·ka + 2⁶) / 2⁷⌋, dif_c = ⌊(texel_c·kd + 2⁶) / 2⁷⌋: UQ8.0 × UQ1.15 →
@@ -65,7 +83,8 @@
 //! Event → fragment 88 clocks when the pixel's texel settles in its first clock (the first
 //! FIFO's register 1, the texture-coordinate block 2, then the lit path's 85 from the pop),
 //! load → first fragment 91.
-//! One fragment per clock while every pixel needs at most k correction steps per axis; a pixel
+//! The quadratic build: one fragment per clock while line records arrive ahead of their lines.
+//! The additive build: one fragment per clock while every pixel needs at most k correction steps per axis; a pixel
 //! needing q steps on its worse axis costs max(1, ⌈q/k⌉) clocks, and a line start without a
 //! pixel one clock, as in the texture-coordinate block. A triangle's load waits until the
 //! previous triangle's first event has left the second FIFO (4 clocks after the address
@@ -73,15 +92,18 @@
 //! fragments per clock.
 //!
 //! # Build parameters
-//! `texture` (additive: the §14 block; the quadratic and Bézier coordinates are not built into
-//! the pipeline) and `tex-k` (1 | 2 | 4: correction steps per clock; 4 by default here, where
-//! the texture-coordinate block alone defaults to 2). The lit path is
+//! `texture` (`additive`: the §14 block, the default; `quadratic`: the §15 unit on line
+//! records; the Bézier coordinate is not built into the pipeline) and, with additive, `tex-k`
+//! (1 | 2 | 4: correction steps per clock; 4 by default here, where the texture-coordinate
+//! block alone defaults to 2). The lit path is
 //! `pixel-pipeline`'s `coeffs=fit power=exact bump=off` (the `normalizer-fit` lighting the
 //! textured methods use).
 //!
 //! # Overflow, error budget
 //! Those of the blocks. Against the golden `texture` method: the texel is the same (the block
-//! is exact on the coefficients the golden method uses); the weights add ≤ 2⁻⁹ + 255·2⁻¹⁶ each
+//! is exact on the coefficients the golden method uses); built quadratic, against the golden
+//! `texture-quadratic` method, the texel is the same too (the method steps the unit's
+//! bit-exact twin on the same line words); the weights add ≤ 2⁻⁹ + 255·2⁻¹⁶ each
 //! to the pipeline's colour budget; the bench and the image tests measure it (≤ 2 LSB
 //! required, 1 LSB asked).
 //!
@@ -102,6 +124,7 @@ use crate::units::lighting_unit::LightingUnit;
 use crate::units::power_unit::PowerUnit;
 use crate::units::texture_coord::{TexCoordParams, TextureCoord};
 use crate::units::texture_memory::TextureMemory;
+use crate::units::texture_quadratic::QuadWalk;
 use crate::units::vector_interpolator::VectorInterpolator;
 
 /// Entries of the event FIFO (the update's loops are written for 8).
@@ -120,9 +143,13 @@ pub const TEXEL_DELAY: usize = POP_TO_COLOUR - TextureMemory::LATENCY - WEIGHT_L
 /// clock: the first FIFO's register, the texture-coordinate block's latency, then the lit path.
 pub const TEX_EVENT_TO_FRAGMENT: usize = 1 + TextureCoord::LATENCY + EVENT_TO_FRAGMENT;
 
-/// Build parameters: the texture coordinate (additive only) and its k.
+/// Build parameters: the texture coordinate and, for the additive one, its k.
 #[derive(Clone, Debug, PartialEq)]
 pub struct TexturedParams {
+    /// `texture=quadratic`: the §15 unit on per-line records ([`QuadWalk`]) gives the texel;
+    /// else the §14 block (`texture=additive`).
+    pub quadratic: bool,
+    /// The §14 block's k (1 with `texture=quadratic`, where the block is built but unused).
     pub k: TexCoordParams,
     /// The lit path's build (always `coeffs=fit power=exact bump=off`).
     pub lit: PipelineParams,
@@ -147,6 +174,7 @@ pub const DEFAULT_K: u32 = 4;
 impl Default for TexturedParams {
     fn default() -> Self {
         TexturedParams {
+            quadratic: false,
             k: TexCoordParams { k: DEFAULT_K },
             lit: Self::lit(),
         }
@@ -155,41 +183,58 @@ impl Default for TexturedParams {
 
 impl BlockParams for TexturedParams {
     const KEYS: &'static [&'static str] = &["texture", "tex-k"];
-    /// `texture=additive` (the default; `quadratic` and `bezier` are not built into the
-    /// pipeline: an error) and `tex-k=1|2|4` (default 4, [`DEFAULT_K`]).
+    /// `texture=additive|quadratic` (default additive; `bezier` is not built into the
+    /// pipeline: an error) and, with additive, `tex-k=1|2|4` (default 4, [`DEFAULT_K`]).
     fn from_options(o: &Options) -> Result<Self, String> {
-        match o.get("texture") {
-            None | Some("additive") => {}
-            Some(t @ ("quadratic" | "bezier")) => {
-                return Err(format!(
-                "texture={t} is not built into the pipeline (only texture=additive, the §14 block)"
-            ))
+        let quadratic = match o.get("texture") {
+            None | Some("additive") => false,
+            Some("quadratic") => true,
+            Some("bezier") => {
+                return Err(
+                    "texture=bezier is not built into the pipeline (texture=additive, \
+                            the §14 block, or texture=quadratic, the §15 unit)"
+                        .into(),
+                )
             }
             Some(other) => {
                 return Err(format!(
-                    "unknown texture coordinate {other:?} (expected additive)"
+                    "unknown texture coordinate {other:?} (expected additive or quadratic)"
                 ))
             }
-        }
+        };
+        let k = match o.get("tex-k") {
+            Some(_) if quadratic => {
+                return Err(
+                    "tex-k sets the additive block's correction steps: it does not \
+                            go with texture=quadratic"
+                        .into(),
+                )
+            }
+            Some(_) => TexCoordParams::from_options(o)?,
+            None if quadratic => TexCoordParams { k: 1 },
+            None => TexCoordParams { k: DEFAULT_K },
+        };
         Ok(TexturedParams {
-            k: match o.get("tex-k") {
-                None => TexCoordParams { k: DEFAULT_K },
-                Some(_) => TexCoordParams::from_options(o)?,
-            },
+            quadratic,
+            k,
             lit: Self::lit(),
         })
     }
     fn describe(&self) -> Option<String> {
-        Some(format!(
-            "texture = additive (SPEC §14), {}; lit as normalizer-fit",
-            self.k.describe().unwrap_or_default()
-        ))
+        Some(if self.quadratic {
+            "texture = quadratic (SPEC §15, per-line records); lit as normalizer-fit".into()
+        } else {
+            format!(
+                "texture = additive (SPEC §14), {}; lit as normalizer-fit",
+                self.k.describe().unwrap_or_default()
+            )
+        })
     }
     fn test_sets() -> Vec<Options> {
-        // The default build only: the pipeline around the texture-coordinate block does not
-        // depend on k, and every k is checked in `texture-coord`'s own sets (twin, golden,
-        // Verilog); `tests/rtl_texture.rs` runs the pipeline at k = 1, 2, 4.
-        vec![Options::new()]
+        // The default build and the quadratic one: the pipeline around the texture-coordinate
+        // block does not depend on k, and every k is checked in `texture-coord`'s own sets
+        // (twin, golden, Verilog); `tests/rtl_texture.rs` runs the pipeline at k = 1, 2, 4.
+        vec![Options::new(), Options::new().with("texture", "quadratic")]
     }
 }
 
@@ -391,15 +436,25 @@ crate::pipelines::pixel_pipeline::lit_pipeline! {
             n: Bits<10>, spc_r: Bits<16>, spc_g: Bits<16>, spc_b: Bits<16>,
             ka: Bits<16>, kd: Bits<16>, log_w: Bits<4>, log_h: Bits<4>,
             tex_we: Bit, tex_waddr: Bits<16>, tex_wdata: Bits<24>,
+            line_push: Bit,
+            line_u_start: Bits<48>, line_u_step: Bits<48>, line_u_step2: Bits<48>,
+            line_v_start: Bits<48>, line_v_step: Bits<48>, line_v_step2: Bits<48>,
             hold: Bit,
         }
+        more_out { line_ready: Bit, }
         fields {
             pub addr: SubpixelAddressBlock,
             pub coord: TextureCoord = TextureCoord::new(&p.k),
+            pub quad: QuadWalk,
             pub memory: TextureMemory,
         }
         more_fields {
             pub weights: TexelWeights,
+            /// The build's coordinate: 1 for `texture=quadratic` ([`QuadWalk`]).
+            quadratic: Constant<Bit> = Constant::new(p.quadratic),
+            /// The coordinate block's `ready`, `valid_out`, `u`, `v`, from the build's.
+            c_ready: Signal<Local, Bit>, c_valid: Signal<Local, Bit>,
+            c_u: Signal<Local, Bits<16>>, c_v: Signal<Local, Bits<16>>,
             texel_r: Delay<Bits<8>, { TEXEL_DELAY }>,
             texel_g: Delay<Bits<8>, { TEXEL_DELAY }>,
             texel_b: Delay<Bits<8>, { TEXEL_DELAY }>,
@@ -431,7 +486,7 @@ crate::pipelines::pixel_pipeline::lit_pipeline! {
             front {
                 {
                     clock!(
-                        self, clock, addr, coord, memory, normal, depth, n_valid_reg, light, bump,
+                        self, clock, addr, coord, quad, memory, normal, depth, n_valid_reg, light, bump,
                         x_to_bump, y_to_bump, power, colour, weights, texel_r, texel_g, texel_b,
                         cos_phi_to_colour, z_to_out, x_to_out, y_to_out, done_to_out, ev_valid,
                         ev_row_start, ev_step, ev_carry, ev_first, ld_q, first_wait, seen_first,
@@ -481,7 +536,28 @@ crate::pipelines::pixel_pipeline::lit_pipeline! {
                     self.coord_q.in_done.next = self.addr.done.val();
                     self.coord_q.in_x.next = self.addr.x.val();
                     self.coord_q.in_y.next = self.addr.y.val();
-                    self.coord_q.pop.next = self.coord.ready.val();
+                    // The build's coordinate: the §14 block, or the §15 unit on line records.
+                    self.quad.valid_in.next = self.coord_q.h_valid.val();
+                    self.quad.row_start_in.next = self.coord_q.h_row.val();
+                    self.quad.line_push.next = self.line_push.val();
+                    self.quad.line_u_start.next = self.line_u_start.val();
+                    self.quad.line_u_step.next = self.line_u_step.val();
+                    self.quad.line_u_step2.next = self.line_u_step2.val();
+                    self.quad.line_v_start.next = self.line_v_start.val();
+                    self.quad.line_v_step.next = self.line_v_step.val();
+                    self.quad.line_v_step2.next = self.line_v_step2.val();
+                    self.line_ready.next = self.quad.line_ready.val();
+                    self.c_ready.next = self.coord.ready.val();
+                    self.c_valid.next = self.coord.valid_out.val();
+                    self.c_u.next = self.coord.u.val();
+                    self.c_v.next = self.coord.v.val();
+                    if self.quadratic.val() {
+                        self.c_ready.next = self.quad.ready.val();
+                        self.c_valid.next = self.quad.valid_out.val();
+                        self.c_u.next = self.quad.u.val();
+                        self.c_v.next = self.quad.v.val();
+                    }
+                    self.coord_q.pop.next = self.c_ready.val();
                     self.coord.valid_in.next = self.coord_q.h_valid.val();
                     self.coord.row_start_in.next = self.coord_q.h_row.val();
                     self.coord.step_in.next = self.coord_q.h_step.val();
@@ -490,7 +566,7 @@ crate::pipelines::pixel_pipeline::lit_pipeline! {
                     self.coord.y_in.next = self.coord_q.h_y.val();
                     self.coord.done_in.next = self.coord_q.h_done.val();
                     self.coord.hold.next = false;
-                    self.lit_q.push.next = self.coord.ready.val() & self.coord_q.any.val();
+                    self.lit_q.push.next = self.c_ready.val() & self.coord_q.any.val();
                     self.lit_q.in_valid.next = self.coord_q.h_valid.val();
                     self.lit_q.in_row.next = self.coord_q.h_row.val();
                     self.lit_q.in_step.next = self.coord_q.h_step.val();
@@ -499,7 +575,7 @@ crate::pipelines::pixel_pipeline::lit_pipeline! {
                     self.lit_q.in_done.next = self.coord_q.h_done.val();
                     self.lit_q.in_x.next = self.coord_q.h_x.val();
                     self.lit_q.in_y.next = self.coord_q.h_y.val();
-                    self.pop.next = !self.lit_q.h_valid.val() | self.coord.valid_out.val();
+                    self.pop.next = !self.lit_q.h_valid.val() | self.c_valid.val();
                     self.lit_q.pop.next = self.pop.val();
                     // The popped event (the head is zero when the FIFO is empty).
                     self.p_valid.next = false;
@@ -542,9 +618,9 @@ crate::pipelines::pixel_pipeline::lit_pipeline! {
                     self.memory.wdata.next = self.tex_wdata.val();
                     self.memory.log_w.next = self.log_w.val();
                     self.memory.log_h.next = self.log_h.val();
-                    self.memory.valid_in.next = self.coord.valid_out.val();
-                    self.memory.u.next = self.coord.u.val();
-                    self.memory.v.next = self.coord.v.val();
+                    self.memory.valid_in.next = self.c_valid.val();
+                    self.memory.u.next = self.c_u.val();
+                    self.memory.v.next = self.c_v.val();
                     self.texel_r.d.next = self.memory.red.val();
                     self.texel_g.d.next = self.memory.green.val();
                     self.texel_b.d.next = self.memory.blue.val();

@@ -76,8 +76,40 @@
 
 use rust_hdl::prelude::*;
 
+use crate::core::registry::{BlockParams, Options};
 use crate::pipelines::pixel_pipeline::EVENT_TO_FRAGMENT;
 use crate::pipelines::textured_pipeline::{TexturedParams, TexturedPipeline, EVENT_FIFO};
+
+/// `textured-stream`'s build parameters: the textured pipeline's, additive only (its records
+/// have no line record for `texture=quadratic`; the core ties the pipeline's line ports off).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct TexturedStreamParams(pub TexturedParams);
+
+impl std::ops::Deref for TexturedStreamParams {
+    type Target = TexturedParams;
+    fn deref(&self) -> &TexturedParams {
+        &self.0
+    }
+}
+
+impl BlockParams for TexturedStreamParams {
+    const KEYS: &'static [&'static str] = TexturedParams::KEYS;
+    /// As the pipeline's, but `texture=quadratic` is an error.
+    fn from_options(o: &Options) -> Result<Self, String> {
+        let p = TexturedParams::from_options(o)?;
+        if p.quadratic {
+            return Err(
+                "textured-stream carries texture=additive only: its records have no \
+                        line record (texture=quadratic goes through textured-pipeline's ports)"
+                    .into(),
+            );
+        }
+        Ok(TexturedStreamParams(p))
+    }
+    fn describe(&self) -> Option<String> {
+        self.0.describe()
+    }
+}
 
 /// FIFO depth (entries) and its address width.
 pub const FIFO_DEPTH: usize = 1 << FIFO_BITS;
@@ -103,7 +135,7 @@ crate::one_lane_stream! {
         events: ev_beat,
         push: ev_beat,
     }
-    new(p: &TexturedParams);
+    new(p: &TexturedStreamParams);
 }
 
 #[cfg(test)]

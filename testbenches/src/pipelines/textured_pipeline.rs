@@ -1,14 +1,17 @@
 //! Bench of the textured pixel pipeline (`rtl::pipelines::textured_pipeline`): its bit-exact
-//! twin (the address block's and texture-coordinate block's cycle models, the event FIFO, the
-//! texture memory's twin, the texel weights and the lit pipeline's back end, wired as the top
-//! wires them) and the golden `texture` method (`golden::shading::texture::shade` with
-//! `Coord::Additive`) every clock.
+//! twin (the address block's and texture-coordinate block's cycle models — built quadratic,
+//! the quadratic walk's twin `QuadWalkTwin` instead — the event FIFO, the texture memory's
+//! twin, the texel weights and the lit pipeline's back end, wired as the top wires them) and
+//! the golden `texture` method (`golden::shading::texture::shade` with `Coord::Additive`;
+//! built quadratic, `texture-quadratic`, `Coord::Quadratic`) every clock.
 //!
 //! Stimulus: a seeded 16×16 texture written first (one texel per clock), then seeded
 //! triangles as `pixel-pipeline`'s (`lit_triangles_subpixel`) given perspective w in [1, 4]
 //! and texture coordinates spread over 0.5 to 8 repeats, so that pixels need from none to
 //! several correction steps; loaded as soon as `ready` allows, `hold` high in a seeded tenth
-//! of the clocks after the texture. Lit by the default context.
+//! of the clocks after the texture. Built quadratic, the triangles' line records are pushed
+//! while `line_ready` is high except in 40 clocks of every 160, so that first pixels also wait
+//! for their records. Lit by the default context.
 //!
 //! Tolerances: `ready`, `valid`, `x`, `y`, `done` are the twin's (the texture-coordinate
 //! block's rate depends on the data, so the clock of each fragment comes from the cycle
@@ -24,10 +27,12 @@ use golden::testing::Rng;
 use golden::texture::Texture;
 use golden::types::ScreenTriangle;
 use golden::units::address_block::{AddressBlockModel, AddressOutputs};
-use golden::units::texture_coord::block::{texel_word, TexCoordModel, TexEvent};
+use golden::units::texture_coord::block::unword_texel;
+use golden::units::texture_coord::block::{texel_word, TexCoordModel, TexEvent, TexOutputs};
 use golden::units::texture_memory::{load_words, MemoryInputs, MemoryTwin};
+use golden::units::texture_quadratic::QuadWalkTwin;
 use pipeline::lit::ShadingRegs;
-use pipeline::textured::{row_tex, tex_row, TexJob, TexRegs};
+use pipeline::textured::{push_line, row_tex, tex_row, TexJob, TexRegs};
 use rtl::core::fixed::{INTENSITY, LEVEL};
 use rtl::pipelines::textured_pipeline::{
     TexturedParams, TexturedPipeline, EVENT_FIFO, TEXEL_DELAY, WEIGHT_LATENCY,
@@ -49,6 +54,9 @@ struct Entry {
 pub struct TexturedTwin {
     addr: AddressBlockModel,
     coord: TexCoordModel,
+    /// The quadratic walk: the coordinate when `quadratic`, else idle (it is built in both).
+    quad: QuadWalkTwin,
+    quadratic: bool,
     /// The events before the texture-coordinate block takes them.
     waiting: VecDeque<Entry>,
     /// The events taken, until their texels show.
@@ -70,7 +78,9 @@ pub fn texel_weight(texel: u64, k: u64) -> u64 {
 
 impl TexturedTwin {
     pub fn new(p: &TexturedParams) -> Self {
-        Self::with_coord(p, TexCoordModel::new(p.k.k))
+        let mut twin = Self::with_coord(p, TexCoordModel::new(p.k.k));
+        twin.quadratic = p.quadratic;
+        twin
     }
 
     /// The pipeline with a texture-coordinate model of any k, built or not
@@ -84,6 +94,8 @@ impl TexturedTwin {
         TexturedTwin {
             addr: AddressBlockModel::subpixel(),
             coord,
+            quad: QuadWalkTwin::default(),
+            quadratic: false,
             waiting: VecDeque::new(),
             fifo: VecDeque::new(),
             first_wait: false,
@@ -101,19 +113,45 @@ impl TexturedTwin {
         self.addr.ready() && !self.first_wait
     }
 
+    /// `line_ready` this clock (a function of the registers).
+    pub fn line_ready(&self) -> bool {
+        self.quad.line_ready()
+    }
+
+    /// The coordinate's outputs this clock, with the first FIFO's head shown (the quadratic
+    /// walk's `ready` depends on it).
+    fn coord_outputs(&self) -> TexOutputs {
+        if !self.quadratic {
+            return self.coord.outputs_held(false);
+        }
+        let ev = self
+            .waiting
+            .front()
+            .map_or(TexEvent::default(), |e| TexEvent::from(&e.a));
+        let (valid, [u, v]) = self.quad.outputs();
+        TexOutputs {
+            ready: self.quad.ready(ev.valid, ev.row_start),
+            valid,
+            u: unword_texel(u),
+            v: unword_texel(v),
+            ..TexOutputs::default()
+        }
+    }
+
     /// The state a stall is diagnosed by: the FIFOs' lengths and heads, the blocks' `ready`,
     /// the load gate.
     pub fn state(&self) -> String {
-        let co = self.coord.outputs_held(false);
+        let co = self.coord_outputs();
         format!(
-            "first FIFO {} (head {:?}), second FIFO {} (head {:?}), texture-coordinate ready {}, address ready {}, first_wait {}",
+            "first FIFO {} (head {:?}), second FIFO {} (head {:?}), texture-coordinate ready {}, address ready {}, first_wait {}, line records {}",
             self.waiting.len(),
             self.waiting.front().map(|e| (e.a.valid, e.a.row_start, e.a.step, e.a.done, e.a.x, e.a.y)),
             self.fifo.len(),
             self.fifo.front().map(|e| (e.a.valid, e.a.row_start, e.a.step, e.a.done, e.a.x, e.a.y)),
             co.ready,
             self.addr.ready(),
-            self.first_wait
+            self.first_wait,
+            self.quad.lines()
         )
     }
 }
@@ -121,7 +159,8 @@ impl TexturedTwin {
 impl Twin for TexturedTwin {
     fn step(&mut self, r: &[u64]) -> Vec<u64> {
         let row = row_tex(r);
-        let co = self.coord.outputs_held(false);
+        let co = self.coord_outputs();
+        let line_ready = self.quad.line_ready();
         let gate = !self.first_wait;
         let a_hold = row.hold || self.waiting.len() >= EVENT_FIFO - 1;
         let a = self.addr.outputs_held(a_hold);
@@ -131,6 +170,7 @@ impl Twin for TexturedTwin {
         let ev_in = shown.map_or(TexEvent::default(), |e| TexEvent::from(&e.a));
         let mut o = vec![(a.ready && gate) as u64];
         o.extend(self.back.outputs());
+        o.push(line_ready as u64);
         let accepted = row.job.filter(|_| a.ready && gate);
 
         // The FIFO's pop: a non-pixel at the head, or a pixel whose texel shows.
@@ -186,8 +226,12 @@ impl Twin for TexturedTwin {
             v: texel_word(co.v) as u32,
         });
 
-        self.back
-            .clock(&popped, accepted.map(|j| j.lit), &row.regs, &weights);
+        self.back.clock(
+            &popped,
+            accepted.as_ref().map(|j| j.lit),
+            &row.regs,
+            &weights,
+        );
 
         // The FIFOs and the load gate.
         if pop {
@@ -224,8 +268,12 @@ impl Twin for TexturedTwin {
         if accepted.is_some() {
             self.first_wait = true;
         }
-        self.coord
-            .clock_held(accepted.as_ref().map(|j| &j.tex), &ev_in, false);
+        if !self.quadratic {
+            self.coord
+                .clock_held(accepted.as_ref().map(|j| &j.tex), &ev_in, false);
+        }
+        self.quad
+            .clock(ev_in.valid, ev_in.row_start, row.line.as_ref());
         self.addr
             .clock_held(accepted.as_ref().map(|j| &j.lit.addr), a_hold);
         o
@@ -241,8 +289,14 @@ pub fn bench_texture(seed: u64) -> Texture {
     Texture::new(16, 16, rgb).expect("a 16x16 texture")
 }
 
-/// `n` seeded textured triangles (see the module doc) with their jobs.
-pub fn textured_triangles(seed: u64, n: usize, texture: &Texture) -> Vec<(ScreenTriangle, TexJob)> {
+/// `n` seeded textured triangles (see the module doc) with their jobs for the build
+/// (`quadratic` or additive).
+pub fn textured_triangles(
+    seed: u64,
+    n: usize,
+    texture: &Texture,
+    quadratic: bool,
+) -> Vec<(ScreenTriangle, TexJob)> {
     let mut rng = Rng::new(seed ^ 0x51ab);
     let mut out = Vec::with_capacity(n);
     let mut k = 0u64;
@@ -263,13 +317,13 @@ pub fn textured_triangles(seed: u64, n: usize, texture: &Texture) -> Vec<(Screen
                     s.v[k].x = x0 + dx;
                     s.v[k].y = y0 + dy;
                 }
-                let job = TexJob::new(&s, texture)
+                let job = TexJob::of(&s, texture, quadratic)
                     .expect("the sliver is in range")
                     .expect("the sliver has area");
                 assert_eq!(walk(&s).pixel_count(), 0, "the sliver has no pixel");
                 out.push((s, job));
             }
-            if let Ok(Some(job)) = TexJob::new(&t, texture) {
+            if let Ok(Some(job)) = TexJob::of(&t, texture, quadratic) {
                 if out.len() < n {
                     out.push((t, job));
                 }
@@ -280,18 +334,29 @@ pub fn textured_triangles(seed: u64, n: usize, texture: &Texture) -> Vec<(Screen
     out
 }
 
-/// The golden colour of every pixel of `t` (the `texture` method), in walk order.
-fn golden_colours(t: &ScreenTriangle, ctx: &ShadeContext, texture: &Texture) -> Vec<[u8; 3]> {
+/// The golden colour of every pixel of `t` (the `texture` method, or `texture-quadratic` if
+/// `quadratic`), in walk order.
+fn golden_colours(
+    t: &ScreenTriangle,
+    ctx: &ShadeContext,
+    texture: &Texture,
+    quadratic: bool,
+) -> Vec<[u8; 3]> {
     let w = walk(t);
     let mut out = Vec::with_capacity(w.pixel_count());
-    golden::shading::texture::shade(t, &w, ctx, texture, Coord::Additive, &mut |_, _, rgb| {
-        out.push(rgb)
-    });
+    let coord = if quadratic {
+        Coord::Quadratic
+    } else {
+        Coord::Additive
+    };
+    golden::shading::texture::shade(t, &w, ctx, texture, coord, &mut |_, _, rgb| out.push(rgb));
     out
 }
 
 /// The system run: the texture written, then each job loaded when the twin's `ready` is high,
-/// `hold` in a seeded tenth of the clocks; returns the rows and the twin's outputs.
+/// `hold` in a seeded tenth of the clocks, the jobs' line records pushed in order when
+/// `line_ready` is high except in 40 clocks of every 160; returns the rows and the twin's
+/// outputs.
 pub fn textured_system(
     p: &TexturedParams,
     jobs: &[TexJob],
@@ -310,11 +375,16 @@ pub fn textured_system(
         rows.push(row);
     }
     let (mut next, mut done, mut idle, mut since) = (0, 0, 0, 0);
+    let mut lines = jobs.iter().flat_map(|j| j.lines.iter()).peekable();
     while idle < 4 {
         let hold = rng.below(10) == 0;
         let load = (twin.ready() && next < jobs.len()).then(|| &jobs[next]);
         next += load.is_some() as usize;
-        let row = tex_row(load, regs, t, None, hold);
+        let mut row = tex_row(load, regs, t, None, hold);
+        // Line records stop for 40 clocks in every 160, so that first pixels wait for them.
+        if lines.peek().is_some() && twin.line_ready() && (rows.len() / 40) % 4 != 3 {
+            push_line(&mut row, lines.next().unwrap());
+        }
         let o = twin.step(&row);
         done += o[8] as usize;
         since = if o[8] != 0 { 0 } else { since + 1 };
@@ -339,11 +409,11 @@ impl Bench for TexturedPipeline {
         let texture = bench_texture(seed);
         let regs = ShadingRegs::of(&ctx).expect("default context fits the registers");
         let t = TexRegs::of(&ctx, &texture).expect("default context fits");
-        let tris = textured_triangles(seed, n, &texture);
-        let jobs: Vec<TexJob> = tris.iter().map(|(_, j)| *j).collect();
+        let tris = textured_triangles(seed, n, &texture, p.quadratic);
+        let jobs: Vec<TexJob> = tris.iter().map(|(_, j)| j.clone()).collect();
         let mut colours = tris
             .iter()
-            .flat_map(|(t, _)| golden_colours(t, &ctx, &texture))
+            .flat_map(|(t, _)| golden_colours(t, &ctx, &texture, p.quadratic))
             .collect::<Vec<_>>()
             .into_iter();
         let mut depths = tris
@@ -372,6 +442,7 @@ impl Bench for TexturedPipeline {
                     e.extend([Expected::DontCare; 4]);
                 }
                 e.push(w(o[8]));
+                e.push(w(o[9]));
                 e
             })
             .collect();
@@ -392,7 +463,7 @@ impl Bench for TexturedPipeline {
                 rms: bound,
             },
         };
-        let mut compare = vec![Compare::Exact; 9];
+        let mut compare = vec![Compare::Exact; 10];
         compare[4] = depth;
         compare[5..8].copy_from_slice(&[level; 3]);
         Stimulus {

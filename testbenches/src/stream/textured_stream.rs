@@ -25,7 +25,7 @@ use rtl::stream::layout::{
     pack_fragment, payload_words, unpack, TEXEL, TEXTURED_REGISTERS, TEXTURED_STREAM,
     TEXTURED_TRIANGLE,
 };
-use rtl::stream::textured_stream::{TexturedStream, FIFO_DEPTH, HOLD_ABOVE};
+use rtl::stream::textured_stream::{TexturedStream, TexturedStreamParams, FIFO_DEPTH, HOLD_ABOVE};
 
 use crate::harness::{Compare, Expected};
 use crate::pipelines::textured_pipeline::{bench_texture, textured_triangles, TexturedTwin};
@@ -82,6 +82,8 @@ impl Twin for TexturedStreamTwin {
             &TEXEL,
             &self.reader.load_bank[..payload_words(&TEXEL)],
         ));
+        // No line record (the stream top carries the additive build).
+        row.extend([0; pipeline::textured::LINE_WORDS + 1]);
         row.push(self.fifo.hold() as u64);
         debug_assert_eq!(row.len(), TEX_ROW_WIDTH);
         let o = self.inner.step(&row);
@@ -139,7 +141,7 @@ pub fn scene(seed: u64, n: usize) -> (Vec<TexJob>, ShadingRegs, TexRegs, Texture
     let texture = bench_texture(seed);
     let regs = ShadingRegs::of(&ctx).expect("default context fits the registers");
     let t = TexRegs::of(&ctx, &texture).expect("default context fits");
-    let jobs = textured_triangles(seed, n, &texture)
+    let jobs = textured_triangles(seed, n, &texture, false)
         .into_iter()
         .map(|(_, j)| j)
         .collect();
@@ -217,7 +219,7 @@ pub fn run(
 impl Bench for TexturedStream {
     const ITEMS: &'static str = "triangles";
     const DEFAULT_ITEMS: usize = 6;
-    fn stimulus(p: &TexturedParams, n: usize, seed: u64) -> Stimulus {
+    fn stimulus(p: &TexturedStreamParams, n: usize, seed: u64) -> Stimulus {
         let (jobs, regs, t, texture) = scene(seed, n);
         let words = stimulus_words(&jobs, &regs, &t, &texture);
         let run = run(p, &words, seed, 0.1, StallPattern::new(seed, 0.25));
@@ -259,7 +261,7 @@ impl Bench for TexturedStream {
             compare: vec![Compare::Exact; OUTPUTS],
         }
     }
-    fn twin(p: &TexturedParams) -> Box<dyn Twin> {
+    fn twin(p: &TexturedStreamParams) -> Box<dyn Twin> {
         Box::new(TexturedStreamTwin::new(p))
     }
 }

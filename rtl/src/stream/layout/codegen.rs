@@ -153,6 +153,15 @@ pub fn core_file(top: &StreamTop) -> String {
             self.pend_b.d.next = false;
         }
         self.pipe.tex_we.next = self.apply_texel.val();
+        // No line record: the stream carries the additive build (`texture=quadratic`'s line
+        // records go through the pipeline's ports).
+        self.pipe.line_push.next = false;
+        self.pipe.line_u_start.next = 0.into();
+        self.pipe.line_u_step.next = 0.into();
+        self.pipe.line_u_step2.next = 0.into();
+        self.pipe.line_v_start.next = 0.into();
+        self.pipe.line_v_step.next = 0.into();
+        self.pipe.line_v_step2.next = 0.into();
 ",
             );
         }

@@ -292,7 +292,7 @@ pub const TEXTURED_STREAM: StreamTop = StreamTop {
     core: Core {
         name: "TexturedStreamCore",
         pipe: "TexturedPipeline",
-        params: Some("TexturedParams"),
+        params: Some("TexturedStreamParams"),
         ..PIXEL_STREAM.core
     },
     ..PIXEL_STREAM
