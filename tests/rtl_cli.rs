@@ -369,8 +369,8 @@ fn synth_ecp5_only_flags_are_one_line_errors() {
     }
 }
 
-/// The textured pipeline's build flags: `--tex-coord quadratic` with `--tex-k`, on a block that
-/// does not read it, on `textured-stream` (no line records), a Bézier or unknown coordinate,
+/// The textured pipeline's build flags: `--tex-coord quadratic` or `bezier` with `--tex-k`, on a
+/// block that does not read it, on `textured-stream` (no line records), an unknown coordinate,
 /// and `texture-quadratic` through a stream top are one-line errors naming what is wrong.
 #[test]
 fn texture_coordinate_builds_refuse_what_they_cannot_build() {
@@ -422,10 +422,12 @@ fn texture_coordinate_builds_refuse_what_they_cannot_build() {
                 "textured-pipeline",
                 "--tex-coord",
                 "bezier",
+                "--tex-k",
+                "4",
                 "--out",
                 out_dir,
             ][..],
-            &["bezier", "not built"][..],
+            &["tex-k", "texture=bezier"][..],
         ),
         (
             &[
@@ -437,7 +439,7 @@ fn texture_coordinate_builds_refuse_what_they_cannot_build() {
                 "--out",
                 out_dir,
             ][..],
-            &["cubic", "expected additive or quadratic"][..],
+            &["cubic", "expected additive, quadratic or bezier"][..],
         ),
         (
             &[
@@ -482,7 +484,16 @@ fn texture_coordinate_builds_refuse_what_they_cannot_build() {
             "{args:?}: {err}"
         );
     }
-    // The quadratic build exports.
+    // The per-line builds export.
+    shadecore_ok(&[
+        "export-verilog",
+        "--block",
+        "textured-pipeline",
+        "--tex-coord",
+        "bezier",
+        "--out",
+        out_dir,
+    ]);
     shadecore_ok(&[
         "export-verilog",
         "--block",

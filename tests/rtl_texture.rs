@@ -1,9 +1,9 @@
-//! `texture` (SPEC §14) and `texture-quadratic` (§15) through `textured-pipeline` (built
-//! additive and quadratic) on the built-in scenes: the RTL image against the golden image of
+//! `texture` (SPEC §14), `texture-quadratic` (§15) and `texture-bezier` (§16) through
+//! `textured-pipeline` (built additive, quadratic and bezier) on the built-in scenes: the RTL image against the golden image of
 //! the same method (largest channel difference, pixels differing; the issue's bound is 1 LSB)
 //! and against `texture-reference` (NMSE), every fragment the golden method draws and no
 //! other; then the pipeline's rate, fragments per clock, for k = 1, 2 and 4 and for the
-//! quadratic build (the RTL under Verilator; k = 4 also through the pipeline's twin, which
+//! per-line builds (the RTL under Verilator; k = 4 also through the pipeline's twin, which
 //! must take the same clocks), and the clocks from the first load to the first fragment.
 //!
 //! `cargo test --release --test rtl_texture -- --include-ignored --nocapture` prints the
@@ -14,6 +14,7 @@ use golden::render::render_textured;
 use indicatif::ProgressBar;
 use pipeline::lit::ShadingRegs;
 use pipeline::textured::{TexJob, TexRegs, TexturedPipe};
+use rtl::pipelines::textured_pipeline::TexCoord;
 use shadecore::rtl_engine::{max_channel_diff, render_rtl_textured, RtlBuild};
 use shadecore::setup::{build, SceneArgs, Setup};
 
@@ -27,9 +28,13 @@ fn scene(name: &str) -> Setup {
 
 #[test]
 fn texture_through_the_rtl_is_within_one_lsb_of_golden_on_every_scene() {
-    for (method, name) in [Method::Texture, Method::TextureQuadratic]
-        .into_iter()
-        .flat_map(|m| ["sphere", "torus", "plane"].map(|n| (m, n)))
+    for (method, name) in [
+        Method::Texture,
+        Method::TextureQuadratic,
+        Method::TextureBezier,
+    ]
+    .into_iter()
+    .flat_map(|m| ["sphere", "torus", "plane"].map(|n| (m, n)))
     {
         let s = scene(name);
         let rtl = render_rtl_textured(
@@ -81,13 +86,13 @@ fn texture_through_the_rtl_is_within_one_lsb_of_golden_on_every_scene() {
 
 /// The jobs of `s` for the additive build (or the `quadratic` one) in the engine's (balanced)
 /// order, with their mean w.
-fn jobs_of(s: &Setup, quadratic: bool) -> Vec<(TexJob, f64)> {
+fn jobs_of(s: &Setup, coord: TexCoord) -> Vec<(TexJob, f64)> {
     let mut v: Vec<(TexJob, f64)> = s
         .tris
         .iter()
         .filter(|t| t.depth_plane().is_some())
         .filter_map(|t| {
-            TexJob::of(t, &s.texture, quadratic)
+            TexJob::of(t, &s.texture, coord)
                 .unwrap()
                 .map(|j| (j, t.v.iter().map(|v| v.w).sum::<f64>() / 3.0))
         })
@@ -191,7 +196,7 @@ fn run_model(s: &Setup, jobs: &[TexJob], k: u32) -> (u64, u64) {
 fn textured_pipeline_fragments_per_clock_on_the_scenes() {
     for name in ["sphere", "plane"] {
         let s = scene(name);
-        let all = jobs_of(&s, false);
+        let all = jobs_of(&s, TexCoord::Additive);
         let mut by_w: Vec<(TexJob, f64)> = all.clone();
         by_w.sort_by(|a, b| a.1.total_cmp(&b.1));
         let fifth = by_w.len() / 5;
@@ -246,17 +251,26 @@ fn textured_pipeline_fragments_per_clock_on_the_scenes() {
                 first2 as usize + 1 >= rtl::pipelines::textured_pipeline::TEX_EVENT_TO_FRAGMENT
             );
             if label == "all" {
-                // The quadratic build, the same triangles with their line records (pushed
+                // The per-line builds, the same triangles with their line records (pushed
                 // whenever `line_ready` is high).
-                let quad: Vec<TexJob> = jobs_of(&s, true).into_iter().map(|(j, _)| j).collect();
-                let (pq, cq, firstq) = run_rtl(&s, &quad, "quadratic");
-                assert_eq!(pq, p4, "{name}: the quadratic build drew a different count");
-                println!(
-                    "{name}: texture=quadratic {:.3} fragments per clock ({cq} clocks, {} line \
-                     records); first load to first fragment {firstq} clocks",
-                    r(pq, cq),
-                    quad.iter().map(|j| j.lines.len()).sum::<usize>()
-                );
+                for coord in [TexCoord::Quadratic, TexCoord::Bezier] {
+                    let lined: Vec<TexJob> =
+                        jobs_of(&s, coord).into_iter().map(|(j, _)| j).collect();
+                    let (pq, cq, firstq) = run_rtl(&s, &lined, coord.name());
+                    assert_eq!(
+                        pq,
+                        p4,
+                        "{name}: the {} build drew a different count",
+                        coord.name()
+                    );
+                    println!(
+                        "{name}: texture={} {:.3} fragments per clock ({cq} clocks, {} line \
+                         records); first load to first fragment {firstq} clocks",
+                        coord.name(),
+                        r(pq, cq),
+                        lined.iter().map(|j| j.lines.len()).sum::<usize>()
+                    );
+                }
                 // The AXI4-Stream top, the same jobs: set-up words one per clock.
                 let (ps, cs, load) = run_stream(&s, &jobs);
                 assert_eq!(ps, p4, "{name}: the stream top drew a different count");

@@ -8,25 +8,28 @@
 //! normal words (12), the depth words (4), the texture-coordinate set-up (14), the shading
 //! registers without the ambient and diffuse weights (lx ly lz hx hy hz n spc_r spc_g spc_b:
 //! the texel gives the others), `ka`, `kd`, `log_w`, `log_h`,
-//! `tex_we`, `tex_waddr`, `tex_wdata`, `line_push` and the line record's six words
-//! (`texture=quadratic`), `hold`. Outputs: ready, valid, x, y, z, red, green, blue, done,
+//! `tex_we`, `tex_waddr`, `tex_wdata`, `line_push` and a line record's nine words
+//! ([`LineRecord`]), `hold`. Outputs: ready, valid, x, y, z, red, green, blue, done,
 //! line_ready.
 //!
-//! Built `texture=quadratic` (`texture-quadratic` through the pipeline), a triangle's
-//! [`TexJob::lines`] are its line records, one per raster line with a pixel in walk order
-//! (`golden::shading::texture::quadratic_line`); [`TexturedPipe::run`] pushes them, in the
-//! triangles' order, whenever `line_ready` is high.
+//! Built `texture=quadratic` or `texture=bezier` (`texture-quadratic`, `texture-bezier`
+//! through the pipeline), a triangle's [`TexJob::lines`] are its line records, one per raster
+//! line with a pixel in walk order (`golden::shading::texture::quadratic_line`,
+//! `bezier_line`); [`TexturedPipe::run`] pushes them, in the triangles' order, whenever
+//! `line_ready` is high.
 
 use golden::methods::Method;
 use golden::shade::ShadeContext;
+use golden::shading::texture::{bezier_line, quadratic_line};
 use golden::texture::Texture;
 use golden::types::ScreenTriangle;
 use golden::units::colour_combine::Weights;
+use golden::units::texture_bezier::{BezierLine, LaneWords};
 use golden::units::texture_coord::block::{walk_geometry, TexCoordSetup, SETUP_PORTS};
 use golden::units::texture_quadratic::QuadWords;
 use rtl::core::registry::{BlockParams, Options};
 use rtl::core::sim::Model;
-use rtl::pipelines::textured_pipeline::{TexturedParams, TexturedPipeline};
+use rtl::pipelines::textured_pipeline::{TexCoord, TexturedParams, TexturedPipeline};
 use rtl::stream::layout::{pack, TEXEL, TEXTURED_REGISTERS, TEXTURED_TRIANGLE};
 use rtl::stream::textured_stream::{TexturedStream, TexturedStreamParams};
 
@@ -43,8 +46,8 @@ pub const TREGS_AT: usize = TEX_AT + SETUP_PORTS;
 pub const KA_AT: usize = TREGS_AT + 10;
 /// Where `line_push` is (then the line record's words).
 pub const LINE_AT: usize = KA_AT + 7;
-/// Words of a line record: u start, Δ, ΔΔ, then v's.
-pub const LINE_WORDS: usize = 6;
+/// Words of a line record ([`LineRecord`]).
+pub const LINE_WORDS: usize = 9;
 /// Where `hold` is.
 pub const TEX_HOLD_AT: usize = LINE_AT + 1 + LINE_WORDS;
 /// Output ports: ready, valid, x, y, z, red, green, blue, done, line_ready.
@@ -53,8 +56,90 @@ pub const TEX_OUTPUTS: usize = 10;
 pub const TEX_ROW_WIDTH: usize = TEX_HOLD_AT + 1;
 
 /// The methods the textured pipeline renders: `texture` built additive, `texture-quadratic`
-/// built quadratic.
-pub const TEXTURED_RTL_METHODS: [Method; 2] = [Method::Texture, Method::TextureQuadratic];
+/// built quadratic, `texture-bezier` built bezier.
+pub const TEXTURED_RTL_METHODS: [Method; 3] = [
+    Method::Texture,
+    Method::TextureQuadratic,
+    Method::TextureBezier,
+];
+
+/// The build that renders `method` (one of [`TEXTURED_RTL_METHODS`]).
+pub fn coord_of(method: Method) -> TexCoord {
+    match method {
+        Method::TextureQuadratic => TexCoord::Quadratic,
+        Method::TextureBezier => TexCoord::Bezier,
+        _ => TexCoord::Additive,
+    }
+}
+
+/// A line record on the pipeline's `line_…` ports: u's start, Δ, ΔΔ and v's (both per-line
+/// builds), then the line's last pixel index and X's Δ, d (the Bézier build's; zero for the
+/// quadratic one).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct LineRecord {
+    pub words: [u64; 6],
+    pub end: u64,
+    pub x: [u64; 2],
+}
+
+impl LineRecord {
+    /// The quadratic unit's words of a line (u, then v).
+    pub fn quadratic(w: &[QuadWords; 2]) -> LineRecord {
+        LineRecord {
+            words: [w[0].u, w[0].d, w[0].dd, w[1].u, w[1].d, w[1].dd],
+            ..LineRecord::default()
+        }
+    }
+
+    /// The Bézier block's record of a line.
+    pub fn bezier(l: &BezierLine) -> LineRecord {
+        let [x, u, v] = l.lanes;
+        LineRecord {
+            words: [u.start, u.step, u.step2, v.start, v.step, v.step2],
+            end: l.end_index as u64,
+            x: [x.step, x.step2],
+        }
+    }
+
+    /// The quadratic unit's words this record carries.
+    pub fn quad_words(&self) -> [QuadWords; 2] {
+        let w = &self.words;
+        [
+            QuadWords {
+                u: w[0],
+                d: w[1],
+                dd: w[2],
+            },
+            QuadWords {
+                u: w[3],
+                d: w[4],
+                dd: w[5],
+            },
+        ]
+    }
+
+    /// The Bézier block's record this one carries.
+    pub fn bezier_line(&self) -> BezierLine {
+        let w = &self.words;
+        let lane = |start, step, step2| LaneWords { start, step, step2 };
+        BezierLine {
+            end_index: self.end as u32,
+            lanes: [
+                lane(0, self.x[0], self.x[1]),
+                lane(w[0], w[1], w[2]),
+                lane(w[3], w[4], w[5]),
+            ],
+        }
+    }
+
+    /// The ports' words in order.
+    fn ports(&self) -> [u64; LINE_WORDS] {
+        let w = &self.words;
+        [
+            w[0], w[1], w[2], w[3], w[4], w[5], self.end, self.x[0], self.x[1],
+        ]
+    }
+}
 
 /// The k the engine builds (correction steps per clock: the pipeline's default,
 /// `rtl::pipelines::textured_pipeline::DEFAULT_K`).
@@ -66,9 +151,9 @@ pub const ENGINE_K: &str = "4";
 pub struct TexJob {
     pub lit: LitJob,
     pub tex: TexCoordSetup,
-    /// `texture=quadratic`: one record per raster line with a pixel, in walk order (empty for
+    /// The per-line builds: one record per raster line with a pixel, in walk order (empty for
     /// the additive build).
-    pub lines: Vec<[QuadWords; 2]>,
+    pub lines: Vec<LineRecord>,
 }
 
 impl TexJob {
@@ -77,15 +162,15 @@ impl TexJob {
     /// vertex depth beyond the depth words, coefficients beyond the texture-coordinate block's
     /// range.
     pub fn new(tri: &ScreenTriangle, texture: &Texture) -> Result<Option<TexJob>, String> {
-        Self::of(tri, texture, false)
+        Self::of(tri, texture, TexCoord::Additive)
     }
 
-    /// The set-up of `tri` for the build `quadratic` or additive (as [`TexJob::new`]; built
-    /// quadratic the §14 words are zero and its range does not apply).
+    /// The set-up of `tri` for the build `coord` (as [`TexJob::new`]; for a per-line build the
+    /// §14 words are zero and their range does not apply).
     pub fn of(
         tri: &ScreenTriangle,
         texture: &Texture,
-        quadratic: bool,
+        coord: TexCoord,
     ) -> Result<Option<TexJob>, String> {
         let Some(lit) = LitJob::new(tri)? else {
             return Ok(None);
@@ -94,16 +179,18 @@ impl TexJob {
             return Ok(None);
         };
         let walk = golden::raster::walk(tri);
-        if quadratic {
+        if coord != TexCoord::Additive {
+            let rows = walk.rows.iter().filter(|r| r.len > 0);
             return Ok(Some(TexJob {
                 lit,
                 tex: TexCoordSetup::default(),
-                lines: walk
-                    .rows
-                    .iter()
-                    .filter(|r| r.len > 0)
-                    .map(|r| golden::shading::texture::quadratic_line(&s, r))
-                    .collect(),
+                lines: if coord == TexCoord::Quadratic {
+                    rows.map(|r| LineRecord::quadratic(&quadratic_line(&s, r)))
+                        .collect()
+                } else {
+                    rows.map(|r| LineRecord::bezier(&bezier_line(&s, r)))
+                        .collect()
+                },
             }));
         }
         let (_, cu, cv) = golden::shading::texture::checked_coeffs(tri, &s, &walk)?;
@@ -178,11 +265,9 @@ pub fn tex_row(
 }
 
 /// `row` ([`tex_row`]'s) with a line record pushed.
-pub fn push_line(row: &mut [u64], line: &[QuadWords; 2]) {
+pub fn push_line(row: &mut [u64], line: &LineRecord) {
     row[LINE_AT] = 1;
-    row[LINE_AT + 1..LINE_AT + 1 + LINE_WORDS].copy_from_slice(&[
-        line[0].u, line[0].d, line[0].dd, line[1].u, line[1].d, line[1].dd,
-    ]);
+    row[LINE_AT + 1..LINE_AT + 1 + LINE_WORDS].copy_from_slice(&line.ports());
 }
 
 /// One row's fields, as [`tex_row`] packs them.
@@ -192,7 +277,7 @@ pub struct TexRow {
     pub regs: ShadingRegs,
     pub t: TexRegs,
     pub write: Option<(u32, u32)>,
-    pub line: Option<[QuadWords; 2]>,
+    pub line: Option<LineRecord>,
     pub hold: bool,
 }
 
@@ -221,43 +306,34 @@ pub fn row_tex(row: &[u64]) -> TexRow {
         write: (k[4] & 1 != 0).then(|| (k[5] as u32, k[6] as u32)),
         line: (row[LINE_AT] & 1 != 0).then(|| {
             let w = &row[LINE_AT + 1..];
-            [
-                QuadWords {
-                    u: w[0],
-                    d: w[1],
-                    dd: w[2],
-                },
-                QuadWords {
-                    u: w[3],
-                    d: w[4],
-                    dd: w[5],
-                },
-            ]
+            LineRecord {
+                words: [w[0], w[1], w[2], w[3], w[4], w[5]],
+                end: w[6],
+                x: [w[7], w[8]],
+            }
         }),
         hold: row[TEX_HOLD_AT] & 1 != 0,
     }
 }
 
-/// The build of `k` (1, 2 or 4), additive; or, `k` = `"quadratic"`, the quadratic build.
+/// The build of `k` (1, 2 or 4), additive; or, `k` = `"quadratic"` or `"bezier"`, that
+/// per-line build.
 pub fn params(k: &str) -> Result<TexturedParams, String> {
-    if k == QUADRATIC {
-        return TexturedParams::from_options(&Options::new().with("texture", "quadratic"));
+    if k == "quadratic" || k == "bezier" {
+        return TexturedParams::from_options(&Options::new().with("texture", k));
     }
     TexturedParams::from_options(&Options::new().with("tex-k", k))
 }
 
-/// [`params`]'s name of the quadratic build.
-pub const QUADRATIC: &str = "quadratic";
-
-/// [`params`] of `k`, or an error for the quadratic build behind the stream top.
+/// [`params`] of `k`, or an error for a per-line build behind the stream top.
 fn build(k: &str, stream: bool) -> Result<TexturedParams, String> {
     let p = params(k)?;
-    if stream && p.quadratic {
-        return Err(
+    if stream && p.coord != TexCoord::Additive {
+        return Err(format!(
             "textured-stream carries the additive build only (its records have no line \
-             record): texture-quadratic goes through textured-pipeline's ports"
-                .into(),
-        );
+             record): texture-{} goes through textured-pipeline's ports",
+            p.coord.name()
+        ));
     }
     Ok(p)
 }
@@ -274,7 +350,7 @@ pub struct TexturedPipe {
 
 impl TexturedPipe {
     /// The pipeline (or, if `stream`, `textured-stream`) with `tex-k` = `k` (or, `k` =
-    /// [`QUADRATIC`], built quadratic: its ports only), on `sim`.
+    /// `"quadratic"` or `"bezier"`, that per-line build: its ports only), on `sim`.
     pub fn on(k: &str, sim: Sim, stream: bool) -> Result<TexturedPipe, String> {
         let p = build(k, stream)?;
         let model = if stream {

@@ -30,9 +30,9 @@ pub enum Engine {
     /// four-triangle block and four BVIs;
     /// normalizer, normalizer-fit, normalizer-pw, brdf-k4, brdf-k8, brdf-k16, bump through the
     /// lit pixel pipeline; angular, fast, fast-fit through the span pipelines, two pixels per clock;
-    /// cubic through the Horner units (--horner); texture and texture-quadratic through the
-    /// textured pixel pipeline, built additive (SPEC §14) and quadratic (§15); without
-    /// --method, all of them).
+    /// cubic through the Horner units (--horner); texture, texture-quadratic and
+    /// texture-bezier through the textured pixel pipeline, built additive (SPEC §14),
+    /// quadratic (§15) and bezier (§16); without --method, all of them).
     Rtl,
 }
 
@@ -81,8 +81,8 @@ pub struct Args {
     /// the lit methods and gouraud (the span methods and subdivision: pipeline, as
     /// their per-line and per-parent records make the stream set-up bound on short lines and
     /// small triangles; texture: pipeline, as the texture's records, four clocks a texel,
-    /// would dominate its clocks; texture-quadratic has no stream top: its line records go
-    /// through `textured-pipeline`'s ports). The images are identical; the clock counts
+    /// would dominate its clocks; texture-quadratic and texture-bezier have no stream top:
+    /// their line records go through `textured-pipeline`'s ports). The images are identical; the clock counts
     /// differ (the set-up stream carries 27 words per lit triangle, 23 per Gouraud one, 12 per
     /// cubic line, 72 per subdivision parent, 51 per textured triangle).
     #[arg(long, value_enum)]

@@ -370,6 +370,96 @@ impl BezierTwin {
     }
 }
 
+/// Texels the textured pipeline's Bézier walk keeps (`rtl`'s `BezWalk`).
+pub const TEXEL_FIFO: usize = 4;
+
+/// The bit-exact twin of the textured pipeline's Bézier walk (`rtl`'s `BezWalk` with the
+/// pipeline's line FIFO, written from their headers): up to
+/// [`crate::units::texture_quadratic::LINE_FIFO`] line records, the Bézier block's twin
+/// ([`BezierTwin`]) loading the head record when ready and held while two or more texels
+/// wait, a [`TEXEL_FIFO`]-entry texel FIFO (a shift register: its entries keep stale words,
+/// which the output stage reads), each pixel shown taking the head texel, and two registers
+/// after (the taken texel, the output).
+#[derive(Clone, Debug, Default)]
+pub struct BezWalkTwin {
+    lines: std::collections::VecDeque<BezierLine>,
+    bez: BezierTwin,
+    occ: [bool; TEXEL_FIFO],
+    tu: [u64; TEXEL_FIFO],
+    tv: [u64; TEXEL_FIFO],
+    /// The taken pixel's texel (valid, u, v), then the output register.
+    stage: (bool, u64, u64),
+    out: (bool, u64, u64),
+}
+
+impl BezWalkTwin {
+    /// `line_ready`: the line FIFO takes a record this clock.
+    pub fn line_ready(&self) -> bool {
+        self.lines.len() < crate::units::texture_quadratic::LINE_FIFO
+    }
+
+    /// Line records waiting.
+    pub fn lines(&self) -> usize {
+        self.lines.len()
+    }
+
+    /// `ready` with a pixel shown (`valid`) or not: low only for a pixel while no texel waits.
+    pub fn ready(&self, valid: bool) -> bool {
+        !valid || self.occ[0]
+    }
+
+    /// (valid_out, [u, v]) shown this clock.
+    pub fn outputs(&self) -> (bool, [u64; 2]) {
+        (self.out.0, [self.out.1, self.out.2])
+    }
+
+    /// One rising edge with a pixel shown (`valid`) or not and a record pushed or not.
+    pub fn clock(&mut self, valid: bool, push: Option<&BezierLine>) {
+        let hold = self.occ[1];
+        let bo = self.bez.outputs(hold);
+        let pull = !self.lines.is_empty() && bo.ready;
+        let pix = valid && self.occ[0];
+        // The texel FIFO: the pixel pops the head, the Bézier block's texel lands in the first
+        // free entry after it.
+        let mut kept = self.occ;
+        let (mut tu, mut tv) = (self.tu, self.tv);
+        if pix {
+            for i in 0..TEXEL_FIFO - 1 {
+                kept[i] = self.occ[i + 1];
+                tu[i] = self.tu[i + 1];
+                tv[i] = self.tv[i + 1];
+            }
+            kept[TEXEL_FIFO - 1] = false;
+        }
+        let mut occ = kept;
+        for i in 0..TEXEL_FIFO {
+            let put = bo.valid && !kept[i] && (i == 0 || kept[i - 1]);
+            if put {
+                occ[i] = true;
+                tu[i] = bo.u;
+                tv[i] = bo.v;
+            }
+        }
+        self.out = self.stage;
+        self.stage = (pix, self.tu[0], self.tv[0]);
+        self.occ = occ;
+        self.tu = tu;
+        self.tv = tv;
+        // The head record is shown as the Bézier block's load; it is taken (`pull`) when the
+        // block is ready.
+        let head = self.lines.front().copied();
+        self.bez.clock(head.as_ref(), hold);
+        if pull {
+            self.lines.pop_front();
+        }
+        if let Some(l) = push {
+            if self.lines.len() < crate::units::texture_quadratic::LINE_FIFO {
+                self.lines.push_back(*l);
+            }
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

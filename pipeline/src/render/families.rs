@@ -9,7 +9,8 @@ use crate::gouraud::{clock_budget, Pipe, TriangleJob};
 use crate::lit::{lit_clock_budget, LitJob, LitPipe, ShadingRegs};
 use crate::span::{span_clock_budget, span_jobs, SpanPipe};
 use crate::subdivision::{SubJob, SubPipe};
-use crate::textured::{tex_clock_budget, TexJob, TexRegs, TexturedPipe, ENGINE_K, QUADRATIC};
+use crate::textured::{coord_of, tex_clock_budget, TexJob, TexRegs, TexturedPipe, ENGINE_K};
+use rtl::pipelines::textured_pipeline::TexCoord;
 
 /// `gouraud` through the raster pipe (`rtl::pipelines::gouraud_raster`: address block + BVI),
 /// by default through its AXI4-Stream top `gouraud-stream`: the address set-up
@@ -236,22 +237,21 @@ impl Family for Span {
 /// then one `TexJob` per triangle in the set-up order; depth from the hardware's z words. With
 /// `--lit-top stream` (only when asked: the texture's records would dominate the clocks),
 /// through `textured-stream`: the register record, a texel record per texel (four clocks a
-/// texel, counted), then the triangle records. `texture-quadratic` through `textured-pipeline`
-/// built `texture=quadratic`, on its ports only: each triangle's line records pushed beside
-/// the loads.
+/// texel, counted), then the triangle records. `texture-quadratic` and `texture-bezier`
+/// through `textured-pipeline` built `texture=quadratic` and `texture=bezier`, on its ports
+/// only: each triangle's line records pushed beside the loads.
 ///
 /// Errors (one line): as the lit family, plus a triangle beyond the texture-coordinate block's
 /// range (`texture`), a k_a or k_d whose white-texel weight does not fit Q8.8, a texture over
-/// 2^16 texels, `--lit-top stream` with `texture-quadratic`.
+/// 2^16 texels, `--lit-top stream` with a per-line method.
 pub(super) struct Textured(pub(super) Method);
 
 impl Textured {
     /// The build's [`crate::textured::params`] name.
     fn build(&self) -> &'static str {
-        if self.0 == Method::TextureQuadratic {
-            QUADRATIC
-        } else {
-            ENGINE_K
+        match coord_of(self.0) {
+            TexCoord::Additive => ENGINE_K,
+            c => c.name(),
         }
     }
 }
@@ -271,8 +271,8 @@ impl Family for Textured {
         let texture = s.texture.unwrap_or(golden::texture::Texture::builtin());
         let regs = ShadingRegs::of(s.ctx).map_err(|e| format!("RTL set-up: {e}"))?;
         let tregs = TexRegs::of(s.ctx, texture).map_err(|e| format!("RTL set-up: {e}"))?;
-        let quadratic = self.0 == Method::TextureQuadratic;
-        let (jobs, depth) = jobs_with_depth(s.tris, |t| TexJob::of(t, texture, quadratic))?;
+        let coord = coord_of(self.0);
+        let (jobs, depth) = jobs_with_depth(s.tris, |t| TexJob::of(t, texture, coord))?;
         let order = o
             .setup_order
             .of_addrs(&jobs.iter().map(|j| j.lit.addr).collect::<Vec<_>>());

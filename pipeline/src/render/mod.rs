@@ -6,8 +6,9 @@
 //! `crate::span::SpanPipe`, each on either simulator and through its ports or its AXI4-Stream
 //! top) and its fragment-to-frame step; [`family`] picks the family of a method and
 //! [`Options`]. The textured family (`crate::textured::TexturedPipe`) renders `texture`
-//! through `textured-pipeline` (or, when asked, `textured-stream`) and `texture-quadratic`
-//! through `textured-pipeline` built `texture=quadratic` (its ports only).
+//! through `textured-pipeline` (or, when asked, `textured-stream`), `texture-quadratic` and
+//! `texture-bezier` through `textured-pipeline` built `texture=quadratic`, `texture=bezier`
+//! (its ports only).
 //!
 //! Every triangle the golden renderer would draw (the same list, in the same order; zero-area
 //! triangles skipped as `golden::render::render` skips them) gets its set-up in software and is

@@ -4,9 +4,10 @@
 //! from the texture memory (`texture_memory`). Golden: the `texture` method
 //! (`golden::shading::texture::shade` with `Coord::Additive`): the texel takes the place of the
 //! material's diffuse colour in the ambient and diffuse terms, lit per pixel as `normalizer-fit`.
-//! Built `texture=quadratic`, the texel comes instead from the §15 quadratic unit
-//! (`texture_quadratic`) stepped along each raster line from a per-line record (golden: the
-//! `texture-quadratic` method, `Coord::Quadratic`); see "The quadratic build" below.
+//! Built `texture=quadratic` or `texture=bezier`, the texel comes instead from the §15
+//! quadratic unit (`texture_quadratic`) or the §16 Bézier unit (`texture_bezier`), each line's
+//! from a per-line record (golden: the `texture-quadratic` and `texture-bezier` methods,
+//! `Coord::Quadratic`, `Coord::Bezier`); see "The per-line builds" below.
 //!
 //! ```text
 //!  load ─► SubpixelAddressBlock ─event─► FIFO 1 (8) ─head─► TextureCoord ─(u, v)─► TextureMemory (4) ─texel─► Delay ─► TexelWeights (3) ─amb, dif─┐
@@ -41,18 +42,24 @@
 //! twin checks that no push finds either FIFO full and that no texel is shown with a
 //! non-pixel at the second one's head).
 //!
-//! # The quadratic build
+//! # The per-line builds
 //!
-//! `texture=quadratic` puts a [`QuadWalk`] where the texture-coordinate block's outputs are
-//! read (both are built; a constant selects, and synthesis drops the other). The set-up
-//! software sends, beside the triangles, one line record per raster line with a pixel, in
-//! the walk's order (`line_push` with the line's u + ½, Δ, ΔΔ and v's: the words
-//! `texture-quadratic` takes, `golden::shading::texture::quadratic_line`), into a 4-entry line
-//! FIFO that takes a push while `line_ready` is high. The first pixel of a line loads the unit
-//! from the FIFO's head; the next ones step it; such a first pixel waits at the first event
-//! FIFO's head while no line record is there. The event side, the texel's latency (2 clocks
-//! from the take) and everything after are the additive build's. The `tex_e0` … `tex_v_p_long`
-//! words are not read in this build, and `line_push` is not read in the additive one.
+//! `texture=quadratic` puts a [`QuadWalk`], `texture=bezier` a [`BezWalk`], where the
+//! texture-coordinate block's outputs are read (all three are built; constants select, and
+//! synthesis drops the others). The set-up software sends, beside the triangles, one line
+//! record per raster line with a pixel, in the walk's order (`line_push` with the line's
+//! words: u + ½, Δ, ΔΔ and v's, the words `texture-quadratic` takes,
+//! `golden::shading::texture::quadratic_line`; or the `texture-bezier` record,
+//! `golden::shading::texture::bezier_line`, whose u and v lanes take the same ports and whose
+//! last pixel index and X lane take `line_end`, `line_x_step`, `line_x_step2`), into a
+//! 4-entry line FIFO ([`LineFifo`]) that takes a push while `line_ready` is high. Quadratic:
+//! the first pixel of a line loads the unit from the FIFO's head, the next ones step it, and
+//! such a first pixel waits at the first event FIFO's head while no line record is there.
+//! Bézier: the unit loads the head record whenever it is ready and walks the line on its own
+//! into a 4-entry texel FIFO (held while two texels wait); each pixel takes the head texel,
+//! and waits while none is there. The event side, the texel's latency (2 clocks from the
+//! take) and everything after are the additive build's. The `tex_e0` … `tex_v_p_long` words
+//! are not read in these builds, and `line_push` is not read in the additive one.
 //!
 //! # Ports
 //! | port | dir | format |
@@ -66,7 +73,8 @@
 //! | `ka`, `kd` | in | the material's k_a and k_d, unsigned Q1.15 (registers; k·255 < 256 so every weight fits Q8.8) |
 //! | `log_w`, `log_h` | in | the texture's sides, 2^log_w × 2^log_h texels (registers, `texture_memory`) |
 //! | `tex_we`, `tex_waddr` (16), `tex_wdata` (24) | in | a texel write (`texture_memory`'s `we`, `waddr`, `wdata`): load the texture before the triangles that read it |
-//! | `line_push`, `line_u_start line_u_step line_u_step2 line_v_start line_v_step line_v_step2` | in | `texture=quadratic`: a line record, its words signed Q15.32 in 48 bits (`texture_quadratic`), taken when `line_ready` is high |
+//! | `line_push`, `line_u_start line_u_step line_u_step2 line_v_start line_v_step line_v_step2` | in | the per-line builds: a line record, its words signed Q15.32 in 48 bits (`texture_quadratic`, `texture_bezier`), taken when `line_ready` is high |
+//! | `line_end` (12), `line_x_step line_x_step2` (48 each) | in | `texture=bezier`: the line's last pixel index and X's Δ(0), d (`texture_bezier`'s `end_index`, `x_step`, `x_step2`) |
 //! | `hold` | in | stall the address block (no event this clock); the fragment stream gets empty clocks |
 //! | `ready` | out | a `load` is accepted this clock |
 //! | `valid`, `x`, `y`, `z`, `red green blue`, `done` | out | as `pixel-pipeline` |
@@ -83,7 +91,8 @@
 //! Event → fragment 88 clocks when the pixel's texel settles in its first clock (the first
 //! FIFO's register 1, the texture-coordinate block 2, then the lit path's 85 from the pop),
 //! load → first fragment 91.
-//! The quadratic build: one fragment per clock while line records arrive ahead of their lines.
+//! The per-line builds: one fragment per clock while line records arrive ahead of their lines
+//! (and, Bézier, while its unit keeps one texel a clock: 1.000 on the scenes' lines).
 //! The additive build: one fragment per clock while every pixel needs at most k correction steps per axis; a pixel
 //! needing q steps on its worse axis costs max(1, ⌈q/k⌉) clocks, and a line start without a
 //! pixel one clock, as in the texture-coordinate block. A triangle's load waits until the
@@ -93,7 +102,7 @@
 //!
 //! # Build parameters
 //! `texture` (`additive`: the §14 block, the default; `quadratic`: the §15 unit on line
-//! records; the Bézier coordinate is not built into the pipeline) and, with additive, `tex-k`
+//! records; `bezier`: the §16 unit on line records) and, with additive, `tex-k`
 //! (1 | 2 | 4: correction steps per clock; 4 by default here, where the texture-coordinate
 //! block alone defaults to 2). The lit path is
 //! `pixel-pipeline`'s `coeffs=fit power=exact bump=off` (the `normalizer-fit` lighting the
@@ -101,9 +110,9 @@
 //!
 //! # Overflow, error budget
 //! Those of the blocks. Against the golden `texture` method: the texel is the same (the block
-//! is exact on the coefficients the golden method uses); built quadratic, against the golden
-//! `texture-quadratic` method, the texel is the same too (the method steps the unit's
-//! bit-exact twin on the same line words); the weights add ≤ 2⁻⁹ + 255·2⁻¹⁶ each
+//! is exact on the coefficients the golden method uses); built quadratic or bezier, against
+//! the golden `texture-quadratic` or `texture-bezier` method, the texel is the same too (the
+//! method steps the unit's bit-exact twin on the same line words); the weights add ≤ 2⁻⁹ + 255·2⁻¹⁶ each
 //! to the pipeline's colour budget; the bench and the image tests measure it (≤ 2 LSB
 //! required, 1 LSB asked).
 //!
@@ -122,9 +131,10 @@ use crate::units::colour_combine::ColourCombine;
 use crate::units::intensity_interpolator::IntensityChannel;
 use crate::units::lighting_unit::LightingUnit;
 use crate::units::power_unit::PowerUnit;
+use crate::units::texture_bezier::BezWalk;
 use crate::units::texture_coord::{TexCoordParams, TextureCoord};
 use crate::units::texture_memory::TextureMemory;
-use crate::units::texture_quadratic::QuadWalk;
+use crate::units::texture_quadratic::{LineFifo, QuadWalk};
 use crate::units::vector_interpolator::VectorInterpolator;
 
 /// Entries of the event FIFO (the update's loops are written for 8).
@@ -143,13 +153,35 @@ pub const TEXEL_DELAY: usize = POP_TO_COLOUR - TextureMemory::LATENCY - WEIGHT_L
 /// clock: the first FIFO's register, the texture-coordinate block's latency, then the lit path.
 pub const TEX_EVENT_TO_FRAGMENT: usize = 1 + TextureCoord::LATENCY + EVENT_TO_FRAGMENT;
 
+/// The texture coordinate a build reads its texel with.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum TexCoord {
+    /// `texture=additive`: the §14 block (`texture_coord`).
+    #[default]
+    Additive,
+    /// `texture=quadratic`: the §15 unit on per-line records ([`QuadWalk`]).
+    Quadratic,
+    /// `texture=bezier`: the §16 unit on per-line records ([`BezWalk`]).
+    Bezier,
+}
+
+impl TexCoord {
+    /// The option value.
+    pub fn name(self) -> &'static str {
+        match self {
+            TexCoord::Additive => "additive",
+            TexCoord::Quadratic => "quadratic",
+            TexCoord::Bezier => "bezier",
+        }
+    }
+}
+
 /// Build parameters: the texture coordinate and, for the additive one, its k.
 #[derive(Clone, Debug, PartialEq)]
 pub struct TexturedParams {
-    /// `texture=quadratic`: the §15 unit on per-line records ([`QuadWalk`]) gives the texel;
-    /// else the §14 block (`texture=additive`).
-    pub quadratic: bool,
-    /// The §14 block's k (1 with `texture=quadratic`, where the block is built but unused).
+    pub coord: TexCoord,
+    /// The §14 block's k (1 with the per-line coordinates, where the block is built but
+    /// unread).
     pub k: TexCoordParams,
     /// The lit path's build (always `coeffs=fit power=exact bump=off`).
     pub lit: PipelineParams,
@@ -174,7 +206,7 @@ pub const DEFAULT_K: u32 = 4;
 impl Default for TexturedParams {
     fn default() -> Self {
         TexturedParams {
-            quadratic: false,
+            coord: TexCoord::Additive,
             k: TexCoordParams { k: DEFAULT_K },
             lit: Self::lit(),
         }
@@ -183,58 +215,61 @@ impl Default for TexturedParams {
 
 impl BlockParams for TexturedParams {
     const KEYS: &'static [&'static str] = &["texture", "tex-k"];
-    /// `texture=additive|quadratic` (default additive; `bezier` is not built into the
-    /// pipeline: an error) and, with additive, `tex-k=1|2|4` (default 4, [`DEFAULT_K`]).
+    /// `texture=additive|quadratic|bezier` (default additive) and, with additive,
+    /// `tex-k=1|2|4` (default 4, [`DEFAULT_K`]).
     fn from_options(o: &Options) -> Result<Self, String> {
-        let quadratic = match o.get("texture") {
-            None | Some("additive") => false,
-            Some("quadratic") => true,
-            Some("bezier") => {
-                return Err(
-                    "texture=bezier is not built into the pipeline (texture=additive, \
-                            the §14 block, or texture=quadratic, the §15 unit)"
-                        .into(),
-                )
-            }
+        let coord = match o.get("texture") {
+            None | Some("additive") => TexCoord::Additive,
+            Some("quadratic") => TexCoord::Quadratic,
+            Some("bezier") => TexCoord::Bezier,
             Some(other) => {
                 return Err(format!(
-                    "unknown texture coordinate {other:?} (expected additive or quadratic)"
+                    "unknown texture coordinate {other:?} (expected additive, quadratic or bezier)"
                 ))
             }
         };
+        let per_line = coord != TexCoord::Additive;
         let k = match o.get("tex-k") {
-            Some(_) if quadratic => {
-                return Err(
-                    "tex-k sets the additive block's correction steps: it does not \
-                            go with texture=quadratic"
-                        .into(),
-                )
+            Some(_) if per_line => {
+                return Err(format!(
+                    "tex-k sets the additive block's correction steps: it does not go with \
+                     texture={}",
+                    coord.name()
+                ))
             }
             Some(_) => TexCoordParams::from_options(o)?,
-            None if quadratic => TexCoordParams { k: 1 },
+            None if per_line => TexCoordParams { k: 1 },
             None => TexCoordParams { k: DEFAULT_K },
         };
         Ok(TexturedParams {
-            quadratic,
+            coord,
             k,
             lit: Self::lit(),
         })
     }
     fn describe(&self) -> Option<String> {
-        Some(if self.quadratic {
-            "texture = quadratic (SPEC §15, per-line records); lit as normalizer-fit".into()
-        } else {
-            format!(
+        Some(match self.coord {
+            TexCoord::Quadratic => {
+                "texture = quadratic (SPEC §15, per-line records); lit as normalizer-fit".into()
+            }
+            TexCoord::Bezier => {
+                "texture = bezier (SPEC §16, per-line records); lit as normalizer-fit".into()
+            }
+            TexCoord::Additive => format!(
                 "texture = additive (SPEC §14), {}; lit as normalizer-fit",
                 self.k.describe().unwrap_or_default()
-            )
+            ),
         })
     }
     fn test_sets() -> Vec<Options> {
-        // The default build and the quadratic one: the pipeline around the texture-coordinate
+        // The default build and the per-line ones: the pipeline around the texture-coordinate
         // block does not depend on k, and every k is checked in `texture-coord`'s own sets
         // (twin, golden, Verilog); `tests/rtl_texture.rs` runs the pipeline at k = 1, 2, 4.
-        vec![Options::new(), Options::new().with("texture", "quadratic")]
+        vec![
+            Options::new(),
+            Options::new().with("texture", "quadratic"),
+            Options::new().with("texture", "bezier"),
+        ]
     }
 }
 
@@ -439,19 +474,24 @@ crate::pipelines::pixel_pipeline::lit_pipeline! {
             line_push: Bit,
             line_u_start: Bits<48>, line_u_step: Bits<48>, line_u_step2: Bits<48>,
             line_v_start: Bits<48>, line_v_step: Bits<48>, line_v_step2: Bits<48>,
+            line_end: Bits<12>, line_x_step: Bits<48>, line_x_step2: Bits<48>,
             hold: Bit,
         }
         more_out { line_ready: Bit, }
         fields {
             pub addr: SubpixelAddressBlock,
             pub coord: TextureCoord = TextureCoord::new(&p.k),
+            pub lines: LineFifo,
             pub quad: QuadWalk,
+            pub bez: BezWalk,
             pub memory: TextureMemory,
         }
         more_fields {
             pub weights: TexelWeights,
-            /// The build's coordinate: 1 for `texture=quadratic` ([`QuadWalk`]).
-            quadratic: Constant<Bit> = Constant::new(p.quadratic),
+            /// The build's coordinate: `texture=quadratic` ([`QuadWalk`]), `texture=bezier`
+            /// ([`BezWalk`]), else the §14 block.
+            quadratic: Constant<Bit> = Constant::new(p.coord == TexCoord::Quadratic),
+            bezier: Constant<Bit> = Constant::new(p.coord == TexCoord::Bezier),
             /// The coordinate block's `ready`, `valid_out`, `u`, `v`, from the build's.
             c_ready: Signal<Local, Bit>, c_valid: Signal<Local, Bit>,
             c_u: Signal<Local, Bits<16>>, c_v: Signal<Local, Bits<16>>,
@@ -486,7 +526,7 @@ crate::pipelines::pixel_pipeline::lit_pipeline! {
             front {
                 {
                     clock!(
-                        self, clock, addr, coord, quad, memory, normal, depth, n_valid_reg, light, bump,
+                        self, clock, addr, coord, lines, quad, bez, memory, normal, depth, n_valid_reg, light, bump,
                         x_to_bump, y_to_bump, power, colour, weights, texel_r, texel_g, texel_b,
                         cos_phi_to_colour, z_to_out, x_to_out, y_to_out, done_to_out, ev_valid,
                         ev_row_start, ev_step, ev_carry, ev_first, ld_q, first_wait, seen_first,
@@ -537,25 +577,56 @@ crate::pipelines::pixel_pipeline::lit_pipeline! {
                     self.coord_q.in_x.next = self.addr.x.val();
                     self.coord_q.in_y.next = self.addr.y.val();
                     // The build's coordinate: the §14 block, or the §15 unit on line records.
+                    // The line records, for the per-line coordinates.
+                    self.lines.push.next = self.line_push.val();
+                    self.lines.in_us.next = self.line_u_start.val();
+                    self.lines.in_ud.next = self.line_u_step.val();
+                    self.lines.in_udd.next = self.line_u_step2.val();
+                    self.lines.in_vs.next = self.line_v_start.val();
+                    self.lines.in_vd.next = self.line_v_step.val();
+                    self.lines.in_vdd.next = self.line_v_step2.val();
+                    self.lines.in_last.next = self.line_end.val();
+                    self.lines.in_xd.next = self.line_x_step.val();
+                    self.lines.in_xdd.next = self.line_x_step2.val();
+                    self.line_ready.next = self.lines.ready.val();
                     self.quad.valid_in.next = self.coord_q.h_valid.val();
                     self.quad.row_start_in.next = self.coord_q.h_row.val();
-                    self.quad.line_push.next = self.line_push.val();
-                    self.quad.line_u_start.next = self.line_u_start.val();
-                    self.quad.line_u_step.next = self.line_u_step.val();
-                    self.quad.line_u_step2.next = self.line_u_step2.val();
-                    self.quad.line_v_start.next = self.line_v_start.val();
-                    self.quad.line_v_step.next = self.line_v_step.val();
-                    self.quad.line_v_step2.next = self.line_v_step2.val();
-                    self.line_ready.next = self.quad.line_ready.val();
+                    self.quad.line_any.next = self.lines.any.val();
+                    self.quad.us.next = self.lines.us.val();
+                    self.quad.ud.next = self.lines.ud.val();
+                    self.quad.udd.next = self.lines.udd.val();
+                    self.quad.vs.next = self.lines.vs.val();
+                    self.quad.vd.next = self.lines.vd.val();
+                    self.quad.vdd.next = self.lines.vdd.val();
+                    self.bez.valid_in.next = self.coord_q.h_valid.val();
+                    self.bez.line_any.next = self.lines.any.val();
+                    self.bez.us.next = self.lines.us.val();
+                    self.bez.ud.next = self.lines.ud.val();
+                    self.bez.udd.next = self.lines.udd.val();
+                    self.bez.vs.next = self.lines.vs.val();
+                    self.bez.vd.next = self.lines.vd.val();
+                    self.bez.vdd.next = self.lines.vdd.val();
+                    self.bez.last.next = self.lines.last.val();
+                    self.bez.xd.next = self.lines.xd.val();
+                    self.bez.xdd.next = self.lines.xdd.val();
+                    self.lines.pop.next = false;
                     self.c_ready.next = self.coord.ready.val();
                     self.c_valid.next = self.coord.valid_out.val();
                     self.c_u.next = self.coord.u.val();
                     self.c_v.next = self.coord.v.val();
                     if self.quadratic.val() {
+                        self.lines.pop.next = self.quad.pull.val();
                         self.c_ready.next = self.quad.ready.val();
                         self.c_valid.next = self.quad.valid_out.val();
                         self.c_u.next = self.quad.u.val();
                         self.c_v.next = self.quad.v.val();
+                    }
+                    if self.bezier.val() {
+                        self.lines.pop.next = self.bez.pull.val();
+                        self.c_ready.next = self.bez.ready.val();
+                        self.c_valid.next = self.bez.valid_out.val();
+                        self.c_u.next = self.bez.u.val();
+                        self.c_v.next = self.bez.v.val();
                     }
                     self.coord_q.pop.next = self.c_ready.val();
                     self.coord.valid_in.next = self.coord_q.h_valid.val();

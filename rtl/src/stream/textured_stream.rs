@@ -78,7 +78,7 @@ use rust_hdl::prelude::*;
 
 use crate::core::registry::{BlockParams, Options};
 use crate::pipelines::pixel_pipeline::EVENT_TO_FRAGMENT;
-use crate::pipelines::textured_pipeline::{TexturedParams, TexturedPipeline, EVENT_FIFO};
+use crate::pipelines::textured_pipeline::{TexCoord, TexturedParams, TexturedPipeline, EVENT_FIFO};
 
 /// `textured-stream`'s build parameters: the textured pipeline's, additive only (its records
 /// have no line record for `texture=quadratic`; the core ties the pipeline's line ports off).
@@ -97,12 +97,12 @@ impl BlockParams for TexturedStreamParams {
     /// As the pipeline's, but `texture=quadratic` is an error.
     fn from_options(o: &Options) -> Result<Self, String> {
         let p = TexturedParams::from_options(o)?;
-        if p.quadratic {
-            return Err(
-                "textured-stream carries texture=additive only: its records have no \
-                        line record (texture=quadratic goes through textured-pipeline's ports)"
-                    .into(),
-            );
+        if p.coord != TexCoord::Additive {
+            return Err(format!(
+                "textured-stream carries texture=additive only: its records have no line \
+                 record (texture={} goes through textured-pipeline's ports)",
+                p.coord.name()
+            ));
         }
         Ok(TexturedStreamParams(p))
     }

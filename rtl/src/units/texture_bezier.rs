@@ -434,3 +434,104 @@ impl Logic for TextureBezier {
         self.done.next = self.done_q.q.val();
     }
 }
+
+/// Texels a [`BezWalk`] keeps between the Bézier block and the walk's pixels.
+pub const TEXEL_FIFO: usize = 4;
+
+crate::hw_block! {
+    /// The Bézier unit beside the address block's walk: the textured pipeline's
+    /// `texture=bezier` coordinate (`textured_pipeline`). Its event side is the
+    /// texture-coordinate block's (`texture_coord`): `valid_in` is the event shown, `ready`
+    /// says it is taken this clock, `valid_out`, `u`, `v` show the pixel's texel 2 clocks after
+    /// it was taken.
+    ///
+    /// Line records (the [`TextureBezier`] words) wait in the pipeline's line FIFO
+    /// (`texture_quadratic::LineFifo`), one per raster line with a pixel, in the walk's order;
+    /// the block sees its head (`line_any` and the words) and pops it with `pull`, which is the
+    /// Bézier block's load taken. The Bézier block walks each line on its own, a texel per
+    /// pixel in walk order, into a [`TEXEL_FIFO`]-entry texel FIFO; it is held while two or
+    /// more texels wait (a held clock shows nothing in the next one, so at most three are ever
+    /// in the FIFO). Each pixel the walk shows takes the FIFO's head texel: `ready` is low while
+    /// a pixel is shown with the FIFO empty (a function of the registers and the event shown).
+    /// Line starts and ends need nothing here: the texels come in the walk's pixel order.
+    pub struct BezWalk(clock) {
+        in {
+            valid_in: Bit,
+            line_any: Bit, us: Bits<48>, ud: Bits<48>, udd: Bits<48>,
+            vs: Bits<48>, vd: Bits<48>, vdd: Bits<48>,
+            last: Bits<12>, xd: Bits<48>, xdd: Bits<48>,
+        }
+        out { ready: Bit, pull: Bit, valid_out: Bit, u: Bits<16>, v: Bits<16> }
+        pub bez: TextureBezier,
+        occ: [DFF<Bit>; TEXEL_FIFO],
+        t_u: [DFF<Bits<16>>; TEXEL_FIFO], t_v: [DFF<Bits<16>>; TEXEL_FIFO],
+        /// The taken pixel's texel, then the output register.
+        s_v: DFF<Bit>, s_u: DFF<Bits<16>>, s_w: DFF<Bits<16>>,
+        out_v: DFF<Bit>, out_u: DFF<Bits<16>>, out_w: DFF<Bits<16>>,
+        pix: Signal<Local, Bit>,
+        kept: [Signal<Local, Bit>; TEXEL_FIFO],
+        put: [Signal<Local, Bit>; TEXEL_FIFO],
+    }
+}
+
+impl Logic for BezWalk {
+    #[hdl_gen]
+    fn update(&mut self) {
+        dff_setup!(self, clock, s_v, s_u, s_w, out_v, out_u, out_w);
+        self.bez.clock.next = self.clock.val();
+        for i in 0..4 {
+            clock!(self, clock, occ[i], t_u[i], t_v[i]);
+            self.kept[i].next = self.occ[i].q.val();
+            self.t_u[i].d.next = self.t_u[i].q.val();
+            self.t_v[i].d.next = self.t_v[i].q.val();
+        }
+        // The Bézier block: the head record loads when it is ready; held while two or more
+        // texels wait.
+        self.bez.load.next = self.line_any.val();
+        self.bez.end_index.next = self.last.val();
+        self.bez.x_step.next = self.xd.val();
+        self.bez.x_step2.next = self.xdd.val();
+        self.bez.u_start.next = self.us.val();
+        self.bez.u_step.next = self.ud.val();
+        self.bez.u_step2.next = self.udd.val();
+        self.bez.v_start.next = self.vs.val();
+        self.bez.v_step.next = self.vd.val();
+        self.bez.v_step2.next = self.vdd.val();
+        self.bez.hold.next = self.occ[1].q.val();
+        self.pull.next = self.line_any.val() & self.bez.ready.val();
+        // The walk's pixel takes the head texel.
+        self.ready.next = !self.valid_in.val() | self.occ[0].q.val();
+        self.pix.next = self.valid_in.val() & self.occ[0].q.val();
+        for i in 0..3 {
+            if self.pix.val() {
+                self.kept[i].next = self.occ[i + 1].q.val();
+                self.t_u[i].d.next = self.t_u[i + 1].q.val();
+                self.t_v[i].d.next = self.t_v[i + 1].q.val();
+            }
+        }
+        if self.pix.val() {
+            self.kept[3].next = false;
+        }
+        self.put[0].next = self.bez.valid_out.val() & !self.kept[0].val();
+        for i in 1..4 {
+            self.put[i].next =
+                self.bez.valid_out.val() & !self.kept[i].val() & self.kept[i - 1].val();
+        }
+        for i in 0..4 {
+            self.occ[i].d.next = self.kept[i].val() | self.put[i].val();
+            if self.put[i].val() {
+                self.t_u[i].d.next = self.bez.u.val();
+                self.t_v[i].d.next = self.bez.v.val();
+            }
+        }
+        self.s_v.d.next = self.pix.val();
+        self.s_u.d.next = self.t_u[0].q.val();
+        self.s_w.d.next = self.t_v[0].q.val();
+        self.out_v.d.next = self.s_v.q.val();
+        self.out_u.d.next = self.s_u.q.val();
+        self.out_w.d.next = self.s_w.q.val();
+        self.valid_out.next = self.out_v.q.val();
+        self.u.next = self.out_u.q.val();
+        self.v.next = self.out_w.q.val();
+    }
+}

@@ -125,8 +125,106 @@ impl Logic for TextureQuadratic {
     }
 }
 
-/// Line records the [`QuadWalk`]'s FIFO holds.
+/// Line records a [`LineFifo`] holds.
 pub const LINE_FIFO: usize = 4;
+
+crate::hw_block! {
+    /// The textured pipeline's line FIFO (`textured_pipeline`'s quadratic and Bézier builds):
+    /// [`LINE_FIFO`] line records, a shift register whose entry 0 is the head. A record is the
+    /// `line_…` ports' words: u's and v's start, Δ, ΔΔ (both builds), the last pixel's index and
+    /// X's Δ, ΔΔ (the Bézier build's; the quadratic one leaves them unread). `push` lands in the
+    /// first free entry after the `pop` (a push while full is dropped); `ready`: not full,
+    /// `any`: not empty, both functions of the registers; the head's fields are entry 0's.
+    pub struct LineFifo(clock) {
+        in {
+            push: Bit, pop: Bit,
+            in_us: Bits<48>, in_ud: Bits<48>, in_udd: Bits<48>,
+            in_vs: Bits<48>, in_vd: Bits<48>, in_vdd: Bits<48>,
+            in_last: Bits<12>, in_xd: Bits<48>, in_xdd: Bits<48>,
+        }
+        out {
+            ready: Bit, any: Bit,
+            us: Bits<48>, ud: Bits<48>, udd: Bits<48>, vs: Bits<48>, vd: Bits<48>, vdd: Bits<48>,
+            last: Bits<12>, xd: Bits<48>, xdd: Bits<48>,
+        }
+        occ: [DFF<Bit>; LINE_FIFO],
+        f_us: [DFF<Bits<48>>; LINE_FIFO], f_ud: [DFF<Bits<48>>; LINE_FIFO],
+        f_udd: [DFF<Bits<48>>; LINE_FIFO], f_vs: [DFF<Bits<48>>; LINE_FIFO],
+        f_vd: [DFF<Bits<48>>; LINE_FIFO], f_vdd: [DFF<Bits<48>>; LINE_FIFO],
+        f_last: [DFF<Bits<12>>; LINE_FIFO], f_xd: [DFF<Bits<48>>; LINE_FIFO],
+        f_xdd: [DFF<Bits<48>>; LINE_FIFO],
+        go: Signal<Local, Bit>,
+        kept: [Signal<Local, Bit>; LINE_FIFO],
+        put: [Signal<Local, Bit>; LINE_FIFO],
+    }
+}
+
+impl Logic for LineFifo {
+    #[hdl_gen]
+    fn update(&mut self) {
+        for i in 0..4 {
+            clock!(self, clock, occ[i], f_us[i], f_ud[i], f_udd[i], f_vs[i], f_vd[i], f_vdd[i]);
+            clock!(self, clock, f_last[i], f_xd[i], f_xdd[i]);
+            self.kept[i].next = self.occ[i].q.val();
+            self.f_us[i].d.next = self.f_us[i].q.val();
+            self.f_ud[i].d.next = self.f_ud[i].q.val();
+            self.f_udd[i].d.next = self.f_udd[i].q.val();
+            self.f_vs[i].d.next = self.f_vs[i].q.val();
+            self.f_vd[i].d.next = self.f_vd[i].q.val();
+            self.f_vdd[i].d.next = self.f_vdd[i].q.val();
+            self.f_last[i].d.next = self.f_last[i].q.val();
+            self.f_xd[i].d.next = self.f_xd[i].q.val();
+            self.f_xdd[i].d.next = self.f_xdd[i].q.val();
+        }
+        self.go.next = self.pop.val() & self.occ[0].q.val();
+        for i in 0..3 {
+            if self.go.val() {
+                self.kept[i].next = self.occ[i + 1].q.val();
+                self.f_us[i].d.next = self.f_us[i + 1].q.val();
+                self.f_ud[i].d.next = self.f_ud[i + 1].q.val();
+                self.f_udd[i].d.next = self.f_udd[i + 1].q.val();
+                self.f_vs[i].d.next = self.f_vs[i + 1].q.val();
+                self.f_vd[i].d.next = self.f_vd[i + 1].q.val();
+                self.f_vdd[i].d.next = self.f_vdd[i + 1].q.val();
+                self.f_last[i].d.next = self.f_last[i + 1].q.val();
+                self.f_xd[i].d.next = self.f_xd[i + 1].q.val();
+                self.f_xdd[i].d.next = self.f_xdd[i + 1].q.val();
+            }
+        }
+        if self.go.val() {
+            self.kept[3].next = false;
+        }
+        self.put[0].next = self.push.val() & !self.kept[0].val();
+        for i in 1..4 {
+            self.put[i].next = self.push.val() & !self.kept[i].val() & self.kept[i - 1].val();
+        }
+        for i in 0..4 {
+            self.occ[i].d.next = self.kept[i].val() | self.put[i].val();
+            if self.put[i].val() {
+                self.f_us[i].d.next = self.in_us.val();
+                self.f_ud[i].d.next = self.in_ud.val();
+                self.f_udd[i].d.next = self.in_udd.val();
+                self.f_vs[i].d.next = self.in_vs.val();
+                self.f_vd[i].d.next = self.in_vd.val();
+                self.f_vdd[i].d.next = self.in_vdd.val();
+                self.f_last[i].d.next = self.in_last.val();
+                self.f_xd[i].d.next = self.in_xd.val();
+                self.f_xdd[i].d.next = self.in_xdd.val();
+            }
+        }
+        self.ready.next = !self.occ[3].q.val();
+        self.any.next = self.occ[0].q.val();
+        self.us.next = self.f_us[0].q.val();
+        self.ud.next = self.f_ud[0].q.val();
+        self.udd.next = self.f_udd[0].q.val();
+        self.vs.next = self.f_vs[0].q.val();
+        self.vd.next = self.f_vd[0].q.val();
+        self.vdd.next = self.f_vdd[0].q.val();
+        self.last.next = self.f_last[0].q.val();
+        self.xd.next = self.f_xd[0].q.val();
+        self.xdd.next = self.f_xdd[0].q.val();
+    }
+}
 
 crate::hw_block! {
     /// The quadratic unit on the address block's walk, with the per-line set-up queued beside
@@ -135,35 +233,27 @@ crate::hw_block! {
     /// `row_start_in` are the event shown, `ready` says it is taken this clock, `valid_out`,
     /// `u`, `v` show the pixel's texel 2 clocks after it was taken.
     ///
-    /// Line records (`line_push` with u start, Δ, ΔΔ and v's, the [`TextureQuadratic`] words)
-    /// go into a [`LINE_FIFO`]-entry FIFO (shift register, entry 0 the head; `line_ready`:
-    /// not full, a function of the registers; a push while full is dropped). They come in the
-    /// walk's order, one per raster line with a pixel. A line start sets `need`; the next
-    /// pixel (the line's first) loads the unit with the head record and pops it, and `ready`
-    /// is low while such a pixel is shown with the FIFO empty. Every other pixel steps the
-    /// unit. `ready` is then a function of the registers and the event shown (the FIFO before
-    /// the block keeps it out of the address block's `hold`).
+    /// Line records (the [`TextureQuadratic`] words) wait in the pipeline's [`LineFifo`], one
+    /// per raster line with a pixel, in the walk's order; the block sees its head (`line_any`
+    /// and the words) and pops it with `pull`. A line start sets `need`; the next pixel (the
+    /// line's first) loads the unit with the head record and pulls it, and `ready` is low while
+    /// such a pixel is shown with the FIFO empty. Every other pixel steps the unit. `ready` is
+    /// then a function of the registers and the event shown (the FIFO before the block keeps
+    /// it out of the address block's `hold`).
     pub struct QuadWalk(clock) {
         in {
-            line_push: Bit,
-            line_u_start: Bits<48>, line_u_step: Bits<48>, line_u_step2: Bits<48>,
-            line_v_start: Bits<48>, line_v_step: Bits<48>, line_v_step2: Bits<48>,
             valid_in: Bit, row_start_in: Bit,
+            line_any: Bit, us: Bits<48>, ud: Bits<48>, udd: Bits<48>,
+            vs: Bits<48>, vd: Bits<48>, vdd: Bits<48>,
         }
-        out { ready: Bit, line_ready: Bit, valid_out: Bit, u: Bits<16>, v: Bits<16> }
+        out { ready: Bit, pull: Bit, valid_out: Bit, u: Bits<16>, v: Bits<16> }
         pub quad: TextureQuadratic,
-        occ: [DFF<Bit>; LINE_FIFO],
-        f_us: [DFF<Bits<48>>; LINE_FIFO], f_ud: [DFF<Bits<48>>; LINE_FIFO],
-        f_udd: [DFF<Bits<48>>; LINE_FIFO], f_vs: [DFF<Bits<48>>; LINE_FIFO],
-        f_vd: [DFF<Bits<48>>; LINE_FIFO], f_vdd: [DFF<Bits<48>>; LINE_FIFO],
         /// The next pixel is its line's first.
         need: DFF<Bit>,
         /// The output register (the texture-coordinate block's latency).
         out_v: DFF<Bit>, out_u: DFF<Bits<16>>, out_w: DFF<Bits<16>>,
         /// The pixel shown takes a line record; the pixel is taken; the record pops.
-        want: Signal<Local, Bit>, pix: Signal<Local, Bit>, pull: Signal<Local, Bit>,
-        kept: [Signal<Local, Bit>; LINE_FIFO],
-        put: [Signal<Local, Bit>; LINE_FIFO],
+        want: Signal<Local, Bit>, pix: Signal<Local, Bit>,
     }
 }
 
@@ -172,77 +262,26 @@ impl Logic for QuadWalk {
     fn update(&mut self) {
         dff_setup!(self, clock, need, out_v, out_u, out_w);
         self.quad.clock.next = self.clock.val();
-        for i in 0..4 {
-            clock!(self, clock, occ[i], f_us[i], f_ud[i], f_udd[i], f_vs[i], f_vd[i], f_vdd[i]);
-        }
         self.want.next = self.valid_in.val() & (self.need.q.val() | self.row_start_in.val());
-        self.ready.next = !self.want.val() | self.occ[0].q.val();
-        self.pix.next = self.valid_in.val() & (!self.want.val() | self.occ[0].q.val());
-        self.pull.next = self.want.val() & self.occ[0].q.val();
+        self.ready.next = !self.want.val() | self.line_any.val();
+        self.pix.next = self.valid_in.val() & (!self.want.val() | self.line_any.val());
+        self.pull.next = self.want.val() & self.line_any.val();
         if self.row_start_in.val() & self.ready.val() {
             self.need.d.next = true;
         }
         if self.pix.val() {
             self.need.d.next = false;
         }
-        // The line FIFO: pop the head on a pull, push at the first free entry.
-        for i in 0..4 {
-            self.kept[i].next = self.occ[i].q.val();
-        }
-        for i in 0..3 {
-            if self.pull.val() {
-                self.kept[i].next = self.occ[i + 1].q.val();
-            }
-        }
-        if self.pull.val() {
-            self.kept[3].next = false;
-        }
-        self.put[0].next = self.line_push.val() & !self.kept[0].val();
-        for i in 1..4 {
-            self.put[i].next = self.line_push.val() & !self.kept[i].val() & self.kept[i - 1].val();
-        }
-        for i in 0..4 {
-            self.occ[i].d.next = self.kept[i].val() | self.put[i].val();
-        }
-        for i in 0..4 {
-            self.f_us[i].d.next = self.f_us[i].q.val();
-            self.f_ud[i].d.next = self.f_ud[i].q.val();
-            self.f_udd[i].d.next = self.f_udd[i].q.val();
-            self.f_vs[i].d.next = self.f_vs[i].q.val();
-            self.f_vd[i].d.next = self.f_vd[i].q.val();
-            self.f_vdd[i].d.next = self.f_vdd[i].q.val();
-        }
-        for i in 0..3 {
-            if self.pull.val() {
-                self.f_us[i].d.next = self.f_us[i + 1].q.val();
-                self.f_ud[i].d.next = self.f_ud[i + 1].q.val();
-                self.f_udd[i].d.next = self.f_udd[i + 1].q.val();
-                self.f_vs[i].d.next = self.f_vs[i + 1].q.val();
-                self.f_vd[i].d.next = self.f_vd[i + 1].q.val();
-                self.f_vdd[i].d.next = self.f_vdd[i + 1].q.val();
-            }
-        }
-        for i in 0..4 {
-            if self.put[i].val() {
-                self.f_us[i].d.next = self.line_u_start.val();
-                self.f_ud[i].d.next = self.line_u_step.val();
-                self.f_udd[i].d.next = self.line_u_step2.val();
-                self.f_vs[i].d.next = self.line_v_start.val();
-                self.f_vd[i].d.next = self.line_v_step.val();
-                self.f_vdd[i].d.next = self.line_v_step2.val();
-            }
-        }
-        self.line_ready.next = !self.occ[3].q.val();
         // The unit: loaded by the line's first pixel with the head record, stepped by the
         // others.
         self.quad.valid_in.next = self.pix.val();
         self.quad.load.next = self.pull.val();
-        self.quad.u_start.next = self.f_us[0].q.val();
-        self.quad.u_step.next = self.f_ud[0].q.val();
-        self.quad.u_step2.next = self.f_udd[0].q.val();
-        self.quad.v_start.next = self.f_vs[0].q.val();
-        self.quad.v_step.next = self.f_vd[0].q.val();
-        self.quad.v_step2.next = self.f_vdd[0].q.val();
+        self.quad.u_start.next = self.us.val();
+        self.quad.u_step.next = self.ud.val();
+        self.quad.u_step2.next = self.udd.val();
+        self.quad.v_start.next = self.vs.val();
+        self.quad.v_step.next = self.vd.val();
+        self.quad.v_step2.next = self.vdd.val();
         self.out_v.d.next = self.quad.valid_out.val();
         self.out_u.d.next = self.quad.u.val();
         self.out_w.d.next = self.quad.v.val();

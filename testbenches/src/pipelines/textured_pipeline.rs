@@ -1,15 +1,15 @@
 //! Bench of the textured pixel pipeline (`rtl::pipelines::textured_pipeline`): its bit-exact
-//! twin (the address block's and texture-coordinate block's cycle models — built quadratic,
-//! the quadratic walk's twin `QuadWalkTwin` instead — the event FIFO, the texture memory's
+//! twin (the address block's and texture-coordinate block's cycle models — built quadratic or
+//! bezier, the per-line walk's twin `QuadWalkTwin` or `BezWalkTwin` instead — the event FIFO, the texture memory's
 //! twin, the texel weights and the lit pipeline's back end, wired as the top wires them) and
 //! the golden `texture` method (`golden::shading::texture::shade` with `Coord::Additive`;
-//! built quadratic, `texture-quadratic`, `Coord::Quadratic`) every clock.
+//! built quadratic or bezier, `texture-quadratic` or `texture-bezier`) every clock.
 //!
 //! Stimulus: a seeded 16×16 texture written first (one texel per clock), then seeded
 //! triangles as `pixel-pipeline`'s (`lit_triangles_subpixel`) given perspective w in [1, 4]
 //! and texture coordinates spread over 0.5 to 8 repeats, so that pixels need from none to
 //! several correction steps; loaded as soon as `ready` allows, `hold` high in a seeded tenth
-//! of the clocks after the texture. Built quadratic, the triangles' line records are pushed
+//! of the clocks after the texture. Built quadratic or bezier, the triangles' line records are pushed
 //! while `line_ready` is high except in 40 clocks of every 160, so that first pixels also wait
 //! for their records. Lit by the default context.
 //!
@@ -27,6 +27,7 @@ use golden::testing::Rng;
 use golden::texture::Texture;
 use golden::types::ScreenTriangle;
 use golden::units::address_block::{AddressBlockModel, AddressOutputs};
+use golden::units::texture_bezier::BezWalkTwin;
 use golden::units::texture_coord::block::unword_texel;
 use golden::units::texture_coord::block::{texel_word, TexCoordModel, TexEvent, TexOutputs};
 use golden::units::texture_memory::{load_words, MemoryInputs, MemoryTwin};
@@ -35,7 +36,7 @@ use pipeline::lit::ShadingRegs;
 use pipeline::textured::{push_line, row_tex, tex_row, TexJob, TexRegs};
 use rtl::core::fixed::{INTENSITY, LEVEL};
 use rtl::pipelines::textured_pipeline::{
-    TexturedParams, TexturedPipeline, EVENT_FIFO, TEXEL_DELAY, WEIGHT_LATENCY,
+    TexCoord, TexturedParams, TexturedPipeline, EVENT_FIFO, TEXEL_DELAY, WEIGHT_LATENCY,
 };
 
 use super::pixel_pipeline::{lit_triangles_subpixel, DelayLine, LitBack};
@@ -54,9 +55,10 @@ struct Entry {
 pub struct TexturedTwin {
     addr: AddressBlockModel,
     coord: TexCoordModel,
-    /// The quadratic walk: the coordinate when `quadratic`, else idle (it is built in both).
+    /// The per-line walks: the coordinate of their builds, else idle (all are built).
     quad: QuadWalkTwin,
-    quadratic: bool,
+    bez: BezWalkTwin,
+    coord_kind: TexCoord,
     /// The events before the texture-coordinate block takes them.
     waiting: VecDeque<Entry>,
     /// The events taken, until their texels show.
@@ -79,7 +81,7 @@ pub fn texel_weight(texel: u64, k: u64) -> u64 {
 impl TexturedTwin {
     pub fn new(p: &TexturedParams) -> Self {
         let mut twin = Self::with_coord(p, TexCoordModel::new(p.k.k));
-        twin.quadratic = p.quadratic;
+        twin.coord_kind = p.coord;
         twin
     }
 
@@ -95,7 +97,8 @@ impl TexturedTwin {
             addr: AddressBlockModel::subpixel(),
             coord,
             quad: QuadWalkTwin::default(),
-            quadratic: false,
+            bez: BezWalkTwin::default(),
+            coord_kind: TexCoord::Additive,
             waiting: VecDeque::new(),
             fifo: VecDeque::new(),
             first_wait: false,
@@ -115,22 +118,34 @@ impl TexturedTwin {
 
     /// `line_ready` this clock (a function of the registers).
     pub fn line_ready(&self) -> bool {
-        self.quad.line_ready()
+        match self.coord_kind {
+            TexCoord::Bezier => self.bez.line_ready(),
+            _ => self.quad.line_ready(),
+        }
+    }
+
+    /// Line records waiting.
+    fn lines(&self) -> usize {
+        match self.coord_kind {
+            TexCoord::Bezier => self.bez.lines(),
+            _ => self.quad.lines(),
+        }
     }
 
     /// The coordinate's outputs this clock, with the first FIFO's head shown (the quadratic
     /// walk's `ready` depends on it).
     fn coord_outputs(&self) -> TexOutputs {
-        if !self.quadratic {
-            return self.coord.outputs_held(false);
-        }
         let ev = self
             .waiting
             .front()
             .map_or(TexEvent::default(), |e| TexEvent::from(&e.a));
-        let (valid, [u, v]) = self.quad.outputs();
+        let ((valid, [u, v]), ready) = match self.coord_kind {
+            TexCoord::Additive => return self.coord.outputs_held(false),
+            TexCoord::Quadratic => (self.quad.outputs(), self.quad.ready(ev.valid, ev.row_start)),
+            TexCoord::Bezier => (self.bez.outputs(), self.bez.ready(ev.valid)),
+        };
         TexOutputs {
-            ready: self.quad.ready(ev.valid, ev.row_start),
+            ready,
             valid,
             u: unword_texel(u),
             v: unword_texel(v),
@@ -151,7 +166,7 @@ impl TexturedTwin {
             co.ready,
             self.addr.ready(),
             self.first_wait,
-            self.quad.lines()
+            self.lines()
         )
     }
 }
@@ -160,7 +175,7 @@ impl Twin for TexturedTwin {
     fn step(&mut self, r: &[u64]) -> Vec<u64> {
         let row = row_tex(r);
         let co = self.coord_outputs();
-        let line_ready = self.quad.line_ready();
+        let line_ready = self.line_ready();
         let gate = !self.first_wait;
         let a_hold = row.hold || self.waiting.len() >= EVENT_FIFO - 1;
         let a = self.addr.outputs_held(a_hold);
@@ -268,12 +283,22 @@ impl Twin for TexturedTwin {
         if accepted.is_some() {
             self.first_wait = true;
         }
-        if !self.quadratic {
-            self.coord
-                .clock_held(accepted.as_ref().map(|j| &j.tex), &ev_in, false);
+        let line = row.line.as_ref();
+        match self.coord_kind {
+            TexCoord::Additive => {
+                self.coord
+                    .clock_held(accepted.as_ref().map(|j| &j.tex), &ev_in, false);
+                self.quad.clock(ev_in.valid, ev_in.row_start, None);
+            }
+            TexCoord::Quadratic => self.quad.clock(
+                ev_in.valid,
+                ev_in.row_start,
+                line.map(|l| l.quad_words()).as_ref(),
+            ),
+            TexCoord::Bezier => self
+                .bez
+                .clock(ev_in.valid, line.map(|l| l.bezier_line()).as_ref()),
         }
-        self.quad
-            .clock(ev_in.valid, ev_in.row_start, row.line.as_ref());
         self.addr
             .clock_held(accepted.as_ref().map(|j| &j.lit.addr), a_hold);
         o
@@ -289,13 +314,12 @@ pub fn bench_texture(seed: u64) -> Texture {
     Texture::new(16, 16, rgb).expect("a 16x16 texture")
 }
 
-/// `n` seeded textured triangles (see the module doc) with their jobs for the build
-/// (`quadratic` or additive).
+/// `n` seeded textured triangles (see the module doc) with their jobs for the build `coord`.
 pub fn textured_triangles(
     seed: u64,
     n: usize,
     texture: &Texture,
-    quadratic: bool,
+    coord: TexCoord,
 ) -> Vec<(ScreenTriangle, TexJob)> {
     let mut rng = Rng::new(seed ^ 0x51ab);
     let mut out = Vec::with_capacity(n);
@@ -317,13 +341,13 @@ pub fn textured_triangles(
                     s.v[k].x = x0 + dx;
                     s.v[k].y = y0 + dy;
                 }
-                let job = TexJob::of(&s, texture, quadratic)
+                let job = TexJob::of(&s, texture, coord)
                     .expect("the sliver is in range")
                     .expect("the sliver has area");
                 assert_eq!(walk(&s).pixel_count(), 0, "the sliver has no pixel");
                 out.push((s, job));
             }
-            if let Ok(Some(job)) = TexJob::of(&t, texture, quadratic) {
+            if let Ok(Some(job)) = TexJob::of(&t, texture, coord) {
                 if out.len() < n {
                     out.push((t, job));
                 }
@@ -334,20 +358,20 @@ pub fn textured_triangles(
     out
 }
 
-/// The golden colour of every pixel of `t` (the `texture` method, or `texture-quadratic` if
-/// `quadratic`), in walk order.
+/// The golden colour of every pixel of `t` (the method of the build `coord`: `texture`,
+/// `texture-quadratic` or `texture-bezier`), in walk order.
 fn golden_colours(
     t: &ScreenTriangle,
     ctx: &ShadeContext,
     texture: &Texture,
-    quadratic: bool,
+    coord: TexCoord,
 ) -> Vec<[u8; 3]> {
     let w = walk(t);
     let mut out = Vec::with_capacity(w.pixel_count());
-    let coord = if quadratic {
-        Coord::Quadratic
-    } else {
-        Coord::Additive
+    let coord = match coord {
+        TexCoord::Additive => Coord::Additive,
+        TexCoord::Quadratic => Coord::Quadratic,
+        TexCoord::Bezier => Coord::Bezier,
     };
     golden::shading::texture::shade(t, &w, ctx, texture, coord, &mut |_, _, rgb| out.push(rgb));
     out
@@ -409,11 +433,11 @@ impl Bench for TexturedPipeline {
         let texture = bench_texture(seed);
         let regs = ShadingRegs::of(&ctx).expect("default context fits the registers");
         let t = TexRegs::of(&ctx, &texture).expect("default context fits");
-        let tris = textured_triangles(seed, n, &texture, p.quadratic);
+        let tris = textured_triangles(seed, n, &texture, p.coord);
         let jobs: Vec<TexJob> = tris.iter().map(|(_, j)| j.clone()).collect();
         let mut colours = tris
             .iter()
-            .flat_map(|(t, _)| golden_colours(t, &ctx, &texture, p.quadratic))
+            .flat_map(|(t, _)| golden_colours(t, &ctx, &texture, p.coord))
             .collect::<Vec<_>>()
             .into_iter();
         let mut depths = tris

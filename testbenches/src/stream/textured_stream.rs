@@ -20,7 +20,7 @@ use pipeline::textured::{
     tex_row, texel_records, textured_register_record, textured_scene_words,
     textured_triangle_record, TexJob, TexRegs, TEX_ROW_WIDTH,
 };
-use rtl::pipelines::textured_pipeline::TexturedParams;
+use rtl::pipelines::textured_pipeline::{TexCoord, TexturedParams};
 use rtl::stream::layout::{
     pack_fragment, payload_words, unpack, TEXEL, TEXTURED_REGISTERS, TEXTURED_STREAM,
     TEXTURED_TRIANGLE,
@@ -141,7 +141,7 @@ pub fn scene(seed: u64, n: usize) -> (Vec<TexJob>, ShadingRegs, TexRegs, Texture
     let texture = bench_texture(seed);
     let regs = ShadingRegs::of(&ctx).expect("default context fits the registers");
     let t = TexRegs::of(&ctx, &texture).expect("default context fits");
-    let jobs = textured_triangles(seed, n, &texture, false)
+    let jobs = textured_triangles(seed, n, &texture, TexCoord::Additive)
         .into_iter()
         .map(|(_, j)| j)
         .collect();

@@ -162,6 +162,9 @@ pub fn core_file(top: &StreamTop) -> String {
         self.pipe.line_v_start.next = 0.into();
         self.pipe.line_v_step.next = 0.into();
         self.pipe.line_v_step2.next = 0.into();
+        self.pipe.line_end.next = 0.into();
+        self.pipe.line_x_step.next = 0.into();
+        self.pipe.line_x_step2.next = 0.into();
 ",
             );
         }
