@@ -813,15 +813,16 @@ pub fn run(args: Args) -> Result<()> {
                 .map(|m| m.name())
                 .collect::<Vec<_>>()
                 .join(", ");
+            let is = if hw_textured.len() == 1 { "is" } else { "are" };
             match (args.engine, args.method.is_empty()) {
                 (Engine::Rtl, false) => {
                     anyhow::bail!("method {} through the hardware: {e}", hw_textured[0])
                 }
                 (Engine::Rtl, true) => {
                     methods.retain(|m| !TEXTURED_RTL_METHODS.contains(m));
-                    eprintln!("note: {names} left out: {e}");
+                    eprintln!("note: {names} {is} left out: {e}");
                 }
-                _ => eprintln!("note: {names} rendered golden only: {e}"),
+                _ => eprintln!("note: {names} {is} rendered golden only: {e}"),
             }
         }
     }

@@ -225,7 +225,7 @@ fn layout_fields_are_the_pipeline_ports() {
             .iter()
             .map(|f| (f.name.to_string(), f.bits as usize)),
     );
-    // Then the quadratic build's line record, which the stream does not carry (its core ties
+    // Then the per-line builds' line record, which the stream does not carry (its core ties
     // it off).
     fields.push(("line_push".to_string(), 1));
     for a in ["u", "v"] {
@@ -233,6 +233,9 @@ fn layout_fields_are_the_pipeline_ports() {
             fields.push((format!("line_{a}_{w}"), 48));
         }
     }
+    fields.push(("line_end".to_string(), 12));
+    fields.push(("line_x_step".to_string(), 48));
+    fields.push(("line_x_step2".to_string(), 48));
     assert_eq!(ports.first().map(|p| p.0.as_str()), Some("load"));
     assert_eq!(ports.last().map(|p| p.0.as_str()), Some("hold"));
     assert_eq!(ports[1..ports.len() - 1], fields[..]);
