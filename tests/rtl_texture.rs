@@ -192,7 +192,7 @@ fn run_model(s: &Setup, jobs: &[TexJob], k: u32) -> (u64, u64) {
 }
 
 #[test]
-#[ignore = "full tier: the textured pipeline's and its stream top's rates on the scenes, k = 1, 2, 4 (the figures of docs/measurements.md)"]
+#[ignore = "full tier: the textured pipeline's and its stream top's rates on the scenes, k = 1, 2, 4 and the per-line builds (the figures of docs/measurements.md)"]
 fn textured_pipeline_fragments_per_clock_on_the_scenes() {
     for name in ["sphere", "plane"] {
         let s = scene(name);

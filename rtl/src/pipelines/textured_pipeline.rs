@@ -59,7 +59,8 @@
 //! into a 4-entry texel FIFO (held while two texels wait); each pixel takes the head texel,
 //! and waits while none is there. The event side, the texel's latency (2 clocks from the
 //! take) and everything after are the additive build's. The `tex_e0` … `tex_v_p_long` words
-//! are not read in these builds, and `line_push` is not read in the additive one.
+//! are not read in these builds; in the additive one nothing pops the line FIFO, so line
+//! records pushed there only fill it (`line_ready` then falls).
 //!
 //! # Ports
 //! | port | dir | format |
