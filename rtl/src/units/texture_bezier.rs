@@ -82,6 +82,10 @@
 //! samples), and its texel from that f64 sample's nearest texel only within that bound of a
 //! half texel. The Bézier's own error
 //! against the perspective-correct u is the method's (SPEC §16's table), not the block's.
+//!
+//! This file also holds [`BezWalk`], this block beside the address block's walk in
+//! `textured-pipeline`'s `texture=bezier` build (checked through that pipeline's registry
+//! set).
 
 use rust_hdl::prelude::*;
 

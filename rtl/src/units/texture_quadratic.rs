@@ -45,6 +45,10 @@
 //! The texel can then differ from the f64 quadratic's nearest texel only within that bound of
 //! a half texel. The quadratic's own error against the perspective-correct u is the method's
 //! (SPEC §15's table), not the block's.
+//!
+//! This file also holds two parts of `textured-pipeline`'s per-line builds, checked through
+//! that pipeline's registry sets (`texture=quadratic`, `texture=bezier`): the line FIFO
+//! [`LineFifo`] and [`QuadWalk`], this unit driven by the address block's walk.
 
 use rust_hdl::prelude::*;
 
