@@ -485,24 +485,17 @@ fn texture_coordinate_builds_refuse_what_they_cannot_build() {
         );
     }
     // The per-line builds export.
-    shadecore_ok(&[
-        "export-verilog",
-        "--block",
-        "textured-pipeline",
-        "--tex-coord",
-        "bezier",
-        "--out",
-        out_dir,
-    ]);
-    shadecore_ok(&[
-        "export-verilog",
-        "--block",
-        "textured-pipeline",
-        "--tex-coord",
-        "quadratic",
-        "--out",
-        out_dir,
-    ]);
+    for coord in ["quadratic", "bezier"] {
+        shadecore_ok(&[
+            "export-verilog",
+            "--block",
+            "textured-pipeline",
+            "--tex-coord",
+            coord,
+            "--out",
+            out_dir,
+        ]);
+    }
 }
 
 /// `stream --method` with a method whose streams it does not write is a one-line error naming

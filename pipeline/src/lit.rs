@@ -340,7 +340,8 @@ impl LitPipe {
             "pixel pipeline",
             jobs.len(),
             9,
-            &mut |k, _| k.map_or_else(|| idle.clone(), |k| lit_row(Some(&jobs[k]), regs)),
+            &idle,
+            &mut |k, _| k.map(|k| lit_row(Some(&jobs[k]), regs)),
             max_clocks,
             &mut fragment,
             &mut progress,
@@ -351,7 +352,8 @@ impl LitPipe {
 /// The run loop of a top with `pixel-pipeline`'s outputs (ready, valid, x, y, z, r, g, b,
 /// done, then any more: `outputs` in all) on its ports: job k loaded (`row(Some(k), model)`)
 /// as soon as `ready` is high, rows without a load (`row(None, model)`) otherwise (`model`
-/// for the row to peek at further outputs that are functions of registers); `fragment` for every valid output, `progress(done_triangles)`
+/// for the row to peek at further outputs that are functions of registers; a `None` row is
+/// `idle`, so that an idle clock builds no row); `fragment` for every valid output, `progress(done_triangles)`
 /// after each `done`. Stops after the last `done`, or with an error naming `what` after
 /// `max_clocks`. Shared by `LitPipe` and `crate::textured::TexturedPipe`.
 pub fn run_ports(
@@ -359,7 +361,8 @@ pub fn run_ports(
     what: &str,
     jobs: usize,
     outputs: usize,
-    row: &mut dyn FnMut(Option<usize>, &dyn Model) -> Vec<u64>,
+    idle: &[u64],
+    row: &mut dyn FnMut(Option<usize>, &dyn Model) -> Option<Vec<u64>>,
     max_clocks: u64,
     fragment: &mut dyn FnMut(Fragment),
     progress: &mut dyn FnMut(u64),
@@ -382,7 +385,7 @@ pub fn run_ports(
         } else {
             row(None, &*model)
         };
-        model.step(&r, &mut out)?;
+        model.step(r.as_deref().unwrap_or(idle), &mut out)?;
         st.clocks += 1;
         if out[1] != 0 {
             st.pixels += 1;

@@ -435,13 +435,19 @@ impl TexturedPipe {
             "textured pipeline",
             jobs.len(),
             TEX_OUTPUTS,
+            &tex_row(None, regs, t, None, false),
             &mut |k, model| {
-                let mut row = tex_row(k.map(|k| &jobs[k]), regs, t, None, false);
                 // `line_ready` (output 9) is a function of the registers.
-                if lines.peek().is_some() && model.peek(9) != 0 {
-                    push_line(&mut row, lines.next().unwrap());
+                let line =
+                    (lines.peek().is_some() && model.peek(9) != 0).then(|| lines.next().unwrap());
+                if k.is_none() && line.is_none() {
+                    return None;
                 }
-                row
+                let mut row = tex_row(k.map(|k| &jobs[k]), regs, t, None, false);
+                if let Some(l) = line {
+                    push_line(&mut row, l);
+                }
+                Some(row)
             },
             max_clocks,
             &mut fragment,
