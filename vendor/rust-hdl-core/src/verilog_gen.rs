@@ -27,7 +27,10 @@ struct VerilogCodeGenerator {
 
 impl VerilogCodeGenerator {
     fn array_index_simplification(&self, a: &str) -> String {
-        let re = Regex::new(r"\[([^\]]*)\]").unwrap();
+        // shadecore patch: the pattern compiled once per process, not once per indexed
+        // identifier (its compilation was ~40% of a large top's export time).
+        static INDEX: std::sync::OnceLock<Regex> = std::sync::OnceLock::new();
+        let re = INDEX.get_or_init(|| Regex::new(r"\[([^\]]*)\]").unwrap());
         let mut context = evalexpr::HashMapContext::new();
         for lvar in &self.loops {
             let _ = context.set_value(lvar.variable.clone(), (lvar.value as i64).into());
