@@ -31,6 +31,9 @@ fn items(b: &dyn Entry) -> usize {
         // A span of up to 61 pixels takes up to 61 clocks; a line of up to 3 000 pixels (the
         // line units' benches) up to 3 000.
         "spans" | "lines" => 200,
+        // A texture of up to 1 024 texels is written whole (every eighth spans the whole
+        // memory, written sparsely) and read back: up to ~2 000 clocks each.
+        "textures" => 40,
         _ => 3000,
     }
 }
