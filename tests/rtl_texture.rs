@@ -194,95 +194,99 @@ fn run_model(s: &Setup, jobs: &[TexJob], k: u32) -> (u64, u64) {
 #[test]
 #[ignore = "full tier: the textured pipeline's and its stream top's rates on the scenes, k = 1, 2, 4 and the per-line builds (the figures of docs/measurements.md)"]
 fn textured_pipeline_fragments_per_clock_on_the_scenes() {
-    for name in ["sphere", "plane"] {
-        let s = scene(name);
-        let all = jobs_of(&s, TexCoord::Additive);
-        let mut by_w: Vec<(TexJob, f64)> = all.clone();
-        by_w.sort_by(|a, b| a.1.total_cmp(&b.1));
-        let fifth = by_w.len() / 5;
-        let mut sets = vec![(
-            "all",
-            all.iter().map(|(j, _)| j.clone()).collect::<Vec<_>>(),
-        )];
-        if name == "plane" {
-            sets.push((
-                "nearest fifth",
-                by_w[..fifth].iter().map(|(j, _)| j.clone()).collect(),
-            ));
-            sets.push((
-                "farthest fifth",
-                by_w[by_w.len() - fifth..]
-                    .iter()
-                    .map(|(j, _)| j.clone())
-                    .collect(),
-            ));
-        }
-        for (label, jobs) in sets {
-            let (p1, c1, first1) = run_rtl(&s, &jobs, "1");
-            let (p2, c2, first2) = run_rtl(&s, &jobs, "2");
-            let (p4, c4, first4) = run_rtl(&s, &jobs, "4");
-            let (pm, cm) = run_model(&s, &jobs, 4);
-            assert!(
-                p1 == p2 && p2 == p4,
-                "{name} {label}: the builds drew different counts"
-            );
-            assert_eq!(
-                (pm, cm),
-                (p4, c4),
-                "{name} {label}: the twin's k = 4 run differs from the RTL's"
-            );
-            let r = |p: u64, c: u64| p as f64 / c as f64;
-            println!(
-                "{name} ({label}, {} triangles, {p2} fragments): fragments per clock k = 1 \
-                 {:.3}, k = 2 {:.3}, k = 4 {:.3}; first load to first fragment {first1} \
-                 clocks (k = 1), {first2} (k = 2), {first4} (k = 4)",
-                jobs.len(),
-                r(p1, c1),
-                r(p2, c2),
-                r(p4, c4)
-            );
-            // The block's claim: a faster k never costs clocks; the first fragment comes after
-            // the pipeline's latency at the earliest.
-            assert!(
-                c2 <= c1 && c4 <= c2,
-                "{name} {label}: a larger k took more clocks"
-            );
-            assert!(
-                first2 as usize + 1 >= rtl::pipelines::textured_pipeline::TEX_EVENT_TO_FRAGMENT
-            );
-            if label == "all" {
-                // The per-line builds, the same triangles with their line records (pushed
-                // whenever `line_ready` is high).
-                for coord in [TexCoord::Quadratic, TexCoord::Bezier] {
-                    let lined: Vec<TexJob> =
-                        jobs_of(&s, coord).into_iter().map(|(j, _)| j).collect();
-                    let (pq, cq, firstq) = run_rtl(&s, &lined, coord.name());
-                    assert_eq!(
-                        pq,
-                        p4,
-                        "{name}: the {} build drew a different count",
-                        coord.name()
-                    );
-                    println!(
-                        "{name}: texture={} {:.3} fragments per clock ({cq} clocks, {} line \
-                         records); first load to first fragment {firstq} clocks",
-                        coord.name(),
-                        r(pq, cq),
-                        lined.iter().map(|j| j.lines.len()).sum::<usize>()
-                    );
-                }
-                // The AXI4-Stream top, the same jobs: set-up words one per clock.
-                let (ps, cs, load) = run_stream(&s, &jobs);
-                assert_eq!(ps, p4, "{name}: the stream top drew a different count");
+    // One scene per thread (each runs its Verilator models one after another).
+    std::thread::scope(|sc| {
+        let sphere = sc.spawn(|| rates_on("sphere"));
+        rates_on("plane");
+        sphere.join().expect("the sphere's rates");
+    });
+}
+
+fn rates_on(name: &str) {
+    let s = scene(name);
+    let all = jobs_of(&s, TexCoord::Additive);
+    let mut by_w: Vec<(TexJob, f64)> = all.clone();
+    by_w.sort_by(|a, b| a.1.total_cmp(&b.1));
+    let fifth = by_w.len() / 5;
+    let mut sets = vec![(
+        "all",
+        all.iter().map(|(j, _)| j.clone()).collect::<Vec<_>>(),
+    )];
+    if name == "plane" {
+        sets.push((
+            "nearest fifth",
+            by_w[..fifth].iter().map(|(j, _)| j.clone()).collect(),
+        ));
+        sets.push((
+            "farthest fifth",
+            by_w[by_w.len() - fifth..]
+                .iter()
+                .map(|(j, _)| j.clone())
+                .collect(),
+        ));
+    }
+    for (label, jobs) in sets {
+        let (p1, c1, first1) = run_rtl(&s, &jobs, "1");
+        let (p2, c2, first2) = run_rtl(&s, &jobs, "2");
+        let (p4, c4, first4) = run_rtl(&s, &jobs, "4");
+        let (pm, cm) = run_model(&s, &jobs, 4);
+        assert!(
+            p1 == p2 && p2 == p4,
+            "{name} {label}: the builds drew different counts"
+        );
+        assert_eq!(
+            (pm, cm),
+            (p4, c4),
+            "{name} {label}: the twin's k = 4 run differs from the RTL's"
+        );
+        let r = |p: u64, c: u64| p as f64 / c as f64;
+        println!(
+            "{name} ({label}, {} triangles, {p2} fragments): fragments per clock k = 1 \
+             {:.3}, k = 2 {:.3}, k = 4 {:.3}; first load to first fragment {first1} \
+             clocks (k = 1), {first2} (k = 2), {first4} (k = 4)",
+            jobs.len(),
+            r(p1, c1),
+            r(p2, c2),
+            r(p4, c4)
+        );
+        // The block's claim: a faster k never costs clocks; the first fragment comes after
+        // the pipeline's latency at the earliest.
+        assert!(
+            c2 <= c1 && c4 <= c2,
+            "{name} {label}: a larger k took more clocks"
+        );
+        assert!(first2 as usize + 1 >= rtl::pipelines::textured_pipeline::TEX_EVENT_TO_FRAGMENT);
+        if label == "all" {
+            // The per-line builds, the same triangles with their line records (pushed
+            // whenever `line_ready` is high).
+            for coord in [TexCoord::Quadratic, TexCoord::Bezier] {
+                let lined: Vec<TexJob> = jobs_of(&s, coord).into_iter().map(|(j, _)| j).collect();
+                let (pq, cq, firstq) = run_rtl(&s, &lined, coord.name());
+                assert_eq!(
+                    pq,
+                    p4,
+                    "{name}: the {} build drew a different count",
+                    coord.name()
+                );
                 println!(
-                    "{name}: textured-stream (k = 4, tready high) {:.3} fragments per clock from \
-                     the first triangle word to the last beat ({cs} clocks; textured-pipeline \
-                     {:.3}, ratio {:.3}); the register and texel records before it {load} clocks",
-                    r(ps, cs),
-                    r(p4, c4),
-                    r(ps, cs) / r(p4, c4)
+                    "{name}: texture={} {:.3} fragments per clock ({cq} clocks, {} line \
+                     records); first load to first fragment {firstq} clocks",
+                    coord.name(),
+                    r(pq, cq),
+                    lined.iter().map(|j| j.lines.len()).sum::<usize>()
                 );
             }
+            // The AXI4-Stream top, the same jobs: set-up words one per clock.
+            let (ps, cs, load) = run_stream(&s, &jobs);
+            assert_eq!(ps, p4, "{name}: the stream top drew a different count");
+            println!(
+                "{name}: textured-stream (k = 4, tready high) {:.3} fragments per clock from \
+                 the first triangle word to the last beat ({cs} clocks; textured-pipeline \
+                 {:.3}, ratio {:.3}); the register and texel records before it {load} clocks",
+                r(ps, cs),
+                r(p4, c4),
+                r(ps, cs) / r(p4, c4)
+            );
         }
     }
 }
