@@ -274,6 +274,26 @@ macro_rules! entry_list {
 /// `impl Bench`), and one line in that list.
 pub static BLOCKS: &[&dyn Entry] = flow::with_blocks!(entry_list);
 
+/// (pipeline top, the stream top that wraps it whole): the pipeline's Verilog is a submodule of
+/// the stream's, built from the same options.
+pub const INSIDE_STREAM: [(&str, &str); 8] = [
+    ("gouraud-raster", "gouraud-stream"),
+    ("subdivision-raster", "subdivision-stream"),
+    ("pixel-pipeline", "pixel-stream"),
+    ("angular-pipeline", "angular-stream"),
+    ("fast-pipeline", "fast-stream"),
+    ("cubic-pipeline", "cubic-stream"),
+    ("quadric-unit", "quadric-stream"),
+    ("textured-pipeline", "textured-stream"),
+];
+
+/// The stream top that wraps `block` whole (see [`INSIDE_STREAM`]) and lists `o` among its own
+/// test sets: a test that runs every block in every test set runs `block` with `o` inside it.
+pub fn wrapped_by_tested_stream(block: &str, o: &Options) -> Option<&'static str> {
+    let (_, outer) = INSIDE_STREAM.iter().find(|(inner, _)| *inner == block)?;
+    find(outer).ok()?.test_sets().contains(o).then_some(*outer)
+}
+
 /// The entry named `name` (the same lookup and error as [`flow::blocks::find`]: both lists are
 /// made from one).
 pub fn find(name: &str) -> Result<&'static dyn Entry, String> {
