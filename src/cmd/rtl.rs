@@ -72,8 +72,9 @@ pub struct SynthArgs {
     #[arg(long, value_enum)]
     pub mult_regs: Option<MultRegsArg>,
     /// Also write the figures as a Markdown table (block, part, LUT4, flip-flops, multipliers,
-    /// on ECP5 the block RAMs, Fmax) with the date and the machine, e.g. `--block all --table
-    /// docs/measurements/fpga-ice40.md`. Written whole when every block is done.
+    /// on ECP5 the block RAMs, Fmax and the critical path) with the date and the machine, e.g.
+    /// `--block all --table docs/measurements/fpga-ice40.md`. Written whole when every block is
+    /// done.
     #[arg(long)]
     pub table: Option<PathBuf>,
 }
@@ -191,7 +192,7 @@ pub fn synth(a: SynthArgs) -> anyhow::Result<()> {
             let rep = rep?;
             crate::outln!("{rep}")?;
             rows.push(format!(
-                "| `{}` | {} | {} | {} | {} MULT18X18D | {} DP16KD | {} |",
+                "| `{}` | {} | {} | {} | {} MULT18X18D | {} DP16KD | {} | {} |",
                 b.name(),
                 rep.part.name,
                 rep.luts(),
@@ -199,7 +200,8 @@ pub fn synth(a: SynthArgs) -> anyhow::Result<()> {
                 rep.mult18(),
                 rep.dp16kd(),
                 rep.fmax
-                    .map_or("not placed".into(), |f| format!("{f:.1} MHz"))
+                    .map_or("not placed".into(), |f| format!("{f:.1} MHz")),
+                rep.critical.as_ref().map_or("—".into(), |c| c.to_string())
             ));
             if a.pins {
                 // The smallest package of this die or a larger one that has the top's pins.
@@ -309,8 +311,8 @@ fn write_table(a: &SynthArgs, rows: &[String]) -> anyhow::Result<()> {
     };
     let header = match a.target {
         Target::Ecp5 => {
-            "| block | part | LUT4 | flip-flops | multipliers | block RAM | Fmax |\n\
-             |---|---|---:|---:|---|---|---|"
+            "| block | part | LUT4 | flip-flops | multipliers | block RAM | Fmax | critical path (ns: from → to, by the block's signals) |\n\
+             |---|---|---:|---:|---|---|---|---|"
         }
         Target::Ice40 => {
             "| block | part | LUT4 | flip-flops | multipliers | Fmax |\n|---|---|---:|---:|---|---|"
