@@ -300,6 +300,37 @@ static TMP_COUNTER: AtomicU64 = AtomicU64::new(0);
 
 static QUIET: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
 
+/// Run `program` in `dir` once per job at the same time, a thread each: `flags` then the job's
+/// arguments; `what` names the job in an error. The first error (in `jobs`' order) is returned
+/// once every job has ended.
+fn run_all(
+    dir: &Path,
+    program: &str,
+    flags: &[String],
+    jobs: &[(String, Vec<String>)],
+) -> Result<(), String> {
+    std::thread::scope(|s| {
+        let workers: Vec<_> = jobs
+            .iter()
+            .map(|(what, rest)| {
+                s.spawn(move || {
+                    let mut args = flags.to_vec();
+                    args.extend(rest.iter().cloned());
+                    run(dir, program, &args, what)
+                })
+            })
+            .collect();
+        workers
+            .into_iter()
+            .map(|w| {
+                w.join()
+                    .unwrap_or_else(|_| Err("a compile thread panicked".into()))
+            })
+            .collect::<Result<Vec<()>, String>>()
+    })?;
+    Ok(())
+}
+
 /// Whether [`build`] says on stderr what it built and how long it took (it does by default; a
 /// caller that shows its own progress turns it off).
 pub fn set_quiet(quiet: bool) {
@@ -467,27 +498,7 @@ fn runtime(cache: &Path, tools: &Toolchain) -> Result<Runtime, String> {
             ],
         ));
     }
-    std::thread::scope(|s| {
-        let workers: Vec<_> = jobs
-            .iter()
-            .map(|(what, rest)| {
-                let tmp = &tmp;
-                let flags = &flags;
-                s.spawn(move || {
-                    let mut args = flags.clone();
-                    args.extend(rest.iter().cloned());
-                    run(tmp, &tools.cxx, &args, what)
-                })
-            })
-            .collect();
-        workers
-            .into_iter()
-            .map(|j| {
-                j.join()
-                    .unwrap_or_else(|_| Err("a compile thread panicked".into()))
-            })
-            .collect::<Result<Vec<()>, String>>()
-    })?;
+    run_all(&tmp, &tools.cxx, &flags, &jobs)?;
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::rename(&tmp, &dir)
         .map_err(|e| format!("cannot move the runtime into {}: {e}", dir.display()))?;
@@ -584,42 +595,24 @@ fn compile_into(
     }
     let flags = cxx_flags(tools);
     let objects: Vec<PathBuf> = units.iter().map(|(s, _)| s.with_extension("o")).collect();
-    std::thread::scope(|s| {
-        let workers: Vec<_> = units
-            .iter()
-            .zip(&objects)
-            .map(|((src, opt), obj)| {
-                let flags = &flags;
-                let runtime = &runtime;
-                s.spawn(move || -> Result<(), String> {
-                    let file = src.file_name().map(|f| f.to_string_lossy().to_string());
-                    let mut args = flags.clone();
-                    args.extend(runtime.include_pch(opt));
-                    args.extend([
-                        opt.to_string(),
-                        format!("-I{}", tmp.join("obj").display()),
-                        "-c".into(),
-                        src.display().to_string(),
-                        "-o".into(),
-                        obj.display().to_string(),
-                    ]);
-                    run(
-                        tmp,
-                        &tools.cxx,
-                        &args,
-                        &format!("compiling {}", file.unwrap_or_default()),
-                    )
-                })
-            })
-            .collect();
-        workers
-            .into_iter()
-            .map(|w| {
-                w.join()
-                    .unwrap_or_else(|_| Err("a compile thread panicked".into()))
-            })
-            .collect::<Result<Vec<()>, String>>()
-    })?;
+    let jobs: Vec<(String, Vec<String>)> = units
+        .iter()
+        .zip(&objects)
+        .map(|((src, opt), obj)| {
+            let file = src.file_name().map(|f| f.to_string_lossy().to_string());
+            let mut args: Vec<String> = runtime.include_pch(opt).into();
+            args.extend([
+                opt.to_string(),
+                format!("-I{}", tmp.join("obj").display()),
+                "-c".into(),
+                src.display().to_string(),
+                "-o".into(),
+                obj.display().to_string(),
+            ]);
+            (format!("compiling {}", file.unwrap_or_default()), args)
+        })
+        .collect();
+    run_all(tmp, &tools.cxx, &flags, &jobs)?;
     let mut link: Vec<String> = vec![
         "-shared".into(),
         "-Wl,-Bsymbolic".into(),
