@@ -158,6 +158,13 @@ pub fn synth(a: SynthArgs) -> anyhow::Result<()> {
                 .with_context(|| format!("cannot create {}", dir.display()))?;
         }
     }
+    // What runs for each block (the spinner's words).
+    let tools = match (a.target, a.no_pnr) {
+        (Target::Ecp5, true) => "Yosys synth_ecp5",
+        (Target::Ecp5, false) => "Yosys synth_ecp5, then nextpnr-ecp5",
+        (Target::Ice40, true) => "Yosys",
+        (Target::Ice40, false) => "Yosys, then nextpnr-ice40",
+    };
     if a.target == Target::Ecp5 {
         if a.no_pnr && a.pins {
             bail!("--pins places and routes on a package's pins: it cannot go with --no-pnr");
@@ -169,11 +176,7 @@ pub fn synth(a: SynthArgs) -> anyhow::Result<()> {
             bail!("yosys is not installed (apt-get install yosys)");
         }
         for b in blocks {
-            let spin = spinner(format!(
-                "synth {}: Yosys synth_ecp5{}",
-                b.name(),
-                if a.no_pnr { "" } else { ", then nextpnr-ecp5" }
-            ));
+            let spin = spinner(format!("synth {}: {tools}", b.name()));
             let v = b.verilog(&o).map_err(|e| anyhow!(e));
             let rep = v.and_then(|v| {
                 flow::synth::ecp5_with(
@@ -259,11 +262,7 @@ pub fn synth(a: SynthArgs) -> anyhow::Result<()> {
         bail!("--mult-regs places the multipliers' registers on ECP5: use it with --target ecp5");
     }
     for b in blocks {
-        let spin = spinner(format!(
-            "synth {}: Yosys{}",
-            b.name(),
-            if a.no_pnr { "" } else { ", then nextpnr-ice40" }
-        ));
+        let spin = spinner(format!("synth {}: {tools}", b.name()));
         let result = blocks::synth_block(b, &o, !a.no_pnr).map_err(|e| anyhow!(e));
         spin.finish_and_clear();
         let (rep, placement) = result?;
