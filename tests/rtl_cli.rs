@@ -334,8 +334,8 @@ fn readmes_are_short_and_undated() {
     }
 }
 
-/// `synth --pins`, `--device` and `--seed` name ECP5 placements: with the iCE40 target each is a
-/// one-line error and a non-zero exit, before any tool runs.
+/// `synth --pins`, `--device`, `--seed`, `--mult-regs` and `--jobs` name ECP5 placements: with
+/// the iCE40 target each is a one-line error and a non-zero exit, before any tool runs.
 #[test]
 fn synth_ecp5_only_flags_are_one_line_errors() {
     for (args, word) in [
@@ -358,6 +358,10 @@ fn synth_ecp5_only_flags_are_one_line_errors() {
         (
             &["synth", "--block", "power-unit", "--mult-regs", "dsp"][..],
             "--mult-regs",
+        ),
+        (
+            &["synth", "--block", "power-unit", "--jobs", "2"][..],
+            "--jobs",
         ),
     ] {
         let out = shadecore(args);
@@ -640,6 +644,69 @@ fn stream_texture_drives_the_textured_top() {
     assert!(
         worst <= 1,
         "a fragment {worst} LSB from the golden texture image"
+    );
+}
+
+/// `synth --target ecp5 --jobs 2` over blocks named in a list: each block's report and table
+/// row in the list's order (not the order they end in: the first takes longest), each row
+/// with the LUT4 count its report printed. A block named twice is a one-line error.
+#[test]
+fn synth_ecp5_jobs_keep_the_list_order() {
+    use flow::tools::{self, Tool};
+    if !tools::require(&[Tool::Yosys], "synth_ecp5_jobs_keep_the_list_order") {
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let table = dir.path().join("ecp5.md");
+    let o = shadecore_ok(&[
+        "synth",
+        "--target",
+        "ecp5",
+        "--no-pnr",
+        "--jobs",
+        "2",
+        "--block",
+        "normalizer-k,k-recurrence,address-block",
+        "--table",
+        table.to_str().unwrap(),
+    ]);
+    let printed = String::from_utf8_lossy(&o.stdout).to_string();
+    let reports: Vec<&str> = printed
+        .lines()
+        .filter(|l| l.contains(": Yosys synth_ecp5: "))
+        .collect();
+    let tops: Vec<&str> = reports
+        .iter()
+        .map(|l| l.split(':').next().unwrap())
+        .collect();
+    assert_eq!(
+        tops,
+        ["normalizer_k", "k_recurrence", "address_block"],
+        "{printed}"
+    );
+    let text = std::fs::read_to_string(&table).unwrap();
+    let rows: Vec<Vec<&str>> = text
+        .lines()
+        .filter(|l| l.starts_with("| `"))
+        .map(|l| l.split('|').map(str::trim).collect())
+        .collect();
+    let names: Vec<&str> = rows.iter().map(|r| r[1]).collect();
+    assert_eq!(
+        names,
+        ["`normalizer-k`", "`k-recurrence`", "`address-block`"],
+        "{text}"
+    );
+    for (row, report) in rows.iter().zip(&reports) {
+        assert!(
+            report.contains(&format!(": {} LUT4,", row[3])),
+            "{report}\n{text}"
+        );
+    }
+    let out = shadecore(&["synth", "--block", "k-recurrence,k-recurrence", "--no-pnr"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        !out.status.success() && err.trim().lines().count() == 1 && err.contains("twice"),
+        "{err}"
     );
 }
 

@@ -182,15 +182,20 @@ pub fn find(name: &str) -> Result<&'static dyn Block, String> {
         .ok_or_else(|| format!("unknown block {name:?} (expected one of: {})", names()))
 }
 
-/// `NAME` or `all`.
+/// `NAME`, several names comma-separated (in that order), or `all`.
 pub fn select(name: &str) -> Result<Vec<&'static dyn Block>, String> {
     if name == "all" {
-        Ok(BLOCKS.to_vec())
-    } else {
-        find(name)
-            .map(|b| vec![b])
-            .map_err(|e| format!("{e}, or all"))
+        return Ok(BLOCKS.to_vec());
     }
+    let mut chosen: Vec<&'static dyn Block> = Vec::new();
+    for n in name.split(',') {
+        let b = find(n).map_err(|e| format!("{e}, or all"))?;
+        if chosen.iter().any(|c| c.name() == b.name()) {
+            return Err(format!("block {n} is named twice"));
+        }
+        chosen.push(b);
+    }
+    Ok(chosen)
 }
 
 /// The block names, comma-separated.

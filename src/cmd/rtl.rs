@@ -19,7 +19,7 @@ fn selection(block: &str, build: &BuildArgs) -> anyhow::Result<(Vec<&'static dyn
 
 #[derive(clap::Args, Debug)]
 pub struct ExportArgs {
-    /// Block name (`shadecore blocks` lists them), or all.
+    /// Block name (`shadecore blocks` lists them), several comma-separated, or all.
     #[arg(long, default_value = "all")]
     pub block: String,
     /// Output directory (one `<module>.v` per block).
@@ -37,7 +37,7 @@ pub struct ExportArgs {
 
 #[derive(clap::Args, Debug)]
 pub struct SynthArgs {
-    /// Block name (`shadecore blocks` lists them), or all.
+    /// Block name (`shadecore blocks` lists them), several comma-separated, or all.
     #[arg(long, default_value = "normalizer")]
     pub block: String,
     #[command(flatten)]
@@ -77,6 +77,12 @@ pub struct SynthArgs {
     /// done.
     #[arg(long)]
     pub table: Option<PathBuf>,
+    /// With `--target ecp5`: how many blocks are synthesized and placed at once (default 1).
+    /// Yosys and nextpnr-ecp5 use one core each, so `--block all --jobs 2` on two cores takes
+    /// about half the time; the figures do not depend on it (nextpnr is seeded), and the
+    /// reports and table rows keep the registry's order.
+    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=64))]
+    pub jobs: u32,
 }
 
 /// `synth --mult-regs`.
@@ -175,78 +181,8 @@ pub fn synth(a: SynthArgs) -> anyhow::Result<()> {
         if !flow::tools::available(flow::tools::Tool::Yosys) {
             bail!("yosys is not installed (apt-get install yosys)");
         }
-        for b in blocks {
-            let spin = spinner(format!("synth {}: {tools}", b.name()));
-            let v = b.verilog(&o).map_err(|e| anyhow!(e));
-            let rep = v.and_then(|v| {
-                flow::synth::ecp5_with(
-                    &v,
-                    &b.module_name(),
-                    &b.ports(),
-                    a.device.as_deref(),
-                    &format!("ecp5-{}", b.name()),
-                    a.seed.unwrap_or(1),
-                    a.mult_regs.unwrap_or(MultRegsArg::Dsp).into(),
-                    !a.no_pnr,
-                )
-                .map_err(|e| anyhow!(e))
-            });
-            spin.finish_and_clear();
-            let rep = rep?;
-            crate::outln!("{rep}")?;
-            rows.push(format!(
-                "| `{}` | {} | {} | {} | {} MULT18X18D | {} DP16KD | {} | {} |",
-                b.name(),
-                rep.part.name,
-                rep.luts(),
-                rep.ffs(),
-                rep.mult18(),
-                rep.dp16kd(),
-                rep.fmax
-                    .map_or("not placed".into(), |f| format!("{f:.1} MHz")),
-                rep.critical.as_ref().map_or("—".into(), |c| c.to_string())
-            ));
-            if a.pins {
-                // The smallest package of this die or a larger one that has the top's pins.
-                let part =
-                    flow::synth::ecp5_part_for_pins(rep.part, flow::synth::top_pins(&b.ports()));
-                let spin = spinner(format!(
-                    "synth {}: on its own pins of the {} ({})",
-                    b.name(),
-                    part.name,
-                    part.package
-                ));
-                let v = b.verilog(&o).map_err(|e| anyhow!(e))?;
-                let pins = flow::synth::ecp5_on_pins_with(
-                    &v,
-                    &b.module_name(),
-                    &b.ports(),
-                    part,
-                    &format!("pins-{}", b.name()),
-                    a.seed.unwrap_or(1),
-                    a.mult_regs.unwrap_or(MultRegsArg::Dsp).into(),
-                )
-                .map_err(|e| anyhow!(e));
-                spin.finish_and_clear();
-                let pins = pins?;
-                let seed = match a.seed {
-                    Some(s) if s != 1 => format!(", placer seed {s}"),
-                    _ => String::new(),
-                };
-                let what = match (pins.fmax, &pins.unplaced) {
-                    (Some(f), _) => format!("placed and routed{seed}, max clock {f:.1} MHz"),
-                    (None, Some(why)) => format!("not placed: {why}"),
-                    (None, None) => "placed, no clock figure in nextpnr's log".to_string(),
-                };
-                crate::outln!(
-                    "{}: on its own {} pins (clock included) of the {} ({}): {what}",
-                    b.name(),
-                    pins.pins,
-                    pins.part.name,
-                    pins.part.package
-                )?;
-            }
-        }
+        let done = ecp5_blocks(&a, &o, &blocks, tools, |lines| crate::outln!("{lines}"))?;
+        rows.extend(done);
         return write_table(&a, &rows);
     }
     if a.device.is_some() {
@@ -260,6 +196,9 @@ pub fn synth(a: SynthArgs) -> anyhow::Result<()> {
     }
     if a.mult_regs.is_some() {
         bail!("--mult-regs places the multipliers' registers on ECP5: use it with --target ecp5");
+    }
+    if a.jobs != 1 {
+        bail!("--jobs runs ECP5 blocks side by side: use it with --target ecp5");
     }
     for b in blocks {
         let spin = spinner(format!("synth {}: {tools}", b.name()));
@@ -295,6 +234,142 @@ pub fn synth(a: SynthArgs) -> anyhow::Result<()> {
         }?;
     }
     write_table(&a, &rows)
+}
+
+/// `synth --target ecp5` over `blocks`, `a.jobs` at a time: each block's report lines go to
+/// `print` and its table row is returned, both in `blocks`' order (a block's lines wait for
+/// those before it). The first error stops the blocks not yet started and is returned once the
+/// running ones end, after the reports of the blocks before it.
+fn ecp5_blocks(
+    a: &SynthArgs,
+    o: &Options,
+    blocks: &[&'static dyn Block],
+    tools: &str,
+    mut print: impl FnMut(&str) -> anyhow::Result<()>,
+) -> anyhow::Result<Vec<String>> {
+    use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+    use std::sync::Mutex;
+    let multi = indicatif::MultiProgress::new();
+    let next = AtomicUsize::new(0);
+    let failed = AtomicBool::new(false);
+    let results: Vec<Mutex<Option<anyhow::Result<(String, String)>>>> =
+        blocks.iter().map(|_| Mutex::new(None)).collect();
+    let workers = (a.jobs as usize).clamp(1, blocks.len().max(1));
+    let (tx, rx) = std::sync::mpsc::channel::<usize>();
+    std::thread::scope(|sc| -> anyhow::Result<Vec<String>> {
+        for _ in 0..workers {
+            let tx = tx.clone();
+            let (next, failed, results, multi) = (&next, &failed, &results, &multi);
+            sc.spawn(move || loop {
+                let i = next.fetch_add(1, Ordering::SeqCst);
+                if i >= blocks.len() || failed.load(Ordering::SeqCst) {
+                    break;
+                }
+                let spin = multi.add(spinner(format!("synth {}: {tools}", blocks[i].name())));
+                let r = ecp5_block(a, o, blocks[i], &multi);
+                spin.finish_and_clear();
+                if r.is_err() {
+                    failed.store(true, Ordering::SeqCst);
+                }
+                *results[i].lock().expect("a synth thread panicked") = Some(r);
+                let _ = tx.send(i);
+            });
+        }
+        drop(tx);
+        // Print in order as the blocks end; stop at the first error.
+        let mut rows = Vec::new();
+        let mut shown = 0;
+        for _ in rx {
+            while shown < blocks.len() {
+                let Some(r) = results[shown]
+                    .lock()
+                    .expect("a synth thread panicked")
+                    .take()
+                else {
+                    break;
+                };
+                let (lines, row) = r?;
+                print(&lines)?;
+                rows.push(row);
+                shown += 1;
+            }
+        }
+        Ok(rows)
+    })
+}
+
+/// One block on ECP5: its report (and with `--pins` the placement on pins) as lines to print,
+/// and its table row.
+fn ecp5_block(
+    a: &SynthArgs,
+    o: &Options,
+    b: &dyn Block,
+    multi: &indicatif::MultiProgress,
+) -> anyhow::Result<(String, String)> {
+    let v = b.verilog(o).map_err(|e| anyhow!(e))?;
+    let rep = flow::synth::ecp5_with(
+        &v,
+        &b.module_name(),
+        &b.ports(),
+        a.device.as_deref(),
+        &format!("ecp5-{}", b.name()),
+        a.seed.unwrap_or(1),
+        a.mult_regs.unwrap_or(MultRegsArg::Dsp).into(),
+        !a.no_pnr,
+    )
+    .map_err(|e| anyhow!(e))?;
+    let mut lines = rep.to_string();
+    let row = format!(
+        "| `{}` | {} | {} | {} | {} MULT18X18D | {} DP16KD | {} | {} |",
+        b.name(),
+        rep.part.name,
+        rep.luts(),
+        rep.ffs(),
+        rep.mult18(),
+        rep.dp16kd(),
+        rep.fmax
+            .map_or("not placed".into(), |f| format!("{f:.1} MHz")),
+        rep.critical.as_ref().map_or("—".into(), |c| c.to_string())
+    );
+    if a.pins {
+        // The smallest package of this die or a larger one that has the top's pins.
+        let part = flow::synth::ecp5_part_for_pins(rep.part, flow::synth::top_pins(&b.ports()));
+        let spin = multi.add(spinner(format!(
+            "synth {}: on its own pins of the {} ({})",
+            b.name(),
+            part.name,
+            part.package
+        )));
+        let pins = flow::synth::ecp5_on_pins_with(
+            &v,
+            &b.module_name(),
+            &b.ports(),
+            part,
+            &format!("pins-{}", b.name()),
+            a.seed.unwrap_or(1),
+            a.mult_regs.unwrap_or(MultRegsArg::Dsp).into(),
+        )
+        .map_err(|e| anyhow!(e));
+        spin.finish_and_clear();
+        let pins = pins?;
+        let seed = match a.seed {
+            Some(s) if s != 1 => format!(", placer seed {s}"),
+            _ => String::new(),
+        };
+        let what = match (pins.fmax, &pins.unplaced) {
+            (Some(f), _) => format!("placed and routed{seed}, max clock {f:.1} MHz"),
+            (None, Some(why)) => format!("not placed: {why}"),
+            (None, None) => "placed, no clock figure in nextpnr's log".to_string(),
+        };
+        lines += &format!(
+            "\n{}: on its own {} pins (clock included) of the {} ({}): {what}",
+            b.name(),
+            pins.pins,
+            pins.part.name,
+            pins.part.package
+        );
+    }
+    Ok((lines, row))
 }
 
 /// `synth --table`: the rows as a Markdown table with the command, date and machine, written
