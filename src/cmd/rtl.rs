@@ -78,8 +78,8 @@ pub struct SynthArgs {
     #[arg(long)]
     pub table: Option<PathBuf>,
     /// With `--target ecp5`: how many blocks are synthesized and placed at once (default 1).
-    /// Yosys and nextpnr-ecp5 use one core each, so `--block all --jobs 2` on two cores takes
-    /// about half the time; the figures do not depend on it (nextpnr is seeded), and the
+    /// Yosys and nextpnr-ecp5 use one core each, so `--block all --jobs 2` on two cores can take
+    /// as little as half the time; the figures do not depend on it (nextpnr is seeded), and the
     /// reports and table rows keep the order of `--block`.
     #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=64))]
     pub jobs: u32,
