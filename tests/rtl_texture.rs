@@ -18,13 +18,9 @@ use rtl::pipelines::textured_pipeline::TexCoord;
 use shadecore::rtl_engine::{max_channel_diff, render_rtl_textured, RtlBuild};
 use shadecore::setup::{build, SceneArgs, Setup};
 
-fn scene(name: &str) -> Setup {
-    build(&SceneArgs {
-        scene: name.into(),
-        ..SceneArgs::default()
-    })
-    .unwrap()
-}
+#[path = "../benches/common/texture.rs"]
+mod texture_runs;
+use texture_runs::{jobs_of, run, scene};
 
 #[test]
 fn texture_through_the_rtl_is_within_one_lsb_of_golden_on_every_scene() {
@@ -82,48 +78,6 @@ fn texture_through_the_rtl_is_within_one_lsb_of_golden_on_every_scene() {
             "{method} {name}: visibility differs"
         );
     }
-}
-
-/// The jobs of `s` for the additive build (or the `quadratic` one) in the engine's (balanced)
-/// order, with their mean w.
-fn jobs_of(s: &Setup, coord: TexCoord) -> Vec<(TexJob, f64)> {
-    let mut v: Vec<(TexJob, f64)> = s
-        .tris
-        .iter()
-        .filter(|t| t.depth_plane().is_some())
-        .filter_map(|t| {
-            TexJob::of(t, &s.texture, coord)
-                .unwrap()
-                .map(|j| (j, t.v.iter().map(|v| v.w).sum::<f64>() / 3.0))
-        })
-        .collect();
-    let order = pipeline::lit::balanced_order(&v.iter().map(|(j, _)| j.lit).collect::<Vec<_>>());
-    let sent = order.iter().map(|&i| v[i].clone()).collect();
-    v.clear();
-    sent
-}
-
-/// Fragments, clocks, and the clock of the first fragment after the first load, for `jobs`
-/// through the RTL with `k`.
-fn run_rtl(s: &Setup, jobs: &[TexJob], k: &str) -> (u64, u64, u64) {
-    let regs = ShadingRegs::of(&s.ctx).unwrap();
-    let t = TexRegs::of(&s.ctx, &s.texture).unwrap();
-    let mut pipe = TexturedPipe::on(k, flow::engine::Sim::fastest(), false).unwrap();
-    pipe.load_texture(&s.texture, &regs, &t).unwrap();
-    let mut first = None;
-    let st = pipe
-        .run(
-            jobs,
-            &regs,
-            &t,
-            u64::MAX,
-            |f| {
-                first.get_or_insert(f.clock);
-            },
-            |_| {},
-        )
-        .unwrap();
-    (st.pixels, st.clocks, first.unwrap_or(0))
 }
 
 /// `textured-stream` (k = 4) on `jobs` with `tready` high, the register record and the texture's
@@ -226,9 +180,9 @@ fn rates_on(name: &str) {
         ));
     }
     for (label, jobs) in sets {
-        let (p1, c1, first1) = run_rtl(&s, &jobs, "1");
-        let (p2, c2, first2) = run_rtl(&s, &jobs, "2");
-        let (p4, c4, first4) = run_rtl(&s, &jobs, "4");
+        let (p1, c1, first1, _) = run(&s, &jobs, "1");
+        let (p2, c2, first2, _) = run(&s, &jobs, "2");
+        let (p4, c4, first4, _) = run(&s, &jobs, "4");
         let (pm, cm) = run_model(&s, &jobs, 4);
         assert!(
             p1 == p2 && p2 == p4,
@@ -261,7 +215,7 @@ fn rates_on(name: &str) {
             // whenever `line_ready` is high).
             for coord in [TexCoord::Quadratic, TexCoord::Bezier] {
                 let lined: Vec<TexJob> = jobs_of(&s, coord).into_iter().map(|(j, _)| j).collect();
-                let (pq, cq, firstq) = run_rtl(&s, &lined, coord.name());
+                let (pq, cq, firstq, _) = run(&s, &lined, coord.name());
                 assert_eq!(
                     pq,
                     p4,

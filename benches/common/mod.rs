@@ -3,6 +3,8 @@
 //! (a folder, so Cargo does not take it for a bench of its own).
 #![allow(dead_code)]
 
+pub mod texture;
+
 use glam::DQuat;
 use golden::shade::ShadeContext;
 use golden::types::ScreenTriangle;
