@@ -33,11 +33,12 @@
 //! The loop in short paths: the comparison sums X(j + k − 1) + X(j + k) + ¬(2i·2^32) are
 //! registers, and so are flags of the count of samples left (after a move by r the count is
 //! at least t when it was at least t + r): r is a function of register bits. Every register's
-//! candidate after a move is at most two adders from the registers: samples j + 4 … j + 6 are
-//! w3 + Δ, w3 + E2, w3 + E3; Δ, E2, E3 move by r·d, 2r·d, 3r·d; the sums of the samples
-//! beyond the window come from Z = 2·X(j + 3) + ¬(2i·2^32), kept beside Z − 2^33 (the next
-//! pixel's). The load takes the record with sums at most two adders deep; the first pixel's
-//! clock forms the window from them (samples 0 … 3 and the second pixel's sums).
+//! candidate after a move is one carry chain from the registers (a three-operand sum through
+//! a carry-save level first, `primitives::Add3`): samples j + 4 … j + 6 are w3 + Δ, w3 + E2,
+//! w3 + E3; Δ, E2, E3 move by r·d, 2r·d, 3r·d; the sums of the samples beyond the window come
+//! from Z = 2·X(j + 3) + ¬(2i·2^32), kept beside Z − 2^33 (the next pixel's). The load takes
+//! the record with sums at most two adders deep; the first pixel's clock forms the window from
+//! them (samples 0 … 3 and the second pixel's sums, one carry chain each).
 //!
 //! # Ports
 //!
@@ -88,6 +89,8 @@
 //! set).
 
 use rust_hdl::prelude::*;
+
+use crate::core::primitives::Add3;
 
 crate::hw_block! {
     /// One lane: the record's words taken on the load (with sums one adder deep), and the
@@ -255,17 +258,17 @@ crate::hw_block! {
         k1: Constant<Bits<48>> = Constant::new(((1u64 << 48) - (1u64 << 33) - 1).into()),
         k1m: Constant<Bits<48>> = Constant::new(((1u64 << 48) - (1u64 << 34) - 1).into()),
         minus2: Constant<Bits<48>> = Constant::new(((1u64 << 48) - (1u64 << 33)).into()),
-        /// The first pixel's clock: the sums for the second pixel.
-        f_p2a: Signal<Local, Bits<48>>, f_p3a: Signal<Local, Bits<48>>,
-        f_p1: Signal<Local, Bits<48>>, f_p2: Signal<Local, Bits<48>>, f_p3: Signal<Local, Bits<48>>,
+        /// The first pixel's clock: the sums for the second pixel (three-operand ones through
+        /// one carry-save level and one adder, [`Add3`]).
+        f_p1: Signal<Local, Bits<48>>, pub f_p2: Add3, pub f_p3: Add3,
         f_z: Signal<Local, Bits<48>>, f_zm: Signal<Local, Bits<48>>,
         /// Candidates: the sums less 2^33, the sums of samples beyond the window, z and zm next.
         p1m: Signal<Local, Bits<48>>, p2m: Signal<Local, Bits<48>>, p3m: Signal<Local, Bits<48>>,
-        q4: Signal<Local, Bits<48>>, q5: Signal<Local, Bits<48>>, q6a: Signal<Local, Bits<48>>,
-        q6: Signal<Local, Bits<48>>, q4m: Signal<Local, Bits<48>>, q5m: Signal<Local, Bits<48>>,
+        q4: Signal<Local, Bits<48>>, pub q5: Add3, pub q6: Add3,
+        q4m: Signal<Local, Bits<48>>, pub q5m: Add3,
         zm_1: Signal<Local, Bits<48>>, zm_2: Signal<Local, Bits<48>>,
-        zmm_0: Signal<Local, Bits<48>>, zmm_1: Signal<Local, Bits<48>>,
-        zmm_2: Signal<Local, Bits<48>>, z_3: Signal<Local, Bits<48>>, zm_3: Signal<Local, Bits<48>>,
+        zmm_0: Signal<Local, Bits<48>>, pub zmm_1: Add3, pub zmm_2: Add3,
+        z_3: Signal<Local, Bits<48>>, zm_3: Signal<Local, Bits<48>>,
         /// The comparisons, r, and the clock's decisions.
         c1: Signal<Local, Bit>, c2: Signal<Local, Bit>, c3: Signal<Local, Bit>,
         r: Signal<Local, Bits<2>>, step_now: Signal<Local, Bit>, emit: Signal<Local, Bit>,
@@ -321,33 +324,52 @@ impl Logic for TextureBezier {
         self.lane[2].step2.next = self.v_step2.val();
         // The first pixel's clock: X's window is 0, Δ(0), 2Δ(0) + d, 3Δ(0) + 3d.
         self.f_p1.next = self.lane[0].head1.val() + self.k1.val();
-        self.f_p2a.next = self.lane[0].head1.val() + self.lane[0].head_c.val();
-        self.f_p2.next = self.f_p2a.val() + self.k1.val();
-        self.f_p3a.next = self.lane[0].head_c.val() + self.lane[0].head_t3.val();
-        self.f_p3.next = self.f_p3a.val() + self.k1.val();
+        self.f_p2.a.next = self.lane[0].head1.val();
+        self.f_p2.b.next = self.lane[0].head_c.val();
+        self.f_p2.c.next = self.k1.val();
+        self.f_p2.cin.next = false;
+        self.f_p3.a.next = self.lane[0].head_c.val();
+        self.f_p3.b.next = self.lane[0].head_t3.val();
+        self.f_p3.c.next = self.k1.val();
+        self.f_p3.cin.next = false;
         self.f_z.next = (self.lane[0].head_t3.val() << 1) + self.k1.val();
         self.f_zm.next = (self.lane[0].head_t3.val() << 1) + self.k1m.val();
-        // Later pixels: every candidate at most two adders from the registers.
+        // Later pixels: every candidate one carry chain from the registers (a three-operand
+        // sum through a carry-save level first).
         self.p1m.next = self.p1_q.q.val() + self.minus2.val();
         self.p2m.next = self.p2_q.q.val() + self.minus2.val();
         self.p3m.next = self.p3_q.q.val() + self.minus2.val();
         self.q4.next = self.z_q.q.val() + self.lane[0].d.val();
-        self.q5.next = self.q4.val() + self.lane[0].e2.val();
-        self.q6a.next = self.z_q.q.val() + self.lane[0].e2.val();
-        self.q6.next = self.q6a.val() + self.lane[0].e3.val();
+        self.q5.a.next = self.z_q.q.val();
+        self.q5.b.next = self.lane[0].d.val();
+        self.q5.c.next = self.lane[0].e2.val();
+        self.q5.cin.next = false;
+        self.q6.a.next = self.z_q.q.val();
+        self.q6.b.next = self.lane[0].e2.val();
+        self.q6.c.next = self.lane[0].e3.val();
+        self.q6.cin.next = false;
         self.q4m.next = self.zm_q.q.val() + self.lane[0].d.val();
-        self.q5m.next = self.q4m.val() + self.lane[0].e2.val();
+        self.q5m.a.next = self.zm_q.q.val();
+        self.q5m.b.next = self.lane[0].d.val();
+        self.q5m.c.next = self.lane[0].e2.val();
+        self.q5m.cin.next = false;
         self.zm_1.next = self.zm_q.q.val() + (self.lane[0].d.val() << 1);
         self.zm_2.next = self.zm_q.q.val() + (self.lane[0].e2.val() << 1);
         self.zmm_0.next = self.zm_q.q.val() + self.minus2.val();
-        self.zmm_1.next = self.zm_1.val() + self.minus2.val();
-        self.zmm_2.next = self.zm_2.val() + self.minus2.val();
+        self.zmm_1.a.next = self.zm_q.q.val();
+        self.zmm_1.b.next = self.lane[0].d.val() << 1;
+        self.zmm_1.c.next = self.minus2.val();
+        self.zmm_1.cin.next = false;
+        self.zmm_2.a.next = self.zm_q.q.val();
+        self.zmm_2.b.next = self.lane[0].e2.val() << 1;
+        self.zmm_2.c.next = self.minus2.val();
+        self.zmm_2.cin.next = false;
         self.z_3.next = self.z_q.q.val() + (self.lane[0].e3.val() << 1);
         self.zm_3.next = self.zm_q.q.val() + (self.lane[0].e3.val() << 1);
         if self.first_q.q.val() {
             self.p1_q.d.next = self.f_p1.val();
-            self.p2_q.d.next = self.f_p2.val();
-            self.p3_q.d.next = self.f_p3.val();
+            self.p2_q.d.next = self.f_p2.sum.val();
+            self.p3_q.d.next = self.f_p3.sum.val();
             self.z_q.d.next = self.f_z.val();
             self.zm_q.d.next = self.f_zm.val();
         } else if self.step_now.val() {
@@ -362,17 +384,17 @@ impl Logic for TextureBezier {
                 self.p2_q.d.next = self.p3m.val();
                 self.p3_q.d.next = self.q4m.val();
                 self.z_q.d.next = self.zm_1.val();
-                self.zm_q.d.next = self.zmm_1.val();
+                self.zm_q.d.next = self.zmm_1.sum.val();
             } else if self.r.val() == 2 {
                 self.p1_q.d.next = self.p3m.val();
                 self.p2_q.d.next = self.q4m.val();
-                self.p3_q.d.next = self.q5m.val();
+                self.p3_q.d.next = self.q5m.sum.val();
                 self.z_q.d.next = self.zm_2.val();
-                self.zm_q.d.next = self.zmm_2.val();
+                self.zm_q.d.next = self.zmm_2.sum.val();
             } else {
                 self.p1_q.d.next = self.q4.val();
-                self.p2_q.d.next = self.q5.val();
-                self.p3_q.d.next = self.q6.val();
+                self.p2_q.d.next = self.q5.sum.val();
+                self.p3_q.d.next = self.q6.sum.val();
                 self.z_q.d.next = self.z_3.val();
                 self.zm_q.d.next = self.zm_3.val();
             }

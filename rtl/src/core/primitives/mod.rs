@@ -19,6 +19,7 @@
 //! | [`SatToQ2_17`]         | `wide` (32) → `narrow` (19) | signed Q3.29 + ½ LSB → signed Q2.17: drop 12 LSBs, saturate | 0 |
 //! | [`RoundToQ2_17`]       | `wide` (32) → `narrow` (19) | signed Q3.29 → signed Q2.17: add ½ LSB (2¹¹), then [`SatToQ2_17`] | 0 |
 //! | [`SatToUQ1_18`]        | `wide` (32) → `narrow` (19) | signed Q4.28 + ½ LSB → unsigned Q1.18: drop 10 LSBs, clamp to [0, 2 − 2⁻¹⁸] | 0 |
+//! | [`Add3`]               | `a`, `b`, `c` (48), `cin` → `sum` (48) | a + b + c + cin mod 2⁴⁸: one carry-save level (bitwise sum, majority carries shifted up with `cin` in bit 0) and one adder | 0 |
 //! | [`MulLow3Pipe`]        | `v` (24), `m` (3) → `p` (32) | v·m for a 3-bit unsigned m, by shift and add in 24 bits (no multiplier), sign-extended: the low part of a 19-bit operand split 16 + 3 | 2 |
 //!
 //! Rounding is to nearest with ties toward +∞ (add half an output LSB, then drop the LSBs), the
@@ -31,10 +32,12 @@
 //! at its operands' width, Verilog sizes an expression by its context, and only one-operation
 //! assignments mean the same in both.
 
+mod adders;
 mod multipliers;
 mod rounding;
 mod storage;
 
+pub use adders::*;
 pub use multipliers::*;
 pub use rounding::*;
 pub use storage::*;
