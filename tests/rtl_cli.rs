@@ -374,8 +374,8 @@ fn synth_ecp5_only_flags_are_one_line_errors() {
 }
 
 /// The textured pipeline's build flags: `--tex-coord quadratic` or `bezier` with `--tex-k`, on a
-/// block that does not read it, on `textured-stream` (no line records), an unknown coordinate,
-/// and `texture-quadratic` through a stream top are one-line errors naming what is wrong.
+/// block that does not read it, and an unknown coordinate are one-line errors naming what is
+/// wrong.
 #[test]
 fn texture_coordinate_builds_refuse_what_they_cannot_build() {
     let dir = tempfile::tempdir().unwrap();
@@ -411,18 +411,6 @@ fn texture_coordinate_builds_refuse_what_they_cannot_build() {
             &[
                 "export-verilog",
                 "--block",
-                "textured-stream",
-                "--tex-coord",
-                "quadratic",
-                "--out",
-                out_dir,
-            ][..],
-            &["textured-stream", "additive"][..],
-        ),
-        (
-            &[
-                "export-verilog",
-                "--block",
                 "textured-pipeline",
                 "--tex-coord",
                 "bezier",
@@ -445,38 +433,6 @@ fn texture_coordinate_builds_refuse_what_they_cannot_build() {
             ][..],
             &["cubic", "expected additive, quadratic or bezier"][..],
         ),
-        (
-            &[
-                "render",
-                "--engine",
-                "rtl",
-                "--method",
-                "texture-quadratic",
-                "--lit-top",
-                "stream",
-                "--size",
-                "40x40",
-                "--out",
-                out_dir,
-            ][..],
-            &["--lit-top"][..],
-        ),
-        (
-            &[
-                "render",
-                "--engine",
-                "rtl",
-                "--method",
-                "texture,texture-quadratic",
-                "--lit-top",
-                "stream",
-                "--size",
-                "40x40",
-                "--out",
-                out_dir,
-            ][..],
-            &["textured-stream", "texture-quadratic"][..],
-        ),
     ] {
         let out = shadecore(args);
         let err = String::from_utf8_lossy(&out.stderr);
@@ -488,17 +444,20 @@ fn texture_coordinate_builds_refuse_what_they_cannot_build() {
             "{args:?}: {err}"
         );
     }
-    // The per-line builds export.
-    for coord in ["quadratic", "bezier"] {
-        shadecore_ok(&[
-            "export-verilog",
-            "--block",
-            "textured-pipeline",
-            "--tex-coord",
-            coord,
-            "--out",
-            out_dir,
-        ]);
+    // The per-line builds export, the pipeline and its stream top (line records on the
+    // set-up stream).
+    for block in ["textured-pipeline", "textured-stream"] {
+        for coord in ["quadratic", "bezier"] {
+            shadecore_ok(&[
+                "export-verilog",
+                "--block",
+                block,
+                "--tex-coord",
+                coord,
+                "--out",
+                out_dir,
+            ]);
+        }
     }
 }
 

@@ -32,8 +32,9 @@ pub struct BuildArgs {
     /// 2 or 4 (the default: 2 for `texture-coord`, 4 for `textured-pipeline`).
     #[arg(long)]
     pub tex_k: Option<String>,
-    /// The textured pipeline's texture coordinate: additive (SPEC §14's block; the default),
-    /// quadratic (§15's unit on per-line records) or bezier (§16's unit on per-line records).
+    /// The textured pipeline's texture coordinate (`textured-pipeline`, `textured-stream`):
+    /// additive (SPEC §14's block; the default), quadratic (§15's unit on per-line records) or
+    /// bezier (§16's unit on per-line records).
     #[arg(long)]
     pub tex_coord: Option<String>,
 }

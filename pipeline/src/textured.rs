@@ -16,7 +16,8 @@
 //! through the pipeline), a triangle's [`TexJob::lines`] are its line records, one per raster
 //! line with a pixel in walk order (`golden::shading::texture::quadratic_line`,
 //! `bezier_line`); [`TexturedPipe::run`] pushes them, in the triangles' order, whenever
-//! `line_ready` is high.
+//! `line_ready` is high, or (through `textured-stream`) sends each triangle's after its
+//! triangle record ([`textured_job_records`]).
 
 use golden::methods::Method;
 use golden::shade::ShadeContext;
@@ -30,7 +31,7 @@ use golden::units::texture_quadratic::QuadWords;
 use rtl::core::registry::{BlockParams, Options};
 use rtl::core::sim::Model;
 use rtl::pipelines::textured_pipeline::{TexCoord, TexturedParams, TexturedPipeline};
-use rtl::stream::layout::{pack, TEXEL, TEXTURED_REGISTERS, TEXTURED_TRIANGLE};
+use rtl::stream::layout::{pack, TEXEL, TEXTURED_LINE, TEXTURED_REGISTERS, TEXTURED_TRIANGLE};
 use rtl::stream::textured_stream::{TexturedStream, TexturedStreamParams};
 
 use flow::engine::Sim;
@@ -132,8 +133,8 @@ impl LineRecord {
         }
     }
 
-    /// The ports' words in order.
-    fn ports(&self) -> [u64; LINE_WORDS] {
+    /// The ports' words in order (the `line_…` ports, and `textured-stream`'s line record).
+    pub fn ports(&self) -> [u64; LINE_WORDS] {
         let w = &self.words;
         [
             w[0], w[1], w[2], w[3], w[4], w[5], self.end, self.x[0], self.x[1],
@@ -325,19 +326,6 @@ pub fn params(k: &str) -> Result<TexturedParams, String> {
     TexturedParams::from_options(&Options::new().with("tex-k", k))
 }
 
-/// [`params`] of `k`, or an error for a per-line build behind the stream top.
-fn build(k: &str, stream: bool) -> Result<TexturedParams, String> {
-    let p = params(k)?;
-    if stream && p.coord != TexCoord::Additive {
-        return Err(format!(
-            "textured-stream carries the additive build only (its records have no line \
-             record): texture-{} goes through textured-pipeline's ports",
-            p.coord.name()
-        ));
-    }
-    Ok(p)
-}
-
 /// `textured-pipeline`, or its AXI4-Stream top `textured-stream`, on either simulator.
 pub struct TexturedPipe {
     model: Box<dyn Model>,
@@ -350,9 +338,9 @@ pub struct TexturedPipe {
 
 impl TexturedPipe {
     /// The pipeline (or, if `stream`, `textured-stream`) with `tex-k` = `k` (or, `k` =
-    /// `"quadratic"` or `"bezier"`, that per-line build: its ports only), on `sim`.
+    /// `"quadratic"` or `"bezier"`, that per-line build), on `sim`.
     pub fn on(k: &str, sim: Sim, stream: bool) -> Result<TexturedPipe, String> {
-        let p = build(k, stream)?;
+        let p = params(k)?;
         let model = if stream {
             flow::engine::model::<TexturedStream>(&TexturedStreamParams(p), sim)?
         } else {
@@ -367,7 +355,7 @@ impl TexturedPipe {
 
     /// The design [`TexturedPipe::on`] builds under Verilator.
     pub fn design(k: &str, stream: bool) -> Result<verilated::Design, String> {
-        let p = build(k, stream)?;
+        let p = params(k)?;
         Ok(if stream {
             flow::engine::design::<TexturedStream>(&TexturedStreamParams(p))
         } else {
@@ -398,8 +386,8 @@ impl TexturedPipe {
     }
 
     /// Run `jobs` (after [`TexturedPipe::load_texture`]), each loaded as soon as `ready` is
-    /// high, their line records (built quadratic) pushed in order whenever `line_ready` is
-    /// high; `fragment` for every valid output, `progress(done_triangles)` after each `done`.
+    /// high, their line records (the per-line builds) pushed in order whenever `line_ready`
+    /// is high (through the stream top: each triangle's after its record); `fragment` for every valid output, `progress(done_triangles)` after each `done`.
     /// Stops after the last `done`, or with an error after `max_clocks`.
     pub fn run(
         &mut self,
@@ -414,7 +402,7 @@ impl TexturedPipe {
             let mut words = textured_register_record(regs, t);
             words.extend(std::mem::take(&mut self.texels));
             for j in jobs {
-                words.extend(textured_triangle_record(j));
+                words.extend(textured_job_records(j));
             }
             // The texture's records take four clocks a texel before the first triangle.
             let budget = max_clocks.saturating_add(4 * words.len() as u64);
@@ -469,6 +457,21 @@ pub fn textured_triangle_record(job: &TexJob) -> Vec<Word> {
     with_last(pack(&TEXTURED_TRIANGLE, &row[1..TREGS_AT]))
 }
 
+/// `textured-stream`'s line record of `line` (the per-line builds).
+pub fn textured_line_record(line: &LineRecord) -> Vec<Word> {
+    with_last(pack(&TEXTURED_LINE, &line.ports()))
+}
+
+/// `textured-stream`'s records of `job`: its triangle record, then its line records (the
+/// per-line builds; none for the additive one), in walk order.
+pub fn textured_job_records(job: &TexJob) -> Vec<Word> {
+    let mut w = textured_triangle_record(job);
+    for l in &job.lines {
+        w.extend(textured_line_record(l));
+    }
+    w
+}
+
 /// `textured-stream`'s register record (L, H, n, the specular colour, k_a, k_d, the sides).
 pub fn textured_register_record(regs: &ShadingRegs, t: &TexRegs) -> Vec<Word> {
     let row = tex_row(None, regs, t, None, false);
@@ -498,7 +501,7 @@ pub fn texel_records(texture: &Texture) -> Result<Vec<Word>, String> {
 }
 
 /// A textured scene's set-up stream for `textured-stream`: the registers, the texture, then
-/// every triangle.
+/// every triangle (each followed by its line records, for the per-line builds).
 pub fn textured_scene_words(
     jobs: &[TexJob],
     regs: &ShadingRegs,
@@ -508,7 +511,7 @@ pub fn textured_scene_words(
     let mut w = textured_register_record(regs, t);
     w.extend(texel_records(texture)?);
     for j in jobs {
-        w.extend(textured_triangle_record(j));
+        w.extend(textured_job_records(j));
     }
     Ok(w)
 }

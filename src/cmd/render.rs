@@ -80,11 +80,11 @@ pub struct Args {
     /// span pipelines, `subdivision-raster`: set-up on load ports). Default: stream for
     /// the lit methods and gouraud (the span methods and subdivision: pipeline, as
     /// their per-line and per-parent records make the stream set-up bound on short lines and
-    /// small triangles; texture: pipeline, as the texture's records, four clocks a texel,
-    /// would dominate its clocks; texture-quadratic and texture-bezier have no stream top:
-    /// their line records go through `textured-pipeline`'s ports). The images are identical; the clock counts
-    /// differ (the set-up stream carries 27 words per lit triangle, 23 per Gouraud one, 12 per
-    /// cubic line, 72 per subdivision parent, 51 per textured triangle).
+    /// small triangles; texture, texture-quadratic and texture-bezier: pipeline, as the
+    /// texture's records, four clocks a texel, would dominate their clocks). The images are
+    /// identical; the clock counts differ (the set-up stream carries 27 words per lit
+    /// triangle, 23 per Gouraud one, 12 per cubic line, 72 per subdivision parent, 51 per
+    /// textured triangle and 17 per textured line record).
     #[arg(long, value_enum)]
     pub lit_top: Option<crate::rtl_engine::LitTop>,
     /// With the RTL engine: the order the lit methods' and gouraud's triangles are sent in — balanced (large
@@ -740,11 +740,12 @@ fn check_rtl_flags(args: &Args, methods: &[Method]) -> Result<()> {
         (
             args.lit_top.is_some(),
             "--lit-top",
-            "the lit methods, gouraud, the span methods, subdivision or texture",
+            "the lit methods, gouraud, the span methods, subdivision or the textured ones",
             any(&|m| {
                 LIT_METHODS.contains(&m)
                     || SPAN_METHODS.contains(&m)
-                    || matches!(m, Method::Gouraud | Method::Subdivision | Method::Texture)
+                    || pipeline::textured::TEXTURED_RTL_METHODS.contains(&m)
+                    || matches!(m, Method::Gouraud | Method::Subdivision)
             }),
         ),
         (

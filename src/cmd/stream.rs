@@ -1,6 +1,7 @@
 //! `shadecore stream`: a scene as a stream top's AXI4-Stream set-up words (`pixel-stream` for
 //! the lit methods, `gouraud-stream` for `gouraud`, `cubic-stream` for `cubic`,
-//! `textured-stream` for `texture`, the texture's texel records included), with the
+//! `textured-stream` for `texture`, `texture-quadratic` and `texture-bezier`, the texture's
+//! texel records included, and the per-line builds' line records after each triangle), with the
 //! fragment beats the simulation of that top delivers for them and its Verilog — what an
 //! external testbench (the cocotb test in `testbenches/cocotb/`) drives and checks. The top is
 //! driven as the renderer drives it (`pipeline::axis`: a word every clock the top takes one,
@@ -21,8 +22,10 @@ pub struct Args {
     pub scene: SceneArgs,
     /// The method: a lit one runs its `pixel-stream` build (normalizer, normalizer-fit,
     /// normalizer-pw, brdf-k4, brdf-k8, brdf-k16, bump); gouraud runs `gouraud-stream`; cubic runs
-    /// `cubic-stream` (one record per raster line, in walk order); texture runs
-    /// `textured-stream` (the texture first, a record per texel, then the triangles).
+    /// `cubic-stream` (one record per raster line, in walk order); texture, texture-quadratic
+    /// and texture-bezier run `textured-stream` built additive, quadratic or bezier (the
+    /// texture first, a record per texel, then the triangles, each followed by its line
+    /// records in the per-line builds).
     #[arg(long, default_value = "normalizer-fit")]
     pub method: String,
     /// The order the triangles are sent in: balanced (large and small walks alternately, as
@@ -51,12 +54,12 @@ pub fn run(a: Args) -> Result<()> {
     if method == golden::methods::Method::Cubic {
         return run_cubic(&a);
     }
-    if method == golden::methods::Method::Texture {
-        return run_textured(&a);
+    if pipeline::textured::TEXTURED_RTL_METHODS.contains(&method) {
+        return run_textured(&a, method);
     }
     let Some(o) = method_options(method) else {
         bail!(
-            "`stream` writes no streams for method {} (it writes pixel-stream's for normalizer, normalizer-fit, normalizer-pw, brdf-k4, brdf-k8, brdf-k16, bump; gouraud-stream's for gouraud; cubic-stream's for cubic; textured-stream's for texture; angular, fast, fast-fit, quadric and subdivision have stream tops with a fragment stream per lane, angular-stream, fast-stream, quadric-stream and subdivision-stream, that it does not write yet)",
+            "`stream` writes no streams for method {} (it writes pixel-stream's for normalizer, normalizer-fit, normalizer-pw, brdf-k4, brdf-k8, brdf-k16, bump; gouraud-stream's for gouraud; cubic-stream's for cubic; textured-stream's for texture, texture-quadratic, texture-bezier; angular, fast, fast-fit, quadric and subdivision have stream tops with a fragment stream per lane, angular-stream, fast-stream, quadric-stream and subdivision-stream, that it does not write yet)",
             a.method
         );
     };
@@ -151,31 +154,38 @@ fn run_cubic(a: &Args) -> Result<()> {
     Ok(())
 }
 
-/// `stream --method texture`: the scene through `textured-stream` — the register record, the
-/// texture (a texel record per texel), then the triangles (the `texture` method's set-up,
-/// `pipeline::textured::TexJob`).
-fn run_textured(a: &Args) -> Result<()> {
-    use pipeline::textured::{textured_scene_words, TexJob, TexRegs};
+/// `stream --method texture|texture-quadratic|texture-bezier`: the scene through
+/// `textured-stream` built for the method — the register record, the texture (a texel record
+/// per texel), then the triangles (the method's set-up, `pipeline::textured::TexJob`), each
+/// followed by its line records in the per-line builds.
+fn run_textured(a: &Args, method: golden::methods::Method) -> Result<()> {
+    use pipeline::textured::{coord_of, textured_scene_words, TexJob, TexRegs};
+    let coord = coord_of(method);
     let s = crate::setup::build(&a.scene)?;
-    s.check_textured(&[golden::methods::Method::Texture], &a.scene.scene)?;
+    s.check_textured(&[method], &a.scene.scene)?;
     s.ensure_drawn()?;
     crate::rtl_engine::check_addresses(&s.tris, s.width, s.height)?;
     let regs = ShadingRegs::of(&s.ctx).map_err(|e| anyhow!(e))?;
     let tregs = TexRegs::of(&s.ctx, &s.texture).map_err(|e| anyhow!(e))?;
-    let jobs = triangle_jobs(&s, |t| TexJob::new(t, &s.texture))?;
+    let jobs = triangle_jobs(&s, |t| TexJob::of(t, &s.texture, coord))?;
     let order = a
         .setup_order
         .of_addrs(&jobs.iter().map(|j| j.lit.addr).collect::<Vec<_>>());
     let jobs: Vec<TexJob> = order.iter().map(|&i| jobs[i].clone()).collect();
     let words = textured_scene_words(&jobs, &regs, &tregs, &s.texture).map_err(|e| anyhow!(e))?;
-    // The default build (tex-k = 4, the render engine's ENGINE_K).
+    // The default k (4, the render engine's ENGINE_K); the per-line builds by `texture`.
+    let mut o = rtl::core::registry::Options::new();
+    if coord != rtl::pipelines::textured_pipeline::TexCoord::Additive {
+        o = o.with("texture", coord.name());
+    }
     stream_triangles::<rtl::stream::textured_stream::TexturedStream>(
         a,
-        &rtl::core::registry::Options::new(),
+        &o,
         &words,
         jobs.len(),
         &format!(
-            "textured-stream (texture, {}x{} texels)",
+            "textured-stream ({}, {}x{} texels)",
+            method.name(),
             s.texture.width(),
             s.texture.height()
         ),

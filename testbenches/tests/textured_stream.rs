@@ -11,14 +11,16 @@ use pipeline::textured::{
     texel_records, textured_register_record, textured_scene_words, textured_triangle_record,
 };
 use rtl::core::registry::{BlockParams, Options};
-use rtl::pipelines::textured_pipeline::TexturedParams;
+use rtl::pipelines::textured_pipeline::{TexCoord, TexturedParams};
 use rtl::stream::textured_stream::{TexturedStream, FIFO_DEPTH};
 use testbenches::pipelines::textured_pipeline::bench_texture;
 use testbenches::registry::find;
 use testbenches::registry::Twin;
 use testbenches::stall::StallPattern;
 use testbenches::stream::stream_twin::LaneRun;
-use testbenches::stream::textured_stream::{pipeline_beats, run, scene, TexturedStreamTwin};
+use testbenches::stream::textured_stream::{
+    pipeline_beats, run, scene, scene_of, TexturedStreamTwin,
+};
 
 fn params() -> (TexturedParams, Options) {
     let o = Options::new();
@@ -204,12 +206,12 @@ fn latency_from_last_word_to_first_beat() {
     );
 }
 
-/// The layout's textured records are `textured-pipeline`'s set-up, register and texel-write
-/// ports: the same names and widths, in port order (between `load` and `hold`, `tex_we` the
-/// texel record's strobe).
+/// The layout's textured records are `textured-pipeline`'s set-up, register, texel-write and
+/// line ports: the same names and widths, in port order (between `load` and `hold`, `tex_we`
+/// the texel record's strobe, `line_push` the line record's).
 #[test]
 fn layout_fields_are_the_pipeline_ports() {
-    use rtl::stream::layout::{TEXEL, TEXTURED_REGISTERS, TEXTURED_TRIANGLE};
+    use rtl::stream::layout::{TEXEL, TEXTURED_LINE, TEXTURED_REGISTERS, TEXTURED_TRIANGLE};
     let (ins, _) = find("textured-pipeline").unwrap().ports();
     let ports: Vec<(String, usize)> = ins.iter().map(|p| (p.name.to_string(), p.width)).collect();
     let mut fields: Vec<(String, usize)> = TEXTURED_TRIANGLE
@@ -225,17 +227,14 @@ fn layout_fields_are_the_pipeline_ports() {
             .iter()
             .map(|f| (f.name.to_string(), f.bits as usize)),
     );
-    // Then the per-line builds' line record, which the stream does not carry (its core ties
-    // it off).
+    // Then the per-line builds' line record, its strobe `line_push`.
     fields.push(("line_push".to_string(), 1));
-    for a in ["u", "v"] {
-        for w in ["start", "step", "step2"] {
-            fields.push((format!("line_{a}_{w}"), 48));
-        }
-    }
-    fields.push(("line_end".to_string(), 12));
-    fields.push(("line_x_step".to_string(), 48));
-    fields.push(("line_x_step2".to_string(), 48));
+    fields.extend(
+        TEXTURED_LINE
+            .fields
+            .iter()
+            .map(|f| (f.name.to_string(), f.bits as usize)),
+    );
     assert_eq!(ports.first().map(|p| p.0.as_str()), Some("load"));
     assert_eq!(ports.last().map(|p| p.0.as_str()), Some("hold"));
     assert_eq!(ports[1..ports.len() - 1], fields[..]);
@@ -252,4 +251,58 @@ fn tready_high_never_holds_the_address_block() {
     let run = run(&p, &words, seed, 0.0, StallPattern::never());
     assert_eq!(run.held, 0);
     assert!(run.max_level <= 1, "FIFO at most {}", run.max_level);
+}
+
+/// The per-line builds behind the stream top (`texture=quadratic`, `texture=bezier`): each
+/// triangle's line records follow its triangle record on the set-up stream; under random
+/// stalls of both streams the RTL equals the twin every clock, and the beats are
+/// `textured-pipeline`'s with its line records pushed through its ports. The texels differ
+/// from the additive build's on these triangles (else the line records would show nothing).
+#[test]
+fn per_line_builds_take_their_line_records_on_the_stream() {
+    let seed = seed_for("per_line_builds_take_their_line_records_on_the_stream");
+    println!("seed {seed} (SHADECORE_SEED overrides)");
+    for coord in [TexCoord::Quadratic, TexCoord::Bezier] {
+        let o = Options::new().with("texture", coord.name());
+        let p = TexturedParams::from_options(&o).unwrap();
+        let (jobs, regs, t, texture) = scene_of(seed, 6, coord);
+        let lines: usize = jobs.iter().map(|j| j.lines.len()).sum();
+        assert!(lines > 20, "{}: {lines} line records", coord.name());
+        let words = textured_scene_words(&jobs, &regs, &t, &texture).unwrap();
+        let reference = pipeline_beats(&p, &jobs, &regs, &t, &texture);
+        assert_eq!(reference.iter().filter(|b| b.last).count(), jobs.len());
+        let run = run(&p, &words, seed, 0.1, StallPattern::new(seed, 0.3));
+        let (beats, error) = rtl_beats(&run, &o);
+        assert!(!error, "{}: no protocol error", coord.name());
+        // A beat without a pixel carries only its `tlast`.
+        let same =
+            |a: &Beat, b: &Beat| (a.pixel, a.last) == (b.pixel, b.last) && (!a.pixel || a == b);
+        let n = beats.len().min(reference.len());
+        if let Some(i) = (0..n).find(|&i| !same(&beats[i], &reference[i])) {
+            panic!(
+                "{}: beat {i} of {} ({} expected) is {:?}, want {:?}",
+                coord.name(),
+                beats.len(),
+                reference.len(),
+                beats[i],
+                reference[i]
+            );
+        }
+        assert_eq!(beats.len(), reference.len(), "{}: beat count", coord.name());
+        let (additive, ..) = scene(seed, 6);
+        let pa = TexturedParams::default();
+        assert!(
+            pipeline_beats(&pa, &additive, &regs, &t, &texture) != reference,
+            "{}: the build's texels are its own",
+            coord.name()
+        );
+        println!(
+            "{}: {} line records, {} beats in {} clocks, address block held {}",
+            coord.name(),
+            lines,
+            beats.len(),
+            run.rows.len(),
+            run.held
+        );
+    }
 }

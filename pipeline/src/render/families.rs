@@ -238,12 +238,13 @@ impl Family for Span {
 /// `--lit-top stream` (only when asked: the texture's records would dominate the clocks),
 /// through `textured-stream`: the register record, a texel record per texel (four clocks a
 /// texel, counted), then the triangle records. `texture-quadratic` and `texture-bezier`
-/// through `textured-pipeline` built `texture=quadratic` and `texture=bezier`, on its ports
-/// only: each triangle's line records pushed beside the loads.
+/// through `textured-pipeline` built `texture=quadratic` and `texture=bezier`: each
+/// triangle's line records pushed beside the loads on its ports, or (`--lit-top stream`) sent
+/// as line records after the triangle's record.
 ///
 /// Errors (one line): as the lit family, plus a triangle beyond the texture-coordinate block's
 /// range (`texture`), a k_a or k_d whose white-texel weight does not fit Q8.8, a texture over
-/// 2^16 texels, `--lit-top stream` with a per-line method.
+/// 2^16 texels.
 pub(super) struct Textured(pub(super) Method);
 
 impl Textured {

@@ -5,8 +5,8 @@
 //! `rtl::stream::layout`), which take word k of a record when `take_word` and `index` = k + 1.
 //!
 //! # Records
-//! A header word (bits 3..0: the type; 1 is known, and 2 and 3 when `len2`, `len3` ≠ 0), then
-//! the type's payload words (`len1`, `len2`, `len3`), `tlast` on the last. A header with
+//! A header word (bits 3..0: the type; 1 is known, and 2, 3 and 4 when `len2`, `len3`, `len4`
+//! ≠ 0), then the type's payload words (`len1` … `len4`), `tlast` on the last. A header with
 //! `tlast` (no payload), an unknown type, a `tlast` before or after the type's length: the
 //! record is dropped whole (up to its `tlast`) and `error` is set (sticky). A complete record
 //! sets `pending`; until the top clears it (`take_record`, when it moves the record out of its
@@ -16,7 +16,7 @@
 //! | port | dir | format |
 //! |---|---|---|
 //! | `head`, `tvalid`, `tlast` | in | the set-up stream (`s_axis_*`): `head` is `tdata`'s bits 3..0, all of a word the reader reads (the type, when it is a header) |
-//! | `len1`, `len2`, `len3` | in | `INDEX_BITS` (7) bits: payload words of record types 1, 2 and 3 (≤ 127; `len2` = 0: type 2 unknown, likewise `len3`) |
+//! | `len1`, `len2`, `len3`, `len4` | in | `INDEX_BITS` (7) bits: payload words of record types 1 … 4 (≤ 127; `len2` = 0: type 2 unknown, likewise `len3`, `len4`) |
 //! | `take_record` | in | the top takes the pending record this clock |
 //! | `tready` | out | `s_axis_tready`: low only while a complete record is pending |
 //! | `take_word` | out | this clock's word is payload word `index` − 1 of a record of a known length |
@@ -32,7 +32,7 @@
 
 use rust_hdl::prelude::*;
 
-/// Width of the word count (`len1`, `len2`, `len3`, `index`): records of up to 127 payload words
+/// Width of the word count (`len1` … `len4`, `index`): records of up to 127 payload words
 /// (`subdivision-stream`'s parent record has 72).
 pub const INDEX_BITS: usize = 7;
 
@@ -41,7 +41,7 @@ crate::hw_block! {
     pub struct RecordReader(clock) {
         in {
             head: Bits<4>, tvalid: Bit, tlast: Bit, len1: Bits<INDEX_BITS>, len2: Bits<INDEX_BITS>,
-            len3: Bits<INDEX_BITS>, take_record: Bit,
+            len3: Bits<INDEX_BITS>, len4: Bits<INDEX_BITS>, take_record: Bit,
         }
         out {
             tready: Bit, take_word: Bit, index: Bits<INDEX_BITS>, rec_type: Bits<4>, pending: Bit,
@@ -64,17 +64,22 @@ impl Logic for RecordReader {
         self.take.next = self.accept.val() & !self.skip.q.val() & (self.count.q.val() != 0);
         self.known.next = (self.type_q.q.val() == 1)
             | ((self.type_q.q.val() == 2) & (self.len2.val() != 0))
-            | ((self.type_q.q.val() == 3) & (self.len3.val() != 0));
+            | ((self.type_q.q.val() == 3) & (self.len3.val() != 0))
+            | ((self.type_q.q.val() == 4) & (self.len4.val() != 0));
         self.head_type.next = self.head.val();
         self.head_known.next = (self.head_type.val() == 1)
             | ((self.head_type.val() == 2) & (self.len2.val() != 0))
-            | ((self.head_type.val() == 3) & (self.len3.val() != 0));
+            | ((self.head_type.val() == 3) & (self.len3.val() != 0))
+            | ((self.head_type.val() == 4) & (self.len4.val() != 0));
         self.expected.next = self.len2.val();
         if self.type_q.q.val() == 1 {
             self.expected.next = self.len1.val();
         }
         if self.type_q.q.val() == 3 {
             self.expected.next = self.len3.val();
+        }
+        if self.type_q.q.val() == 4 {
+            self.expected.next = self.len4.val();
         }
         self.at_end.next = self.count.q.val() == self.expected.val();
         if self.accept.val() & self.skip.q.val() {

@@ -7,7 +7,8 @@
 //!  s_axis ─► header / word count ─► receive bank ─► load bank ─┬─ triangle fields ─► TexturedPipeline ─► FIFO (128) ─► m_axis
 //!  (32 bit)   (record type, errors)  sw0..sw49       lw0..lw49  ├─ register fields ─► r_* (applied          ▲   │
 //!                                                               │                       when drained)    hold ◄┘ (FIFO level)
-//!                                                               └─ texel fields ─► tex_we (when drained)
+//!                                                               ├─ texel fields ─► tex_we (when drained)
+//!                                                               └─ line fields ─► line_push (when line_ready)
 //! ```
 //!
 //! # Ports
@@ -24,13 +25,16 @@
 //! | `error` | out | sticky: a record with an unknown type or the wrong length was dropped |
 //!
 //! # Records (`rtl::stream::layout`, one table for the hardware and the driver)
-//! A header word (bits 3..0: 1 triangle, 2 registers, 3 texel; the other bits 0), then the
+//! A header word (bits 3..0: 1 triangle, 2 registers, 3 texel, 4 line; the other bits 0), then the
 //! record's fields packed LSB first into words (a field of up to 32 bits never straddles two
 //! words; a 48-bit one takes a word and the next one's low 16 bits): a triangle is 50 payload
 //! words (the address block's set-up, the normal planes, the depth
 //! plane, the texture-coordinate block's set-up), the registers 7 (L, H, n, the specular
 //! colour, k_a, k_d, the texture's sides), a texel 2 (its address v·2^log_w + u and its colour
-//! 0xRRGGBB). A record whose `tlast` comes before or after its length, or with an unknown
+//! 0xRRGGBB), a line 16 (the per-line builds' record of a raster line: the pipeline's
+//! `line_…` ports, u's and v's start, Δ, ΔΔ, the Bézier build's last pixel index and X's Δ(0),
+//! d; one per raster line with a pixel, in the walk's order, after its triangle's record and
+//! before the next triangle's). A record whose `tlast` comes before or after its length, or with an unknown
 //! type, is dropped whole (up to its `tlast`) and sets `error`.
 //!
 //! # Handshake, latency, throughput
@@ -38,7 +42,10 @@
 //!   when that is free. A triangle waits there for the pipeline's `ready`; a register record
 //!   and a texel record wait until every triangle loaded before them has left the pipeline
 //!   (its `done` seen), so no fragment mixes two register sets and no texel is rewritten under
-//!   a triangle that reads it; a texel record is then written in one clock (`tex_we`).
+//!   a triangle that reads it; a texel record is then written in one clock (`tex_we`). A line
+//!   record goes into the pipeline's 4-entry line FIFO (`line_push`) when that has room
+//!   (`line_ready`); records after it wait behind it, so a triangle's line records are in
+//!   the FIFO, in order, before the next triangle's record reaches the load bank.
 //!   Registers are 0 after reset, the texture memory is zeros: send the register record and
 //!   the texels first.
 //! - Loading the texture: three words a texel (header and two payload words), a texel every
@@ -70,7 +77,10 @@
 //! for bit.
 //!
 //! # Build parameters
-//! `textured-pipeline`'s: `tex-k` (1 | 2 | 4, default 4) and `texture` (additive).
+//! `textured-pipeline`'s: `tex-k` (1 | 2 | 4, default 4) and `texture` (additive, the default;
+//! quadratic or bezier, the per-line builds, whose line records come on the stream; the
+//! additive build has no consumer for them: a line record there fills the FIFO and, the fifth,
+//! waits in the load bank for good).
 //!
 //! Latency (the block's `LATENCY`): 95 clocks, a triangle record's last word to its first fragment beat, one fragment per clock.
 
@@ -78,10 +88,10 @@ use rust_hdl::prelude::*;
 
 use crate::core::registry::{BlockParams, Options};
 use crate::pipelines::pixel_pipeline::EVENT_TO_FRAGMENT;
-use crate::pipelines::textured_pipeline::{TexCoord, TexturedParams, TexturedPipeline, EVENT_FIFO};
+use crate::pipelines::textured_pipeline::{TexturedParams, TexturedPipeline, EVENT_FIFO};
 
-/// `textured-stream`'s build parameters: the textured pipeline's, additive only (its records
-/// have no line record for `texture=quadratic`; the core ties the pipeline's line ports off).
+/// `textured-stream`'s build parameters: the textured pipeline's (`tex-k`, and `texture`:
+/// additive, quadratic or bezier; the per-line builds take their line records on the stream).
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct TexturedStreamParams(pub TexturedParams);
 
@@ -94,17 +104,9 @@ impl std::ops::Deref for TexturedStreamParams {
 
 impl BlockParams for TexturedStreamParams {
     const KEYS: &'static [&'static str] = TexturedParams::KEYS;
-    /// As the pipeline's, but `texture=quadratic` is an error.
+    /// As the pipeline's.
     fn from_options(o: &Options) -> Result<Self, String> {
-        let p = TexturedParams::from_options(o)?;
-        if p.coord != TexCoord::Additive {
-            return Err(format!(
-                "textured-stream carries texture=additive only: its records have no line \
-                 record (texture={} goes through textured-pipeline's ports)",
-                p.coord.name()
-            ));
-        }
-        Ok(TexturedStreamParams(p))
+        TexturedParams::from_options(o).map(TexturedStreamParams)
     }
     fn describe(&self) -> Option<String> {
         self.0.describe()
@@ -142,7 +144,9 @@ crate::one_lane_stream! {
 mod tests {
     use crate::pipelines::pixel_pipeline::EVENT_TO_FRAGMENT;
     use crate::pipelines::textured_pipeline::{TexturedPipeline, EVENT_FIFO};
-    use crate::stream::layout::{payload_words, TEXEL, TEXTURED_REGISTERS, TEXTURED_TRIANGLE};
+    use crate::stream::layout::{
+        payload_words, TEXEL, TEXTURED_LINE, TEXTURED_REGISTERS, TEXTURED_TRIANGLE,
+    };
 
     /// The header's figures are the constants' (they move whenever a block is pipelined
     /// further or a record grows).
@@ -161,6 +165,7 @@ mod tests {
                 format!("a triangle is {triangle} payload words"),
                 format!("the registers {}", payload_words(&TEXTURED_REGISTERS)),
                 format!("a texel {}", payload_words(&TEXEL)),
+                format!("a line {}", payload_words(&TEXTURED_LINE)),
                 format!("set-up is {} words", triangle + 1),
                 format!("sw0..sw{}", triangle - 1),
             ],

@@ -17,13 +17,13 @@ use golden::units::texture_memory::load_words;
 use pipeline::axis::{Beat, Word};
 use pipeline::lit::ShadingRegs;
 use pipeline::textured::{
-    tex_row, texel_records, textured_register_record, textured_scene_words,
-    textured_triangle_record, TexJob, TexRegs, TEX_ROW_WIDTH,
+    push_line, tex_row, texel_records, textured_job_records, textured_register_record,
+    textured_scene_words, TexJob, TexRegs, LINE_WORDS, TEX_ROW_WIDTH,
 };
 use rtl::pipelines::textured_pipeline::{TexCoord, TexturedParams};
 use rtl::stream::layout::{
-    pack_fragment, payload_words, unpack, TEXEL, TEXTURED_REGISTERS, TEXTURED_STREAM,
-    TEXTURED_TRIANGLE,
+    pack_fragment, payload_words, unpack, TEXEL, TEXTURED_LINE, TEXTURED_REGISTERS,
+    TEXTURED_STREAM, TEXTURED_TRIANGLE,
 };
 use rtl::stream::textured_stream::{TexturedStream, TexturedStreamParams, FIFO_DEPTH, HOLD_ABOVE};
 
@@ -71,9 +71,10 @@ impl Twin for TexturedStreamTwin {
         let (pend_b, type_b) = (self.reader.pend_b, self.reader.type_b);
         let drained = self.outstanding == 0;
         let write = pend_b && type_b == TEXEL.code && drained;
+        let line = pend_b && type_b == TEXTURED_LINE.code && self.inner.line_ready();
 
         // The pipeline's input row: load, the triangle fields, the registers, the texel write,
-        // hold (`pipeline::textured`'s row layout).
+        // the line push, hold (`pipeline::textured`'s row layout).
         let mut row = vec![(pend_b && type_b == TEXTURED_TRIANGLE.code) as u64];
         row.extend(unpack(&TEXTURED_TRIANGLE, &self.reader.load_bank));
         row.extend(&self.regs);
@@ -82,8 +83,12 @@ impl Twin for TexturedStreamTwin {
             &TEXEL,
             &self.reader.load_bank[..payload_words(&TEXEL)],
         ));
-        // No line record (the stream top carries the additive build).
-        row.extend([0; pipeline::textured::LINE_WORDS + 1]);
+        row.push(line as u64);
+        row.extend(unpack(
+            &TEXTURED_LINE,
+            &self.reader.load_bank[..payload_words(&TEXTURED_LINE)],
+        ));
+        debug_assert_eq!(LINE_WORDS, TEXTURED_LINE.fields.len());
         row.push(self.fifo.hold() as u64);
         debug_assert_eq!(row.len(), TEX_ROW_WIDTH);
         let o = self.inner.step(&row);
@@ -108,7 +113,7 @@ impl Twin for TexturedStreamTwin {
             );
         }
         self.reader
-            .clock(tdata, tvalid, tlast, load_taken || apply || write);
+            .clock(tdata, tvalid, tlast, load_taken || apply || write || line);
         self.outstanding = self.outstanding + load_taken as u64 - done as u64;
         let beat = pack_fragment(&[x, y, valid as u64, rgb[0], rgb[1], rgb[2]]) as u64;
         self.fifo
@@ -135,13 +140,23 @@ impl LaneTwin for TexturedStreamTwin {
 }
 
 /// A seeded textured scene: `n` triangles of the textured pipeline's bench on its seeded
-/// 16×16 texture, lit by the default context.
+/// 16×16 texture, lit by the default context (the additive build's set-up).
 pub fn scene(seed: u64, n: usize) -> (Vec<TexJob>, ShadingRegs, TexRegs, Texture) {
+    scene_of(seed, n, TexCoord::Additive)
+}
+
+/// [`scene`] with the set-up of the build `coord` (a per-line build's jobs carry their line
+/// records).
+pub fn scene_of(
+    seed: u64,
+    n: usize,
+    coord: TexCoord,
+) -> (Vec<TexJob>, ShadingRegs, TexRegs, Texture) {
     let ctx = ShadeContext::default();
     let texture = bench_texture(seed);
     let regs = ShadingRegs::of(&ctx).expect("default context fits the registers");
     let t = TexRegs::of(&ctx, &texture).expect("default context fits");
-    let jobs = textured_triangles(seed, n, &texture, TexCoord::Additive)
+    let jobs = textured_triangles(seed, n, &texture, coord)
         .into_iter()
         .map(|(_, j)| j)
         .collect();
@@ -149,7 +164,8 @@ pub fn scene(seed: u64, n: usize) -> (Vec<TexJob>, ShadingRegs, TexRegs, Texture
 }
 
 /// `textured-pipeline`'s output as beats: its twin alone, the texture written through its
-/// port, every job loaded as soon as `ready`, no hold. A fragment is a beat; a `done` without
+/// port, every job loaded as soon as `ready`, the line records (per-line builds) pushed in
+/// order whenever `line_ready`, no hold. A fragment is a beat; a `done` without
 /// a fragment is a beat with `pixel` = 0; `tlast` on the `done`.
 pub fn pipeline_beats(
     p: &TexturedParams,
@@ -163,12 +179,17 @@ pub fn pipeline_beats(
         twin.step(&tex_row(None, regs, t, Some(w), false));
     }
     let (mut beats, mut next, mut done, mut clocks) = (Vec::new(), 0, 0, 0u64);
+    let mut lines = jobs.iter().flat_map(|j| j.lines.iter()).peekable();
     while done < jobs.len() {
         clocks += 1;
         assert!(clocks < 10_000_000, "the textured pipeline does not finish");
         let load = (twin.ready() && next < jobs.len()).then(|| &jobs[next]);
         next += load.is_some() as usize;
-        let o = twin.step(&tex_row(load, regs, t, None, false));
+        let mut row = tex_row(load, regs, t, None, false);
+        if lines.peek().is_some() && twin.line_ready() {
+            push_line(&mut row, lines.next().unwrap());
+        }
+        let o = twin.step(&row);
         if o[1] != 0 || o[8] != 0 {
             beats.push(Beat {
                 pixel: o[1] != 0,
@@ -198,7 +219,7 @@ pub fn stimulus_words(
     w.extend(textured_register_record(regs, t));
     w.extend(&texel_records(texture).expect("the texture fits")[..4 * 3]);
     for j in &jobs[half..] {
-        w.extend(textured_triangle_record(j));
+        w.extend(textured_job_records(j));
     }
     w
 }
@@ -220,7 +241,7 @@ impl Bench for TexturedStream {
     const ITEMS: &'static str = "triangles";
     const DEFAULT_ITEMS: usize = 6;
     fn stimulus(p: &TexturedStreamParams, n: usize, seed: u64) -> Stimulus {
-        let (jobs, regs, t, texture) = scene(seed, n);
+        let (jobs, regs, t, texture) = scene_of(seed, n, p.coord);
         let words = stimulus_words(&jobs, &regs, &t, &texture);
         let run = run(p, &words, seed, 0.1, StallPattern::new(seed, 0.25));
         // Golden: the protocol (exact), and the beats in the order `textured-pipeline` gives

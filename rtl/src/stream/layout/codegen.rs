@@ -19,7 +19,8 @@ pub fn core_file_name(top: &StreamTop) -> String {
 /// and the fragment beats out) and its `update`: the record reader, the load bank's handshake
 /// (a load record loads when the wrapped top is `ready`; a register record applies when every
 /// load before it has left, `done` counted, and a texel record is written then with `tex_we`;
-/// a second load record loads with `first`), the
+/// a second load record loads with `first`; a line record goes into the wrapped top's line
+/// FIFO when `line_ready`), the
 /// word banks, the field selects and the fragment packing.
 pub fn core_file(top: &StreamTop) -> String {
     let (decl, up) = generated_rtl(top);
@@ -56,10 +57,11 @@ pub fn core_file(top: &StreamTop) -> String {
         /// The word the reader takes, and which payload word it is (+ 1).
         in_word: Signal<Local, Bits<32>>, take_word: Signal<Local, Bit>,
         word_index: Signal<Local, Bits<INDEX_BITS>>,
-        /// The payload words of record types 1, 2 and 3 (0: no such type).
+        /// The payload words of record types 1 … 4 (0: no such type).
         len1: Constant<Bits<INDEX_BITS>> = Constant::new({}u64.into()),
         len2: Constant<Bits<INDEX_BITS>> = Constant::new({}u64.into()),
         len3: Constant<Bits<INDEX_BITS>> = Constant::new({}u64.into()),
+        len4: Constant<Bits<INDEX_BITS>> = Constant::new({}u64.into()),
 ",
         if second.is_some() {
             ", of type `type_b`"
@@ -74,6 +76,7 @@ pub fn core_file(top: &StreamTop) -> String {
         payload_words(&top.triangle),
         top.registers.or(top.full).map_or(0, |r| payload_words(&r)),
         top.texels.map_or(0, |r| payload_words(&r)),
+        top.lines.map_or(0, |r| payload_words(&r)),
     );
     if top.registers.is_some() {
         fields.push_str(
@@ -87,6 +90,18 @@ pub fn core_file(top: &StreamTop) -> String {
         "{}: a texel record drains as the register record does",
         top.block
     );
+    assert!(
+        top.lines.is_none() || top.registers.is_some(),
+        "{}: a line record comes with a register record",
+        top.block
+    );
+    if top.lines.is_some() {
+        fields.push_str(
+            "        /// A line record goes into the wrapped top's line FIFO this clock.
+        push_line: Signal<Local, Bit>,
+",
+        );
+    }
     if top.texels.is_some() {
         fields.push_str(
             "        /// A texel record is written this clock (every load before it has left).
@@ -104,6 +119,7 @@ pub fn core_file(top: &StreamTop) -> String {
         self.rd.len1.next = self.len1.val();
         self.rd.len2.next = self.len2.val();
         self.rd.len3.next = self.len3.val();
+        self.rd.len4.next = self.len4.val();
         self.s_axis_tready.next = self.rd.tready.val();
         self.in_word.next = self.s_axis_tdata.val();
         self.take_word.next = self.rd.take_word.val();
@@ -153,18 +169,19 @@ pub fn core_file(top: &StreamTop) -> String {
             self.pend_b.d.next = false;
         }
         self.pipe.tex_we.next = self.apply_texel.val();
-        // No line record: the stream carries the additive build (`texture=quadratic`'s line
-        // records go through the pipeline's ports).
-        self.pipe.line_push.next = false;
-        self.pipe.line_u_start.next = 0.into();
-        self.pipe.line_u_step.next = 0.into();
-        self.pipe.line_u_step2.next = 0.into();
-        self.pipe.line_v_start.next = 0.into();
-        self.pipe.line_v_step.next = 0.into();
-        self.pipe.line_v_step2.next = 0.into();
-        self.pipe.line_end.next = 0.into();
-        self.pipe.line_x_step.next = 0.into();
-        self.pipe.line_x_step2.next = 0.into();
+",
+            );
+        }
+        if top.lines.is_some() {
+            setup.push_str(
+                "        // A line record (type 4) goes into the wrapped top's line FIFO when that has room,
+        // in stream order (after its triangle's load).
+        self.push_line.next =
+            self.pend_b.q.val() & (self.type_b.q.val() == 4) & self.pipe.line_ready.val();
+        if self.push_line.val() {
+            self.pend_b.d.next = false;
+        }
+        self.pipe.line_push.next = self.push_line.val();
 ",
             );
         }
@@ -314,6 +331,19 @@ fn generated_rtl(top: &StreamTop) -> (String, String) {
             texel.name
         ));
         for pl in place(&texel) {
+            up.push_str(&format!(
+                "        self.pipe.{}.next = {};\n",
+                pl.name,
+                select(&pl)
+            ));
+        }
+    }
+    if let Some(line) = top.lines {
+        up.push_str(&format!(
+            "        // The {} record's fields (pushed with `line_push`).\n",
+            line.name
+        ));
+        for pl in place(&line) {
             up.push_str(&format!(
                 "        self.pipe.{}.next = {};\n",
                 pl.name,

@@ -64,6 +64,7 @@ mod tests {
         assert_eq!(payload_words(&TEXTURED_TRIANGLE), 50);
         assert_eq!(payload_words(&TEXTURED_REGISTERS), 7);
         assert_eq!(payload_words(&TEXEL), 2);
+        assert_eq!(payload_words(&TEXTURED_LINE), 16);
         assert_eq!(payload_words(&GOURAUD_TRIANGLE), 22);
         assert_eq!(payload_words(&CUBIC_LINE), 11);
         assert_eq!(payload_words(&ANGULAR_LINE), 13);

@@ -141,6 +141,10 @@ pub struct StreamTop {
     /// A texel record (type 3), where the top has a texture memory: one write, applied when
     /// every load before it has left (as a register record), `tex_we` high for that clock.
     pub texels: Option<Record>,
+    /// A line record (type 4), where the wrapped top takes per-line records beside its
+    /// triangles: pushed into the top's line FIFO (`line_push`) when it has room
+    /// (`line_ready`), in stream order (`textured-stream`'s per-line builds).
+    pub lines: Option<Record>,
     /// `m_axis_tuser`, when the top has one.
     pub tuser: Option<Field>,
     /// The wrapped top's output port for a fragment field, where it is not the field's name
@@ -192,6 +196,7 @@ impl StreamTop {
             .chain(self.registers)
             .chain(self.full)
             .chain(self.texels)
+            .chain(self.lines)
             .collect()
     }
 
@@ -226,6 +231,7 @@ pub const PIXEL_STREAM: StreamTop = StreamTop {
     registers: Some(REGISTERS),
     full: None,
     texels: None,
+    lines: None,
     tuser: Some(TUSER),
     ports: &[],
     tlast: "the triangle's last event",
@@ -281,6 +287,26 @@ pub const TEXEL: Record = Record {
     fields: &[f("tex_waddr", 16), f("tex_wdata", 24)],
 };
 
+/// A raster line's record for the textured pipeline's per-line builds (`texture=quadratic`,
+/// `texture=bezier`): its `line_…` ports, the words signed Q15.32 in 48 bits (u + ½, Δ, ΔΔ
+/// and v's; the Bézier build's last pixel index and X's Δ(0), d). One per raster line with a
+/// pixel, in the walk's order, after its triangle's record.
+pub const TEXTURED_LINE: Record = Record {
+    name: "textured line",
+    code: 4,
+    fields: &[
+        f("line_u_start", 48),
+        f("line_u_step", 48),
+        f("line_u_step2", 48),
+        f("line_v_start", 48),
+        f("line_v_step", 48),
+        f("line_v_step2", 48),
+        f("line_end", 12),
+        f("line_x_step", 48),
+        f("line_x_step2", 48),
+    ],
+};
+
 /// The textured pixel pipeline's stream top.
 pub const TEXTURED_STREAM: StreamTop = StreamTop {
     block: "textured-stream",
@@ -289,6 +315,7 @@ pub const TEXTURED_STREAM: StreamTop = StreamTop {
     triangle: TEXTURED_TRIANGLE,
     registers: Some(TEXTURED_REGISTERS),
     texels: Some(TEXEL),
+    lines: Some(TEXTURED_LINE),
     core: Core {
         name: "TexturedStreamCore",
         pipe: "TexturedPipeline",
@@ -307,6 +334,7 @@ pub const GOURAUD_STREAM: StreamTop = StreamTop {
     registers: None,
     full: None,
     texels: None,
+    lines: None,
     tuser: None,
     ports: &[],
     tlast: "the triangle's last event",
@@ -329,6 +357,7 @@ pub const CUBIC_STREAM: StreamTop = StreamTop {
     registers: None,
     full: None,
     texels: None,
+    lines: None,
     tuser: Some(TUSER),
     ports: &[("y", "y_out")],
     tlast: "the line's last pixel",
@@ -397,6 +426,7 @@ pub const ANGULAR_STREAM: StreamTop = StreamTop {
     registers: Some(SPAN_REGISTERS),
     full: None,
     texels: None,
+    lines: None,
     tuser: Some(TUSER),
     ports: &[("y", "y_out")],
     tlast: "the line's last clock, on both lanes (a lane without a pixel then sends a beat with `pixel` = 0)",
@@ -511,6 +541,7 @@ pub const QUADRIC_STREAM: StreamTop = StreamTop {
     registers: None,
     full: Some(QUADRIC_TRIANGLE),
     texels: None,
+    lines: None,
     core: Core {
         name: "QuadricStreamCore",
         pipe: "QuadricUnit",
@@ -569,6 +600,7 @@ pub const SUBDIVISION_STREAM: StreamTop = StreamTop {
     registers: None,
     full: None,
     texels: None,
+    lines: None,
     tuser: None,
     ports: &[],
     tlast:
