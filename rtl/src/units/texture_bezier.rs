@@ -36,8 +36,11 @@
 //! candidate after a move is one carry chain from the registers (a three-operand sum through
 //! a carry-save level first, `primitives::Add3`): samples j + 4 … j + 6 are w3 + Δ, w3 + E2,
 //! w3 + E3; Δ, E2, E3 move by r·d, 2r·d, 3r·d; the sums of the samples beyond the window come
-//! from Z = 2·X(j + 3) + ¬(2i·2^32), kept beside Z − 2^33 (the next pixel's). The load takes
-//! the record with sums at most two adders deep; the first pixel's clock forms the window from
+//! from Z = 2·X(j + 3) + ¬(2i·2^32), kept beside Z − 2^33 (the next pixel's). The lanes capture
+//! the record shown with `load` (taken or not: they are read only from the clock after a take
+//! until the first pixel shows, and are kept while it is held, so the take, a function of the
+//! comparisons, reaches only the control registers) with sums
+//! at most two adders deep; the first pixel's clock forms the window from
 //! them (samples 0 … 3 and the second pixel's sums, one carry chain each).
 //!
 //! # Ports
@@ -93,12 +96,17 @@ use rust_hdl::prelude::*;
 use crate::core::primitives::Add3;
 
 crate::hw_block! {
-    /// One lane: the record's words taken on the load (with sums one adder deep), and the
-    /// window of samples j … j + 3 with Δ(j + 3), E2 = 2Δ(j + 3) + d, E3 = 3Δ(j + 3) + 3d, d, 3d
-    /// and 9d.
+    /// One lane: the record's words captured while a load is shown (with sums one adder
+    /// deep), and the window of samples j … j + 3 with Δ(j + 3), E2 = 2Δ(j + 3) + d,
+    /// E3 = 3Δ(j + 3) + 3d, d, 3d and 9d.
     pub struct BezLane(clock) {
         in {
-            take: Bit, first: Bit, step_in: Bit, r: Bits<2>,
+            /// A record is shown (`load`) and the line's first pixel is not held: the words
+            /// are captured whether or not the record is taken. They are read only from the
+            /// clock after a take until the first pixel shows, a taken record is the one shown
+            /// in its take's clock, and no take happens while held, so no take needs to reach
+            /// these registers.
+            capture: Bit, first: Bit, step_in: Bit, r: Bits<2>,
             start: Bits<48>, step: Bits<48>, step2: Bits<48>,
         }
         out {
@@ -112,9 +120,9 @@ crate::hw_block! {
         w0_q: DFF<Bits<48>>, w1_q: DFF<Bits<48>>, w2_q: DFF<Bits<48>>, w3_q: DFF<Bits<48>>,
         d_q: DFF<Bits<48>>, e2_q: DFF<Bits<48>>, e3_q: DFF<Bits<48>>,
         dd_q: DFF<Bits<48>>, dd3_q: DFF<Bits<48>>, dd9_q: DFF<Bits<48>>,
-        /// On the load: 3d, 9d, 3Δ(0), start + Δ(0), 2Δ(0) + d, 3Δ(0) + 3d.
+        /// On the load: 3d, 9d, start + Δ(0), 2Δ(0) + d, 3Δ(0) + 3d.
         dd3_in: Signal<Local, Bits<48>>, dd9_in: Signal<Local, Bits<48>>,
-        st3_in: Signal<Local, Bits<48>>, s1_in: Signal<Local, Bits<48>>,
+        s1_in: Signal<Local, Bits<48>>,
         c_in: Signal<Local, Bits<48>>, t3_in: Signal<Local, Bits<48>>,
         /// The first pixel's clock: samples 2 and 3, Δ(3), E2, E3.
         fw2: Signal<Local, Bits<48>>, fw3: Signal<Local, Bits<48>>, fd: Signal<Local, Bits<48>>,
@@ -138,11 +146,14 @@ impl Logic for BezLane {
         // The load: the words and sums of them at most two adders deep.
         self.dd3_in.next = self.step2.val() + (self.step2.val() << 1);
         self.dd9_in.next = self.step2.val() + (self.step2.val() << 3);
-        self.st3_in.next = self.step.val() + (self.step.val() << 1);
         self.s1_in.next = self.start.val() + self.step.val();
         self.c_in.next = (self.step.val() << 1) + self.step2.val();
-        self.t3_in.next = self.st3_in.val() + self.dd3_in.val();
-        if self.take.val() {
+        // One expression: synthesis forms it through carry-save levels and one carry chain.
+        self.t3_in.next = self.step.val()
+            + (self.step.val() << 1)
+            + self.step2.val()
+            + (self.step2.val() << 1);
+        if self.capture.val() {
             self.ps0.d.next = self.start.val();
             self.ps1.d.next = self.s1_in.val();
             self.pc.d.next = self.c_in.val();
@@ -243,6 +254,9 @@ crate::hw_block! {
         busy_q: DFF<Bit>, first_q: DFF<Bit>, end_q: DFF<Bits<12>>, i_q: DFF<Bits<12>>,
         /// m − j (the samples after the window's first), and whether it is at least 1, 2, 3.
         rem_q: DFF<Bits<13>>, g1_q: DFF<Bit>, g2_q: DFF<Bit>, g3_q: DFF<Bit>,
+        /// rem − 1, rem − 2, rem − 3 (formed from the register, selected by r).
+        rem_1: Signal<Local, Bits<13>>, rem_2: Signal<Local, Bits<13>>,
+        rem_3: Signal<Local, Bits<13>>,
         /// rem ≥ t for t = 2 … 6 (the flags after a move by r are rem ≥ t + r).
         ge: [Signal<Local, Bit>; 5],
         lim: [Constant<Bits<13>>; 5] = [1u64, 2, 3, 4, 5].map(|t| Constant::new(t.into())),
@@ -292,6 +306,9 @@ impl Logic for TextureBezier {
         for t in 0..5 {
             self.ge[t].next = self.rem_q.q.val() > self.lim[t].val();
         }
+        self.rem_1.next = self.rem_q.q.val() - 1;
+        self.rem_2.next = self.rem_q.q.val() - 2;
+        self.rem_3.next = self.rem_q.q.val() - 3;
         self.r.next = 3.into();
         if self.first_q.q.val() | !self.c1.val() {
             self.r.next = 0.into();
@@ -308,7 +325,8 @@ impl Logic for TextureBezier {
         self.take.next = self.load.val() & self.rdy.val();
         for k in 0..3 {
             self.lane[k].clock.next = self.clock.val();
-            self.lane[k].take.next = self.take.val();
+            self.lane[k].capture.next =
+                self.load.val() & !(self.first_q.q.val() & self.hold.val());
             self.lane[k].first.next = self.first_q.q.val();
             self.lane[k].step_in.next = self.step_now.val() & !self.first_q.q.val();
             self.lane[k].r.next = self.r.val();
@@ -426,16 +444,19 @@ impl Logic for TextureBezier {
             }
         }
         if self.step_now.val() {
-            self.rem_q.d.next = self.rem_q.q.val() - bit_cast::<13, 2>(self.r.val());
+            self.rem_q.d.next = self.rem_q.q.val();
             if self.r.val() == 1 {
+                self.rem_q.d.next = self.rem_1.val();
                 self.g1_q.d.next = self.ge[0].val();
                 self.g2_q.d.next = self.ge[1].val();
                 self.g3_q.d.next = self.ge[2].val();
             } else if self.r.val() == 2 {
+                self.rem_q.d.next = self.rem_2.val();
                 self.g1_q.d.next = self.ge[1].val();
                 self.g2_q.d.next = self.ge[2].val();
                 self.g3_q.d.next = self.ge[3].val();
             } else if self.r.val() == 3 {
+                self.rem_q.d.next = self.rem_3.val();
                 self.g1_q.d.next = self.ge[2].val();
                 self.g2_q.d.next = self.ge[3].val();
                 self.g3_q.d.next = self.ge[4].val();

@@ -134,11 +134,13 @@ pub const LINE_FIFO: usize = 4;
 
 crate::hw_block! {
     /// The textured pipeline's line FIFO (`textured_pipeline`'s quadratic and Bézier builds):
-    /// [`LINE_FIFO`] line records, a shift register whose entry 0 is the head. A record is the
-    /// `line_…` ports' words: u's and v's start, Δ, ΔΔ (both builds), the last pixel's index and
-    /// X's Δ, ΔΔ (the Bézier build's; the quadratic one leaves them unread). `push` lands in the
-    /// first free entry after the `pop` (a push while full is dropped); `ready`: not full,
-    /// `any`: not empty, both functions of the registers; the head's fields are entry 0's.
+    /// [`LINE_FIFO`] line records in a ring, written at `wp`, read at `rp` (the head is the
+    /// entry at `rp`: a pop moves `rp` and touches no record, so the consumer's decision
+    /// reaches four register bits, not every word). A record is the `line_…` ports' words: u's
+    /// and v's start, Δ, ΔΔ (both builds), the last pixel's index and X's Δ, ΔΔ (the Bézier
+    /// build's; the quadratic one leaves them unread). `push` is taken when the FIFO is not
+    /// full or a record is popped in the same clock (a push while full is dropped); `ready`:
+    /// not full, `any`: not empty, both functions of the registers.
     pub struct LineFifo(clock) {
         in {
             push: Bit, pop: Bit,
@@ -151,25 +153,28 @@ crate::hw_block! {
             us: Bits<48>, ud: Bits<48>, udd: Bits<48>, vs: Bits<48>, vd: Bits<48>, vdd: Bits<48>,
             last: Bits<12>, xd: Bits<48>, xdd: Bits<48>,
         }
-        occ: [DFF<Bit>; LINE_FIFO],
         f_us: [DFF<Bits<48>>; LINE_FIFO], f_ud: [DFF<Bits<48>>; LINE_FIFO],
         f_udd: [DFF<Bits<48>>; LINE_FIFO], f_vs: [DFF<Bits<48>>; LINE_FIFO],
         f_vd: [DFF<Bits<48>>; LINE_FIFO], f_vdd: [DFF<Bits<48>>; LINE_FIFO],
         f_last: [DFF<Bits<12>>; LINE_FIFO], f_xd: [DFF<Bits<48>>; LINE_FIFO],
         f_xdd: [DFF<Bits<48>>; LINE_FIFO],
-        go: Signal<Local, Bit>,
-        kept: [Signal<Local, Bit>; LINE_FIFO],
-        put: [Signal<Local, Bit>; LINE_FIFO],
+        /// Write and read pointers, and the records held (0 … 4).
+        wp: DFF<Bits<2>>, rp: DFF<Bits<2>>, count: DFF<Bits<3>>,
+        go: Signal<Local, Bit>, put: Signal<Local, Bit>,
+        four: Constant<Bits<3>> = Constant::new(4u64.into()),
+        slot: [Constant<Bits<2>>; LINE_FIFO] = [0u64, 1, 2, 3].map(|k| Constant::new(k.into())),
     }
 }
 
 impl Logic for LineFifo {
     #[hdl_gen]
     fn update(&mut self) {
+        dff_setup!(self, clock, wp, rp, count);
+        self.go.next = self.pop.val() & (self.count.q.val() != 0);
+        self.put.next = self.push.val() & ((self.count.q.val() != self.four.val()) | self.go.val());
         for i in 0..4 {
-            clock!(self, clock, occ[i], f_us[i], f_ud[i], f_udd[i], f_vs[i], f_vd[i], f_vdd[i]);
+            clock!(self, clock, f_us[i], f_ud[i], f_udd[i], f_vs[i], f_vd[i], f_vdd[i]);
             clock!(self, clock, f_last[i], f_xd[i], f_xdd[i]);
-            self.kept[i].next = self.occ[i].q.val();
             self.f_us[i].d.next = self.f_us[i].q.val();
             self.f_ud[i].d.next = self.f_ud[i].q.val();
             self.f_udd[i].d.next = self.f_udd[i].q.val();
@@ -179,32 +184,7 @@ impl Logic for LineFifo {
             self.f_last[i].d.next = self.f_last[i].q.val();
             self.f_xd[i].d.next = self.f_xd[i].q.val();
             self.f_xdd[i].d.next = self.f_xdd[i].q.val();
-        }
-        self.go.next = self.pop.val() & self.occ[0].q.val();
-        for i in 0..3 {
-            if self.go.val() {
-                self.kept[i].next = self.occ[i + 1].q.val();
-                self.f_us[i].d.next = self.f_us[i + 1].q.val();
-                self.f_ud[i].d.next = self.f_ud[i + 1].q.val();
-                self.f_udd[i].d.next = self.f_udd[i + 1].q.val();
-                self.f_vs[i].d.next = self.f_vs[i + 1].q.val();
-                self.f_vd[i].d.next = self.f_vd[i + 1].q.val();
-                self.f_vdd[i].d.next = self.f_vdd[i + 1].q.val();
-                self.f_last[i].d.next = self.f_last[i + 1].q.val();
-                self.f_xd[i].d.next = self.f_xd[i + 1].q.val();
-                self.f_xdd[i].d.next = self.f_xdd[i + 1].q.val();
-            }
-        }
-        if self.go.val() {
-            self.kept[3].next = false;
-        }
-        self.put[0].next = self.push.val() & !self.kept[0].val();
-        for i in 1..4 {
-            self.put[i].next = self.push.val() & !self.kept[i].val() & self.kept[i - 1].val();
-        }
-        for i in 0..4 {
-            self.occ[i].d.next = self.kept[i].val() | self.put[i].val();
-            if self.put[i].val() {
+            if self.put.val() & (self.wp.q.val() == self.slot[i].val()) {
                 self.f_us[i].d.next = self.in_us.val();
                 self.f_ud[i].d.next = self.in_ud.val();
                 self.f_udd[i].d.next = self.in_udd.val();
@@ -216,8 +196,20 @@ impl Logic for LineFifo {
                 self.f_xdd[i].d.next = self.in_xdd.val();
             }
         }
-        self.ready.next = !self.occ[3].q.val();
-        self.any.next = self.occ[0].q.val();
+        if self.put.val() {
+            self.wp.d.next = self.wp.q.val() + 1;
+        }
+        if self.go.val() {
+            self.rp.d.next = self.rp.q.val() + 1;
+        }
+        if self.put.val() & !self.go.val() {
+            self.count.d.next = self.count.q.val() + 1;
+        } else if self.go.val() & !self.put.val() {
+            self.count.d.next = self.count.q.val() - 1;
+        }
+        self.ready.next = self.count.q.val() != self.four.val();
+        self.any.next = self.count.q.val() != 0;
+        // The head: the entry at rp.
         self.us.next = self.f_us[0].q.val();
         self.ud.next = self.f_ud[0].q.val();
         self.udd.next = self.f_udd[0].q.val();
@@ -227,6 +219,19 @@ impl Logic for LineFifo {
         self.last.next = self.f_last[0].q.val();
         self.xd.next = self.f_xd[0].q.val();
         self.xdd.next = self.f_xdd[0].q.val();
+        for i in 1..4 {
+            if self.rp.q.val() == self.slot[i].val() {
+                self.us.next = self.f_us[i].q.val();
+                self.ud.next = self.f_ud[i].q.val();
+                self.udd.next = self.f_udd[i].q.val();
+                self.vs.next = self.f_vs[i].q.val();
+                self.vd.next = self.f_vd[i].q.val();
+                self.vdd.next = self.f_vdd[i].q.val();
+                self.last.next = self.f_last[i].q.val();
+                self.xd.next = self.f_xd[i].q.val();
+                self.xdd.next = self.f_xdd[i].q.val();
+            }
+        }
     }
 }
 
