@@ -149,10 +149,8 @@ impl Logic for BezLane {
         self.s1_in.next = self.start.val() + self.step.val();
         self.c_in.next = (self.step.val() << 1) + self.step2.val();
         // One expression: synthesis forms it through carry-save levels and one carry chain.
-        self.t3_in.next = self.step.val()
-            + (self.step.val() << 1)
-            + self.step2.val()
-            + (self.step2.val() << 1);
+        self.t3_in.next =
+            self.step.val() + (self.step.val() << 1) + self.step2.val() + (self.step2.val() << 1);
         if self.capture.val() {
             self.ps0.d.next = self.start.val();
             self.ps1.d.next = self.s1_in.val();
@@ -325,8 +323,7 @@ impl Logic for TextureBezier {
         self.take.next = self.load.val() & self.rdy.val();
         for k in 0..3 {
             self.lane[k].clock.next = self.clock.val();
-            self.lane[k].capture.next =
-                self.load.val() & !(self.first_q.q.val() & self.hold.val());
+            self.lane[k].capture.next = self.load.val() & !(self.first_q.q.val() & self.hold.val());
             self.lane[k].first.next = self.first_q.q.val();
             self.lane[k].step_in.next = self.step_now.val() & !self.first_q.q.val();
             self.lane[k].r.next = self.r.val();
