@@ -74,8 +74,9 @@ crate::hw_block! {
         sel_q: DFF<Bits<2>>, sel2_q: DFF<Bits<2>>,
         texel_q: DFF<Bits<24>>,
         valid_q: [DFF<Bit>; 4],
-        one: Constant<Bits<16>> = Constant::new(1u64.into()),
-        /// W − 1 and H − 1, the address, and the write's bank.
+        ones: Constant<Bits<16>> = Constant::new(0xFFFFu64.into()),
+        /// W − 1 and H − 1 (as ¬(0xFFFF << log): each bit a function of the log's four bits,
+        /// no carry chain), the address, and the write's bank.
         mask_w: Signal<Local, Bits<16>>, mask_h: Signal<Local, Bits<16>>,
         row: Signal<Local, Bits<16>>, address: Signal<Local, Bits<16>>,
         wbank: Signal<Local, Bits<2>>,
@@ -95,8 +96,8 @@ impl Logic for TextureMemory {
             self.bank[k].write_data.next = self.wdata.val();
             self.bank_q[k].d.next = self.bank[k].read_data.val();
         }
-        self.mask_w.next = (self.one.val() << self.log_w.val()) - self.one.val();
-        self.mask_h.next = (self.one.val() << self.log_h.val()) - self.one.val();
+        self.mask_w.next = !(self.ones.val() << self.log_w.val());
+        self.mask_h.next = !(self.ones.val() << self.log_h.val());
         self.row.next = (self.v.val() & self.mask_h.val()) << self.log_w.val();
         self.address.next = self.row.val() | (self.u.val() & self.mask_w.val());
         self.address_q.d.next = self.address.val();
