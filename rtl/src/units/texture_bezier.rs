@@ -37,11 +37,11 @@
 //! a carry-save level first, `primitives::Add3`): samples j + 4 … j + 6 are w3 + Δ, w3 + E2,
 //! w3 + E3; Δ, E2, E3 move by r·d, 2r·d, 3r·d; the sums of the samples beyond the window come
 //! from Z = 2·X(j + 3) + ¬(2i·2^32), kept beside Z − 2^33 (the next pixel's). The lanes capture
-//! the record shown with `load` (taken or not: they are read only from the clock after a take
-//! until the first pixel shows, and are kept while it is held, so the take, a function of the
-//! comparisons, reaches only the control registers) with sums
-//! at most two adders deep; the first pixel's clock forms the window from
-//! them (samples 0 … 3 and the second pixel's sums, one carry chain each).
+//! the record shown with `load`, with sums at most two adders deep, whether or not it is taken:
+//! they are read only from the clock after a take until the first pixel shows and are kept
+//! while it is held, so the take, a function of the comparisons, reaches only the control
+//! registers. The first pixel's clock forms the window from them (samples 0 … 3 and the second
+//! pixel's sums, one carry chain each).
 //!
 //! # Ports
 //!
