@@ -85,7 +85,7 @@
 //! amb_c = ⌊(texel_c·ka + 2⁶) / 2⁷⌋, dif_c = ⌊(texel_c·kd + 2⁶) / 2⁷⌋: UQ8.0 × UQ1.15 →
 //! UQ9.15, rounded to the colour combine's UQ8.8 weight, saturated at 2¹⁶ − 1 (never reached
 //! when k·255 < 256). Two clocks of multiplier (`MulPipe`, 6 multipliers), one register on the
-//! product in the fabric, one on the rounded weight; amb waits two more clocks (the colour combine samples it two clocks after
+//! rounded weight; amb waits two more clocks (the colour combine samples it two clocks after
 //! dif).
 //!
 //! # Latency, throughput
@@ -141,10 +141,8 @@ use crate::units::vector_interpolator::VectorInterpolator;
 /// Entries of the event FIFO (the update's loops are written for 8).
 pub const EVENT_FIFO: usize = 8;
 
-/// Clocks of the texel weight stage: the multiplier, the product's register in the fabric
-/// (the multiplier's own output register can sit far from the rounding), then the rounded
-/// weight's register.
-pub const WEIGHT_LATENCY: usize = MUL_LATENCY + 2;
+/// Clocks of the texel weight stage: the multiplier, then the rounded weight's register.
+pub const WEIGHT_LATENCY: usize = MUL_LATENCY + 1;
 
 /// Clocks from the pop to the colour combine's input (where the dif weights must be).
 pub const POP_TO_COLOUR: usize = EVENT_TO_FRAGMENT - ColourCombine::LATENCY;
@@ -302,8 +300,6 @@ crate::hw_block! {
         }
         /// 0..2: texel·ka, 3..5: texel·kd.
         m: [MulPipe; 6],
-        /// The product, registered again before the rounding add.
-        prod: [DFF<Bits<32>>; 6],
         /// The rounded product (bits 7.. of product + 2⁶), 25 bits so the sum cannot wrap.
         w_rnd: [Signal<Local, Bits<32>>; 6],
         wq: [DFF<Bits<16>>; 6],
@@ -318,7 +314,6 @@ impl Logic for TexelWeights {
     fn update(&mut self) {
         for i in 0..6 {
             self.m[i].clock.next = self.clock.val();
-            self.prod[i].clock.next = self.clock.val();
             self.wq[i].clock.next = self.clock.val();
         }
         for c in 0..3 {
@@ -335,8 +330,7 @@ impl Logic for TexelWeights {
             self.m[c + 3].b.next = self.kd.val();
         }
         for i in 0..6 {
-            self.prod[i].d.next = self.m[i].p.val();
-            self.w_rnd[i].next = self.prod[i].q.val() + self.half.val();
+            self.w_rnd[i].next = self.m[i].p.val() + self.half.val();
             if self.w_rnd[i].val().get_bits::<9>(23).any() {
                 self.wq[i].d.next = self.top.val();
             } else {
