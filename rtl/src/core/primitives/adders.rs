@@ -1,4 +1,10 @@
 //! Adder primitives: a three-operand sum through one carry-save level and one carry chain.
+//!
+//! [`Add3`]: formula sum = a + b + c + cin mod 2^48 (no SPEC section: arithmetic for the
+//! recurrences of SPEC §14 and §16). Ports: `a`, `b`, `c` 48-bit words (any two's complement
+//! or unsigned reading), `cin` 1 bit, `sum` 48 bits. Latency 0 (combinational), throughput one
+//! sum per clock, no handshake. Overflow: wraps modulo 2^48, exactly as the chained adds it
+//! replaces. Error budget: exact.
 
 use rust_hdl::prelude::*;
 

@@ -325,25 +325,17 @@ fn generated_rtl(top: &StreamTop) -> (String, String) {
             ));
         }
     }
-    if let Some(texel) = top.texels {
+    // Records applied through a strobe: each field straight from the load bank.
+    for (rec, strobe) in [
+        (top.texels, "written with `tex_we`"),
+        (top.lines, "pushed with `line_push`"),
+    ] {
+        let Some(rec) = rec else { continue };
         up.push_str(&format!(
-            "        // The {} record's fields (written with `tex_we`).\n",
-            texel.name
+            "        // The {} record's fields ({strobe}).\n",
+            rec.name
         ));
-        for pl in place(&texel) {
-            up.push_str(&format!(
-                "        self.pipe.{}.next = {};\n",
-                pl.name,
-                select(&pl)
-            ));
-        }
-    }
-    if let Some(line) = top.lines {
-        up.push_str(&format!(
-            "        // The {} record's fields (pushed with `line_push`).\n",
-            line.name
-        ));
-        for pl in place(&line) {
+        for pl in place(&rec) {
             up.push_str(&format!(
                 "        self.pipe.{}.next = {};\n",
                 pl.name,
