@@ -405,6 +405,40 @@ fn render_frames(
     build: crate::rtl_engine::RtlBuild,
 ) -> Result<Frames> {
     let n = methods.len();
+    // The methods the hardware renders: with `rtl` all (each must have hardware); with `both`
+    // those it has, the textured ones only with a texture the texture memory holds (`run`
+    // notes it).
+    let idx: Vec<usize> = if engine == Engine::Golden {
+        Vec::new()
+    } else {
+        if engine == Engine::Rtl {
+            for &m in methods {
+                crate::rtl_engine::check_rtl_method(m)?;
+            }
+        }
+        let hw = crate::rtl_engine::rtl_methods();
+        let fits = texture_fits(setup).is_ok();
+        (0..n)
+            .filter(|&i| hw.contains(&methods[i]))
+            .filter(|&i| {
+                engine == Engine::Rtl || fits || !TEXTURED_RTL_METHODS.contains(&methods[i])
+            })
+            .collect()
+    };
+    // A scene the hardware refuses (addresses, the span set-up's memory) fails before the
+    // golden pass, not after it.
+    let scene = pipeline::render::Scene {
+        tris: &setup.tris,
+        ctx: &setup.ctx,
+        width: setup.width,
+        height: setup.height,
+        texture: Some(&setup.texture),
+    };
+    for &i in &idx {
+        pipeline::render::check_scene(&scene, methods[i])
+            .map_err(|e| anyhow::anyhow!(e))
+            .with_context(|| format!("method {}", methods[i]))?;
+    }
     let multi = MultiProgress::new();
     let ticker = crate::output::LogTicker::start("render");
     let (reference, golden) = if engine == Engine::Rtl {
@@ -418,21 +452,6 @@ fn render_frames(
     };
     let mut rtl: Vec<Option<(Frame, RtlStats)>> = (0..n).map(|_| None).collect();
     if engine != Engine::Golden {
-        if engine == Engine::Rtl {
-            for &m in methods {
-                crate::rtl_engine::check_rtl_method(m)?;
-            }
-        }
-        // `both`: the methods the hardware has (the others are golden only), the textured ones
-        // only with a texture the texture memory holds (`run` notes it).
-        let hw = crate::rtl_engine::rtl_methods();
-        let fits = texture_fits(setup).is_ok();
-        let idx: Vec<usize> = (0..n)
-            .filter(|&i| hw.contains(&methods[i]))
-            .filter(|&i| {
-                engine == Engine::Rtl || fits || !TEXTURED_RTL_METHODS.contains(&methods[i])
-            })
-            .collect();
         let ms: Vec<Method> = idx.iter().map(|&i| methods[i]).collect();
         crate::sim::prepare(build.sim, crate::rtl_engine::designs(&ms, build)?, &multi)?;
         for (i, f) in idx

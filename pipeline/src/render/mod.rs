@@ -214,6 +214,19 @@ pub fn check_method(m: Method) -> Result<(), String> {
     }
 }
 
+/// The checks of `scene` that `render` makes for `method` before its first clock, without
+/// rendering anything: the canvas and vertex addresses, and for a span method the per-line
+/// set-up's memory budget. `shadecore render` runs them before the reference image, so a
+/// scene the hardware refuses fails at once rather than after the golden pass.
+pub fn check_scene(scene: &Scene, method: Method) -> Result<(), String> {
+    check_method(method)?;
+    check_addresses(scene.tris, scene.width, scene.height)?;
+    if crate::span::SPAN_METHODS.contains(&method) {
+        crate::span::check_span_budget(scene.tris)?;
+    }
+    Ok(())
+}
+
 /// The family that renders `method` with `o` (an error for a method without hardware, or an
 /// address block the method cannot go through).
 pub fn family(method: Method, o: &Options) -> Result<Box<dyn Family>, String> {
@@ -349,6 +362,20 @@ mod tests {
         assert!(e.contains("canvas"), "{e}");
         let e = run(scene(&[], 10), Method::Flat, &o);
         assert!(e.contains("no hardware for method flat"), "{e}");
+        // The pre-flight gives the same refusals without rendering.
+        let check = |(tris, width): (&[ScreenTriangle], u32), m| {
+            let s = Scene {
+                tris,
+                ctx: &ctx,
+                width,
+                height: 10,
+                texture: None,
+            };
+            check_scene(&s, m).unwrap_err()
+        };
+        assert!(check((&one, 10), Method::Angular).contains("outside the 12-bit"));
+        assert!(check(scene(&[], 5000), Method::Gouraud).contains("canvas"));
+        assert!(check(scene(&[], 10), Method::Flat).contains("no hardware"));
         let four = Options {
             address: Address::FourTriangle,
             ..o
