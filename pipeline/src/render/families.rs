@@ -4,7 +4,7 @@ use golden::methods::Method;
 use golden::render::Frame;
 
 use super::frame::{jobs_with_depth, FrameWriter, PlaneWriter};
-use super::{check_addresses, Family, LitTop, Options, Rendered, Scene, Tick};
+use super::{Family, LitTop, Options, Progress, Rendered, Scene, Tick};
 use crate::gouraud::{clock_budget, Pipe, TriangleJob};
 use crate::lit::{lit_clock_budget, LitJob, LitPipe, ShadingRegs};
 use crate::span::{span_clock_budget, span_jobs, SpanPipe};
@@ -23,13 +23,7 @@ impl Family for Gouraud {
         Ok(Pipe::design(o.lit_top.resolve() == LitTop::Stream))
     }
 
-    fn render(
-        &self,
-        s: &Scene,
-        o: &Options,
-        progress: &mut dyn FnMut(Tick),
-    ) -> Result<Rendered, String> {
-        check_addresses(s.tris, s.width, s.height)?;
+    fn render(&self, s: &Scene, o: &Options, progress: Progress) -> Result<Rendered, String> {
         // Same triangles as the golden renderer: those with a depth plane (non-zero area).
         let (jobs, depth) = jobs_with_depth(s.tris, |t| Ok(TriangleJob::gouraud(t, s.ctx)))?;
         progress(Tick::Total(jobs.len() as u64));
@@ -71,13 +65,7 @@ impl Family for Subdivision {
         Ok(SubPipe::design(o.lit_top == LitTop::Stream))
     }
 
-    fn render(
-        &self,
-        s: &Scene,
-        o: &Options,
-        progress: &mut dyn FnMut(Tick),
-    ) -> Result<Rendered, String> {
-        check_addresses(s.tris, s.width, s.height)?;
+    fn render(&self, s: &Scene, o: &Options, progress: Progress) -> Result<Rendered, String> {
         let (jobs, depth) = jobs_with_depth(s.tris, |t| match self.0 {
             Method::Gouraud => Ok(SubJob::gouraud(t, s.ctx)),
             Method::Subdivision => Ok(SubJob::subdivision(t, s.ctx)),
@@ -120,13 +108,7 @@ impl Family for Lit {
         LitPipe::design(self.0, o.lit_top.resolve() == LitTop::Stream)
     }
 
-    fn render(
-        &self,
-        s: &Scene,
-        o: &Options,
-        progress: &mut dyn FnMut(Tick),
-    ) -> Result<Rendered, String> {
-        check_addresses(s.tris, s.width, s.height)?;
+    fn render(&self, s: &Scene, o: &Options, progress: Progress) -> Result<Rendered, String> {
         let regs = ShadingRegs::of(s.ctx).map_err(|e| format!("RTL set-up: {e}"))?;
         let (jobs, depth) = jobs_with_depth(s.tris, LitJob::new)?;
         let order = o.setup_order.of(&jobs);
@@ -184,14 +166,7 @@ impl Family for Span {
         SpanPipe::design(self.0, o.horner_pipelined, o.lit_top == LitTop::Stream)
     }
 
-    fn render(
-        &self,
-        s: &Scene,
-        o: &Options,
-        progress: &mut dyn FnMut(Tick),
-    ) -> Result<Rendered, String> {
-        check_addresses(s.tris, s.width, s.height)?;
-        crate::span::check_span_budget(s.tris)?;
+    fn render(&self, s: &Scene, o: &Options, progress: Progress) -> Result<Rendered, String> {
         // The cubic's samples and the quadric's coefficients are lit in software (any lighting
         // model); the other span tops light in hardware and need the registers.
         let regs = if matches!(self.0, Method::Cubic | Method::Quadric) {
@@ -262,13 +237,7 @@ impl Family for Textured {
         TexturedPipe::design(self.build(), o.lit_top == LitTop::Stream)
     }
 
-    fn render(
-        &self,
-        s: &Scene,
-        o: &Options,
-        progress: &mut dyn FnMut(Tick),
-    ) -> Result<Rendered, String> {
-        check_addresses(s.tris, s.width, s.height)?;
+    fn render(&self, s: &Scene, o: &Options, progress: Progress) -> Result<Rendered, String> {
         let texture = s.texture.unwrap_or(golden::texture::Texture::builtin());
         let regs = ShadingRegs::of(s.ctx).map_err(|e| format!("RTL set-up: {e}"))?;
         let tregs = TexRegs::of(s.ctx, texture).map_err(|e| format!("RTL set-up: {e}"))?;

@@ -173,14 +173,13 @@ impl Default for Options {
 pub trait Family {
     /// The Verilator design its render steps (to compile several before a run, in parallel).
     fn design(&self, o: &Options) -> Result<verilated::Design, String>;
-    /// The scene's set-up records through its top, its fragments into a frame.
-    fn render(
-        &self,
-        scene: &Scene,
-        o: &Options,
-        progress: &mut dyn FnMut(Tick),
-    ) -> Result<Rendered, String>;
+    /// The scene's set-up records through its top, its fragments into a frame (the scene
+    /// passed [`check_scene`]).
+    fn render(&self, scene: &Scene, o: &Options, progress: Progress) -> Result<Rendered, String>;
 }
+
+/// Where a render reports its progress.
+pub type Progress<'a> = &'a mut dyn FnMut(Tick);
 
 /// The methods the hardware renders, in order: Gouraud, subdivision, the lit pipeline's, the
 /// span pipelines', the textured pipeline's.
@@ -261,7 +260,9 @@ pub fn render(
     o: &Options,
     progress: &mut dyn FnMut(Tick),
 ) -> Result<Rendered, String> {
-    family(method, o)?.render(scene, o, progress)
+    let family = family(method, o)?;
+    check_scene(scene, method)?;
+    family.render(scene, o, progress)
 }
 
 /// The Verilator designs rendering `methods` with `o` steps, each once (`flat` has none).
@@ -345,36 +346,24 @@ mod tests {
             ..Options::default()
         };
         let one = [t];
-        let scene = |tris: &'static [ScreenTriangle], width| (tris, width);
-        let run = |(tris, width): (&[ScreenTriangle], u32), m, o: &Options| {
-            let s = Scene {
-                tris,
-                ctx: &ctx,
-                width,
-                height: 10,
-                texture: None,
-            };
-            render(&s, m, o, &mut |_| {}).unwrap_err()
+        let scene = |tris, width| Scene {
+            tris,
+            ctx: &ctx,
+            width,
+            height: 10,
+            texture: None,
         };
-        let e = run((&one, 10), Method::Gouraud, &o);
+        let run = |s: Scene, m, o: &Options| render(&s, m, o, &mut |_| {}).unwrap_err();
+        // The pre-flight alone gives the same refusals, rendering nothing.
+        let check = |s: Scene, m| check_scene(&s, m).unwrap_err();
+        let e = run(scene(&one, 10), Method::Gouraud, &o);
         assert!(e.contains("outside the 12-bit"), "{e}");
+        assert!(check(scene(&one, 10), Method::Angular).contains("outside the 12-bit"));
         let e = run(scene(&[], 5000), Method::Gouraud, &o);
         assert!(e.contains("canvas"), "{e}");
+        assert!(check(scene(&[], 5000), Method::Gouraud).contains("canvas"));
         let e = run(scene(&[], 10), Method::Flat, &o);
         assert!(e.contains("no hardware for method flat"), "{e}");
-        // The pre-flight gives the same refusals without rendering.
-        let check = |(tris, width): (&[ScreenTriangle], u32), m| {
-            let s = Scene {
-                tris,
-                ctx: &ctx,
-                width,
-                height: 10,
-                texture: None,
-            };
-            check_scene(&s, m).unwrap_err()
-        };
-        assert!(check((&one, 10), Method::Angular).contains("outside the 12-bit"));
-        assert!(check(scene(&[], 5000), Method::Gouraud).contains("canvas"));
         assert!(check(scene(&[], 10), Method::Flat).contains("no hardware"));
         let four = Options {
             address: Address::FourTriangle,
