@@ -33,7 +33,8 @@ pub fn designs(methods: &[Method], build: RtlBuild) -> Result<Vec<verilated::Des
     pipeline::render::designs(methods, &build).map_err(|e| anyhow!(e))
 }
 
-/// Render `tris` with `method` through the simulated hardware, with the default [`RtlBuild`].
+/// Render `tris` with `method` through the simulated hardware, with the default [`RtlBuild`]
+/// (the textured methods read the built-in texture).
 pub fn render_rtl(
     tris: &[ScreenTriangle],
     method: Method,
@@ -42,61 +43,35 @@ pub fn render_rtl(
     height: u32,
     progress: &ProgressBar,
 ) -> Result<RtlRender> {
-    render_rtl_with(
-        tris,
-        method,
-        ctx,
-        width,
-        height,
-        progress,
-        RtlBuild::default(),
-    )
-}
-
-/// [`render_rtl`] with the build choices `build`: `progress` gets the number of set-up records
-/// (triangles, parents or lines) and advances as the hardware finishes each. The textured
-/// methods read the built-in texture.
-pub fn render_rtl_with(
-    tris: &[ScreenTriangle],
-    method: Method,
-    ctx: &ShadeContext,
-    width: u32,
-    height: u32,
-    progress: &ProgressBar,
-    build: RtlBuild,
-) -> Result<RtlRender> {
-    render_rtl_textured(
-        tris,
-        method,
-        ctx,
-        golden::texture::Texture::builtin(),
-        width,
-        height,
-        progress,
-        build,
-    )
-}
-
-/// [`render_rtl_with`] with the texture the textured methods read.
-#[allow(clippy::too_many_arguments)]
-pub fn render_rtl_textured(
-    tris: &[ScreenTriangle],
-    method: Method,
-    ctx: &ShadeContext,
-    texture: &golden::texture::Texture,
-    width: u32,
-    height: u32,
-    progress: &ProgressBar,
-    build: RtlBuild,
-) -> Result<RtlRender> {
     let scene = pipeline::render::Scene {
         tris,
         ctx,
         width,
         height,
-        texture: Some(texture),
+        texture: None,
     };
-    pipeline::render::render(&scene, method, &build, &mut |t| match t {
+    render_scene(&scene, method, &RtlBuild::default(), progress)
+}
+
+/// Render `setup`'s triangles (its canvas, shading and texture) with `method` and the build
+/// choices `build`: `progress` gets the number of set-up records (triangles, parents or lines)
+/// and advances as the hardware finishes each.
+pub fn render_rtl_with(
+    setup: &crate::setup::Setup,
+    method: Method,
+    build: RtlBuild,
+    progress: &ProgressBar,
+) -> Result<RtlRender> {
+    render_scene(&setup.scene(), method, &build, progress)
+}
+
+fn render_scene(
+    scene: &pipeline::render::Scene,
+    method: Method,
+    build: &RtlBuild,
+    progress: &ProgressBar,
+) -> Result<RtlRender> {
+    pipeline::render::render(scene, method, build, &mut |t| match t {
         pipeline::render::Tick::Total(n) => {
             progress.set_length(n);
             progress.set_position(0);

@@ -160,6 +160,19 @@ pub struct Setup {
     pub textured_mesh: bool,
 }
 
+impl Setup {
+    /// The scene the hardware renders: the triangles, shading, canvas and texture.
+    pub fn scene(&self) -> pipeline::render::Scene<'_> {
+        pipeline::render::Scene {
+            tris: &self.tris,
+            ctx: &self.ctx,
+            width: self.width,
+            height: self.height,
+            texture: Some(&self.texture),
+        }
+    }
+}
+
 fn lossy_path<S: serde::Serializer>(p: &Path, s: S) -> std::result::Result<S::Ok, S::Error> {
     s.serialize_str(&p.to_string_lossy())
 }

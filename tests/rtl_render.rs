@@ -133,16 +133,7 @@ fn stream_tops_and_ports_render_the_same_frame() {
                     horner_pipelined: c.horner_pipelined,
                     ..RtlBuild::default()
                 };
-                render_rtl_with(
-                    &s.tris,
-                    method,
-                    &s.ctx,
-                    s.width,
-                    s.height,
-                    &ProgressBar::hidden(),
-                    b,
-                )
-                .unwrap()
+                render_rtl_with(&s, method, b, &ProgressBar::hidden()).unwrap()
             };
             let what = format!(
                 "{method}, {} {}×{} ({:?}, pipelined Horner {})",

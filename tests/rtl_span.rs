@@ -35,16 +35,8 @@ fn check_scene(label: &str, args: &SceneArgs, nmse_bound: &[(Method, f64)]) {
     let reference = render(&s.tris, Method::Reference, &s.ctx, s.width, s.height);
     for m in SPAN_METHODS {
         let t0 = std::time::Instant::now();
-        let rtl = render_rtl_with(
-            &s.tris,
-            m,
-            &s.ctx,
-            s.width,
-            s.height,
-            &ProgressBar::hidden(),
-            pipelined(),
-        )
-        .unwrap_or_else(|e| panic!("{label} {m}: {e:#}"));
+        let rtl = render_rtl_with(&s, m, pipelined(), &ProgressBar::hidden())
+            .unwrap_or_else(|e| panic!("{label} {m}: {e:#}"));
         let gold = render(&s.tris, m, &s.ctx, s.width, s.height);
         assert_eq!(
             rtl.frame.fragments, gold.fragments,
@@ -153,18 +145,7 @@ fn serial_and_pipelined_horner_give_the_same_image() {
         ..SceneArgs::default()
     })
     .unwrap();
-    let run = |b: RtlBuild| {
-        render_rtl_with(
-            &s.tris,
-            Method::Cubic,
-            &s.ctx,
-            s.width,
-            s.height,
-            &ProgressBar::hidden(),
-            b,
-        )
-        .unwrap()
-    };
+    let run = |b: RtlBuild| render_rtl_with(&s, Method::Cubic, b, &ProgressBar::hidden()).unwrap();
     let serial = run(RtlBuild::default());
     let piped = run(pipelined());
     assert_eq!(

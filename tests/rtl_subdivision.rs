@@ -22,16 +22,8 @@ fn check_scene(label: &str, args: &SceneArgs) {
             address,
             ..RtlBuild::default()
         };
-        let rtl = render_rtl_with(
-            &s.tris,
-            m,
-            &s.ctx,
-            s.width,
-            s.height,
-            &ProgressBar::hidden(),
-            build,
-        )
-        .unwrap_or_else(|e| panic!("{label} {m}: {e:#}"));
+        let rtl = render_rtl_with(&s, m, build, &ProgressBar::hidden())
+            .unwrap_or_else(|e| panic!("{label} {m}: {e:#}"));
         let gold = render(&s.tris, m, &s.ctx, s.width, s.height);
         assert_eq!(
             rtl.frame.fragments, gold.fragments,

@@ -15,7 +15,7 @@ use indicatif::ProgressBar;
 use pipeline::lit::ShadingRegs;
 use pipeline::textured::{TexJob, TexRegs, TexturedPipe};
 use rtl::pipelines::textured_pipeline::TexCoord;
-use shadecore::rtl_engine::{max_channel_diff, render_rtl_textured, RtlBuild};
+use shadecore::rtl_engine::{max_channel_diff, render_rtl_with, RtlBuild};
 use shadecore::setup::{build, SceneArgs, Setup};
 
 #[path = "../benches/common/texture.rs"]
@@ -33,17 +33,8 @@ fn texture_through_the_rtl_is_within_one_lsb_of_golden_on_every_scene() {
     .flat_map(|m| ["sphere", "torus", "plane"].map(|n| (m, n)))
     {
         let s = scene(name);
-        let rtl = render_rtl_textured(
-            &s.tris,
-            method,
-            &s.ctx,
-            &s.texture,
-            s.width,
-            s.height,
-            &ProgressBar::hidden(),
-            RtlBuild::default(),
-        )
-        .unwrap_or_else(|e| panic!("{method} {name}: {e:#}"));
+        let rtl = render_rtl_with(&s, method, RtlBuild::default(), &ProgressBar::hidden())
+            .unwrap_or_else(|e| panic!("{method} {name}: {e:#}"));
         let gold = render_textured(&s.tris, method, &s.ctx, &s.texture, s.width, s.height);
         let reference = render_textured(
             &s.tris,

@@ -37,17 +37,14 @@ fn verilator_frames_equal_rust_hdl_frames() {
     flow::tools::two_at_a_time(cases, |(m, pipelined)| {
         let run = |sim: Sim| {
             render_rtl_with(
-                &s.tris,
+                &s,
                 m,
-                &s.ctx,
-                s.width,
-                s.height,
-                &ProgressBar::hidden(),
                 RtlBuild {
                     horner_pipelined: pipelined,
                     sim,
                     ..RtlBuild::default()
                 },
+                &ProgressBar::hidden(),
             )
             .unwrap_or_else(|e| panic!("{m} ({sim:?}): {e:#}"))
         };

@@ -354,28 +354,19 @@ fn render_rtl_parallel(
                 );
                 ticker.watch(&format!("rtl {m}"), &bar);
                 let t0 = std::time::Instant::now();
-                let r = crate::rtl_engine::render_rtl_textured(
-                    &setup.tris,
-                    m,
-                    &setup.ctx,
-                    &setup.texture,
-                    setup.width,
-                    setup.height,
-                    &bar,
-                    build,
-                )
-                .with_context(|| format!("method {m}"))
-                .map(|rtl| {
-                    (
-                        colours_only(rtl.frame),
-                        RtlStats {
-                            pipe: rtl.stats,
-                            visibility_mismatches: rtl.visibility_mismatches,
-                            visibility_depth_gap: rtl.visibility_depth_gap,
-                            seconds: t0.elapsed().as_secs_f64(),
-                        },
-                    )
-                });
+                let r = crate::rtl_engine::render_rtl_with(&setup, m, build, &bar)
+                    .with_context(|| format!("method {m}"))
+                    .map(|rtl| {
+                        (
+                            colours_only(rtl.frame),
+                            RtlStats {
+                                pipe: rtl.stats,
+                                visibility_mismatches: rtl.visibility_mismatches,
+                                visibility_depth_gap: rtl.visibility_depth_gap,
+                                seconds: t0.elapsed().as_secs_f64(),
+                            },
+                        )
+                    });
                 bar.finish_and_clear();
                 overall.inc(1);
                 let failed = r.is_err();
@@ -427,13 +418,7 @@ fn render_frames(
     };
     // A scene the hardware refuses (addresses, the span set-up's memory) fails before the
     // golden pass, not after it.
-    let scene = pipeline::render::Scene {
-        tris: &setup.tris,
-        ctx: &setup.ctx,
-        width: setup.width,
-        height: setup.height,
-        texture: Some(&setup.texture),
-    };
+    let scene = setup.scene();
     for &i in &idx {
         pipeline::render::check_scene(&scene, methods[i])
             .map_err(|e| anyhow::anyhow!(e))
