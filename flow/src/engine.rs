@@ -90,6 +90,31 @@ pub fn design<B: RtlBlock>(p: &B::Params) -> verilated::Design {
     verilated::design::<B>(p)
 }
 
+/// A pipe with two tops, `P` on ports and `S` behind AXI4-Stream, both with their default
+/// parameters: `S`'s model if `stream`, else `P`'s, on `sim`.
+pub fn model_of<P, S>(sim: Sim, stream: bool) -> Result<Box<dyn Model>, String>
+where
+    P: RtlBlock<Params: Default> + 'static,
+    S: RtlBlock<Params: Default> + 'static,
+{
+    if stream {
+        model::<S>(&Default::default(), sim)
+    } else {
+        model::<P>(&Default::default(), sim)
+    }
+}
+
+/// The Verilator design [`model_of`] builds.
+pub fn design_of<P: RtlBlock<Params: Default>, S: RtlBlock<Params: Default>>(
+    stream: bool,
+) -> verilated::Design {
+    if stream {
+        design::<S>(&Default::default())
+    } else {
+        design::<P>(&Default::default())
+    }
+}
+
 /// The simulator a command asked for (`None`: the fastest installed). `--sim verilator` without
 /// Verilator is an error; the default without it falls back to rust-hdl with a notice on
 /// stderr.

@@ -149,49 +149,21 @@ impl Pipe {
 
     /// `gouraud-raster` (or `gouraud-stream` if `stream`) on `sim`.
     pub fn on(sim: Sim, stream: bool) -> Result<Pipe, String> {
-        let model = if stream {
-            flow::engine::model::<rtl::stream::gouraud_stream::GouraudStream>(
-                &Default::default(),
-                sim,
-            )?
-        } else {
-            flow::engine::model::<GouraudRaster>(&Default::default(), sim)?
-        };
+        let model = flow::engine::model_of::<
+            GouraudRaster,
+            rtl::stream::gouraud_stream::GouraudStream,
+        >(sim, stream)?;
         Ok(Pipe { model, stream })
     }
 
     /// The design [`Pipe::on`] builds under Verilator.
     pub fn design(stream: bool) -> verilated::Design {
-        if stream {
-            flow::engine::design::<rtl::stream::gouraud_stream::GouraudStream>(&Default::default())
-        } else {
-            flow::engine::design::<GouraudRaster>(&Default::default())
-        }
+        flow::engine::design_of::<GouraudRaster, rtl::stream::gouraud_stream::GouraudStream>(stream)
     }
 
     /// Trace every following clock into `w` (rust-hdl only: an error on Verilator).
     pub fn start_vcd(&mut self, w: Box<dyn Write>) -> Result<(), String> {
         self.model.start_vcd(w)
-    }
-
-    /// [`Pipe::run`] through the stream top.
-    fn run_stream(
-        s: &mut dyn Model,
-        jobs: &[TriangleJob],
-        max_clocks: u64,
-        pixel: &mut dyn FnMut(usize, u32, u32, [u8; 3]),
-        progress: &mut dyn FnMut(u64),
-    ) -> Result<PipeStats, String> {
-        crate::axis::drive::<rtl::stream::gouraud_stream::GouraudStream>(
-            s,
-            "gouraud-stream",
-            "triangles",
-            &crate::gouraud::gouraud_words(jobs),
-            jobs.len() as u64,
-            max_clocks,
-            &mut |job, b, _| pixel(job, b.x, b.y, b.rgb),
-            progress,
-        )
     }
 
     /// Run `jobs` through the pipe, each loaded as soon as `ready` is high;
@@ -207,11 +179,14 @@ impl Pipe {
         mut progress: impl FnMut(u64),
     ) -> Result<PipeStats, String> {
         if self.stream {
-            return Self::run_stream(
+            return crate::axis::drive::<rtl::stream::gouraud_stream::GouraudStream>(
                 self.model.as_mut(),
-                jobs,
+                "gouraud-stream",
+                "triangles",
+                &crate::gouraud::gouraud_words(jobs),
+                jobs.len() as u64,
                 max_clocks,
-                &mut pixel,
+                &mut |job, b, _| pixel(job, b.x, b.y, b.rgb),
                 &mut progress,
             );
         }

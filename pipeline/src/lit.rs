@@ -292,27 +292,6 @@ impl LitPipe {
         self.model.as_mut()
     }
 
-    /// [`LitPipe::run`] through the stream top.
-    fn run_stream(
-        s: &mut dyn Model,
-        jobs: &[LitJob],
-        regs: &ShadingRegs,
-        max_clocks: u64,
-        fragment: &mut dyn FnMut(Fragment),
-        progress: &mut dyn FnMut(u64),
-    ) -> Result<PipeStats, String> {
-        crate::axis::drive::<rtl::stream::pixel_stream::PixelStream>(
-            s,
-            "pixel-stream",
-            "triangles",
-            &crate::lit::scene_words(jobs, regs),
-            jobs.len() as u64,
-            max_clocks,
-            &mut |job, b, clock| fragment(Fragment::of_beat(job, b, clock)),
-            progress,
-        )
-    }
-
     /// Run `jobs` with registers `regs`, each job loaded as soon as `ready` is high;
     /// `fragment` for every valid output, `progress(done_triangles)` after each `done`.
     /// Stops after the last `done`, or with an error after `max_clocks`.
@@ -325,12 +304,14 @@ impl LitPipe {
         mut progress: impl FnMut(u64),
     ) -> Result<PipeStats, String> {
         if self.stream {
-            return Self::run_stream(
+            return crate::axis::drive::<rtl::stream::pixel_stream::PixelStream>(
                 self.model.as_mut(),
-                jobs,
-                regs,
+                "pixel-stream",
+                "triangles",
+                &crate::lit::scene_words(jobs, regs),
+                jobs.len() as u64,
                 max_clocks,
-                &mut fragment,
+                &mut |job, b, clock| fragment(Fragment::of_beat(job, b, clock)),
                 &mut progress,
             );
         }

@@ -171,26 +171,19 @@ impl SubPipe {
 
     /// `subdivision-raster` (or `subdivision-stream` if `stream`) on `sim`.
     pub fn on(sim: Sim, stream: bool) -> Result<SubPipe, String> {
-        let model = if stream {
-            flow::engine::model::<rtl::stream::subdivision_stream::SubdivisionStream>(
-                &Default::default(),
-                sim,
-            )?
-        } else {
-            flow::engine::model::<SubdivisionRaster>(&Default::default(), sim)?
-        };
+        let model = flow::engine::model_of::<
+            SubdivisionRaster,
+            rtl::stream::subdivision_stream::SubdivisionStream,
+        >(sim, stream)?;
         Ok(SubPipe { model, stream })
     }
 
     /// The design [`SubPipe::on`] builds under Verilator.
     pub fn design(stream: bool) -> verilated::Design {
-        if stream {
-            flow::engine::design::<rtl::stream::subdivision_stream::SubdivisionStream>(
-                &Default::default(),
-            )
-        } else {
-            flow::engine::design::<SubdivisionRaster>(&Default::default())
-        }
+        flow::engine::design_of::<
+            SubdivisionRaster,
+            rtl::stream::subdivision_stream::SubdivisionStream,
+        >(stream)
     }
 
     /// Run `jobs`, each loaded as soon as `ready` is high; `pixel(job, x, y, rgb)` for every
