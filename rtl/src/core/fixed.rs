@@ -57,7 +57,7 @@
 //!
 //! The multiplies and narrowings above are built once, in [`crate::core::primitives`]
 //! ([`MulSignedUnsigned`](crate::core::primitives::MulSignedUnsigned),
-//! [`MulSignedPipe`](crate::core::primitives::MulSignedPipe), [`SatToQ2_14`](crate::core::primitives::SatToQ2_14),
+//! [`MulSignedPipe`](crate::core::primitives::MulSignedPipe),
 //! [`RoundToQ2_17`](crate::core::primitives::RoundToQ2_17), [`SatToQ2_17`](crate::core::primitives::SatToQ2_17),
 //! [`SatToUQ1_18`](crate::core::primitives::SatToUQ1_18), [`RoundToUQ1_15`](crate::core::primitives::RoundToUQ1_15),
 //! [`MulLow3Pipe`](crate::core::primitives::MulLow3Pipe)), and the blocks use those.

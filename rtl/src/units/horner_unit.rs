@@ -154,8 +154,8 @@ pub const STEP_CLOCKS: usize = 3;
 const PIPE_PAD: usize = 12 - 1 - 3 * STEP_CLOCKS;
 
 crate::hw_block! {
-    /// One Horner step of the pipelined variant, `r = ((x·p + 2¹⁴) >> 15) + k (mod 2³²)` —
-    /// `MulS32U16Round(x, p) + k`, bit for bit — in [`STEP_CLOCKS`] clocks, the serial loop's
+    /// One Horner step of the pipelined variant, `r = ((x·p + 2¹⁴) >> 15) + k (mod 2³²)`, bit
+    /// for bit as the serial loop's step, in [`STEP_CLOCKS`] clocks, the serial loop's
     /// registers without the loop: PR (the two unsigned 16×16 products x_lo·p, x_hi·p and
     /// beside them kk = k·2¹⁵ + 2¹⁴ − \[x < 0\]·p·2³², 48 bits), PT (x_hi·p·2¹⁶ + x_lo·p, mod
     /// 2⁴⁸), R ((PT + kk) >> 15). Inputs from registers; `x` signed Q-format, `p` UQ1.15,

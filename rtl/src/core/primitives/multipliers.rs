@@ -234,37 +234,3 @@ impl Logic for MulSignedPipe {
         self.p.next = self.p_q.q.val();
     }
 }
-
-crate::hw_block! {
-    /// Signed 32 × unsigned 16, rounded: `r = (x·p + 2¹⁴) >> 15` (arithmetic; ties up), from two
-    /// 16×16 products (two DSP slices: the low half unsigned, the high half signed × unsigned)
-    /// summed in 48 bits — exact, since |x·p| < 2⁴⁷. Formats: `x` signed Qm.n (32 bits), `p`
-    /// unsigned Q1.15 → `r` signed Q(m+1).n (33 bits). Combinational.
-    pub struct MulS32U16Round {
-        in { x: Bits<32>, p: Bits<16> }
-        out { r: Bits<33> }
-        hi_mul: MulSignedUnsigned,
-        lo: Signal<Local, Bits<32>>,
-        hi48: Signal<Local, Bits<48>>,
-        prod: Signal<Local, Bits<48>>,
-        sign_ext: Constant<Bits<48>> = Constant::new(0xFFFF_0000_0000u64.into()),
-        half: Constant<Bits<48>> = Constant::new((1u64 << 14).into()),
-    }
-}
-
-impl Logic for MulS32U16Round {
-    #[hdl_gen]
-    fn update(&mut self) {
-        self.lo.next = self.x.val().get_bits::<16>(0) * self.p.val();
-        self.hi_mul.a.next = self.x.val().get_bits::<16>(16);
-        self.hi_mul.b.next = self.p.val();
-        if self.hi_mul.p.val().get_bit(31) {
-            self.hi48.next = bit_cast::<48, 32>(self.hi_mul.p.val()) | self.sign_ext.val();
-        } else {
-            self.hi48.next = bit_cast::<48, 32>(self.hi_mul.p.val());
-        }
-        self.prod.next =
-            (self.hi48.val() << 16) + bit_cast::<48, 32>(self.lo.val()) + self.half.val();
-        self.r.next = self.prod.val().get_bits::<33>(15);
-    }
-}

@@ -7,31 +7,6 @@
 use rust_hdl::prelude::*;
 
 crate::hw_block! {
-    /// Signed Q3.29 → signed Q2.14, for a word that already carries the half output LSB (2¹⁴):
-    /// `narrow` = bits 30..15 of `wide` when bits 31 and 30 agree (the value fits [−2, 2)),
-    /// else the bound on `wide`'s side: 0x8000 (−2) or 0x7FFF (2 − 2⁻¹⁴). Combinational.
-    pub struct SatToQ2_14 {
-        in { wide: Bits<32> }
-        out { narrow: Bits<16> }
-        q2_14_min: Constant<Bits<16>> = Constant::new(0x8000.into()),
-        q2_14_max: Constant<Bits<16>> = Constant::new(0x7FFF.into()),
-    }
-}
-
-impl Logic for SatToQ2_14 {
-    #[hdl_gen]
-    fn update(&mut self) {
-        if self.wide.val().get_bit(31) == self.wide.val().get_bit(30) {
-            self.narrow.next = self.wide.val().get_bits::<16>(15);
-        } else if self.wide.val().get_bit(31) {
-            self.narrow.next = self.q2_14_min.val();
-        } else {
-            self.narrow.next = self.q2_14_max.val();
-        }
-    }
-}
-
-crate::hw_block! {
     /// Unsigned Q4.28 → unsigned Q1.15, rounded to nearest (ties toward +∞) and saturated:
     /// bits 28..13 of `wide + 2¹²`, or 0xFFFF (2 − 2⁻¹⁵) when `wide` ≥ 2 − 2⁻¹⁶ (it would
     /// round to 2.0). That test is `wide` ≥ 2 (bits 31..29) or bits 28..12 all ones — bit tests
