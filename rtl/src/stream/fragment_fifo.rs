@@ -1,9 +1,10 @@
-//! One lane's fragment FIFO of a stream top with a stream per lane (`angular-stream`,
-//! `fast-stream`, `quadric-stream`; `subdivision-stream`'s four, whose `tuser` is unused): the
-//! AXI4-Stream master side of a fragment stream — a 128-entry FIFO of
-//! beats (64-bit `tdata`, and the 32-bit `tuser` with `tlast`), an output register offering
-//! one beat, and the level compare the top turns into its pipeline's hold. The same logic `cubic-stream` and `pixel-stream`
-//! write inline for their one stream; a top with a stream per lane has one of these per lane.
+//! A fragment FIFO of a stream top: the AXI4-Stream master side of a fragment stream — a
+//! FIFO of beats (64-bit `tdata`, and the 32-bit `tuser` with `tlast`), an output register
+//! offering one beat, and the level compare the top turns into its pipeline's hold. The
+//! two-lane tops (`angular-stream`, `fast-stream`, `quadric-stream`) and `subdivision-stream`
+//! (four lanes, `tuser` unused) have one [`LaneFifo`] (128 entries) per lane; the one-lane tops
+//! (`pixel-stream`, `cubic-stream`, `textured-stream`, through `one_lane_stream!`) one
+//! [`FragmentFifo`] of their own depth. The figures below are [`LaneFifo`]'s.
 //!
 //! # Ports
 //! | port | dir | format |
@@ -26,24 +27,74 @@ use rust_hdl::prelude::*;
 
 use crate::core::primitives::Lutram;
 
-/// Entries of the FIFO, and its address width.
+/// Entries of a lane's FIFO ([`LaneFifo`]), and its address width.
 pub const FIFO_DEPTH: usize = 1 << FIFO_BITS;
 const FIFO_BITS: usize = 7;
 
-crate::hw_block! {
-    /// One lane's fragment FIFO and output register (see the module header).
-    pub struct FragmentFifo(clock) {
-        in { push: Bit, beat: Bits<64>, tail: Bits<33>, tready: Bit, hold_above: Bits<8> }
-        out { tvalid: Bit, tdata: Bits<64>, tuser: Bits<32>, tlast: Bit, over: Bit }
-        fifo_beat: Lutram<Bits<64>, FIFO_BITS>,
-        fifo_tail: Lutram<Bits<33>, FIFO_BITS>,
-        wr_ptr: DFF<Bits<FIFO_BITS>>, rd_ptr: DFF<Bits<FIFO_BITS>>, level: DFF<Bits<8>>,
-        pop: Signal<Local, Bit>,
-        out_v: DFF<Bit>, out_data: DFF<Bits<64>>, out_tail: DFF<Bits<33>>,
+/// The per-lane FIFO of the two- and four-lane tops: 128 entries, an 8-bit level.
+pub type LaneFifo = FragmentFifo<FIFO_BITS, 8>;
+
+/// A fragment FIFO of 2^`BITS` entries and its output register (see the module header, whose
+/// figures are [`LaneFifo`]'s): `LEVEL` is the width of the level counter and of `hold_above`
+/// (at least `BITS` + 1, so that a full FIFO's level does not wrap). The one-lane tops
+/// (`one_lane_stream!`) instantiate it with their own depth.
+#[derive(LogicBlock)]
+pub struct FragmentFifo<const BITS: usize, const LEVEL: usize> {
+    pub clock: Signal<In, Clock>,
+    pub push: Signal<In, Bit>,
+    pub beat: Signal<In, Bits<64>>,
+    pub tail: Signal<In, Bits<33>>,
+    pub tready: Signal<In, Bit>,
+    pub hold_above: Signal<In, Bits<LEVEL>>,
+    pub tvalid: Signal<Out, Bit>,
+    pub tdata: Signal<Out, Bits<64>>,
+    pub tuser: Signal<Out, Bits<32>>,
+    pub tlast: Signal<Out, Bit>,
+    pub over: Signal<Out, Bit>,
+    fifo_beat: Lutram<Bits<64>, BITS>,
+    fifo_tail: Lutram<Bits<33>, BITS>,
+    wr_ptr: DFF<Bits<BITS>>,
+    rd_ptr: DFF<Bits<BITS>>,
+    level: DFF<Bits<LEVEL>>,
+    pop: Signal<Local, Bit>,
+    out_v: DFF<Bit>,
+    out_data: DFF<Bits<64>>,
+    out_tail: DFF<Bits<33>>,
+}
+
+impl<const BITS: usize, const LEVEL: usize> Default for FragmentFifo<BITS, LEVEL> {
+    fn default() -> Self {
+        assert!(
+            LEVEL > BITS,
+            "the level of a 2^{BITS}-entry FIFO needs {} bits",
+            BITS + 1
+        );
+        Self {
+            clock: Default::default(),
+            push: Default::default(),
+            beat: Default::default(),
+            tail: Default::default(),
+            tready: Default::default(),
+            hold_above: Default::default(),
+            tvalid: Default::default(),
+            tdata: Default::default(),
+            tuser: Default::default(),
+            tlast: Default::default(),
+            over: Default::default(),
+            fifo_beat: Default::default(),
+            fifo_tail: Default::default(),
+            wr_ptr: Default::default(),
+            rd_ptr: Default::default(),
+            level: Default::default(),
+            pop: Default::default(),
+            out_v: Default::default(),
+            out_data: Default::default(),
+            out_tail: Default::default(),
+        }
     }
 }
 
-impl Logic for FragmentFifo {
+impl<const BITS: usize, const LEVEL: usize> Logic for FragmentFifo<BITS, LEVEL> {
     #[hdl_gen]
     fn update(&mut self) {
         clock!(self, clock, fifo_beat, fifo_tail);

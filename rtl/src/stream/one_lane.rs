@@ -44,18 +44,14 @@ macro_rules! one_lane_stream {
                 }
                 /// The record banks, the field selects and the wrapped top (`core.pipe`): generated.
                 pub core: $core = $init,
-                // Fragment side: the FIFO (beat, and z with tlast), pointers, level.
-                fifo_beat: $crate::core::primitives::Lutram<Bits<64>, FIFO_BITS>,
-                fifo_tail: $crate::core::primitives::Lutram<Bits<33>, FIFO_BITS>,
-                wr_ptr: DFF<Bits<FIFO_BITS>>, rd_ptr: DFF<Bits<FIFO_BITS>>, level: DFF<Bits<$level>>,
+                /// Fragment side: the FIFO of (beat, and z with tlast) and its output register.
+                fifo: $crate::stream::fragment_fifo::FragmentFifo<FIFO_BITS, $level>,
                 hold_above: Constant<Bits<$level>> = Constant::new((HOLD_ABOVE as u64).into()),
                 /// The hold, registered (the comparator, the wrapped top's gating and the depth
                 /// channel's adder in one clock ran at 79.8 MHz on ECP5 in `pixel-stream`).
                 hold_q: DFF<Bit>,
                 $($events: Signal<Local, Bit>,)?
-                pop: Signal<Local, Bit>, beat: Signal<Local, Bits<64>>,
-                /// The output register: a beat (tdata, and z with tlast) offered on `m_axis_*`.
-                out_v: DFF<Bit>, out_data: DFF<Bits<64>>, out_tail: DFF<Bits<33>>,
+                beat: Signal<Local, Bits<64>>,
                 tlast_bit: Constant<Bits<33>> = Constant::new((1u64 << 32).into()),
             }
             new($arg: &$pt);
@@ -73,10 +69,10 @@ macro_rules! one_lane_stream {
         impl Logic for $name {
             #[hdl_gen]
             fn update(&mut self) {
-                clock!(self, clock, core, fifo_beat, fifo_tail);
+                clock!(self, clock, core, fifo);
                 // The fragment beats the generated core packs.
                 self.beat.next = self.core.beat.val();
-                dff_setup!(self, clock, wr_ptr, rd_ptr, level, hold_q, out_v, out_data, out_tail);
+                dff_setup!(self, clock, hold_q);
 
                 // Set-up side: the generated core (record reader, load bank, word banks, field
                 // selects).
@@ -87,50 +83,22 @@ macro_rules! one_lane_stream {
                 self.error.next = self.core.error.val();
 
                 // Fragment side: `push` writes a beat.
-                self.hold_q.d.next = self.level.q.val() > self.hold_above.val();
+                self.fifo.hold_above.next = self.hold_above.val();
+                self.hold_q.d.next = self.fifo.over.val();
                 self.core.hold.next = self.hold_q.q.val();
                 $(self.$events.next = self.core.valid.val() | self.core.done.val();)?
-                self.pop.next =
-                    (self.level.q.val() != 0) & (!self.out_v.q.val() | self.m_axis_tready.val());
-                self.fifo_beat.write_enable.next = self.$($push).+.val();
-                self.fifo_beat.write_address.next = self.wr_ptr.q.val();
-                self.fifo_beat.write_data.next = self.beat.val();
-                self.fifo_beat.read_address.next = self.rd_ptr.q.val();
-                self.fifo_tail.write_enable.next = self.$($push).+.val();
-                self.fifo_tail.write_address.next = self.wr_ptr.q.val();
-                self.fifo_tail.write_data.next = bit_cast::<33, 32>(self.core.z.val());
+                self.fifo.push.next = self.$($push).+.val();
+                self.fifo.beat.next = self.beat.val();
+                self.fifo.tail.next = bit_cast::<33, 32>(self.core.z.val());
                 if self.core.done.val() {
-                    self.fifo_tail.write_data.next =
+                    self.fifo.tail.next =
                         bit_cast::<33, 32>(self.core.z.val()) | self.tlast_bit.val();
                 }
-                self.fifo_tail.read_address.next = self.rd_ptr.q.val();
-                if self.$($push).+.val() {
-                    self.wr_ptr.d.next = self.wr_ptr.q.val() + 1;
-                }
-                if self.pop.val() {
-                    self.rd_ptr.d.next = self.rd_ptr.q.val() + 1;
-                }
-                if self.$($push).+.val() & !self.pop.val() {
-                    self.level.d.next = self.level.q.val() + 1;
-                } else if !self.$($push).+.val() & self.pop.val() {
-                    self.level.d.next = self.level.q.val() - 1;
-                }
-                if self.pop.val() {
-                    self.out_v.d.next = true;
-                    self.out_data.d.next = self.fifo_beat.read_data.val();
-                    self.out_tail.d.next = self.fifo_tail.read_data.val();
-                } else if self.m_axis_tready.val() {
-                    self.out_v.d.next = false;
-                }
-                self.m_axis_tvalid.next = self.out_v.q.val();
-                self.m_axis_tdata.next = 0.into();
-                self.m_axis_tuser.next = 0.into();
-                self.m_axis_tlast.next = false;
-                if self.out_v.q.val() {
-                    self.m_axis_tdata.next = self.out_data.q.val();
-                    self.m_axis_tuser.next = self.out_tail.q.val().get_bits::<32>(0);
-                    self.m_axis_tlast.next = self.out_tail.q.val().get_bit(32);
-                }
+                self.fifo.tready.next = self.m_axis_tready.val();
+                self.m_axis_tvalid.next = self.fifo.tvalid.val();
+                self.m_axis_tdata.next = self.fifo.tdata.val();
+                self.m_axis_tuser.next = self.fifo.tuser.val();
+                self.m_axis_tlast.next = self.fifo.tlast.val();
             }
         }
     };

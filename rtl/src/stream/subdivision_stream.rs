@@ -74,7 +74,7 @@ use rust_hdl::prelude::*;
 
 use crate::core::registry::RtlBlock;
 use crate::pipelines::subdivision_raster::SubdivisionRaster;
-use crate::stream::fragment_fifo::FragmentFifo;
+use crate::stream::fragment_fifo::LaneFifo;
 use crate::stream::record_reader::{RecordReader, INDEX_BITS};
 use crate::units::intensity_interpolator::IntensityInterpolator;
 
@@ -110,7 +110,7 @@ crate::hw_block! {
         /// The record banks, the field selects and the wrapped top (`core.pipe`): generated.
         pub core: SubdivisionStreamCore,
         // Fragment side: a FIFO per lane, the hold from any one's level.
-        lane0: FragmentFifo, lane1: FragmentFifo, lane2: FragmentFifo, lane3: FragmentFifo,
+        lane0: LaneFifo, lane1: LaneFifo, lane2: LaneFifo, lane3: LaneFifo,
         hold_above: Constant<Bits<8>> = Constant::new((HOLD_ABOVE as u64).into()),
         hold_q: DFF<Bit>,
         beat_l0: Signal<Local, Bits<64>>, beat_l1: Signal<Local, Bits<64>>,

@@ -1,5 +1,5 @@
 //! The fragment side the two-lane stream tops share (`angular-stream`, `fast-stream`,
-//! `quadric-stream`): a [`FragmentFifo`](crate::stream::fragment_fifo::FragmentFifo) per lane,
+//! `quadric-stream`): a [`LaneFifo`](crate::stream::fragment_fifo::LaneFifo) per lane,
 //! the wrapped top held from either FIFO's level, a beat per lane for each fragment and for a
 //! line's last clock. [`two_lane_stream!`](crate::two_lane_stream) writes the whole top around
 //! its generated core; each top's header states the figures (checked by
@@ -55,8 +55,8 @@ macro_rules! two_lane_stream {
                 /// The record banks, the field selects and the wrapped top (`core.pipe`): generated.
                 pub core: $core $(= $init)?,
                 // Fragment side: a FIFO per lane, the hold from either's level.
-                lane_a: $crate::stream::fragment_fifo::FragmentFifo,
-                lane_b: $crate::stream::fragment_fifo::FragmentFifo,
+                lane_a: $crate::stream::fragment_fifo::LaneFifo,
+                lane_b: $crate::stream::fragment_fifo::LaneFifo,
                 hold_above: Constant<Bits<8>> = Constant::new((HOLD_ABOVE as u64).into()),
                 hold_q: DFF<Bit>,
                 beat_a: Signal<Local, Bits<64>>, beat_b: Signal<Local, Bits<64>>,
