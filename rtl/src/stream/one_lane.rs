@@ -51,7 +51,7 @@ macro_rules! one_lane_stream {
                 /// channel's adder in one clock ran at 79.8 MHz on ECP5 in `pixel-stream`).
                 hold_q: DFF<Bit>,
                 $($events: Signal<Local, Bit>,)?
-                beat: Signal<Local, Bits<64>>,
+                beat: Signal<Local, Bits<64>>, tail: Signal<Local, Bits<33>>,
                 tlast_bit: Constant<Bits<33>> = Constant::new((1u64 << 32).into()),
             }
             new($arg: &$pt);
@@ -89,11 +89,16 @@ macro_rules! one_lane_stream {
                 $(self.$events.next = self.core.valid.val() | self.core.done.val();)?
                 self.fifo.push.next = self.$($push).+.val();
                 self.fifo.beat.next = self.beat.val();
-                self.fifo.tail.next = bit_cast::<33, 32>(self.core.z.val());
+                // The tail (z, and tlast on a triangle's end) formed in a local and driven into
+                // the FIFO by one assignment: a port set twice in one `always @(*)` pulses
+                // in an event-driven simulator, and the FIFO's outputs (set the same way)
+                // lead back into this block, so the two would wake each other for ever
+                // (Icarus hung at one time step).
+                self.tail.next = bit_cast::<33, 32>(self.core.z.val());
                 if self.core.done.val() {
-                    self.fifo.tail.next =
-                        bit_cast::<33, 32>(self.core.z.val()) | self.tlast_bit.val();
+                    self.tail.next = bit_cast::<33, 32>(self.core.z.val()) | self.tlast_bit.val();
                 }
+                self.fifo.tail.next = self.tail.val();
                 self.fifo.tready.next = self.m_axis_tready.val();
                 self.m_axis_tvalid.next = self.fifo.tvalid.val();
                 self.m_axis_tdata.next = self.fifo.tdata.val();
