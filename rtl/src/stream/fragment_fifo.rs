@@ -33,12 +33,14 @@ const FIFO_BITS: usize = 7;
 
 /// The per-lane FIFO of the two- and four-lane tops: 128 entries, an 8-bit level.
 pub type LaneFifo = FragmentFifo<FIFO_BITS, 8>;
+const _: () = assert!(8 > FIFO_BITS);
 
 /// A fragment FIFO of 2^`BITS` entries and its output register (see the module header, whose
 /// figures are [`LaneFifo`]'s): `LEVEL` is the width of the level counter and of `hold_above`
-/// (at least `BITS` + 1, so that a full FIFO's level does not wrap). The one-lane tops
+/// (at least `BITS` + 1, so that a full FIFO's level does not wrap: each user asserts it at
+/// compile time). The one-lane tops
 /// (`one_lane_stream!`) instantiate it with their own depth.
-#[derive(LogicBlock)]
+#[derive(LogicBlock, Default)]
 pub struct FragmentFifo<const BITS: usize, const LEVEL: usize> {
     pub clock: Signal<In, Clock>,
     pub push: Signal<In, Bit>,
@@ -60,38 +62,6 @@ pub struct FragmentFifo<const BITS: usize, const LEVEL: usize> {
     out_v: DFF<Bit>,
     out_data: DFF<Bits<64>>,
     out_tail: DFF<Bits<33>>,
-}
-
-impl<const BITS: usize, const LEVEL: usize> Default for FragmentFifo<BITS, LEVEL> {
-    fn default() -> Self {
-        assert!(
-            LEVEL > BITS,
-            "the level of a 2^{BITS}-entry FIFO needs {} bits",
-            BITS + 1
-        );
-        Self {
-            clock: Default::default(),
-            push: Default::default(),
-            beat: Default::default(),
-            tail: Default::default(),
-            tready: Default::default(),
-            hold_above: Default::default(),
-            tvalid: Default::default(),
-            tdata: Default::default(),
-            tuser: Default::default(),
-            tlast: Default::default(),
-            over: Default::default(),
-            fifo_beat: Default::default(),
-            fifo_tail: Default::default(),
-            wr_ptr: Default::default(),
-            rd_ptr: Default::default(),
-            level: Default::default(),
-            pop: Default::default(),
-            out_v: Default::default(),
-            out_data: Default::default(),
-            out_tail: Default::default(),
-        }
-    }
 }
 
 impl<const BITS: usize, const LEVEL: usize> Logic for FragmentFifo<BITS, LEVEL> {

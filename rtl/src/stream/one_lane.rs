@@ -57,6 +57,9 @@ macro_rules! one_lane_stream {
             new($arg: &$pt);
         }
 
+        // The level counter holds a full FIFO's 2^FIFO_BITS.
+        const _: () = assert!($level > FIFO_BITS);
+
         /// The generated core: `rtl/build.rs` writes it from the top's layout table (the record
         /// banks, the field selects into the wrapped top, the fragment packing).
         mod generated {
